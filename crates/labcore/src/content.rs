@@ -1,0 +1,335 @@
+//! Experiment content as data: one JSON file per experiment under `assets/`.
+//!
+//! Text fields may hold a small, trusted subset of inline HTML (`<em>`,
+//! `<strong>`, `<code>`, `<sub>`, `<sup>`) and MathML (`<math>…</math>`); the
+//! files are ours and are compiled into the bundle, never user input.
+
+use serde::Deserialize;
+use std::fmt;
+
+/// Everything the reading tabs and the quiz show for one experiment.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Content {
+    /// Must equal the experiment's [`crate::Experiment::id`].
+    pub id: String,
+    /// Position in the lab (1–11).
+    pub number: u32,
+    pub title: String,
+    /// One line for the home-page card.
+    pub summary: String,
+    /// Paragraphs.
+    pub aim: Vec<String>,
+    pub theory: Vec<Block>,
+    /// Ordered steps.
+    pub procedure: Vec<String>,
+    pub quiz: Vec<Question>,
+    pub references: Vec<Reference>,
+}
+
+/// A block of the Theory tab.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum Block {
+    /// A sub-heading.
+    Heading(String),
+    /// A paragraph (inline MathML allowed).
+    Paragraph(String),
+    /// A display formula: a complete `<math display="block">…</math>` element.
+    Formula(String),
+    /// A highlighted aside.
+    Note(String),
+}
+
+/// A bibliographic reference.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct Reference {
+    pub authors: String,
+    pub title: String,
+    /// Publisher, journal or site.
+    pub venue: String,
+    #[serde(default)]
+    pub year: Option<u32>,
+    /// Chapter, pages or section.
+    #[serde(default)]
+    pub detail: Option<String>,
+}
+
+/// One self-assessment question.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Question {
+    /// Multiple choice with exactly one correct option.
+    Choice {
+        prompt: String,
+        options: Vec<String>,
+        /// Index of the correct option.
+        answer: usize,
+        explanation: String,
+    },
+    /// A fixed numeric answer checked within `tolerance` (absolute).
+    Numeric {
+        prompt: String,
+        answer: f64,
+        tolerance: f64,
+        #[serde(default)]
+        unit: String,
+        explanation: String,
+    },
+    /// A parameterised numeric question: `generator` names a function of the
+    /// experiment's quiz module that draws the numbers from a seed and computes
+    /// the answer. `{name}` placeholders in `prompt` and `explanation` are
+    /// filled from the draw; `{answer}` is the computed answer.
+    Generated {
+        generator: String,
+        prompt: String,
+        tolerance: f64,
+        #[serde(default)]
+        unit: String,
+        explanation: String,
+    },
+}
+
+impl Question {
+    #[must_use]
+    pub fn prompt(&self) -> &str {
+        match self {
+            Question::Choice { prompt, .. }
+            | Question::Numeric { prompt, .. }
+            | Question::Generated { prompt, .. } => prompt,
+        }
+    }
+}
+
+/// Why a content file was refused.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ContentError {
+    Parse(String),
+    Missing { section: &'static str },
+    TooFewQuestions { found: usize },
+    TooFewGenerated { found: usize },
+    BadChoice { question: usize, reason: String },
+    BadTolerance { question: usize },
+    TooFewReferences { found: usize },
+    BadFormula { block: usize },
+    UnknownGenerator { question: usize, name: String },
+    WrongId { expected: String, found: String },
+}
+
+impl fmt::Display for ContentError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ContentError::Parse(e) => write!(f, "content is not valid JSON: {e}"),
+            ContentError::Missing { section } => write!(f, "section “{section}” is empty"),
+            ContentError::TooFewQuestions { found } => {
+                write!(
+                    f,
+                    "quiz has {found} questions; at least {MIN_QUESTIONS} are needed"
+                )
+            }
+            ContentError::TooFewGenerated { found } => write!(
+                f,
+                "quiz has {found} parameterised questions; at least {MIN_GENERATED} are needed"
+            ),
+            ContentError::BadChoice { question, reason } => {
+                write!(f, "question {}: {reason}", question + 1)
+            }
+            ContentError::BadTolerance { question } => {
+                write!(f, "question {}: tolerance must be positive", question + 1)
+            }
+            ContentError::TooFewReferences { found } => {
+                write!(
+                    f,
+                    "{found} references; at least {MIN_REFERENCES} are needed"
+                )
+            }
+            ContentError::BadFormula { block } => write!(
+                f,
+                "theory block {}: a formula must be one <math display=\"block\"> element",
+                block + 1
+            ),
+            ContentError::UnknownGenerator { question, name } => {
+                write!(f, "question {}: no generator named “{name}”", question + 1)
+            }
+            ContentError::WrongId { expected, found } => {
+                write!(
+                    f,
+                    "content id “{found}” does not match experiment “{expected}”"
+                )
+            }
+        }
+    }
+}
+
+impl std::error::Error for ContentError {}
+
+pub const MIN_QUESTIONS: usize = 8;
+pub const MIN_GENERATED: usize = 2;
+pub const MIN_REFERENCES: usize = 3;
+
+impl Content {
+    /// Parses a content file and checks it is complete (see [`Content::validate`]).
+    pub fn parse(json: &str) -> Result<Self, ContentError> {
+        let content: Content =
+            serde_json::from_str(json).map_err(|e| ContentError::Parse(e.to_string()))?;
+        content.validate()?;
+        Ok(content)
+    }
+
+    /// Rejects a file that lacks a section, has fewer than 8 questions or fewer
+    /// than 2 parameterised ones, has a choice question without exactly one
+    /// correct answer, a non-positive tolerance, a malformed display formula,
+    /// or fewer than 3 references.
+    pub fn validate(&self) -> Result<(), ContentError> {
+        let empty = |s: &str| s.trim().is_empty();
+        if empty(&self.id) {
+            return Err(ContentError::Missing { section: "id" });
+        }
+        if empty(&self.title) {
+            return Err(ContentError::Missing { section: "title" });
+        }
+        if empty(&self.summary) {
+            return Err(ContentError::Missing { section: "summary" });
+        }
+        if self.aim.is_empty() || self.aim.iter().any(|p| empty(p)) {
+            return Err(ContentError::Missing { section: "aim" });
+        }
+        if self.theory.is_empty() {
+            return Err(ContentError::Missing { section: "theory" });
+        }
+        if !self.theory.iter().any(|b| matches!(b, Block::Formula(_))) {
+            return Err(ContentError::Missing {
+                section: "theory formula",
+            });
+        }
+        for (i, block) in self.theory.iter().enumerate() {
+            if let Block::Formula(f) = block {
+                if !is_block_math(f) {
+                    return Err(ContentError::BadFormula { block: i });
+                }
+            }
+        }
+        if self.procedure.is_empty() || self.procedure.iter().any(|p| empty(p)) {
+            return Err(ContentError::Missing {
+                section: "procedure",
+            });
+        }
+        if self.quiz.len() < MIN_QUESTIONS {
+            return Err(ContentError::TooFewQuestions {
+                found: self.quiz.len(),
+            });
+        }
+        let generated = self
+            .quiz
+            .iter()
+            .filter(|q| matches!(q, Question::Generated { .. }))
+            .count();
+        if generated < MIN_GENERATED {
+            return Err(ContentError::TooFewGenerated { found: generated });
+        }
+        for (i, q) in self.quiz.iter().enumerate() {
+            if empty(q.prompt()) {
+                return Err(ContentError::Missing {
+                    section: "question",
+                });
+            }
+            match q {
+                Question::Choice {
+                    options, answer, ..
+                } => {
+                    if options.len() < 2 {
+                        return Err(ContentError::BadChoice {
+                            question: i,
+                            reason: "a choice needs at least two options".into(),
+                        });
+                    }
+                    if *answer >= options.len() {
+                        return Err(ContentError::BadChoice {
+                            question: i,
+                            reason: "the correct answer is not one of the options".into(),
+                        });
+                    }
+                    let correct = &options[*answer];
+                    if options.iter().filter(|o| *o == correct).count() != 1 {
+                        return Err(ContentError::BadChoice {
+                            question: i,
+                            reason: "the correct option appears more than once".into(),
+                        });
+                    }
+                }
+                Question::Numeric {
+                    tolerance, answer, ..
+                } => {
+                    if !(*tolerance > 0.0) || !answer.is_finite() {
+                        return Err(ContentError::BadTolerance { question: i });
+                    }
+                }
+                Question::Generated { tolerance, .. } => {
+                    if !(*tolerance > 0.0) {
+                        return Err(ContentError::BadTolerance { question: i });
+                    }
+                }
+            }
+        }
+        if self.references.len() < MIN_REFERENCES {
+            return Err(ContentError::TooFewReferences {
+                found: self.references.len(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A display formula is exactly one `<math display="block">` element with
+/// balanced tags.
+fn is_block_math(s: &str) -> bool {
+    let s = s.trim();
+    s.starts_with("<math")
+        && s.contains("display=\"block\"")
+        && s.ends_with("</math>")
+        && tags_balanced(s)
+}
+
+/// Checks that start and end tags nest properly (self-closing tags allowed).
+#[must_use]
+pub fn tags_balanced(s: &str) -> bool {
+    let mut stack: Vec<&str> = Vec::new();
+    let mut rest = s;
+    while let Some(open) = rest.find('<') {
+        let after = &rest[open + 1..];
+        let Some(close) = after.find('>') else {
+            return false;
+        };
+        let tag = &after[..close];
+        rest = &after[close + 1..];
+        if tag.ends_with('/') {
+            continue;
+        }
+        if let Some(name) = tag.strip_prefix('/') {
+            if stack.pop() != Some(name.trim()) {
+                return false;
+            }
+        } else {
+            let name = tag.split_whitespace().next().unwrap_or("");
+            if name.is_empty() {
+                return false;
+            }
+            stack.push(name);
+        }
+    }
+    stack.is_empty()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn balanced_tags() {
+        assert!(tags_balanced("<math><mi>x</mi><mo>=</mo></math>"));
+        assert!(tags_balanced("<math><mspace width=\"1em\"/></math>"));
+        assert!(!tags_balanced("<math><mi>x</math>"));
+        assert!(!tags_balanced("<math><mi>x</mo></math>"));
+    }
+}

@@ -1,0 +1,291 @@
+//! The one seam between solvers and the page: [`Experiment`].
+//!
+//! labweb turns DOM events into [`Input`] values already in world coordinates,
+//! calls [`Experiment::step`] with a fixed `dt`, asks for a [`Scene`] and the
+//! [`Readout`]s, and paints them. Nothing here knows about the DOM.
+
+use crate::scene::{Scene, ViewBox};
+use glam::DVec2;
+use std::fmt;
+
+/// How a parameter is shown on the page.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ParamKind {
+    /// A range slider with a number box.
+    Slider,
+    /// A two-state switch; the value is 0 (`off` label) or 1 (`on` label).
+    Toggle { off: &'static str, on: &'static str },
+    /// One of several labelled choices; the value is the index.
+    Choice(&'static [&'static str]),
+}
+
+/// One tunable parameter, in the units the page shows (degrees for angles).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamSpec {
+    /// Stable key, used in the URL hash (`t1`, `l2`, …).
+    pub key: &'static str,
+    /// Label shown beside the control, e.g. `θ₁`.
+    pub label: &'static str,
+    /// Unit shown after the value (`°`, `m`, or empty).
+    pub unit: &'static str,
+    pub min: f64,
+    pub max: f64,
+    pub step: f64,
+    pub default: f64,
+    pub kind: ParamKind,
+}
+
+impl ParamSpec {
+    /// A slider parameter.
+    #[must_use]
+    pub const fn slider(
+        key: &'static str,
+        label: &'static str,
+        unit: &'static str,
+        min: f64,
+        max: f64,
+        step: f64,
+        default: f64,
+    ) -> Self {
+        Self {
+            key,
+            label,
+            unit,
+            min,
+            max,
+            step,
+            default,
+            kind: ParamKind::Slider,
+        }
+    }
+
+    /// A two-state toggle parameter (value 0 or 1).
+    #[must_use]
+    pub const fn toggle(
+        key: &'static str,
+        label: &'static str,
+        off: &'static str,
+        on: &'static str,
+        default_on: bool,
+    ) -> Self {
+        Self {
+            key,
+            label,
+            unit: "",
+            min: 0.0,
+            max: 1.0,
+            step: 1.0,
+            default: if default_on { 1.0 } else { 0.0 },
+            kind: ParamKind::Toggle { off, on },
+        }
+    }
+
+    /// A choice among labelled options (value = index).
+    #[must_use]
+    pub const fn choice(
+        key: &'static str,
+        label: &'static str,
+        options: &'static [&'static str],
+        default: usize,
+    ) -> Self {
+        Self {
+            key,
+            label,
+            unit: "",
+            min: 0.0,
+            max: (options.len() - 1) as f64,
+            step: 1.0,
+            default: default as f64,
+            kind: ParamKind::Choice(options),
+        }
+    }
+
+    /// Checks a proposed value: NaN and infinities are rejected; values outside
+    /// `[min, max]` are clamped and reported as [`Sanitized::Clamped`];
+    /// toggles and choices are rounded to the nearest index.
+    pub fn sanitize(&self, value: f64) -> Result<Sanitized, ParamError> {
+        if !value.is_finite() {
+            return Err(ParamError::NotFinite { key: self.key });
+        }
+        let discrete = !matches!(self.kind, ParamKind::Slider);
+        let v = if discrete { value.round() } else { value };
+        let clamped = v.clamp(self.min, self.max);
+        if clamped != v {
+            Ok(Sanitized::Clamped(clamped))
+        } else {
+            Ok(Sanitized::InRange(clamped))
+        }
+    }
+}
+
+/// Result of [`ParamSpec::sanitize`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Sanitized {
+    InRange(f64),
+    Clamped(f64),
+}
+
+impl Sanitized {
+    /// The value to apply.
+    #[must_use]
+    pub fn value(self) -> f64 {
+        match self {
+            Sanitized::InRange(v) | Sanitized::Clamped(v) => v,
+        }
+    }
+}
+
+/// A button on the Simulation tab (e.g. "Sweep workspace").
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ActionSpec {
+    pub key: &'static str,
+    pub label: &'static str,
+}
+
+/// Why a parameter or action was refused. The experiment's state is unchanged.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ParamError {
+    UnknownKey { key: String },
+    NotFinite { key: &'static str },
+    UnknownAction { key: String },
+}
+
+impl fmt::Display for ParamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ParamError::UnknownKey { key } => write!(f, "unknown parameter “{key}”"),
+            ParamError::NotFinite { key } => write!(f, "“{key}” needs a finite number"),
+            ParamError::UnknownAction { key } => write!(f, "unknown action “{key}”"),
+        }
+    }
+}
+
+impl std::error::Error for ParamError {}
+
+/// A pointer or keyboard input, already in world coordinates (metres).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Input {
+    /// Primary button / touch / pen pressed at a world point.
+    PointerDown(DVec2),
+    /// Pointer moved; `pressed` is true while dragging.
+    PointerMove { pos: DVec2, pressed: bool },
+    /// Pointer released (or cancelled) at a world point.
+    PointerUp(DVec2),
+    /// Keyboard nudge of the draggable point by a world displacement (arrow keys on the canvas).
+    Nudge(DVec2),
+}
+
+/// Tone of the status badge above the canvas.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tone {
+    Neutral,
+    Good,
+    Warning,
+    Bad,
+}
+
+/// The badge above the canvas (e.g. "in reach", "out of reach").
+#[derive(Clone, Debug, PartialEq)]
+pub struct Status {
+    pub text: String,
+    pub tone: Tone,
+}
+
+impl Status {
+    #[must_use]
+    pub fn new(text: impl Into<String>, tone: Tone) -> Self {
+        Self {
+            text: text.into(),
+            tone,
+        }
+    }
+}
+
+/// One live number beside the canvas, already formatted.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Readout {
+    /// Stable key (tests and the page find the readout by it).
+    pub key: &'static str,
+    pub label: &'static str,
+    /// Formatted value including its unit, e.g. `1.234 m` or `--` when undefined.
+    pub value: String,
+}
+
+impl Readout {
+    #[must_use]
+    pub fn new(key: &'static str, label: &'static str, value: impl Into<String>) -> Self {
+        Self {
+            key,
+            label,
+            value: value.into(),
+        }
+    }
+}
+
+/// One experiment: parameters, state, a fixed-step simulation and a display list.
+///
+/// Contract: every method leaves the state finite whatever it is given; a
+/// refused input leaves the state exactly as it was.
+pub trait Experiment {
+    /// Stable key: URL hash, content file name, tests.
+    fn id(&self) -> &'static str;
+    /// The tunable parameters, in display order.
+    fn params(&self) -> &'static [ParamSpec];
+    /// Current value of a parameter in display units, `None` for an unknown key.
+    fn param(&self, key: &str) -> Option<f64>;
+    /// Sets a parameter (display units). Returns what was applied (it may be clamped).
+    fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError>;
+    /// The buttons of the Simulation tab.
+    fn actions(&self) -> &'static [ActionSpec] {
+        &[]
+    }
+    /// Runs a button's action.
+    fn action(&mut self, key: &str) -> Result<(), ParamError> {
+        Err(ParamError::UnknownAction { key: key.into() })
+    }
+    /// A pointer or keyboard input in world coordinates.
+    fn input(&mut self, input: Input);
+    /// Advances the simulation by `dt_s` seconds (fixed step, deterministic).
+    fn step(&mut self, dt_s: f64);
+    /// The world rectangle the canvas should show.
+    fn view(&self) -> ViewBox;
+    /// Fills `out` with this frame's display list (cleared first by the caller).
+    fn scene(&self, out: &mut Scene);
+    /// The live numbers beside the canvas.
+    fn readouts(&self) -> Vec<Readout>;
+    /// The status badge.
+    fn status(&self) -> Status;
+    /// Whether the simulation is still moving (the page may idle when false).
+    fn animating(&self) -> bool {
+        true
+    }
+}
+
+/// Shared helper: look up a spec by key.
+#[must_use]
+pub fn find_spec<'a>(specs: &'a [ParamSpec], key: &str) -> Option<&'a ParamSpec> {
+    specs.iter().find(|s| s.key == key)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SPEC: ParamSpec = ParamSpec::slider("t1", "θ1", "°", -180.0, 180.0, 1.0, 35.0);
+
+    #[test]
+    fn sanitize_clamps_and_rejects_nan() {
+        assert_eq!(SPEC.sanitize(10.0), Ok(Sanitized::InRange(10.0)));
+        assert_eq!(SPEC.sanitize(500.0), Ok(Sanitized::Clamped(180.0)));
+        assert_eq!(SPEC.sanitize(-500.0), Ok(Sanitized::Clamped(-180.0)));
+        assert!(SPEC.sanitize(f64::NAN).is_err());
+        assert!(SPEC.sanitize(f64::INFINITY).is_err());
+    }
+
+    #[test]
+    fn toggles_round_to_zero_or_one() {
+        let t = ParamSpec::toggle("elbow", "Elbow", "down", "up", true);
+        assert_eq!(t.sanitize(0.7), Ok(Sanitized::InRange(1.0)));
+        assert_eq!(t.sanitize(3.0), Ok(Sanitized::Clamped(1.0)));
+    }
+}

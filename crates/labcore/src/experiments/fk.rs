@@ -1,0 +1,332 @@
+//! Experiment 1 — forward kinematics of a planar 2-link arm.
+//!
+//! The sliders set `θ1`, `θ2`, `L1`, `L2`; the readouts show the tip position
+//! `x = L1 cos θ1 + L2 cos(θ1+θ2)`, `y = L1 sin θ1 + L2 sin(θ1+θ2)`, the reach
+//! used `|p| / (L1 + L2)` and, while the tip is dragged, the distance from the
+//! pointer to the tip. Dragging the tip solves closed-form IK on the current
+//! elbow branch; a pointer outside the annulus pulls the tip to the nearest
+//! reachable point.
+
+use crate::experiment::{
+    find_spec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+};
+use crate::kinematics::chain::{forward, Annulus};
+use crate::kinematics::two_link_ik::{solve, Elbow};
+use crate::quiz::{format_number, Draw, Generator};
+use crate::rng::Lcg64;
+use crate::scene::{Item, Role, Scene, ViewBox};
+use glam::DVec2;
+
+const PARAMS: &[ParamSpec] = &[
+    ParamSpec::slider("t1", "θ₁", "°", -180.0, 180.0, 1.0, 35.0),
+    ParamSpec::slider("t2", "θ₂", "°", -180.0, 180.0, 1.0, 60.0),
+    ParamSpec::slider("l1", "L₁", "m", 0.2, 1.5, 0.05, 1.0),
+    ParamSpec::slider("l2", "L₂", "m", 0.2, 1.5, 0.05, 0.7),
+];
+
+/// World half-width shown: the longest possible arm plus a margin (metres).
+const VIEW_HALF_M: f64 = 3.2;
+
+/// State of the forward-kinematics experiment.
+#[derive(Clone, Debug)]
+pub struct ForwardKinematics {
+    theta1_deg: f64,
+    theta2_deg: f64,
+    l1_m: f64,
+    l2_m: f64,
+    /// Pointer position while dragging the tip (world, metres).
+    drag_target: Option<DVec2>,
+}
+
+impl Default for ForwardKinematics {
+    fn default() -> Self {
+        Self {
+            theta1_deg: PARAMS[0].default,
+            theta2_deg: PARAMS[1].default,
+            l1_m: PARAMS[2].default,
+            l2_m: PARAMS[3].default,
+            drag_target: None,
+        }
+    }
+}
+
+impl ForwardKinematics {
+    fn lengths(&self) -> [f64; 2] {
+        [self.l1_m, self.l2_m]
+    }
+
+    fn angles_rad(&self) -> [f64; 2] {
+        [self.theta1_deg.to_radians(), self.theta2_deg.to_radians()]
+    }
+
+    /// The tip position, metres.
+    #[must_use]
+    pub fn tip(&self) -> DVec2 {
+        forward(&self.lengths(), &self.angles_rad()).tip()
+    }
+
+    /// Moves the tip as close as possible to `target` on the current elbow branch.
+    fn drag_tip_to(&mut self, target: DVec2) {
+        if !target.is_finite() {
+            return;
+        }
+        let annulus = Annulus::of_chain(&self.lengths());
+        let reachable = annulus.nearest(target);
+        let elbow = if self.theta2_deg < 0.0 {
+            Elbow::Up
+        } else {
+            Elbow::Down
+        };
+        if let Ok(sol) = solve(self.l1_m, self.l2_m, reachable) {
+            let a = sol.branch(elbow);
+            self.theta1_deg = a.theta1_rad.to_degrees().clamp(-180.0, 180.0);
+            self.theta2_deg = a.theta2_rad.to_degrees().clamp(-180.0, 180.0);
+        }
+        self.drag_target = Some(target);
+    }
+}
+
+impl Experiment for ForwardKinematics {
+    fn id(&self) -> &'static str {
+        "fk"
+    }
+
+    fn params(&self) -> &'static [ParamSpec] {
+        PARAMS
+    }
+
+    fn param(&self, key: &str) -> Option<f64> {
+        match key {
+            "t1" => Some(self.theta1_deg),
+            "t2" => Some(self.theta2_deg),
+            "l1" => Some(self.l1_m),
+            "l2" => Some(self.l2_m),
+            _ => None,
+        }
+    }
+
+    fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
+        let spec =
+            find_spec(PARAMS, key).ok_or_else(|| ParamError::UnknownKey { key: key.into() })?;
+        let applied = spec.sanitize(value)?;
+        let v = applied.value();
+        match key {
+            "t1" => self.theta1_deg = v,
+            "t2" => self.theta2_deg = v,
+            "l1" => self.l1_m = v,
+            _ => self.l2_m = v,
+        }
+        self.drag_target = None;
+        Ok(applied)
+    }
+
+    fn input(&mut self, input: Input) {
+        match input {
+            Input::PointerDown(p)
+            | Input::PointerMove {
+                pos: p,
+                pressed: true,
+            } => {
+                self.drag_tip_to(p);
+            }
+            Input::PointerMove { pressed: false, .. } => {}
+            Input::PointerUp(_) => self.drag_target = None,
+            Input::Nudge(delta) => {
+                let tip = self.tip();
+                self.drag_tip_to(tip + delta);
+                self.drag_target = None;
+            }
+        }
+    }
+
+    fn step(&mut self, _dt_s: f64) {}
+
+    fn view(&self) -> ViewBox {
+        ViewBox::centered(VIEW_HALF_M)
+    }
+
+    fn scene(&self, out: &mut Scene) {
+        let view = self.view();
+        out.axes(view);
+        let annulus = Annulus::of_chain(&self.lengths());
+        out.bound_circle(annulus.outer_m);
+        out.bound_circle(annulus.inner_m);
+        let pose = forward(&self.lengths(), &self.angles_rad());
+        if let Some(target) = self.drag_target {
+            out.push(Item::Line {
+                from: pose.tip(),
+                to: target,
+                width_px: 1.5,
+                role: Role::Target,
+                dashed: true,
+            });
+            out.push(Item::Dot {
+                center: target,
+                radius_px: 5.0,
+                role: Role::Target,
+            });
+        }
+        out.chain(&pose.points, Role::Link);
+        let tip = pose.tip();
+        out.push(Item::Label {
+            pos: tip,
+            text: format!("({}, {})", format_number(tip.x, 2), format_number(tip.y, 2)),
+            role: Role::Tip,
+            offset_px: DVec2::new(12.0, -12.0),
+        });
+    }
+
+    fn readouts(&self) -> Vec<Readout> {
+        let tip = self.tip();
+        let annulus = Annulus::of_chain(&self.lengths());
+        let target = self.drag_target.map_or_else(
+            || "--".to_owned(),
+            |t| format!("{} m", format_number((t - tip).length(), 3)),
+        );
+        vec![
+            Readout::new(
+                "x",
+                "End-effector X",
+                format!("{} m", format_number(tip.x, 3)),
+            ),
+            Readout::new(
+                "y",
+                "End-effector Y",
+                format!("{} m", format_number(tip.y, 3)),
+            ),
+            Readout::new(
+                "reach",
+                "Reach used",
+                format!("{}%", format_number(100.0 * annulus.reach_used(tip), 1)),
+            ),
+            Readout::new("target", "Target dist", target),
+        ]
+    }
+
+    fn status(&self) -> Status {
+        match self.drag_target {
+            Some(t) if !Annulus::of_chain(&self.lengths()).contains(t, 1e-9) => {
+                Status::new("out of reach", Tone::Warning)
+            }
+            _ => Status::new("in reach", Tone::Good),
+        }
+    }
+
+    fn animating(&self) -> bool {
+        false
+    }
+}
+
+/// Draws link lengths and joint angles for a question, in the units shown.
+fn draw_arm(rng: &mut Lcg64) -> (f64, f64, f64, f64) {
+    let t1 = rng.int(-170, 170) as f64;
+    let t2 = rng.int(-170, 170) as f64;
+    let l1 = rng.int(5, 20) as f64 / 10.0;
+    let l2 = rng.int(3, 15) as f64 / 10.0;
+    (t1, t2, l1, l2)
+}
+
+fn arm_vars(t1: f64, t2: f64, l1: f64, l2: f64) -> Vec<(&'static str, String)> {
+    vec![
+        ("t1", format_number(t1, 0)),
+        ("t2", format_number(t2, 0)),
+        ("l1", format_number(l1, 2)),
+        ("l2", format_number(l2, 2)),
+    ]
+}
+
+fn fk_tip(t1: f64, t2: f64, l1: f64, l2: f64) -> DVec2 {
+    forward(&[l1, l2], &[t1.to_radians(), t2.to_radians()]).tip()
+}
+
+/// `x` of the tip for drawn angles (degrees) and lengths (metres).
+fn quiz_tip_x(rng: &mut Lcg64) -> Draw {
+    let (t1, t2, l1, l2) = draw_arm(rng);
+    Draw {
+        vars: arm_vars(t1, t2, l1, l2),
+        answer: fk_tip(t1, t2, l1, l2).x,
+    }
+}
+
+/// `y` of the tip.
+fn quiz_tip_y(rng: &mut Lcg64) -> Draw {
+    let (t1, t2, l1, l2) = draw_arm(rng);
+    Draw {
+        vars: arm_vars(t1, t2, l1, l2),
+        answer: fk_tip(t1, t2, l1, l2).y,
+    }
+}
+
+/// Distance from base to tip, `√(L1² + L2² + 2 L1 L2 cos θ2)`.
+fn quiz_tip_distance(rng: &mut Lcg64) -> Draw {
+    let (t1, t2, l1, l2) = draw_arm(rng);
+    Draw {
+        vars: arm_vars(t1, t2, l1, l2),
+        answer: fk_tip(t1, t2, l1, l2).length(),
+    }
+}
+
+/// Reach used in percent, `100 |p| / (L1 + L2)`.
+fn quiz_reach_percent(rng: &mut Lcg64) -> Draw {
+    let (t1, t2, l1, l2) = draw_arm(rng);
+    Draw {
+        vars: arm_vars(t1, t2, l1, l2),
+        answer: 100.0 * fk_tip(t1, t2, l1, l2).length() / (l1 + l2),
+    }
+}
+
+/// The quiz generators of experiment 1, by name.
+#[must_use]
+pub fn quiz_generator(name: &str) -> Option<Generator> {
+    match name {
+        "tip_x" => Some(quiz_tip_x),
+        "tip_y" => Some(quiz_tip_y),
+        "tip_distance" => Some(quiz_tip_distance),
+        "reach_percent" => Some(quiz_reach_percent),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_readouts_match_hand_values() {
+        let fk = ForwardKinematics::default();
+        // x = 1.0 cos35° + 0.7 cos95°, y = 1.0 sin35° + 0.7 sin95°
+        let x = 35f64.to_radians().cos() + 0.7 * 95f64.to_radians().cos();
+        let y = 35f64.to_radians().sin() + 0.7 * 95f64.to_radians().sin();
+        assert!((fk.tip() - DVec2::new(x, y)).length() < 1e-12);
+        assert_eq!(fk.readouts()[0].value, format!("{} m", format_number(x, 3)));
+    }
+
+    #[test]
+    fn dragging_the_tip_moves_it_there_keeping_the_elbow() {
+        let mut fk = ForwardKinematics::default();
+        let target = DVec2::new(0.5, 1.2);
+        fk.input(Input::PointerDown(target));
+        assert!((fk.tip() - target).length() < 1e-9);
+        assert!(fk.theta2_deg >= 0.0);
+        // Outside reach: the tip goes to the nearest point of the outer circle.
+        fk.input(Input::PointerMove {
+            pos: DVec2::new(3.0, 0.0),
+            pressed: true,
+        });
+        assert!((fk.tip() - DVec2::new(1.7, 0.0)).length() < 1e-6);
+        assert_eq!(fk.status().tone, Tone::Warning);
+        fk.input(Input::PointerUp(DVec2::new(3.0, 0.0)));
+        assert_eq!(fk.status().tone, Tone::Good);
+    }
+
+    #[test]
+    fn bad_values_keep_the_last_good_state() {
+        let mut fk = ForwardKinematics::default();
+        assert!(fk.set_param("t1", f64::NAN).is_err());
+        assert!(fk.set_param("nope", 1.0).is_err());
+        assert_eq!(fk.param("t1"), Some(35.0));
+        assert_eq!(fk.set_param("l1", 9.0), Ok(Sanitized::Clamped(1.5)));
+        fk.input(Input::PointerDown(DVec2::new(f64::NAN, 0.0)));
+        assert!(fk.tip().is_finite());
+    }
+}

@@ -1,0 +1,54 @@
+//! One module per experiment, and the registry that lists them.
+
+use crate::content::{Content, ContentError};
+use crate::experiment::Experiment;
+use crate::quiz::GeneratorLookup;
+
+pub mod fk;
+
+/// One experiment of the lab: how to build it, its content and its quiz generators.
+pub struct Entry {
+    /// Same as [`Experiment::id`] and the content file's `id`.
+    pub id: &'static str,
+    /// The content file (`assets/<id>.json`), compiled in.
+    pub content_json: &'static str,
+    /// A fresh experiment at default parameters.
+    pub make: fn() -> Box<dyn Experiment>,
+    /// The experiment's parameterised quiz questions.
+    pub generators: GeneratorLookup,
+}
+
+impl Entry {
+    /// Parses and validates the content file, checking that it belongs to this
+    /// experiment and that every generator it names exists.
+    pub fn content(&self) -> Result<Content, ContentError> {
+        let content = Content::parse(self.content_json)?;
+        if content.id != self.id {
+            return Err(ContentError::WrongId {
+                expected: self.id.into(),
+                found: content.id,
+            });
+        }
+        crate::quiz::prepare(&content, self.generators, 0)?;
+        Ok(content)
+    }
+}
+
+static REGISTRY: &[Entry] = &[Entry {
+    id: "fk",
+    content_json: include_str!("../../../../assets/fk.json"),
+    make: || Box::new(fk::ForwardKinematics::default()),
+    generators: fk::quiz_generator,
+}];
+
+/// Every experiment, in lab order.
+#[must_use]
+pub fn registry() -> &'static [Entry] {
+    REGISTRY
+}
+
+/// The entry with this id.
+#[must_use]
+pub fn find(id: &str) -> Option<&'static Entry> {
+    REGISTRY.iter().find(|e| e.id == id)
+}

@@ -1,0 +1,38 @@
+//! # labcore — solvers and experiment state of the robotics virtual lab
+//!
+//! Pure Rust: no DOM, no JavaScript. Builds and tests natively and for
+//! `wasm32-unknown-unknown`. Angles are radians and lengths metres inside this
+//! crate; degrees appear only in [`ParamSpec`]s shown on the page.
+//!
+//! ## Solvers and their references
+//! - [`kinematics::chain`] — planar serial-chain forward kinematics
+//!   (Spong, Hutchinson & Vidyasagar, *Robot Modeling and Control*, Ch. 3).
+//! - [`kinematics::two_link_ik`] — closed-form 2-link IK by the law of cosines
+//!   (Spong et al., Ch. 4; Craig, *Introduction to Robotics*, Ch. 4).
+//! - [`kinematics::workspace`] — Monte-Carlo and grid workspace sampling of a 3R arm
+//!   (Siciliano et al., *Robotics: Modelling, Planning and Control*, Ch. 2).
+//! - [`kinematics::jacobian`], [`kinematics::dls`] — planar geometric Jacobian,
+//!   manipulability and damped-least-squares IK (Buss 2004; Nakamura & Hanafusa 1986;
+//!   Wampler 1986).
+//!
+//! ## The seam
+//! Every experiment implements [`Experiment`]; [`registry`] lists them with
+//! their content file and quiz generators.
+
+pub mod content;
+pub mod experiment;
+pub mod experiments;
+pub mod kinematics;
+pub mod quiz;
+pub mod rng;
+pub mod route;
+pub mod scene;
+
+pub use content::Content;
+pub use experiment::{
+    ActionSpec, Experiment, Input, ParamError, ParamKind, ParamSpec, Readout, Sanitized, Status,
+    Tone,
+};
+pub use experiments::{find, registry, Entry};
+pub use rng::Lcg64;
+pub use scene::{Item, Role, Scene, ViewBox};

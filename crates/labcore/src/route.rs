@@ -1,0 +1,269 @@
+//! URL state: `#/fk/simulation?t1=35&t2=60` ↔ experiment, tab and parameters.
+//!
+//! Parsing never fails: anything malformed falls back to a default and adds a
+//! short notice for the page to show.
+
+use crate::experiment::{Experiment, Sanitized};
+use crate::quiz::format_number;
+
+/// The six tabs of an experiment page, in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tab {
+    Aim,
+    Theory,
+    Procedure,
+    Simulation,
+    Quiz,
+    References,
+}
+
+impl Tab {
+    pub const ALL: [Tab; 6] = [
+        Tab::Aim,
+        Tab::Theory,
+        Tab::Procedure,
+        Tab::Simulation,
+        Tab::Quiz,
+        Tab::References,
+    ];
+
+    /// The slug used in the URL.
+    #[must_use]
+    pub fn slug(self) -> &'static str {
+        match self {
+            Tab::Aim => "aim",
+            Tab::Theory => "theory",
+            Tab::Procedure => "procedure",
+            Tab::Simulation => "simulation",
+            Tab::Quiz => "quiz",
+            Tab::References => "references",
+        }
+    }
+
+    /// The tab's visible title.
+    #[must_use]
+    pub fn title(self) -> &'static str {
+        match self {
+            Tab::Aim => "Aim",
+            Tab::Theory => "Theory",
+            Tab::Procedure => "Procedure",
+            Tab::Simulation => "Simulation",
+            Tab::Quiz => "Self-assessment",
+            Tab::References => "References",
+        }
+    }
+
+    #[must_use]
+    pub fn from_slug(slug: &str) -> Option<Tab> {
+        Tab::ALL.into_iter().find(|t| t.slug() == slug)
+    }
+}
+
+/// Which page the hash names.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Page {
+    Home,
+    Experiment {
+        id: String,
+        tab: Tab,
+        /// Raw `key=value` pairs, checked later by [`apply_params`].
+        params: Vec<(String, String)>,
+    },
+}
+
+/// A parsed hash and what was wrong with it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Route {
+    pub page: Page,
+    pub notices: Vec<String>,
+}
+
+/// Parses a location hash (with or without the leading `#`).
+#[must_use]
+pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
+    let mut notices = Vec::new();
+    let hash = hash.strip_prefix('#').unwrap_or(hash);
+    let (path, query) = match hash.split_once('?') {
+        Some((p, q)) => (p, Some(q)),
+        None => (hash, None),
+    };
+    let segments: Vec<&str> = path.split('/').filter(|s| !s.is_empty()).collect();
+    let Some(&first) = segments.first() else {
+        if query.is_some_and(|q| !q.is_empty()) {
+            notices.push("Ignored parameters on the home page.".into());
+        }
+        return Route {
+            page: Page::Home,
+            notices,
+        };
+    };
+    let id = decode(first);
+    if !known_ids.contains(&id.as_str()) {
+        notices.push(format!(
+            "No experiment called “{}”; showing the list instead.",
+            truncate(&id, 40)
+        ));
+        return Route {
+            page: Page::Home,
+            notices,
+        };
+    }
+    let tab = match segments.get(1) {
+        None => Tab::Aim,
+        Some(slug) => Tab::from_slug(&decode(slug)).unwrap_or_else(|| {
+            notices.push(format!(
+                "No tab called “{}”; opened Aim.",
+                truncate(&decode(slug), 40)
+            ));
+            Tab::Aim
+        }),
+    };
+    if segments.len() > 2 {
+        notices.push("Ignored extra parts of the link.".into());
+    }
+    let mut params = Vec::new();
+    for pair in query.unwrap_or("").split('&').filter(|p| !p.is_empty()) {
+        match pair.split_once('=') {
+            Some((k, v)) if !k.is_empty() => params.push((decode(k), decode(v))),
+            _ => notices.push(format!(
+                "Ignored “{}” in the link.",
+                truncate(&decode(pair), 40)
+            )),
+        }
+    }
+    Route {
+        page: Page::Experiment { id, tab, params },
+        notices,
+    }
+}
+
+/// Applies raw URL parameters to an experiment: unknown keys and unreadable
+/// numbers are skipped, out-of-range values are clamped; each problem becomes
+/// a notice. Returns the notices.
+pub fn apply_params(experiment: &mut dyn Experiment, params: &[(String, String)]) -> Vec<String> {
+    let mut notices = Vec::new();
+    for (key, raw) in params {
+        let Some(spec) = experiment.params().iter().find(|s| s.key == key) else {
+            notices.push(format!("Unknown setting “{}” ignored.", truncate(key, 30)));
+            continue;
+        };
+        let label = spec.label;
+        let value = match raw.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() => v,
+            _ => {
+                notices.push(format!(
+                    "{label}: “{}” is not a number; kept the default.",
+                    truncate(raw, 30)
+                ));
+                continue;
+            }
+        };
+        match experiment.set_param(key, value) {
+            Ok(Sanitized::InRange(_)) => {}
+            Ok(Sanitized::Clamped(v)) => notices.push(format!(
+                "{label}: {} is out of range; using {}.",
+                format_number(value, 3),
+                format_number(v, 3)
+            )),
+            Err(e) => notices.push(e.to_string()),
+        }
+    }
+    notices
+}
+
+/// Builds the hash for an experiment, its tab and every parameter's current value.
+#[must_use]
+pub fn format(experiment: &dyn Experiment, tab: Tab) -> String {
+    let query: Vec<String> = experiment
+        .params()
+        .iter()
+        .filter_map(|s| {
+            experiment
+                .param(s.key)
+                .map(|v| format!("{}={}", s.key, format_number(v, 3)))
+        })
+        .collect();
+    if query.is_empty() {
+        format!("#/{}/{}", experiment.id(), tab.slug())
+    } else {
+        format!("#/{}/{}?{}", experiment.id(), tab.slug(), query.join("&"))
+    }
+}
+
+/// Percent-decoding of a URL component; invalid escapes are kept verbatim.
+fn decode(s: &str) -> String {
+    let bytes = s.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' && i + 2 < bytes.len() {
+            let hex = std::str::from_utf8(&bytes[i + 1..i + 3]).ok();
+            if let Some(b) = hex.and_then(|h| u8::from_str_radix(h, 16).ok()) {
+                out.push(b);
+                i += 3;
+                continue;
+            }
+        }
+        out.push(if bytes[i] == b'+' { b' ' } else { bytes[i] });
+        i += 1;
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+fn truncate(s: &str, max_chars: usize) -> String {
+    if s.chars().count() <= max_chars {
+        s.to_owned()
+    } else {
+        let mut t: String = s.chars().take(max_chars).collect();
+        t.push('…');
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const IDS: &[&str] = &["fk", "ik"];
+
+    #[test]
+    fn parses_full_hash() {
+        let r = parse("#/fk/simulation?t1=35&t2=60", IDS);
+        assert!(r.notices.is_empty());
+        assert_eq!(
+            r.page,
+            Page::Experiment {
+                id: "fk".into(),
+                tab: Tab::Simulation,
+                params: vec![("t1".into(), "35".into()), ("t2".into(), "60".into())]
+            }
+        );
+    }
+
+    #[test]
+    fn empty_and_root_are_home() {
+        assert_eq!(parse("", IDS).page, Page::Home);
+        assert_eq!(parse("#", IDS).page, Page::Home);
+        assert_eq!(parse("#/", IDS).page, Page::Home);
+    }
+
+    #[test]
+    fn malformed_hashes_fall_back_with_notices() {
+        let r = parse("#/nope/theory", IDS);
+        assert_eq!(r.page, Page::Home);
+        assert_eq!(r.notices.len(), 1);
+        let r = parse("#/fk/bogus?=3&x", IDS);
+        assert!(matches!(r.page, Page::Experiment { tab: Tab::Aim, .. }));
+        assert_eq!(r.notices.len(), 3);
+        let r = parse("#/%E2%28%A1/%zz", IDS);
+        assert_eq!(r.page, Page::Home);
+    }
+
+    #[test]
+    fn decodes_percent_escapes() {
+        assert_eq!(decode("a%20b"), "a b");
+        assert_eq!(decode("%zz"), "%zz");
+        assert_eq!(decode("100%"), "100%");
+        assert_eq!(decode("%4"), "%4");
+    }
+}

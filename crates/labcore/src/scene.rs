@@ -1,0 +1,216 @@
+//! A display list: what to draw this frame, in world coordinates (metres, y up).
+//!
+//! Colours are semantic [`Role`]s; the page maps each role to a theme colour
+//! (light/dark, colour-blind safe), so labcore never names a colour.
+
+use glam::DVec2;
+
+/// The world rectangle shown on the canvas (y points up).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewBox {
+    pub min: DVec2,
+    pub max: DVec2,
+}
+
+impl ViewBox {
+    /// A square view centred on the origin with half-width `half_m`.
+    #[must_use]
+    pub fn centered(half_m: f64) -> Self {
+        Self {
+            min: DVec2::splat(-half_m),
+            max: DVec2::splat(half_m),
+        }
+    }
+}
+
+/// What a shape means; the page picks its colour and weight.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Role {
+    /// Axes and grid lines.
+    Grid,
+    /// Reach circles and other theoretical bounds.
+    Bound,
+    /// The arm's links.
+    Link,
+    /// Joint markers.
+    Joint,
+    /// The fixed base.
+    Base,
+    /// The end-effector.
+    Tip,
+    /// A user target.
+    Target,
+    /// A ghost (the other IK branch, a previous pose).
+    Ghost,
+    /// Sampled points (workspace cloud).
+    Sample,
+    /// Manipulability ellipse, highlighted quantities.
+    Accent,
+    /// Something wrong: unreachable target, collision.
+    Warning,
+    /// Plain text labels.
+    Text,
+}
+
+/// One item of the display list.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Item {
+    /// A straight segment; `width_px` is in CSS pixels.
+    Line {
+        from: DVec2,
+        to: DVec2,
+        width_px: f64,
+        role: Role,
+        dashed: bool,
+    },
+    /// A circle of world radius; filled or stroked.
+    Circle {
+        center: DVec2,
+        radius_m: f64,
+        role: Role,
+        fill: bool,
+        dashed: bool,
+    },
+    /// A dot of fixed screen size (joints, tips, targets).
+    Dot {
+        center: DVec2,
+        radius_px: f64,
+        role: Role,
+    },
+    /// Many small dots of one role (a sample cloud).
+    Points {
+        points: Vec<DVec2>,
+        radius_px: f64,
+        role: Role,
+    },
+    /// A grid of densities in `[0, 1]` drawn as translucent cells.
+    Heatmap {
+        min: DVec2,
+        cell_m: f64,
+        cols: usize,
+        rows: usize,
+        values: Vec<f32>,
+        role: Role,
+    },
+    /// An ellipse with centre and two semi-axis vectors (world units).
+    Ellipse {
+        center: DVec2,
+        semi_axis_a: DVec2,
+        semi_axis_b: DVec2,
+        role: Role,
+    },
+    /// A text label anchored at a world point, offset in CSS pixels.
+    Label {
+        pos: DVec2,
+        text: String,
+        role: Role,
+        offset_px: DVec2,
+    },
+}
+
+/// The display list of one frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Scene {
+    pub items: Vec<Item>,
+}
+
+impl Scene {
+    /// Empties the list, keeping its allocation.
+    pub fn clear(&mut self) {
+        self.items.clear();
+    }
+
+    pub fn push(&mut self, item: Item) {
+        self.items.push(item);
+    }
+
+    /// Draws a serial chain: links between consecutive points, joints, base and tip.
+    pub fn chain(&mut self, joints: &[DVec2], role: Role) {
+        for w in joints.windows(2) {
+            self.items.push(Item::Line {
+                from: w[0],
+                to: w[1],
+                width_px: if role == Role::Ghost { 4.0 } else { 7.0 },
+                role,
+                dashed: false,
+            });
+        }
+        if role == Role::Ghost {
+            return;
+        }
+        if let Some((first, rest)) = joints.split_first() {
+            self.items.push(Item::Dot {
+                center: *first,
+                radius_px: 9.0,
+                role: Role::Base,
+            });
+            if let Some((tip, middle)) = rest.split_last() {
+                for j in middle {
+                    self.items.push(Item::Dot {
+                        center: *j,
+                        radius_px: 6.0,
+                        role: Role::Joint,
+                    });
+                }
+                self.items.push(Item::Dot {
+                    center: *tip,
+                    radius_px: 8.0,
+                    role: Role::Tip,
+                });
+            }
+        }
+    }
+
+    /// A dashed circle centred on the origin (reach bounds); skipped when `radius_m` ≤ 0.
+    pub fn bound_circle(&mut self, radius_m: f64) {
+        if radius_m > 1e-9 {
+            self.items.push(Item::Circle {
+                center: DVec2::ZERO,
+                radius_m,
+                role: Role::Bound,
+                fill: false,
+                dashed: true,
+            });
+        }
+    }
+
+    /// Axes through the origin across the view.
+    pub fn axes(&mut self, view: ViewBox) {
+        self.items.push(Item::Line {
+            from: DVec2::new(view.min.x, 0.0),
+            to: DVec2::new(view.max.x, 0.0),
+            width_px: 1.0,
+            role: Role::Grid,
+            dashed: false,
+        });
+        self.items.push(Item::Line {
+            from: DVec2::new(0.0, view.min.y),
+            to: DVec2::new(0.0, view.max.y),
+            width_px: 1.0,
+            role: Role::Grid,
+            dashed: false,
+        });
+    }
+
+    /// True when every coordinate in the list is finite.
+    #[must_use]
+    pub fn is_finite(&self) -> bool {
+        let ok = |p: &DVec2| p.is_finite();
+        self.items.iter().all(|item| match item {
+            Item::Line { from, to, .. } => ok(from) && ok(to),
+            Item::Circle {
+                center, radius_m, ..
+            } => ok(center) && radius_m.is_finite(),
+            Item::Dot { center, .. } => ok(center),
+            Item::Points { points, .. } => points.iter().all(ok),
+            Item::Heatmap { min, cell_m, .. } => ok(min) && cell_m.is_finite(),
+            Item::Ellipse {
+                center,
+                semi_axis_a,
+                semi_axis_b,
+                ..
+            } => ok(center) && ok(semi_axis_a) && ok(semi_axis_b),
+            Item::Label { pos, .. } => ok(pos),
+        })
+    }
+}

@@ -1,0 +1,1 @@
+//! labweb — the browser front end.
