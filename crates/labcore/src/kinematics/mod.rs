@@ -7,4 +7,7 @@
 //! - [`dls`]: damped-least-squares (Levenberg–Marquardt) inverse kinematics.
 
 pub mod chain;
+pub mod dls;
+pub mod jacobian;
 pub mod two_link_ik;
+pub mod workspace;

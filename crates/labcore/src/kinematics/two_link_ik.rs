@@ -8,7 +8,7 @@
 //! θ1     = atan2(y, x) − atan2(L2 sin θ2, L1 + L2 cos θ2)
 //! ```
 //!
-//! (Spong, Hutchinson & Vidyasagar, *Robot Modeling and Control*, Ch. 4, §4.3;
+//! (Spong, Hutchinson & Vidyasagar, *Robot Modeling and Control*, 2006, Ch. 3 (inverse kinematics);
 //! Craig, *Introduction to Robotics*, Ch. 4.) The target is unreachable when
 //! `|cos θ2| > 1`; this module reports that as a value and never lets a NaN out.
 //!

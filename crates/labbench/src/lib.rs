@@ -1,0 +1,13 @@
+//! # labbench — the benchmark scenarios of `shared/BENCHMARKS.md`
+//!
+//! Native only and outside the workspace's default members: it pulls in the
+//! peers the lab's solvers are measured against (the `k` crate), which never
+//! reach the wasm bundle. Each scenario is built here as plain data so a test
+//! can check it and the `benches/` programs only time it.
+//!
+//! - [`planar_ik`]: n-link planar arm, 2,000 reachable targets, our
+//!   [`labcore::kinematics::dls::DlsSolver`] against `k::JacobianIkSolver`.
+//!
+//! Run with `cargo bench -p labbench`.
+
+pub mod planar_ik;
