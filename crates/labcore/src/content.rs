@@ -261,12 +261,12 @@ impl Content {
                 Question::Numeric {
                     tolerance, answer, ..
                 } => {
-                    if !(*tolerance > 0.0) || !answer.is_finite() {
+                    if !is_positive(*tolerance) || !answer.is_finite() {
                         return Err(ContentError::BadTolerance { question: i });
                     }
                 }
                 Question::Generated { tolerance, .. } => {
-                    if !(*tolerance > 0.0) {
+                    if !is_positive(*tolerance) {
                         return Err(ContentError::BadTolerance { question: i });
                     }
                 }
@@ -279,6 +279,11 @@ impl Content {
         }
         Ok(())
     }
+}
+
+/// True for a finite number above zero (false for NaN).
+fn is_positive(x: f64) -> bool {
+    x.is_finite() && x > 0.0
 }
 
 /// A display formula is exactly one `<math display="block">` element with

@@ -17,6 +17,8 @@ pub enum ParamKind {
     Toggle { off: &'static str, on: &'static str },
     /// One of several labelled choices; the value is the index.
     Choice(&'static [&'static str]),
+    /// A number typed into a field (no slider), e.g. a random seed.
+    Number,
 }
 
 /// One tunable parameter, in the units the page shows (degrees for angles).
@@ -56,6 +58,27 @@ impl ParamSpec {
             step,
             default,
             kind: ParamKind::Slider,
+        }
+    }
+
+    /// A number field without a slider (value rounded to `step` multiples when `step` ≥ 1).
+    #[must_use]
+    pub const fn number(
+        key: &'static str,
+        label: &'static str,
+        min: f64,
+        max: f64,
+        default: f64,
+    ) -> Self {
+        Self {
+            key,
+            label,
+            unit: "",
+            min,
+            max,
+            step: 1.0,
+            default,
+            kind: ParamKind::Number,
         }
     }
 
@@ -255,6 +278,11 @@ pub trait Experiment {
     fn readouts(&self) -> Vec<Readout>;
     /// The status badge.
     fn status(&self) -> Status;
+    /// One line above the canvas telling the student how to interact.
+    fn hint(&self) -> &'static str;
+    /// Puts the experiment in a representative state for its home-page
+    /// picture (e.g. a swept workspace, a solved target). Default: as built.
+    fn preview(&mut self) {}
     /// Whether the simulation is still moving (the page may idle when false).
     fn animating(&self) -> bool {
         true

@@ -8,7 +8,7 @@
 //! - [`kinematics::chain`] — planar serial-chain forward kinematics
 //!   (Spong, Hutchinson & Vidyasagar, *Robot Modeling and Control*, Ch. 3).
 //! - [`kinematics::two_link_ik`] — closed-form 2-link IK by the law of cosines
-//!   (Spong et al., Ch. 4; Craig, *Introduction to Robotics*, Ch. 4).
+//!   (Spong et al. 2006, Ch. 3; Craig, *Introduction to Robotics*, Ch. 4).
 //! - [`kinematics::workspace`] — Monte-Carlo and grid workspace sampling of a 3R arm
 //!   (Siciliano et al., *Robotics: Modelling, Planning and Control*, Ch. 2).
 //! - [`kinematics::jacobian`], [`kinematics::dls`] — planar geometric Jacobian,

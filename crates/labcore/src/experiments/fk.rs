@@ -20,12 +20,12 @@ use glam::DVec2;
 const PARAMS: &[ParamSpec] = &[
     ParamSpec::slider("t1", "θ₁", "°", -180.0, 180.0, 1.0, 35.0),
     ParamSpec::slider("t2", "θ₂", "°", -180.0, 180.0, 1.0, 60.0),
-    ParamSpec::slider("l1", "L₁", "m", 0.2, 1.5, 0.05, 1.0),
-    ParamSpec::slider("l2", "L₂", "m", 0.2, 1.5, 0.05, 0.7),
+    ParamSpec::slider("l1", "L₁", "m", 0.2, 1.2, 0.05, 1.0),
+    ParamSpec::slider("l2", "L₂", "m", 0.2, 1.2, 0.05, 0.7),
 ];
 
 /// World half-width shown: the longest possible arm plus a margin (metres).
-const VIEW_HALF_M: f64 = 3.2;
+const VIEW_HALF_M: f64 = 2.6;
 
 /// State of the forward-kinematics experiment.
 #[derive(Clone, Debug)]
@@ -212,6 +212,10 @@ impl Experiment for ForwardKinematics {
         }
     }
 
+    fn hint(&self) -> &'static str {
+        "Move the sliders, or drag the orange tip (arrow keys move it when the canvas has focus)."
+    }
+
     fn animating(&self) -> bool {
         false
     }
@@ -325,7 +329,7 @@ mod tests {
         assert!(fk.set_param("t1", f64::NAN).is_err());
         assert!(fk.set_param("nope", 1.0).is_err());
         assert_eq!(fk.param("t1"), Some(35.0));
-        assert_eq!(fk.set_param("l1", 9.0), Ok(Sanitized::Clamped(1.5)));
+        assert_eq!(fk.set_param("l1", 9.0), Ok(Sanitized::Clamped(1.2)));
         fk.input(Input::PointerDown(DVec2::new(f64::NAN, 0.0)));
         assert!(fk.tip().is_finite());
     }

@@ -4,7 +4,10 @@ use crate::content::{Content, ContentError};
 use crate::experiment::Experiment;
 use crate::quiz::GeneratorLookup;
 
+pub mod dls;
 pub mod fk;
+pub mod ik;
+pub mod workspace;
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
 pub struct Entry {
@@ -34,12 +37,32 @@ impl Entry {
     }
 }
 
-static REGISTRY: &[Entry] = &[Entry {
-    id: "fk",
-    content_json: include_str!("../../../../assets/fk.json"),
-    make: || Box::new(fk::ForwardKinematics::default()),
-    generators: fk::quiz_generator,
-}];
+static REGISTRY: &[Entry] = &[
+    Entry {
+        id: "fk",
+        content_json: include_str!("../../../../assets/fk.json"),
+        make: || Box::new(fk::ForwardKinematics::default()),
+        generators: fk::quiz_generator,
+    },
+    Entry {
+        id: "ik",
+        content_json: include_str!("../../../../assets/ik.json"),
+        make: || Box::new(ik::InverseKinematics::default()),
+        generators: ik::quiz_generator,
+    },
+    Entry {
+        id: "workspace",
+        content_json: include_str!("../../../../assets/workspace.json"),
+        make: || Box::new(workspace::Workspace::default()),
+        generators: workspace::quiz_generator,
+    },
+    Entry {
+        id: "dls",
+        content_json: include_str!("../../../../assets/dls.json"),
+        make: || Box::new(dls::DampedLeastSquares::default()),
+        generators: dls::quiz_generator,
+    },
+];
 
 /// Every experiment, in lab order.
 #[must_use]

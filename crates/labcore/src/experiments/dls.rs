@@ -1,0 +1,491 @@
+//! Experiment 9 — n-link Jacobian inverse kinematics by damped least squares.
+//!
+//! Click a target and watch [`DlsSolver::step`] iterate
+//! `Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e` at a chosen rate. The manipulability ellipse at
+//! the tip has semi-axes `σᵢ uᵢ` (scaled by [`ELLIPSE_SCALE`]) from the
+//! singular values and left singular vectors of the Jacobian.
+
+use crate::experiment::{
+    find_spec, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status,
+    Tone,
+};
+use crate::kinematics::chain::{forward, Annulus};
+use crate::kinematics::dls::{AdaptiveDamping, DlsSolver};
+use crate::kinematics::jacobian::{jacobian, manipulability, Manipulability};
+use crate::quiz::{format_number, Draw, Generator};
+use crate::rng::Lcg64;
+use crate::scene::{Item, Role, Scene, ViewBox};
+use glam::DVec2;
+
+const PARAMS: &[ParamSpec] = &[
+    ParamSpec::slider("n", "Links", "", 2.0, 8.0, 1.0, 4.0),
+    ParamSpec::slider("lambda", "λ", "m", 0.0, 1.0, 0.01, 0.1),
+    ParamSpec::toggle("adaptive", "Adaptive", "off", "on", false),
+    ParamSpec::slider("rate", "Speed", "it/s", 1.0, 60.0, 1.0, 12.0),
+];
+
+const ACTIONS: &[ActionSpec] = &[ActionSpec {
+    key: "reset",
+    label: "Reset pose",
+}];
+
+/// Total arm length, metres; each of the `n` links is `TOTAL_REACH_M / n`.
+pub const TOTAL_REACH_M: f64 = 2.4;
+/// Starting joint angle of every joint, radians.
+pub const START_ANGLE_RAD: f64 = 0.3;
+/// The drawn ellipse is the set of tip velocities for joint speeds `|q̇| ≤ ELLIPSE_SCALE` rad/s.
+pub const ELLIPSE_SCALE: f64 = 0.3;
+/// The animation stops once the error is below this, metres.
+const TOLERANCE_M: f64 = 1e-6;
+/// … or after this many iterations.
+const MAX_ITERATIONS: usize = 500;
+/// … or when the error changes by less than this for [`SETTLE_COUNT`] steps (unreachable target).
+const SETTLE_DELTA_M: f64 = 1e-9;
+const SETTLE_COUNT: usize = 5;
+/// Adaptive damping starts below this manipulability (m²/rad) and reaches [`ADAPTIVE_LAMBDA_MAX_M`].
+const ADAPTIVE_W0: f64 = 0.15;
+const ADAPTIVE_LAMBDA_MAX_M: f64 = 0.4;
+const VIEW_HALF_M: f64 = 2.7;
+
+/// Why the iterations ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Run {
+    Idle,
+    Iterating,
+    Converged,
+    Settled,
+    GaveUp,
+}
+
+/// State of the DLS experiment.
+#[derive(Clone, Debug)]
+pub struct DampedLeastSquares {
+    links: usize,
+    lambda_m: f64,
+    adaptive: bool,
+    rate_hz: f64,
+    angles_rad: Vec<f64>,
+    target: Option<DVec2>,
+    run: Run,
+    iterations: usize,
+    error_m: Option<f64>,
+    lambda_used_m: f64,
+    clock_s: f64,
+    flat_steps: usize,
+}
+
+impl Default for DampedLeastSquares {
+    fn default() -> Self {
+        let links = PARAMS[0].default as usize;
+        Self {
+            links,
+            lambda_m: PARAMS[1].default,
+            adaptive: false,
+            rate_hz: PARAMS[3].default,
+            angles_rad: vec![START_ANGLE_RAD; links],
+            target: None,
+            run: Run::Idle,
+            iterations: 0,
+            error_m: None,
+            lambda_used_m: PARAMS[1].default,
+            clock_s: 0.0,
+            flat_steps: 0,
+        }
+    }
+}
+
+impl DampedLeastSquares {
+    fn lengths(&self) -> Vec<f64> {
+        vec![TOTAL_REACH_M / self.links as f64; self.links]
+    }
+
+    fn solver(&self) -> DlsSolver {
+        DlsSolver {
+            damping: self.lambda_m,
+            tolerance_m: TOLERANCE_M,
+            max_iterations: 1,
+            adaptive: self.adaptive.then_some(AdaptiveDamping {
+                w_threshold: ADAPTIVE_W0,
+                lambda_max: ADAPTIVE_LAMBDA_MAX_M,
+            }),
+            ..DlsSolver::default()
+        }
+    }
+
+    /// The tip, metres.
+    #[must_use]
+    pub fn tip(&self) -> DVec2 {
+        crate::kinematics::chain::tip(&self.lengths(), &self.angles_rad)
+    }
+
+    fn manipulability(&self) -> Manipulability {
+        manipulability(&jacobian(&self.lengths(), &self.angles_rad))
+    }
+
+    fn restart(&mut self) {
+        if self.target.is_some() {
+            self.run = Run::Iterating;
+            self.iterations = 0;
+            self.flat_steps = 0;
+            self.clock_s = 0.0;
+            self.error_m = self.target.map(|t| (t - self.tip()).length());
+        }
+    }
+
+    fn set_target(&mut self, p: DVec2) {
+        if p.is_finite() && p.length() < 1e3 {
+            self.target = Some(p);
+            self.restart();
+        }
+    }
+
+    /// One DLS iteration towards the target; updates the run state.
+    fn iterate(&mut self) {
+        let Some(target) = self.target else { return };
+        let lengths = self.lengths();
+        let Ok(step) = self.solver().step(&lengths, &mut self.angles_rad, target) else {
+            self.run = Run::GaveUp;
+            return;
+        };
+        self.iterations += 1;
+        self.lambda_used_m = step.lambda;
+        self.error_m = Some(step.error_after_m);
+        if (step.error_before_m - step.error_after_m).abs() < SETTLE_DELTA_M {
+            self.flat_steps += 1;
+        } else {
+            self.flat_steps = 0;
+        }
+        self.run = if step.error_after_m < TOLERANCE_M {
+            Run::Converged
+        } else if self.flat_steps >= SETTLE_COUNT {
+            Run::Settled
+        } else if self.iterations >= MAX_ITERATIONS {
+            Run::GaveUp
+        } else {
+            Run::Iterating
+        };
+    }
+}
+
+impl Experiment for DampedLeastSquares {
+    fn id(&self) -> &'static str {
+        "dls"
+    }
+
+    fn params(&self) -> &'static [ParamSpec] {
+        PARAMS
+    }
+
+    fn param(&self, key: &str) -> Option<f64> {
+        Some(match key {
+            "n" => self.links as f64,
+            "lambda" => self.lambda_m,
+            "adaptive" => f64::from(u8::from(self.adaptive)),
+            "rate" => self.rate_hz,
+            _ => return None,
+        })
+    }
+
+    fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
+        let spec =
+            find_spec(PARAMS, key).ok_or_else(|| ParamError::UnknownKey { key: key.into() })?;
+        let applied = spec.sanitize(value)?;
+        let v = applied.value();
+        match key {
+            "n" => {
+                let links = v.round() as usize;
+                if links != self.links {
+                    self.links = links;
+                    self.angles_rad = vec![START_ANGLE_RAD; links];
+                }
+            }
+            "lambda" => self.lambda_m = v,
+            "adaptive" => self.adaptive = v >= 0.5,
+            _ => self.rate_hz = v,
+        }
+        if key != "rate" {
+            self.restart();
+        }
+        Ok(applied)
+    }
+
+    fn actions(&self) -> &'static [ActionSpec] {
+        ACTIONS
+    }
+
+    fn action(&mut self, key: &str) -> Result<(), ParamError> {
+        match key {
+            "reset" => {
+                self.angles_rad = vec![START_ANGLE_RAD; self.links];
+                self.target = None;
+                self.run = Run::Idle;
+                self.iterations = 0;
+                self.error_m = None;
+                Ok(())
+            }
+            _ => Err(ParamError::UnknownAction { key: key.into() }),
+        }
+    }
+
+    fn input(&mut self, input: Input) {
+        match input {
+            Input::PointerDown(p)
+            | Input::PointerMove {
+                pos: p,
+                pressed: true,
+            } => {
+                self.set_target(p);
+            }
+            Input::Nudge(d) => {
+                let from = self.target.unwrap_or_else(|| self.tip());
+                self.set_target(from + d);
+            }
+            Input::PointerMove { pressed: false, .. } | Input::PointerUp(_) => {}
+        }
+    }
+
+    fn step(&mut self, dt_s: f64) {
+        if self.run != Run::Iterating {
+            return;
+        }
+        self.clock_s += dt_s;
+        let period = 1.0 / self.rate_hz;
+        while self.clock_s >= period && self.run == Run::Iterating {
+            self.clock_s -= period;
+            self.iterate();
+        }
+    }
+
+    fn view(&self) -> ViewBox {
+        ViewBox::centered(VIEW_HALF_M)
+    }
+
+    fn scene(&self, out: &mut Scene) {
+        out.axes(self.view());
+        let lengths = self.lengths();
+        out.bound_circle(Annulus::of_chain(&lengths).outer_m);
+        let pose = forward(&lengths, &self.angles_rad);
+        let tip = pose.tip();
+        let m = self.manipulability();
+        out.push(Item::Ellipse {
+            center: tip,
+            semi_axis_a: m.u_max * m.sigma_max * ELLIPSE_SCALE,
+            semi_axis_b: m.u_min * m.sigma_min * ELLIPSE_SCALE,
+            role: Role::Accent,
+        });
+        if let Some(target) = self.target {
+            let unreachable = target.length() > TOTAL_REACH_M;
+            let role = if unreachable {
+                Role::Warning
+            } else {
+                Role::Target
+            };
+            out.push(Item::Line {
+                from: tip,
+                to: target,
+                width_px: 1.5,
+                role,
+                dashed: true,
+            });
+            out.push(Item::Dot {
+                center: target,
+                radius_px: 6.0,
+                role,
+            });
+        }
+        out.chain(&pose.points, Role::Link);
+    }
+
+    fn readouts(&self) -> Vec<Readout> {
+        let m = self.manipulability();
+        let error = self.error_m.map_or("--".into(), |e| {
+            if e < 1e-3 {
+                format!("{e:.1e} m")
+            } else {
+                format!("{} m", format_number(e, 4))
+            }
+        });
+        let condition = if m.condition.is_finite() {
+            format_number(m.condition, 2)
+        } else {
+            "∞".into()
+        };
+        vec![
+            Readout::new("iterations", "Iterations", self.iterations.to_string()),
+            Readout::new("error", "Error", error),
+            Readout::new("w", "Manipulability w", format_number(m.w, 4)),
+            Readout::new("cond", "σmax / σmin", condition),
+            Readout::new(
+                "lambda_used",
+                "λ used",
+                format!("{} m", format_number(self.lambda_used_m, 3)),
+            ),
+        ]
+    }
+
+    fn status(&self) -> Status {
+        match self.run {
+            Run::Idle => Status::new("click a target", Tone::Neutral),
+            Run::Iterating => Status::new("iterating…", Tone::Neutral),
+            Run::Converged => Status::new(
+                format!("converged in {} iterations", self.iterations),
+                Tone::Good,
+            ),
+            Run::Settled => Status::new("closest reachable pose", Tone::Warning),
+            Run::GaveUp => Status::new("stopped: iteration limit", Tone::Warning),
+        }
+    }
+
+    fn hint(&self) -> &'static str {
+        "Click or tap a target (arrow keys move it) and watch each damped least-squares iteration."
+    }
+
+    fn preview(&mut self) {
+        self.set_target(DVec2::new(1.3, 1.1));
+        while self.animating() {
+            self.iterate();
+        }
+    }
+
+    fn animating(&self) -> bool {
+        self.run == Run::Iterating
+    }
+}
+
+/// `w = L1 L2 |sin θ2|` of a 2-link arm.
+fn quiz_manipulability(rng: &mut Lcg64) -> Draw {
+    let l1 = rng.int(5, 15) as f64 / 10.0;
+    let l2 = rng.int(3, 12) as f64 / 10.0;
+    let t2 = rng.int(10, 170) as f64 * if rng.next_f64() < 0.5 { -1.0 } else { 1.0 };
+    let m = manipulability(&jacobian(&[l1, l2], &[0.0, t2.to_radians()]));
+    Draw {
+        vars: vec![
+            ("l1", format_number(l1, 2)),
+            ("l2", format_number(l2, 2)),
+            ("t2", format_number(t2, 0)),
+        ],
+        answer: m.w,
+    }
+}
+
+/// DLS gain `σ / (σ² + λ²)` along one singular direction.
+fn quiz_damped_gain(rng: &mut Lcg64) -> Draw {
+    let sigma = rng.int(1, 20) as f64 / 10.0;
+    let lambda = rng.int(1, 10) as f64 / 10.0;
+    Draw {
+        vars: vec![
+            ("sigma", format_number(sigma, 2)),
+            ("lambda", format_number(lambda, 2)),
+        ],
+        answer: sigma / (sigma * sigma + lambda * lambda),
+    }
+}
+
+/// `J11 = ∂x/∂θ1 = −(L1 sin θ1 + L2 sin(θ1+θ2))`.
+fn quiz_jacobian_entry(rng: &mut Lcg64) -> Draw {
+    let l1 = rng.int(5, 15) as f64 / 10.0;
+    let l2 = rng.int(3, 12) as f64 / 10.0;
+    let t1 = rng.int(-170, 170) as f64;
+    let t2 = rng.int(-170, 170) as f64;
+    let j = jacobian(&[l1, l2], &[t1.to_radians(), t2.to_radians()]);
+    Draw {
+        vars: vec![
+            ("l1", format_number(l1, 2)),
+            ("l2", format_number(l2, 2)),
+            ("t1", format_number(t1, 0)),
+            ("t2", format_number(t2, 0)),
+        ],
+        answer: j[0].x,
+    }
+}
+
+/// The quiz generators of experiment 9, by name.
+#[must_use]
+pub fn quiz_generator(name: &str) -> Option<Generator> {
+    match name {
+        "manipulability_2link" => Some(quiz_manipulability),
+        "damped_gain" => Some(quiz_damped_gain),
+        "jacobian_entry" => Some(quiz_jacobian_entry),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(d: &mut DampedLeastSquares) {
+        for _ in 0..60 * 60 {
+            d.step(1.0 / 60.0);
+            if !d.animating() {
+                break;
+            }
+        }
+    }
+
+    #[test]
+    fn reachable_target_converges_iteration_by_iteration() {
+        let mut d = DampedLeastSquares::default();
+        d.set_param("rate", 60.0).unwrap();
+        let target = DVec2::new(1.0, 1.2);
+        d.input(Input::PointerDown(target));
+        d.step(1.0 / 60.0);
+        assert_eq!(d.iterations, 1, "one iteration per 1/rate seconds");
+        run(&mut d);
+        assert_eq!(d.run, Run::Converged);
+        assert!((d.tip() - target).length() < 1e-6);
+        assert!(d.status().text.starts_with("converged"));
+    }
+
+    #[test]
+    fn unreachable_target_settles_at_the_boundary() {
+        let mut d = DampedLeastSquares::default();
+        d.set_param("rate", 60.0).unwrap();
+        d.input(Input::PointerDown(DVec2::new(0.0, 2.6)));
+        run(&mut d);
+        assert!(matches!(d.run, Run::Settled | Run::GaveUp));
+        assert!((d.tip() - DVec2::new(0.0, TOTAL_REACH_M)).length() < 1e-3);
+        assert!(d.angles_rad.iter().all(|a| a.is_finite()));
+    }
+
+    #[test]
+    fn link_count_changes_the_chain_and_ellipse_uses_singular_values() {
+        let mut d = DampedLeastSquares::default();
+        d.set_param("n", 7.0).unwrap();
+        assert_eq!(d.angles_rad.len(), 7);
+        let mut scene = Scene::default();
+        d.scene(&mut scene);
+        let m = d.manipulability();
+        let ellipse = scene
+            .items
+            .iter()
+            .find_map(|i| match i {
+                Item::Ellipse {
+                    semi_axis_a,
+                    semi_axis_b,
+                    ..
+                } => Some((*semi_axis_a, *semi_axis_b)),
+                _ => None,
+            })
+            .unwrap();
+        assert!((ellipse.0.length() - m.sigma_max * ELLIPSE_SCALE).abs() < 1e-12);
+        assert!((ellipse.1.length() - m.sigma_min * ELLIPSE_SCALE).abs() < 1e-12);
+    }
+
+    #[test]
+    fn manipulability_generator_matches_closed_form() {
+        let mut rng = Lcg64::new(4);
+        let d = quiz_manipulability(&mut rng);
+        let get = |k: &str| {
+            d.vars
+                .iter()
+                .find(|(n, _)| *n == k)
+                .unwrap()
+                .1
+                .parse::<f64>()
+                .unwrap()
+        };
+        let w = get("l1") * get("l2") * get("t2").to_radians().sin().abs();
+        assert!((d.answer - w).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,561 @@
+//! Experiment 2 — closed-form inverse kinematics of a 2-link arm.
+//!
+//! Click a target: [`two_link_ik::solve`] gives both elbow branches; the arm
+//! moves to the chosen one by smooth (smoothstep-eased) interpolation in joint
+//! space while the other branch is drawn as a ghost. A target outside the
+//! annulus is reported and no solution is drawn. The θ sliders still drive
+//! forward kinematics. With a wrist link `L3 > 0`, the last link is held at the
+//! fixed absolute orientation `φ` and the wrist centre `p − L3 (cos φ, sin φ)`
+//! is what the two links solve for.
+
+use crate::experiment::{
+    find_spec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+};
+use crate::kinematics::chain::{forward, Annulus};
+use crate::kinematics::two_link_ik::{
+    lerp_angle, solve, Elbow, IkError, Singularity, TwoLinkAngles, TwoLinkSolution,
+};
+use crate::quiz::{format_number, Draw, Generator};
+use crate::rng::Lcg64;
+use crate::scene::{Item, Role, Scene, ViewBox};
+use glam::DVec2;
+
+const PARAMS: &[ParamSpec] = &[
+    ParamSpec::slider("t1", "θ₁", "°", -180.0, 180.0, 1.0, 35.0),
+    ParamSpec::slider("t2", "θ₂", "°", -180.0, 180.0, 1.0, 60.0),
+    ParamSpec::slider("l1", "L₁", "m", 0.2, 1.2, 0.05, 1.0),
+    ParamSpec::slider("l2", "L₂", "m", 0.2, 1.2, 0.05, 0.7),
+    ParamSpec::toggle("elbow", "Elbow", "down", "up", true),
+    ParamSpec::slider("l3", "Wrist L₃", "m", 0.0, 0.6, 0.05, 0.0),
+    ParamSpec::slider("phi", "Wrist φ", "°", -180.0, 180.0, 1.0, 0.0),
+];
+
+/// World half-width shown (metres): the longest arm with its wrist, plus a margin.
+const VIEW_HALF_M: f64 = 3.1;
+/// Time for the arm to move to a new solution, seconds.
+const MOVE_TIME_S: f64 = 0.8;
+
+/// A solved target: the angles of both branches, or why there are none.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Solved {
+    Reachable(TwoLinkSolution),
+    OutOfReach,
+}
+
+/// State of the inverse-kinematics experiment.
+#[derive(Clone, Debug)]
+pub struct InverseKinematics {
+    /// Current (displayed) joint angles, degrees.
+    theta1_deg: f64,
+    theta2_deg: f64,
+    l1_m: f64,
+    l2_m: f64,
+    elbow: Elbow,
+    l3_m: f64,
+    phi_deg: f64,
+    target: Option<DVec2>,
+    solved: Option<Solved>,
+    /// Joint-space move in progress: start angles (deg) and progress in `[0, 1]`.
+    motion: Option<([f64; 2], f64)>,
+}
+
+impl Default for InverseKinematics {
+    fn default() -> Self {
+        Self {
+            theta1_deg: PARAMS[0].default,
+            theta2_deg: PARAMS[1].default,
+            l1_m: PARAMS[2].default,
+            l2_m: PARAMS[3].default,
+            elbow: Elbow::Up,
+            l3_m: PARAMS[5].default,
+            phi_deg: PARAMS[6].default,
+            target: None,
+            solved: None,
+            motion: None,
+        }
+    }
+}
+
+impl InverseKinematics {
+    /// The wrist offset `L3 (cos φ, sin φ)` added to the 2-link tip.
+    fn wrist_offset(&self) -> DVec2 {
+        let phi = self.phi_deg.to_radians();
+        DVec2::new(phi.cos(), phi.sin()) * self.l3_m
+    }
+
+    /// Joint positions base..tip for the given 2-link angles (degrees), wrist included.
+    fn points(&self, theta1_deg: f64, theta2_deg: f64) -> Vec<DVec2> {
+        let mut points = forward(
+            &[self.l1_m, self.l2_m],
+            &[theta1_deg.to_radians(), theta2_deg.to_radians()],
+        )
+        .points;
+        if self.l3_m > 0.0 {
+            let wrist = points[2];
+            points.push(wrist + self.wrist_offset());
+        }
+        points
+    }
+
+    /// The end-effector position, metres.
+    #[must_use]
+    pub fn tip(&self) -> DVec2 {
+        *self
+            .points(self.theta1_deg, self.theta2_deg)
+            .last()
+            .unwrap_or(&DVec2::ZERO)
+    }
+
+    fn solution(&self) -> Option<TwoLinkAngles> {
+        match self.solved {
+            Some(Solved::Reachable(sol)) => Some(sol.branch(self.elbow)),
+            _ => None,
+        }
+    }
+
+    /// Re-solves the current target and starts moving to the chosen branch.
+    fn resolve(&mut self) {
+        let Some(target) = self.target else {
+            self.solved = None;
+            return;
+        };
+        self.solved = Some(
+            match solve(self.l1_m, self.l2_m, target - self.wrist_offset()) {
+                Ok(sol) => Solved::Reachable(sol),
+                Err(IkError::Unreachable { .. } | IkError::InvalidInput) => Solved::OutOfReach,
+            },
+        );
+        self.motion = self
+            .solution()
+            .map(|_| ([self.theta1_deg, self.theta2_deg], 0.0));
+    }
+
+    fn set_target(&mut self, p: DVec2) {
+        if !p.is_finite() || p.length() > 1e6 {
+            return;
+        }
+        self.target = Some(p);
+        self.resolve();
+    }
+
+    /// The annulus the tip can reach with the wrist held at φ, as (centre, radii).
+    fn reach(&self) -> (DVec2, Annulus) {
+        (
+            self.wrist_offset(),
+            Annulus::of_chain(&[self.l1_m, self.l2_m]),
+        )
+    }
+}
+
+/// Smoothstep easing `3t² − 2t³` on `[0, 1]`.
+fn ease(t: f64) -> f64 {
+    let t = t.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+fn degrees(a: f64) -> String {
+    format!("{}°", format_number(a, 1))
+}
+
+impl Experiment for InverseKinematics {
+    fn id(&self) -> &'static str {
+        "ik"
+    }
+
+    fn params(&self) -> &'static [ParamSpec] {
+        PARAMS
+    }
+
+    fn param(&self, key: &str) -> Option<f64> {
+        Some(match key {
+            "t1" => self.theta1_deg,
+            "t2" => self.theta2_deg,
+            "l1" => self.l1_m,
+            "l2" => self.l2_m,
+            "elbow" => f64::from(u8::from(self.elbow == Elbow::Up)),
+            "l3" => self.l3_m,
+            "phi" => self.phi_deg,
+            _ => return None,
+        })
+    }
+
+    fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
+        let spec =
+            find_spec(PARAMS, key).ok_or_else(|| ParamError::UnknownKey { key: key.into() })?;
+        let applied = spec.sanitize(value)?;
+        let v = applied.value();
+        match key {
+            "t1" | "t2" => {
+                if key == "t1" {
+                    self.theta1_deg = v;
+                } else {
+                    self.theta2_deg = v;
+                }
+                // Sliders drive FK directly: stop any move in progress.
+                self.motion = None;
+            }
+            "elbow" => {
+                self.elbow = if v >= 0.5 { Elbow::Up } else { Elbow::Down };
+                self.resolve();
+            }
+            "l1" | "l2" | "l3" | "phi" => {
+                match key {
+                    "l1" => self.l1_m = v,
+                    "l2" => self.l2_m = v,
+                    "l3" => self.l3_m = v,
+                    _ => self.phi_deg = v,
+                }
+                self.resolve();
+            }
+            _ => unreachable!("every spec key is handled"),
+        }
+        Ok(applied)
+    }
+
+    fn input(&mut self, input: Input) {
+        match input {
+            Input::PointerDown(p)
+            | Input::PointerMove {
+                pos: p,
+                pressed: true,
+            } => {
+                self.set_target(p);
+            }
+            Input::Nudge(delta) => {
+                let from = self.target.unwrap_or_else(|| self.tip());
+                self.set_target(from + delta);
+            }
+            Input::PointerMove { pressed: false, .. } | Input::PointerUp(_) => {}
+        }
+    }
+
+    fn step(&mut self, dt_s: f64) {
+        let Some(goal) = self.solution() else {
+            self.motion = None;
+            return;
+        };
+        let Some((start, progress)) = self.motion else {
+            return;
+        };
+        let progress = (progress + dt_s / MOVE_TIME_S).min(1.0);
+        let s = ease(progress);
+        let t1 = lerp_angle(start[0].to_radians(), goal.theta1_rad, s).to_degrees();
+        // The base joint may take the short way round; the elbow never passes
+        // ±180° (that would fold the forearm through the upper arm).
+        let t2 = start[1] + (goal.theta2_rad.to_degrees() - start[1]) * s;
+        self.theta1_deg = crate::kinematics::two_link_ik::wrap_pi(t1.to_radians())
+            .to_degrees()
+            .clamp(-180.0, 180.0);
+        self.theta2_deg = t2.clamp(-180.0, 180.0);
+        self.motion = (progress < 1.0).then_some((start, progress));
+    }
+
+    fn view(&self) -> ViewBox {
+        ViewBox::centered(VIEW_HALF_M)
+    }
+
+    fn scene(&self, out: &mut Scene) {
+        out.axes(self.view());
+        let (centre, annulus) = self.reach();
+        for r in [annulus.outer_m, annulus.inner_m] {
+            if r > 1e-9 {
+                out.push(Item::Circle {
+                    center: centre,
+                    radius_m: r,
+                    role: Role::Bound,
+                    fill: false,
+                    dashed: true,
+                });
+            }
+        }
+        if let Some(Solved::Reachable(sol)) = self.solved {
+            let ghost = sol.branch(self.elbow.other());
+            if sol.singularity == Singularity::Regular {
+                out.chain(
+                    &self.points(ghost.theta1_rad.to_degrees(), ghost.theta2_rad.to_degrees()),
+                    Role::Ghost,
+                );
+            }
+        }
+        let points = self.points(self.theta1_deg, self.theta2_deg);
+        out.chain(&points, Role::Link);
+        if let Some(target) = self.target {
+            let out_of_reach = self.solved == Some(Solved::OutOfReach);
+            let role = if out_of_reach {
+                Role::Warning
+            } else {
+                Role::Target
+            };
+            let arm = 0.08;
+            out.push(Item::Line {
+                from: target - DVec2::new(arm, 0.0),
+                to: target + DVec2::new(arm, 0.0),
+                width_px: 2.0,
+                role,
+                dashed: false,
+            });
+            out.push(Item::Line {
+                from: target - DVec2::new(0.0, arm),
+                to: target + DVec2::new(0.0, arm),
+                width_px: 2.0,
+                role,
+                dashed: false,
+            });
+            out.push(Item::Circle {
+                center: target,
+                radius_m: arm,
+                role,
+                fill: false,
+                dashed: out_of_reach,
+            });
+            if out_of_reach {
+                out.push(Item::Label {
+                    pos: target,
+                    text: "out of reach".into(),
+                    role: Role::Warning,
+                    offset_px: DVec2::new(12.0, -14.0),
+                });
+            }
+        }
+    }
+
+    fn readouts(&self) -> Vec<Readout> {
+        let tip = self.tip();
+        let sol = self.solution();
+        let mut r = vec![
+            Readout::new(
+                "x",
+                "End-effector X",
+                format!("{} m", format_number(tip.x, 3)),
+            ),
+            Readout::new(
+                "y",
+                "End-effector Y",
+                format!("{} m", format_number(tip.y, 3)),
+            ),
+            Readout::new(
+                "theta1",
+                "θ₁ solved",
+                sol.map_or("--".into(), |a| degrees(a.theta1_rad.to_degrees())),
+            ),
+            Readout::new(
+                "theta2",
+                "θ₂ solved",
+                sol.map_or("--".into(), |a| degrees(a.theta2_rad.to_degrees())),
+            ),
+        ];
+        if self.l3_m > 0.0 {
+            r.push(Readout::new(
+                "theta3",
+                "θ₃ (wrist)",
+                sol.map_or("--".into(), |a| {
+                    let t3 = self.phi_deg.to_radians() - a.theta1_rad - a.theta2_rad;
+                    degrees(crate::kinematics::two_link_ik::wrap_pi(t3).to_degrees())
+                }),
+            ));
+        }
+        r
+    }
+
+    fn status(&self) -> Status {
+        match self.solved {
+            None => Status::new("click a target", Tone::Neutral),
+            Some(Solved::OutOfReach) => Status::new("out of reach", Tone::Bad),
+            Some(Solved::Reachable(sol)) => match sol.singularity {
+                Singularity::Regular => Status::new("in reach", Tone::Good),
+                Singularity::OuterBoundary => {
+                    Status::new("singular: arm straight, branches merge", Tone::Warning)
+                }
+                Singularity::InnerBoundary => {
+                    Status::new("singular: arm folded, branches merge", Tone::Warning)
+                }
+                Singularity::AtBase => Status::new("singular: any θ₁ works", Tone::Warning),
+            },
+        }
+    }
+
+    fn hint(&self) -> &'static str {
+        "Click or tap a target (arrow keys move it); the arm moves to the closed-form solution."
+    }
+
+    fn preview(&mut self) {
+        self.set_target(DVec2::new(1.1, 0.9));
+        while self.animating() {
+            self.step(0.05);
+        }
+    }
+
+    fn animating(&self) -> bool {
+        self.motion.is_some()
+    }
+}
+
+/// A reachable target well inside the annulus, with lengths and coordinates
+/// rounded as the question shows them.
+fn draw_target(rng: &mut Lcg64) -> (f64, f64, DVec2, TwoLinkSolution) {
+    loop {
+        let l1 = rng.int(5, 15) as f64 / 10.0;
+        let l2 = rng.int(3, 12) as f64 / 10.0;
+        let angle = rng.range(-std::f64::consts::PI, std::f64::consts::PI);
+        let radius = rng.range((l1 - l2).abs() + 0.1, l1 + l2 - 0.1);
+        let p = DVec2::new(
+            (radius * angle.cos() * 100.0).round() / 100.0,
+            (radius * angle.sin() * 100.0).round() / 100.0,
+        );
+        if let Ok(sol) = solve(l1, l2, p) {
+            if sol.singularity == Singularity::Regular && sol.cos_theta2.abs() < 0.98 {
+                return (l1, l2, p, sol);
+            }
+        }
+    }
+}
+
+fn target_vars(l1: f64, l2: f64, p: DVec2) -> Vec<(&'static str, String)> {
+    vec![
+        ("l1", format_number(l1, 2)),
+        ("l2", format_number(l2, 2)),
+        ("x", format_number(p.x, 2)),
+        ("y", format_number(p.y, 2)),
+    ]
+}
+
+/// θ2 of the elbow-down branch in degrees (0…180).
+fn quiz_elbow_angle(rng: &mut Lcg64) -> Draw {
+    let (l1, l2, p, sol) = draw_target(rng);
+    Draw {
+        vars: target_vars(l1, l2, p),
+        answer: sol.elbow_down.theta2_rad.to_degrees(),
+    }
+}
+
+/// θ1 of the elbow-down branch in degrees.
+fn quiz_shoulder_angle(rng: &mut Lcg64) -> Draw {
+    let (l1, l2, p, sol) = draw_target(rng);
+    Draw {
+        vars: target_vars(l1, l2, p),
+        answer: sol.elbow_down.theta1_rad.to_degrees(),
+    }
+}
+
+/// cos θ2 from the law of cosines.
+fn quiz_cos_elbow(rng: &mut Lcg64) -> Draw {
+    let (l1, l2, p, sol) = draw_target(rng);
+    Draw {
+        vars: target_vars(l1, l2, p),
+        answer: sol.cos_theta2,
+    }
+}
+
+/// The quiz generators of experiment 2, by name.
+#[must_use]
+pub fn quiz_generator(name: &str) -> Option<Generator> {
+    match name {
+        "elbow_angle" => Some(quiz_elbow_angle),
+        "shoulder_angle" => Some(quiz_shoulder_angle),
+        "cos_elbow" => Some(quiz_cos_elbow),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn settle(ik: &mut InverseKinematics) {
+        for _ in 0..120 {
+            ik.step(1.0 / 60.0);
+        }
+    }
+
+    #[test]
+    fn click_solves_and_animates_to_the_target() {
+        let mut ik = InverseKinematics::default();
+        let target = DVec2::new(0.9, 0.8);
+        ik.input(Input::PointerDown(target));
+        assert!(ik.animating());
+        ik.step(1.0 / 60.0);
+        // Mid-way the tip is not yet there.
+        assert!((ik.tip() - target).length() > 1e-3);
+        settle(&mut ik);
+        assert!(!ik.animating());
+        assert!((ik.tip() - target).length() < 1e-9);
+        assert!(ik.theta2_deg <= 0.0, "elbow up by default");
+        assert_eq!(ik.status().tone, Tone::Good);
+        // Toggle to elbow down: same tip, opposite bend.
+        ik.set_param("elbow", 0.0).unwrap();
+        settle(&mut ik);
+        assert!((ik.tip() - target).length() < 1e-9);
+        assert!(ik.theta2_deg >= 0.0);
+    }
+
+    #[test]
+    fn out_of_reach_draws_no_solution() {
+        let mut ik = InverseKinematics::default();
+        let before = ik.tip();
+        ik.input(Input::PointerDown(DVec2::new(2.9, 0.0)));
+        settle(&mut ik);
+        assert_eq!(ik.status().text, "out of reach");
+        assert_eq!(ik.readouts()[2].value, "--");
+        assert!((ik.tip() - before).length() < 1e-12, "the arm stays put");
+        let mut scene = Scene::default();
+        ik.scene(&mut scene);
+        assert!(!scene.items.iter().any(|i| matches!(
+            i,
+            Item::Line {
+                role: Role::Ghost,
+                ..
+            }
+        )));
+    }
+
+    #[test]
+    fn boundary_target_is_flagged_singular() {
+        let mut ik = InverseKinematics::default();
+        ik.input(Input::PointerDown(DVec2::new(0.0, 1.7)));
+        assert_eq!(ik.status().tone, Tone::Warning);
+        assert!(ik.status().text.contains("singular"));
+    }
+
+    #[test]
+    fn wrist_link_keeps_its_orientation_and_reaches_the_target() {
+        let mut ik = InverseKinematics::default();
+        ik.set_param("l3", 0.4).unwrap();
+        ik.set_param("phi", 90.0).unwrap();
+        let target = DVec2::new(0.8, 1.1);
+        ik.input(Input::PointerDown(target));
+        settle(&mut ik);
+        assert!((ik.tip() - target).length() < 1e-9);
+        let pts = ik.points(ik.theta1_deg, ik.theta2_deg);
+        let wrist_dir = (pts[3] - pts[2]).normalize();
+        assert!((wrist_dir - DVec2::Y).length() < 1e-9);
+        assert_eq!(ik.readouts().len(), 5);
+    }
+
+    #[test]
+    fn sliders_still_drive_forward_kinematics() {
+        let mut ik = InverseKinematics::default();
+        ik.input(Input::PointerDown(DVec2::new(0.9, 0.8)));
+        ik.set_param("t1", 0.0).unwrap();
+        ik.set_param("t2", 0.0).unwrap();
+        settle(&mut ik);
+        assert!((ik.tip() - DVec2::new(1.7, 0.0)).length() < 1e-12);
+    }
+
+    #[test]
+    fn generators_agree_with_hand_law_of_cosines() {
+        let mut rng = Lcg64::new(11);
+        let d = quiz_cos_elbow(&mut rng);
+        let get = |k: &str| {
+            d.vars
+                .iter()
+                .find(|(n, _)| *n == k)
+                .unwrap()
+                .1
+                .parse::<f64>()
+                .unwrap()
+        };
+        let (l1, l2, x, y) = (get("l1"), get("l2"), get("x"), get("y"));
+        let c = (x * x + y * y - l1 * l1 - l2 * l2) / (2.0 * l1 * l2);
+        assert!((d.answer - c).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,472 @@
+//! Experiment 3 — the 3R planar arm and its workspace.
+//!
+//! A live arm driven by θ1, θ2, θ3 (its tip can also be dragged: a few damped
+//! least-squares iterations per pointer move), and a "Sweep workspace" action
+//! that samples joint space with [`WorkspaceSampler`] — seeded Monte-Carlo or a
+//! regular grid — spreading the work over animation frames so no frame runs
+//! long. The cloud is shaded by density ([`DensityGrid`]); the measured inner
+//! and outer radii are compared with the analytic `R = L1 + L2 + L3` and
+//! `r = max(0, L_max − (R − L_max))`.
+
+use crate::experiment::{
+    find_spec, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status,
+    Tone,
+};
+use crate::kinematics::chain::{forward, tip, Annulus};
+use crate::kinematics::dls::DlsSolver;
+use crate::kinematics::two_link_ik::wrap_pi;
+use crate::kinematics::workspace::{DensityGrid, SamplingMode, WorkspaceSampler};
+use crate::quiz::{format_number, Draw, Generator};
+use crate::rng::Lcg64;
+use crate::scene::{Item, Role, Scene, ViewBox};
+use glam::DVec2;
+
+const MODES: &[&str] = &["Monte-Carlo", "Grid"];
+
+const PARAMS: &[ParamSpec] = &[
+    ParamSpec::slider("t1", "θ₁", "°", -180.0, 180.0, 1.0, 40.0),
+    ParamSpec::slider("t2", "θ₂", "°", -180.0, 180.0, 1.0, 50.0),
+    ParamSpec::slider("t3", "θ₃", "°", -180.0, 180.0, 1.0, -35.0),
+    ParamSpec::slider("l1", "L₁", "m", 0.2, 1.2, 0.05, 1.0),
+    ParamSpec::slider("l2", "L₂", "m", 0.2, 1.2, 0.05, 0.8),
+    ParamSpec::slider("l3", "L₃", "m", 0.1, 1.2, 0.05, 0.7),
+    ParamSpec::choice("mode", "Sampling", MODES, 0),
+    ParamSpec::slider("n", "Samples", "", 1000.0, 60000.0, 1000.0, 20000.0),
+    ParamSpec::number("seed", "Seed", 0.0, 999_999.0, 1.0),
+];
+
+const ACTIONS: &[ActionSpec] = &[
+    ActionSpec {
+        key: "sweep",
+        label: "Sweep workspace",
+    },
+    ActionSpec {
+        key: "clear",
+        label: "Clear",
+    },
+];
+
+/// World half-width shown (metres).
+const VIEW_HALF_M: f64 = 3.7;
+/// Density grid resolution (cells per side).
+const DENSITY_CELLS: usize = 110;
+/// A sweep spreads over about this many frames.
+const SWEEP_FRAMES: usize = 90;
+/// Most tips stippled individually (the most recent ones); the density map shows them all.
+const STIPPLE_MAX: usize = 5000;
+
+/// State of the workspace experiment.
+#[derive(Clone, Debug)]
+pub struct Workspace {
+    angles_deg: [f64; 3],
+    lengths_m: [f64; 3],
+    mode: usize,
+    samples: usize,
+    seed: u64,
+    sampler: Option<WorkspaceSampler>,
+    tips: Vec<DVec2>,
+    density: DensityGrid,
+    /// Set when geometry or sampling settings changed after a sweep.
+    stale: bool,
+}
+
+impl Default for Workspace {
+    fn default() -> Self {
+        Self {
+            angles_deg: [PARAMS[0].default, PARAMS[1].default, PARAMS[2].default],
+            lengths_m: [PARAMS[3].default, PARAMS[4].default, PARAMS[5].default],
+            mode: 0,
+            samples: PARAMS[7].default as usize,
+            seed: PARAMS[8].default as u64,
+            sampler: None,
+            tips: Vec::new(),
+            density: DensityGrid::new(VIEW_HALF_M, DENSITY_CELLS),
+            stale: false,
+        }
+    }
+}
+
+impl Workspace {
+    fn angles_rad(&self) -> [f64; 3] {
+        self.angles_deg.map(f64::to_radians)
+    }
+
+    /// The live tip, metres.
+    #[must_use]
+    pub fn tip(&self) -> DVec2 {
+        tip(&self.lengths_m, &self.angles_rad())
+    }
+
+    fn sampling_mode(&self) -> SamplingMode {
+        if self.mode == 0 {
+            SamplingMode::MonteCarlo { seed: self.seed }
+        } else {
+            SamplingMode::Grid {
+                per_joint: (self.samples as f64).cbrt().round().max(2.0) as usize,
+            }
+        }
+    }
+
+    fn start_sweep(&mut self) {
+        self.clear();
+        self.sampler = Some(WorkspaceSampler::new(
+            self.lengths_m,
+            self.sampling_mode(),
+            self.samples,
+        ));
+    }
+
+    fn clear(&mut self) {
+        self.sampler = None;
+        self.tips.clear();
+        self.density.clear();
+        self.stale = false;
+    }
+
+    fn sweeping(&self) -> bool {
+        self.sampler.as_ref().is_some_and(|s| !s.is_done())
+    }
+
+    /// Drags the tip towards `target` with a few DLS iterations (redundant arm).
+    fn drag_tip_to(&mut self, target: DVec2) {
+        if !target.is_finite() {
+            return;
+        }
+        let solver = DlsSolver {
+            damping: 0.08,
+            max_iterations: 12,
+            ..DlsSolver::default()
+        };
+        let mut q = self.angles_rad();
+        if solver.solve(&self.lengths_m, &mut q, target).is_ok() {
+            self.angles_deg = q.map(|a| wrap_pi(a).to_degrees().clamp(-180.0, 180.0));
+        }
+    }
+}
+
+impl Experiment for Workspace {
+    fn id(&self) -> &'static str {
+        "workspace"
+    }
+
+    fn params(&self) -> &'static [ParamSpec] {
+        PARAMS
+    }
+
+    fn param(&self, key: &str) -> Option<f64> {
+        Some(match key {
+            "t1" => self.angles_deg[0],
+            "t2" => self.angles_deg[1],
+            "t3" => self.angles_deg[2],
+            "l1" => self.lengths_m[0],
+            "l2" => self.lengths_m[1],
+            "l3" => self.lengths_m[2],
+            "mode" => self.mode as f64,
+            "n" => self.samples as f64,
+            "seed" => self.seed as f64,
+            _ => return None,
+        })
+    }
+
+    fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
+        let spec =
+            find_spec(PARAMS, key).ok_or_else(|| ParamError::UnknownKey { key: key.into() })?;
+        let applied = spec.sanitize(value)?;
+        let v = applied.value();
+        let had_cloud = self.sampler.is_some();
+        match key {
+            "t1" => self.angles_deg[0] = v,
+            "t2" => self.angles_deg[1] = v,
+            "t3" => self.angles_deg[2] = v,
+            _ => {
+                match key {
+                    "l1" => self.lengths_m[0] = v,
+                    "l2" => self.lengths_m[1] = v,
+                    "l3" => self.lengths_m[2] = v,
+                    "mode" => self.mode = v as usize,
+                    "n" => self.samples = v.round() as usize,
+                    _ => self.seed = v.round() as u64,
+                }
+                // The cloud belongs to the old settings.
+                if had_cloud {
+                    self.clear();
+                    self.stale = true;
+                }
+            }
+        }
+        Ok(applied)
+    }
+
+    fn actions(&self) -> &'static [ActionSpec] {
+        ACTIONS
+    }
+
+    fn action(&mut self, key: &str) -> Result<(), ParamError> {
+        match key {
+            "sweep" => self.start_sweep(),
+            "clear" => self.clear(),
+            _ => return Err(ParamError::UnknownAction { key: key.into() }),
+        }
+        Ok(())
+    }
+
+    fn input(&mut self, input: Input) {
+        match input {
+            Input::PointerDown(p)
+            | Input::PointerMove {
+                pos: p,
+                pressed: true,
+            } => {
+                self.drag_tip_to(p);
+            }
+            Input::Nudge(d) => self.drag_tip_to(self.tip() + d),
+            Input::PointerMove { pressed: false, .. } | Input::PointerUp(_) => {}
+        }
+    }
+
+    fn step(&mut self, _dt_s: f64) {
+        let Some(sampler) = self.sampler.as_mut() else {
+            return;
+        };
+        if sampler.is_done() {
+            return;
+        }
+        let batch = (sampler.total() / SWEEP_FRAMES).max(100);
+        let start = self.tips.len();
+        sampler.sample_batch(batch, &mut self.tips);
+        self.density.add_all(&self.tips[start..]);
+    }
+
+    fn view(&self) -> ViewBox {
+        ViewBox::centered(VIEW_HALF_M)
+    }
+
+    fn scene(&self, out: &mut Scene) {
+        out.axes(self.view());
+        if !self.tips.is_empty() {
+            out.push(Item::Heatmap {
+                min: self.density.min,
+                cell_m: self.density.cell_m,
+                cols: self.density.cols,
+                rows: self.density.rows,
+                values: self.density.normalized(),
+                role: Role::Sample,
+            });
+            let from = self.tips.len().saturating_sub(STIPPLE_MAX);
+            out.push(Item::Points {
+                points: self.tips[from..].to_vec(),
+                radius_px: 0.9,
+                role: Role::Sample,
+            });
+        }
+        let annulus = Annulus::of_chain(&self.lengths_m);
+        out.bound_circle(annulus.outer_m);
+        out.bound_circle(annulus.inner_m);
+        let pose = forward(&self.lengths_m, &self.angles_rad());
+        out.chain(&pose.points, Role::Link);
+    }
+
+    fn readouts(&self) -> Vec<Readout> {
+        let tip = self.tip();
+        let annulus = Annulus::of_chain(&self.lengths_m);
+        let measured = self.sampler.as_ref().and_then(WorkspaceSampler::measured);
+        let metres = |v: f64| format!("{} m", format_number(v, 3));
+        let (outer, inner) = measured.map_or(("--".into(), "--".into()), |m| {
+            (metres(m.outer_m), metres(m.inner_m))
+        });
+        vec![
+            Readout::new("x", "Tip X", metres(tip.x)),
+            Readout::new("y", "Tip Y", metres(tip.y)),
+            Readout::new("outer", "Outer radius (measured)", outer),
+            Readout::new(
+                "outer_theory",
+                "Outer radius (theory)",
+                metres(annulus.outer_m),
+            ),
+            Readout::new("inner", "Inner hole (measured)", inner),
+            Readout::new(
+                "inner_theory",
+                "Inner hole (theory)",
+                metres(annulus.inner_m),
+            ),
+            Readout::new(
+                "samples",
+                "Samples drawn",
+                self.sampler
+                    .as_ref()
+                    .map_or("0".into(), |s| format!("{} / {}", s.produced(), s.total())),
+            ),
+        ]
+    }
+
+    fn status(&self) -> Status {
+        match &self.sampler {
+            _ if self.stale => Status::new("settings changed: sweep again", Tone::Warning),
+            None => Status::new("ready to sweep", Tone::Neutral),
+            Some(s) if !s.is_done() => Status::new(
+                format!("sweeping {}%", format_number(100.0 * s.progress(), 0)),
+                Tone::Neutral,
+            ),
+            Some(s) => Status::new(format!("swept {} samples", s.produced()), Tone::Good),
+        }
+    }
+
+    fn hint(&self) -> &'static str {
+        "Press Sweep workspace to sample joint space; drag the tip or use the sliders to pose the arm."
+    }
+
+    fn preview(&mut self) {
+        self.samples = 8000;
+        self.start_sweep();
+        while self.sweeping() {
+            self.step(1.0 / 60.0);
+        }
+    }
+
+    fn animating(&self) -> bool {
+        self.sweeping()
+    }
+}
+
+fn draw_lengths(rng: &mut Lcg64) -> [f64; 3] {
+    [
+        rng.int(3, 20) as f64 / 10.0,
+        rng.int(2, 12) as f64 / 10.0,
+        rng.int(1, 8) as f64 / 10.0,
+    ]
+}
+
+fn length_vars(l: [f64; 3]) -> Vec<(&'static str, String)> {
+    vec![
+        ("l1", format_number(l[0], 2)),
+        ("l2", format_number(l[1], 2)),
+        ("l3", format_number(l[2], 2)),
+    ]
+}
+
+/// Outer radius `L1 + L2 + L3`.
+fn quiz_outer_radius(rng: &mut Lcg64) -> Draw {
+    let l = draw_lengths(rng);
+    Draw {
+        vars: length_vars(l),
+        answer: Annulus::of_chain(&l).outer_m,
+    }
+}
+
+/// Inner hole `max(0, L_max − sum of the others)`.
+fn quiz_inner_radius(rng: &mut Lcg64) -> Draw {
+    let l = draw_lengths(rng);
+    Draw {
+        vars: length_vars(l),
+        answer: Annulus::of_chain(&l).inner_m,
+    }
+}
+
+/// `x` of the tip of a 3R arm.
+fn quiz_tip_x(rng: &mut Lcg64) -> Draw {
+    let l = draw_lengths(rng);
+    let t = [
+        rng.int(-170, 170) as f64,
+        rng.int(-170, 170) as f64,
+        rng.int(-170, 170) as f64,
+    ];
+    let mut vars = length_vars(l);
+    vars.extend([
+        ("t1", format_number(t[0], 0)),
+        ("t2", format_number(t[1], 0)),
+        ("t3", format_number(t[2], 0)),
+    ]);
+    Draw {
+        vars,
+        answer: tip(&l, &t.map(f64::to_radians)).x,
+    }
+}
+
+/// The quiz generators of experiment 3, by name.
+#[must_use]
+pub fn quiz_generator(name: &str) -> Option<Generator> {
+    match name {
+        "outer_radius" => Some(quiz_outer_radius),
+        "inner_radius" => Some(quiz_inner_radius),
+        "tip_x" => Some(quiz_tip_x),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sweep(ws: &mut Workspace) -> usize {
+        ws.action("sweep").unwrap();
+        let mut frames = 0;
+        while ws.animating() {
+            ws.step(1.0 / 60.0);
+            frames += 1;
+            assert!(frames < 1000);
+        }
+        frames
+    }
+
+    #[test]
+    fn sweep_is_spread_over_frames_and_measures_the_annulus() {
+        let mut ws = Workspace::default();
+        let frames = sweep(&mut ws);
+        assert!(frames >= SWEEP_FRAMES / 2, "spread over {frames} frames");
+        assert_eq!(ws.tips.len(), 20000);
+        assert_eq!(ws.density.total(), 20000);
+        let m = ws.sampler.as_ref().unwrap().measured().unwrap();
+        assert!((m.outer_m - 2.5).abs() < 0.02, "outer {}", m.outer_m);
+        assert!(m.inner_m < 0.05, "inner {}", m.inner_m);
+        assert_eq!(ws.status().tone, Tone::Good);
+    }
+
+    #[test]
+    fn inner_hole_appears_when_one_link_dominates() {
+        let mut ws = Workspace::default();
+        ws.set_param("l1", 1.2).unwrap();
+        ws.set_param("l2", 0.3).unwrap();
+        ws.set_param("l3", 0.2).unwrap();
+        sweep(&mut ws);
+        let m = ws.sampler.as_ref().unwrap().measured().unwrap();
+        assert!((m.inner_m - 0.7).abs() < 0.02, "inner {}", m.inner_m);
+        assert!(ws.tips.iter().all(|p| p.length() >= 0.7 - 1e-9));
+    }
+
+    #[test]
+    fn same_seed_same_cloud_and_geometry_change_marks_it_stale() {
+        let mut a = Workspace::default();
+        let mut b = Workspace::default();
+        sweep(&mut a);
+        sweep(&mut b);
+        assert_eq!(a.tips, b.tips);
+        b.set_param("seed", 2.0).unwrap();
+        assert!(b.tips.is_empty());
+        assert!(b.status().text.contains("sweep again"));
+        sweep(&mut b);
+        assert_ne!(a.tips, b.tips);
+    }
+
+    #[test]
+    fn grid_mode_samples_per_joint_cubed() {
+        let mut ws = Workspace::default();
+        ws.set_param("mode", 1.0).unwrap();
+        ws.set_param("n", 8000.0).unwrap();
+        sweep(&mut ws);
+        assert_eq!(ws.tips.len(), 8000);
+    }
+
+    #[test]
+    fn dragging_the_tip_moves_the_redundant_arm_there() {
+        let mut ws = Workspace::default();
+        let target = DVec2::new(1.2, -0.9);
+        ws.input(Input::PointerDown(target));
+        for _ in 0..5 {
+            ws.input(Input::PointerMove {
+                pos: target,
+                pressed: true,
+            });
+        }
+        assert!((ws.tip() - target).length() < 1e-4);
+    }
+}

@@ -1,0 +1,177 @@
+//! Walks the registry: every experiment steps 1,000 times at default
+//! parameters with finite output, every content file is complete, and every
+//! parameterised question draws finite answers.
+
+use labcore::quiz::{prepare, PreparedKind};
+use labcore::{registry, Content, Input, Scene};
+use std::path::Path;
+
+#[test]
+fn every_experiment_steps_1000_times_with_finite_values() {
+    for entry in registry() {
+        let mut exp = (entry.make)();
+        assert_eq!(exp.id(), entry.id);
+        let mut scene = Scene::default();
+        for i in 0..1000 {
+            exp.step(1.0 / 60.0);
+            if i % 100 == 0 {
+                scene.clear();
+                exp.scene(&mut scene);
+                assert!(
+                    scene.is_finite(),
+                    "{}: non-finite scene at step {i}",
+                    entry.id
+                );
+            }
+        }
+        scene.clear();
+        exp.scene(&mut scene);
+        assert!(scene.is_finite(), "{}", entry.id);
+        assert!(!scene.items.is_empty(), "{} draws nothing", entry.id);
+        for r in exp.readouts() {
+            assert!(
+                !r.value.contains("NaN") && !r.value.contains("inf"),
+                "{}: {r:?}",
+                entry.id
+            );
+        }
+        for spec in exp.params() {
+            let v = exp.param(spec.key).expect("every spec has a value");
+            assert!(
+                v.is_finite() && v >= spec.min && v <= spec.max,
+                "{}.{}",
+                entry.id,
+                spec.key
+            );
+            assert!(spec.min <= spec.default && spec.default <= spec.max);
+        }
+    }
+}
+
+#[test]
+fn experiments_survive_hostile_input() {
+    for entry in registry() {
+        let mut exp = (entry.make)();
+        let specs = exp.params();
+        for spec in specs {
+            for v in [f64::NAN, f64::INFINITY, -1e300, 1e300, spec.min, spec.max] {
+                let _ = exp.set_param(spec.key, v);
+                exp.step(1.0 / 60.0);
+            }
+        }
+        for action in exp.actions() {
+            exp.action(action.key).expect("declared actions run");
+        }
+        for p in [
+            glam::DVec2::new(f64::NAN, 0.0),
+            glam::DVec2::new(1e9, -1e9),
+            glam::DVec2::ZERO,
+        ] {
+            exp.input(Input::PointerDown(p));
+            exp.input(Input::PointerMove {
+                pos: p,
+                pressed: true,
+            });
+            exp.input(Input::PointerUp(p));
+            exp.input(Input::Nudge(p));
+            for _ in 0..50 {
+                exp.step(1.0 / 60.0);
+            }
+        }
+        let mut scene = Scene::default();
+        exp.scene(&mut scene);
+        assert!(scene.is_finite(), "{} after hostile input", entry.id);
+    }
+}
+
+#[test]
+fn every_registered_experiment_has_complete_content_and_generators() {
+    for entry in registry() {
+        let content = entry
+            .content()
+            .unwrap_or_else(|e| panic!("{}: {e}", entry.id));
+        for seed in 0..50 {
+            let attempt = prepare(&content, entry.generators, seed).unwrap();
+            for q in &attempt {
+                assert!(
+                    !q.prompt.contains('{'),
+                    "{}: unfilled placeholder in {}",
+                    entry.id,
+                    q.prompt
+                );
+                assert!(
+                    !q.explanation.contains("{"),
+                    "{}: unfilled placeholder in {}",
+                    entry.id,
+                    q.explanation
+                );
+                if let PreparedKind::Numeric { answer, .. } = q.kind {
+                    assert!(answer.is_finite(), "{}: {}", entry.id, q.prompt);
+                }
+            }
+        }
+        let a = prepare(&content, entry.generators, 1).unwrap();
+        let b = prepare(&content, entry.generators, 2).unwrap();
+        assert_ne!(a, b, "{}: a new attempt draws new numbers", entry.id);
+        assert_eq!(
+            a,
+            prepare(&content, entry.generators, 1).unwrap(),
+            "deterministic"
+        );
+    }
+}
+
+/// Every JSON file under `assets/` parses and is complete, registered or not.
+#[test]
+fn every_content_file_in_assets_is_complete() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "json") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            Content::parse(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            seen += 1;
+        }
+    }
+    assert!(seen >= registry().len());
+}
+
+#[test]
+fn incomplete_content_is_rejected() {
+    let good = registry()[0].content_json;
+    let mut v: serde_json::Value = serde_json::from_str(good).unwrap();
+    let check = |v: &serde_json::Value| Content::parse(&v.to_string());
+    assert!(check(&v).is_ok());
+    let mut no_refs = v.clone();
+    no_refs["references"].as_array_mut().unwrap().truncate(2);
+    assert!(check(&no_refs).is_err());
+    let mut few = v.clone();
+    few["quiz"].as_array_mut().unwrap().truncate(7);
+    assert!(check(&few).is_err());
+    let mut empty_aim = v.clone();
+    empty_aim["aim"] = serde_json::json!([]);
+    assert!(check(&empty_aim).is_err());
+    let mut bad_choice = v.clone();
+    let q = bad_choice["quiz"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|q| q["kind"] == "choice")
+        .unwrap();
+    q["answer"] = serde_json::json!(99);
+    assert!(check(&bad_choice).is_err());
+    let mut dup = v.clone();
+    let q = dup["quiz"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|q| q["kind"] == "choice")
+        .unwrap();
+    let correct = q["options"][q["answer"].as_u64().unwrap() as usize].clone();
+    q["options"].as_array_mut().unwrap().push(correct);
+    assert!(check(&dup).is_err());
+    v.as_object_mut().unwrap().remove("procedure");
+    assert!(check(&v).is_err());
+    assert!(Content::parse("not json").is_err());
+}
