@@ -1,1 +1,66 @@
-//! labweb — the browser front end.
+//! labweb — the browser front end of the robotics virtual lab.
+//!
+//! It turns DOM events into plain [`labcore::Input`]s, steps the active
+//! experiment, asks it for a [`labcore::Scene`] and paints it. All solver logic
+//! lives in `labcore`.
+
+pub mod app;
+pub mod content_view;
+pub mod dom;
+pub mod draw;
+pub mod quiz_view;
+pub mod sim;
+
+use std::cell::RefCell;
+use wasm_bindgen::prelude::*;
+
+thread_local! {
+    static APP: RefCell<Option<app::App>> = const { RefCell::new(None) };
+}
+
+/// Entry point: installs the panic message and mounts the app when the page
+/// has an `#app` element (test pages mount explicitly with [`boot`]).
+#[wasm_bindgen(start)]
+pub fn start() {
+    std::panic::set_hook(Box::new(|info| {
+        dom::fatal(&format!(
+            "Something went wrong inside the lab ({info}). Reload the page to start again."
+        ));
+    }));
+    if dom::by_id("app").is_some() {
+        boot();
+    }
+}
+
+/// Mounts the application into the current document.
+#[wasm_bindgen]
+pub fn boot() {
+    let app = app::App::boot(|_| {
+        APP.with(|a| {
+            if let Some(app) = a.borrow_mut().as_mut() {
+                app.route();
+            }
+        });
+    });
+    APP.with(|a| *a.borrow_mut() = app);
+}
+
+/// Paints the mounted simulation synchronously (used by tests).
+#[wasm_bindgen]
+pub fn paint_now() {
+    APP.with(|a| {
+        if let Some(app) = a.borrow().as_ref() {
+            app.paint_now();
+        }
+    });
+}
+
+/// Re-reads the location hash (used by tests; browsers call it on `hashchange`).
+#[wasm_bindgen]
+pub fn reroute() {
+    APP.with(|a| {
+        if let Some(app) = a.borrow_mut().as_mut() {
+            app.route();
+        }
+    });
+}

@@ -1,0 +1,118 @@
+//! Small DOM helpers and owned event listeners.
+//!
+//! Every listener is a [`Listener`]: dropping it removes the listener and frees
+//! its closure, so leaving an experiment leaks nothing (no `Closure::forget`).
+
+use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
+use web_sys::{Document, Element, Event, EventTarget, HtmlElement, Window};
+
+pub fn window() -> Window {
+    web_sys::window().expect("a browser window")
+}
+
+pub fn document() -> Document {
+    window().document().expect("a document")
+}
+
+pub fn by_id(id: &str) -> Option<Element> {
+    document().get_element_by_id(id)
+}
+
+pub fn query(root: &Element, selector: &str) -> Option<Element> {
+    root.query_selector(selector).ok().flatten()
+}
+
+pub fn query_all(root: &Element, selector: &str) -> Vec<Element> {
+    let Ok(list) = root.query_selector_all(selector) else {
+        return Vec::new();
+    };
+    (0..list.length())
+        .filter_map(|i| list.get(i))
+        .filter_map(|n| n.dyn_into::<Element>().ok())
+        .collect()
+}
+
+/// Escapes text for inclusion in HTML (content and attribute values).
+#[must_use]
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+pub fn set_hidden(el: &Element, hidden: bool) {
+    if let Some(h) = el.dyn_ref::<HtmlElement>() {
+        h.set_hidden(hidden);
+    }
+}
+
+/// Performance clock in milliseconds.
+pub fn now_ms() -> f64 {
+    window().performance().map_or(0.0, |p| p.now())
+}
+
+/// An event listener that is removed when dropped.
+pub struct Listener {
+    target: EventTarget,
+    kind: &'static str,
+    closure: Closure<dyn FnMut(Event)>,
+}
+
+impl Listener {
+    pub fn new(target: &EventTarget, kind: &'static str, f: impl FnMut(Event) + 'static) -> Self {
+        let closure = Closure::<dyn FnMut(Event)>::new(f);
+        let _ = target.add_event_listener_with_callback(kind, closure.as_ref().unchecked_ref());
+        Self {
+            target: target.clone(),
+            kind,
+            closure,
+        }
+    }
+}
+
+impl Drop for Listener {
+    fn drop(&mut self) {
+        let _ = self
+            .target
+            .remove_event_listener_with_callback(self.kind, self.closure.as_ref().unchecked_ref());
+    }
+}
+
+/// Shows a message in the page's notice bar (text only, never HTML).
+pub fn notice(messages: &[String]) {
+    let Some(bar) = by_id("notice") else { return };
+    if messages.is_empty() {
+        return;
+    }
+    if let Some(text) = query(&bar, ".notice-text") {
+        text.set_text_content(Some(&messages.join(" ")));
+    }
+    set_hidden(&bar, false);
+}
+
+pub fn clear_notice() {
+    if let Some(bar) = by_id("notice") {
+        set_hidden(&bar, true);
+    }
+}
+
+/// Shows a fatal error where the student can see it.
+pub fn fatal(message: &str) {
+    web_sys::console::error_1(&JsValue::from_str(message));
+    if let Some(el) = by_id("fatal") {
+        if let Some(text) = query(&el, ".fatal-text") {
+            text.set_text_content(Some(message));
+        }
+        set_hidden(&el, false);
+    }
+}

@@ -1,0 +1,767 @@
+//! The Simulation tab: canvas, controls, readouts and the animation loop.
+//!
+//! Logic first, then paint: each animation frame steps the experiment with a
+//! fixed `dt`, rebuilds the display list from state and paints it. Every
+//! listener, the resize observer and the animation-frame closure are owned by
+//! [`SimView`] and removed when it is dropped.
+
+use crate::dom::{self, escape, query, query_all, Listener};
+use crate::draw::{paint, Palette, Viewport};
+use glam::DVec2;
+use labcore::quiz::format_number;
+use labcore::route::{self, Tab};
+use labcore::{Experiment, Input, ParamKind, ParamSpec, Sanitized, Scene};
+use std::cell::{Cell, RefCell};
+use std::rc::{Rc, Weak};
+use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
+use web_sys::{
+    CanvasRenderingContext2d, Element, Event, HtmlCanvasElement, HtmlElement, HtmlInputElement,
+    HtmlSelectElement, KeyboardEvent, PointerEvent, ResizeObserver,
+};
+
+/// Fixed simulation step, seconds.
+const DT_S: f64 = 1.0 / 60.0;
+/// At most this many fixed steps per frame (after a stall the sim slows down instead of freezing).
+const MAX_STEPS_PER_FRAME: usize = 8;
+/// Minimum time between URL updates while a control moves, milliseconds.
+const HASH_INTERVAL_MS: f64 = 250.0;
+
+/// Why the simulation could not start (the reading tabs still work).
+#[derive(Debug)]
+pub struct SimError(pub String);
+
+/// The HTML of the Simulation tab for an experiment.
+pub fn render(exp: &dyn Experiment, caption: &str) -> String {
+    let mut controls = String::new();
+    for spec in exp.params() {
+        controls.push_str(&control_html(spec));
+    }
+    let actions: String = exp
+        .actions()
+        .iter()
+        .map(|a| {
+            format!(
+                "<button type=\"button\" data-action=\"{}\">{}</button>",
+                a.key,
+                escape(a.label)
+            )
+        })
+        .collect();
+    let readouts: String = exp
+        .readouts()
+        .iter()
+        .map(|r| {
+            format!(
+                "<div class=\"readout\"><dt>{}</dt><dd data-readout=\"{}\">{}</dd></div>",
+                escape(r.label),
+                r.key,
+                escape(&r.value)
+            )
+        })
+        .collect();
+    let status = exp.status();
+    format!(
+        "<div class=\"sim\">\
+           <div class=\"sim-stage\">\
+             <div class=\"sim-head\"><p class=\"sim-caption\">{caption}</p>\
+               <p class=\"sim-status\" role=\"status\" data-tone=\"{tone}\">{text}</p></div>\
+             <canvas class=\"sim-canvas\" tabindex=\"0\" role=\"img\" \
+               aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps).\"></canvas>\
+           </div>\
+           <div class=\"sim-side\">\
+             <form class=\"sim-controls\" aria-label=\"Parameters\" onsubmit=\"return false\">{controls}</form>\
+             <div class=\"sim-actions\">{actions}</div>\
+             <p class=\"sim-message\" role=\"alert\" hidden></p>\
+             <dl class=\"readouts\">{readouts}</dl>\
+             <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
+           </div>\
+         </div>",
+        tone = tone_name(status.tone),
+        text = escape(&status.text),
+    )
+}
+
+fn tone_name(tone: labcore::Tone) -> &'static str {
+    match tone {
+        labcore::Tone::Neutral => "neutral",
+        labcore::Tone::Good => "good",
+        labcore::Tone::Warning => "warning",
+        labcore::Tone::Bad => "bad",
+    }
+}
+
+fn decimals(step: f64) -> usize {
+    let mut d = 0;
+    let mut s = step;
+    while d < 4 && (s - s.round()).abs() > 1e-9 {
+        s *= 10.0;
+        d += 1;
+    }
+    d
+}
+
+fn control_html(spec: &ParamSpec) -> String {
+    let key = spec.key;
+    let label = escape(spec.label);
+    let unit = escape(spec.unit);
+    let v = format_number(spec.default, 4);
+    match spec.kind {
+        ParamKind::Slider => format!(
+            "<div class=\"ctl ctl-slider\"><label for=\"p-{key}\">{label}</label>\
+             <input type=\"range\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"{step}\" value=\"{v}\">\
+             <span class=\"ctl-num\"><input type=\"number\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" value=\"{v}\" aria-label=\"{label} value{unit_aria}\">\
+             <span class=\"unit\" aria-hidden=\"true\">{unit}</span></span></div>",
+            min = spec.min,
+            max = spec.max,
+            step = spec.step,
+            unit_aria = if spec.unit.is_empty() { String::new() } else { format!(" in {unit}") },
+        ),
+        ParamKind::Number => format!(
+            "<div class=\"ctl ctl-number\"><label for=\"p-{key}\">{label}</label>\
+             <span class=\"ctl-num\"><input type=\"number\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"1\" value=\"{v}\"></span></div>",
+            min = spec.min,
+            max = spec.max,
+        ),
+        ParamKind::Toggle { off, on } => format!(
+            "<fieldset class=\"ctl ctl-toggle\"><legend>{label}</legend><div class=\"seg\">\
+             <label><input type=\"radio\" name=\"p-{key}\" data-param=\"{key}\" value=\"1\"{c1}><span>{on}</span></label>\
+             <label><input type=\"radio\" name=\"p-{key}\" data-param=\"{key}\" value=\"0\"{c0}><span>{off}</span></label>\
+             </div></fieldset>",
+            on = escape(on),
+            off = escape(off),
+            c1 = if spec.default >= 0.5 { " checked" } else { "" },
+            c0 = if spec.default < 0.5 { " checked" } else { "" },
+        ),
+        ParamKind::Choice(options) => {
+            let opts: String = options
+                .iter()
+                .enumerate()
+                .map(|(i, o)| {
+                    let sel = if (i as f64 - spec.default).abs() < 0.5 { " selected" } else { "" };
+                    format!("<option value=\"{i}\"{sel}>{}</option>", escape(o))
+                })
+                .collect();
+            format!(
+                "<div class=\"ctl ctl-choice\"><label for=\"p-{key}\">{label}</label>\
+                 <select id=\"p-{key}\" data-param=\"{key}\">{opts}</select></div>"
+            )
+        }
+    }
+}
+
+/// State shared by the frame loop and the event handlers.
+struct SimState {
+    exp: Box<dyn Experiment>,
+    canvas: HtmlCanvasElement,
+    ctx: CanvasRenderingContext2d,
+    panel: Element,
+    scene: Scene,
+    palette: Palette,
+    viewport: Viewport,
+    css_size: (f64, f64),
+    dpr: f64,
+    pressed_pointer: Option<i32>,
+    last_time_ms: Option<f64>,
+    accumulator_s: f64,
+    needs_paint: bool,
+    shown_values: Vec<Option<f64>>,
+    shown_readouts: Vec<String>,
+    shown_status: String,
+    hash_dirty: bool,
+    last_hash_ms: f64,
+    /// Slowest frame (step + paint) seen, milliseconds; exposed for tests.
+    worst_frame_ms: f64,
+}
+
+impl SimState {
+    fn resize(&mut self) {
+        let rect = self.canvas.get_bounding_client_rect();
+        let (w, h) = (rect.width(), rect.height());
+        let dpr = dom::window().device_pixel_ratio().max(1.0);
+        if w < 1.0 || h < 1.0 {
+            return;
+        }
+        if (w, h) != self.css_size || dpr != self.dpr {
+            self.css_size = (w, h);
+            self.dpr = dpr;
+            self.canvas.set_width((w * dpr).round() as u32);
+            self.canvas.set_height((h * dpr).round() as u32);
+            self.needs_paint = true;
+        }
+        self.viewport = Viewport::fit(self.exp.view(), w, h);
+    }
+
+    fn to_world(&self, event: &PointerEvent) -> DVec2 {
+        let rect = self.canvas.get_bounding_client_rect();
+        let px = DVec2::new(
+            f64::from(event.client_x()) - rect.left(),
+            f64::from(event.client_y()) - rect.top(),
+        );
+        self.viewport.to_world(px)
+    }
+
+    fn frame(&mut self, time_ms: f64) {
+        let start = dom::now_ms();
+        let elapsed_s = self
+            .last_time_ms
+            .map_or(0.0, |last| ((time_ms - last) / 1000.0).clamp(0.0, 0.25));
+        self.last_time_ms = Some(time_ms);
+        self.accumulator_s += elapsed_s;
+        let was_animating = self.exp.animating();
+        let mut steps = 0;
+        while self.accumulator_s >= DT_S && steps < MAX_STEPS_PER_FRAME {
+            self.exp.step(DT_S);
+            self.accumulator_s -= DT_S;
+            steps += 1;
+        }
+        if steps == MAX_STEPS_PER_FRAME {
+            self.accumulator_s = 0.0;
+        }
+        // Paint while moving, and once more for the frame on which it stopped.
+        if steps > 0 && (was_animating || self.exp.animating()) {
+            self.needs_paint = true;
+        }
+        if self.needs_paint {
+            self.resize();
+            self.paint();
+            self.sync_dom();
+            self.needs_paint = false;
+        }
+        if self.hash_dirty && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS {
+            self.write_hash();
+            self.last_hash_ms = time_ms;
+        }
+        let spent = dom::now_ms() - start;
+        if spent > self.worst_frame_ms {
+            self.worst_frame_ms = spent;
+            let _ = self
+                .canvas
+                .set_attribute("data-worst-frame-ms", &format!("{spent:.2}"));
+        }
+    }
+
+    fn paint(&mut self) {
+        let (w, h) = self.css_size;
+        if w < 1.0 {
+            return;
+        }
+        self.scene.clear();
+        self.exp.scene(&mut self.scene);
+        paint(
+            &self.ctx,
+            &self.scene,
+            &self.viewport,
+            w,
+            h,
+            self.dpr,
+            &self.palette,
+        );
+    }
+
+    /// Brings controls, readouts and the status badge up to date with the state.
+    fn sync_dom(&mut self) {
+        let active = dom::document().active_element();
+        for (i, spec) in self.exp.params().iter().enumerate() {
+            let value = self.exp.param(spec.key);
+            if self.shown_values.get(i) == Some(&value) {
+                continue;
+            }
+            if let Some(v) = value {
+                set_control_value(&self.panel, spec, v, active.as_ref());
+            }
+            if let Some(slot) = self.shown_values.get_mut(i) {
+                *slot = value;
+            }
+        }
+        let readouts = self.exp.readouts();
+        if self.shown_readouts.len() != readouts.len() {
+            self.shown_readouts = vec![String::new(); readouts.len()];
+        }
+        for (r, shown) in readouts.iter().zip(self.shown_readouts.iter_mut()) {
+            if *shown != r.value {
+                if let Some(dd) = query(&self.panel, &format!("[data-readout=\"{}\"]", r.key)) {
+                    dd.set_text_content(Some(&r.value));
+                }
+                shown.clone_from(&r.value);
+            }
+        }
+        let status = self.exp.status();
+        if status.text != self.shown_status {
+            if let Some(badge) = query(&self.panel, ".sim-status") {
+                badge.set_text_content(Some(&status.text));
+                let _ = badge.set_attribute("data-tone", tone_name(status.tone));
+            }
+            self.shown_status = status.text;
+        }
+    }
+
+    /// Tells screen-reader users the new readouts after an interaction ends.
+    fn announce(&self) {
+        let text: Vec<String> = self
+            .exp
+            .readouts()
+            .iter()
+            .map(|r| format!("{}: {}", r.label, r.value))
+            .collect();
+        if let Some(live) = query(&self.panel, ".sim-live") {
+            live.set_text_content(Some(&format!(
+                "{}. {}",
+                self.exp.status().text,
+                text.join(", ")
+            )));
+        }
+    }
+
+    fn write_hash(&mut self) {
+        self.hash_dirty = false;
+        let hash = route::format(self.exp.as_ref(), Tab::Simulation);
+        if let Ok(history) = dom::window().history() {
+            let _ = history.replace_state_with_url(&JsValue::NULL, "", Some(&hash));
+        }
+    }
+
+    fn show_message(&self, text: Option<&str>) {
+        if let Some(m) = query(&self.panel, ".sim-message") {
+            m.set_text_content(text);
+            dom::set_hidden(&m, text.is_none());
+        }
+    }
+
+    fn set_param(&mut self, key: &str, value: f64) {
+        let label = self
+            .exp
+            .params()
+            .iter()
+            .find(|s| s.key == key)
+            .map_or(key, |s| s.label);
+        match self.exp.set_param(key, value) {
+            Ok(Sanitized::InRange(_)) => self.show_message(None),
+            Ok(Sanitized::Clamped(v)) => self.show_message(Some(&format!(
+                "{label} is limited to its range; using {}.",
+                format_number(v, 3)
+            ))),
+            Err(e) => {
+                self.show_message(Some(&format!("{label}: {e}. Kept the previous value.")));
+                // Force the control back to the kept value.
+                self.shown_values.iter_mut().for_each(|v| *v = None);
+            }
+        }
+        self.needs_paint = true;
+        self.hash_dirty = true;
+    }
+}
+
+fn set_control_value(panel: &Element, spec: &ParamSpec, v: f64, active: Option<&Element>) {
+    for el in query_all(panel, &format!("[data-param=\"{}\"]", spec.key)) {
+        if let Some(input) = el.dyn_ref::<HtmlInputElement>() {
+            match input.type_().as_str() {
+                "radio" => input.set_checked((input.value() == "1") == (v >= 0.5)),
+                "number" => {
+                    if active != Some(&el) {
+                        input.set_value(&format_number(v, (decimals(spec.step) + 1).min(3)));
+                    }
+                }
+                _ => input.set_value(&format_number(v, 4)),
+            }
+        } else if let Some(select) = el.dyn_ref::<HtmlSelectElement>() {
+            select.set_value(&format!("{}", v.round() as i64));
+        }
+    }
+}
+
+/// A `requestAnimationFrame` loop, cancelled when dropped.
+struct AnimationLoop {
+    inner: Rc<FrameRequest>,
+}
+
+/// The closure `requestAnimationFrame` calls with the frame time in milliseconds.
+type FrameCallback = Closure<dyn FnMut(f64)>;
+
+struct FrameRequest {
+    id: Cell<Option<i32>>,
+    closure: RefCell<Option<FrameCallback>>,
+}
+
+impl FrameRequest {
+    fn request(&self) {
+        if let Some(c) = self.closure.borrow().as_ref() {
+            self.id.set(
+                dom::window()
+                    .request_animation_frame(c.as_ref().unchecked_ref())
+                    .ok(),
+            );
+        }
+    }
+}
+
+impl AnimationLoop {
+    fn start(mut tick: impl FnMut(f64) + 'static) -> Self {
+        let inner = Rc::new(FrameRequest {
+            id: Cell::new(None),
+            closure: RefCell::new(None),
+        });
+        let weak: Weak<FrameRequest> = Rc::downgrade(&inner);
+        let closure = Closure::<dyn FnMut(f64)>::new(move |t: f64| {
+            tick(t);
+            if let Some(inner) = weak.upgrade() {
+                inner.request();
+            }
+        });
+        *inner.closure.borrow_mut() = Some(closure);
+        inner.request();
+        Self { inner }
+    }
+}
+
+impl Drop for AnimationLoop {
+    fn drop(&mut self) {
+        if let Some(id) = self.inner.id.take() {
+            let _ = dom::window().cancel_animation_frame(id);
+        }
+        self.inner.closure.borrow_mut().take();
+    }
+}
+
+/// A resize observer disconnected when dropped.
+struct ResizeWatch {
+    observer: ResizeObserver,
+    _closure: Closure<dyn FnMut(js_sys::Array)>,
+}
+
+impl Drop for ResizeWatch {
+    fn drop(&mut self) {
+        self.observer.disconnect();
+    }
+}
+
+/// The mounted Simulation tab of one experiment.
+pub struct SimView {
+    state: Rc<RefCell<SimState>>,
+    running: Option<AnimationLoop>,
+    _listeners: Vec<Listener>,
+    _resize: Option<ResizeWatch>,
+}
+
+impl SimView {
+    /// Wires the Simulation panel rendered by [`render`] to `exp`.
+    pub fn mount(panel: &Element, exp: Box<dyn Experiment>) -> Result<Self, SimError> {
+        let canvas: HtmlCanvasElement = query(panel, "canvas.sim-canvas")
+            .and_then(|c| c.dyn_into().ok())
+            .ok_or_else(|| SimError("the page has no canvas".into()))?;
+        let ctx: CanvasRenderingContext2d = canvas
+            .get_context("2d")
+            .ok()
+            .flatten()
+            .and_then(|c| c.dyn_into().ok())
+            .ok_or_else(|| {
+                SimError("this browser could not give the simulation a 2D canvas".into())
+            })?;
+        let palette = Palette::from_css(&canvas);
+        let view = exp.view();
+        let n_params = exp.params().len();
+        let state = Rc::new(RefCell::new(SimState {
+            exp,
+            canvas: canvas.clone(),
+            ctx,
+            panel: panel.clone(),
+            scene: Scene::default(),
+            palette,
+            viewport: Viewport::fit(view, 1.0, 1.0),
+            css_size: (0.0, 0.0),
+            dpr: 1.0,
+            pressed_pointer: None,
+            last_time_ms: None,
+            accumulator_s: 0.0,
+            needs_paint: true,
+            shown_values: vec![None; n_params],
+            shown_readouts: Vec::new(),
+            shown_status: String::new(),
+            hash_dirty: false,
+            last_hash_ms: 0.0,
+            worst_frame_ms: 0.0,
+        }));
+        let mut listeners = Vec::new();
+        let canvas_target: &web_sys::EventTarget = canvas.as_ref();
+
+        let s = state.clone();
+        listeners.push(Listener::new(
+            canvas_target,
+            "pointerdown",
+            move |e: Event| {
+                let Some(e) = e.dyn_ref::<PointerEvent>() else {
+                    return;
+                };
+                if !e.is_primary() || e.button() > 0 {
+                    return;
+                }
+                e.prevent_default();
+                let mut st = s.borrow_mut();
+                let options = web_sys::FocusOptions::new();
+                options.set_prevent_scroll(true);
+                let _ = st.canvas.focus_with_options(&options);
+                let _ = st.canvas.set_pointer_capture(e.pointer_id());
+                st.pressed_pointer = Some(e.pointer_id());
+                let w = st.to_world(e);
+                st.exp.input(Input::PointerDown(w));
+                st.needs_paint = true;
+            },
+        ));
+        let s = state.clone();
+        listeners.push(Listener::new(
+            canvas_target,
+            "pointermove",
+            move |e: Event| {
+                let Some(e) = e.dyn_ref::<PointerEvent>() else {
+                    return;
+                };
+                let mut st = s.borrow_mut();
+                let pressed = st.pressed_pointer == Some(e.pointer_id());
+                if !e.is_primary() {
+                    return;
+                }
+                let w = st.to_world(e);
+                st.exp.input(Input::PointerMove { pos: w, pressed });
+                if pressed {
+                    st.needs_paint = true;
+                    st.hash_dirty = true;
+                }
+            },
+        ));
+        for kind in ["pointerup", "pointercancel"] {
+            let s = state.clone();
+            listeners.push(Listener::new(canvas_target, kind, move |e: Event| {
+                let Some(e) = e.dyn_ref::<PointerEvent>() else {
+                    return;
+                };
+                let mut st = s.borrow_mut();
+                if st.pressed_pointer != Some(e.pointer_id()) {
+                    return;
+                }
+                st.pressed_pointer = None;
+                let w = st.to_world(e);
+                st.exp.input(Input::PointerUp(w));
+                st.needs_paint = true;
+                st.hash_dirty = true;
+                st.announce();
+            }));
+        }
+        let s = state.clone();
+        listeners.push(Listener::new(canvas_target, "keydown", move |e: Event| {
+            let Some(e) = e.dyn_ref::<KeyboardEvent>() else {
+                return;
+            };
+            let dir = match e.key().as_str() {
+                "ArrowLeft" => DVec2::NEG_X,
+                "ArrowRight" => DVec2::X,
+                "ArrowUp" => DVec2::Y,
+                "ArrowDown" => DVec2::NEG_Y,
+                _ => return,
+            };
+            e.prevent_default();
+            let mut st = s.borrow_mut();
+            let view = st.exp.view();
+            let fraction = if e.shift_key() { 0.002 } else { 0.02 };
+            let delta = dir * (view.max.x - view.min.x) * fraction;
+            st.exp.input(Input::Nudge(delta));
+            st.needs_paint = true;
+            st.hash_dirty = true;
+            st.announce();
+        }));
+
+        if let Some(form) = query(panel, ".sim-controls") {
+            let s = state.clone();
+            listeners.push(Listener::new(form.as_ref(), "input", move |e: Event| {
+                let Some(input) = e
+                    .target()
+                    .and_then(|t| t.dyn_into::<HtmlInputElement>().ok())
+                else {
+                    return;
+                };
+                let Some(key) = input.get_attribute("data-param") else {
+                    return;
+                };
+                // A number box mid-edit ("-", "") waits for its change event.
+                let value = input.value_as_number();
+                if input.type_() == "number" && !value.is_finite() {
+                    return;
+                }
+                let value = if input.type_() == "radio" {
+                    input.value().parse().unwrap_or(0.0)
+                } else {
+                    value
+                };
+                let mut st = s.borrow_mut();
+                st.set_param(&key, value);
+                // Mirror slider → number box now (the number box is not focused).
+                if let Some(i) = st.exp.params().iter().position(|p| p.key == key) {
+                    st.shown_values[i] = None;
+                }
+            }));
+            let s = state.clone();
+            listeners.push(Listener::new(form.as_ref(), "change", move |e: Event| {
+                let target = e.target();
+                let mut st = s.borrow_mut();
+                if let Some(select) = target
+                    .clone()
+                    .and_then(|t| t.dyn_into::<HtmlSelectElement>().ok())
+                {
+                    if let Some(key) = select.get_attribute("data-param") {
+                        st.set_param(&key, select.value().parse().unwrap_or(f64::NAN));
+                    }
+                } else if let Some(input) =
+                    target.and_then(|t| t.dyn_into::<HtmlInputElement>().ok())
+                {
+                    if let Some(key) = input.get_attribute("data-param") {
+                        if input.type_() == "number" {
+                            let raw = input.value();
+                            let value = labcore::quiz::parse_number(&raw).unwrap_or(f64::NAN);
+                            st.set_param(&key, value);
+                            if let Some(i) = st.exp.params().iter().position(|p| p.key == key) {
+                                st.shown_values[i] = None;
+                            }
+                            // Show the applied value even though the box has focus.
+                            if let (Some(spec), Some(v)) = (
+                                st.exp.params().iter().find(|p| p.key == key).copied(),
+                                st.exp.param(&key),
+                            ) {
+                                set_control_value(&st.panel, &spec, v, None);
+                            }
+                        }
+                    }
+                }
+                st.announce();
+            }));
+        }
+        if let Some(actions) = query(panel, ".sim-actions") {
+            let s = state.clone();
+            listeners.push(Listener::new(actions.as_ref(), "click", move |e: Event| {
+                let Some(button) = e
+                    .target()
+                    .and_then(|t| t.dyn_into::<Element>().ok())
+                    .and_then(|el| el.closest("button[data-action]").ok().flatten())
+                else {
+                    return;
+                };
+                let Some(key) = button.get_attribute("data-action") else {
+                    return;
+                };
+                let mut st = s.borrow_mut();
+                if let Err(err) = st.exp.action(&key) {
+                    st.show_message(Some(&err.to_string()));
+                }
+                st.needs_paint = true;
+                st.hash_dirty = true;
+            }));
+        }
+        // Theme changes (light/dark) repaint with the new palette.
+        if let Ok(Some(mql)) = dom::window().match_media("(prefers-color-scheme: dark)") {
+            let s = state.clone();
+            listeners.push(Listener::new(mql.as_ref(), "change", move |_| {
+                let mut st = s.borrow_mut();
+                st.palette = Palette::from_css(&st.canvas);
+                st.needs_paint = true;
+            }));
+        }
+        let s = state.clone();
+        listeners.push(Listener::new(
+            dom::document().as_ref(),
+            "visibilitychange",
+            move |_| {
+                // Resume without a catch-up burst after the page was hidden.
+                s.borrow_mut().last_time_ms = None;
+            },
+        ));
+
+        let s = state.clone();
+        let closure = Closure::<dyn FnMut(js_sys::Array)>::new(move |_entries: js_sys::Array| {
+            if let Ok(mut st) = s.try_borrow_mut() {
+                st.resize();
+                st.needs_paint = true;
+            }
+        });
+        let resize = ResizeObserver::new(closure.as_ref().unchecked_ref())
+            .ok()
+            .map(|observer| {
+                observer.observe(&canvas);
+                ResizeWatch {
+                    observer,
+                    _closure: closure,
+                }
+            });
+        Ok(Self {
+            state,
+            running: None,
+            _listeners: listeners,
+            _resize: resize,
+        })
+    }
+
+    /// Starts the frame loop when the Simulation tab shows, stops it otherwise.
+    pub fn set_active(&mut self, active: bool) {
+        if active && self.running.is_none() {
+            let s = self.state.clone();
+            {
+                let mut st = s.borrow_mut();
+                st.last_time_ms = None;
+                st.needs_paint = true;
+            }
+            self.running = Some(AnimationLoop::start(move |t| {
+                // Browsers stop animation frames for hidden pages; this guards the rest.
+                if dom::document().hidden() {
+                    return;
+                }
+                if let Ok(mut st) = s.try_borrow_mut() {
+                    st.frame(t);
+                }
+            }));
+        } else if !active {
+            self.running = None;
+        }
+    }
+
+    /// Applies raw URL parameters; returns notices about what was wrong.
+    pub fn apply_params(&self, params: &[(String, String)]) -> Vec<String> {
+        let mut st = self.state.borrow_mut();
+        let notices = route::apply_params(st.exp.as_mut(), params);
+        st.needs_paint = true;
+        st.shown_values.iter_mut().for_each(|v| *v = None);
+        notices
+    }
+
+    /// The URL hash of the current state on `tab`.
+    pub fn hash(&self, tab: Tab) -> String {
+        route::format(self.state.borrow().exp.as_ref(), tab)
+    }
+
+    /// Paints once now (used by tests and right after mounting).
+    pub fn paint_now(&self) {
+        let mut st = self.state.borrow_mut();
+        st.resize();
+        st.paint();
+        st.sync_dom();
+    }
+}
+
+/// Paints an experiment's default scene on a small canvas (home-page cards).
+pub fn paint_thumbnail(canvas: &HtmlCanvasElement, exp: &dyn Experiment) {
+    let Some(ctx) = canvas
+        .get_context("2d")
+        .ok()
+        .flatten()
+        .and_then(|c| c.dyn_into::<CanvasRenderingContext2d>().ok())
+    else {
+        return;
+    };
+    let el: &HtmlElement = canvas.unchecked_ref();
+    let (w, h) = (f64::from(el.client_width()), f64::from(el.client_height()));
+    let (w, h) = if w < 1.0 { (240.0, 160.0) } else { (w, h) };
+    let dpr = dom::window().device_pixel_ratio().max(1.0);
+    canvas.set_width((w * dpr) as u32);
+    canvas.set_height((h * dpr) as u32);
+    let mut scene = Scene::default();
+    exp.scene(&mut scene);
+    let palette = Palette::from_css(canvas);
+    let viewport = Viewport::fit(exp.view(), w, h);
+    paint(&ctx, &scene, &viewport, w, h, dpr, &palette);
+}
