@@ -23,6 +23,7 @@ pub mod content;
 pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
+pub mod math;
 pub mod quiz;
 pub mod rng;
 pub mod route;

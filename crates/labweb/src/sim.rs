@@ -495,11 +495,10 @@ impl SimView {
                 if !e.is_primary() || e.button() > 0 {
                     return;
                 }
-                e.prevent_default();
+                // No preventDefault: the browser focuses the canvas itself (so
+                // arrow keys work next) without a keyboard focus ring, and
+                // `touch-action: none` already stops touch scrolling.
                 let mut st = s.borrow_mut();
-                let options = web_sys::FocusOptions::new();
-                options.set_prevent_scroll(true);
-                let _ = st.canvas.focus_with_options(&options);
                 let _ = st.canvas.set_pointer_capture(e.pointer_id());
                 st.pressed_pointer = Some(e.pointer_id());
                 let w = st.to_world(e);

@@ -80,7 +80,7 @@ impl InverseKinematics {
     /// The wrist offset `L3 (cos φ, sin φ)` added to the 2-link tip.
     fn wrist_offset(&self) -> DVec2 {
         let phi = self.phi_deg.to_radians();
-        DVec2::new(phi.cos(), phi.sin()) * self.l3_m
+        DVec2::new(crate::math::cos(phi), crate::math::sin(phi)) * self.l3_m
     }
 
     /// Joint positions base..tip for the given 2-link angles (degrees), wrist included.
@@ -399,8 +399,8 @@ fn draw_target(rng: &mut Lcg64) -> (f64, f64, DVec2, TwoLinkSolution) {
         let angle = rng.range(-std::f64::consts::PI, std::f64::consts::PI);
         let radius = rng.range((l1 - l2).abs() + 0.1, l1 + l2 - 0.1);
         let p = DVec2::new(
-            (radius * angle.cos() * 100.0).round() / 100.0,
-            (radius * angle.sin() * 100.0).round() / 100.0,
+            (radius * crate::math::cos(angle) * 100.0).round() / 100.0,
+            (radius * crate::math::sin(angle) * 100.0).round() / 100.0,
         );
         if let Ok(sol) = solve(l1, l2, p) {
             if sol.singularity == Singularity::Regular && sol.cos_theta2.abs() < 0.98 {

@@ -102,7 +102,7 @@ impl Workspace {
             SamplingMode::MonteCarlo { seed: self.seed }
         } else {
             SamplingMode::Grid {
-                per_joint: (self.samples as f64).cbrt().round().max(2.0) as usize,
+                per_joint: crate::math::cbrt(self.samples as f64).round().max(2.0) as usize,
             }
         }
     }

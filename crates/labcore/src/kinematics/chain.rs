@@ -61,7 +61,7 @@ pub fn forward_into(lengths_m: &[f64], angles_rad: &[f64], points: &mut Vec<DVec
     points.push(p);
     for (length, angle) in lengths_m.iter().zip(angles_rad) {
         heading += angle;
-        let (s, c) = heading.sin_cos();
+        let (s, c) = crate::math::sin_cos(heading);
         p += DVec2::new(c, s) * *length;
         points.push(p);
     }
@@ -75,7 +75,7 @@ pub fn tip(lengths_m: &[f64], angles_rad: &[f64]) -> DVec2 {
     let mut heading = 0.0;
     for (length, angle) in lengths_m.iter().zip(angles_rad) {
         heading += angle;
-        let (s, c) = heading.sin_cos();
+        let (s, c) = crate::math::sin_cos(heading);
         p += DVec2::new(c, s) * *length;
     }
     p

@@ -224,7 +224,7 @@ fn norm(e: DVec2) -> f64 {
     if d2.is_finite() {
         d2.sqrt()
     } else {
-        e.x.hypot(e.y)
+        crate::math::hypot(e.x, e.y)
     }
 }
 

@@ -66,7 +66,7 @@ pub(crate) fn columns_into_array(
     let mut heading = 0.0;
     for k in 0..n {
         heading += angles_rad[k];
-        let (s, c) = heading.sin_cos();
+        let (s, c) = crate::math::sin_cos(heading);
         cols[k] = DVec2::new(c * lengths_m[k], s * lengths_m[k]);
     }
     let mut suffix = DVec2::ZERO;
@@ -211,10 +211,10 @@ pub struct Manipulability {
 pub fn manipulability(columns: &[DVec2]) -> Manipulability {
     let (a, b, c) = jjt_entries(columns);
     let half_diff = 0.5 * (a - c);
-    let radius = half_diff.hypot(b);
+    let radius = crate::math::hypot(half_diff, b);
     let lambda_max = (0.5 * (a + c) + radius).max(0.0);
-    let phi = 0.5 * (2.0 * b).atan2(a - c);
-    let u_max = DVec2::new(phi.cos(), phi.sin());
+    let phi = 0.5 * crate::math::atan2(2.0 * b, a - c);
+    let u_max = DVec2::new(crate::math::cos(phi), crate::math::sin(phi));
     let u_min = u_max.perp();
     let sigma_max = lambda_max.sqrt();
     if !sigma_max.is_finite() || sigma_max <= 0.0 {

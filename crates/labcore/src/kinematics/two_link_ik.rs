@@ -140,11 +140,15 @@ pub fn solve(l1_m: f64, l2_m: f64, p: DVec2) -> Result<TwoLinkSolution, IkError>
     let base_angle = if singularity == Singularity::AtBase {
         0.0
     } else {
-        p.y.atan2(p.x)
+        crate::math::atan2(p.y, p.x)
     };
     let branch = |sign: f64| {
-        let theta2 = sign * s.atan2(c);
-        let theta1 = base_angle - (l2_m * theta2.sin()).atan2(l1_m + l2_m * theta2.cos());
+        let theta2 = sign * crate::math::atan2(s, c);
+        let theta1 = base_angle
+            - crate::math::atan2(
+                l2_m * crate::math::sin(theta2),
+                l1_m + l2_m * crate::math::cos(theta2),
+            );
         TwoLinkAngles {
             theta1_rad: wrap_pi(theta1),
             theta2_rad: theta2,
@@ -181,7 +185,7 @@ pub fn solve_with_wrist(
     if !(l3_m.is_finite() && phi_rad.is_finite()) || l3_m < 0.0 {
         return Err(IkError::InvalidInput);
     }
-    let wrist = p - DVec2::new(phi_rad.cos(), phi_rad.sin()) * l3_m;
+    let wrist = p - DVec2::new(crate::math::cos(phi_rad), crate::math::sin(phi_rad)) * l3_m;
     let a = solve(l1_m, l2_m, wrist)?.branch(elbow);
     Ok(WristAngles {
         theta1_rad: a.theta1_rad,
