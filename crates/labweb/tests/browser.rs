@@ -15,8 +15,15 @@ fn document() -> web_sys::Document {
 
 /// A minimal copy of the shell: the elements the app mounts into.
 fn mount(hash: &str) {
-    let body = document().body().unwrap();
-    body.set_inner_html(
+    // The test runner reports through elements of its own page: keep them,
+    // and swap only our wrapper between tests.
+    if let Some(old) = document().get_element_by_id("lab-under-test") {
+        old.remove();
+    }
+    let wrapper = document().create_element("div").unwrap();
+    wrapper.set_id("lab-under-test");
+    document().body().unwrap().append_child(&wrapper).unwrap();
+    wrapper.set_inner_html(
         "<nav id=\"lab-nav\"></nav>\
          <div id=\"notice\" hidden><span class=\"notice-text\"></span></div>\
          <div id=\"fatal\" hidden><span class=\"fatal-text\"></span></div>\
@@ -81,30 +88,33 @@ fn pixel(x: f64, y: f64) -> [u8; 4] {
 
 #[wasm_bindgen_test]
 fn slider_moves_the_readout_and_the_drawn_arm() {
-    mount("#/fk/simulation?t1=0&t2=0&l1=1&l2=0.5");
-    assert_eq!(readout("x"), "1.5 m");
-    assert_eq!(readout("y"), "0 m");
-    assert_eq!(readout("reach"), "100%");
-    // View ±3.2 m in a 400 px canvas: 62.5 px/m, origin at (200, 200).
-    let tip_px = (200.0 + 1.5 * 62.5, 200.0);
-    let background = pixel(390.0, 390.0);
-    assert_ne!(
-        pixel(tip_px.0, tip_px.1),
-        background,
-        "the tip is drawn at (1.5, 0)"
-    );
+    mount("#/fk/simulation?t1=30&t2=60&l1=1&l2=0.5");
+    // Tip (cos 30° + 0.5 cos 90°, sin 30° + 0.5 sin 90°) = (0.866, 1), off every drawn circle.
+    assert_eq!(readout("x"), "0.866 m");
+    assert_eq!(readout("y"), "1 m");
+    assert_eq!(readout("reach"), "88.2%");
+    // Where the canvas shows a world point (same mapping the app uses).
+    let view = (labcore::find("fk").unwrap().make)().view();
+    let viewport = labweb::draw::Viewport::fit(view, 400.0, 400.0);
+    let at = |x: f64, y: f64| {
+        let p = viewport.to_px(glam::DVec2::new(x, y));
+        pixel(p.x, p.y)
+    };
+    let background = pixel(395.0, 395.0);
+    let old_tip = (30f64.to_radians().cos(), 1.0);
+    assert_ne!(at(old_tip.0, old_tip.1), background, "the tip is drawn");
 
     let slider = input("input[type=range][data-param=t1]");
-    slider.set_value("90");
+    slider.set_value("120");
     fire(slider.as_ref(), "input");
     labweb::paint_now();
-    assert_eq!(readout("x"), "0 m");
-    assert_eq!(readout("y"), "1.5 m");
+    // Tip now at (cos 120° + 0.5 cos 180°, sin 120°) = (−1, 0.866).
+    assert_eq!(readout("x"), "-1 m");
+    assert_eq!(readout("y"), "0.866 m");
     // The number box mirrors the slider.
-    assert_eq!(input("input[type=number][data-param=t1]").value(), "90");
-    // The arm now points up: the tip pixel moved to (0, 1.5) and (1.5, 0) is background again.
-    assert_ne!(pixel(200.0, 200.0 - 1.5 * 62.5), background);
-    assert_eq!(pixel(tip_px.0, tip_px.1), background);
+    assert_eq!(input("input[type=number][data-param=t1]").value(), "120");
+    assert_ne!(at(-1.0, 120f64.to_radians().sin()), background);
+    assert_eq!(at(old_tip.0, old_tip.1), background, "the old tip is gone");
 }
 
 #[wasm_bindgen_test]
