@@ -1,1 +1,76 @@
-fn main() {}
+//! `cargo xtask <command>` — the lab's build, serve, size, test and bench tasks.
+//!
+//! Run `cargo xtask help` for the list. Only `std::process::Command`, the
+//! wasm-bindgen library (same exact version as the workspace's `wasm-bindgen`)
+//! and `flate2` are used: no other build tool has to be installed by hand.
+
+mod dist;
+mod serve;
+mod size;
+mod test;
+mod util;
+
+use std::process::ExitCode;
+
+const HELP: &str = "\
+usage: cargo xtask <command> [options]
+
+commands:
+  dist                      build the site into dist/ (wasm, JS glue, web/ files)
+  serve [--port N] [--host H] [--base /prefix/]
+                            build dist/, then serve it (default http://127.0.0.1:8000/)
+  size                      raw and gzip -9 size of every file in dist/
+  test [--quick]            every check and test, stopping at the first failure
+                            (--quick skips cargo fmt and clippy)
+  bench [args...]           run `cargo bench -p labbench` if that crate exists
+  help                      this text
+";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let (cmd, rest) = match args.split_first() {
+        Some((c, r)) => (c.as_str(), r),
+        None => ("help", &[][..]),
+    };
+    let result = match cmd {
+        "dist" => no_args(cmd, rest).and_then(|()| dist::dist().map(|_| ())),
+        "serve" => serve::parse_args(rest).and_then(serve::serve),
+        "size" => no_args(cmd, rest).and_then(|()| size::size()),
+        "test" => test::parse_args(rest).and_then(test::test),
+        "bench" => bench(rest),
+        "help" | "--help" | "-h" => {
+            print!("{HELP}");
+            Ok(())
+        }
+        other => Err(format!("unknown command `{other}`\n\n{HELP}")),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(msg) => {
+            eprintln!("xtask {cmd}: error: {msg}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn no_args(cmd: &str, rest: &[String]) -> Result<(), String> {
+    match rest.first() {
+        None => Ok(()),
+        Some(a) => Err(format!("`{cmd}` takes no arguments (got `{a}`)")),
+    }
+}
+
+/// `cargo bench -p labbench` when the benchmark crate exists.
+fn bench(rest: &[String]) -> Result<(), String> {
+    let root = util::root();
+    if !root.join("crates/labbench/Cargo.toml").is_file() {
+        println!("no benchmarks exist yet (crates/labbench is not in the workspace)");
+        return Ok(());
+    }
+    let mut cmd = util::cargo();
+    cmd.args(["bench", "-p", "labbench"]);
+    if !rest.is_empty() {
+        cmd.arg("--").args(rest);
+    }
+    util::run(&mut cmd)
+}

@@ -1,0 +1,525 @@
+//! `cargo xtask dist`: builds the static site into `dist/`.
+//!
+//! 1. adds the `wasm32-unknown-unknown` rustup target when it is missing;
+//! 2. runs `npm ci` when `node_modules/` is missing or older than `package-lock.json`;
+//! 3. builds `labweb` for wasm (release);
+//! 4. generates the JS glue with the wasm-bindgen library (target `web`);
+//! 5. optimises the module with npm binaryen's `wasm-opt` (see [`WASM_OPT_LEVEL`]);
+//! 6. copies `web/` into `dist/` and the glue + module into `dist/pkg/`;
+//! 7. checks that the site only uses relative URLs and stamps a content hash
+//!    (`?v=…`) on the references in `dist/index.html`.
+
+use crate::util::{self, files_below, slash_path};
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+const WASM_TARGET: &str = "wasm32-unknown-unknown";
+
+/// `wasm-opt` level. Measured on labweb's wasm-bindgen output (fk + ik
+/// experiments, Rust 1.95, binaryen 132, 2-core machine):
+///
+/// | level | wasm bytes | gzip -9 bytes | wasm-opt time |
+/// | ----- | ---------- | ------------- | ------------- |
+/// | none  | 540,688    | 189,180       | –             |
+/// | -O2   | 431,004    | 162,993       | 6.4 s         |
+/// | -O3   | 429,875    | 162,983       | 8.3 s         |
+/// | -Os   | 427,886    | 162,680       | 6.8 s         |
+/// | -Oz   | 427,204    | 162,665       | 7.4 s         |
+///
+/// Both shave about 20 % (14 % gzipped) off the module; `-Oz` beats `-O3` by
+/// only 0.6 % raw and 0.2 % (318 bytes) gzipped. For that little, `-O3` keeps
+/// binaryen's inlining and speed-oriented passes, which the solvers running
+/// every frame benefit from (rustc builds them at opt-level 3 for the same
+/// reason). Re-measure with `XTASK_WASM_OPT=-Oz cargo xtask dist && cargo
+/// xtask size` if the bundle's character changes.
+const WASM_OPT_LEVEL: &str = "-O3";
+
+/// Features of the Rust 1.95 `wasm32-unknown-unknown` output: exactly those
+/// LLVM's default "generic" CPU enables (and lists in the module's
+/// `target_features` section). Validation without them fails today on
+/// bulk memory (`memory.copy`/`fill`), non-trapping float-to-int
+/// (`trunc_sat`), sign-ext and reference types (wasm-bindgen's externref
+/// table); the rest are listed so that wasm-opt may keep whatever rustc emits.
+/// Every current browser supports all of them.
+const WASM_FEATURES: &[&str] = &[
+    "--enable-bulk-memory",
+    "--enable-bulk-memory-opt",
+    "--enable-call-indirect-overlong",
+    "--enable-multivalue",
+    "--enable-mutable-globals",
+    "--enable-nontrapping-float-to-int",
+    "--enable-reference-types",
+    "--enable-sign-ext",
+];
+
+/// Builds `dist/` and returns its path.
+pub fn dist() -> Result<PathBuf, String> {
+    let started = Instant::now();
+    let root = util::root();
+    ensure_wasm_target()?;
+    ensure_node_modules(&root)?;
+
+    step("cargo build (wasm, release)");
+    util::run(util::cargo().args([
+        "build",
+        "-p",
+        "labweb",
+        "--release",
+        "--target",
+        WASM_TARGET,
+    ]))?;
+    let target = util::target_dir();
+    let input = target.join(WASM_TARGET).join("release").join("labweb.wasm");
+
+    step("wasm-bindgen (target web)");
+    let glue = target.join("xtask").join("bindgen");
+    remove_dir(&glue)?;
+    wasm_bindgen_cli_support::Bindgen::new()
+        .input_path(&input)
+        .web(true)
+        .map_err(|e| format!("wasm-bindgen: {e:#}"))?
+        .out_name("labweb")
+        .typescript(false)
+        // The library defaults this to `true` (the CLI to `false`): without the
+        // default URL, `init()` has nothing to fetch (TOOLCHAIN.md, trap 2).
+        .omit_default_module_path(false)
+        .generate(&glue)
+        .map_err(|e| format!("wasm-bindgen on {}: {e:#}", input.display()))?;
+
+    // XTASK_WASM_OPT=-O3 (or any wasm-opt level, or `none`) overrides the
+    // level for measurements; the default is WASM_OPT_LEVEL.
+    let level = std::env::var("XTASK_WASM_OPT").unwrap_or_else(|_| WASM_OPT_LEVEL.into());
+    let wasm = glue.join("labweb_bg.wasm");
+    if level == "none" {
+        println!("== wasm-opt skipped (XTASK_WASM_OPT=none)");
+    } else {
+        step(&format!("wasm-opt {level}"));
+        let optimised = glue.join("labweb_bg.opt.wasm");
+        let before = file_len(&wasm)?;
+        let t = Instant::now();
+        wasm_opt(&root, &wasm, &optimised, &level)?;
+        fs::rename(&optimised, &wasm)
+            .map_err(|e| format!("cannot replace {}: {e}", wasm.display()))?;
+        println!(
+            "wasm: {} -> {} ({level}, {:.1} s)",
+            util::human(before),
+            util::human(file_len(&wasm)?),
+            t.elapsed().as_secs_f64()
+        );
+    }
+
+    step("assemble dist/");
+    let dist = root.join("dist");
+    remove_dir(&dist)?;
+    let web = root.join("web");
+    if web.is_dir() {
+        copy_tree(&web, &dist)?;
+    } else {
+        println!("warning: web/ does not exist; dist/ holds only pkg/");
+    }
+    copy_tree(&glue, &dist.join("pkg"))?;
+    check_relative_urls(&dist)?;
+    stamp_version(&dist)?;
+
+    println!(
+        "dist/ ready ({} files) in {:.1} s",
+        files_below(&dist)?.len(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(dist)
+}
+
+fn step(name: &str) {
+    println!("== {name}");
+}
+
+fn file_len(p: &Path) -> Result<u64, String> {
+    fs::metadata(p)
+        .map(|m| m.len())
+        .map_err(|e| format!("cannot stat {}: {e}", p.display()))
+}
+
+fn remove_dir(p: &Path) -> Result<(), String> {
+    match fs::remove_dir_all(p) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(format!("cannot remove {}: {e}", p.display())),
+    }
+}
+
+/// Adds the wasm target through rustup when it is not installed.
+pub fn ensure_wasm_target() -> Result<(), String> {
+    let listed = Command::new("rustup")
+        .args(["target", "list", "--installed"])
+        .current_dir(util::root())
+        .output();
+    let listed = match listed {
+        Ok(out) if out.status.success() => String::from_utf8_lossy(&out.stdout).into_owned(),
+        _ => {
+            // No rustup: the toolchain is managed some other way; cargo will
+            // say clearly if the target's standard library is missing.
+            println!("note: rustup not found; assuming the {WASM_TARGET} target is installed");
+            return Ok(());
+        }
+    };
+    if listed.lines().any(|l| l.trim() == WASM_TARGET) {
+        return Ok(());
+    }
+    step(&format!("rustup target add {WASM_TARGET}"));
+    util::run(
+        Command::new("rustup")
+            .args(["target", "add", WASM_TARGET])
+            .current_dir(util::root()),
+    )
+}
+
+/// Runs `npm ci` when `node_modules/` is missing or older than the lock file.
+pub fn ensure_node_modules(root: &Path) -> Result<(), String> {
+    let lock = root.join("package-lock.json");
+    let lock_time = fs::metadata(&lock)
+        .and_then(|m| m.modified())
+        .map_err(|e| format!("cannot read {}: {e}", lock.display()))?;
+    // npm rewrites node_modules/.package-lock.json on every install.
+    let installed = [
+        root.join("node_modules/.package-lock.json"),
+        root.join("node_modules"),
+    ]
+    .iter()
+    .find_map(|p| fs::metadata(p).and_then(|m| m.modified()).ok());
+    let fresh = matches!(installed, Some(t) if t >= lock_time)
+        && root.join("node_modules/.bin/wasm-opt").exists();
+    if fresh {
+        return Ok(());
+    }
+    if !util::has_program("npm") {
+        return Err(
+            "npm is not installed: install Node.js 20 or newer with npm \
+                    (Debian: apt-get install nodejs npm), then rerun"
+                .into(),
+        );
+    }
+    step("npm ci");
+    util::run(
+        Command::new("npm")
+            .args(["ci", "--no-audit", "--no-fund"])
+            .current_dir(root),
+    )
+}
+
+fn wasm_opt(root: &Path, input: &Path, output: &Path, level: &str) -> Result<(), String> {
+    let bin = root.join("node_modules/.bin/wasm-opt");
+    if !bin.exists() {
+        return Err(format!(
+            "{} is missing: run `npm ci` (binaryen is pinned in package.json)",
+            bin.display()
+        ));
+    }
+    util::run(
+        Command::new(&bin)
+            .arg(level)
+            .args(WASM_FEATURES)
+            .arg(input)
+            .arg("-o")
+            .arg(output),
+    )
+}
+
+fn copy_tree(from: &Path, to: &Path) -> Result<(), String> {
+    for rel in files_below(from)? {
+        let dst = to.join(&rel);
+        if let Some(parent) = dst.parent() {
+            fs::create_dir_all(parent)
+                .map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
+        }
+        fs::copy(from.join(&rel), &dst).map_err(|e| {
+            format!(
+                "cannot copy {} to {}: {e}",
+                from.join(&rel).display(),
+                dst.display()
+            )
+        })?;
+    }
+    Ok(())
+}
+
+/// A URL found in a file: byte range of the value, the tag it sits in (HTML)
+/// and the attribute or syntax that holds it.
+#[derive(Debug, PartialEq)]
+struct UrlRef {
+    start: usize,
+    end: usize,
+    tag: String,
+    kind: &'static str,
+}
+
+/// `src=`, `href=`, `action=`, `poster=` attribute values in HTML/SVG.
+fn html_urls(text: &str) -> Vec<UrlRef> {
+    let mut out = Vec::new();
+    for attr in ["src", "href", "action", "poster"] {
+        let pat = format!("{attr}=");
+        let mut from = 0;
+        while let Some(i) = text[from..].find(&pat) {
+            let at = from + i;
+            from = at + pat.len();
+            // A whole attribute name: preceded by whitespace (not `data-src=`).
+            let before = text[..at].chars().next_back();
+            if !matches!(before, Some(c) if c.is_whitespace()) {
+                continue;
+            }
+            let Some((start, end)) = attr_value(text, from) else {
+                continue;
+            };
+            let tag_start = text[..at].rfind('<').map_or(at, |p| p + 1);
+            let tag: String = text[tag_start..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric())
+                .collect::<String>()
+                .to_ascii_lowercase();
+            out.push(UrlRef {
+                start,
+                end,
+                tag,
+                kind: attr_kind(attr),
+            });
+        }
+    }
+    out.sort_by_key(|u| u.start);
+    out
+}
+
+fn attr_kind(attr: &str) -> &'static str {
+    match attr {
+        "src" => "src",
+        "href" => "href",
+        "action" => "action",
+        _ => "poster",
+    }
+}
+
+/// The value starting at byte `at` (quoted or bare): its byte range.
+fn attr_value(text: &str, at: usize) -> Option<(usize, usize)> {
+    let rest = &text[at..];
+    let q = rest.chars().next()?;
+    if q == '"' || q == '\'' {
+        let len = rest[1..].find(q)?;
+        Some((at + 1, at + 1 + len))
+    } else {
+        let len = rest
+            .find(|c: char| c.is_whitespace() || c == '>')
+            .unwrap_or(rest.len());
+        Some((at, at + len))
+    }
+}
+
+/// `url(…)` in CSS and module specifiers (`from "…"`, `import("…")`, `import "…"`) in JS.
+fn code_urls(text: &str) -> Vec<UrlRef> {
+    let mut out = Vec::new();
+    for (pat, kind) in [
+        ("url(", "url()"),
+        ("from ", "import"),
+        ("import(", "import"),
+        ("import ", "import"),
+    ] {
+        let mut from = 0;
+        while let Some(i) = text[from..].find(pat) {
+            let at = from + i + pat.len();
+            from = at;
+            let rest = &text[at..];
+            let Some(q) = rest.chars().next() else { break };
+            let (start, end) = if q == '"' || q == '\'' {
+                match rest[1..].find(q) {
+                    Some(len) => (at + 1, at + 1 + len),
+                    None => continue,
+                }
+            } else if kind == "url()" {
+                match rest.find(')') {
+                    Some(len) => (at, at + len),
+                    None => continue,
+                }
+            } else {
+                continue;
+            };
+            out.push(UrlRef {
+                start,
+                end,
+                tag: String::new(),
+                kind,
+            });
+        }
+    }
+    out
+}
+
+/// Problems with a URL for a site that must work under any sub-path and load
+/// nothing from another origin.
+fn url_problem(value: &str, r: &UrlRef) -> Option<&'static str> {
+    let v = value.trim();
+    if v.starts_with("//") || (v.contains("://") && !v.starts_with("data:")) {
+        // A plain link the reader may follow is fine; a resource is not.
+        if r.tag == "a" && r.kind == "href" {
+            return None;
+        }
+        return Some("loads from another origin");
+    }
+    if v.starts_with('/') {
+        return Some("is root-absolute (breaks hosting under a sub-path)");
+    }
+    None
+}
+
+/// Fails when a file copied from web/ references a root-absolute URL or
+/// loads a resource from another origin.
+fn check_relative_urls(dist: &Path) -> Result<(), String> {
+    let mut problems = Vec::new();
+    for rel in files_below(dist)? {
+        let name = slash_path(&rel);
+        if name.starts_with("pkg/") {
+            continue; // generated glue: its only URL is `new URL(…, import.meta.url)`
+        }
+        let ext = rel.extension().and_then(|e| e.to_str()).unwrap_or("");
+        let refs_of: fn(&str) -> Vec<UrlRef> = match ext {
+            "html" | "htm" | "svg" => html_urls,
+            "css" | "js" | "mjs" => code_urls,
+            _ => continue,
+        };
+        let text = fs::read_to_string(dist.join(&rel))
+            .map_err(|e| format!("cannot read dist/{name}: {e}"))?;
+        let mut refs = refs_of(&text);
+        if ext == "html" || ext == "htm" {
+            refs.extend(code_urls(&text));
+        }
+        for r in refs {
+            let value = &text[r.start..r.end];
+            if let Some(why) = url_problem(value, &r) {
+                problems.push(format!("dist/{name}: `{value}` {why}"));
+            }
+        }
+    }
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "dist/ must use relative URLs only:\n  {}",
+            problems.join("\n  ")
+        ))
+    }
+}
+
+/// Appends `?v=<hash of the whole site>` to every reference in
+/// `dist/index.html` that names a file of dist/, and maps the wasm glue
+/// (`./pkg/labweb.js`, imported by other modules) to the same versioned URL
+/// with an import map, so a redeployed site is not served stale.
+///
+/// The glue fetches `labweb_bg.wasm` relative to its own URL without the
+/// query; a bootstrap that wants the wasm versioned too can pass
+/// `new URL("./pkg/labweb_bg.wasm" + new URL(import.meta.url).search, import.meta.url)`
+/// to `init`, since its own URL carries the `?v=`.
+fn stamp_version(dist: &Path) -> Result<(), String> {
+    let index = dist.join("index.html");
+    let Ok(html) = fs::read_to_string(&index) else {
+        return Ok(());
+    };
+    let files: Vec<String> = files_below(dist)?
+        .iter()
+        .map(|p| slash_path(p))
+        .filter(|p| p != "index.html")
+        .collect();
+    let mut hash_input = Vec::new();
+    for f in &files {
+        hash_input.extend_from_slice(f.as_bytes());
+        hash_input.push(0);
+        let bytes = fs::read(dist.join(f)).map_err(|e| format!("cannot read dist/{f}: {e}"))?;
+        hash_input.extend_from_slice(&util::fnv1a(&bytes).to_le_bytes());
+    }
+    let version = format!("{:08x}", util::fnv1a(&hash_input) as u32);
+
+    let mut out = String::with_capacity(html.len() + 256);
+    let mut last = 0;
+    for r in html_urls(&html) {
+        let value = &html[r.start..r.end];
+        let (path, fragment) = match value.find('#') {
+            Some(i) => (&value[..i], &value[i..]),
+            None => (value, ""),
+        };
+        let clean = path.strip_prefix("./").unwrap_or(path);
+        if clean.is_empty() || clean.contains('?') || !files.iter().any(|f| f == clean) {
+            continue;
+        }
+        out.push_str(&html[last..r.start]);
+        out.push_str(path);
+        out.push_str("?v=");
+        out.push_str(&version);
+        out.push_str(fragment);
+        last = r.end;
+    }
+    out.push_str(&html[last..]);
+
+    let glue = "pkg/labweb.js";
+    if files.iter().any(|f| f == glue) && !out.contains("type=\"importmap\"") {
+        let map = format!(
+            "<script type=\"importmap\">{{\"imports\":{{\"./{glue}\":\"./{glue}?v={version}\"}}}}</script>\n"
+        );
+        // Before any module script or modulepreload: right after <head>'s charset, else <head>.
+        let at = ["<meta charset=\"utf-8\">", "<head>"]
+            .iter()
+            .find_map(|m| out.find(m).map(|i| i + m.len()));
+        if let Some(at) = at {
+            let nl = if out[at..].starts_with('\n') { 1 } else { 0 };
+            out.insert_str(at + nl, &map);
+        }
+    }
+    fs::write(&index, out).map_err(|e| format!("cannot write {}: {e}", index.display()))?;
+    println!("dist/index.html: references stamped with ?v={version}");
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn values(text: &str, refs: &[UrlRef]) -> Vec<String> {
+        refs.iter()
+            .map(|r| text[r.start..r.end].to_string())
+            .collect()
+    }
+
+    #[test]
+    fn finds_html_attribute_urls() {
+        let html = r#"<link rel="icon" href="favicon.svg"><img data-src="x" src='a.png'><use href="f.svg#m"/><a href=https://x.org/>x</a>"#;
+        let refs = html_urls(html);
+        assert_eq!(
+            values(html, &refs),
+            ["favicon.svg", "a.png", "f.svg#m", "https://x.org/"]
+        );
+        assert_eq!(refs[0].tag, "link");
+        assert_eq!(refs[3].tag, "a");
+    }
+
+    #[test]
+    fn finds_code_urls() {
+        let js = r#"import init from "./pkg/labweb.js"; const m = import('./x.js'); body { background: url(img/a.png) }"#;
+        assert_eq!(
+            values(js, &code_urls(js)),
+            ["img/a.png", "./pkg/labweb.js", "./x.js"]
+        );
+    }
+
+    #[test]
+    fn flags_absolute_and_foreign_urls() {
+        let r = |tag: &str, kind| UrlRef {
+            start: 0,
+            end: 0,
+            tag: tag.into(),
+            kind,
+        };
+        assert!(url_problem("/style.css", &r("link", "href")).is_some());
+        assert!(url_problem("//cdn.x/a.js", &r("script", "src")).is_some());
+        assert!(url_problem("https://cdn.x/a.js", &r("script", "src")).is_some());
+        assert!(url_problem("https://doi.org/10.1/x", &r("a", "href")).is_none());
+        assert!(url_problem("style.css", &r("link", "href")).is_none());
+        assert!(url_problem("#/fk/aim", &r("a", "href")).is_none());
+        assert!(url_problem("data:image/png;base64,AA", &r("img", "src")).is_none());
+    }
+}

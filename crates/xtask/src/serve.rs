@@ -1,0 +1,410 @@
+//! `cargo xtask serve`: builds dist/ and serves it with a small std-only,
+//! thread-per-connection static file server (GET and HEAD only).
+
+use crate::dist;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::{TcpListener, TcpStream};
+use std::path::{Component, Path, PathBuf};
+use std::time::Duration;
+
+#[derive(Debug, PartialEq)]
+pub struct Options {
+    pub host: String,
+    pub port: u16,
+    /// Always starts and ends with `/`.
+    pub base: String,
+}
+
+pub fn parse_args(args: &[String]) -> Result<Options, String> {
+    let mut opts = Options {
+        host: "127.0.0.1".into(),
+        port: 8000,
+        base: "/".into(),
+    };
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let (key, inline) = match a.split_once('=') {
+            Some((k, v)) => (k, Some(v.to_string())),
+            None => (a.as_str(), None),
+        };
+        let mut value = || {
+            inline
+                .clone()
+                .or_else(|| it.next().cloned())
+                .ok_or_else(|| format!("`{key}` needs a value"))
+        };
+        match key {
+            "--port" | "-p" => {
+                let v = value()?;
+                opts.port = v
+                    .parse()
+                    .map_err(|_| format!("`--port {v}`: not a port number"))?;
+            }
+            "--host" => opts.host = value()?,
+            "--base" => opts.base = normalise_base(&value()?)?,
+            other => {
+                return Err(format!(
+                    "unknown option `{other}` (serve takes --port N, --host H, --base /prefix/)"
+                ))
+            }
+        }
+    }
+    Ok(opts)
+}
+
+fn normalise_base(b: &str) -> Result<String, String> {
+    let trimmed = b.trim_matches('/');
+    if trimmed
+        .split('/')
+        .any(|s| s == "." || s == ".." || s.contains(['?', '#', '\\']))
+    {
+        return Err(format!("`--base {b}`: not a plain path prefix"));
+    }
+    Ok(if trimmed.is_empty() {
+        "/".into()
+    } else {
+        format!("/{trimmed}/")
+    })
+}
+
+pub fn serve(opts: Options) -> Result<(), String> {
+    let dist = dist::dist()?;
+    let root = dist
+        .canonicalize()
+        .map_err(|e| format!("cannot open {}: {e}", dist.display()))?;
+    let listener = TcpListener::bind((opts.host.as_str(), opts.port))
+        .map_err(|e| format!("cannot listen on {}:{}: {e}", opts.host, opts.port))?;
+    let addr = listener.local_addr().map_err(|e| e.to_string())?;
+    let shown_host = if addr.ip().is_ipv6() {
+        format!("[{}]", addr.ip())
+    } else {
+        addr.ip().to_string()
+    };
+    println!(
+        "serving {} at http://{shown_host}:{}{} (Ctrl-C stops)",
+        dist.display(),
+        addr.port(),
+        opts.base
+    );
+    let base: &'static str = Box::leak(opts.base.into_boxed_str());
+    let root: &'static Path = Box::leak(root.into_boxed_path());
+    for stream in listener.incoming() {
+        match stream {
+            Ok(stream) => {
+                std::thread::spawn(move || {
+                    let _ = handle(stream, root, base);
+                });
+            }
+            Err(e) => eprintln!("accept failed: {e}"),
+        }
+    }
+    Ok(())
+}
+
+/// Serves requests on one connection (keep-alive) until the client closes it.
+fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
+    stream.set_read_timeout(Some(Duration::from_secs(30)))?;
+    let mut reader = BufReader::new(stream.try_clone()?);
+    let mut out = stream;
+    loop {
+        let mut line = String::new();
+        if reader.read_line(&mut line)? == 0 {
+            return Ok(());
+        }
+        let mut parts = line.split_whitespace();
+        let (method, target, version) = (parts.next(), parts.next(), parts.next());
+        // Headers: only Connection and Content-Length matter here.
+        let mut keep_alive = version == Some("HTTP/1.1");
+        let mut body_len = 0u64;
+        loop {
+            let mut h = String::new();
+            if reader.read_line(&mut h)? == 0 {
+                return Ok(());
+            }
+            let h = h.trim_end();
+            if h.is_empty() {
+                break;
+            }
+            if let Some((name, value)) = h.split_once(':') {
+                let value = value.trim().to_ascii_lowercase();
+                match name.trim().to_ascii_lowercase().as_str() {
+                    "connection" if value == "close" => keep_alive = false,
+                    "connection" if value == "keep-alive" => keep_alive = true,
+                    "content-length" => body_len = value.parse().unwrap_or(0),
+                    _ => {}
+                }
+            }
+        }
+        std::io::copy(&mut (&mut reader).take(body_len), &mut std::io::sink())?;
+
+        let (Some(method), Some(target)) = (method, target) else {
+            respond_text(&mut out, 400, "Bad Request", "bad request\n", false, true)?;
+            return Ok(());
+        };
+        let head = method == "HEAD";
+        if method != "GET" && !head {
+            respond_text(
+                &mut out,
+                405,
+                "Method Not Allowed",
+                "GET or HEAD only\n",
+                head,
+                keep_alive,
+            )?;
+        } else {
+            match resolve(root, base, target) {
+                Resolved::File(path) => send_file(&mut out, &path, head, keep_alive)?,
+                Resolved::Redirect(to) => {
+                    let msg = format!("moved to {to}\n");
+                    write!(
+                        out,
+                        "HTTP/1.1 301 Moved Permanently\r\nLocation: {to}\r\n\
+                         Content-Type: text/plain; charset=utf-8\r\nContent-Length: {}\r\n\
+                         Connection: {}\r\n\r\n",
+                        msg.len(),
+                        if keep_alive { "keep-alive" } else { "close" }
+                    )?;
+                    if !head {
+                        out.write_all(msg.as_bytes())?;
+                    }
+                }
+                Resolved::Forbidden => {
+                    respond_text(&mut out, 403, "Forbidden", "forbidden\n", head, keep_alive)?
+                }
+                Resolved::NotFound => {
+                    respond_text(&mut out, 404, "Not Found", "not found\n", head, keep_alive)?
+                }
+            }
+            eprintln!("{method} {target}");
+        }
+        out.flush()?;
+        if !keep_alive {
+            return Ok(());
+        }
+    }
+}
+
+#[derive(Debug, PartialEq)]
+enum Resolved {
+    File(PathBuf),
+    Redirect(String),
+    Forbidden,
+    NotFound,
+}
+
+/// Maps a request target to a file below `root`, refusing anything that
+/// would leave it.
+fn resolve(root: &Path, base: &str, target: &str) -> Resolved {
+    let path = target.split(['?', '#']).next().unwrap_or("");
+    let Some(decoded) = percent_decode(path) else {
+        return Resolved::Forbidden;
+    };
+    if decoded.contains(['\0', '\\']) {
+        return Resolved::Forbidden;
+    }
+    // `/sub/path` without its slash: send the browser to `/sub/path/` so relative URLs work.
+    if base != "/" && decoded == base.trim_end_matches('/') {
+        return Resolved::Redirect(base.to_string());
+    }
+    let Some(rest) = decoded.strip_prefix(base) else {
+        return Resolved::NotFound;
+    };
+    let mut rel = PathBuf::new();
+    for part in rest.split('/') {
+        match part {
+            "" | "." => {}
+            ".." => return Resolved::Forbidden,
+            p => rel.push(p),
+        }
+    }
+    if rel.components().any(|c| !matches!(c, Component::Normal(_))) {
+        return Resolved::Forbidden;
+    }
+    let mut full = root.join(&rel);
+    if full.is_dir() {
+        if !decoded.ends_with('/') {
+            let q = target.find('?').map_or("", |i| &target[i..]);
+            return Resolved::Redirect(format!("{path}/{q}"));
+        }
+        full.push("index.html");
+    }
+    // Symlinks must not lead out of the served tree either.
+    match full.canonicalize() {
+        Ok(real) if real.starts_with(root) && real.is_file() => Resolved::File(real),
+        Ok(real) if !real.starts_with(root) => Resolved::Forbidden,
+        _ => Resolved::NotFound,
+    }
+}
+
+fn percent_decode(s: &str) -> Option<String> {
+    let bytes = s.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = s.get(i + 1..i + 3)?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+/// MIME type by file extension.
+pub fn mime(path: &Path) -> &'static str {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match ext.as_str() {
+        "html" | "htm" => "text/html; charset=utf-8",
+        "js" | "mjs" => "text/javascript; charset=utf-8",
+        "css" => "text/css; charset=utf-8",
+        "json" | "map" => "application/json; charset=utf-8",
+        "wasm" => "application/wasm",
+        "svg" => "image/svg+xml; charset=utf-8",
+        "png" => "image/png",
+        "jpg" | "jpeg" => "image/jpeg",
+        "webp" => "image/webp",
+        "ico" => "image/x-icon",
+        "txt" | "md" => "text/plain; charset=utf-8",
+        "xml" => "application/xml; charset=utf-8",
+        "woff2" => "font/woff2",
+        "webmanifest" => "application/manifest+json; charset=utf-8",
+        _ => "application/octet-stream",
+    }
+}
+
+fn send_file(
+    out: &mut TcpStream,
+    path: &Path,
+    head: bool,
+    keep_alive: bool,
+) -> std::io::Result<()> {
+    let body = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(_) => return respond_text(out, 404, "Not Found", "not found\n", head, keep_alive),
+    };
+    write!(
+        out,
+        "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {}\r\n\
+         Cache-Control: no-cache\r\nX-Content-Type-Options: nosniff\r\nConnection: {}\r\n\r\n",
+        mime(path),
+        body.len(),
+        if keep_alive { "keep-alive" } else { "close" }
+    )?;
+    if !head {
+        out.write_all(&body)?;
+    }
+    Ok(())
+}
+
+fn respond_text(
+    out: &mut TcpStream,
+    code: u16,
+    reason: &str,
+    body: &str,
+    head: bool,
+    keep_alive: bool,
+) -> std::io::Result<()> {
+    write!(
+        out,
+        "HTTP/1.1 {code} {reason}\r\nContent-Type: text/plain; charset=utf-8\r\n\
+         Content-Length: {}\r\nConnection: {}\r\n\r\n",
+        body.len(),
+        if keep_alive { "keep-alive" } else { "close" }
+    )?;
+    if !head {
+        out.write_all(body.as_bytes())?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(a: &[&str]) -> Vec<String> {
+        a.iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn parses_options() {
+        let o = parse_args(&args(&[
+            "--port",
+            "9000",
+            "--host=0.0.0.0",
+            "--base",
+            "lab/x",
+        ]))
+        .unwrap();
+        assert_eq!(
+            o,
+            Options {
+                host: "0.0.0.0".into(),
+                port: 9000,
+                base: "/lab/x/".into()
+            }
+        );
+        assert_eq!(parse_args(&[]).unwrap().port, 8000);
+        assert!(parse_args(&args(&["--port", "x"])).is_err());
+        assert!(parse_args(&args(&["--base", "/a/../b"])).is_err());
+        assert!(parse_args(&args(&["--bogus"])).is_err());
+    }
+
+    #[test]
+    fn resolves_paths_and_refuses_traversal() {
+        let tmp = std::env::temp_dir().join(format!("xtask-serve-test-{}", std::process::id()));
+        std::fs::create_dir_all(tmp.join("pkg")).unwrap();
+        std::fs::write(tmp.join("index.html"), "<!doctype html>").unwrap();
+        std::fs::write(tmp.join("pkg/a.wasm"), b"\0asm").unwrap();
+        let root = tmp.canonicalize().unwrap();
+
+        assert_eq!(
+            resolve(&root, "/", "/"),
+            Resolved::File(root.join("index.html"))
+        );
+        assert_eq!(
+            resolve(&root, "/", "/pkg/a.wasm?x=1"),
+            Resolved::File(root.join("pkg/a.wasm"))
+        );
+        assert_eq!(
+            resolve(&root, "/", "/pkg"),
+            Resolved::Redirect("/pkg/".into())
+        );
+        assert_eq!(resolve(&root, "/", "/nope.js"), Resolved::NotFound);
+        assert_eq!(resolve(&root, "/", "/../etc/passwd"), Resolved::Forbidden);
+        assert_eq!(
+            resolve(&root, "/", "/%2e%2e/etc/passwd"),
+            Resolved::Forbidden
+        );
+        assert_eq!(resolve(&root, "/", "/pkg/..%5c..%5cx"), Resolved::Forbidden);
+        assert_eq!(resolve(&root, "/", "/%zz"), Resolved::Forbidden);
+
+        assert_eq!(
+            resolve(&root, "/sub/path/", "/sub/path/"),
+            Resolved::File(root.join("index.html"))
+        );
+        assert_eq!(
+            resolve(&root, "/sub/path/", "/sub/path"),
+            Resolved::Redirect("/sub/path/".into())
+        );
+        assert_eq!(
+            resolve(&root, "/sub/path/", "/index.html"),
+            Resolved::NotFound
+        );
+        std::fs::remove_dir_all(&tmp).unwrap();
+    }
+
+    #[test]
+    fn mime_types() {
+        assert_eq!(mime(Path::new("a.wasm")), "application/wasm");
+        assert_eq!(mime(Path::new("a.js")), "text/javascript; charset=utf-8");
+        assert_eq!(mime(Path::new("a.svg")), "image/svg+xml; charset=utf-8");
+        assert_eq!(mime(Path::new("a.HTML")), "text/html; charset=utf-8");
+    }
+}
