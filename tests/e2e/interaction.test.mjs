@@ -1,0 +1,109 @@
+// Direct manipulation on the canvas (mouse and touch) and the quiz.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { experimentIds, open, readouts, settle, useLab, withPage } from "./helpers.mjs";
+
+const lab = useLab();
+
+/** Canvas box and two points inside it to drag between. */
+async function dragPath(page) {
+  const canvas = page.locator('[data-panel="simulation"] canvas.sim-canvas');
+  await canvas.scrollIntoViewIfNeeded();
+  const box = await canvas.boundingBox();
+  assert.ok(box && box.width > 50 && box.height > 50, "the canvas has a usable size");
+  return {
+    from: { x: box.x + box.width * 0.75, y: box.y + box.height * 0.4 },
+    to: { x: box.x + box.width * 0.3, y: box.y + box.height * 0.25 },
+  };
+}
+
+function assertTipMoved(before, after) {
+  assert.ok(
+    before.x !== after.x || before.y !== after.y,
+    `tip readouts changed: ${JSON.stringify(before)} -> ${JSON.stringify(after)}`,
+  );
+}
+
+/** Records the pointerType of every pointerdown the page sees. */
+const recordPointerTypes = (page) =>
+  page.evaluate(() => {
+    window.__pointerTypes = [];
+    addEventListener("pointerdown", (e) => window.__pointerTypes.push(e.pointerType), true);
+  });
+
+test("dragging on the fk canvas with a mouse moves the arm's tip", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/simulation");
+    await recordPointerTypes(page);
+    const { from, to } = await dragPath(page);
+    const before = await readouts(page);
+    await page.mouse.move(from.x, from.y);
+    await page.mouse.down();
+    for (let i = 1; i <= 8; i++) {
+      await page.mouse.move(from.x + ((to.x - from.x) * i) / 8, from.y + ((to.y - from.y) * i) / 8);
+    }
+    await page.mouse.up();
+    await settle(page);
+    assertTipMoved(before, await readouts(page));
+    assert.deepEqual(await page.evaluate(() => window.__pointerTypes), ["mouse"]);
+  }));
+
+test("dragging on the fk canvas with a finger (touch) moves the arm's tip", () =>
+  withPage(lab, { hasTouch: true, viewport: { width: 412, height: 900 } }, async (page, context) => {
+    await open(lab, page, "#/fk/simulation");
+    await recordPointerTypes(page);
+    const { from, to } = await dragPath(page);
+    const before = await readouts(page);
+    // Real touch input through the DevTools protocol: the browser turns it
+    // into pointer events with pointerType "touch" (and applies touch-action).
+    const cdp = await context.newCDPSession(page);
+    const touch = (type, p) =>
+      cdp.send("Input.dispatchTouchEvent", {
+        type,
+        touchPoints: p ? [{ x: Math.round(p.x), y: Math.round(p.y), id: 1 }] : [],
+      });
+    await touch("touchStart", from);
+    for (let i = 1; i <= 8; i++) {
+      await touch("touchMove", {
+        x: from.x + ((to.x - from.x) * i) / 8,
+        y: from.y + ((to.y - from.y) * i) / 8,
+      });
+    }
+    await touch("touchEnd");
+    await settle(page);
+    assertTipMoved(before, await readouts(page));
+    assert.deepEqual(await page.evaluate(() => window.__pointerTypes), ["touch"]);
+  }));
+
+test("quiz: submitting with no answers scores 0 / N, and a new attempt draws new questions", async (t) => {
+  for (const id of await experimentIds(lab)) {
+    await t.test(`experiment ${id}`, () =>
+      withPage(lab, {}, async (page) => {
+        await open(lab, page, `#/${id}/quiz`);
+        const questions = page.locator("form.quiz .quiz-q");
+        const n = await questions.count();
+        assert.ok(n > 0, "the quiz has questions");
+        const prompts = await questions.evaluateAll((qs) => qs.map((q) => q.innerText));
+
+        await page.click("form.quiz button[type=submit]");
+        const score = page.locator(".quiz-score");
+        await score.waitFor({ state: "visible" });
+        assert.match(await score.innerText(), new RegExp(`\\b0\\s*/\\s*${n}\\b`));
+        for (let i = 0; i < n; i++) {
+          const q = questions.nth(i);
+          const cls = (await q.getAttribute("class")).split(/\s+/);
+          assert.ok(cls.includes("wrong") && !cls.includes("right"), `question ${i + 1} marked wrong`);
+          assert.ok(await q.locator(".quiz-explanation").isVisible(), `question ${i + 1} explained`);
+        }
+
+        await page.click("form.quiz button.quiz-new");
+        await settle(page);
+        const fresh = await page
+          .locator("form.quiz .quiz-q")
+          .evaluateAll((qs) => qs.map((q) => q.innerText));
+        assert.notDeepEqual(fresh, prompts, "a new attempt changes at least one question");
+      }),
+    );
+  }
+});
