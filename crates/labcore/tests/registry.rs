@@ -91,7 +91,7 @@ fn every_registered_experiment_has_complete_content_and_generators() {
             .content()
             .unwrap_or_else(|e| panic!("{}: {e}", entry.id));
         for seed in 0..50 {
-            let attempt = prepare(&content, entry.generators, seed).unwrap();
+            let attempt = prepare(content, entry.generators, seed).unwrap();
             for q in &attempt {
                 assert!(
                     !q.prompt.contains('{'),
@@ -110,12 +110,12 @@ fn every_registered_experiment_has_complete_content_and_generators() {
                 }
             }
         }
-        let a = prepare(&content, entry.generators, 1).unwrap();
-        let b = prepare(&content, entry.generators, 2).unwrap();
+        let a = prepare(content, entry.generators, 1).unwrap();
+        let b = prepare(content, entry.generators, 2).unwrap();
         assert_ne!(a, b, "{}: a new attempt draws new numbers", entry.id);
         assert_eq!(
             a,
-            prepare(&content, entry.generators, 1).unwrap(),
+            prepare(content, entry.generators, 1).unwrap(),
             "deterministic"
         );
     }

@@ -119,7 +119,7 @@ fn render_nav() {
     let mut html = String::from("<ul>");
     for entry in registry() {
         let (number, title) = match entry.content() {
-            Ok(c) => (c.number.to_string(), c.title),
+            Ok(c) => (c.number.to_string(), c.title.clone()),
             Err(_) => ("?".into(), entry.id.to_owned()),
         };
         html.push_str(&format!(
@@ -149,7 +149,7 @@ fn render_home(root: &Element) {
     let mut cards = String::new();
     for entry in registry() {
         let (number, title, summary) = match entry.content() {
-            Ok(c) => (c.number, c.title, c.summary),
+            Ok(c) => (c.number, c.title.clone(), c.summary.clone()),
             Err(e) => (0, entry.id.to_owned(), e.to_string()),
         };
         cards.push_str(&format!(
@@ -190,7 +190,7 @@ struct PageInner {
     root: Element,
     tab: Tab,
     sim: Option<SimView>,
-    content: Option<Content>,
+    content: Option<&'static Content>,
     attempt: Option<Attempt>,
 }
 

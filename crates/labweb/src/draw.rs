@@ -258,7 +258,29 @@ pub fn paint(
     ctx.set_global_alpha(1.0);
 }
 
-/// Density cells batched into 6 alpha levels: one path and one fill per level.
+/// `#rrggbb` → RGB; anything else gives a mid grey.
+fn hex_rgb(colour: &str) -> [u8; 3] {
+    let hex = colour.trim().trim_start_matches('#');
+    let channel = |i: usize| {
+        hex.get(i..i + 2)
+            .and_then(|h| u8::from_str_radix(h, 16).ok())
+    };
+    match (hex.len(), channel(0), channel(2), channel(4)) {
+        (6, Some(r), Some(g), Some(b)) => [r, g, b],
+        _ => [136, 136, 136],
+    }
+}
+
+thread_local! {
+    /// A small off-screen canvas reused for heatmaps.
+    static HEATMAP_CANVAS: Option<web_sys::HtmlCanvasElement> = crate::dom::document()
+        .create_element("canvas")
+        .ok()
+        .and_then(|c| wasm_bindgen::JsCast::dyn_into(c).ok());
+}
+
+/// Density cells as one RGBA image (alpha grows with density), drawn scaled
+/// with smoothing by a single `drawImage`: cost independent of the cell count.
 #[allow(clippy::too_many_arguments)]
 fn paint_heatmap(
     ctx: &CanvasRenderingContext2d,
@@ -270,28 +292,50 @@ fn paint_heatmap(
     rows: usize,
     values: &[f32],
 ) {
-    const LEVELS: usize = 6;
-    let cell_px = cell_m * viewport.scale_px_per_m;
-    ctx.set_fill_style_str(colour);
-    for level in 1..=LEVELS {
-        let lo = (level - 1) as f32 / LEVELS as f32;
-        let hi = level as f32 / LEVELS as f32;
-        ctx.begin_path();
-        let mut any = false;
-        for row in 0..rows {
-            for col in 0..cols {
-                let v = values.get(row * cols + col).copied().unwrap_or(0.0);
-                if v > lo && v <= hi {
-                    let corner =
-                        viewport.to_px(min + DVec2::new(col as f64, (row + 1) as f64) * cell_m);
-                    ctx.rect(corner.x, corner.y, cell_px + 0.5, cell_px + 0.5);
-                    any = true;
-                }
+    if cols == 0 || rows == 0 || values.len() < cols * rows {
+        return;
+    }
+    let [r, g, b] = hex_rgb(colour);
+    // Image rows run top-down; density rows run bottom-up (row 0 at min.y).
+    let mut rgba = vec![0u8; cols * rows * 4];
+    for row in 0..rows {
+        for col in 0..cols {
+            let v = values[row * cols + col];
+            if v > 0.0 {
+                let i = ((rows - 1 - row) * cols + col) * 4;
+                rgba[i..i + 4].copy_from_slice(&[r, g, b, (40.0 + 200.0 * v.min(1.0)) as u8]);
             }
         }
-        if any {
-            ctx.set_global_alpha(0.1 + 0.6 * f64::from(hi));
-            ctx.fill();
-        }
     }
+    HEATMAP_CANVAS.with(|offscreen| {
+        let Some(offscreen) = offscreen else { return };
+        offscreen.set_width(cols as u32);
+        offscreen.set_height(rows as u32);
+        let Some(octx) = offscreen
+            .get_context("2d")
+            .ok()
+            .flatten()
+            .and_then(|c| wasm_bindgen::JsCast::dyn_into::<CanvasRenderingContext2d>(c).ok())
+        else {
+            return;
+        };
+        let Ok(image) = web_sys::ImageData::new_with_u8_clamped_array_and_sh(
+            wasm_bindgen::Clamped(&rgba),
+            cols as u32,
+            rows as u32,
+        ) else {
+            return;
+        };
+        let _ = octx.put_image_data(&image, 0.0, 0.0);
+        let top_left = viewport.to_px(min + DVec2::new(0.0, rows as f64 * cell_m));
+        let size = cell_m * viewport.scale_px_per_m;
+        ctx.set_image_smoothing_enabled(true);
+        let _ = ctx.draw_image_with_html_canvas_element_and_dw_and_dh(
+            offscreen,
+            top_left.x,
+            top_left.y,
+            cols as f64 * size,
+            rows as f64 * size,
+        );
+    });
 }

@@ -170,8 +170,40 @@ struct SimState {
     shown_status: String,
     hash_dirty: bool,
     last_hash_ms: f64,
-    /// Slowest frame (step + paint) seen, milliseconds; exposed for tests.
-    worst_frame_ms: f64,
+    frame_times: FrameTimes,
+}
+
+/// Recent busy-frame times (step + paint), published on the canvas as
+/// `data-frame-p95-ms` and `data-frame-max-ms` for tests and curious users.
+#[derive(Default)]
+struct FrameTimes {
+    recent_ms: Vec<f64>,
+    next: usize,
+    max_ms: f64,
+    since_publish: usize,
+}
+
+impl FrameTimes {
+    const WINDOW: usize = 300;
+
+    fn record(&mut self, ms: f64, canvas: &HtmlCanvasElement) {
+        if self.recent_ms.len() < Self::WINDOW {
+            self.recent_ms.push(ms);
+        } else {
+            self.recent_ms[self.next] = ms;
+        }
+        self.next = (self.next + 1) % Self::WINDOW;
+        self.max_ms = self.max_ms.max(ms);
+        self.since_publish += 1;
+        if self.since_publish >= 15 || ms > 16.0 {
+            self.since_publish = 0;
+            let mut sorted = self.recent_ms.clone();
+            sorted.sort_by(f64::total_cmp);
+            let p95 = sorted[(sorted.len() * 95 / 100).min(sorted.len() - 1)];
+            let _ = canvas.set_attribute("data-frame-p95-ms", &format!("{p95:.2}"));
+            let _ = canvas.set_attribute("data-frame-max-ms", &format!("{:.2}", self.max_ms));
+        }
+    }
 }
 
 impl SimState {
@@ -222,6 +254,7 @@ impl SimState {
         if steps > 0 && (was_animating || self.exp.animating()) {
             self.needs_paint = true;
         }
+        let busy = self.needs_paint || steps > 0;
         if self.needs_paint {
             self.resize();
             self.paint();
@@ -232,12 +265,8 @@ impl SimState {
             self.write_hash();
             self.last_hash_ms = time_ms;
         }
-        let spent = dom::now_ms() - start;
-        if spent > self.worst_frame_ms {
-            self.worst_frame_ms = spent;
-            let _ = self
-                .canvas
-                .set_attribute("data-worst-frame-ms", &format!("{spent:.2}"));
+        if busy {
+            self.frame_times.record(dom::now_ms() - start, &self.canvas);
         }
     }
 
@@ -459,6 +488,14 @@ impl SimView {
             })?;
         let palette = Palette::from_css(&canvas);
         let view = exp.view();
+        // The world rectangle shown, for tests and tools that click world points.
+        let _ = canvas.set_attribute(
+            "data-view",
+            &format!(
+                "{},{},{},{}",
+                view.min.x, view.min.y, view.max.x, view.max.y
+            ),
+        );
         let n_params = exp.params().len();
         let state = Rc::new(RefCell::new(SimState {
             exp,
@@ -479,7 +516,7 @@ impl SimView {
             shown_status: String::new(),
             hash_dirty: false,
             last_hash_ms: 0.0,
-            worst_frame_ms: 0.0,
+            frame_times: FrameTimes::default(),
         }));
         let mut listeners = Vec::new();
         let canvas_target: &web_sys::EventTarget = canvas.as_ref();

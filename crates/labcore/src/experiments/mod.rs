@@ -3,6 +3,7 @@
 use crate::content::{Content, ContentError};
 use crate::experiment::Experiment;
 use crate::quiz::GeneratorLookup;
+use std::sync::OnceLock;
 
 pub mod dls;
 pub mod fk;
@@ -19,12 +20,22 @@ pub struct Entry {
     pub make: fn() -> Box<dyn Experiment>,
     /// The experiment's parameterised quiz questions.
     pub generators: GeneratorLookup,
+    /// The parsed content, filled on first use.
+    parsed: OnceLock<Result<Content, ContentError>>,
 }
 
 impl Entry {
+    /// The content file, parsed and validated on first use and kept.
+    pub fn content(&self) -> Result<&Content, ContentError> {
+        self.parsed
+            .get_or_init(|| self.parse_content())
+            .as_ref()
+            .map_err(Clone::clone)
+    }
+
     /// Parses and validates the content file, checking that it belongs to this
     /// experiment and that every generator it names exists.
-    pub fn content(&self) -> Result<Content, ContentError> {
+    pub fn parse_content(&self) -> Result<Content, ContentError> {
         let content = Content::parse(self.content_json)?;
         if content.id != self.id {
             return Err(ContentError::WrongId {
@@ -37,37 +48,41 @@ impl Entry {
     }
 }
 
-static REGISTRY: &[Entry] = &[
+static REGISTRY: [Entry; 4] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
         make: || Box::new(fk::ForwardKinematics::default()),
         generators: fk::quiz_generator,
+        parsed: OnceLock::new(),
     },
     Entry {
         id: "ik",
         content_json: include_str!("../../../../assets/ik.json"),
         make: || Box::new(ik::InverseKinematics::default()),
         generators: ik::quiz_generator,
+        parsed: OnceLock::new(),
     },
     Entry {
         id: "workspace",
         content_json: include_str!("../../../../assets/workspace.json"),
         make: || Box::new(workspace::Workspace::default()),
         generators: workspace::quiz_generator,
+        parsed: OnceLock::new(),
     },
     Entry {
         id: "dls",
         content_json: include_str!("../../../../assets/dls.json"),
         make: || Box::new(dls::DampedLeastSquares::default()),
         generators: dls::quiz_generator,
+        parsed: OnceLock::new(),
     },
 ];
 
 /// Every experiment, in lab order.
 #[must_use]
 pub fn registry() -> &'static [Entry] {
-    REGISTRY
+    &REGISTRY
 }
 
 /// The entry with this id.

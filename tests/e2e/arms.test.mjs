@@ -1,0 +1,121 @@
+// Experiments 2, 3 and 9 driven like a student would: click targets, toggle
+// the elbow, sweep the workspace, watch the DLS iterations converge.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { open, readouts, screenshot, useLab, withPage } from "./helpers.mjs";
+
+const lab = useLab();
+
+/** Page coordinates of world point (x, y) on the simulation canvas (uniform fit, y up). */
+async function worldToPage(page, x, y) {
+  const box = await page.locator("canvas.sim-canvas").boundingBox();
+  const [minX, minY, maxX, maxY] = (await page.locator("canvas.sim-canvas").getAttribute("data-view"))
+    .split(",")
+    .map(Number);
+  const scale = Math.min(box.width / (maxX - minX), box.height / (maxY - minY));
+  return {
+    x: box.x + box.width / 2 + (x - (minX + maxX) / 2) * scale,
+    y: box.y + box.height / 2 - (y - (minY + maxY) / 2) * scale,
+  };
+}
+
+async function clickWorld(page, x, y) {
+  const p = await worldToPage(page, x, y);
+  await page.mouse.click(p.x, p.y);
+}
+
+const metres = (text) => Number.parseFloat(text);
+const degrees = (text) => Number.parseFloat(text);
+
+/** Waits until the status badge matches `pattern`. */
+async function waitStatus(page, pattern) {
+  await page.waitForFunction(
+    (source) => new RegExp(source).test(document.querySelector(".sim-status").textContent),
+    pattern.source,
+  );
+  return page.locator(".sim-status").textContent();
+}
+
+test("ik: a clicked target is solved, the arm animates there, and the elbow toggle flips the bend", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/ik/simulation");
+    await clickWorld(page, 0.9, 0.8);
+    await waitStatus(page, /^in reach$/);
+    // The move takes 0.8 s; wait until the readouts match the target.
+    await page.waitForFunction(() => {
+      const x = Number.parseFloat(document.querySelector("[data-readout=x]").textContent);
+      const y = Number.parseFloat(document.querySelector("[data-readout=y]").textContent);
+      return Math.hypot(x - 0.9, y - 0.8) < 0.02;
+    });
+    let r = await readouts(page);
+    const up = { t1: degrees(r.theta1), t2: degrees(r.theta2) };
+    assert.ok(up.t2 <= 0, `elbow up has θ2 ≤ 0, got ${r.theta2}`);
+    // FK of the solved angles (L1 = 1, L2 = 0.7) is where the pointer clicked (within a pixel).
+    const rad = Math.PI / 180;
+    const x = Math.cos(up.t1 * rad) + 0.7 * Math.cos((up.t1 + up.t2) * rad);
+    const y = Math.sin(up.t1 * rad) + 0.7 * Math.sin((up.t1 + up.t2) * rad);
+    assert.ok(Math.hypot(x - 0.9, y - 0.8) < 0.02, `FK(IK) = (${x}, ${y})`);
+
+    await page.locator("input[data-param=elbow][value='0']").check({ force: true });
+    await page.waitForFunction(() => Number.parseFloat(document.querySelector("[data-readout=theta2]").textContent) > 0);
+    await page.waitForTimeout(1000);
+    r = await readouts(page);
+    assert.ok(degrees(r.theta2) > 0, "elbow down has θ2 > 0");
+    assert.ok(Math.abs(degrees(r.theta2) + up.t2) < 0.15, "the branches mirror θ2");
+    assert.ok(Math.hypot(metres(r.x) - 0.9, metres(r.y) - 0.8) < 0.02, "same tip, other bend");
+    assert.match(await page.evaluate(() => location.hash), /elbow=0/);
+    await screenshot(page, "ik-elbow-down");
+  }));
+
+test("ik: a target outside the annulus shows 'out of reach' and no solution", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/ik/simulation");
+    const before = await readouts(page);
+    await clickWorld(page, 2.8, 0.0);
+    await waitStatus(page, /out of reach/);
+    const r = await readouts(page);
+    assert.equal(r.theta1, "--");
+    assert.equal(r.theta2, "--");
+    assert.deepEqual([r.x, r.y], [before.x, before.y], "the arm stays where it was");
+    // Inside the inner hole (|p| < |L1 − L2| = 0.3) is out of reach too.
+    await clickWorld(page, 0.1, 0.05);
+    await waitStatus(page, /out of reach/);
+  }));
+
+test("workspace: Sweep fills the cloud over many frames and the radii match theory", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/workspace/simulation?l1=1&l2=0.5&l3=0.2&n=20000");
+    await page.locator("button[data-action=sweep]").click();
+    await page.waitForFunction(() => /sweeping/.test(document.querySelector(".sim-status").textContent));
+    await waitStatus(page, /^swept 20000 samples$/);
+    const r = await readouts(page);
+    assert.equal(r.samples, "20000 / 20000");
+    assert.equal(r.outer_theory, "1.7 m");
+    assert.equal(r.inner_theory, "0.3 m");
+    assert.ok(Math.abs(metres(r.outer) - 1.7) < 0.02, `outer measured ${r.outer}`);
+    assert.ok(Math.abs(metres(r.inner) - 0.3) < 0.03, `inner measured ${r.inner}`);
+    await screenshot(page, "workspace-swept");
+    // Changing a length invalidates the cloud.
+    await page.locator("input[type=number][data-param=l3]").fill("0.6");
+    await page.locator("input[type=number][data-param=l3]").press("Enter");
+    await waitStatus(page, /sweep again/);
+  }));
+
+test("dls: a reachable click converges below 1e-6 m; an unreachable one settles on the boundary", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/dls/simulation?n=7&rate=60");
+    assert.equal(await page.locator("input[type=range][data-param=n]").inputValue(), "7");
+    await clickWorld(page, 1.2, 0.9);
+    const status = await waitStatus(page, /converged|closest|stopped/);
+    assert.match(status, /^converged in \d+ iterations$/);
+    const r = await readouts(page);
+    assert.ok(Number(r.iterations) > 0);
+    assert.ok(Number.parseFloat(r.error) < 1e-6, `error ${r.error}`);
+    assert.ok(Number.parseFloat(r.w) > 0);
+    await clickWorld(page, 0, 2.6);
+    await waitStatus(page, /closest reachable pose/);
+    const far = await readouts(page);
+    assert.ok(Math.abs(Number.parseFloat(far.error) - 0.2) < 0.01, `error to (0, 2.6) is 2.6 − 2.4: ${far.error}`);
+    await screenshot(page, "dls-boundary");
+  }));
