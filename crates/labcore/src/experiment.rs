@@ -198,6 +198,24 @@ pub enum Input {
     Nudge(DVec2),
 }
 
+impl Input {
+    /// Where a draggable point (a tip or a target) should go: the pointer
+    /// while it is pressed, or `current` moved by a keyboard nudge. `None`
+    /// for hover and release. Shared by every experiment with a point to drag.
+    #[must_use]
+    pub fn drag_point(self, current: impl FnOnce() -> DVec2) -> Option<DVec2> {
+        match self {
+            Input::PointerDown(p)
+            | Input::PointerMove {
+                pos: p,
+                pressed: true,
+            } => Some(p),
+            Input::Nudge(delta) => Some(current() + delta),
+            Input::PointerMove { pressed: false, .. } | Input::PointerUp(_) => None,
+        }
+    }
+}
+
 /// Tone of the status badge above the canvas.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Tone {
@@ -242,6 +260,16 @@ impl Readout {
             label,
             value: value.into(),
         }
+    }
+
+    /// A length in metres with 3 decimals, e.g. `1.234 m`.
+    #[must_use]
+    pub fn metres(key: &'static str, label: &'static str, value_m: f64) -> Self {
+        Self::new(
+            key,
+            label,
+            format!("{} m", crate::quiz::format_number(value_m, 3)),
+        )
     }
 }
 
@@ -293,6 +321,14 @@ pub trait Experiment {
 #[must_use]
 pub fn find_spec<'a>(specs: &'a [ParamSpec], key: &str) -> Option<&'a ParamSpec> {
     specs.iter().find(|s| s.key == key)
+}
+
+/// The first half of every `set_param`: finds `key` among `specs` and
+/// sanitizes `value` (clamped to range; NaN, infinities and unknown keys refused).
+pub fn check_param(specs: &[ParamSpec], key: &str, value: f64) -> Result<Sanitized, ParamError> {
+    find_spec(specs, key)
+        .ok_or_else(|| ParamError::UnknownKey { key: key.into() })?
+        .sanitize(value)
 }
 
 #[cfg(test)]

@@ -17,6 +17,17 @@ pub struct Draw {
     pub answer: f64,
 }
 
+impl Draw {
+    /// The drawn value of placeholder `name`, as the student reads it.
+    #[must_use]
+    pub fn var(&self, name: &str) -> Option<f64> {
+        self.vars
+            .iter()
+            .find(|(n, _)| *n == name)
+            .and_then(|(_, v)| v.parse().ok())
+    }
+}
+
 /// Draws one instance of a parameterised question.
 pub type Generator = fn(&mut Lcg64) -> Draw;
 

@@ -6,7 +6,7 @@
 //! singular values and left singular vectors of the Jacobian.
 
 use crate::experiment::{
-    find_spec, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status,
+    check_param, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status,
     Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
@@ -187,9 +187,7 @@ impl Experiment for DampedLeastSquares {
     }
 
     fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
-        let spec =
-            find_spec(PARAMS, key).ok_or_else(|| ParamError::UnknownKey { key: key.into() })?;
-        let applied = spec.sanitize(value)?;
+        let applied = check_param(PARAMS, key, value)?;
         let v = applied.value();
         match key {
             "n" => {
@@ -228,19 +226,8 @@ impl Experiment for DampedLeastSquares {
     }
 
     fn input(&mut self, input: Input) {
-        match input {
-            Input::PointerDown(p)
-            | Input::PointerMove {
-                pos: p,
-                pressed: true,
-            } => {
-                self.set_target(p);
-            }
-            Input::Nudge(d) => {
-                let from = self.target.unwrap_or_else(|| self.tip());
-                self.set_target(from + d);
-            }
-            Input::PointerMove { pressed: false, .. } | Input::PointerUp(_) => {}
+        if let Some(p) = input.drag_point(|| self.target.unwrap_or_else(|| self.tip())) {
+            self.set_target(p);
         }
     }
 
@@ -315,11 +302,7 @@ impl Experiment for DampedLeastSquares {
             Readout::new("error", "Error", error),
             Readout::new("w", "Manipulability w", format_number(m.w, 4)),
             Readout::new("cond", "σmax / σmin", condition),
-            Readout::new(
-                "lambda_used",
-                "λ used",
-                format!("{} m", format_number(self.lambda_used_m, 3)),
-            ),
+            Readout::metres("lambda_used", "λ used", self.lambda_used_m),
         ]
     }
 
@@ -476,15 +459,7 @@ mod tests {
     fn manipulability_generator_matches_closed_form() {
         let mut rng = Lcg64::new(4);
         let d = quiz_manipulability(&mut rng);
-        let get = |k: &str| {
-            d.vars
-                .iter()
-                .find(|(n, _)| *n == k)
-                .unwrap()
-                .1
-                .parse::<f64>()
-                .unwrap()
-        };
+        let get = |k: &str| d.var(k).unwrap();
         let w = get("l1") * get("l2") * get("t2").to_radians().sin().abs();
         assert!((d.answer - w).abs() < 1e-9);
     }

@@ -8,7 +8,7 @@
 //! reachable point.
 
 use crate::experiment::{
-    find_spec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};
@@ -106,9 +106,7 @@ impl Experiment for ForwardKinematics {
     }
 
     fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
-        let spec =
-            find_spec(PARAMS, key).ok_or_else(|| ParamError::UnknownKey { key: key.into() })?;
-        let applied = spec.sanitize(value)?;
+        let applied = check_param(PARAMS, key, value)?;
         let v = applied.value();
         match key {
             "t1" => self.theta1_deg = v,
@@ -121,21 +119,12 @@ impl Experiment for ForwardKinematics {
     }
 
     fn input(&mut self, input: Input) {
-        match input {
-            Input::PointerDown(p)
-            | Input::PointerMove {
-                pos: p,
-                pressed: true,
-            } => {
-                self.drag_tip_to(p);
-            }
-            Input::PointerMove { pressed: false, .. } => {}
-            Input::PointerUp(_) => self.drag_target = None,
-            Input::Nudge(delta) => {
-                let tip = self.tip();
-                self.drag_tip_to(tip + delta);
-                self.drag_target = None;
-            }
+        if let Some(p) = input.drag_point(|| self.tip()) {
+            self.drag_tip_to(p);
+        }
+        // The pointer marker shows only while a pointer drags.
+        if matches!(input, Input::PointerUp(_) | Input::Nudge(_)) {
+            self.drag_target = None;
         }
     }
 
@@ -184,16 +173,8 @@ impl Experiment for ForwardKinematics {
             |t| format!("{} m", format_number((t - tip).length(), 3)),
         );
         vec![
-            Readout::new(
-                "x",
-                "End-effector X",
-                format!("{} m", format_number(tip.x, 3)),
-            ),
-            Readout::new(
-                "y",
-                "End-effector Y",
-                format!("{} m", format_number(tip.y, 3)),
-            ),
+            Readout::metres("x", "End-effector X", tip.x),
+            Readout::metres("y", "End-effector Y", tip.y),
             Readout::new(
                 "reach",
                 "Reach used",

@@ -9,7 +9,7 @@
 //! is what the two links solve for.
 
 use crate::experiment::{
-    find_spec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
@@ -180,9 +180,7 @@ impl Experiment for InverseKinematics {
     }
 
     fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
-        let spec =
-            find_spec(PARAMS, key).ok_or_else(|| ParamError::UnknownKey { key: key.into() })?;
-        let applied = spec.sanitize(value)?;
+        let applied = check_param(PARAMS, key, value)?;
         let v = applied.value();
         match key {
             "t1" | "t2" => {
@@ -213,19 +211,8 @@ impl Experiment for InverseKinematics {
     }
 
     fn input(&mut self, input: Input) {
-        match input {
-            Input::PointerDown(p)
-            | Input::PointerMove {
-                pos: p,
-                pressed: true,
-            } => {
-                self.set_target(p);
-            }
-            Input::Nudge(delta) => {
-                let from = self.target.unwrap_or_else(|| self.tip());
-                self.set_target(from + delta);
-            }
-            Input::PointerMove { pressed: false, .. } | Input::PointerUp(_) => {}
+        if let Some(p) = input.drag_point(|| self.target.unwrap_or_else(|| self.tip())) {
+            self.set_target(p);
         }
     }
 
@@ -323,16 +310,8 @@ impl Experiment for InverseKinematics {
         let tip = self.tip();
         let sol = self.solution();
         let mut r = vec![
-            Readout::new(
-                "x",
-                "End-effector X",
-                format!("{} m", format_number(tip.x, 3)),
-            ),
-            Readout::new(
-                "y",
-                "End-effector Y",
-                format!("{} m", format_number(tip.y, 3)),
-            ),
+            Readout::metres("x", "End-effector X", tip.x),
+            Readout::metres("y", "End-effector Y", tip.y),
             Readout::new(
                 "theta1",
                 "θ₁ solved",
@@ -545,15 +524,7 @@ mod tests {
     fn generators_agree_with_hand_law_of_cosines() {
         let mut rng = Lcg64::new(11);
         let d = quiz_cos_elbow(&mut rng);
-        let get = |k: &str| {
-            d.vars
-                .iter()
-                .find(|(n, _)| *n == k)
-                .unwrap()
-                .1
-                .parse::<f64>()
-                .unwrap()
-        };
+        let get = |k: &str| d.var(k).unwrap();
         let (l1, l2, x, y) = (get("l1"), get("l2"), get("x"), get("y"));
         let c = (x * x + y * y - l1 * l1 - l2 * l2) / (2.0 * l1 * l2);
         assert!((d.answer - c).abs() < 1e-12);

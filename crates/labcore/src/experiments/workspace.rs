@@ -9,7 +9,7 @@
 //! `r = max(0, L_max − (R − L_max))`.
 
 use crate::experiment::{
-    find_spec, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status,
+    check_param, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status,
     Tone,
 };
 use crate::kinematics::chain::{forward, tip, Annulus};
@@ -169,9 +169,7 @@ impl Experiment for Workspace {
     }
 
     fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
-        let spec =
-            find_spec(PARAMS, key).ok_or_else(|| ParamError::UnknownKey { key: key.into() })?;
-        let applied = spec.sanitize(value)?;
+        let applied = check_param(PARAMS, key, value)?;
         let v = applied.value();
         let had_cloud = self.sampler.is_some();
         match key {
@@ -211,16 +209,8 @@ impl Experiment for Workspace {
     }
 
     fn input(&mut self, input: Input) {
-        match input {
-            Input::PointerDown(p)
-            | Input::PointerMove {
-                pos: p,
-                pressed: true,
-            } => {
-                self.drag_tip_to(p);
-            }
-            Input::Nudge(d) => self.drag_tip_to(self.tip() + d),
-            Input::PointerMove { pressed: false, .. } | Input::PointerUp(_) => {}
+        if let Some(p) = input.drag_point(|| self.tip()) {
+            self.drag_tip_to(p);
         }
     }
 
