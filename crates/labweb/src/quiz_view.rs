@@ -29,7 +29,8 @@ pub fn render(attempt: &Attempt) -> String {
         match &q.kind {
             PreparedKind::Choice { options, .. } => {
                 html.push_str(&format!(
-                    "<fieldset><legend class=\"quiz-prompt\">{}{badge}</legend>",
+                    "<fieldset><legend class=\"quiz-prompt\"><span class=\"quiz-num\">{}.</span> {}{badge}</legend>",
+                    i + 1,
                     q.prompt
                 ));
                 for (k, option) in options.iter().enumerate() {
@@ -39,16 +40,31 @@ pub fn render(attempt: &Attempt) -> String {
                 }
                 html.push_str("</fieldset>");
             }
-            PreparedKind::Numeric { unit, .. } => {
+            PreparedKind::Numeric {
+                unit, tolerance, ..
+            } => {
                 let unit_html = if unit.is_empty() {
                     String::new()
                 } else {
                     format!("<span class=\"unit\">{}</span>", escape(unit))
                 };
+                let tolerance_text = format!(
+                    "accepted within ±{}{}",
+                    labcore::quiz::format_number(*tolerance, 4),
+                    if unit.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" {unit}")
+                    }
+                );
                 html.push_str(&format!(
-                    "<label class=\"quiz-prompt\" for=\"quiz-a{i}\">{}{badge}</label>\
-                     <div class=\"quiz-numeric\"><input type=\"text\" id=\"quiz-a{i}\" name=\"q{i}\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\">{unit_html}</div>",
-                    q.prompt
+                    "<label class=\"quiz-prompt\" for=\"quiz-a{i}\"><span class=\"quiz-num\">{}.</span> {}{badge}</label>\
+                     <div class=\"quiz-numeric\"><input type=\"text\" id=\"quiz-a{i}\" name=\"q{i}\" inputmode=\"decimal\" \
+                     autocomplete=\"off\" spellcheck=\"false\" aria-describedby=\"quiz-tol{i}\">{unit_html}\
+                     <span class=\"quiz-tol\" id=\"quiz-tol{i}\">{}</span></div>",
+                    i + 1,
+                    q.prompt,
+                    escape(&tolerance_text)
                 ));
             }
         }
@@ -124,6 +140,7 @@ pub fn grade_form(form: &Element, attempt: &Attempt) {
         }
     }
     if let Some(out) = query(form, ".quiz-score") {
+        out.scroll_into_view_with_bool(false);
         out.set_text_content(Some(&format!(
             "Score: {score} / {} ({}%)",
             attempt.questions.len(),
