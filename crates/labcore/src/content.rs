@@ -75,6 +75,9 @@ pub enum Question {
         tolerance: f64,
         #[serde(default)]
         unit: String,
+        /// The answer is an angle in degrees, compared modulo 360°.
+        #[serde(default)]
+        angle_degrees: bool,
         explanation: String,
     },
     /// A parameterised numeric question: `generator` names a function of the
@@ -87,6 +90,9 @@ pub enum Question {
         tolerance: f64,
         #[serde(default)]
         unit: String,
+        /// The answer is an angle in degrees, compared modulo 360°.
+        #[serde(default)]
+        angle_degrees: bool,
         explanation: String,
     },
 }

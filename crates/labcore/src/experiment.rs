@@ -19,6 +19,9 @@ pub enum ParamKind {
     Choice(&'static [&'static str]),
     /// A number typed into a field (no slider), e.g. a random seed.
     Number,
+    /// A number field that may be empty ([`Experiment::param`] gives `None`),
+    /// e.g. a target coordinate before any target is set.
+    OptionalNumber,
 }
 
 /// One tunable parameter, in the units the page shows (degrees for angles).
@@ -82,6 +85,27 @@ impl ParamSpec {
         }
     }
 
+    /// A number field that may be unset (see [`ParamKind::OptionalNumber`]).
+    #[must_use]
+    pub const fn optional_number(
+        key: &'static str,
+        label: &'static str,
+        unit: &'static str,
+        min: f64,
+        max: f64,
+    ) -> Self {
+        Self {
+            key,
+            label,
+            unit,
+            min,
+            max,
+            step: 0.01,
+            default: 0.0,
+            kind: ParamKind::OptionalNumber,
+        }
+    }
+
     /// A two-state toggle parameter (value 0 or 1).
     #[must_use]
     pub const fn toggle(
@@ -130,7 +154,10 @@ impl ParamSpec {
         if !value.is_finite() {
             return Err(ParamError::NotFinite { key: self.key });
         }
-        let discrete = !matches!(self.kind, ParamKind::Slider);
+        let discrete = matches!(
+            self.kind,
+            ParamKind::Toggle { .. } | ParamKind::Choice(_) | ParamKind::Number
+        );
         let v = if discrete { value.round() } else { value };
         let clamped = v.clamp(self.min, self.max);
         if clamped != v {
@@ -177,7 +204,7 @@ impl fmt::Display for ParamError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ParamError::UnknownKey { key } => write!(f, "unknown parameter “{key}”"),
-            ParamError::NotFinite { key } => write!(f, "“{key}” needs a finite number"),
+            ParamError::NotFinite { .. } => write!(f, "needs a finite number"),
             ParamError::UnknownAction { key } => write!(f, "unknown action “{key}”"),
         }
     }
@@ -282,7 +309,8 @@ pub trait Experiment {
     fn id(&self) -> &'static str;
     /// The tunable parameters, in display order.
     fn params(&self) -> &'static [ParamSpec];
-    /// Current value of a parameter in display units, `None` for an unknown key.
+    /// Current value of a parameter in display units; `None` for an unknown
+    /// key or an unset [`ParamKind::OptionalNumber`].
     fn param(&self, key: &str) -> Option<f64>;
     /// Sets a parameter (display units). Returns what was applied (it may be clamped).
     fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError>;

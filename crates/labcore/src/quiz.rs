@@ -46,14 +46,14 @@ pub struct Prepared {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum PreparedKind {
-    Choice {
-        options: Vec<String>,
-        answer: usize,
-    },
+    /// Options in this attempt's (shuffled) order; `answer` indexes them.
+    Choice { options: Vec<String>, answer: usize },
     Numeric {
         answer: f64,
         tolerance: f64,
         unit: String,
+        /// Compare modulo 360° (the answer is an angle in degrees).
+        angle_degrees: bool,
     },
 }
 
@@ -70,13 +70,16 @@ pub struct Grade {
     pub correct: bool,
     /// The expected answer, formatted for display.
     pub expected: String,
-    /// Set when the text could not be read as a number.
+    /// Set when the text could not be read as a number in the question's unit.
     pub unreadable: bool,
+    /// Set when nothing was given.
+    pub blank: bool,
 }
 
 /// Builds one attempt: every question of `content`, the generated ones drawn
-/// from `seed` (question `i` uses its own stream, so editing one question
-/// does not change the others' numbers).
+/// from `seed` and every choice question's options shuffled from it
+/// (question `i` uses its own stream, so editing one question does not change
+/// the others).
 pub fn prepare(
     content: &Content,
     lookup: GeneratorLookup,
@@ -102,20 +105,30 @@ fn prepare_one(
             options,
             answer,
             explanation,
-        } => Prepared {
-            prompt: prompt.clone(),
-            kind: PreparedKind::Choice {
-                options: options.clone(),
-                answer: *answer,
-            },
-            explanation: explanation.clone(),
-            parameterised: false,
-        },
+        } => {
+            // Fisher–Yates from the question's own stream.
+            let mut order: Vec<usize> = (0..options.len()).collect();
+            let mut rng = Lcg64::new(question_seed(seed ^ SHUFFLE_SALT, index));
+            for i in (1..order.len()).rev() {
+                let j = rng.int(0, i as i64) as usize;
+                order.swap(i, j);
+            }
+            Prepared {
+                prompt: prompt.clone(),
+                kind: PreparedKind::Choice {
+                    options: order.iter().map(|&k| options[k].clone()).collect(),
+                    answer: order.iter().position(|&k| k == *answer).unwrap_or(0),
+                },
+                explanation: explanation.clone(),
+                parameterised: false,
+            }
+        }
         Question::Numeric {
             prompt,
             answer,
             tolerance,
             unit,
+            angle_degrees,
             explanation,
         } => Prepared {
             prompt: prompt.clone(),
@@ -123,6 +136,7 @@ fn prepare_one(
                 answer: *answer,
                 tolerance: *tolerance,
                 unit: unit.clone(),
+                angle_degrees: *angle_degrees,
             },
             explanation: explanation.clone(),
             parameterised: false,
@@ -132,6 +146,7 @@ fn prepare_one(
             prompt,
             tolerance,
             unit,
+            angle_degrees,
             explanation,
         } => {
             let gen = lookup(generator).ok_or_else(|| ContentError::UnknownGenerator {
@@ -154,6 +169,7 @@ fn prepare_one(
                     answer: draw.answer,
                     tolerance: *tolerance,
                     unit: unit.clone(),
+                    angle_degrees: *angle_degrees,
                 },
                 explanation: fill(explanation),
                 parameterised: true,
@@ -161,6 +177,9 @@ fn prepare_one(
         }
     })
 }
+
+/// Separates the option-shuffle stream from the number-drawing stream.
+const SHUFFLE_SALT: u64 = 0x5DEE_CE66_D1CE_5EED;
 
 /// Mixes the attempt seed with the question index (SplitMix64 finaliser).
 fn question_seed(seed: u64, index: usize) -> u64 {
@@ -170,20 +189,28 @@ fn question_seed(seed: u64, index: usize) -> u64 {
     z ^ (z >> 31)
 }
 
-/// Grades one response.
+/// Grades one response. Numeric answers must be within the stated absolute
+/// tolerance, read in the question's unit (see [`parse_answer`]); angles in
+/// degrees are compared modulo 360°.
 #[must_use]
 pub fn grade(q: &Prepared, response: &Response) -> Grade {
+    let blank = match response {
+        Response::Choice(picked) => picked.is_none(),
+        Response::Text(text) => text.trim().is_empty(),
+    };
     match (&q.kind, response) {
         (PreparedKind::Choice { options, answer }, Response::Choice(picked)) => Grade {
             correct: *picked == Some(*answer),
             expected: options[*answer].clone(),
             unreadable: false,
+            blank,
         },
         (
             PreparedKind::Numeric {
                 answer,
                 tolerance,
                 unit,
+                angle_degrees,
             },
             Response::Text(text),
         ) => {
@@ -192,16 +219,25 @@ pub fn grade(q: &Prepared, response: &Response) -> Grade {
             } else {
                 format!("{} {unit}", format_number(*answer, 3))
             };
-            match parse_number(text) {
-                Some(v) => Grade {
-                    correct: (v - answer).abs() <= *tolerance,
-                    expected,
-                    unreadable: false,
-                },
+            match parse_answer(text, unit) {
+                Some(v) => {
+                    let mut error = (v - answer).abs();
+                    if *angle_degrees {
+                        error = error.rem_euclid(360.0);
+                        error = error.min(360.0 - error);
+                    }
+                    Grade {
+                        correct: error <= *tolerance,
+                        expected,
+                        unreadable: false,
+                        blank,
+                    }
+                }
                 None => Grade {
                     correct: false,
                     expected,
-                    unreadable: !text.trim().is_empty(),
+                    unreadable: !blank,
+                    blank,
                 },
             }
         }
@@ -209,18 +245,38 @@ pub fn grade(q: &Prepared, response: &Response) -> Grade {
             correct: false,
             expected: options[*answer].clone(),
             unreadable: true,
+            blank,
         },
         (PreparedKind::Numeric { answer, .. }, Response::Choice(_)) => Grade {
             correct: false,
             expected: format_number(*answer, 3),
             unreadable: true,
+            blank,
         },
     }
 }
 
+/// Reads an answer given in `unit`: a number (see [`parse_number`]),
+/// optionally followed by that unit (`0.6 m`, `45°`, `45 deg` for degrees).
+/// Any other unit is refused, so `1.2 rad` is not taken for `1.2°`.
+#[must_use]
+pub fn parse_answer(text: &str, unit: &str) -> Option<f64> {
+    let lower = text.trim().to_lowercase();
+    let unit = unit.trim().to_lowercase();
+    let mut suffixes = vec![unit.clone()];
+    if unit == "°" {
+        suffixes.extend(["deg".to_owned(), "degrees".to_owned()]);
+    }
+    for suffix in suffixes.iter().filter(|s| !s.is_empty()) {
+        if let Some(number) = lower.strip_suffix(suffix.as_str()) {
+            return parse_number(number);
+        }
+    }
+    parse_number(&lower)
+}
+
 /// Reads a number the way students type it: surrounding spaces, a Unicode
-/// minus (−), a decimal comma, a leading `+`, and a trailing unit or `°` are
-/// accepted. Returns `None` for anything else or a non-finite value.
+/// minus (−), a decimal comma, a leading `+` and a trailing `°` are accepted. Returns `None` for anything else or a non-finite value.
 #[must_use]
 pub fn parse_number(text: &str) -> Option<f64> {
     let cleaned: String = text
@@ -240,11 +296,8 @@ pub fn parse_number(text: &str) -> Option<f64> {
         })
         .map_or(cleaned.len(), |(i, _)| i);
     let (number, suffix) = cleaned.split_at(numeric_end);
-    let suffix_ok = suffix.is_empty()
-        || suffix == "°"
-        || suffix
-            .chars()
-            .all(|c| c.is_alphabetic() || c == '/' || c == '%');
+    // Only a degree sign may follow; units are checked by `parse_answer`.
+    let suffix_ok = suffix.is_empty() || suffix == "°";
     if !suffix_ok {
         return None;
     }
@@ -280,7 +333,14 @@ mod tests {
         assert_eq!(parse_number("−0,25"), Some(-0.25));
         assert_eq!(parse_number("+3"), Some(3.0));
         assert_eq!(parse_number("45°"), Some(45.0));
-        assert_eq!(parse_number("1.2 m"), Some(1.2));
+        assert_eq!(parse_number("1.2 m"), None);
+        assert_eq!(parse_answer("1.2 m", "m"), Some(1.2));
+        assert_eq!(parse_answer("1.2M", "m"), Some(1.2));
+        assert_eq!(parse_answer("0.5 m²", "m²"), Some(0.5));
+        assert_eq!(parse_answer("45 deg", "°"), Some(45.0));
+        assert_eq!(parse_answer("45°", "°"), Some(45.0));
+        assert_eq!(parse_answer("1.2 rad", "°"), None);
+        assert_eq!(parse_answer("3 cm", "m"), None);
         assert_eq!(parse_number("1e-3"), Some(0.001));
         assert_eq!(parse_number(""), None);
         assert_eq!(parse_number("abc"), None);
@@ -306,6 +366,7 @@ mod tests {
                 answer: 1.0,
                 tolerance: 0.01,
                 unit: "m".into(),
+                angle_degrees: false,
             },
             explanation: String::new(),
             parameterised: false,
@@ -315,6 +376,27 @@ mod tests {
         let g = grade(&q, &Response::Text("one".into()));
         assert!(!g.correct && g.unreadable);
         assert_eq!(g.expected, "1 m");
+        let blank = grade(&q, &Response::Text("  ".into()));
+        assert!(blank.blank && !blank.unreadable && !blank.correct);
+        assert!(!grade(&q, &Response::Text("1 rad".into())).correct);
+    }
+
+    #[test]
+    fn angles_compare_modulo_360() {
+        let q = Prepared {
+            prompt: String::new(),
+            kind: PreparedKind::Numeric {
+                answer: 179.8,
+                tolerance: 0.5,
+                unit: "°".into(),
+                angle_degrees: true,
+            },
+            explanation: String::new(),
+            parameterised: true,
+        };
+        assert!(grade(&q, &Response::Text("-180".into())).correct);
+        assert!(grade(&q, &Response::Text("539.8".into())).correct);
+        assert!(!grade(&q, &Response::Text("-179".into())).correct);
     }
 
     #[test]

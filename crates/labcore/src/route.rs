@@ -150,9 +150,17 @@ pub fn apply_params(experiment: &mut dyn Experiment, params: &[(String, String)]
         let label = spec.label;
         let value = match raw.trim().parse::<f64>() {
             Ok(v) if v.is_finite() => v,
+            // "1e999" is a number, just far out of range: clamp it like one.
+            Ok(v) if v.is_infinite() => {
+                if v > 0.0 {
+                    f64::MAX
+                } else {
+                    f64::MIN
+                }
+            }
             _ => {
                 notices.push(format!(
-                    "{label}: “{}” is not a number; kept the default.",
+                    "{label}: “{}” is not a number; kept the current value.",
                     truncate(raw, 30)
                 ));
                 continue;
@@ -161,11 +169,11 @@ pub fn apply_params(experiment: &mut dyn Experiment, params: &[(String, String)]
         match experiment.set_param(key, value) {
             Ok(Sanitized::InRange(_)) => {}
             Ok(Sanitized::Clamped(v)) => notices.push(format!(
-                "{label}: {} is out of range; using {}.",
-                format_number(value, 3),
+                "{label}: “{}” is out of range; using {}.",
+                truncate(raw.trim(), 30),
                 format_number(v, 3)
             )),
-            Err(e) => notices.push(e.to_string()),
+            Err(e) => notices.push(format!("{label}: {e}.")),
         }
     }
     notices

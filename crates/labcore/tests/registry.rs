@@ -3,7 +3,7 @@
 //! parameterised question draws finite answers.
 
 use labcore::quiz::{prepare, PreparedKind};
-use labcore::{registry, Content, Input, Scene};
+use labcore::{registry, Content, Input, ParamKind, Scene};
 use std::path::Path;
 
 #[test]
@@ -36,14 +36,24 @@ fn every_experiment_steps_1000_times_with_finite_values() {
             );
         }
         for spec in exp.params() {
-            let v = exp.param(spec.key).expect("every spec has a value");
+            assert!(spec.min <= spec.default && spec.default <= spec.max);
+            // Only optional fields may be unset.
+            let Some(v) = exp.param(spec.key) else {
+                assert_eq!(
+                    spec.kind,
+                    ParamKind::OptionalNumber,
+                    "{}.{} has no value",
+                    entry.id,
+                    spec.key
+                );
+                continue;
+            };
             assert!(
                 v.is_finite() && v >= spec.min && v <= spec.max,
                 "{}.{}",
                 entry.id,
                 spec.key
             );
-            assert!(spec.min <= spec.default && spec.default <= spec.max);
         }
     }
 }
@@ -110,6 +120,31 @@ fn every_registered_experiment_has_complete_content_and_generators() {
                 }
             }
         }
+        // Choice options are shuffled per attempt and still mark the same correct text.
+        let mut positions = std::collections::HashSet::new();
+        for seed in 0..40 {
+            let attempt = prepare(content, entry.generators, seed).unwrap();
+            for (q, original) in attempt.iter().zip(&content.quiz) {
+                if let (
+                    PreparedKind::Choice { options, answer },
+                    labcore::content::Question::Choice {
+                        options: source,
+                        answer: source_answer,
+                        ..
+                    },
+                ) = (&q.kind, original)
+                {
+                    assert_eq!(options[*answer], source[*source_answer]);
+                    assert_eq!(options.len(), source.len());
+                    positions.insert(*answer);
+                }
+            }
+        }
+        assert!(
+            positions.len() > 1,
+            "{}: the correct option moves between attempts",
+            entry.id
+        );
         let a = prepare(content, entry.generators, 1).unwrap();
         let b = prepare(content, entry.generators, 2).unwrap();
         assert_ne!(a, b, "{}: a new attempt draws new numbers", entry.id);

@@ -112,7 +112,8 @@ impl Experiment for ForwardKinematics {
             "t1" => self.theta1_deg = v,
             "t2" => self.theta2_deg = v,
             "l1" => self.l1_m = v,
-            _ => self.l2_m = v,
+            "l2" => self.l2_m = v,
+            _ => return Err(ParamError::UnknownKey { key: key.into() }),
         }
         self.drag_target = None;
         Ok(applied)

@@ -28,10 +28,15 @@ const PARAMS: &[ParamSpec] = &[
     ParamSpec::toggle("elbow", "Elbow", "down", "up", true),
     ParamSpec::slider("l3", "Wrist L₃", "m", 0.0, 0.6, 0.05, 0.0),
     ParamSpec::slider("phi", "Wrist φ", "°", -180.0, 180.0, 1.0, 0.0),
+    ParamSpec::optional_number("tx", "Target x", "m", -VIEW_HALF_M, VIEW_HALF_M),
+    ParamSpec::optional_number("ty", "Target y", "m", -VIEW_HALF_M, VIEW_HALF_M),
 ];
 
 /// World half-width shown (metres): the longest arm with its wrist, plus a margin.
 const VIEW_HALF_M: f64 = 3.1;
+/// A reachable target closer than this to a boundary circle counts as near
+/// singular in the status badge (the solver's own test is far tighter).
+const NEAR_SINGULAR_M: f64 = 0.02;
 /// Time for the arm to move to a new solution, seconds.
 const MOVE_TIME_S: f64 = 0.8;
 
@@ -138,6 +143,16 @@ impl InverseKinematics {
         self.resolve();
     }
 
+    /// True when the target lies within [`NEAR_SINGULAR_M`] of a boundary circle.
+    fn near_boundary(&self) -> bool {
+        let (centre, annulus) = self.reach();
+        self.target.is_some_and(|t| {
+            let d = (t - centre).length();
+            (d - annulus.outer_m).abs() < NEAR_SINGULAR_M
+                || (annulus.inner_m > 0.0 && (d - annulus.inner_m).abs() < NEAR_SINGULAR_M)
+        })
+    }
+
     /// The annulus the tip can reach with the wrist held at φ, as (centre, radii).
     fn reach(&self) -> (DVec2, Annulus) {
         (
@@ -175,6 +190,8 @@ impl Experiment for InverseKinematics {
             "elbow" => f64::from(u8::from(self.elbow == Elbow::Up)),
             "l3" => self.l3_m,
             "phi" => self.phi_deg,
+            "tx" => return self.target.map(|t| t.x),
+            "ty" => return self.target.map(|t| t.y),
             _ => return None,
         })
     }
@@ -196,16 +213,22 @@ impl Experiment for InverseKinematics {
                 self.elbow = if v >= 0.5 { Elbow::Up } else { Elbow::Down };
                 self.resolve();
             }
-            "l1" | "l2" | "l3" | "phi" => {
-                match key {
-                    "l1" => self.l1_m = v,
-                    "l2" => self.l2_m = v,
-                    "l3" => self.l3_m = v,
-                    _ => self.phi_deg = v,
-                }
-                self.resolve();
+            "l1" => self.l1_m = v,
+            "l2" => self.l2_m = v,
+            "l3" => self.l3_m = v,
+            "phi" => self.phi_deg = v,
+            "tx" | "ty" => {
+                let from = self.target.unwrap_or_else(|| self.tip());
+                self.target = Some(if key == "tx" {
+                    DVec2::new(v, from.y)
+                } else {
+                    DVec2::new(from.x, v)
+                });
             }
-            _ => unreachable!("every spec key is handled"),
+            _ => return Err(ParamError::UnknownKey { key: key.into() }),
+        }
+        if matches!(key, "l1" | "l2" | "l3" | "phi" | "tx" | "ty") {
+            self.resolve();
         }
         Ok(applied)
     }
@@ -323,16 +346,15 @@ impl Experiment for InverseKinematics {
                 sol.map_or("--".into(), |a| degrees(a.theta2_rad.to_degrees())),
             ),
         ];
-        if self.l3_m > 0.0 {
-            r.push(Readout::new(
-                "theta3",
-                "θ₃ (wrist)",
-                sol.map_or("--".into(), |a| {
-                    let t3 = self.phi_deg.to_radians() - a.theta1_rad - a.theta2_rad;
-                    degrees(crate::kinematics::two_link_ik::wrap_pi(t3).to_degrees())
-                }),
-            ));
-        }
+        let wrist = match sol {
+            Some(a) if self.l3_m > 0.0 => {
+                let t3 = self.phi_deg.to_radians() - a.theta1_rad - a.theta2_rad;
+                degrees(crate::kinematics::two_link_ik::wrap_pi(t3).to_degrees())
+            }
+            _ if self.l3_m > 0.0 => "--".into(),
+            _ => "no wrist".into(),
+        };
+        r.push(Readout::new("theta3", "θ₃ (wrist)", wrist));
         r
     }
 
@@ -341,6 +363,9 @@ impl Experiment for InverseKinematics {
             None => Status::new("click a target", Tone::Neutral),
             Some(Solved::OutOfReach) => Status::new("out of reach", Tone::Bad),
             Some(Solved::Reachable(sol)) => match sol.singularity {
+                Singularity::Regular if self.near_boundary() => {
+                    Status::new("near singular: the branches almost merge", Tone::Warning)
+                }
                 Singularity::Regular => Status::new("in reach", Tone::Good),
                 Singularity::OuterBoundary => {
                     Status::new("singular: arm straight, branches merge", Tone::Warning)
@@ -354,7 +379,7 @@ impl Experiment for InverseKinematics {
     }
 
     fn hint(&self) -> &'static str {
-        "Click or tap a target (arrow keys move it); the arm moves to the closed-form solution."
+        "Click or tap a target, or type its x and y; the arm moves to the closed-form solution."
     }
 
     fn preview(&mut self) {
@@ -488,6 +513,27 @@ mod tests {
     }
 
     #[test]
+    fn typed_target_coordinates_set_and_report_the_target() {
+        let mut ik = InverseKinematics::default();
+        assert_eq!(ik.param("tx"), None);
+        ik.set_param("tx", 0.9).unwrap();
+        ik.set_param("ty", 0.8).unwrap();
+        assert_eq!(ik.param("tx"), Some(0.9));
+        assert_eq!(ik.param("ty"), Some(0.8));
+        settle(&mut ik);
+        assert!((ik.tip() - DVec2::new(0.9, 0.8)).length() < 1e-9);
+    }
+
+    #[test]
+    fn near_boundary_target_warns() {
+        let mut ik = InverseKinematics::default();
+        ik.input(Input::PointerDown(DVec2::new(1.69, 0.0)));
+        assert!(ik.status().text.starts_with("near singular"));
+        ik.input(Input::PointerDown(DVec2::new(1.0, 0.0)));
+        assert_eq!(ik.status().text, "in reach");
+    }
+
+    #[test]
     fn boundary_target_is_flagged_singular() {
         let mut ik = InverseKinematics::default();
         ik.input(Input::PointerDown(DVec2::new(0.0, 1.7)));
@@ -507,7 +553,8 @@ mod tests {
         let pts = ik.points(ik.theta1_deg, ik.theta2_deg);
         let wrist_dir = (pts[3] - pts[2]).normalize();
         assert!((wrist_dir - DVec2::Y).length() < 1e-9);
-        assert_eq!(ik.readouts().len(), 5);
+        assert_eq!(ik.readouts()[4].key, "theta3");
+        assert_ne!(ik.readouts()[4].value, "--");
     }
 
     #[test]

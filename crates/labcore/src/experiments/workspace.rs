@@ -48,8 +48,21 @@ const ACTIONS: &[ActionSpec] = &[
 
 /// World half-width shown (metres).
 const VIEW_HALF_M: f64 = 3.7;
-/// Density grid resolution (cells per side).
+/// Density grid resolution (cells per side) before the first sweep.
 const DENSITY_CELLS: usize = 110;
+/// Aim for about this many samples per cell inside the reachable disc, so the
+/// shading shows density rather than sampling noise.
+const SAMPLES_PER_CELL: f64 = 6.0;
+
+/// Cells per side of the density grid for `samples` tips spread over the
+/// disc of radius `Σ L` in the view: `(2H)² · samples / (k π R²)` cells in all.
+fn density_cells(samples: usize, lengths_m: &[f64; 3]) -> usize {
+    let reach = lengths_m.iter().sum::<f64>().max(0.1);
+    let disc_fraction =
+        (std::f64::consts::PI * reach * reach / (4.0 * VIEW_HALF_M * VIEW_HALF_M)).min(1.0);
+    let cells = samples as f64 / SAMPLES_PER_CELL / disc_fraction;
+    (cells.sqrt().round() as usize).clamp(24, 200)
+}
 /// A sweep spreads over about this many frames.
 const SWEEP_FRAMES: usize = 90;
 /// Most tips stippled individually (the most recent ones); the density map shows them all.
@@ -109,6 +122,7 @@ impl Workspace {
 
     fn start_sweep(&mut self) {
         self.clear();
+        self.density = DensityGrid::new(VIEW_HALF_M, density_cells(self.samples, &self.lengths_m));
         self.sampler = Some(WorkspaceSampler::new(
             self.lengths_m,
             self.sampling_mode(),
@@ -176,21 +190,18 @@ impl Experiment for Workspace {
             "t1" => self.angles_deg[0] = v,
             "t2" => self.angles_deg[1] = v,
             "t3" => self.angles_deg[2] = v,
-            _ => {
-                match key {
-                    "l1" => self.lengths_m[0] = v,
-                    "l2" => self.lengths_m[1] = v,
-                    "l3" => self.lengths_m[2] = v,
-                    "mode" => self.mode = v as usize,
-                    "n" => self.samples = v.round() as usize,
-                    _ => self.seed = v.round() as u64,
-                }
-                // The cloud belongs to the old settings.
-                if had_cloud {
-                    self.clear();
-                    self.stale = true;
-                }
-            }
+            "l1" => self.lengths_m[0] = v,
+            "l2" => self.lengths_m[1] = v,
+            "l3" => self.lengths_m[2] = v,
+            "mode" => self.mode = v as usize,
+            "n" => self.samples = v.round() as usize,
+            "seed" => self.seed = v.round() as u64,
+            _ => return Err(ParamError::UnknownKey { key: key.into() }),
+        }
+        // A cloud belongs to the geometry and sampling settings it was drawn with.
+        if had_cloud && !matches!(key, "t1" | "t2" | "t3") {
+            self.clear();
+            self.stale = true;
         }
         Ok(applied)
     }
@@ -260,7 +271,9 @@ impl Experiment for Workspace {
         let tip = self.tip();
         let annulus = Annulus::of_chain(&self.lengths_m);
         let measured = self.sampler.as_ref().and_then(WorkspaceSampler::measured);
-        let metres = |v: f64| format!("{} m", format_number(v, 3));
+        // Fixed 4 decimals: measured radii approach theory from inside, and
+        // the gap must stay visible.
+        let metres = |v: f64| format!("{v:.4} m");
         let (outer, inner) = measured.map_or(("--".into(), "--".into()), |m| {
             (metres(m.outer_m), metres(m.inner_m))
         });
@@ -293,8 +306,9 @@ impl Experiment for Workspace {
         match &self.sampler {
             _ if self.stale => Status::new("settings changed: sweep again", Tone::Warning),
             None => Status::new("ready to sweep", Tone::Neutral),
+            // Quarter steps: the badge is a live region, so it must not chatter.
             Some(s) if !s.is_done() => Status::new(
-                format!("sweeping {}%", format_number(100.0 * s.progress(), 0)),
+                format!("sweeping… {}%", (4.0 * s.progress()).floor() * 25.0),
                 Tone::Neutral,
             ),
             Some(s) => Status::new(format!("swept {} samples", s.produced()), Tone::Good),

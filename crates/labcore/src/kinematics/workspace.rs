@@ -12,8 +12,9 @@
 //! - [`SamplingMode::Grid`]: the `N³` triples `θᵢ = −π + 2π kᵢ / N`,
 //!   `kᵢ = 0 … N−1`, with `θ3` varying fastest.
 //!
-//! The tip *density* is not uniform over the annulus — it piles up near the
-//! boundaries, where the Jacobian is singular — which [`DensityGrid`] makes
+//! The tip *density* is not uniform over the annulus: for three similar links
+//! it is highest well inside the disc and thins out towards the outer rim
+//! (few joint triples reach near-straight poses), which [`DensityGrid`] makes
 //! visible. Sampling is progressive ([`WorkspaceSampler::sample_batch`]) so an
 //! animation can add a few thousand points per frame.
 
