@@ -91,8 +91,8 @@ test("workspace: Sweep fills the cloud over many frames and the radii match theo
     await waitStatus(page, /^swept 20000 samples$/);
     const r = await readouts(page);
     assert.equal(r.samples, "20000 / 20000");
-    assert.equal(r.outer_theory, "1.7 m");
-    assert.equal(r.inner_theory, "0.3 m");
+    assert.equal(r.outer_theory, "1.7000 m");
+    assert.equal(r.inner_theory, "0.3000 m");
     assert.ok(Math.abs(metres(r.outer) - 1.7) < 0.02, `outer measured ${r.outer}`);
     assert.ok(Math.abs(metres(r.inner) - 0.3) < 0.03, `inner measured ${r.inner}`);
     await screenshot(page, "workspace-swept");

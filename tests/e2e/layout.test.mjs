@@ -2,13 +2,13 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { PHONE, experimentIds, open, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+import { PHONE, TABS, experimentIds, open, screenshot, settle, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 
 const scrollWidth = (page) => page.evaluate(() => document.documentElement.scrollWidth);
 
-test("at phone width (360×740) nothing scrolls sideways, on home and on every simulation", async (t) => {
+test("at phone width (360×740) nothing scrolls sideways, on home and on every tab of every experiment", async (t) => {
   const ids = await experimentIds(lab);
   await withPage(lab, { viewport: PHONE, hasTouch: true }, async (page) => {
     await open(lab, page, "#/");
@@ -20,13 +20,34 @@ test("at phone width (360×740) nothing scrolls sideways, on home and on every s
       withPage(lab, { viewport: PHONE, hasTouch: true }, async (page) => {
         await open(lab, page, `#/${id}/simulation`);
         await settle(page);
-        const width = await scrollWidth(page);
         await screenshot(page, `${id}-simulation-phone`);
-        assert.ok(width <= PHONE.width, `${id} simulation is ${width} px wide`);
+        for (const tab of TABS) {
+          await page.locator(`[role=tab][data-tab=${tab}]`).click();
+          await settle(page);
+          const width = await scrollWidth(page);
+          assert.ok(width <= PHONE.width, `${id} ${tab} is ${width} px wide`);
+        }
       }),
     );
   }
 });
+
+test("the canvas stays put while the status badge changes during a drag", () =>
+  withPage(lab, { viewport: PHONE, hasTouch: true }, async (page) => {
+    await open(lab, page, "#/fk/simulation");
+    const canvas = page.locator("canvas.sim-canvas");
+    const before = await canvas.boundingBox();
+    // Drag the tip far outside reach: the badge switches to "out of reach".
+    const box = before;
+    await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.35);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width * 0.99, box.y + box.height * 0.02, { steps: 6 });
+    await settle(page);
+    assert.match(await page.locator(".sim-status").textContent(), /out of reach/);
+    const during = await canvas.boundingBox();
+    await page.mouse.up();
+    assert.deepEqual(during, before, "the canvas did not move");
+  }));
 
 /** Relative luminance (WCAG) of a CSS `rgb(...)`/`rgba(...)` colour. */
 function luminance(css) {

@@ -132,7 +132,8 @@ impl Scene {
                 to: w[1],
                 width_px: if role == Role::Ghost { 4.0 } else { 7.0 },
                 role,
-                dashed: false,
+                // The ghost differs by dash, not only by colour.
+                dashed: role == Role::Ghost,
             });
         }
         if role == Role::Ghost {

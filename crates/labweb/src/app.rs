@@ -29,7 +29,9 @@ impl App {
     /// when the page has no `#app` element.
     pub fn boot(on_hash_change: impl FnMut(Event) + 'static) -> Option<Self> {
         let root = dom::by_id("app")?;
-        render_nav();
+        // The nav needs every experiment's title (parsing all content files):
+        // a task of its own keeps the first page's task short.
+        dom::defer(render_nav);
         let listeners = vec![Listener::new(
             dom::window().as_ref(),
             "hashchange",
@@ -82,7 +84,9 @@ impl App {
                         notices.extend(page.apply_params(&params));
                     }
                     page.select(tab, !same);
-                    if !notices.is_empty() {
+                    // Keep the link complete: after a clamp, and when a nav link
+                    // (no parameters) lands on the experiment already open.
+                    if !notices.is_empty() || (same && params.is_empty()) {
                         page.write_hash();
                     }
                 }
@@ -130,6 +134,11 @@ fn render_nav() {
     }
     html.push_str("</ul>");
     nav.set_inner_html(&html);
+    let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
+    let hash = dom::window().location().hash().unwrap_or_default();
+    if let Page::Experiment { id, .. } = route::parse(&hash, &ids).page {
+        mark_nav(Some(&id));
+    }
 }
 
 fn mark_nav(current: Option<&str>) {
@@ -139,6 +148,16 @@ fn mark_nav(current: Option<&str>) {
     for a in query_all(&nav, "a[data-experiment]") {
         if current.is_some() && a.get_attribute("data-experiment").as_deref() == current {
             let _ = a.set_attribute("aria-current", "page");
+            // The nav scrolls sideways on narrow screens: keep the current one
+            // visible (at the next frame, when layout is done anyway).
+            dom::next_frame(move || {
+                if a.is_connected() {
+                    let options = web_sys::ScrollIntoViewOptions::new();
+                    options.set_block(web_sys::ScrollLogicalPosition::Nearest);
+                    options.set_inline(web_sys::ScrollLogicalPosition::Nearest);
+                    a.scroll_into_view_with_scroll_into_view_options(&options);
+                }
+            });
         } else {
             let _ = a.remove_attribute("aria-current");
         }
@@ -170,17 +189,23 @@ fn render_home(root: &Element) {
          the theory with its formulas, a step-by-step procedure, a graded self-assessment and references.</p>\
          <ul class=\"cards\">{cards}</ul></section>"
     ));
+    // One task per picture: each preview computes a little (a workspace
+    // sweep, an IK solve), and together they would make one long task.
     for (canvas, entry) in query_all(root, "canvas.card-pic")
         .into_iter()
         .zip(registry())
     {
         if let Ok(canvas) = canvas.dyn_into::<HtmlCanvasElement>() {
-            let mut exp = (entry.make)();
-            exp.preview();
-            sim::paint_thumbnail(&canvas, exp.as_ref());
+            dom::defer(move || {
+                if canvas.is_connected() {
+                    let mut exp = (entry.make)();
+                    exp.preview();
+                    sim::paint_thumbnail(&canvas, exp.as_ref());
+                }
+            });
         }
     }
-    dom::window().scroll_to_with_x_and_y(0.0, 0.0);
+    dom::next_frame(|| dom::window().scroll_to_with_x_and_y(0.0, 0.0));
 }
 
 /// State of a mounted experiment page shared with its listeners.
@@ -356,6 +381,12 @@ impl ExperimentPage {
                             next = seed.wrapping_add(1);
                         }
                         p.new_attempt(next);
+                        // The button was replaced: focus the top of the new attempt.
+                        if let Some(intro) = query(&p.root, ".quiz-intro") {
+                            if let Some(h) = intro.dyn_ref::<HtmlElement>() {
+                                let _ = h.focus();
+                            }
+                        }
                     }
                 },
             ));
@@ -401,7 +432,7 @@ impl PageInner {
             sim.set_active(tab == Tab::Simulation);
         }
         if scroll_top {
-            dom::window().scroll_to_with_x_and_y(0.0, 0.0);
+            dom::next_frame(|| dom::window().scroll_to_with_x_and_y(0.0, 0.0));
         }
     }
 

@@ -56,6 +56,21 @@ pub fn set_hidden(el: &Element, hidden: bool) {
     }
 }
 
+/// Runs `f` in a task of its own (after the current one), so long work is
+/// split below the 50 ms long-task budget. The callback frees itself once run.
+pub fn defer(f: impl FnOnce() + 'static) {
+    let callback = Closure::once_into_js(f);
+    let _ =
+        window().set_timeout_with_callback_and_timeout_and_arguments_0(callback.unchecked_ref(), 0);
+}
+
+/// Runs `f` at the next animation frame, where the browser lays the page out
+/// anyway (so reading layout there forces no extra synchronous layout).
+pub fn next_frame(f: impl FnOnce() + 'static) {
+    let callback = Closure::once_into_js(f);
+    let _ = window().request_animation_frame(callback.unchecked_ref());
+}
+
 /// Performance clock in milliseconds.
 pub fn now_ms() -> f64 {
     window().performance().map_or(0.0, |p| p.now())

@@ -135,7 +135,7 @@ pub fn paint(
                 ctx.set_line_width(*width_px);
                 set_dash(ctx, *dashed);
                 if *role == Role::Ghost {
-                    ctx.set_global_alpha(0.45);
+                    ctx.set_global_alpha(0.7);
                 }
                 ctx.begin_path();
                 ctx.move_to(a.x, a.y);
@@ -159,7 +159,7 @@ pub fn paint(
                     ctx.fill();
                 } else {
                     ctx.set_stroke_style_str(palette.colour(*role));
-                    ctx.set_line_width(1.5);
+                    ctx.set_line_width(2.0);
                     set_dash(ctx, *dashed);
                     ctx.stroke();
                 }
@@ -280,7 +280,7 @@ thread_local! {
 }
 
 /// Density cells as one RGBA image (alpha grows with density), drawn scaled
-/// with smoothing by a single `drawImage`: cost independent of the cell count.
+/// by a single `drawImage`: cost independent of the cell count.
 #[allow(clippy::too_many_arguments)]
 fn paint_heatmap(
     ctx: &CanvasRenderingContext2d,
@@ -329,7 +329,8 @@ fn paint_heatmap(
         let _ = octx.put_image_data(&image, 0.0, 0.0);
         let top_left = viewport.to_px(min + DVec2::new(0.0, rows as f64 * cell_m));
         let size = cell_m * viewport.scale_px_per_m;
-        ctx.set_image_smoothing_enabled(true);
+        // Crisp cells: smoothing would smear density outside the reachable annulus.
+        ctx.set_image_smoothing_enabled(false);
         let _ = ctx.draw_image_with_html_canvas_element_and_dw_and_dh(
             offscreen,
             top_left.x,

@@ -14,7 +14,7 @@ pub struct Attempt {
 /// The form for an attempt.
 pub fn render(attempt: &Attempt) -> String {
     let mut html = format!(
-        "<p class=\"quiz-intro\">{} questions. Questions marked <span class=\"badge\">new numbers</span> \
+        "<p class=\"quiz-intro\" tabindex=\"-1\">{} questions. Questions marked <span class=\"badge\">new numbers</span> \
          draw fresh values for every attempt. Attempt seed <code class=\"quiz-seed\">{}</code>.</p><ol class=\"quiz-list\">",
         attempt.questions.len(),
         attempt.seed
@@ -124,9 +124,11 @@ pub fn grade_form(form: &Element, attempt: &Attempt) {
         if let Some(fb) = query(&item, ".quiz-feedback") {
             let text = if verdict.correct {
                 "✓ Correct.".to_owned()
+            } else if verdict.blank {
+                format!("✗ No answer given. Expected {}.", verdict.expected)
             } else if verdict.unreadable {
                 format!(
-                    "✗ That is not a number we can read. Expected {}.",
+                    "✗ That is not a number in this question's unit. Expected {}.",
                     verdict.expected
                 )
             } else {
@@ -139,10 +141,14 @@ pub fn grade_form(form: &Element, attempt: &Attempt) {
             crate::dom::set_hidden(&ex, false);
         }
     }
+    // Answers are revealed now: lock this attempt (New attempt starts another).
+    for control in query_all(form, "input, button[type=submit]") {
+        let _ = control.set_attribute("disabled", "");
+    }
     if let Some(out) = query(form, ".quiz-score") {
         out.scroll_into_view_with_bool(false);
         out.set_text_content(Some(&format!(
-            "Score: {score} / {} ({}%)",
+            "Score: {score} / {} ({}%). Press New attempt for fresh questions.",
             attempt.questions.len(),
             (100 * score) / attempt.questions.len().max(1)
         )));

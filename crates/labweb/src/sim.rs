@@ -48,8 +48,33 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
             )
         })
         .collect();
-    let readouts: String = exp
-        .readouts()
+    let readouts = readouts_html(&exp.readouts());
+    let status = exp.status();
+    format!(
+        "<div class=\"sim\">\
+           <div class=\"sim-stage\">\
+             <p class=\"sim-caption\">{caption}</p>\
+             <div class=\"sim-frame\">\
+               <canvas class=\"sim-canvas\" tabindex=\"0\" role=\"application\" aria-roledescription=\"simulation\" \
+                 aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps).\"></canvas>\
+               <p class=\"sim-status\" role=\"status\" data-tone=\"{tone}\">{text}</p>\
+             </div>\
+             <div class=\"sim-actions\">{actions}</div>\
+           </div>\
+           <div class=\"sim-side\">\
+             <form class=\"sim-controls\" aria-label=\"Parameters\" onsubmit=\"return false\">{controls}</form>\
+             <p class=\"sim-message\" role=\"alert\" hidden></p>\
+             <dl class=\"readouts\">{readouts}</dl>\
+             <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
+           </div>\
+         </div>",
+        tone = tone_name(status.tone),
+        text = escape(&status.text),
+    )
+}
+
+fn readouts_html(readouts: &[labcore::Readout]) -> String {
+    readouts
         .iter()
         .map(|r| {
             format!(
@@ -59,27 +84,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
                 escape(&r.value)
             )
         })
-        .collect();
-    let status = exp.status();
-    format!(
-        "<div class=\"sim\">\
-           <div class=\"sim-stage\">\
-             <div class=\"sim-head\"><p class=\"sim-caption\">{caption}</p>\
-               <p class=\"sim-status\" role=\"status\" data-tone=\"{tone}\">{text}</p></div>\
-             <canvas class=\"sim-canvas\" tabindex=\"0\" role=\"img\" \
-               aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps).\"></canvas>\
-           </div>\
-           <div class=\"sim-side\">\
-             <form class=\"sim-controls\" aria-label=\"Parameters\" onsubmit=\"return false\">{controls}</form>\
-             <div class=\"sim-actions\">{actions}</div>\
-             <p class=\"sim-message\" role=\"alert\" hidden></p>\
-             <dl class=\"readouts\">{readouts}</dl>\
-             <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
-           </div>\
-         </div>",
-        tone = tone_name(status.tone),
-        text = escape(&status.text),
-    )
+        .collect()
 }
 
 fn tone_name(tone: labcore::Tone) -> &'static str {
@@ -115,6 +120,14 @@ fn control_html(spec: &ParamSpec) -> String {
             min = spec.min,
             max = spec.max,
             step = spec.step,
+            unit_aria = if spec.unit.is_empty() { String::new() } else { format!(" in {unit}") },
+        ),
+        ParamKind::OptionalNumber => format!(
+            "<div class=\"ctl ctl-number\"><label for=\"p-{key}\">{label}</label>\
+             <span class=\"ctl-num\"><input type=\"number\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" \
+             placeholder=\"—\" aria-label=\"{label}{unit_aria}\"><span class=\"unit\" aria-hidden=\"true\">{unit}</span></span></div>",
+            min = spec.min,
+            max = spec.max,
             unit_aria = if spec.unit.is_empty() { String::new() } else { format!(" in {unit}") },
         ),
         ParamKind::Number => format!(
@@ -165,7 +178,8 @@ struct SimState {
     last_time_ms: Option<f64>,
     accumulator_s: f64,
     needs_paint: bool,
-    shown_values: Vec<Option<f64>>,
+    /// What each control shows; `None` = unknown (refresh it), `Some(None)` = empty.
+    shown_values: Vec<Option<Option<f64>>>,
     shown_readouts: Vec<String>,
     shown_status: String,
     hash_dirty: bool,
@@ -250,6 +264,12 @@ impl SimState {
         if steps == MAX_STEPS_PER_FRAME {
             self.accumulator_s = 0.0;
         }
+        let stopped = was_animating && !self.exp.animating();
+        if stopped {
+            // The state the motion ended in belongs in the link and is worth announcing.
+            self.hash_dirty = true;
+            self.announce();
+        }
         // Paint while moving, and once more for the frame on which it stopped.
         if steps > 0 && (was_animating || self.exp.animating()) {
             self.needs_paint = true;
@@ -293,18 +313,20 @@ impl SimState {
         let active = dom::document().active_element();
         for (i, spec) in self.exp.params().iter().enumerate() {
             let value = self.exp.param(spec.key);
-            if self.shown_values.get(i) == Some(&value) {
+            if self.shown_values.get(i) == Some(&Some(value)) {
                 continue;
             }
-            if let Some(v) = value {
-                set_control_value(&self.panel, spec, v, active.as_ref());
-            }
+            set_control_value(&self.panel, spec, value, active.as_ref());
             if let Some(slot) = self.shown_values.get_mut(i) {
-                *slot = value;
+                *slot = Some(value);
             }
         }
         let readouts = self.exp.readouts();
         if self.shown_readouts.len() != readouts.len() {
+            // The set of readouts changed: rebuild the list.
+            if let Some(list) = query(&self.panel, "dl.readouts") {
+                list.set_inner_html(&readouts_html(&readouts));
+            }
             self.shown_readouts = vec![String::new(); readouts.len()];
         }
         for (r, shown) in readouts.iter().zip(self.shown_readouts.iter_mut()) {
@@ -381,8 +403,22 @@ impl SimState {
     }
 }
 
-fn set_control_value(panel: &Element, spec: &ParamSpec, v: f64, active: Option<&Element>) {
+/// Shows `value` in every control of `spec` (`None`: an empty optional field).
+fn set_control_value(
+    panel: &Element,
+    spec: &ParamSpec,
+    value: Option<f64>,
+    active: Option<&Element>,
+) {
     for el in query_all(panel, &format!("[data-param=\"{}\"]", spec.key)) {
+        let Some(v) = value else {
+            if let Some(input) = el.dyn_ref::<HtmlInputElement>() {
+                if active != Some(&el) {
+                    input.set_value("");
+                }
+            }
+            continue;
+        };
         if let Some(input) = el.dyn_ref::<HtmlInputElement>() {
             match input.type_().as_str() {
                 "radio" => input.set_checked((input.value() == "1") == (v >= 0.5)),
@@ -617,11 +653,12 @@ impl SimView {
                 let Some(key) = input.get_attribute("data-param") else {
                     return;
                 };
-                // A number box mid-edit ("-", "") waits for its change event.
-                let value = input.value_as_number();
-                if input.type_() == "number" && !value.is_finite() {
+                // Number boxes apply on change (Enter or leaving the box), never
+                // mid-typing: "1e9" on the way to "1e99", "0" on the way to "0.5".
+                if input.type_() == "number" {
                     return;
                 }
+                let value = input.value_as_number();
                 let value = if input.type_() == "radio" {
                     input.value().parse().unwrap_or(0.0)
                 } else {
@@ -657,11 +694,10 @@ impl SimView {
                                 st.shown_values[i] = None;
                             }
                             // Show the applied value even though the box has focus.
-                            if let (Some(spec), Some(v)) = (
-                                st.exp.params().iter().find(|p| p.key == key).copied(),
-                                st.exp.param(&key),
-                            ) {
-                                set_control_value(&st.panel, &spec, v, None);
+                            if let Some(spec) =
+                                st.exp.params().iter().find(|p| p.key == key).copied()
+                            {
+                                set_control_value(&st.panel, &spec, st.exp.param(&key), None);
                             }
                         }
                     }
