@@ -261,8 +261,8 @@ pub fn grade(q: &Prepared, response: &Response) -> Grade {
 /// Any other unit is refused, so `1.2 rad` is not taken for `1.2°`.
 #[must_use]
 pub fn parse_answer(text: &str, unit: &str) -> Option<f64> {
-    let lower = text.trim().to_lowercase();
-    let unit = unit.trim().to_lowercase();
+    let lower = text.trim().to_ascii_lowercase();
+    let unit = unit.trim().to_ascii_lowercase();
     let mut suffixes = vec![unit.clone()];
     if unit == "°" {
         suffixes.extend(["deg".to_owned(), "degrees".to_owned()]);
