@@ -35,3 +35,49 @@ test("without a 2D canvas context the reading tabs still work and the simulation
       assert.ok((await error.innerText()).trim().length > 0, "the error says what is wrong");
     },
   ));
+
+test("when the simulation engine cannot load, the page says so visibly", async () => {
+  // Not withPage: the failed request is the point of this test.
+  const context = await lab.browser.newContext();
+  try {
+    const page = await context.newPage();
+    await page.route(/labweb_bg\.wasm/, (route) => route.abort());
+    await page.goto(`${lab.server.base}index.html#/fk/aim`);
+    const fatal = page.locator("#fatal");
+    await fatal.waitFor({ state: "visible" });
+    assert.match(await fatal.innerText(), /could not|failed/i);
+    assert.match(await page.locator("#app").innerText(), /could not start/);
+  } finally {
+    await context.close();
+  }
+});
+
+test("on a high-DPI screen the canvas backing store matches the device pixels", async () => {
+  const context = await lab.browser.newContext({
+    viewport: { width: 800, height: 700 },
+    deviceScaleFactor: 2,
+  });
+  try {
+    const page = await context.newPage();
+    const errors = [];
+    page.on("pageerror", (e) => errors.push(e.message));
+    await page.goto(`${lab.server.base}index.html#/fk/simulation`);
+    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    await page.waitForFunction(() => document.querySelector("canvas.sim-canvas").width > 300);
+    const size = await page.evaluate(() => {
+      const c = document.querySelector("canvas.sim-canvas");
+      return { css: c.getBoundingClientRect().width, backing: c.width, dpr: devicePixelRatio };
+    });
+    assert.equal(size.dpr, 2);
+    assert.ok(Math.abs(size.backing - size.css * 2) <= 1, `backing ${size.backing} for ${size.css} CSS px`);
+    // Resizing the window resizes the backing store too.
+    await page.setViewportSize({ width: 500, height: 700 });
+    await page.waitForFunction(() => {
+      const c = document.querySelector("canvas.sim-canvas");
+      return Math.abs(c.width - c.getBoundingClientRect().width * 2) <= 1;
+    });
+    assert.deepEqual(errors, []);
+  } finally {
+    await context.close();
+  }
+});
