@@ -22,14 +22,18 @@ thread_local! {
 /// has an `#app` element (test pages mount explicitly with [`boot`]).
 #[wasm_bindgen(start)]
 pub fn start() {
-    std::panic::set_hook(Box::new(|info| {
-        dom::fatal(&format!(
-            "Something went wrong inside the lab ({info}). Reload the page to start again."
-        ));
-    }));
+    std::panic::set_hook(Box::new(|info| report_panic(&info.to_string())));
     if dom::by_id("app").is_some() {
         boot();
     }
+}
+
+/// What the panic hook shows: a visible message on the page, not only a
+/// console line.
+pub fn report_panic(details: &str) {
+    dom::fatal(&format!(
+        "Something went wrong inside the lab ({details}). Reload the page to start again."
+    ));
 }
 
 /// Mounts the application into the current document.

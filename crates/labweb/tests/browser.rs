@@ -185,3 +185,16 @@ impl CountExt for web_sys::Document {
         self.query_selector_all(selector).map_or(0, |l| l.length())
     }
 }
+
+#[wasm_bindgen_test]
+fn a_panic_is_reported_visibly_on_the_page() {
+    mount("#/fk/aim");
+    labweb::report_panic("test panic at sim.rs:1");
+    let fatal = document().get_element_by_id("fatal").unwrap();
+    assert!(!fatal.dyn_ref::<HtmlElement>().unwrap().hidden());
+    let text = fatal.text_content().unwrap();
+    assert!(
+        text.contains("test panic") && text.contains("Reload"),
+        "{text}"
+    );
+}
