@@ -56,6 +56,12 @@ test("ik: a clicked target is solved, the arm animates there, and the elbow togg
     const x = Math.cos(up.t1 * rad) + 0.7 * Math.cos((up.t1 + up.t2) * rad);
     const y = Math.sin(up.t1 * rad) + 0.7 * Math.sin((up.t1 + up.t2) * rad);
     assert.ok(Math.hypot(x - 0.9, y - 0.8) < 0.02, `FK(IK) = (${x}, ${y})`);
+    // Screen readers hear the settled result, not the pose the arm started from.
+    await page.waitForFunction(
+      (t1) => document.querySelector(".sim-live").textContent.includes(`θ₁ solved: ${t1}`),
+      r.theta1,
+    );
+    assert.match(await page.locator(".sim-live").textContent(), /in reach/);
 
     await page.locator("input[data-param=elbow][value='0']").check({ force: true });
     await page.waitForFunction(() => Number.parseFloat(document.querySelector("[data-readout=theta2]").textContent) > 0);

@@ -347,7 +347,16 @@ impl SimState {
         }
     }
 
-    /// Tells screen-reader users the new readouts after an interaction ends.
+    /// Tells screen-reader users the new readouts after an interaction ends;
+    /// while the simulation is still moving, waits until it stops (the frame
+    /// loop announces then).
+    fn announce_when_settled(&self) {
+        if !self.exp.animating() {
+            self.announce();
+        }
+    }
+
+    /// Tells screen-reader users the current status and readouts.
     fn announce(&self) {
         let text: Vec<String> = self
             .exp
@@ -615,7 +624,7 @@ impl SimView {
                 st.exp.input(Input::PointerUp(w));
                 st.needs_paint = true;
                 st.hash_dirty = true;
-                st.announce();
+                st.announce_when_settled();
             }));
         }
         let s = state.clone();
@@ -638,7 +647,7 @@ impl SimView {
             st.exp.input(Input::Nudge(delta));
             st.needs_paint = true;
             st.hash_dirty = true;
-            st.announce();
+            st.announce_when_settled();
         }));
 
         if let Some(form) = query(panel, ".sim-controls") {
@@ -702,7 +711,7 @@ impl SimView {
                         }
                     }
                 }
-                st.announce();
+                st.announce_when_settled();
             }));
         }
         if let Some(actions) = query(panel, ".sim-actions") {
