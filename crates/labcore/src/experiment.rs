@@ -345,6 +345,19 @@ pub trait Experiment {
     }
 }
 
+/// A target point after setting one coordinate from a `tx`/`ty` parameter:
+/// `key` ending in `x` sets x, otherwise y; with no point yet, the other
+/// coordinate comes from `fallback` (usually the current tip).
+#[must_use]
+pub fn with_coordinate(point: Option<DVec2>, fallback: DVec2, key: &str, value: f64) -> DVec2 {
+    let from = point.unwrap_or(fallback);
+    if key.ends_with('x') {
+        DVec2::new(value, from.y)
+    } else {
+        DVec2::new(from.x, value)
+    }
+}
+
 /// Shared helper: look up a spec by key.
 #[must_use]
 pub fn find_spec<'a>(specs: &'a [ParamSpec], key: &str) -> Option<&'a ParamSpec> {

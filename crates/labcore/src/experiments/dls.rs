@@ -6,8 +6,8 @@
 //! singular values and left singular vectors of the Jacobian.
 
 use crate::experiment::{
-    check_param, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status,
-    Tone,
+    check_param, with_coordinate, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout,
+    Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::dls::{AdaptiveDamping, DlsSolver};
@@ -222,12 +222,7 @@ impl Experiment for DampedLeastSquares {
             "guard" => self.safeguards = v >= 0.5,
             "rate" => self.rate_hz = v,
             "tx" | "ty" => {
-                let from = self.target.unwrap_or_else(|| self.tip());
-                self.target = Some(if key == "tx" {
-                    DVec2::new(v, from.y)
-                } else {
-                    DVec2::new(from.x, v)
-                });
+                self.target = Some(with_coordinate(self.target, self.tip(), key, v));
             }
             _ => return Err(ParamError::UnknownKey { key: key.into() }),
         }

@@ -9,7 +9,8 @@
 //! is what the two links solve for.
 
 use crate::experiment::{
-    check_param, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, with_coordinate, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized,
+    Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
@@ -218,12 +219,7 @@ impl Experiment for InverseKinematics {
             "l3" => self.l3_m = v,
             "phi" => self.phi_deg = v,
             "tx" | "ty" => {
-                let from = self.target.unwrap_or_else(|| self.tip());
-                self.target = Some(if key == "tx" {
-                    DVec2::new(v, from.y)
-                } else {
-                    DVec2::new(from.x, v)
-                });
+                self.target = Some(with_coordinate(self.target, self.tip(), key, v));
             }
             _ => return Err(ParamError::UnknownKey { key: key.into() }),
         }
