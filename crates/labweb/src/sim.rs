@@ -347,6 +347,14 @@ impl SimState {
         }
     }
 
+    /// After a pointer release or a keyboard nudge: repaint, put the new state
+    /// in the link, and announce it (once any motion has settled).
+    fn interaction_ended(&mut self) {
+        self.needs_paint = true;
+        self.hash_dirty = true;
+        self.announce_when_settled();
+    }
+
     /// Tells screen-reader users the new readouts after an interaction ends;
     /// while the simulation is still moving, waits until it stops (the frame
     /// loop announces then).
@@ -622,9 +630,7 @@ impl SimView {
                 st.pressed_pointer = None;
                 let w = st.to_world(e);
                 st.exp.input(Input::PointerUp(w));
-                st.needs_paint = true;
-                st.hash_dirty = true;
-                st.announce_when_settled();
+                st.interaction_ended();
             }));
         }
         let s = state.clone();
@@ -645,9 +651,7 @@ impl SimView {
             let fraction = if e.shift_key() { 0.002 } else { 0.02 };
             let delta = dir * (view.max.x - view.min.x) * fraction;
             st.exp.input(Input::Nudge(delta));
-            st.needs_paint = true;
-            st.hash_dirty = true;
-            st.announce_when_settled();
+            st.interaction_ended();
         }));
 
         if let Some(form) = query(panel, ".sim-controls") {
