@@ -4,6 +4,7 @@
 //! calls [`Experiment::step`] with a fixed `dt`, asks for a [`Scene`] and the
 //! [`Readout`]s, and paints them. Nothing here knows about the DOM.
 
+use crate::plot::Plot;
 use crate::scene::{Scene, ViewBox};
 use glam::DVec2;
 use std::fmt;
@@ -324,8 +325,37 @@ pub trait Experiment {
     }
     /// A pointer or keyboard input in world coordinates.
     fn input(&mut self, input: Input);
-    /// Advances the simulation by `dt_s` seconds (fixed step, deterministic).
+    /// Advances the simulation by one fixed step of `dt_s` seconds
+    /// (deterministic). Accepts `0 < dt_s ≤` [`crate::clock::MAX_DT_S`] (the
+    /// shell uses [`crate::clock::Clock::DT_S`]); a NaN, infinite, negative,
+    /// zero or too long step is refused and leaves the state exactly as it
+    /// was (check with [`crate::clock::valid_dt`]).
     fn step(&mut self, dt_s: f64);
+    /// Whether the experiment evolves in time, so the page shows the time
+    /// controls (play/pause, step, speed, reset). Default: no.
+    fn animated(&self) -> bool {
+        false
+    }
+    /// Back to the start of the run (time controls' Reset): the motion, the
+    /// trail, the plots restart; the parameters are kept.
+    fn reset(&mut self) {}
+    /// The live plots, in display order. The page redraws a plot when its
+    /// [`Plot::revision`] changes.
+    fn plots(&self) -> &[Plot] {
+        &[]
+    }
+    /// Whether a pointer pressed at `p` (world) grabs a draggable handle (a
+    /// tip, a target, an obstacle) within `tolerance_m`. On touch screens a
+    /// swipe that starts elsewhere scrolls the page; a tap still acts.
+    fn handle_at(&self, _p: DVec2, _tolerance_m: f64) -> bool {
+        false
+    }
+    /// Whether the canvas must take every touch (e.g. painting walls), so a
+    /// swipe over it never scrolls the page. The page says so and offers a
+    /// way to scroll. Default: no.
+    fn captures_touch(&self) -> bool {
+        false
+    }
     /// The world rectangle the canvas should show.
     fn view(&self) -> ViewBox;
     /// Fills `out` with this frame's display list (cleared first by the caller).

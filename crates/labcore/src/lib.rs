@@ -19,21 +19,27 @@
 //! Every experiment implements [`Experiment`]; [`registry`] lists them with
 //! their content file and quiz generators.
 
+pub mod catalogue;
+pub mod clock;
 pub mod content;
+pub mod content_html;
 pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
 pub mod math;
+pub mod plot;
 pub mod quiz;
 pub mod rng;
 pub mod route;
 pub mod scene;
 
+pub use clock::Clock;
 pub use content::Content;
 pub use experiment::{
     ActionSpec, Experiment, Input, ParamError, ParamKind, ParamSpec, Readout, Sanitized, Status,
     Tone,
 };
 pub use experiments::{find, registry, Entry};
+pub use plot::{Plot, Series, SeriesRole};
 pub use rng::Lcg64;
-pub use scene::{Item, Role, Scene, ViewBox};
+pub use scene::{Item, RasterColour, Role, Scene, ViewBox};

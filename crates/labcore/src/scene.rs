@@ -50,6 +50,16 @@ pub enum Role {
     Warning,
     /// Plain text labels.
     Text,
+    /// The mobile robot's body.
+    Robot,
+    /// Obstacles and walls.
+    Obstacle,
+    /// A planned or best path.
+    Path,
+    /// An estimate (EKF mean and ellipse), a search frontier.
+    Estimate,
+    /// Visited or closed cells, tree edges.
+    Visited,
 }
 
 /// One item of the display list.
@@ -106,6 +116,62 @@ pub enum Item {
         role: Role,
         offset_px: DVec2,
     },
+    /// An open or closed line through points (a trajectory, a trail).
+    Polyline {
+        points: Vec<DVec2>,
+        width_px: f64,
+        role: Role,
+        dashed: bool,
+        closed: bool,
+    },
+    /// A filled polygon with an outline (an obstacle, a cart body).
+    Polygon { points: Vec<DVec2>, role: Role },
+    /// An axis-aligned rectangle, filled with an outline or only stroked.
+    Rect {
+        min: DVec2,
+        max: DVec2,
+        role: Role,
+        fill: bool,
+    },
+    /// An arrow from `from` to `to` (a force, a velocity); the head is sized
+    /// in CSS pixels so short arrows stay readable.
+    Arrow {
+        from: DVec2,
+        to: DVec2,
+        width_px: f64,
+        role: Role,
+    },
+    /// Many arrows of one role drawn as one path (a vector field).
+    Arrows {
+        arrows: Vec<(DVec2, DVec2)>,
+        width_px: f64,
+        role: Role,
+    },
+    /// Many segments of one role drawn as one path (a tree of 100,000 edges).
+    Segments {
+        segments: Vec<(DVec2, DVec2)>,
+        width_px: f64,
+        role: Role,
+    },
+    /// A grid of cells painted as one image: cell `(col, row)` has state
+    /// `cells[row * cols + col]`, row 0 at `min.y`; state `s > 0` takes the
+    /// colour of `palette[s - 1]` and 0 is transparent (an occupancy grid with
+    /// per-cell search states).
+    Raster {
+        min: DVec2,
+        cell_m: f64,
+        cols: usize,
+        rows: usize,
+        cells: Vec<u8>,
+        palette: Vec<RasterColour>,
+    },
+}
+
+/// The colour of one raster state: a role and an opacity in `[0, 1]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RasterColour {
+    pub role: Role,
+    pub alpha: f32,
 }
 
 /// The display list of one frame.
@@ -212,6 +278,21 @@ impl Scene {
                 ..
             } => ok(center) && ok(semi_axis_a) && ok(semi_axis_b),
             Item::Label { pos, .. } => ok(pos),
+            Item::Polyline { points, .. } | Item::Polygon { points, .. } => points.iter().all(ok),
+            Item::Rect { min, max, .. } => ok(min) && ok(max),
+            Item::Arrow { from, to, .. } => ok(from) && ok(to),
+            Item::Arrows { arrows: pairs, .. }
+            | Item::Segments {
+                segments: pairs, ..
+            } => pairs.iter().all(|(a, b)| ok(a) && ok(b)),
+            Item::Raster {
+                min,
+                cell_m,
+                cols,
+                rows,
+                cells,
+                ..
+            } => ok(min) && cell_m.is_finite() && cells.len() >= cols * rows,
         })
     }
 }

@@ -1,10 +1,18 @@
 //! Routing and pages: the home page and the six-tab experiment page.
+//!
+//! `cargo xtask dist` puts the navigation, the home page and every
+//! experiment's article (reading tabs filled in) into `index.html`, and a few
+//! lines of `main.js` show the right one before the wasm arrives. Once the
+//! wasm is ready, this module owns routing: it shows the page the hash names,
+//! mounts the simulation and the quiz into their panels, and keeps the link
+//! complete. Pages missing from the document (test pages) are rendered from
+//! the same [`labcore::content_html`] functions.
 
-use crate::content_view;
 use crate::dom::{self, escape, query, query_all, Listener};
 use crate::quiz_view::{self, Attempt};
 use crate::sim::{self, SimView};
 use labcore::content::Content;
+use labcore::content_html;
 use labcore::route::{self, Page, Tab};
 use labcore::{registry, Entry};
 use std::cell::RefCell;
@@ -12,7 +20,7 @@ use std::rc::Rc;
 use wasm_bindgen::JsCast;
 use web_sys::{Element, Event, HtmlCanvasElement, HtmlElement, KeyboardEvent};
 
-/// The whole application: one mounted page and the hash listener.
+/// The whole application: one mounted page and the history listeners.
 pub struct App {
     root: Element,
     page: Option<Mounted>,
@@ -25,18 +33,24 @@ enum Mounted {
 }
 
 impl App {
-    /// Builds the navigation and routes to the current hash. Returns `None`
-    /// when the page has no `#app` element.
-    pub fn boot(on_hash_change: impl FnMut(Event) + 'static) -> Option<Self> {
+    /// Fills in the navigation if the page has none and routes to the current
+    /// hash. Returns `None` when the page has no `#app` element.
+    pub fn boot(on_hash_change: impl FnMut(Event) + 'static + Clone) -> Option<Self> {
         let root = dom::by_id("app")?;
-        // The nav needs every experiment's title (parsing all content files):
-        // a task of its own keeps the first page's task short.
-        dom::defer(render_nav);
-        let listeners = vec![Listener::new(
-            dom::window().as_ref(),
-            "hashchange",
-            on_hash_change,
-        )];
+        if let Some(nav) = dom::by_id("lab-nav") {
+            if query(&nav, "details").is_none() {
+                nav.set_inner_html(&content_html::nav());
+            }
+        }
+        if let Some(loading) = query(&root, ":scope > .loading") {
+            loading.remove();
+        }
+        // `hashchange` for links and typed hashes; `popstate` for Back and
+        // Forward (routing twice to the same hash changes nothing).
+        let listeners = vec![
+            Listener::new(dom::window().as_ref(), "hashchange", on_hash_change.clone()),
+            Listener::new(dom::window().as_ref(), "popstate", on_hash_change),
+        ];
         let mut app = Self {
             root,
             page: None,
@@ -55,11 +69,12 @@ impl App {
         let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
         let parsed = route::parse(&hash, &ids);
         let mut notices = parsed.notices;
+        close_nav_menu();
         match parsed.page {
             Page::Home => {
                 if !matches!(self.page, Some(Mounted::Home)) {
                     self.page = None;
-                    render_home(&self.root);
+                    show_home(&self.root);
                     self.page = Some(Mounted::Home);
                 }
                 mark_nav(None);
@@ -83,10 +98,11 @@ impl App {
                     if !params.is_empty() {
                         notices.extend(page.apply_params(&params));
                     }
-                    page.select(tab, !same);
-                    // Keep the link complete: after a clamp, and when a nav link
-                    // (no parameters) lands on the experiment already open.
-                    if !notices.is_empty() || (same && params.is_empty()) {
+                    let tab_changed = page.inner.borrow().tab != tab;
+                    page.select(tab, !same || tab_changed);
+                    // Keep the link complete: after a clamp, and when a link
+                    // without parameters lands on the simulation.
+                    if !notices.is_empty() || (params.is_empty() && tab == Tab::Simulation) {
                         page.write_hash();
                     }
                 }
@@ -116,28 +132,16 @@ fn replace_hash(hash: &str) {
     }
 }
 
-fn render_nav() {
-    let Some(nav) = dom::by_id("lab-nav") else {
-        return;
-    };
-    let mut html = String::from("<ul>");
-    for entry in registry() {
-        let (number, title) = match entry.content() {
-            Ok(c) => (c.number.to_string(), c.title.clone()),
-            Err(_) => ("?".into(), entry.id.to_owned()),
-        };
-        html.push_str(&format!(
-            "<li><a href=\"#/{id}/aim\" data-experiment=\"{id}\"><span class=\"num\">{number}</span> {}</a></li>",
-            escape(&title),
-            id = entry.id
-        ));
+/// A new history entry (a page or tab change), so Back returns to it.
+fn push_hash(hash: &str) {
+    if let Ok(history) = dom::window().history() {
+        let _ = history.push_state_with_url(&wasm_bindgen::JsValue::NULL, "", Some(hash));
     }
-    html.push_str("</ul>");
-    nav.set_inner_html(&html);
-    let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
-    let hash = dom::window().location().hash().unwrap_or_default();
-    if let Page::Experiment { id, .. } = route::parse(&hash, &ids).page {
-        mark_nav(Some(&id));
+}
+
+fn close_nav_menu() {
+    if let Some(menu) = dom::by_id("lab-nav").and_then(|n| query(&n, "details[open]")) {
+        let _ = menu.remove_attribute("open");
     }
 }
 
@@ -145,65 +149,71 @@ fn mark_nav(current: Option<&str>) {
     let Some(nav) = dom::by_id("lab-nav") else {
         return;
     };
+    let mut label = String::new();
     for a in query_all(&nav, "a[data-experiment]") {
         if current.is_some() && a.get_attribute("data-experiment").as_deref() == current {
             let _ = a.set_attribute("aria-current", "page");
-            // The nav scrolls sideways on narrow screens: keep the current one
-            // visible (at the next frame, when layout is done anyway).
-            dom::next_frame(move || {
-                if a.is_connected() {
-                    let options = web_sys::ScrollIntoViewOptions::new();
-                    options.set_block(web_sys::ScrollLogicalPosition::Nearest);
-                    options.set_inline(web_sys::ScrollLogicalPosition::Nearest);
-                    a.scroll_into_view_with_scroll_into_view_options(&options);
-                }
-            });
+            if let Some(num) = query(&a, ".num") {
+                label = format!("Experiment {}", num.text_content().unwrap_or_default());
+            }
         } else {
             let _ = a.remove_attribute("aria-current");
         }
     }
+    if let Some(span) = query(&nav, ".nav-current") {
+        span.set_text_content(Some(&if label.is_empty() {
+            String::new()
+        } else {
+            format!(" · {label}")
+        }));
+    }
 }
 
-fn render_home(root: &Element) {
-    let mut cards = String::new();
-    for entry in registry() {
-        let (number, title, summary) = match entry.content() {
-            Ok(c) => (c.number, c.title.clone(), c.summary.clone()),
-            Err(e) => (0, entry.id.to_owned(), e.to_string()),
-        };
-        cards.push_str(&format!(
-            "<li><a class=\"card\" href=\"#/{id}/aim\" data-experiment=\"{id}\">\
-             <canvas class=\"card-pic\" aria-hidden=\"true\"></canvas>\
-             <span class=\"card-num\">Experiment {number}</span>\
-             <span class=\"card-title\">{title}</span>\
-             <span class=\"card-summary\">{summary}</span></a></li>",
-            id = entry.id,
-            title = escape(&title),
-            summary = escape(&summary),
-        ));
+/// Shows the home page (rendering it if the document has none) and hides
+/// every experiment article.
+fn show_home(root: &Element) {
+    for article in query_all(root, "article.exp") {
+        dom::set_hidden(&article, true);
     }
-    root.set_inner_html(&format!(
-        "<section class=\"home\"><h1>Robot kinematics, planning and control</h1>\
-         <p class=\"lede\">Each experiment pairs the theory with a live simulation you can touch: \
-         drag the arm, change a parameter, watch the numbers respond. Every experiment has an aim, \
-         the theory with its formulas, a step-by-step procedure, a graded self-assessment and references.</p>\
-         <ul class=\"cards\">{cards}</ul></section>"
-    ));
-    // One task per picture: each preview computes a little (a workspace
-    // sweep, an IK solve), and together they would make one long task.
-    for (canvas, entry) in query_all(root, "canvas.card-pic")
-        .into_iter()
-        .zip(registry())
-    {
-        if let Ok(canvas) = canvas.dyn_into::<HtmlCanvasElement>() {
-            dom::defer(move || {
-                if canvas.is_connected() {
-                    let mut exp = (entry.make)();
-                    exp.preview();
-                    sim::paint_thumbnail(&canvas, exp.as_ref());
-                }
-            });
+    let home = match query(root, "[data-page=home]") {
+        Some(home) => home,
+        None => {
+            let _ = root.insert_adjacent_html("afterbegin", &content_html::home(|_| String::new()));
+            let Some(home) = query(root, "[data-page=home]") else {
+                return;
+            };
+            home
         }
+    };
+    dom::set_hidden(&home, false);
+    // Cards without a picture get one painted from the experiment's preview
+    // state, one task per picture (each preview computes a little).
+    for pic in query_all(&home, ".card-pic:empty") {
+        let Some(id) = pic
+            .closest("[data-experiment]")
+            .ok()
+            .flatten()
+            .and_then(|c| c.get_attribute("data-experiment"))
+        else {
+            continue;
+        };
+        let Some(entry) = labcore::find(&id) else {
+            continue;
+        };
+        let Ok(canvas) = dom::document()
+            .create_element("canvas")
+            .and_then(|c| c.dyn_into::<HtmlCanvasElement>().map_err(Into::into))
+        else {
+            continue;
+        };
+        let _ = pic.append_child(&canvas);
+        dom::defer(move || {
+            if canvas.is_connected() {
+                let mut exp = (entry.make)();
+                exp.preview();
+                sim::paint_thumbnail(&canvas, exp.as_ref());
+            }
+        });
     }
     dom::next_frame(|| dom::window().scroll_to_with_x_and_y(0.0, 0.0));
 }
@@ -229,55 +239,36 @@ fn random_seed() -> u64 {
     (js_sys::Math::random() * 1e9).floor() as u64
 }
 
+/// The experiment's article: the pre-rendered one, or a new one.
+fn find_or_render_article(app_root: &Element, entry: &'static Entry) -> Element {
+    let selector = format!("article.exp[data-experiment=\"{}\"]", entry.id);
+    if let Some(article) = query(app_root, &selector) {
+        return article;
+    }
+    let html = content_html::article(entry.id, entry.content().map_err(|e| e.to_string()));
+    let _ = app_root.insert_adjacent_html("beforeend", &html);
+    query(app_root, &selector).unwrap_or_else(|| app_root.clone())
+}
+
 impl ExperimentPage {
     fn mount(app_root: &Element, entry: &'static Entry) -> Self {
         let content = entry.content();
-        let (number, title, summary) = match &content {
-            Ok(c) => (c.number.to_string(), c.title.clone(), c.summary.clone()),
-            Err(_) => (String::new(), entry.id.to_owned(), String::new()),
-        };
-        let mut tabs = String::new();
-        let mut panels = String::new();
-        for tab in Tab::ALL {
-            let slug = tab.slug();
-            tabs.push_str(&format!(
-                "<button type=\"button\" role=\"tab\" id=\"tab-{slug}\" data-tab=\"{slug}\" \
-                 aria-controls=\"panel-{slug}\" aria-selected=\"false\" tabindex=\"-1\">{}</button>",
-                tab.title()
-            ));
-            let body = match (&content, tab) {
-                (Ok(c), Tab::Aim) => content_view::aim(c),
-                (Ok(c), Tab::Theory) => content_view::theory(c),
-                (Ok(c), Tab::Procedure) => content_view::procedure(c),
-                (Ok(c), Tab::References) => content_view::references(c),
-                (Ok(_), Tab::Quiz) => "<form class=\"quiz\" novalidate></form>".to_owned(),
-                (_, Tab::Simulation) => String::new(),
-                (Err(e), _) => content_view::content_error(&e.to_string()),
-            };
-            panels.push_str(&format!(
-                "<section role=\"tabpanel\" id=\"panel-{slug}\" data-panel=\"{slug}\" \
-                 aria-labelledby=\"tab-{slug}\" tabindex=\"0\" hidden><h2 class=\"panel-title\">{}</h2>{body}</section>",
-                tab.title()
-            ));
+        if let Some(home) = query(app_root, "[data-page=home]") {
+            dom::set_hidden(&home, true);
         }
-        app_root.set_inner_html(&format!(
-            "<article class=\"exp\" data-experiment=\"{id}\">\
-             <header class=\"exp-head\"><p class=\"exp-num\">Experiment {number}</p>\
-             <h1 tabindex=\"-1\">{title}</h1><p class=\"exp-summary\">{summary}</p></header>\
-             <div role=\"tablist\" class=\"tabs\" aria-label=\"Sections of this experiment\">{tabs}</div>\
-             {panels}</article>",
-            id = entry.id,
-            title = escape(&title),
-            summary = escape(&summary),
-        ));
+        for other in query_all(app_root, "article.exp") {
+            dom::set_hidden(&other, true);
+        }
+        let root = find_or_render_article(app_root, entry);
+        dom::set_hidden(&root, false);
+        let title = content.as_ref().map_or(entry.id, |c| c.title.as_str());
         dom::document().set_title(&format!("{title} — Robotics virtual lab"));
-        let root = query(app_root, "article.exp").unwrap_or_else(|| app_root.clone());
 
         // The simulation: its failure must not take the reading tabs down.
         let sim = query(&root, "[data-panel=simulation]").and_then(|panel| {
             let exp = (entry.make)();
             let caption = escape(exp.hint());
-            let title = panel.inner_html();
+            let title = query(&panel, ".panel-title").map_or(String::new(), |h| h.outer_html());
             panel.set_inner_html(&format!("{title}{}", sim::render(exp.as_ref(), &caption)));
             match SimView::mount(&panel, exp) {
                 Ok(view) => Some(view),
@@ -305,21 +296,8 @@ impl ExperimentPage {
 
         let mut listeners = Vec::new();
         if let Some(tablist) = query(&root, "[role=tablist]") {
-            let page = inner.clone();
-            listeners.push(Listener::new(tablist.as_ref(), "click", move |e: Event| {
-                let Some(tab) = e
-                    .target()
-                    .and_then(|t| t.dyn_into::<Element>().ok())
-                    .and_then(|el| el.closest("[role=tab]").ok().flatten())
-                    .and_then(|el| el.get_attribute("data-tab"))
-                    .and_then(|slug| Tab::from_slug(&slug))
-                else {
-                    return;
-                };
-                let mut p = page.borrow_mut();
-                p.select(tab, false);
-                p.write_hash();
-            }));
+            // Tabs are links (they work before the wasm); arrow keys move
+            // between them as in any tab list.
             let page = inner.clone();
             listeners.push(Listener::new(
                 tablist.as_ref(),
@@ -328,7 +306,7 @@ impl ExperimentPage {
                     let Some(e) = e.dyn_ref::<KeyboardEvent>() else {
                         return;
                     };
-                    let mut p = page.borrow_mut();
+                    let p = page.borrow();
                     let i = Tab::ALL.iter().position(|t| *t == p.tab).unwrap_or(0);
                     let n = Tab::ALL.len();
                     let next = match e.key().as_str() {
@@ -336,15 +314,20 @@ impl ExperimentPage {
                         "ArrowLeft" => (i + n - 1) % n,
                         "Home" => 0,
                         "End" => n - 1,
+                        " " => i,
                         _ => return,
                     };
                     e.prevent_default();
-                    p.select(Tab::ALL[next], false);
-                    p.write_hash();
-                    if let Some(btn) = query(&p.root, &format!("#tab-{}", Tab::ALL[next].slug())) {
-                        if let Some(h) = btn.dyn_ref::<HtmlElement>() {
-                            let _ = h.focus();
-                        }
+                    let hash = format!("#/{}/{}", p.id, Tab::ALL[next].slug());
+                    let tab_el = query(
+                        &p.root,
+                        &format!("[role=tab][data-tab={}]", Tab::ALL[next].slug()),
+                    );
+                    drop(p);
+                    push_hash(&hash);
+                    crate::reroute();
+                    if let Some(h) = tab_el.as_ref().and_then(|t| t.dyn_ref::<HtmlElement>()) {
+                        let _ = h.focus();
                     }
                 },
             ));
@@ -405,9 +388,9 @@ impl ExperimentPage {
         }
     }
 
-    fn select(&mut self, tab: Tab, fresh: bool) {
+    fn select(&mut self, tab: Tab, scroll_top: bool) {
         let mut p = self.inner.borrow_mut();
-        p.select(tab, fresh);
+        p.select(tab, scroll_top);
     }
 
     fn write_hash(&self) {
@@ -418,13 +401,14 @@ impl ExperimentPage {
 impl PageInner {
     fn select(&mut self, tab: Tab, scroll_top: bool) {
         self.tab = tab;
+        let _ = self.root.set_attribute("data-tab", tab.slug());
         for t in Tab::ALL {
             let on = t == tab;
-            if let Some(btn) = query(&self.root, &format!("#tab-{}", t.slug())) {
+            if let Some(btn) = query(&self.root, &format!("[role=tab][data-tab={}]", t.slug())) {
                 let _ = btn.set_attribute("aria-selected", if on { "true" } else { "false" });
                 let _ = btn.set_attribute("tabindex", if on { "0" } else { "-1" });
             }
-            if let Some(panel) = query(&self.root, &format!("#panel-{}", t.slug())) {
+            if let Some(panel) = query(&self.root, &format!("[data-panel={}]", t.slug())) {
                 dom::set_hidden(&panel, !on);
             }
         }
@@ -455,7 +439,7 @@ impl PageInner {
                 form.set_inner_html(&quiz_view::render(&attempt));
                 self.attempt = Some(attempt);
             }
-            Err(e) => form.set_inner_html(&content_view::content_error(&e.to_string())),
+            Err(e) => form.set_inner_html(&content_html::content_error(&e.to_string())),
         }
     }
 }

@@ -33,22 +33,7 @@ pub fn query_all(root: &Element, selector: &str) -> Vec<Element> {
         .collect()
 }
 
-/// Escapes text for inclusion in HTML (content and attribute values).
-#[must_use]
-pub fn escape(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            _ => out.push(c),
-        }
-    }
-    out
-}
+pub use labcore::content_html::escape;
 
 pub fn set_hidden(el: &Element, hidden: bool) {
     if let Some(h) = el.dyn_ref::<HtmlElement>() {

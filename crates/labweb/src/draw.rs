@@ -5,7 +5,7 @@
 //! is `devicePixelRatio` times larger so lines stay crisp.
 
 use glam::DVec2;
-use labcore::{Item, Role, Scene, ViewBox};
+use labcore::{Item, RasterColour, Role, Scene, ViewBox};
 use std::f64::consts::TAU;
 use wasm_bindgen::JsValue;
 use web_sys::{CanvasRenderingContext2d, Element};
@@ -14,8 +14,15 @@ use web_sys::{CanvasRenderingContext2d, Element};
 #[derive(Clone, Debug)]
 pub struct Palette {
     colours: Vec<(Role, String)>,
+    vars: Vec<(&'static str, String)>,
     pub background: String,
 }
+
+/// Other theme colours the plots use.
+const PLOT_VARS: &[&str] = &[
+    "--p-1", "--p-2", "--p-3", "--p-4", "--p-5", "--p-6", "--p-band", "--c-text", "--c-grid",
+    "--muted",
+];
 
 const ROLE_VARS: &[(Role, &str)] = &[
     (Role::Grid, "--c-grid"),
@@ -30,6 +37,11 @@ const ROLE_VARS: &[(Role, &str)] = &[
     (Role::Accent, "--c-accent"),
     (Role::Warning, "--c-warning"),
     (Role::Text, "--c-text"),
+    (Role::Robot, "--c-robot"),
+    (Role::Obstacle, "--c-obstacle"),
+    (Role::Path, "--c-path"),
+    (Role::Estimate, "--c-estimate"),
+    (Role::Visited, "--c-visited"),
 ];
 
 impl Palette {
@@ -49,11 +61,20 @@ impl Palette {
                 .iter()
                 .map(|(role, var)| (*role, read(var, "#888")))
                 .collect(),
+            vars: PLOT_VARS.iter().map(|v| (*v, read(v, "#888"))).collect(),
             background: read("--c-canvas", "#fff"),
         }
     }
 
-    fn colour(&self, role: Role) -> &str {
+    /// A theme colour by its CSS custom property name (see [`PLOT_VARS`]).
+    pub fn var(&self, name: &str) -> String {
+        self.vars
+            .iter()
+            .find(|(v, _)| *v == name)
+            .map_or_else(|| "#888".to_owned(), |(_, c)| c.clone())
+    }
+
+    pub fn colour(&self, role: Role) -> &str {
         self.colours
             .iter()
             .find(|(r, _)| *r == role)
@@ -253,9 +274,200 @@ pub fn paint(
                 ctx.set_fill_style_str(palette.colour(*role));
                 let _ = ctx.fill_text(text, x, y);
             }
+            Item::Polyline {
+                points,
+                width_px,
+                role,
+                dashed,
+                closed,
+            } => {
+                if points.len() < 2 {
+                    continue;
+                }
+                trace_polyline(ctx, viewport, points, *closed);
+                ctx.set_stroke_style_str(palette.colour(*role));
+                ctx.set_line_width(*width_px);
+                set_dash(ctx, *dashed);
+                ctx.stroke();
+            }
+            Item::Polygon { points, role } => {
+                if points.len() < 3 {
+                    continue;
+                }
+                trace_polyline(ctx, viewport, points, true);
+                fill_and_outline(ctx, palette.colour(*role));
+            }
+            Item::Rect {
+                min,
+                max,
+                role,
+                fill,
+            } => {
+                let (a, b) = (viewport.to_px(*min), viewport.to_px(*max));
+                ctx.begin_path();
+                ctx.rect(
+                    a.x.min(b.x),
+                    a.y.min(b.y),
+                    (b.x - a.x).abs(),
+                    (b.y - a.y).abs(),
+                );
+                if *fill {
+                    fill_and_outline(ctx, palette.colour(*role));
+                } else {
+                    ctx.set_stroke_style_str(palette.colour(*role));
+                    ctx.set_line_width(2.0);
+                    set_dash(ctx, false);
+                    ctx.stroke();
+                }
+            }
+            Item::Arrow {
+                from,
+                to,
+                width_px,
+                role,
+            } => {
+                ctx.begin_path();
+                trace_arrow(ctx, viewport.to_px(*from), viewport.to_px(*to), *width_px);
+                ctx.set_stroke_style_str(palette.colour(*role));
+                ctx.set_line_width(*width_px);
+                set_dash(ctx, false);
+                ctx.stroke();
+            }
+            Item::Arrows {
+                arrows,
+                width_px,
+                role,
+            } => {
+                ctx.begin_path();
+                for (from, to) in arrows {
+                    trace_arrow(ctx, viewport.to_px(*from), viewport.to_px(*to), *width_px);
+                }
+                ctx.set_stroke_style_str(palette.colour(*role));
+                ctx.set_line_width(*width_px);
+                set_dash(ctx, false);
+                ctx.stroke();
+            }
+            Item::Segments {
+                segments,
+                width_px,
+                role,
+            } => {
+                // One path, one stroke: 100,000 edges cost one draw call.
+                ctx.begin_path();
+                for (a, b) in segments {
+                    let (a, b) = (viewport.to_px(*a), viewport.to_px(*b));
+                    ctx.move_to(a.x, a.y);
+                    ctx.line_to(b.x, b.y);
+                }
+                ctx.set_stroke_style_str(palette.colour(*role));
+                ctx.set_line_width(*width_px);
+                set_dash(ctx, false);
+                ctx.stroke();
+            }
+            Item::Raster {
+                min,
+                cell_m,
+                cols,
+                rows,
+                cells,
+                palette: states,
+            } => paint_raster(
+                ctx,
+                viewport,
+                palette,
+                *min,
+                *cell_m,
+                (*cols, *rows),
+                cells,
+                states,
+            ),
         }
     }
     ctx.set_global_alpha(1.0);
+}
+
+fn trace_polyline(
+    ctx: &CanvasRenderingContext2d,
+    viewport: &Viewport,
+    points: &[DVec2],
+    closed: bool,
+) {
+    ctx.begin_path();
+    for (i, p) in points.iter().enumerate() {
+        let q = viewport.to_px(*p);
+        if i == 0 {
+            ctx.move_to(q.x, q.y);
+        } else {
+            ctx.line_to(q.x, q.y);
+        }
+    }
+    if closed {
+        ctx.close_path();
+    }
+}
+
+/// Fills the current path translucently and outlines it in the same colour.
+fn fill_and_outline(ctx: &CanvasRenderingContext2d, colour: &str) {
+    ctx.set_fill_style_str(colour);
+    ctx.set_global_alpha(0.35);
+    ctx.fill();
+    ctx.set_global_alpha(1.0);
+    ctx.set_stroke_style_str(colour);
+    ctx.set_line_width(2.0);
+    set_dash(ctx, false);
+    ctx.stroke();
+}
+
+/// Adds a shaft and a two-stroke head (sized in pixels) to the current path.
+fn trace_arrow(ctx: &CanvasRenderingContext2d, a: DVec2, b: DVec2, width_px: f64) {
+    let d = b - a;
+    let len = d.length();
+    if len.is_nan() || len <= 0.5 {
+        return;
+    }
+    ctx.move_to(a.x, a.y);
+    ctx.line_to(b.x, b.y);
+    let head = (4.0 + 2.5 * width_px).min(len * 0.5);
+    let u = d / len;
+    let n = DVec2::new(-u.y, u.x);
+    let back = b - u * head;
+    ctx.move_to(back.x + n.x * head * 0.5, back.y + n.y * head * 0.5);
+    ctx.line_to(b.x, b.y);
+    ctx.line_to(back.x - n.x * head * 0.5, back.y - n.y * head * 0.5);
+}
+
+/// Cell states as one RGBA image drawn by a single `drawImage`.
+#[allow(clippy::too_many_arguments)]
+fn paint_raster(
+    ctx: &CanvasRenderingContext2d,
+    viewport: &Viewport,
+    palette: &Palette,
+    min: DVec2,
+    cell_m: f64,
+    (cols, rows): (usize, usize),
+    cells: &[u8],
+    states: &[RasterColour],
+) {
+    if cols == 0 || rows == 0 || cells.len() < cols * rows {
+        return;
+    }
+    let lut: Vec<[u8; 4]> = states
+        .iter()
+        .map(|s| {
+            let [r, g, b] = hex_rgb(palette.colour(s.role));
+            [r, g, b, (s.alpha.clamp(0.0, 1.0) * 255.0) as u8]
+        })
+        .collect();
+    let mut rgba = vec![0u8; cols * rows * 4];
+    for row in 0..rows {
+        let out_row = (rows - 1 - row) * cols * 4;
+        for (col, &state) in cells[row * cols..(row + 1) * cols].iter().enumerate() {
+            if let Some(c) = (state as usize).checked_sub(1).and_then(|i| lut.get(i)) {
+                rgba[out_row + col * 4..out_row + col * 4 + 4].copy_from_slice(c);
+            }
+        }
+    }
+    blit(ctx, viewport, &rgba, min, cell_m, cols, rows);
 }
 
 /// `#rrggbb` → RGB; anything else gives a mid grey.
@@ -307,10 +519,26 @@ fn paint_heatmap(
             }
         }
     }
+    blit(ctx, viewport, &rgba, min, cell_m, cols, rows);
+}
+
+/// Draws an RGBA image of `cols` × `rows` cells (top row first) scaled onto
+/// the world rectangle starting at `min` with square cells of `cell_m`.
+fn blit(
+    ctx: &CanvasRenderingContext2d,
+    viewport: &Viewport,
+    rgba: &[u8],
+    min: DVec2,
+    cell_m: f64,
+    cols: usize,
+    rows: usize,
+) {
     HEATMAP_CANVAS.with(|offscreen| {
         let Some(offscreen) = offscreen else { return };
-        offscreen.set_width(cols as u32);
-        offscreen.set_height(rows as u32);
+        if offscreen.width() != cols as u32 || offscreen.height() != rows as u32 {
+            offscreen.set_width(cols as u32);
+            offscreen.set_height(rows as u32);
+        }
         let Some(octx) = offscreen
             .get_context("2d")
             .ok()
@@ -320,7 +548,7 @@ fn paint_heatmap(
             return;
         };
         let Ok(image) = web_sys::ImageData::new_with_u8_clamped_array_and_sh(
-            wasm_bindgen::Clamped(&rgba),
+            wasm_bindgen::Clamped(rgba),
             cols as u32,
             rows as u32,
         ) else {
@@ -329,7 +557,7 @@ fn paint_heatmap(
         let _ = octx.put_image_data(&image, 0.0, 0.0);
         let top_left = viewport.to_px(min + DVec2::new(0.0, rows as f64 * cell_m));
         let size = cell_m * viewport.scale_px_per_m;
-        // Crisp cells: smoothing would smear density outside the reachable annulus.
+        // Crisp cells: smoothing would smear them across boundaries.
         ctx.set_image_smoothing_enabled(false);
         let _ = ctx.draw_image_with_html_canvas_element_and_dw_and_dh(
             offscreen,

@@ -5,9 +5,9 @@
 //! lives in `labcore`.
 
 pub mod app;
-pub mod content_view;
 pub mod dom;
 pub mod draw;
+pub mod plot_view;
 pub mod quiz_view;
 pub mod sim;
 
@@ -39,13 +39,7 @@ pub fn report_panic(details: &str) {
 /// Mounts the application into the current document.
 #[wasm_bindgen]
 pub fn boot() {
-    let app = app::App::boot(|_| {
-        APP.with(|a| {
-            if let Some(app) = a.borrow_mut().as_mut() {
-                app.route();
-            }
-        });
-    });
+    let app = app::App::boot(|_| reroute());
     APP.with(|a| *a.borrow_mut() = app);
 }
 
@@ -63,8 +57,11 @@ pub fn paint_now() {
 #[wasm_bindgen]
 pub fn reroute() {
     APP.with(|a| {
-        if let Some(app) = a.borrow_mut().as_mut() {
-            app.route();
+        // A route triggered while routing (a nested event) is a no-op.
+        if let Ok(mut app) = a.try_borrow_mut() {
+            if let Some(app) = app.as_mut() {
+                app.route();
+            }
         }
     });
 }

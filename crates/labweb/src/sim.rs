@@ -7,7 +7,9 @@
 
 use crate::dom::{self, escape, query, query_all, Listener};
 use crate::draw::{paint, Palette, Viewport};
+use crate::plot_view::{self, PlotView};
 use glam::DVec2;
+use labcore::clock::{Clock, SPEEDS};
 use labcore::quiz::format_number;
 use labcore::route::{self, Tab};
 use labcore::{Experiment, Input, ParamKind, ParamSpec, Sanitized, Scene};
@@ -20,10 +22,10 @@ use web_sys::{
     HtmlSelectElement, KeyboardEvent, PointerEvent, ResizeObserver,
 };
 
-/// Fixed simulation step, seconds.
-const DT_S: f64 = 1.0 / 60.0;
-/// At most this many fixed steps per frame (after a stall the sim slows down instead of freezing).
-const MAX_STEPS_PER_FRAME: usize = 8;
+/// How close (CSS pixels) a touch must start to a handle to grab it.
+const TOUCH_GRAB_PX: f64 = 28.0;
+/// A touch that moves this far (CSS pixels) without the browser scrolling becomes a drag.
+const TOUCH_SLOP_PX: f64 = 10.0;
 /// Minimum time between URL updates while a control moves, milliseconds.
 const HASH_INTERVAL_MS: f64 = 250.0;
 
@@ -50,27 +52,88 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
         .collect();
     let readouts = readouts_html(&exp.readouts());
     let status = exp.status();
+    let timebar = if exp.animated() {
+        timebar_html()
+    } else {
+        String::new()
+    };
+    let plots: String = exp.plots().iter().map(plot_view::render).collect();
+    let plots = if plots.is_empty() {
+        String::new()
+    } else {
+        format!("<section class=\"plots\" aria-label=\"Plots\">{plots}</section>")
+    };
+    let touch_note = if exp.captures_touch() {
+        "<p class=\"touch-note\">On a touch screen this canvas takes every touch; scroll the page by the margin beside it.</p>"
+    } else {
+        ""
+    };
     format!(
         "<div class=\"sim\">\
            <div class=\"sim-stage\">\
              <p class=\"sim-caption\">{caption}</p>\
              <div class=\"sim-frame\">\
-               <canvas class=\"sim-canvas\" tabindex=\"0\" role=\"application\" aria-roledescription=\"simulation\" \
-                 aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps).\"></canvas>\
+               <canvas class=\"sim-canvas\" data-touch=\"{touch}\" tabindex=\"0\" role=\"application\" aria-roledescription=\"simulation\" \
+                 aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps){keys}.\"></canvas>\
                <p class=\"sim-status\" role=\"status\" data-tone=\"{tone}\">{text}</p>\
-             </div>\
-             <div class=\"sim-actions\">{actions}</div>\
+             </div>{touch_note}\
+             {timebar}\
+             <div class=\"sim-actions\">{actions}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button></div>\
            </div>\
            <div class=\"sim-side\">\
-             <form class=\"sim-controls\" aria-label=\"Parameters\" onsubmit=\"return false\">{controls}</form>\
-             <p class=\"sim-message\" role=\"alert\" hidden></p>\
              <dl class=\"readouts\">{readouts}</dl>\
+             <p class=\"sim-message\" role=\"alert\" hidden></p>\
+             <form class=\"sim-controls\" aria-label=\"Parameters\" onsubmit=\"return false\">{controls}</form>\
              <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
            </div>\
+           {plots}\
          </div>",
         tone = tone_name(status.tone),
         text = escape(&status.text),
+        touch = if exp.captures_touch() { "all" } else { "handles" },
+        keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
     )
+}
+
+/// Time-control icons (inline SVG: no icon font, no emoji fallback boxes).
+const ICON_PAUSE: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M3 2h3.5v12H3zM9.5 2H13v12H9.5z\"/></svg>";
+const ICON_PLAY: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M3 1.5v13l11-6.5z\"/></svg>";
+const ICON_STEP: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M2 2v12l8-6zM11 2h3v12h-3z\"/></svg>";
+const ICON_RESET: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"none\" stroke=\"currentColor\" stroke-width=\"2\" d=\"M3.5 6A5 5 0 1 1 3 9.5\"/><path fill=\"currentColor\" d=\"M1 2.5l5 .5-3 4z\"/></svg>";
+
+/// The shell's time controls: the same widget, place and keys in every
+/// animated experiment.
+fn timebar_html() -> String {
+    let speeds: String = SPEEDS
+        .iter()
+        .map(|v| {
+            let sel = if *v == 1.0 { " selected" } else { "" };
+            format!("<option value=\"{v}\"{sel}>{}×</option>", speed_label(*v))
+        })
+        .collect();
+    format!(
+        "<div class=\"timebar\" role=\"group\" aria-label=\"Time controls\">\
+         <button type=\"button\" class=\"tb-play\" data-time=\"play\" aria-pressed=\"true\" aria-keyshortcuts=\"Space\">\
+         <span class=\"tb-icon\">{ICON_PAUSE}</span> <span class=\"tb-label\">Pause</span></button>\
+         <button type=\"button\" data-time=\"step\" aria-keyshortcuts=\".\" title=\"One step (key .)\">{ICON_STEP} Step</button>\
+         <label class=\"tb-speed\">Playback <select data-time=\"speed\">{speeds}</select></label>\
+         <button type=\"button\" data-time=\"reset\">{ICON_RESET} Reset</button>\
+         <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output></div>"
+    )
+}
+
+fn speed_label(v: f64) -> &'static str {
+    if v == 0.25 {
+        "¼"
+    } else if v == 0.5 {
+        "½"
+    } else if v == 2.0 {
+        "2"
+    } else if v == 4.0 {
+        "4"
+    } else {
+        "1"
+    }
 }
 
 fn readouts_html(readouts: &[labcore::Readout]) -> String {
@@ -175,8 +238,14 @@ struct SimState {
     css_size: (f64, f64),
     dpr: f64,
     pressed_pointer: Option<i32>,
+    /// A touch that started off every handle: a tap if it lifts in place, a
+    /// scroll if the browser takes it, a drag if it moves sideways.
+    pending_touch: Option<(i32, DVec2, DVec2)>,
     last_time_ms: Option<f64>,
-    accumulator_s: f64,
+    clock: Clock,
+    plots: PlotView,
+    plots_force: bool,
+    shown_time: (bool, f64, u64),
     needs_paint: bool,
     /// What each control shows; `None` = unknown (refresh it), `Some(None)` = empty.
     shown_values: Vec<Option<Option<f64>>>,
@@ -251,18 +320,17 @@ impl SimState {
         let start = dom::now_ms();
         let elapsed_s = self
             .last_time_ms
-            .map_or(0.0, |last| ((time_ms - last) / 1000.0).clamp(0.0, 0.25));
+            .map_or(0.0, |last| (time_ms - last) / 1000.0);
         self.last_time_ms = Some(time_ms);
-        self.accumulator_s += elapsed_s;
         let was_animating = self.exp.animating();
-        let mut steps = 0;
-        while self.accumulator_s >= DT_S && steps < MAX_STEPS_PER_FRAME {
-            self.exp.step(DT_S);
-            self.accumulator_s -= DT_S;
-            steps += 1;
-        }
-        if steps == MAX_STEPS_PER_FRAME {
-            self.accumulator_s = 0.0;
+        // An idle experiment's clock does not tick (t counts motion only).
+        let steps = if was_animating || !self.exp.animated() {
+            self.clock.advance(elapsed_s)
+        } else {
+            0
+        };
+        for _ in 0..steps {
+            self.exp.step(Clock::DT_S);
         }
         let stopped = was_animating && !self.exp.animating();
         if stopped {
@@ -281,12 +349,103 @@ impl SimState {
             self.sync_dom();
             self.needs_paint = false;
         }
+        self.plots
+            .draw(self.exp.plots(), &self.palette, self.plots_force);
+        self.plots_force = false;
+        self.sync_timebar();
         if self.hash_dirty && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS {
             self.write_hash();
             self.last_hash_ms = time_ms;
         }
         if busy {
             self.frame_times.record(dom::now_ms() - start, &self.canvas);
+        }
+    }
+
+    /// One fixed step from a pause (the Step button and the `.` key).
+    fn single_step(&mut self) {
+        let was_animating = self.exp.animating();
+        for _ in 0..self.clock.single_step() {
+            self.exp.step(Clock::DT_S);
+        }
+        self.needs_paint = true;
+        self.hash_dirty = true;
+        if was_animating && !self.exp.animating() {
+            self.announce();
+        }
+    }
+
+    fn set_running(&mut self, running: bool) {
+        self.clock.set_running(running);
+        self.last_time_ms = None;
+        self.hash_dirty = true;
+    }
+
+    fn reset_run(&mut self) {
+        self.exp.reset();
+        self.clock.reset();
+        self.needs_paint = true;
+        self.hash_dirty = true;
+        self.plots_force = true;
+    }
+
+    /// Brings the play button, the speed and the time read-out up to date.
+    fn sync_timebar(&mut self) {
+        let now = (self.clock.running(), self.clock.speed(), self.clock.steps());
+        if now == self.shown_time {
+            return;
+        }
+        let _ = self.canvas.set_attribute("data-steps", &now.2.to_string());
+        if let Some(bar) = query(&self.panel, ".timebar") {
+            if now.0 != self.shown_time.0 {
+                if let Some(play) = query(&bar, ".tb-play") {
+                    let _ =
+                        play.set_attribute("aria-pressed", if now.0 { "true" } else { "false" });
+                    if let Some(icon) = query(&play, ".tb-icon") {
+                        icon.set_inner_html(if now.0 { ICON_PAUSE } else { ICON_PLAY });
+                    }
+                    if let Some(label) = query(&play, ".tb-label") {
+                        label.set_text_content(Some(if now.0 { "Pause" } else { "Play" }));
+                    }
+                }
+            }
+            if now.1 != self.shown_time.1 {
+                if let Some(select) = query(&bar, "select[data-time=speed]")
+                    .and_then(|e| e.dyn_into::<HtmlSelectElement>().ok())
+                {
+                    select.set_value(&format!("{}", now.1));
+                }
+            }
+            if let Some(out) = query(&bar, ".tb-time") {
+                out.set_text_content(Some(&format!("t = {:.2} s", self.clock.time_s())));
+            }
+        }
+        self.shown_time = now;
+    }
+
+    /// The link of the current state: the experiment's parameters, then the
+    /// shell's own (`run=0` when paused, `speed` when not 1×).
+    fn link(&self) -> String {
+        let mut hash = route::format(self.exp.as_ref(), Tab::Simulation);
+        let mut extra = Vec::new();
+        if self.exp.animated() && !self.clock.running() {
+            extra.push("run=0".to_owned());
+        }
+        if self.clock.speed() != 1.0 {
+            extra.push(format!("speed={}", self.clock.speed()));
+        }
+        if !extra.is_empty() {
+            hash.push(if hash.contains('?') { '&' } else { '?' });
+            hash.push_str(&extra.join("&"));
+        }
+        hash
+    }
+
+    /// File names of exports: the experiment, the seed where there is one.
+    fn file_stem(&self) -> String {
+        match self.exp.param("seed") {
+            Some(seed) => format!("{}-seed{}", self.exp.id(), seed as u64),
+            None => self.exp.id().to_owned(),
         }
     }
 
@@ -383,7 +542,7 @@ impl SimState {
 
     fn write_hash(&mut self) {
         self.hash_dirty = false;
-        let hash = route::format(self.exp.as_ref(), Tab::Simulation);
+        let hash = self.link();
         if let Ok(history) = dom::window().history() {
             let _ = history.replace_state_with_url(&JsValue::NULL, "", Some(&hash));
         }
@@ -561,8 +720,12 @@ impl SimView {
             css_size: (0.0, 0.0),
             dpr: 1.0,
             pressed_pointer: None,
+            pending_touch: None,
             last_time_ms: None,
-            accumulator_s: 0.0,
+            clock: Clock::default(),
+            plots: PlotView::mount(panel),
+            plots_force: true,
+            shown_time: (true, 0.0, u64::MAX),
             needs_paint: true,
             shown_values: vec![None; n_params],
             shown_readouts: Vec::new(),
@@ -585,15 +748,38 @@ impl SimView {
                 if !e.is_primary() || e.button() > 0 {
                     return;
                 }
-                // No preventDefault: the browser focuses the canvas itself (so
-                // arrow keys work next) without a keyboard focus ring, and
-                // `touch-action: none` already stops touch scrolling.
                 let mut st = s.borrow_mut();
+                let w = st.to_world(e);
+                if e.pointer_type() == "touch" && !st.exp.captures_touch() {
+                    let tolerance_m = TOUCH_GRAB_PX / st.viewport.scale_px_per_m;
+                    if !st.exp.handle_at(w, tolerance_m) {
+                        // Off every handle: let the browser scroll if it is a
+                        // swipe; act on lift if it is a tap.
+                        let px = DVec2::new(f64::from(e.client_x()), f64::from(e.client_y()));
+                        st.pending_touch = Some((e.pointer_id(), w, px));
+                        return;
+                    }
+                }
+                // No preventDefault: the browser focuses the canvas itself (so
+                // arrow keys work next) without a keyboard focus ring; a touch
+                // on a handle is kept from scrolling by the touchstart below.
                 let _ = st.canvas.set_pointer_capture(e.pointer_id());
                 st.pressed_pointer = Some(e.pointer_id());
-                let w = st.to_world(e);
                 st.exp.input(Input::PointerDown(w));
                 st.needs_paint = true;
+            },
+        ));
+        // A touch that grabbed a handle must not scroll the page.
+        let s = state.clone();
+        listeners.push(Listener::new(
+            canvas_target,
+            "touchstart",
+            move |e: Event| {
+                if let Ok(st) = s.try_borrow() {
+                    if st.pressed_pointer.is_some() && e.cancelable() {
+                        e.prevent_default();
+                    }
+                }
             },
         ));
         let s = state.clone();
@@ -604,12 +790,22 @@ impl SimView {
                 let Some(e) = e.dyn_ref::<PointerEvent>() else {
                     return;
                 };
-                let mut st = s.borrow_mut();
-                let pressed = st.pressed_pointer == Some(e.pointer_id());
                 if !e.is_primary() {
                     return;
                 }
+                let mut st = s.borrow_mut();
                 let w = st.to_world(e);
+                if let Some((id, start, start_px)) = st.pending_touch {
+                    let px = DVec2::new(f64::from(e.client_x()), f64::from(e.client_y()));
+                    if id == e.pointer_id() && (px - start_px).length() > TOUCH_SLOP_PX {
+                        // The browser did not take it for a scroll: a sideways drag.
+                        st.pending_touch = None;
+                        let _ = st.canvas.set_pointer_capture(id);
+                        st.pressed_pointer = Some(id);
+                        st.exp.input(Input::PointerDown(start));
+                    }
+                }
+                let pressed = st.pressed_pointer == Some(e.pointer_id());
                 st.exp.input(Input::PointerMove { pos: w, pressed });
                 if pressed {
                     st.needs_paint = true;
@@ -624,6 +820,18 @@ impl SimView {
                     return;
                 };
                 let mut st = s.borrow_mut();
+                if let Some((id, start, _)) = st.pending_touch {
+                    if id == e.pointer_id() {
+                        st.pending_touch = None;
+                        if kind == "pointerup" {
+                            // A tap: it acts where it landed.
+                            st.exp.input(Input::PointerDown(start));
+                            st.exp.input(Input::PointerUp(start));
+                            st.interaction_ended();
+                        }
+                        return;
+                    }
+                }
                 if st.pressed_pointer != Some(e.pointer_id()) {
                     return;
                 }
@@ -638,6 +846,27 @@ impl SimView {
             let Some(e) = e.dyn_ref::<KeyboardEvent>() else {
                 return;
             };
+            match e.key().as_str() {
+                " " | "Spacebar" => {
+                    // Play/pause without scrolling the page.
+                    e.prevent_default();
+                    let mut st = s.borrow_mut();
+                    if st.exp.animated() {
+                        let running = !st.clock.running();
+                        st.set_running(running);
+                    }
+                    return;
+                }
+                "." => {
+                    e.prevent_default();
+                    let mut st = s.borrow_mut();
+                    if st.exp.animated() {
+                        st.single_step();
+                    }
+                    return;
+                }
+                _ => {}
+            }
             let dir = match e.key().as_str() {
                 "ArrowLeft" => DVec2::NEG_X,
                 "ArrowRight" => DVec2::X,
@@ -718,26 +947,80 @@ impl SimView {
                 st.announce_when_settled();
             }));
         }
-        if let Some(actions) = query(panel, ".sim-actions") {
+        if let Some(sim) = query(panel, ".sim") {
             let s = state.clone();
-            listeners.push(Listener::new(actions.as_ref(), "click", move |e: Event| {
+            listeners.push(Listener::new(sim.as_ref(), "click", move |e: Event| {
                 let Some(button) = e
                     .target()
                     .and_then(|t| t.dyn_into::<Element>().ok())
-                    .and_then(|el| el.closest("button[data-action]").ok().flatten())
+                    .and_then(|el| el.closest("button").ok().flatten())
                 else {
                     return;
                 };
-                let Some(key) = button.get_attribute("data-action") else {
+                let attr = |name: &str| button.get_attribute(name);
+                let mut st = s.borrow_mut();
+                if let Some(key) = attr("data-action") {
+                    if let Err(err) = st.exp.action(&key) {
+                        st.show_message(Some(&err.to_string()));
+                    }
+                    st.needs_paint = true;
+                    st.hash_dirty = true;
+                } else if let Some(what) = attr("data-time") {
+                    match what.as_str() {
+                        "play" => {
+                            let running = !st.clock.running();
+                            st.set_running(running);
+                        }
+                        "step" => st.single_step(),
+                        "reset" => st.reset_run(),
+                        _ => {}
+                    }
+                } else if attr("data-export").as_deref() == Some("png") {
+                    st.paint();
+                    export_png(&st.canvas, &format!("{}.png", st.file_stem()));
+                } else if let Some(key) = attr("data-plot-csv") {
+                    if let Some(plot) = st.exp.plots().iter().find(|p| p.key == key) {
+                        let name = format!("{}-{}.csv", st.file_stem(), plot.key);
+                        plot_view::download(&name, "text/csv", &plot.to_csv());
+                    }
+                } else if let Some(key) = attr("data-plot-table") {
+                    let st = &*st;
+                    st.plots.toggle_table(&key, st.exp.plots());
+                }
+            }));
+            let s = state.clone();
+            listeners.push(Listener::new(sim.as_ref(), "change", move |e: Event| {
+                let Some(select) = e
+                    .target()
+                    .and_then(|t| t.dyn_into::<HtmlSelectElement>().ok())
+                    .filter(|el| el.get_attribute("data-time").as_deref() == Some("speed"))
+                else {
                     return;
                 };
                 let mut st = s.borrow_mut();
-                if let Err(err) = st.exp.action(&key) {
-                    st.show_message(Some(&err.to_string()));
-                }
-                st.needs_paint = true;
+                let v = select.value().parse().unwrap_or(1.0);
+                st.clock.set_speed(v);
                 st.hash_dirty = true;
             }));
+            for kind in ["pointermove", "pointerdown", "pointerleave"] {
+                let s = state.clone();
+                listeners.push(Listener::new(sim.as_ref(), kind, move |e: Event| {
+                    let Some(e) = e.dyn_ref::<PointerEvent>() else {
+                        return;
+                    };
+                    let Some(canvas) = e
+                        .target()
+                        .and_then(|t| t.dyn_into::<Element>().ok())
+                        .filter(|el| el.class_list().contains("plot-canvas"))
+                    else {
+                        return;
+                    };
+                    let mut st = s.borrow_mut();
+                    let st = &mut *st;
+                    let x = (kind != "pointerleave").then(|| f64::from(e.client_x()));
+                    st.plots.hover(&canvas, x, st.exp.plots(), &st.palette);
+                }));
+            }
         }
         // Theme changes (light/dark) repaint with the new palette.
         if let Ok(Some(mql)) = dom::window().match_media("(prefers-color-scheme: dark)") {
@@ -746,6 +1029,7 @@ impl SimView {
                 let mut st = s.borrow_mut();
                 st.palette = Palette::from_css(&st.canvas);
                 st.needs_paint = true;
+                st.plots_force = true;
             }));
         }
         let s = state.clone();
@@ -808,7 +1092,26 @@ impl SimView {
     /// Applies raw URL parameters; returns notices about what was wrong.
     pub fn apply_params(&self, params: &[(String, String)]) -> Vec<String> {
         let mut st = self.state.borrow_mut();
-        let notices = route::apply_params(st.exp.as_mut(), params);
+        let (shell, own): (Vec<_>, Vec<_>) = params
+            .iter()
+            .cloned()
+            .partition(|(k, _)| k == "run" || k == "speed");
+        let mut notices = route::apply_params(st.exp.as_mut(), &own);
+        for (key, raw) in shell {
+            match (key.as_str(), raw.trim().parse::<f64>()) {
+                ("run", Ok(v)) if v == 0.0 || v == 1.0 => st.clock.set_running(v == 1.0),
+                ("speed", Ok(v)) if v.is_finite() && v > 0.0 => {
+                    let applied = st.clock.set_speed(v);
+                    if applied != v {
+                        notices.push(format!("Speed “{raw}” is not offered; using {applied}×."));
+                    }
+                }
+                _ => notices.push(format!(
+                    "“{key}={}” in the link is not understood; ignored.",
+                    raw.chars().take(20).collect::<String>()
+                )),
+            }
+        }
         st.needs_paint = true;
         st.shown_values.iter_mut().for_each(|v| *v = None);
         notices
@@ -816,7 +1119,11 @@ impl SimView {
 
     /// The URL hash of the current state on `tab`.
     pub fn hash(&self, tab: Tab) -> String {
-        route::format(self.state.borrow().exp.as_ref(), tab)
+        let st = self.state.borrow();
+        match tab {
+            Tab::Simulation => st.link(),
+            _ => format!("#/{}/{}", st.exp.id(), tab.slug()),
+        }
     }
 
     /// Paints once now (used by tests and right after mounting).
@@ -825,7 +1132,21 @@ impl SimView {
         st.resize();
         st.paint();
         st.sync_dom();
+        let st = &mut *st;
+        st.plots.draw(st.exp.plots(), &st.palette, true);
+        st.sync_timebar();
     }
+}
+
+/// Saves the canvas as a PNG through a Blob URL.
+fn export_png(canvas: &HtmlCanvasElement, file_name: &str) {
+    let name = file_name.to_owned();
+    let callback = Closure::once_into_js(move |blob: JsValue| {
+        if let Ok(blob) = blob.dyn_into::<web_sys::Blob>() {
+            plot_view::download_blob(&name, &blob);
+        }
+    });
+    let _ = canvas.to_blob(callback.unchecked_ref());
 }
 
 /// Paints an experiment's default scene on a small canvas (home-page cards).

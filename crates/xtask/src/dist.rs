@@ -5,7 +5,9 @@
 //! 3. builds `labweb` for wasm (release);
 //! 4. generates the JS glue with the wasm-bindgen library (target `web`);
 //! 5. optimises the module with npm binaryen's `wasm-opt` (see [`WASM_OPT_LEVEL`]);
-//! 6. copies `web/` into `dist/` and the glue + module into `dist/pkg/`;
+//! 6. copies `web/` into `dist/` and the glue + module into `dist/pkg/`, and
+//!    writes the navigation, home page and reading tabs into `index.html`
+//!    (after validating every content file);
 //! 7. checks that the site only uses relative URLs and stamps a content hash
 //!    (`?v=…`) on the references in `dist/index.html`.
 
@@ -58,6 +60,8 @@ const WASM_FEATURES: &[&str] = &[
 pub fn dist() -> Result<PathBuf, String> {
     let started = Instant::now();
     let root = util::root();
+    step("validate content (assets/*.json)");
+    crate::pages::validate_content()?;
     ensure_wasm_target()?;
     ensure_node_modules(&root)?;
 
@@ -120,6 +124,8 @@ pub fn dist() -> Result<PathBuf, String> {
         println!("warning: web/ does not exist; dist/ holds only pkg/");
     }
     copy_tree(&glue, &dist.join("pkg"))?;
+    step("pages (navigation, home, reading tabs)");
+    crate::pages::render_index(&dist, file_len(&dist.join("pkg/labweb_bg.wasm")).ok())?;
     check_relative_urls(&dist)?;
     stamp_version(&dist)?;
 

@@ -116,6 +116,7 @@ fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
         // Headers: only Connection and Content-Length matter here.
         let mut keep_alive = version == Some("HTTP/1.1");
         let mut body_len = 0u64;
+        let mut gzip_ok = false;
         loop {
             let mut h = String::new();
             if reader.read_line(&mut h)? == 0 {
@@ -131,6 +132,7 @@ fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
                     "connection" if value == "close" => keep_alive = false,
                     "connection" if value == "keep-alive" => keep_alive = true,
                     "content-length" => body_len = value.parse().unwrap_or(0),
+                    "accept-encoding" => gzip_ok = accepts_gzip(&value),
                     _ => {}
                 }
             }
@@ -153,7 +155,7 @@ fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
             )?;
         } else {
             match resolve(root, base, target) {
-                Resolved::File(path) => send_file(&mut out, &path, head, keep_alive)?,
+                Resolved::File(path) => send_file(&mut out, &path, head, keep_alive, gzip_ok)?,
                 Resolved::Redirect(to) => {
                     let msg = format!("moved to {to}\n");
                     write!(
@@ -279,19 +281,51 @@ pub fn mime(path: &Path) -> &'static str {
     }
 }
 
+/// Whether an `Accept-Encoding` value (lower-cased) allows gzip: listed
+/// and not refused with `q=0`.
+fn accepts_gzip(value: &str) -> bool {
+    value.split(',').any(|item| {
+        let mut parts = item.split(';').map(str::trim);
+        let coding = parts.next().unwrap_or("");
+        let refused = parts.any(|p| {
+            p.strip_prefix("q=")
+                .and_then(|q| q.parse::<f64>().ok())
+                .is_some_and(|q| q == 0.0)
+        });
+        (coding == "gzip" || coding == "*") && !refused
+    })
+}
+
+/// Text-like files are sent gzip-compressed to clients that accept it, as a
+/// production server would, so local timings are honest.
+fn compressible(path: &Path) -> bool {
+    matches!(
+        path.extension().and_then(|e| e.to_str()),
+        Some("html" | "js" | "mjs" | "css" | "svg" | "json" | "wasm" | "txt" | "map" | "csv")
+    )
+}
+
 fn send_file(
     out: &mut TcpStream,
     path: &Path,
     head: bool,
     keep_alive: bool,
+    gzip_ok: bool,
 ) -> std::io::Result<()> {
     let body = match std::fs::read(path) {
         Ok(b) => b,
         Err(_) => return respond_text(out, 404, "Not Found", "not found\n", head, keep_alive),
     };
+    let (body, encoding) = if gzip_ok && compressible(path) {
+        let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::new(6));
+        enc.write_all(&body)?;
+        (enc.finish()?, "Content-Encoding: gzip\r\n")
+    } else {
+        (body, "")
+    };
     write!(
         out,
-        "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {}\r\n\
+        "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {}\r\n{encoding}Vary: Accept-Encoding\r\n\
          Cache-Control: no-cache\r\nX-Content-Type-Options: nosniff\r\nConnection: {}\r\n\r\n",
         mime(path),
         body.len(),
@@ -398,6 +432,17 @@ mod tests {
             Resolved::NotFound
         );
         std::fs::remove_dir_all(&tmp).unwrap();
+    }
+
+    #[test]
+    fn gzip_negotiation() {
+        assert!(accepts_gzip("gzip, deflate, br"));
+        assert!(accepts_gzip("br;q=1.0, gzip;q=0.8"));
+        assert!(accepts_gzip("*"));
+        assert!(!accepts_gzip("gzip;q=0"));
+        assert!(!accepts_gzip("br, identity"));
+        assert!(compressible(Path::new("a/labweb_bg.wasm")));
+        assert!(!compressible(Path::new("a/b.png")));
     }
 
     #[test]

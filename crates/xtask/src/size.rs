@@ -1,6 +1,11 @@
 //! `cargo xtask size`: raw and gzip -9 size of every file in dist/.
 
 use crate::util::{self, files_below, human, slash_path};
+use std::path::Path;
+
+/// Most gzip bytes the home page may download (index.html and everything it
+/// loads before any interaction).
+pub const FIRST_PAGE_BUDGET_GZIP: u64 = 150 * 1024;
 use flate2::write::GzEncoder;
 use flate2::Compression;
 use std::io::Write;
@@ -39,5 +44,104 @@ pub fn size() -> Result<(), String> {
         human(gz)
     );
     println!("(exact bytes: raw {raw}, gzip {gz})");
+    let (files, first) = first_page(&dist)?;
+    println!(
+        "first page (home): {} gzip in {} files ({}); budget {}",
+        human(first),
+        files.len(),
+        files.join(", "),
+        human(FIRST_PAGE_BUDGET_GZIP)
+    );
     Ok(())
+}
+
+/// The files the home page loads — `index.html`, what its `<link>` and
+/// `<script>` tags name, and those scripts' static imports (not the
+/// `import()` of the wasm glue, which waits for an experiment) — and their
+/// total gzip size.
+pub fn first_page(dist: &Path) -> Result<(Vec<String>, u64), String> {
+    let read = |name: &str| {
+        std::fs::read(dist.join(name)).map_err(|e| format!("cannot read dist/{name}: {e}"))
+    };
+    let html = String::from_utf8_lossy(&read("index.html")?).into_owned();
+    let mut files = vec!["index.html".to_owned()];
+    let mut queue: Vec<String> = referenced(&html, &["href=\"", "src=\""]);
+    while let Some(name) = queue.pop() {
+        if files.contains(&name) || !dist.join(&name).is_file() {
+            continue;
+        }
+        if name.ends_with(".js") {
+            let text = String::from_utf8_lossy(&read(&name)?).into_owned();
+            let dir = name.rsplit_once('/').map_or("", |(d, _)| d);
+            for dep in referenced(&text, &["from \"", "import \""]) {
+                queue.push(if dir.is_empty() {
+                    dep
+                } else {
+                    format!("{dir}/{dep}")
+                });
+            }
+        }
+        files.push(name);
+    }
+    let mut total = 0;
+    for f in &files {
+        total += gzip_len(&read(f)?);
+    }
+    Ok((files, total))
+}
+
+/// Relative file names after any of `prefixes` (`./` and `?v=…` removed;
+/// fragments, hashes and other origins skipped).
+fn referenced(text: &str, prefixes: &[&str]) -> Vec<String> {
+    let mut out = Vec::new();
+    for prefix in prefixes {
+        let mut rest = text;
+        while let Some(i) = rest.find(prefix) {
+            rest = &rest[i + prefix.len()..];
+            let Some(end) = rest.find('"') else { break };
+            let value = &rest[..end];
+            let path = value.split(['?', '#']).next().unwrap_or("");
+            let path = path.strip_prefix("./").unwrap_or(path);
+            if !path.is_empty() && !path.contains(':') && !path.starts_with('/') {
+                out.push(path.to_owned());
+            }
+        }
+    }
+    out
+}
+
+/// Fails when the home page downloads more than [`FIRST_PAGE_BUDGET_GZIP`].
+pub fn check_first_page_budget() -> Result<(), String> {
+    let (files, total) = first_page(&util::root().join("dist"))?;
+    println!(
+        "first page: {} gzip ({} bytes) in {}; budget {}",
+        human(total),
+        total,
+        files.join(", "),
+        human(FIRST_PAGE_BUDGET_GZIP)
+    );
+    if total > FIRST_PAGE_BUDGET_GZIP {
+        return Err(format!(
+            "the home page downloads {} gzip, over its budget of {}",
+            human(total),
+            human(FIRST_PAGE_BUDGET_GZIP)
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_static_references_only() {
+        let html = r##"<link href="style.css?v=1"><script src="./main.js?v=2"></script><a href="#/fk/aim">x</a><a href="https://x.org/">y</a>"##;
+        assert_eq!(
+            referenced(html, &["href=\"", "src=\""]),
+            ["style.css", "main.js"]
+        );
+        let js = r#"import a from "./a.js"; import "./b.js"; const g = await import("./pkg/labweb.js");"#;
+        assert_eq!(referenced(js, &["from \"", "import \""]), ["a.js", "b.js"]);
+    }
 }

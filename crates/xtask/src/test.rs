@@ -117,6 +117,10 @@ pub fn test(opts: Options) -> Result<(), String> {
     ));
     steps.push(("dist", Box::new(|| dist::dist().map(|_| ()))));
     steps.push((
+        "first-page budget (gzip)",
+        Box::new(crate::size::check_first_page_budget),
+    ));
+    steps.push((
         "end-to-end tests (node --test tests/e2e/)",
         Box::new(|| {
             util::run(

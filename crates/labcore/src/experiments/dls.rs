@@ -12,6 +12,7 @@ use crate::experiment::{
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::dls::{AdaptiveDamping, DlsSolver};
 use crate::kinematics::jacobian::{jacobian, manipulability, Manipulability};
+use crate::plot::{Plot, Series, SeriesRole};
 use crate::quiz::{format_number, Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
@@ -78,6 +79,27 @@ pub struct DampedLeastSquares {
     lambda_used_m: f64,
     clock_s: f64,
     flat_steps: usize,
+    /// Error (log scale) and manipulability against iteration.
+    plots: [Plot; 2],
+}
+
+fn new_plots() -> [Plot; 2] {
+    let mut error = Plot::new(
+        "error",
+        "Tip error",
+        ("Iteration", ""),
+        ("Error", "m"),
+        vec![Series::new("error", "m", SeriesRole::Primary)],
+    );
+    error.log_y = true;
+    let w = Plot::new(
+        "manipulability",
+        "Manipulability",
+        ("Iteration", ""),
+        ("w", "m²"),
+        vec![Series::new("w", "m²", SeriesRole::Secondary)],
+    );
+    [error, w]
 }
 
 impl Default for DampedLeastSquares {
@@ -97,6 +119,7 @@ impl Default for DampedLeastSquares {
             lambda_used_m: PARAMS[1].default,
             clock_s: 0.0,
             flat_steps: 0,
+            plots: new_plots(),
         }
     }
 }
@@ -141,7 +164,20 @@ impl DampedLeastSquares {
             self.flat_steps = 0;
             self.clock_s = 0.0;
             self.error_m = self.target.map(|t| (t - self.tip()).length());
+            self.plots.iter_mut().for_each(Plot::clear);
+            self.record();
         }
+    }
+
+    /// Appends the current error and manipulability to the plots.
+    fn record(&mut self) {
+        let i = self.iterations as f64;
+        if let Some(e) = self.error_m {
+            self.plots[0].series[0].push(i, e);
+        }
+        let w = self.manipulability().w;
+        self.plots[1].series[0].push(i, w);
+        self.plots.iter_mut().for_each(Plot::touch);
     }
 
     fn set_target(&mut self, p: DVec2) {
@@ -162,6 +198,7 @@ impl DampedLeastSquares {
         self.iterations += 1;
         self.lambda_used_m = step.lambda;
         self.error_m = Some(step.error_after_m);
+        self.record();
         if (step.error_before_m - step.error_after_m).abs() < SETTLE_DELTA_M {
             self.flat_steps += 1;
         } else {
@@ -244,6 +281,7 @@ impl Experiment for DampedLeastSquares {
                 self.run = Run::Idle;
                 self.iterations = 0;
                 self.error_m = None;
+                self.plots.iter_mut().for_each(Plot::clear);
                 Ok(())
             }
             _ => Err(ParamError::UnknownAction { key: key.into() }),
@@ -257,7 +295,7 @@ impl Experiment for DampedLeastSquares {
     }
 
     fn step(&mut self, dt_s: f64) {
-        if self.run != Run::Iterating {
+        if self.run != Run::Iterating || !crate::clock::valid_dt(dt_s) {
             return;
         }
         self.clock_s += dt_s;
@@ -266,6 +304,25 @@ impl Experiment for DampedLeastSquares {
             self.clock_s -= period;
             self.iterate();
         }
+    }
+
+    fn animated(&self) -> bool {
+        true
+    }
+
+    /// Back to the start pose, iterating again toward the same target.
+    fn reset(&mut self) {
+        self.angles_rad = vec![START_ANGLE_RAD; self.links];
+        self.restart();
+    }
+
+    fn plots(&self) -> &[Plot] {
+        &self.plots
+    }
+
+    fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
+        let near = |q: DVec2| (q - p).length() <= tolerance_m;
+        near(self.tip()) || self.target.is_some_and(near)
     }
 
     fn view(&self) -> ViewBox {

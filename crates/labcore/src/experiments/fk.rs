@@ -129,7 +129,12 @@ impl Experiment for ForwardKinematics {
         }
     }
 
+    /// Nothing moves on its own: the arm follows the sliders and the pointer.
     fn step(&mut self, _dt_s: f64) {}
+
+    fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
+        (self.tip() - p).length() <= tolerance_m
+    }
 
     fn view(&self) -> ViewBox {
         ViewBox::centered(VIEW_HALF_M)

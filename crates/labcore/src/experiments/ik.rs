@@ -236,6 +236,9 @@ impl Experiment for InverseKinematics {
     }
 
     fn step(&mut self, dt_s: f64) {
+        if !crate::clock::valid_dt(dt_s) {
+            return;
+        }
         let Some(goal) = self.solution() else {
             self.motion = None;
             return;
@@ -254,6 +257,22 @@ impl Experiment for InverseKinematics {
             .clamp(-180.0, 180.0);
         self.theta2_deg = t2.clamp(-180.0, 180.0);
         self.motion = (progress < 1.0).then_some((start, progress));
+    }
+
+    fn animated(&self) -> bool {
+        true
+    }
+
+    /// Back to the starting pose, then the move to the target again.
+    fn reset(&mut self) {
+        self.theta1_deg = PARAMS[0].default;
+        self.theta2_deg = PARAMS[1].default;
+        self.resolve();
+    }
+
+    fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
+        let near = |q: DVec2| (q - p).length() <= tolerance_m;
+        near(self.tip()) || self.target.is_some_and(near)
     }
 
     fn view(&self) -> ViewBox {

@@ -16,6 +16,7 @@ use crate::kinematics::chain::{forward, tip, Annulus};
 use crate::kinematics::dls::DlsSolver;
 use crate::kinematics::two_link_ik::wrap_pi;
 use crate::kinematics::workspace::{DensityGrid, SamplingMode, WorkspaceSampler};
+use crate::plot::{Axis, Plot, RefLine, Series, SeriesRole};
 use crate::quiz::{format_number, Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
@@ -81,6 +82,22 @@ pub struct Workspace {
     density: DensityGrid,
     /// Set when geometry or sampling settings changed after a sweep.
     stale: bool,
+    /// Measured outer and inner radius against samples drawn, with the
+    /// theoretical radii as reference lines.
+    plots: [Plot; 1],
+}
+
+fn new_plots() -> [Plot; 1] {
+    [Plot::new(
+        "radii",
+        "Measured radii",
+        ("Samples drawn", ""),
+        ("Radius", "m"),
+        vec![
+            Series::new("outer radius (measured)", "m", SeriesRole::Primary),
+            Series::new("inner hole (measured)", "m", SeriesRole::Secondary),
+        ],
+    )]
 }
 
 impl Default for Workspace {
@@ -95,6 +112,7 @@ impl Default for Workspace {
             tips: Vec::new(),
             density: DensityGrid::new(VIEW_HALF_M, DENSITY_CELLS),
             stale: false,
+            plots: new_plots(),
         }
     }
 }
@@ -128,6 +146,20 @@ impl Workspace {
             self.sampling_mode(),
             self.samples,
         ));
+        let annulus = Annulus::of_chain(&self.lengths_m);
+        let radii = &mut self.plots[0];
+        radii.ref_lines = vec![
+            RefLine {
+                axis: Axis::Y,
+                value: annulus.outer_m,
+                label: "outer (theory)".into(),
+            },
+            RefLine {
+                axis: Axis::Y,
+                value: annulus.inner_m,
+                label: "inner (theory)".into(),
+            },
+        ];
     }
 
     fn clear(&mut self) {
@@ -135,6 +167,7 @@ impl Workspace {
         self.tips.clear();
         self.density.clear();
         self.stale = false;
+        self.plots[0].clear();
     }
 
     fn sweeping(&self) -> bool {
@@ -225,7 +258,10 @@ impl Experiment for Workspace {
         }
     }
 
-    fn step(&mut self, _dt_s: f64) {
+    fn step(&mut self, dt_s: f64) {
+        if !crate::clock::valid_dt(dt_s) {
+            return;
+        }
         let Some(sampler) = self.sampler.as_mut() else {
             return;
         };
@@ -236,6 +272,32 @@ impl Experiment for Workspace {
         let start = self.tips.len();
         sampler.sample_batch(batch, &mut self.tips);
         self.density.add_all(&self.tips[start..]);
+        if let Some(m) = sampler.measured() {
+            let drawn = sampler.produced() as f64;
+            let radii = &mut self.plots[0];
+            radii.series[0].push(drawn, m.outer_m);
+            radii.series[1].push(drawn, m.inner_m);
+            radii.touch();
+        }
+    }
+
+    fn animated(&self) -> bool {
+        true
+    }
+
+    /// Restarts the sweep from its first sample (same seed, same samples).
+    fn reset(&mut self) {
+        if self.sampler.is_some() {
+            self.start_sweep();
+        }
+    }
+
+    fn plots(&self) -> &[Plot] {
+        &self.plots
+    }
+
+    fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
+        (self.tip() - p).length() <= tolerance_m
     }
 
     fn view(&self) -> ViewBox {

@@ -1,0 +1,195 @@
+//! The shell's simulation clock: play, pause, single step, speed, all on a
+//! fixed step so a run is the same however the frames fall.
+//!
+//! Real time goes in ([`Clock::advance`]), a whole number of fixed steps comes
+//! out; the experiment only ever sees [`Clock::DT_S`]. Running N steps and
+//! pressing "step" N times from a pause give the same state because both call
+//! [`crate::Experiment::step`] N times with the same `dt`.
+
+/// Playback speeds offered by the time controls (simulated s per real s).
+pub const SPEEDS: [f64; 5] = [0.25, 0.5, 1.0, 2.0, 4.0];
+
+/// Fixed-step accumulator with play/pause and a speed factor.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Clock {
+    running: bool,
+    speed: f64,
+    accumulator_s: f64,
+    /// Steps taken since the last reset.
+    steps: u64,
+}
+
+impl Default for Clock {
+    fn default() -> Self {
+        Self {
+            running: true,
+            speed: 1.0,
+            accumulator_s: 0.0,
+            steps: 0,
+        }
+    }
+}
+
+impl Clock {
+    /// The fixed simulation step, seconds.
+    pub const DT_S: f64 = 1.0 / 60.0;
+    /// At most this many steps per call of [`Clock::advance`]: after a stall
+    /// the simulation slows down instead of freezing the page to catch up.
+    pub const MAX_STEPS_PER_FRAME: u32 = 16;
+
+    #[must_use]
+    pub fn running(&self) -> bool {
+        self.running
+    }
+
+    /// Plays or pauses; pausing drops any partial step.
+    pub fn set_running(&mut self, running: bool) {
+        self.running = running;
+        self.accumulator_s = 0.0;
+    }
+
+    #[must_use]
+    pub fn speed(&self) -> f64 {
+        self.speed
+    }
+
+    /// Sets the speed to the nearest of [`SPEEDS`]; NaN keeps the current one.
+    /// Returns the speed applied.
+    pub fn set_speed(&mut self, speed: f64) -> f64 {
+        if speed.is_finite() {
+            self.speed = nearest_speed(speed);
+        }
+        self.speed
+    }
+
+    /// Simulated time since the last reset, seconds.
+    #[must_use]
+    pub fn time_s(&self) -> f64 {
+        self.steps as f64 * Self::DT_S
+    }
+
+    #[must_use]
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Back to t = 0 (the running state and speed are kept).
+    pub fn reset(&mut self) {
+        self.accumulator_s = 0.0;
+        self.steps = 0;
+    }
+
+    /// How many fixed steps to take for `elapsed_s` of real time (0 while
+    /// paused, or for a NaN, negative or infinite interval). Counts them.
+    pub fn advance(&mut self, elapsed_s: f64) -> u32 {
+        if !self.running || !elapsed_s.is_finite() || elapsed_s <= 0.0 {
+            return 0;
+        }
+        // A long gap (a background tab, a debugger) is not caught up.
+        self.accumulator_s += elapsed_s.min(0.25) * self.speed;
+        let mut n = 0;
+        while self.accumulator_s >= Self::DT_S && n < Self::MAX_STEPS_PER_FRAME {
+            self.accumulator_s -= Self::DT_S;
+            n += 1;
+        }
+        if n == Self::MAX_STEPS_PER_FRAME {
+            self.accumulator_s = 0.0;
+        }
+        self.steps += u64::from(n);
+        n
+    }
+
+    /// One step, as the "step" button does; pauses the clock. Returns 1.
+    pub fn single_step(&mut self) -> u32 {
+        self.set_running(false);
+        self.steps += 1;
+        1
+    }
+}
+
+/// The entry of [`SPEEDS`] closest to `speed` (in ratio).
+#[must_use]
+pub fn nearest_speed(speed: f64) -> f64 {
+    let target = speed.max(1e-9).ln();
+    SPEEDS
+        .iter()
+        .copied()
+        .min_by(|a, b| (a.ln() - target).abs().total_cmp(&(b.ln() - target).abs()))
+        .unwrap_or(1.0)
+}
+
+/// Whether `dt_s` is a step an experiment accepts: finite, positive and at
+/// most [`MAX_DT_S`]. Every [`crate::Experiment::step`] refuses anything else
+/// and leaves its state as it was.
+#[must_use]
+pub fn valid_dt(dt_s: f64) -> bool {
+    dt_s.is_finite() && dt_s > 0.0 && dt_s <= MAX_DT_S
+}
+
+/// The longest step any experiment accepts, seconds.
+pub const MAX_DT_S: f64 = 0.1;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fixed_steps_from_real_time() {
+        let mut c = Clock::default();
+        assert_eq!(c.advance(0.5 / 60.0), 0);
+        assert_eq!(c.advance(0.6 / 60.0), 1);
+        assert_eq!(c.advance(2.0 / 60.0), 2);
+        c.set_speed(2.0);
+        assert_eq!(c.advance(1.0 / 60.0), 2);
+        c.set_speed(0.25);
+        assert_eq!(c.advance(2.0 / 60.0), 0);
+        assert_eq!(c.advance(2.0 / 60.0), 1);
+        assert_eq!(c.steps(), 6);
+    }
+
+    #[test]
+    fn paused_clock_and_bad_intervals_take_no_steps() {
+        let mut c = Clock::default();
+        c.set_running(false);
+        assert_eq!(c.advance(1.0), 0);
+        c.set_running(true);
+        for bad in [f64::NAN, f64::INFINITY, -1.0, 0.0] {
+            assert_eq!(c.advance(bad), 0);
+        }
+        // A stall is capped, not caught up: at most a quarter second of
+        // real time counts, and at most MAX_STEPS_PER_FRAME steps.
+        assert!((14..=15).contains(&c.advance(10.0)));
+        c.set_speed(4.0);
+        assert_eq!(c.advance(10.0), Clock::MAX_STEPS_PER_FRAME);
+    }
+
+    #[test]
+    fn speed_snaps_to_offered_values() {
+        let mut c = Clock::default();
+        assert_eq!(c.set_speed(3.0), 4.0);
+        assert_eq!(c.set_speed(0.3), 0.25);
+        assert_eq!(c.set_speed(f64::NAN), 0.25);
+        assert_eq!(c.set_speed(1e300), 4.0);
+        assert_eq!(c.set_speed(-5.0), 0.25);
+    }
+
+    #[test]
+    fn single_step_pauses_and_counts() {
+        let mut c = Clock::default();
+        assert_eq!(c.single_step(), 1);
+        assert!(!c.running());
+        assert_eq!(c.steps(), 1);
+        assert!((c.time_s() - Clock::DT_S).abs() < 1e-15);
+        c.reset();
+        assert_eq!(c.steps(), 0);
+    }
+
+    #[test]
+    fn dt_contract() {
+        assert!(valid_dt(Clock::DT_S));
+        assert!(valid_dt(MAX_DT_S));
+        for bad in [0.0, -0.01, f64::NAN, f64::INFINITY, 0.2] {
+            assert!(!valid_dt(bad), "{bad}");
+        }
+    }
+}

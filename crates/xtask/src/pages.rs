@@ -1,0 +1,85 @@
+//! Build-time pages: validates every content file and writes the
+//! navigation, the home page and each experiment's article (reading tabs
+//! filled in) into `dist/index.html`, so they show before the wasm loads.
+
+use std::fs;
+use std::path::Path;
+
+/// Where the template wants the navigation and the pages.
+const NAV_SLOT: &str = "<!--NAV-->";
+const PAGES_SLOT: &str = "<!--PAGES-->";
+const WASM_BYTES_SLOT: &str = "<!--WASM-BYTES-->";
+
+/// Every registered experiment's content file, parsed and validated; the
+/// error names the file and what is wrong in it.
+pub fn validate_content() -> Result<(), String> {
+    let mut problems = Vec::new();
+    for entry in labcore::registry() {
+        if let Err(e) = entry.parse_content() {
+            problems.push(format!("assets/{}.json: {e}", entry.id));
+        }
+    }
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "content files are not valid:\n  {}",
+            problems.join("\n  ")
+        ))
+    }
+}
+
+/// The HTML of every page: the home page, then one hidden article per
+/// experiment (`main.js` shows the one the link names).
+#[must_use]
+pub fn pages_html() -> String {
+    let mut html = labcore::content_html::home(|_| String::new());
+    for entry in labcore::registry() {
+        let article =
+            labcore::content_html::article(entry.id, entry.content().map_err(|e| e.to_string()));
+        html.push_str(&article.replacen("<article ", "<article hidden ", 1));
+    }
+    html
+}
+
+/// Fills the slots of `dist/index.html`.
+pub fn render_index(dist: &Path, wasm_bytes: Option<u64>) -> Result<(), String> {
+    let index = dist.join("index.html");
+    let template =
+        fs::read_to_string(&index).map_err(|e| format!("cannot read {}: {e}", index.display()))?;
+    for slot in [NAV_SLOT, PAGES_SLOT] {
+        if !template.contains(slot) {
+            return Err(format!("web/index.html has no {slot} slot"));
+        }
+    }
+    let meta = wasm_bytes.map_or(String::new(), |n| {
+        format!("<meta name=\"lab-wasm-bytes\" content=\"{n}\">")
+    });
+    let html = template
+        .replace(NAV_SLOT, &labcore::content_html::nav())
+        .replace(PAGES_SLOT, &pages_html())
+        .replace(WASM_BYTES_SLOT, &meta);
+    fs::write(&index, html).map_err(|e| format!("cannot write {}: {e}", index.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_content_file_is_valid() {
+        validate_content().expect("content validates");
+    }
+
+    #[test]
+    fn pages_hold_every_experiment_hidden_and_the_home_page() {
+        let html = pages_html();
+        assert!(html.contains("data-page=\"home\""));
+        for entry in labcore::registry() {
+            assert!(html.contains(&format!(
+                "<article hidden class=\"exp\" data-experiment=\"{}\"",
+                entry.id
+            )));
+        }
+    }
+}
