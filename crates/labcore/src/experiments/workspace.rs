@@ -473,4 +473,20 @@ mod tests {
         }
         assert!((ws.tip() - target).length() < 1e-4);
     }
+
+    /// Regression: a pointer 1e200 m away used to fold the arm onto its base
+    /// (`Annulus::nearest` overflowed to (0, 0)); now the arm reaches towards it.
+    #[test]
+    fn very_far_drag_target_stretches_the_arm_towards_it() {
+        let mut ws = Workspace::default();
+        for _ in 0..20 {
+            ws.input(Input::PointerMove {
+                pos: DVec2::new(1e200, 1e200),
+                pressed: true,
+            });
+        }
+        let tip = ws.tip();
+        assert!((tip.length() - 2.5).abs() < 1e-2, "tip {tip}");
+        assert!((tip.x - tip.y).abs() < 1e-2, "along the diagonal: {tip}");
+    }
 }
