@@ -205,17 +205,31 @@ fn decode(s: &str) -> String {
     let mut i = 0;
     while i < bytes.len() {
         if bytes[i] == b'%' && i + 2 < bytes.len() {
-            let hex = std::str::from_utf8(&bytes[i + 1..i + 3]).ok();
-            if let Some(b) = hex.and_then(|h| u8::from_str_radix(h, 16).ok()) {
-                out.push(b);
-                i += 3;
-                continue;
+            // Exactly two hex digits: `u8::from_str_radix` alone would also
+            // take a sign (`%+3` → 3), turning `%+31` into a control character.
+            if let (Some(hi), Some(lo)) = (hex_digit(bytes[i + 1]), hex_digit(bytes[i + 2])) {
+                out.push(hi << 4 | lo);
+            } else {
+                // An invalid escape is kept exactly as written (`+` included).
+                out.extend_from_slice(&bytes[i..i + 3]);
             }
+            i += 3;
+            continue;
         }
         out.push(if bytes[i] == b'+' { b' ' } else { bytes[i] });
         i += 1;
     }
     String::from_utf8_lossy(&out).into_owned()
+}
+
+/// The value of one ASCII hex digit.
+fn hex_digit(b: u8) -> Option<u8> {
+    match b {
+        b'0'..=b'9' => Some(b - b'0'),
+        b'a'..=b'f' => Some(b - b'a' + 10),
+        b'A'..=b'F' => Some(b - b'A' + 10),
+        _ => None,
+    }
 }
 
 fn truncate(s: &str, max_chars: usize) -> String {
@@ -273,5 +287,19 @@ mod tests {
         assert_eq!(decode("%zz"), "%zz");
         assert_eq!(decode("100%"), "100%");
         assert_eq!(decode("%4"), "%4");
+    }
+
+    /// Regression: a leading `+` passed the hex parse (`u8::from_str_radix`
+    /// accepts a sign), so `%+31` decoded to the control character U+0003.
+    #[test]
+    fn invalid_percent_escapes_stay_verbatim() {
+        assert_eq!(decode("%+31"), "%+31");
+        assert_eq!(decode("%+1"), "%+1");
+        assert_eq!(decode("%-1x"), "%-1x");
+        assert_eq!(decode("%1g"), "%1g");
+        assert_eq!(decode("%41%2b+x"), "A+ x");
+        for s in ["%+31", "%+0", "%+a%+f", "%-0"] {
+            assert!(!decode(s).chars().any(char::is_control), "{s}");
+        }
     }
 }
