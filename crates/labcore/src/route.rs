@@ -76,6 +76,33 @@ pub enum Page {
 pub struct Route {
     pub page: Page,
     pub notices: Vec<String>,
+    /// The quiz attempt seed fixed by the link (`?quiz=123`), e.g. by an
+    /// instructor so a whole class draws the same numbers. Taken out of
+    /// [`Page::Experiment::params`]; `None` when absent or unreadable.
+    pub quiz_seed: Option<u64>,
+}
+
+/// The query key that fixes the quiz attempt's seed (`#/ik/quiz?quiz=123`).
+pub const QUIZ_KEY: &str = "quiz";
+
+/// How many notices the page shows before summarising the rest (see [`summarize_notices`]).
+pub const NOTICE_LIMIT: usize = 3;
+
+/// The notices to show: the first `limit`, then one line “… and N more
+/// problems with the link.” so a hostile 100 KB hash cannot flood the bar.
+/// Each shown notice is already short (values are truncated when parsed).
+#[must_use]
+pub fn summarize_notices(notices: &[String], limit: usize) -> Vec<String> {
+    if notices.len() <= limit {
+        return notices.to_vec();
+    }
+    let rest = notices.len() - limit;
+    let mut shown = notices[..limit].to_vec();
+    shown.push(format!(
+        "… and {rest} more problem{} with the link.",
+        if rest == 1 { "" } else { "s" }
+    ));
+    shown
 }
 
 /// Parses a location hash (with or without the leading `#`).
@@ -95,6 +122,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
         return Route {
             page: Page::Home,
             notices,
+            quiz_seed: None,
         };
     };
     let id = decode(first);
@@ -106,6 +134,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
         return Route {
             page: Page::Home,
             notices,
+            quiz_seed: None,
         };
     }
     let tab = match segments.get(1) {
@@ -122,8 +151,16 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
         notices.push("Ignored extra parts of the link.".into());
     }
     let mut params = Vec::new();
+    let mut quiz_seed = None;
     for pair in query.unwrap_or("").split('&').filter(|p| !p.is_empty()) {
         match pair.split_once('=') {
+            Some((k, v)) if decode(k) == QUIZ_KEY => match decode(v).trim().parse::<u64>() {
+                Ok(seed) => quiz_seed = Some(seed),
+                Err(_) => notices.push(format!(
+                    "Quiz seed “{}” is not a whole number; drew fresh questions.",
+                    truncate(&decode(v), 30)
+                )),
+            },
             Some((k, v)) if !k.is_empty() => params.push((decode(k), decode(v))),
             _ => notices.push(format!(
                 "Ignored “{}” in the link.",
@@ -134,6 +171,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
     Route {
         page: Page::Experiment { id, tab, params },
         notices,
+        quiz_seed,
     }
 }
 
@@ -195,6 +233,18 @@ pub fn format(experiment: &dyn Experiment, tab: Tab) -> String {
         format!("#/{}/{}", experiment.id(), tab.slug())
     } else {
         format!("#/{}/{}?{}", experiment.id(), tab.slug(), query.join("&"))
+    }
+}
+
+/// [`format`] plus `quiz=<seed>` when the attempt's seed is fixed by the link,
+/// so a reload (or a link shared with a class) keeps the same questions.
+#[must_use]
+pub fn format_with_quiz(experiment: &dyn Experiment, tab: Tab, quiz_seed: Option<u64>) -> String {
+    let hash = format(experiment, tab);
+    match quiz_seed {
+        None => hash,
+        Some(seed) if hash.contains('?') => format!("{hash}&{QUIZ_KEY}={seed}"),
+        Some(seed) => format!("{hash}?{QUIZ_KEY}={seed}"),
     }
 }
 
@@ -279,6 +329,59 @@ mod tests {
         assert_eq!(r.notices.len(), 3);
         let r = parse("#/%E2%28%A1/%zz", IDS);
         assert_eq!(r.page, Page::Home);
+    }
+
+    /// Regression: a 100 KB hash produced 17,524 notices joined into one bar.
+    #[test]
+    fn notice_flood_is_summarised() {
+        let mut hash = String::from("#/fk/simulation?");
+        while hash.len() < 100_000 {
+            hash.push_str("x&=1&");
+        }
+        let r = parse(&hash, IDS);
+        assert!(r.notices.len() > 10_000);
+        let shown = summarize_notices(&r.notices, NOTICE_LIMIT);
+        assert_eq!(shown.len(), NOTICE_LIMIT + 1);
+        assert_eq!(shown[..NOTICE_LIMIT], r.notices[..NOTICE_LIMIT]);
+        let rest = r.notices.len() - NOTICE_LIMIT;
+        assert_eq!(
+            shown[NOTICE_LIMIT],
+            format!("… and {rest} more problems with the link.")
+        );
+        assert!(shown.iter().map(String::len).sum::<usize>() < 400);
+        // Few notices pass through unchanged.
+        let two = vec!["a".to_owned(), "b".to_owned()];
+        assert_eq!(summarize_notices(&two, NOTICE_LIMIT), two);
+        let four: Vec<String> = (0..4).map(|i| i.to_string()).collect();
+        assert_eq!(
+            summarize_notices(&four, 3)[3],
+            "… and 1 more problem with the link."
+        );
+    }
+
+    #[test]
+    fn quiz_seed_comes_from_the_link() {
+        let r = parse("#/ik/quiz?quiz=123", IDS);
+        assert_eq!(r.quiz_seed, Some(123));
+        assert!(r.notices.is_empty());
+        assert_eq!(
+            r.page,
+            Page::Experiment {
+                id: "ik".into(),
+                tab: Tab::Quiz,
+                params: vec![]
+            }
+        );
+        let r = parse("#/ik/simulation?l1=1&quiz=7&l2=0.5", IDS);
+        assert_eq!(r.quiz_seed, Some(7));
+        assert!(matches!(&r.page, Page::Experiment { params, .. } if params.len() == 2));
+        let r = parse("#/ik/quiz?quiz=-3", IDS);
+        assert_eq!(r.quiz_seed, None);
+        assert_eq!(r.notices.len(), 1);
+        let exp = crate::experiments::fk::ForwardKinematics::default();
+        let hash = format_with_quiz(&exp, Tab::Quiz, Some(42));
+        assert!(hash.starts_with("#/fk/quiz?t1=35&") && hash.ends_with("&quiz=42"));
+        assert_eq!(parse(&hash, IDS).quiz_seed, Some(42));
     }
 
     #[test]
