@@ -38,6 +38,10 @@ pub struct ParamSpec {
     pub step: f64,
     pub default: f64,
     pub kind: ParamKind,
+    /// The value is a whole number (a count, an index): [`ParamSpec::sanitize`]
+    /// rounds it, so what `set_param` returns is what the experiment stores.
+    /// Always true for toggles, choices and [`ParamKind::Number`].
+    pub integer: bool,
 }
 
 impl ParamSpec {
@@ -61,6 +65,7 @@ impl ParamSpec {
             step,
             default,
             kind: ParamKind::Slider,
+            integer: false,
         }
     }
 
@@ -82,6 +87,7 @@ impl ParamSpec {
             step: 1.0,
             default,
             kind: ParamKind::Number,
+            integer: true,
         }
     }
 
@@ -103,6 +109,7 @@ impl ParamSpec {
             step: 0.01,
             default: 0.0,
             kind: ParamKind::OptionalNumber,
+            integer: false,
         }
     }
 
@@ -124,6 +131,7 @@ impl ParamSpec {
             step: 1.0,
             default: if default_on { 1.0 } else { 0.0 },
             kind: ParamKind::Toggle { off, on },
+            integer: true,
         }
     }
 
@@ -144,20 +152,34 @@ impl ParamSpec {
             step: 1.0,
             default: default as f64,
             kind: ParamKind::Choice(options),
+            integer: true,
         }
     }
 
-    /// Checks a proposed value: NaN and infinities are rejected; values outside
-    /// `[min, max]` are clamped and reported as [`Sanitized::Clamped`];
-    /// toggles and choices are rounded to the nearest index.
+    /// The same parameter holding whole numbers only (e.g. a link or sample
+    /// count on a slider): see [`ParamSpec::whole_numbers`].
+    #[must_use]
+    pub const fn whole_numbers(self) -> Self {
+        Self {
+            integer: true,
+            ..self
+        }
+    }
+
+    /// Checks a proposed value: NaN and infinities are rejected; integer
+    /// parameters (toggles, choices, numbers and [`ParamSpec::whole_numbers`]
+    /// sliders) are rounded to the nearest whole number; values outside
+    /// `[min, max]` are clamped and reported as [`Sanitized::Clamped`]. The
+    /// returned value is exactly what the experiment stores.
     pub fn sanitize(&self, value: f64) -> Result<Sanitized, ParamError> {
         if !value.is_finite() {
             return Err(ParamError::NotFinite { key: self.key });
         }
-        let discrete = matches!(
-            self.kind,
-            ParamKind::Toggle { .. } | ParamKind::Choice(_) | ParamKind::Number
-        );
+        let discrete = self.integer
+            || matches!(
+                self.kind,
+                ParamKind::Toggle { .. } | ParamKind::Choice(_) | ParamKind::Number
+            );
         let v = if discrete { value.round() } else { value };
         let clamped = v.clamp(self.min, self.max);
         if clamped != v {
@@ -385,6 +407,17 @@ mod tests {
         assert_eq!(SPEC.sanitize(-500.0), Ok(Sanitized::Clamped(-180.0)));
         assert!(SPEC.sanitize(f64::NAN).is_err());
         assert!(SPEC.sanitize(f64::INFINITY).is_err());
+    }
+
+    /// Regression: DLS `set_param("n", 2.5)` returned `InRange(2.5)` but stored 3.
+    #[test]
+    fn integer_sliders_round_in_sanitize() {
+        let n = ParamSpec::slider("n", "Links", "", 2.0, 8.0, 1.0, 4.0).whole_numbers();
+        assert!(n.integer);
+        assert_eq!(n.sanitize(2.5), Ok(Sanitized::InRange(3.0)));
+        assert_eq!(n.sanitize(4.49), Ok(Sanitized::InRange(4.0)));
+        assert_eq!(n.sanitize(8.6), Ok(Sanitized::Clamped(8.0)));
+        assert_eq!(SPEC.sanitize(10.5), Ok(Sanitized::InRange(10.5)));
     }
 
     #[test]

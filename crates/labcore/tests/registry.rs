@@ -210,3 +210,50 @@ fn incomplete_content_is_rejected() {
     assert!(check(&v).is_err());
     assert!(Content::parse("not json").is_err());
 }
+
+/// Regression: `set_param("n", 2.5)` on DLS returned `InRange(2.5)` but stored
+/// 3 (the workspace sample count likewise). Whatever is set, the returned
+/// value is the stored one and `param()` stays inside its spec's range.
+#[test]
+fn set_param_returns_exactly_the_stored_value() {
+    let mut rng = labcore::Lcg64::new(77);
+    for entry in registry() {
+        let mut exp = (entry.make)();
+        for _ in 0..2000 {
+            let spec = exp.params()[rng.int(0, exp.params().len() as i64 - 1) as usize];
+            let span = spec.max - spec.min;
+            let value = match rng.int(0, 3) {
+                0 => rng.range(spec.min, spec.max),
+                1 => rng.range(spec.min - span, spec.max + span),
+                2 => (rng.range(spec.min, spec.max) * 2.0).round() / 2.0 + 0.5,
+                _ => rng.int(spec.min as i64, spec.max as i64) as f64 + 0.5,
+            };
+            let applied = exp
+                .set_param(spec.key, value)
+                .unwrap_or_else(|e| panic!("{}.{}: {e}", entry.id, spec.key));
+            assert_eq!(
+                exp.param(spec.key),
+                Some(applied.value()),
+                "{}.{} set to {value}",
+                entry.id,
+                spec.key
+            );
+            if spec.integer {
+                assert_eq!(applied.value().fract(), 0.0, "{}.{}", entry.id, spec.key);
+            }
+            exp.step(1.0 / 60.0);
+            for s in exp.params() {
+                if let Some(v) = exp.param(s.key) {
+                    assert!(
+                        v >= s.min && v <= s.max,
+                        "{}.{} = {v} outside [{}, {}]",
+                        entry.id,
+                        s.key,
+                        s.min,
+                        s.max
+                    );
+                }
+            }
+        }
+    }
+}

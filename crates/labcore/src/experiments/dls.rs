@@ -18,7 +18,7 @@ use crate::scene::{Item, Role, Scene, ViewBox};
 use glam::DVec2;
 
 const PARAMS: &[ParamSpec] = &[
-    ParamSpec::slider("n", "Links", "", 2.0, 8.0, 1.0, 4.0),
+    ParamSpec::slider("n", "Links", "", 2.0, 8.0, 1.0, 4.0).whole_numbers(),
     ParamSpec::slider("lambda", "λ", "m", 0.0, 1.0, 0.01, 0.1),
     ParamSpec::toggle("adaptive", "Adaptive damping", "off", "on", false),
     ParamSpec::toggle("guard", "Safeguards", "off", "on", true),

@@ -31,7 +31,7 @@ const PARAMS: &[ParamSpec] = &[
     ParamSpec::slider("l2", "L₂", "m", 0.2, 1.2, 0.05, 0.8),
     ParamSpec::slider("l3", "L₃", "m", 0.1, 1.2, 0.05, 0.7),
     ParamSpec::choice("mode", "Sampling", MODES, 0),
-    ParamSpec::slider("n", "Samples", "", 1000.0, 60000.0, 1000.0, 20000.0),
+    ParamSpec::slider("n", "Samples", "", 1000.0, 60000.0, 1000.0, 20000.0).whole_numbers(),
     ParamSpec::number("seed", "Seed", 0.0, 999_999.0, 1.0),
 ];
 
