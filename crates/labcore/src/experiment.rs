@@ -380,6 +380,20 @@ pub fn with_coordinate(point: Option<DVec2>, fallback: DVec2, key: &str, value: 
     }
 }
 
+/// A dragged or nudged target point clamped into the ranges of its typed
+/// coordinates (`x_key`, `y_key` of `specs`), so every target a pointer or
+/// the keyboard can set is one a link (`tx=…&ty=…`) reproduces without a
+/// notice. The canvas may show more than the range (a wide screen): a click
+/// beyond it sets the target on the range's edge.
+#[must_use]
+pub fn clamp_to_params(specs: &[ParamSpec], x_key: &str, y_key: &str, p: DVec2) -> DVec2 {
+    let clamp = |key: &str, v: f64| match find_spec(specs, key) {
+        Some(s) => v.clamp(s.min, s.max),
+        None => v,
+    };
+    DVec2::new(clamp(x_key, p.x), clamp(y_key, p.y))
+}
+
 /// Shared helper: look up a spec by key.
 #[must_use]
 pub fn find_spec<'a>(specs: &'a [ParamSpec], key: &str) -> Option<&'a ParamSpec> {

@@ -6,8 +6,8 @@
 //! singular values and left singular vectors of the Jacobian.
 
 use crate::experiment::{
-    check_param, with_coordinate, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout,
-    Sanitized, Status, Tone,
+    check_param, clamp_to_params, with_coordinate, ActionSpec, Experiment, Input, ParamError,
+    ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::dls::{AdaptiveDamping, DlsSolver};
@@ -144,9 +144,11 @@ impl DampedLeastSquares {
         }
     }
 
+    /// Sets the target from the pointer or a nudge, clamped to the range of
+    /// the `tx`/`ty` fields so the link reproduces it.
     fn set_target(&mut self, p: DVec2) {
-        if p.is_finite() && p.length() < 1e3 {
-            self.target = Some(p);
+        if p.is_finite() {
+            self.target = Some(clamp_to_params(PARAMS, "tx", "ty", p));
             self.restart();
         }
     }

@@ -9,8 +9,8 @@
 //! is what the two links solve for.
 
 use crate::experiment::{
-    check_param, with_coordinate, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized,
-    Status, Tone,
+    check_param, clamp_to_params, with_coordinate, Experiment, Input, ParamError, ParamSpec,
+    Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
@@ -136,11 +136,13 @@ impl InverseKinematics {
             .map(|_| ([self.theta1_deg, self.theta2_deg], 0.0));
     }
 
+    /// Sets the target from the pointer or a nudge, clamped to the range of
+    /// the `tx`/`ty` fields so the link reproduces it.
     fn set_target(&mut self, p: DVec2) {
-        if !p.is_finite() || p.length() > 1e6 {
+        if !p.is_finite() {
             return;
         }
-        self.target = Some(p);
+        self.target = Some(clamp_to_params(PARAMS, "tx", "ty", p));
         self.resolve();
     }
 
@@ -518,6 +520,21 @@ mod tests {
         assert_eq!(ik.param("ty"), Some(0.8));
         settle(&mut ik);
         assert!((ik.tip() - DVec2::new(0.9, 0.8)).length() < 1e-9);
+    }
+
+    /// Regression: `PointerDown((3.3, 0))` wrote `tx=3.3`, beyond the ±3.1 m
+    /// range of the target fields, so reloading the link clamped it with a notice.
+    #[test]
+    fn pointer_and_nudge_targets_stay_inside_the_field_range() {
+        let mut ik = InverseKinematics::default();
+        ik.input(Input::PointerDown(DVec2::new(3.3, 0.0)));
+        assert_eq!(ik.param("tx"), Some(VIEW_HALF_M));
+        assert_eq!(ik.param("ty"), Some(0.0));
+        for _ in 0..10 {
+            ik.input(Input::Nudge(DVec2::new(-0.05, -0.5)));
+        }
+        assert_eq!(ik.param("ty"), Some(-VIEW_HALF_M));
+        assert!((ik.param("tx").unwrap() - (VIEW_HALF_M - 0.5)).abs() < 1e-12);
     }
 
     #[test]
