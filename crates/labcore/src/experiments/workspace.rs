@@ -63,8 +63,9 @@ fn density_cells(samples: usize, lengths_m: &[f64; 3]) -> usize {
     let cells = samples as f64 / SAMPLES_PER_CELL / disc_fraction;
     (cells.sqrt().round() as usize).clamp(24, 200)
 }
-/// A sweep spreads over about this many frames.
-const SWEEP_FRAMES: usize = 90;
+/// A sweep spreads over this many frames: each adds at most 1 % of the
+/// samples, so the progress badge can move in 1 % steps with the cloud.
+const SWEEP_FRAMES: usize = 100;
 /// Most tips stippled individually (the most recent ones); the density map shows them all.
 const STIPPLE_MAX: usize = 5000;
 
@@ -135,6 +136,25 @@ impl Workspace {
         self.tips.clear();
         self.density.clear();
         self.stale = false;
+    }
+
+    /// In grid mode, why the sample count differs from the one asked for:
+    /// `grid of 39 angles per joint: 39³ = 59319 of 60000 requested`. `None`
+    /// in Monte-Carlo mode or when the grid gives exactly the count asked for.
+    fn grid_note(&self) -> Option<String> {
+        let sampler = self.sampler.as_ref()?;
+        let SamplingMode::Grid { per_joint } = sampler.mode() else {
+            return None;
+        };
+        let requested = self.samples;
+        let total = sampler.total();
+        Some(if total == requested {
+            format!("grid of {per_joint} angles per joint: {per_joint}³ = {total}")
+        } else {
+            format!(
+                "grid of {per_joint} angles per joint: {per_joint}³ = {total} of {requested} requested"
+            )
+        })
     }
 
     fn sweeping(&self) -> bool {
@@ -232,7 +252,7 @@ impl Experiment for Workspace {
         if sampler.is_done() {
             return;
         }
-        let batch = (sampler.total() / SWEEP_FRAMES).max(100);
+        let batch = (sampler.total() / SWEEP_FRAMES).max(1);
         let start = self.tips.len();
         sampler.sample_batch(batch, &mut self.tips);
         self.density.add_all(&self.tips[start..]);
@@ -297,7 +317,15 @@ impl Experiment for Workspace {
                 "Samples drawn",
                 self.sampler
                     .as_ref()
-                    .map_or("0".into(), |s| format!("{} / {}", s.produced(), s.total())),
+                    .map_or("0".into(), |s| match s.mode() {
+                        SamplingMode::Grid { per_joint } if s.total() != self.samples => format!(
+                            "{} / {} ({per_joint}³ grid of {} requested)",
+                            s.produced(),
+                            s.total(),
+                            self.samples
+                        ),
+                        _ => format!("{} / {}", s.produced(), s.total()),
+                    }),
             ),
         ]
     }
@@ -306,12 +334,25 @@ impl Experiment for Workspace {
         match &self.sampler {
             _ if self.stale => Status::new("settings changed: sweep again", Tone::Warning),
             None => Status::new("ready to sweep", Tone::Neutral),
-            // Quarter steps: the badge is a live region, so it must not chatter.
+            // Whole percents, current with the cloud (the page decides how
+            // often its live region announces them).
             Some(s) if !s.is_done() => Status::new(
-                format!("sweeping… {}%", (4.0 * s.progress()).floor() * 25.0),
+                format!(
+                    "sweeping… {}%{}",
+                    // Integer arithmetic: 0.29 × 100 would floor to 28.
+                    s.produced().saturating_mul(100) / s.total().max(1),
+                    self.grid_note()
+                        .map_or(String::new(), |n| format!(" ({n})"))
+                ),
                 Tone::Neutral,
             ),
-            Some(s) => Status::new(format!("swept {} samples", s.produced()), Tone::Good),
+            Some(s) => Status::new(
+                match self.grid_note() {
+                    None => format!("swept {} samples", s.produced()),
+                    Some(note) => format!("swept {} samples ({note})", s.produced()),
+                },
+                Tone::Good,
+            ),
         }
     }
 
@@ -488,5 +529,61 @@ mod tests {
         let tip = ws.tip();
         assert!((tip.length() - 2.5).abs() < 1e-2, "tip {tip}");
         assert!((tip.x - tip.y).abs() < 1e-2, "along the diagonal: {tip}");
+    }
+
+    /// Regression: the badge moved in 25 % steps and lagged behind the cloud.
+    #[test]
+    fn sweep_progress_is_reported_at_least_every_percent() {
+        for (mode, n) in [(0.0, 20000.0), (1.0, 60000.0), (0.0, 1000.0)] {
+            let mut ws = Workspace::default();
+            ws.set_param("mode", mode).unwrap();
+            ws.set_param("n", n).unwrap();
+            ws.action("sweep").unwrap();
+            let total = ws.sampler.as_ref().unwrap().total();
+            let mut last = 0;
+            while ws.animating() {
+                ws.step(1.0 / 60.0);
+                let produced = ws.sampler.as_ref().unwrap().produced();
+                assert!(
+                    100 * (produced - last) <= total,
+                    "one frame added {} of {total}",
+                    produced - last
+                );
+                last = produced;
+                if ws.animating() {
+                    let percent = 100 * produced / total;
+                    assert!(
+                        ws.status()
+                            .text
+                            .starts_with(&format!("sweeping… {percent}%")),
+                        "{} at {produced}/{total}",
+                        ws.status().text
+                    );
+                }
+            }
+        }
+    }
+
+    /// In grid mode 60,000 requested samples become 39³ = 59,319: say so.
+    #[test]
+    fn grid_mode_explains_the_sample_count() {
+        let mut ws = Workspace::default();
+        ws.set_param("mode", 1.0).unwrap();
+        ws.set_param("n", 60000.0).unwrap();
+        sweep(&mut ws);
+        assert_eq!(
+            ws.status().text,
+            "swept 59319 samples (grid of 39 angles per joint: 39³ = 59319 of 60000 requested)"
+        );
+        let samples = ws
+            .readouts()
+            .into_iter()
+            .find(|r| r.key == "samples")
+            .unwrap();
+        assert_eq!(samples.value, "59319 / 59319 (39³ grid of 60000 requested)");
+        // Monte-Carlo keeps the plain wording.
+        let mut mc = Workspace::default();
+        sweep(&mut mc);
+        assert_eq!(mc.status().text, "swept 20000 samples");
     }
 }
