@@ -311,15 +311,93 @@ impl Readout {
         }
     }
 
-    /// A length in metres with 3 decimals, e.g. `1.234 m`.
+    /// A length in metres with exactly [`Readout::METRE_DECIMALS`] decimals,
+    /// e.g. `1.500 m` (`--` when not finite).
     #[must_use]
     pub fn metres(key: &'static str, label: &'static str, value_m: f64) -> Self {
-        Self::new(
-            key,
-            label,
-            format!("{} m", crate::quiz::format_number(value_m, 3)),
-        )
+        Self::new(key, label, format_metres(value_m))
     }
+
+    /// An angle in degrees with exactly [`Readout::DEGREE_DECIMALS`] decimal,
+    /// e.g. `-35.0°` (`--` when not finite).
+    #[must_use]
+    pub fn degrees(key: &'static str, label: &'static str, value_deg: f64) -> Self {
+        Self::new(key, label, format_degrees(value_deg))
+    }
+
+    /// Decimals of every length readout, in every experiment (1 mm).
+    pub const METRE_DECIMALS: usize = 3;
+    /// Decimals of every angle readout, in every experiment (0.1°).
+    pub const DEGREE_DECIMALS: usize = 1;
+}
+
+/// A length as every readout shows it: `1.500 m`.
+#[must_use]
+pub fn format_metres(value_m: f64) -> String {
+    if value_m.is_finite() {
+        format!("{} m", format_fixed(value_m, Readout::METRE_DECIMALS))
+    } else {
+        "--".into()
+    }
+}
+
+/// An angle as every readout shows it: `-35.0°`.
+#[must_use]
+pub fn format_degrees(value_deg: f64) -> String {
+    if value_deg.is_finite() {
+        format!("{}°", format_fixed(value_deg, Readout::DEGREE_DECIMALS))
+    } else {
+        "--".into()
+    }
+}
+
+/// Exactly `decimals` places, and no `-0.000` (a tiny negative shows as zero).
+#[must_use]
+pub fn format_fixed(value: f64, decimals: usize) -> String {
+    let s = format!("{value:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_owned(),
+        _ => s,
+    }
+}
+
+/// A positive quantity that spans many orders of magnitude (a condition
+/// number, a tiny error), readable at a glance: `12.3` below 1000, else one
+/// decimal times a power of ten, `2.4 × 10⁵` or `3.1 × 10⁻⁷`; infinity as
+/// `∞ (singular)`.
+#[must_use]
+pub fn format_magnitude(value: f64) -> String {
+    if value.is_nan() {
+        return "--".into();
+    }
+    if value.is_infinite() {
+        return "∞ (singular)".into();
+    }
+    let magnitude = value.abs();
+    if magnitude == 0.0 || (1e-3..1e3).contains(&magnitude) {
+        return format_fixed(value, if magnitude < 1.0 { 3 } else { 1 });
+    }
+    // Mantissa in [1, 10) after rounding to one decimal.
+    let mut exponent = magnitude.log10().floor() as i32;
+    let mut mantissa = value / 10f64.powi(exponent);
+    if format!("{:.1}", mantissa.abs()) == "10.0" {
+        exponent += 1;
+        mantissa = value / 10f64.powi(exponent);
+    }
+    format!("{mantissa:.1} × 10{}", superscript(exponent))
+}
+
+/// `-7` → `⁻⁷`.
+fn superscript(n: i32) -> String {
+    const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let mut s = String::new();
+    if n < 0 {
+        s.push('⁻');
+    }
+    for c in n.unsigned_abs().to_string().chars() {
+        s.push(DIGITS[c.to_digit(10).unwrap_or(0) as usize]);
+    }
+    s
 }
 
 /// One experiment: parameters, state, a fixed-step simulation and a display list.
@@ -432,6 +510,19 @@ mod tests {
         assert_eq!(n.sanitize(4.49), Ok(Sanitized::InRange(4.0)));
         assert_eq!(n.sanitize(8.6), Ok(Sanitized::Clamped(8.0)));
         assert_eq!(SPEC.sanitize(10.5), Ok(Sanitized::InRange(10.5)));
+    }
+
+    #[test]
+    fn readout_formats() {
+        assert_eq!(format_metres(1.5), "1.500 m");
+        assert_eq!(format_metres(-0.0001), "0.000 m");
+        assert_eq!(format_degrees(-35.0), "-35.0°");
+        assert_eq!(format_magnitude(f64::INFINITY), "∞ (singular)");
+        assert_eq!(format_magnitude(2.4e5), "2.4 × 10⁵");
+        assert_eq!(format_magnitude(99_960.0), "1.0 × 10⁵");
+        assert_eq!(format_magnitude(3.14e-7), "3.1 × 10⁻⁷");
+        assert_eq!(format_magnitude(12.34), "12.3");
+        assert_eq!(format_magnitude(0.0123), "0.012");
     }
 
     #[test]

@@ -330,3 +330,51 @@ fn permalinks_reproduce_every_state_reachable_by_pointer_and_keyboard() {
         }
     }
 }
+
+/// Regression: lengths showed 3 trimmed decimals in FK/IK (`1.5 m`), 4 in the
+/// workspace and 4 or `1.0e-7` in DLS; angles 1 decimal in IK, 0 in DLS; the
+/// condition number as `123456.79`. Now every length has 3 decimals, every
+/// angle 1, and huge or tiny magnitudes read as `2.4 × 10⁵`.
+#[test]
+fn readouts_use_the_same_decimals_in_every_experiment() {
+    fn decimals(number: &str) -> usize {
+        number.split_once('.').map_or(0, |(_, d)| d.len())
+    }
+    for entry in registry() {
+        let mut exp = (entry.make)();
+        for action in exp.actions() {
+            exp.action(action.key).unwrap();
+        }
+        for p in [
+            glam::DVec2::new(0.9, 0.8),
+            glam::DVec2::new(2.0, 0.3),
+            glam::DVec2::new(-0.2, 1.4),
+        ] {
+            exp.input(Input::PointerDown(p));
+            for _ in 0..200 {
+                exp.step(1.0 / 60.0);
+            }
+            for r in exp.readouts() {
+                for part in r.value.split(", ") {
+                    if part == "--" || part.contains('×') || part.contains('∞') {
+                        continue;
+                    }
+                    if let Some(number) = part.strip_suffix(" m") {
+                        assert_eq!(decimals(number), 3, "{}.{}: {part}", entry.id, r.key);
+                    } else if let Some(number) = part.strip_suffix('°') {
+                        assert_eq!(decimals(number), 1, "{}.{}: {part}", entry.id, r.key);
+                    } else if let Some(number) = part.strip_suffix('%') {
+                        assert_eq!(decimals(number), 1, "{}.{}: {part}", entry.id, r.key);
+                    }
+                }
+                if r.key == "cond" {
+                    let v = &r.value;
+                    assert!(
+                        v == "∞ (singular)" || v.contains(" × 10") || decimals(v) == 1,
+                        "condition number {v}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -6,8 +6,9 @@
 //! singular values and left singular vectors of the Jacobian.
 
 use crate::experiment::{
-    check_param, clamp_to_params, with_coordinate, ActionSpec, Experiment, Input, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, clamp_to_params, format_degrees, format_fixed, format_magnitude, format_metres,
+    with_coordinate, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized,
+    Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::dls::{AdaptiveDamping, DlsSolver};
@@ -368,30 +369,22 @@ impl Experiment for DampedLeastSquares {
     fn readouts(&self) -> Vec<Readout> {
         let m = self.manipulability();
         let error = self.error_m.map_or("--".into(), |e| {
-            if e < 1e-3 {
-                format!("{e:.1e} m")
+            if e < 1e-3 && e > 0.0 {
+                format!("{} m", format_magnitude(e))
             } else {
-                format!("{} m", format_number(e, 4))
+                format_metres(e)
             }
         });
-        let condition = if m.condition.is_finite() {
-            format_number(m.condition, 2)
-        } else {
-            "∞".into()
-        };
         let angles: Vec<String> = self
             .angles_rad
             .iter()
-            .map(|a| {
-                let deg = crate::kinematics::two_link_ik::wrap_pi(*a).to_degrees();
-                format!("{}°", format_number(deg, 0))
-            })
+            .map(|a| format_degrees(crate::kinematics::two_link_ik::wrap_pi(*a).to_degrees()))
             .collect();
         vec![
             Readout::new("iterations", "Iterations", self.iterations.to_string()),
             Readout::new("error", "Error", error),
-            Readout::new("w", "Manipulability w", format_number(m.w, 4)),
-            Readout::new("cond", "Condition σmax/σmin", condition),
+            Readout::new("w", "Manipulability w", format_fixed(m.w, 3)),
+            Readout::new("cond", "Condition σmax/σmin", format_magnitude(m.condition)),
             Readout::metres("lambda_used", "λ used", self.lambda_used_m),
             Readout::new("angles", "Joint angles θ₁…θₙ", angles.join(", ")),
         ]
@@ -632,5 +625,29 @@ mod tests {
         assert!(d.animating());
         run(&mut d);
         assert_eq!(d.run, Run::Converged);
+    }
+
+    /// Regression: the condition number showed as `∞` or as raw digits
+    /// (`123456.79`); now `∞ (singular)` or `2.4 × 10⁵`.
+    #[test]
+    fn condition_number_readout_is_readable() {
+        let cond = |d: &DampedLeastSquares| {
+            d.readouts()
+                .into_iter()
+                .find(|r| r.key == "cond")
+                .unwrap()
+                .value
+        };
+        let mut d = DampedLeastSquares {
+            angles_rad: vec![0.0; 4],
+            ..DampedLeastSquares::default()
+        };
+        assert_eq!(cond(&d), "∞ (singular)");
+        d.angles_rad = vec![0.0, 1e-5, 0.0, 0.0];
+        let c = d.manipulability().condition;
+        assert!(c > 1e4 && c.is_finite());
+        assert!(cond(&d).contains(" × 10"), "{}", cond(&d));
+        d.angles_rad = vec![START_ANGLE_RAD; 4];
+        assert!(!cond(&d).contains('×'));
     }
 }

@@ -216,10 +216,6 @@ fn ease(t: f64) -> f64 {
     t * t * (3.0 - 2.0 * t)
 }
 
-fn degrees(a: f64) -> String {
-    format!("{}°", format_number(a, 1))
-}
-
 impl Experiment for InverseKinematics {
     fn id(&self) -> &'static str {
         "ik"
@@ -375,29 +371,27 @@ impl Experiment for InverseKinematics {
     fn readouts(&self) -> Vec<Readout> {
         let tip = self.tip();
         let sol = self.solution();
+        let angle = |key, label, a: Option<f64>| match a {
+            Some(rad) => Readout::degrees(key, label, rad.to_degrees()),
+            None => Readout::new(key, label, "--"),
+        };
         let mut r = vec![
             Readout::metres("x", "End-effector X", tip.x),
             Readout::metres("y", "End-effector Y", tip.y),
-            Readout::new(
-                "theta1",
-                "θ₁ solved",
-                sol.map_or("--".into(), |a| degrees(a.theta1_rad.to_degrees())),
-            ),
-            Readout::new(
-                "theta2",
-                "θ₂ solved",
-                sol.map_or("--".into(), |a| degrees(a.theta2_rad.to_degrees())),
-            ),
+            angle("theta1", "θ₁ solved", sol.map(|a| a.theta1_rad)),
+            angle("theta2", "θ₂ solved", sol.map(|a| a.theta2_rad)),
         ];
-        let wrist = match sol {
-            Some(a) if self.l3_m > 0.0 => {
-                let t3 = self.phi_deg.to_radians() - a.theta1_rad - a.theta2_rad;
-                degrees(crate::kinematics::two_link_ik::wrap_pi(t3).to_degrees())
-            }
-            _ if self.l3_m > 0.0 => "--".into(),
-            _ => "no wrist".into(),
-        };
-        r.push(Readout::new("theta3", "θ₃ (wrist)", wrist));
+        r.push(match sol {
+            Some(a) if self.l3_m > 0.0 => angle(
+                "theta3",
+                "θ₃ (wrist)",
+                Some(crate::kinematics::two_link_ik::wrap_pi(
+                    self.phi_deg.to_radians() - a.theta1_rad - a.theta2_rad,
+                )),
+            ),
+            _ if self.l3_m > 0.0 => Readout::new("theta3", "θ₃ (wrist)", "--"),
+            _ => Readout::new("theta3", "θ₃ (wrist)", "no wrist"),
+        });
         r
     }
 
