@@ -112,15 +112,47 @@ impl Question {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ContentError {
     Parse(String),
-    Missing { section: &'static str },
-    TooFewQuestions { found: usize },
-    TooFewGenerated { found: usize },
-    BadChoice { question: usize, reason: String },
-    BadTolerance { question: usize },
-    TooFewReferences { found: usize },
-    BadFormula { block: usize },
-    UnknownGenerator { question: usize, name: String },
-    WrongId { expected: String, found: String },
+    Missing {
+        section: &'static str,
+    },
+    TooFewQuestions {
+        found: usize,
+    },
+    TooFewGenerated {
+        found: usize,
+    },
+    BadChoice {
+        question: usize,
+        reason: String,
+    },
+    BadTolerance {
+        question: usize,
+    },
+    /// A tolerance finer than the decimals the answer is shown with
+    /// ([`crate::quiz::MIN_TOLERANCE`]): the shown answer could be marked wrong.
+    ToleranceTooFine {
+        question: usize,
+        tolerance: f64,
+    },
+    /// A prepared question that cannot be graded fairly (see [`crate::quiz::Prepared::validate`]).
+    BadQuestion {
+        question: usize,
+        reason: String,
+    },
+    TooFewReferences {
+        found: usize,
+    },
+    BadFormula {
+        block: usize,
+    },
+    UnknownGenerator {
+        question: usize,
+        name: String,
+    },
+    WrongId {
+        expected: String,
+        found: String,
+    },
 }
 
 impl fmt::Display for ContentError {
@@ -143,6 +175,16 @@ impl fmt::Display for ContentError {
             }
             ContentError::BadTolerance { question } => {
                 write!(f, "question {}: tolerance must be positive", question + 1)
+            }
+            ContentError::ToleranceTooFine { question, tolerance } => write!(
+                f,
+                "question {}: tolerance {tolerance} is finer than the {} decimals the answer is shown with (at least {} needed)",
+                question + 1,
+                crate::quiz::ANSWER_DECIMALS,
+                crate::quiz::MIN_TOLERANCE
+            ),
+            ContentError::BadQuestion { question, reason } => {
+                write!(f, "question {}: {reason}", question + 1)
             }
             ContentError::TooFewReferences { found } => {
                 write!(
@@ -184,9 +226,10 @@ impl Content {
     }
 
     /// Rejects a file that lacks a section, has fewer than 8 questions or fewer
-    /// than 2 parameterised ones, has a choice question without exactly one
-    /// correct answer, a non-positive tolerance, a malformed display formula,
-    /// or fewer than 3 references.
+    /// than 2 parameterised ones, has a choice question with fewer than two
+    /// options or without exactly one correct answer among them, a
+    /// non-positive tolerance or one finer than the answer's shown precision,
+    /// a malformed display formula, or fewer than 3 references.
     pub fn validate(&self) -> Result<(), ContentError> {
         let empty = |s: &str| s.trim().is_empty();
         if empty(&self.id) {
@@ -270,11 +313,13 @@ impl Content {
                     if !is_positive(*tolerance) || !answer.is_finite() {
                         return Err(ContentError::BadTolerance { question: i });
                     }
+                    check_precision(i, *tolerance)?;
                 }
                 Question::Generated { tolerance, .. } => {
                     if !is_positive(*tolerance) {
                         return Err(ContentError::BadTolerance { question: i });
                     }
+                    check_precision(i, *tolerance)?;
                 }
             }
         }
@@ -283,6 +328,18 @@ impl Content {
                 found: self.references.len(),
             });
         }
+        Ok(())
+    }
+}
+
+/// Refuses a tolerance finer than the precision the answer is shown with.
+fn check_precision(question: usize, tolerance: f64) -> Result<(), ContentError> {
+    if tolerance < crate::quiz::MIN_TOLERANCE {
+        Err(ContentError::ToleranceTooFine {
+            question,
+            tolerance,
+        })
+    } else {
         Ok(())
     }
 }

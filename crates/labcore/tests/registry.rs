@@ -378,3 +378,43 @@ fn readouts_use_the_same_decimals_in_every_experiment() {
         }
     }
 }
+
+/// Validation rejects a choice with fewer than two options, an answer index
+/// out of range and a tolerance finer than the answer's shown precision.
+#[test]
+fn content_validation_rejects_unfair_questions() {
+    let good: serde_json::Value = serde_json::from_str(registry()[0].content_json).unwrap();
+    let check = |v: &serde_json::Value| Content::parse(&v.to_string());
+    let edit = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = good.clone();
+        let q = v["quiz"]
+            .as_array_mut()
+            .unwrap()
+            .iter_mut()
+            .find(|q| q["kind"] == "choice")
+            .unwrap();
+        f(q);
+        v
+    };
+    let one_option = edit(&|q| {
+        q["options"] = serde_json::json!(["only"]);
+        q["answer"] = serde_json::json!(0);
+    });
+    assert!(check(&one_option).is_err());
+    let out_of_range = edit(&|q| q["answer"] = serde_json::json!(4));
+    assert!(check(&out_of_range).is_err());
+    let mut too_fine = good.clone();
+    let q = too_fine["quiz"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|q| q["kind"] == "generated")
+        .unwrap();
+    q["tolerance"] = serde_json::json!(0.0001);
+    let err = check(&too_fine).unwrap_err();
+    assert!(
+        matches!(err, labcore::content::ContentError::ToleranceTooFine { .. }),
+        "{err}"
+    );
+    assert!(err.to_string().contains("finer than"));
+}
