@@ -301,7 +301,9 @@ impl ExperimentPage {
             content: content.ok(),
             attempt: None,
         }));
-        inner.borrow_mut().new_attempt(random_seed());
+        // The attempt in progress before a reload, else a fresh one.
+        let seed = quiz_view::load_saved(entry.id).map_or_else(random_seed, |saved| saved.seed);
+        inner.borrow_mut().new_attempt(seed);
 
         let mut listeners = Vec::new();
         if let Some(tablist) = query(&root, "[role=tablist]") {
@@ -358,10 +360,19 @@ impl ExperimentPage {
                     e.prevent_default();
                     let p = page.borrow();
                     if let (Some(form), Some(attempt)) = (query(&p.root, "form.quiz"), &p.attempt) {
-                        quiz_view::grade_form(&form, attempt);
+                        // Asks for confirmation first when questions are unanswered.
+                        quiz_view::submit(&form, attempt);
                     }
                 },
             ));
+            // Keep the attempt's seed and answers across a reload.
+            let page = inner.clone();
+            listeners.push(Listener::new(quiz_panel.as_ref(), "input", move |_| {
+                let p = page.borrow();
+                if let (Some(form), Some(attempt)) = (query(&p.root, "form.quiz"), &p.attempt) {
+                    quiz_view::store(p.id, &form, attempt);
+                }
+            }));
             let page = inner.clone();
             listeners.push(Listener::new(
                 quiz_panel.as_ref(),
@@ -453,6 +464,12 @@ impl PageInner {
             Ok(questions) => {
                 let attempt = Attempt { seed, questions };
                 form.set_inner_html(&quiz_view::render(&attempt));
+                let _ = form.remove_attribute("data-confirm-unanswered");
+                // Answers typed before a reload come back (same seed only).
+                if let Some(saved) = quiz_view::load_saved(self.id) {
+                    quiz_view::restore(&form, &attempt, &saved);
+                }
+                quiz_view::store(self.id, &form, &attempt);
                 self.attempt = Some(attempt);
             }
             Err(e) => form.set_inner_html(&content_view::content_error(&e.to_string())),
