@@ -54,6 +54,25 @@ pub struct Reference {
     /// Chapter, pages or section.
     #[serde(default)]
     pub detail: Option<String>,
+    /// The Digital Object Identifier, without a resolver (`10.1115/1.3143764`).
+    #[serde(default)]
+    pub doi: Option<String>,
+    /// A stable address of the work (publisher's or author's page), `https://…`.
+    #[serde(default)]
+    pub url: Option<String>,
+}
+
+impl Reference {
+    /// Where a reader can find the work: `https://doi.org/<doi>` when a DOI is
+    /// given, else the stable URL.
+    #[must_use]
+    pub fn link(&self) -> Option<String> {
+        match (&self.doi, &self.url) {
+            (Some(doi), _) => Some(format!("https://doi.org/{doi}")),
+            (None, Some(url)) => Some(url.clone()),
+            (None, None) => None,
+        }
+    }
 }
 
 /// One self-assessment question.
@@ -112,6 +131,11 @@ impl Question {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ContentError {
     Parse(String),
+    /// A reference whose DOI or URL is malformed.
+    BadReference {
+        reference: usize,
+        reason: String,
+    },
     Missing {
         section: &'static str,
     },
@@ -183,6 +207,9 @@ impl fmt::Display for ContentError {
                 crate::quiz::ANSWER_DECIMALS,
                 crate::quiz::MIN_TOLERANCE
             ),
+            ContentError::BadReference { reference, reason } => {
+                write!(f, "reference {}: {reason}", reference + 1)
+            }
             ContentError::BadQuestion { question, reason } => {
                 write!(f, "question {}: {reason}", question + 1)
             }
@@ -323,6 +350,25 @@ impl Content {
                 }
             }
         }
+        for (i, r) in self.references.iter().enumerate() {
+            if r.doi.as_deref().is_some_and(|d| {
+                !d.starts_with("10.") || !d.contains('/') || d.contains(char::is_whitespace)
+            }) {
+                return Err(ContentError::BadReference {
+                    reference: i,
+                    reason: "a DOI looks like 10.1115/1.3143764 (no resolver, no spaces)".into(),
+                });
+            }
+            if r.url.as_deref().is_some_and(|u| {
+                !(u.starts_with("https://") || u.starts_with("http://"))
+                    || u.contains(|c: char| c.is_whitespace() || c == '"' || c == '<')
+            }) {
+                return Err(ContentError::BadReference {
+                    reference: i,
+                    reason: "a URL must be an absolute http(s) address".into(),
+                });
+            }
+        }
         if self.references.len() < MIN_REFERENCES {
             return Err(ContentError::TooFewReferences {
                 found: self.references.len(),
@@ -392,6 +438,23 @@ pub fn tags_balanced(s: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn references_link_to_their_doi_or_url() {
+        let r: Reference = serde_json::from_str(
+            r#"{"authors": "A", "title": "T", "venue": "V", "doi": "10.1115/1.3143764"}"#,
+        )
+        .unwrap();
+        assert_eq!(
+            r.link().as_deref(),
+            Some("https://doi.org/10.1115/1.3143764")
+        );
+        let r: Reference = serde_json::from_str(
+            r#"{"authors": "A", "title": "T", "venue": "V", "url": "https://example.org/x"}"#,
+        )
+        .unwrap();
+        assert_eq!(r.link().as_deref(), Some("https://example.org/x"));
+    }
 
     #[test]
     fn balanced_tags() {

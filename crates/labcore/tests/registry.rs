@@ -418,3 +418,22 @@ fn content_validation_rejects_unfair_questions() {
     );
     assert!(err.to_string().contains("finer than"));
 }
+
+/// References carry a DOI or a stable URL where one exists: every experiment
+/// links at least one, and a malformed DOI is refused.
+#[test]
+fn references_carry_dois_or_stable_urls() {
+    for entry in registry() {
+        let content = entry.content().unwrap();
+        let links: Vec<String> = content.references.iter().filter_map(|r| r.link()).collect();
+        assert!(
+            !links.is_empty(),
+            "{}: no reference links anywhere",
+            entry.id
+        );
+        assert!(links.iter().all(|l| l.starts_with("http")), "{links:?}");
+    }
+    let mut v: serde_json::Value = serde_json::from_str(registry()[0].content_json).unwrap();
+    v["references"][0]["doi"] = serde_json::json!("https://doi.org/10.1/x");
+    assert!(Content::parse(&v.to_string()).is_err());
+}
