@@ -437,3 +437,42 @@ fn references_carry_dois_or_stable_urls() {
     v["references"][0]["doi"] = serde_json::json!("https://doi.org/10.1/x");
     assert!(Content::parse(&v.to_string()).is_err());
 }
+
+/// labcore re-exports glam, so users of its `DVec2` API need no separate,
+/// version-matched dependency; every returned angle is wrapped to [-π, π].
+#[test]
+fn glam_is_reexported_and_returned_angles_are_wrapped() {
+    use labcore::glam::DVec2;
+    use labcore::kinematics::{chain, dls::DlsSolver, two_link_ik};
+    use std::f64::consts::PI;
+    let pose = chain::forward(&[1.0, 1.0], &[3.0, 3.0]);
+    let tip: DVec2 = pose.tip();
+    assert!(tip.is_finite());
+    assert!((-PI..=PI).contains(&pose.tip_angle_rad));
+    let mut rng = labcore::Lcg64::new(9);
+    for _ in 0..500 {
+        let mut q = [
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+        ];
+        let target = DVec2::new(rng.range(-3.5, 3.5), rng.range(-3.5, 3.5));
+        let lengths = [1.0, 0.8, 0.6];
+        DlsSolver::default()
+            .solve(&lengths, &mut q, target)
+            .unwrap();
+        assert!(q.iter().all(|a| (-PI..=PI).contains(a)), "{q:?}");
+        let mut q = [
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+        ];
+        DlsSolver::default().step(&lengths, &mut q, target).unwrap();
+        assert!(q.iter().all(|a| (-PI..=PI).contains(a)), "{q:?}");
+        if let Ok(sol) = two_link_ik::solve(1.0, 0.8, target) {
+            for a in [sol.elbow_up, sol.elbow_down] {
+                assert!((-PI..=PI).contains(&a.theta1_rad) && (-PI..=PI).contains(&a.theta2_rad));
+            }
+        }
+    }
+}

@@ -19,7 +19,8 @@ use glam::DVec2;
 pub struct ChainPose {
     /// Base (origin), each joint, then the tip, in metres.
     pub points: Vec<DVec2>,
-    /// Orientation of the last link, `Θₙ = Σ θₖ`, in radians (not wrapped).
+    /// Orientation of the last link, `Θₙ = Σ θₖ`, in radians, wrapped to
+    /// `[-π, π]` like every angle labcore returns.
     pub tip_angle_rad: f64,
 }
 
@@ -53,7 +54,7 @@ pub fn forward(lengths_m: &[f64], angles_rad: &[f64]) -> ChainPose {
 }
 
 /// Allocation-free form of [`forward`]: clears `points`, fills base..tip and
-/// returns the tip orientation in radians.
+/// returns the tip orientation in radians, wrapped to `[-π, π]`.
 pub fn forward_into(lengths_m: &[f64], angles_rad: &[f64], points: &mut Vec<DVec2>) -> f64 {
     points.clear();
     let mut p = DVec2::ZERO;
@@ -65,7 +66,7 @@ pub fn forward_into(lengths_m: &[f64], angles_rad: &[f64], points: &mut Vec<DVec
         p += DVec2::new(c, s) * *length;
         points.push(p);
     }
-    heading
+    super::two_link_ik::wrap_pi(heading)
 }
 
 /// Only the tip position (no allocation).
@@ -180,6 +181,16 @@ mod tests {
             tip(&[1.0, 1.0, 1.0], &[0.0, FRAC_PI_2, FRAC_PI_2]),
             p.tip()
         ));
+    }
+
+    /// Every returned angle is wrapped to [-π, π] (the tip angle was not).
+    #[test]
+    fn tip_angle_is_wrapped() {
+        let p = forward(&[1.0, 1.0, 1.0], &[3.0, 3.0, 3.0]);
+        assert!((-PI..=PI).contains(&p.tip_angle_rad), "{}", p.tip_angle_rad);
+        assert!((p.tip_angle_rad - (9.0 - 2.0 * PI)).abs() < 1e-12);
+        let p = forward(&[1.0], &[-7.0]);
+        assert!((p.tip_angle_rad - (-7.0 + 2.0 * PI)).abs() < 1e-12);
     }
 
     #[test]
