@@ -54,6 +54,25 @@ pub struct Reference {
     /// Chapter, pages or section.
     #[serde(default)]
     pub detail: Option<String>,
+    /// The Digital Object Identifier, without a resolver (`10.1115/1.3143764`).
+    #[serde(default)]
+    pub doi: Option<String>,
+    /// A stable address of the work (publisher's or author's page), `https://…`.
+    #[serde(default)]
+    pub url: Option<String>,
+}
+
+impl Reference {
+    /// Where a reader can find the work: `https://doi.org/<doi>` when a DOI is
+    /// given, else the stable URL.
+    #[must_use]
+    pub fn link(&self) -> Option<String> {
+        match (&self.doi, &self.url) {
+            (Some(doi), _) => Some(format!("https://doi.org/{doi}")),
+            (None, Some(url)) => Some(url.clone()),
+            (None, None) => None,
+        }
+    }
 }
 
 /// One self-assessment question.
@@ -112,15 +131,52 @@ impl Question {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ContentError {
     Parse(String),
-    Missing { section: &'static str },
-    TooFewQuestions { found: usize },
-    TooFewGenerated { found: usize },
-    BadChoice { question: usize, reason: String },
-    BadTolerance { question: usize },
-    TooFewReferences { found: usize },
-    BadFormula { block: usize },
-    UnknownGenerator { question: usize, name: String },
-    WrongId { expected: String, found: String },
+    /// A reference whose DOI or URL is malformed.
+    BadReference {
+        reference: usize,
+        reason: String,
+    },
+    Missing {
+        section: &'static str,
+    },
+    TooFewQuestions {
+        found: usize,
+    },
+    TooFewGenerated {
+        found: usize,
+    },
+    BadChoice {
+        question: usize,
+        reason: String,
+    },
+    BadTolerance {
+        question: usize,
+    },
+    /// A tolerance finer than the decimals the answer is shown with
+    /// ([`crate::quiz::MIN_TOLERANCE`]): the shown answer could be marked wrong.
+    ToleranceTooFine {
+        question: usize,
+        tolerance: f64,
+    },
+    /// A prepared question that cannot be graded fairly (see [`crate::quiz::Prepared::validate`]).
+    BadQuestion {
+        question: usize,
+        reason: String,
+    },
+    TooFewReferences {
+        found: usize,
+    },
+    BadFormula {
+        block: usize,
+    },
+    UnknownGenerator {
+        question: usize,
+        name: String,
+    },
+    WrongId {
+        expected: String,
+        found: String,
+    },
 }
 
 impl fmt::Display for ContentError {
@@ -143,6 +199,19 @@ impl fmt::Display for ContentError {
             }
             ContentError::BadTolerance { question } => {
                 write!(f, "question {}: tolerance must be positive", question + 1)
+            }
+            ContentError::ToleranceTooFine { question, tolerance } => write!(
+                f,
+                "question {}: tolerance {tolerance} is finer than the {} decimals the answer is shown with (at least {} needed)",
+                question + 1,
+                crate::quiz::ANSWER_DECIMALS,
+                crate::quiz::MIN_TOLERANCE
+            ),
+            ContentError::BadReference { reference, reason } => {
+                write!(f, "reference {}: {reason}", reference + 1)
+            }
+            ContentError::BadQuestion { question, reason } => {
+                write!(f, "question {}: {reason}", question + 1)
             }
             ContentError::TooFewReferences { found } => {
                 write!(
@@ -184,9 +253,10 @@ impl Content {
     }
 
     /// Rejects a file that lacks a section, has fewer than 8 questions or fewer
-    /// than 2 parameterised ones, has a choice question without exactly one
-    /// correct answer, a non-positive tolerance, a malformed display formula,
-    /// or fewer than 3 references.
+    /// than 2 parameterised ones, has a choice question with fewer than two
+    /// options or without exactly one correct answer among them, a
+    /// non-positive tolerance or one finer than the answer's shown precision,
+    /// a malformed display formula, or fewer than 3 references.
     pub fn validate(&self) -> Result<(), ContentError> {
         let empty = |s: &str| s.trim().is_empty();
         if empty(&self.id) {
@@ -270,12 +340,33 @@ impl Content {
                     if !is_positive(*tolerance) || !answer.is_finite() {
                         return Err(ContentError::BadTolerance { question: i });
                     }
+                    check_precision(i, *tolerance)?;
                 }
                 Question::Generated { tolerance, .. } => {
                     if !is_positive(*tolerance) {
                         return Err(ContentError::BadTolerance { question: i });
                     }
+                    check_precision(i, *tolerance)?;
                 }
+            }
+        }
+        for (i, r) in self.references.iter().enumerate() {
+            if r.doi.as_deref().is_some_and(|d| {
+                !d.starts_with("10.") || !d.contains('/') || d.contains(char::is_whitespace)
+            }) {
+                return Err(ContentError::BadReference {
+                    reference: i,
+                    reason: "a DOI looks like 10.1115/1.3143764 (no resolver, no spaces)".into(),
+                });
+            }
+            if r.url.as_deref().is_some_and(|u| {
+                !(u.starts_with("https://") || u.starts_with("http://"))
+                    || u.contains(|c: char| c.is_whitespace() || c == '"' || c == '<')
+            }) {
+                return Err(ContentError::BadReference {
+                    reference: i,
+                    reason: "a URL must be an absolute http(s) address".into(),
+                });
             }
         }
         if self.references.len() < MIN_REFERENCES {
@@ -283,6 +374,18 @@ impl Content {
                 found: self.references.len(),
             });
         }
+        Ok(())
+    }
+}
+
+/// Refuses a tolerance finer than the precision the answer is shown with.
+fn check_precision(question: usize, tolerance: f64) -> Result<(), ContentError> {
+    if tolerance < crate::quiz::MIN_TOLERANCE {
+        Err(ContentError::ToleranceTooFine {
+            question,
+            tolerance,
+        })
+    } else {
         Ok(())
     }
 }
@@ -335,6 +438,23 @@ pub fn tags_balanced(s: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn references_link_to_their_doi_or_url() {
+        let r: Reference = serde_json::from_str(
+            r#"{"authors": "A", "title": "T", "venue": "V", "doi": "10.1115/1.3143764"}"#,
+        )
+        .unwrap();
+        assert_eq!(
+            r.link().as_deref(),
+            Some("https://doi.org/10.1115/1.3143764")
+        );
+        let r: Reference = serde_json::from_str(
+            r#"{"authors": "A", "title": "T", "venue": "V", "url": "https://example.org/x"}"#,
+        )
+        .unwrap();
+        assert_eq!(r.link().as_deref(), Some("https://example.org/x"));
+    }
 
     #[test]
     fn balanced_tags() {

@@ -74,6 +74,18 @@ fn reference(r: &Reference) -> String {
         s.push_str(&format!(". {detail}"));
     }
     s.push('.');
+    if let Some(link) = r.link() {
+        // Validated by `Content::validate` (an http(s) URL or a DOI); escaped all the same.
+        let shown = match &r.doi {
+            Some(doi) => format!("doi:{doi}"),
+            None => link.clone(),
+        };
+        s.push_str(&format!(
+            " <a class=\"ref-link\" href=\"{}\" rel=\"noopener\">{}</a>",
+            escape(&link),
+            escape(&shown)
+        ));
+    }
     s
 }
 

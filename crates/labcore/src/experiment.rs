@@ -39,6 +39,10 @@ pub struct ParamSpec {
     pub step: f64,
     pub default: f64,
     pub kind: ParamKind,
+    /// The value is a whole number (a count, an index): [`ParamSpec::sanitize`]
+    /// rounds it, so what `set_param` returns is what the experiment stores.
+    /// Always true for toggles, choices and [`ParamKind::Number`].
+    pub integer: bool,
 }
 
 impl ParamSpec {
@@ -62,6 +66,7 @@ impl ParamSpec {
             step,
             default,
             kind: ParamKind::Slider,
+            integer: false,
         }
     }
 
@@ -83,6 +88,7 @@ impl ParamSpec {
             step: 1.0,
             default,
             kind: ParamKind::Number,
+            integer: true,
         }
     }
 
@@ -104,6 +110,7 @@ impl ParamSpec {
             step: 0.01,
             default: 0.0,
             kind: ParamKind::OptionalNumber,
+            integer: false,
         }
     }
 
@@ -125,6 +132,7 @@ impl ParamSpec {
             step: 1.0,
             default: if default_on { 1.0 } else { 0.0 },
             kind: ParamKind::Toggle { off, on },
+            integer: true,
         }
     }
 
@@ -145,20 +153,34 @@ impl ParamSpec {
             step: 1.0,
             default: default as f64,
             kind: ParamKind::Choice(options),
+            integer: true,
         }
     }
 
-    /// Checks a proposed value: NaN and infinities are rejected; values outside
-    /// `[min, max]` are clamped and reported as [`Sanitized::Clamped`];
-    /// toggles and choices are rounded to the nearest index.
+    /// The same parameter holding whole numbers only (e.g. a link or sample
+    /// count on a slider): see [`ParamSpec::whole_numbers`].
+    #[must_use]
+    pub const fn whole_numbers(self) -> Self {
+        Self {
+            integer: true,
+            ..self
+        }
+    }
+
+    /// Checks a proposed value: NaN and infinities are rejected; integer
+    /// parameters (toggles, choices, numbers and [`ParamSpec::whole_numbers`]
+    /// sliders) are rounded to the nearest whole number; values outside
+    /// `[min, max]` are clamped and reported as [`Sanitized::Clamped`]. The
+    /// returned value is exactly what the experiment stores.
     pub fn sanitize(&self, value: f64) -> Result<Sanitized, ParamError> {
         if !value.is_finite() {
             return Err(ParamError::NotFinite { key: self.key });
         }
-        let discrete = matches!(
-            self.kind,
-            ParamKind::Toggle { .. } | ParamKind::Choice(_) | ParamKind::Number
-        );
+        let discrete = self.integer
+            || matches!(
+                self.kind,
+                ParamKind::Toggle { .. } | ParamKind::Choice(_) | ParamKind::Number
+            );
         let v = if discrete { value.round() } else { value };
         let clamped = v.clamp(self.min, self.max);
         if clamped != v {
@@ -290,15 +312,93 @@ impl Readout {
         }
     }
 
-    /// A length in metres with 3 decimals, e.g. `1.234 m`.
+    /// A length in metres with exactly [`Readout::METRE_DECIMALS`] decimals,
+    /// e.g. `1.500 m` (`--` when not finite).
     #[must_use]
     pub fn metres(key: &'static str, label: &'static str, value_m: f64) -> Self {
-        Self::new(
-            key,
-            label,
-            format!("{} m", crate::quiz::format_number(value_m, 3)),
-        )
+        Self::new(key, label, format_metres(value_m))
     }
+
+    /// An angle in degrees with exactly [`Readout::DEGREE_DECIMALS`] decimal,
+    /// e.g. `-35.0°` (`--` when not finite).
+    #[must_use]
+    pub fn degrees(key: &'static str, label: &'static str, value_deg: f64) -> Self {
+        Self::new(key, label, format_degrees(value_deg))
+    }
+
+    /// Decimals of every length readout, in every experiment (1 mm).
+    pub const METRE_DECIMALS: usize = 3;
+    /// Decimals of every angle readout, in every experiment (0.1°).
+    pub const DEGREE_DECIMALS: usize = 1;
+}
+
+/// A length as every readout shows it: `1.500 m`.
+#[must_use]
+pub fn format_metres(value_m: f64) -> String {
+    if value_m.is_finite() {
+        format!("{} m", format_fixed(value_m, Readout::METRE_DECIMALS))
+    } else {
+        "--".into()
+    }
+}
+
+/// An angle as every readout shows it: `-35.0°`.
+#[must_use]
+pub fn format_degrees(value_deg: f64) -> String {
+    if value_deg.is_finite() {
+        format!("{}°", format_fixed(value_deg, Readout::DEGREE_DECIMALS))
+    } else {
+        "--".into()
+    }
+}
+
+/// Exactly `decimals` places, and no `-0.000` (a tiny negative shows as zero).
+#[must_use]
+pub fn format_fixed(value: f64, decimals: usize) -> String {
+    let s = format!("{value:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_owned(),
+        _ => s,
+    }
+}
+
+/// A positive quantity that spans many orders of magnitude (a condition
+/// number, a tiny error), readable at a glance: `12.3` below 1000, else one
+/// decimal times a power of ten, `2.4 × 10⁵` or `3.1 × 10⁻⁷`; infinity as
+/// `∞ (singular)`.
+#[must_use]
+pub fn format_magnitude(value: f64) -> String {
+    if value.is_nan() {
+        return "--".into();
+    }
+    if value.is_infinite() {
+        return "∞ (singular)".into();
+    }
+    let magnitude = value.abs();
+    if magnitude == 0.0 || (1e-3..1e3).contains(&magnitude) {
+        return format_fixed(value, if magnitude < 1.0 { 3 } else { 1 });
+    }
+    // Mantissa in [1, 10) after rounding to one decimal.
+    let mut exponent = magnitude.log10().floor() as i32;
+    let mut mantissa = value / 10f64.powi(exponent);
+    if format!("{:.1}", mantissa.abs()) == "10.0" {
+        exponent += 1;
+        mantissa = value / 10f64.powi(exponent);
+    }
+    format!("{mantissa:.1} × 10{}", superscript(exponent))
+}
+
+/// `-7` → `⁻⁷`.
+fn superscript(n: i32) -> String {
+    const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let mut s = String::new();
+    if n < 0 {
+        s.push('⁻');
+    }
+    for c in n.unsigned_abs().to_string().chars() {
+        s.push(DIGITS[c.to_digit(10).unwrap_or(0) as usize]);
+    }
+    s
 }
 
 /// One experiment: parameters, state, a fixed-step simulation and a display list.
@@ -388,6 +488,20 @@ pub fn with_coordinate(point: Option<DVec2>, fallback: DVec2, key: &str, value: 
     }
 }
 
+/// A dragged or nudged target point clamped into the ranges of its typed
+/// coordinates (`x_key`, `y_key` of `specs`), so every target a pointer or
+/// the keyboard can set is one a link (`tx=…&ty=…`) reproduces without a
+/// notice. The canvas may show more than the range (a wide screen): a click
+/// beyond it sets the target on the range's edge.
+#[must_use]
+pub fn clamp_to_params(specs: &[ParamSpec], x_key: &str, y_key: &str, p: DVec2) -> DVec2 {
+    let clamp = |key: &str, v: f64| match find_spec(specs, key) {
+        Some(s) => v.clamp(s.min, s.max),
+        None => v,
+    };
+    DVec2::new(clamp(x_key, p.x), clamp(y_key, p.y))
+}
+
 /// Shared helper: look up a spec by key.
 #[must_use]
 pub fn find_spec<'a>(specs: &'a [ParamSpec], key: &str) -> Option<&'a ParamSpec> {
@@ -415,6 +529,30 @@ mod tests {
         assert_eq!(SPEC.sanitize(-500.0), Ok(Sanitized::Clamped(-180.0)));
         assert!(SPEC.sanitize(f64::NAN).is_err());
         assert!(SPEC.sanitize(f64::INFINITY).is_err());
+    }
+
+    /// Regression: DLS `set_param("n", 2.5)` returned `InRange(2.5)` but stored 3.
+    #[test]
+    fn integer_sliders_round_in_sanitize() {
+        let n = ParamSpec::slider("n", "Links", "", 2.0, 8.0, 1.0, 4.0).whole_numbers();
+        assert!(n.integer);
+        assert_eq!(n.sanitize(2.5), Ok(Sanitized::InRange(3.0)));
+        assert_eq!(n.sanitize(4.49), Ok(Sanitized::InRange(4.0)));
+        assert_eq!(n.sanitize(8.6), Ok(Sanitized::Clamped(8.0)));
+        assert_eq!(SPEC.sanitize(10.5), Ok(Sanitized::InRange(10.5)));
+    }
+
+    #[test]
+    fn readout_formats() {
+        assert_eq!(format_metres(1.5), "1.500 m");
+        assert_eq!(format_metres(-0.0001), "0.000 m");
+        assert_eq!(format_degrees(-35.0), "-35.0°");
+        assert_eq!(format_magnitude(f64::INFINITY), "∞ (singular)");
+        assert_eq!(format_magnitude(2.4e5), "2.4 × 10⁵");
+        assert_eq!(format_magnitude(99_960.0), "1.0 × 10⁵");
+        assert_eq!(format_magnitude(3.14e-7), "3.1 × 10⁻⁷");
+        assert_eq!(format_magnitude(12.34), "12.3");
+        assert_eq!(format_magnitude(0.0123), "0.012");
     }
 
     #[test]

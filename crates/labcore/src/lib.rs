@@ -15,6 +15,20 @@
 //!   manipulability and damped-least-squares IK (Buss 2004; Nakamura & Hanafusa 1986;
 //!   Wampler 1986).
 //!
+//! ## Angles
+//! Every angle labcore returns is in radians and wrapped to `[-π, π]` by
+//! [`kinematics::two_link_ik::wrap_pi`]: the tip orientation
+//! [`kinematics::chain::ChainPose::tip_angle_rad`], both closed-form IK
+//! branches ([`kinematics::two_link_ik::TwoLinkAngles`]: θ₁ in `[-π, π]`,
+//! θ₂ in `[-π, 0]` elbow up and `[0, π]` elbow down; the wrist angle θ₃ in
+//! `[-π, π]`), and the joint angles DLS writes back
+//! ([`kinematics::dls::DlsSolver::step`], [`kinematics::dls::DlsSolver::solve`]).
+//! Experiments show the same angles in degrees, in `[-180°, 180°]`.
+//!
+//! ## glam
+//! The geometry API takes and returns [`glam::DVec2`]; glam is re-exported
+//! (`labcore::glam`) so users need no separate, version-matched dependency.
+//!
 //! ## The seam
 //! Every experiment implements [`Experiment`]; [`registry`] lists them with
 //! their content file and quiz generators.
@@ -40,6 +54,7 @@ pub use experiment::{
     Tone,
 };
 pub use experiments::{find, registry, Entry};
+pub use glam;
 pub use plot::{Plot, Series, SeriesRole};
 pub use rng::Lcg64;
 pub use scene::{Item, RasterColour, Role, Scene, ViewBox};

@@ -58,10 +58,21 @@ pub enum PreparedKind {
 }
 
 /// What the student gave.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Response {
     Choice(Option<usize>),
     Text(String),
+}
+
+impl Response {
+    /// True when nothing was given (no option picked, or only spaces typed).
+    #[must_use]
+    pub fn is_blank(&self) -> bool {
+        match self {
+            Response::Choice(picked) => picked.is_none(),
+            Response::Text(text) => text.trim().is_empty(),
+        }
+    }
 }
 
 /// The verdict on one answer.
@@ -74,6 +85,108 @@ pub struct Grade {
     pub unreadable: bool,
     /// Set when nothing was given.
     pub blank: bool,
+    /// How a numeric answer was read, in the question's unit (`8000 m` for
+    /// “8 km” or “8,000 m”), so the student sees what was graded.
+    pub read_as: Option<String>,
+    /// Why a numeric answer could not be read (see [`ReadError`]).
+    pub problem: Option<String>,
+}
+
+/// Percentage of `score` out of `total`, rounded half up (8 / 12 → 67).
+/// 0 when `total` is 0.
+#[must_use]
+pub fn score_percent(score: usize, total: usize) -> usize {
+    if total == 0 {
+        return 0;
+    }
+    let score = score.min(total) as u128;
+    let total = total as u128;
+    ((200 * score + total) / (2 * total)) as usize
+}
+
+/// Decimals with which numeric answers are shown (`{answer}`, “Expected …”).
+pub const ANSWER_DECIMALS: usize = 3;
+
+/// Smallest tolerance a numeric question may have: half a unit of the last
+/// decimal the answer is shown with, so the shown answer is always accepted.
+pub const MIN_TOLERANCE: f64 = 0.0005;
+
+impl Prepared {
+    /// Checks that this question can be graded fairly: a choice has at least
+    /// two options and its answer is one of them; a numeric answer is finite
+    /// and its tolerance finite and no finer than [`MIN_TOLERANCE`] (half the
+    /// last decimal the answer is shown with).
+    pub fn validate(&self) -> Result<(), String> {
+        match &self.kind {
+            PreparedKind::Choice { options, answer } => {
+                if options.len() < 2 {
+                    return Err("a choice needs at least two options".into());
+                }
+                if *answer >= options.len() {
+                    return Err("the correct answer is not one of the options".into());
+                }
+            }
+            PreparedKind::Numeric {
+                answer, tolerance, ..
+            } => {
+                if !answer.is_finite() {
+                    return Err("the answer is not a finite number".into());
+                }
+                if !(tolerance.is_finite() && *tolerance >= MIN_TOLERANCE) {
+                    return Err(format!(
+                        "tolerance {tolerance} is finer than the {ANSWER_DECIMALS} decimals the answer is shown with (at least {MIN_TOLERANCE} needed)"
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One saved attempt: its seed and the answers given so far, so an attempt
+/// survives a reload (the page keeps [`SavedAttempt::encode`] in local
+/// storage or the URL) and an instructor's `?quiz=<seed>` fixes the numbers.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SavedAttempt {
+    pub seed: u64,
+    /// One per question, in order.
+    pub answers: Vec<Response>,
+}
+
+impl SavedAttempt {
+    /// A compact text form (JSON).
+    #[must_use]
+    pub fn encode(&self) -> String {
+        serde_json::to_string(self).unwrap_or_default()
+    }
+
+    /// Reads [`SavedAttempt::encode`]'s text; `None` for anything else.
+    #[must_use]
+    pub fn decode(text: &str) -> Option<Self> {
+        serde_json::from_str(text).ok()
+    }
+
+    /// The saved answers fitted to `questions`: one per question, a saved
+    /// answer of the wrong kind or an option index out of range becomes blank.
+    #[must_use]
+    pub fn answers_for(&self, questions: &[Prepared]) -> Vec<Response> {
+        questions
+            .iter()
+            .enumerate()
+            .map(|(i, q)| match (&q.kind, self.answers.get(i)) {
+                (PreparedKind::Choice { options, .. }, Some(Response::Choice(Some(k))))
+                    if *k < options.len() =>
+                {
+                    Response::Choice(Some(*k))
+                }
+                (PreparedKind::Numeric { .. }, Some(Response::Text(t))) => {
+                    Response::Text(t.chars().take(200).collect())
+                }
+                (PreparedKind::Choice { .. }, _) => Response::Choice(None),
+                (PreparedKind::Numeric { .. }, _) => Response::Text(String::new()),
+            })
+            .collect()
+    }
 }
 
 /// Builds one attempt: every question of `content`, the generated ones drawn
@@ -89,7 +202,16 @@ pub fn prepare(
         .quiz
         .iter()
         .enumerate()
-        .map(|(i, q)| prepare_one(q, i, lookup, seed))
+        .map(|(i, q)| {
+            let prepared = prepare_one(q, i, lookup, seed)?;
+            prepared
+                .validate()
+                .map_err(|reason| ContentError::BadQuestion {
+                    question: i,
+                    reason,
+                })?;
+            Ok(prepared)
+        })
         .collect()
 }
 
@@ -155,7 +277,7 @@ fn prepare_one(
             })?;
             let mut rng = Lcg64::new(question_seed(seed, index));
             let draw = gen(&mut rng);
-            let answer_text = format_number(draw.answer, 3);
+            let answer_text = format_number(draw.answer, ANSWER_DECIMALS);
             let fill = |template: &str| {
                 let mut s = template.to_owned();
                 for (name, value) in &draw.vars {
@@ -190,21 +312,26 @@ fn question_seed(seed: u64, index: usize) -> u64 {
 }
 
 /// Grades one response. Numeric answers must be within the stated absolute
-/// tolerance, read in the question's unit (see [`parse_answer`]); angles in
-/// degrees are compared modulo 360°.
+/// tolerance, read in the question's unit (see [`read_answer`]); angles in
+/// degrees are compared modulo 360°. Never panics, whatever the [`Prepared`]
+/// value (an invalid question is simply never correct).
 #[must_use]
 pub fn grade(q: &Prepared, response: &Response) -> Grade {
-    let blank = match response {
-        Response::Choice(picked) => picked.is_none(),
-        Response::Text(text) => text.trim().is_empty(),
+    let blank = response.is_blank();
+    let verdict = |correct, expected, unreadable| Grade {
+        correct,
+        expected,
+        unreadable,
+        blank,
+        read_as: None,
+        problem: None,
     };
     match (&q.kind, response) {
-        (PreparedKind::Choice { options, answer }, Response::Choice(picked)) => Grade {
-            correct: *picked == Some(*answer),
-            expected: options[*answer].clone(),
-            unreadable: false,
-            blank,
-        },
+        (PreparedKind::Choice { options, answer }, Response::Choice(picked)) => verdict(
+            options.get(*answer).is_some() && *picked == Some(*answer),
+            options.get(*answer).cloned().unwrap_or_else(|| "--".into()),
+            false,
+        ),
         (
             PreparedKind::Numeric {
                 answer,
@@ -214,94 +341,358 @@ pub fn grade(q: &Prepared, response: &Response) -> Grade {
             },
             Response::Text(text),
         ) => {
-            let expected = if unit.is_empty() {
-                format_number(*answer, 3)
-            } else {
-                format!("{} {unit}", format_number(*answer, 3))
-            };
-            match parse_answer(text, unit) {
-                Some(v) => {
-                    let mut error = (v - answer).abs();
+            let expected = with_unit(&format_number(*answer, ANSWER_DECIMALS), unit);
+            match read_answer(text, unit) {
+                Ok(reading) => {
+                    let mut error = (reading.value - answer).abs();
                     if *angle_degrees {
                         error = error.rem_euclid(360.0);
                         error = error.min(360.0 - error);
                     }
                     Grade {
-                        correct: error <= *tolerance,
-                        expected,
-                        unreadable: false,
-                        blank,
+                        read_as: Some(reading.read_as),
+                        ..verdict(error <= *tolerance, expected, false)
                     }
                 }
-                None => Grade {
-                    correct: false,
-                    expected,
-                    unreadable: !blank,
-                    blank,
+                Err(e) => Grade {
+                    problem: (!blank).then(|| e.to_string()),
+                    ..verdict(false, expected, !blank)
                 },
             }
         }
-        (PreparedKind::Choice { options, answer }, Response::Text(_)) => Grade {
-            correct: false,
-            expected: options[*answer].clone(),
-            unreadable: true,
-            blank,
-        },
-        (PreparedKind::Numeric { answer, .. }, Response::Choice(_)) => Grade {
-            correct: false,
-            expected: format_number(*answer, 3),
-            unreadable: true,
-            blank,
-        },
+        (PreparedKind::Choice { options, answer }, Response::Text(_)) => verdict(
+            false,
+            options.get(*answer).cloned().unwrap_or_else(|| "--".into()),
+            !blank,
+        ),
+        (PreparedKind::Numeric { answer, unit, .. }, Response::Choice(_)) => verdict(
+            false,
+            with_unit(&format_number(*answer, ANSWER_DECIMALS), unit),
+            !blank,
+        ),
     }
 }
 
-/// Reads an answer given in `unit`: a number (see [`parse_number`]),
-/// optionally followed by that unit (`0.6 m`, `45°`, `45 deg` for degrees).
-/// Any other unit is refused, so `1.2 rad` is not taken for `1.2°`.
-#[must_use]
-pub fn parse_answer(text: &str, unit: &str) -> Option<f64> {
-    let lower = text.trim().to_ascii_lowercase();
-    let unit = unit.trim().to_ascii_lowercase();
-    let mut suffixes = vec![unit.clone()];
-    if unit == "°" {
-        suffixes.extend(["deg".to_owned(), "degrees".to_owned()]);
+/// `8000 m`, `45°`, `70.7%`, `5 m⁻¹`: a number followed by its unit.
+fn with_unit(number: &str, unit: &str) -> String {
+    match unit.trim() {
+        "" => number.to_owned(),
+        "°" | "%" => format!("{number}{}", unit.trim()),
+        "1/m" => format!("{number} m⁻¹"),
+        u => format!("{number} {u}"),
     }
-    for suffix in suffixes.iter().filter(|s| !s.is_empty()) {
-        if let Some(number) = lower.strip_suffix(suffix.as_str()) {
-            return parse_number(number);
+}
+
+/// A number as it was read, and how to show it (`8000 m`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Reading {
+    /// The value in the question's (or field's) unit.
+    pub value: f64,
+    /// The value with that unit, e.g. `8000 m`, for “read as 8000 m”.
+    pub read_as: String,
+}
+
+/// Why a typed number could not be read. The message says what to type instead.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ReadError {
+    Empty,
+    /// Not a number at all (`one`, `1.2.3`, `NaN`, `1e999`).
+    NotANumber {
+        text: String,
+    },
+    /// A comma that is not a thousands separator (`1,5`, `0,25`, `12,34`).
+    AmbiguousComma {
+        text: String,
+    },
+    /// A unit that cannot be converted to the expected one (`3 s` for metres).
+    WrongUnit {
+        given: String,
+        expected: String,
+    },
+}
+
+impl std::fmt::Display for ReadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ReadError::Empty => write!(f, "nothing was typed"),
+            ReadError::NotANumber { text } => write!(f, "“{text}” is not a number"),
+            ReadError::AmbiguousComma { text } => write!(
+                f,
+                "“{text}”: a comma only separates thousands, as in 8,000; write decimals with a point, as in 1.5"
+            ),
+            ReadError::WrongUnit { given, expected } if expected.is_empty() => {
+                write!(f, "this answer has no unit, but “{given}” was typed")
+            }
+            ReadError::WrongUnit { given, expected } => {
+                write!(f, "“{given}” cannot be converted to {expected}")
+            }
         }
     }
-    parse_number(&lower)
 }
 
-/// Reads a number the way students type it: surrounding spaces, a Unicode
-/// minus (−), a decimal comma, a leading `+` and a trailing `°` are accepted. Returns `None` for anything else or a non-finite value.
+impl std::error::Error for ReadError {}
+
+/// The units an answer in `unit` may be typed in, with the factor that
+/// converts each to `unit`. Lower case; matched after lower-casing the text.
+fn unit_aliases(unit: &str) -> Vec<(&'static str, f64)> {
+    use std::f64::consts::PI;
+    const METRE: [&str; 5] = ["m", "metre", "metres", "meter", "meters"];
+    let deg_per_rad = 180.0 / PI;
+    let with = |names: &[&'static str], factor: f64| -> Vec<(&'static str, f64)> {
+        names.iter().map(|n| (*n, factor)).collect()
+    };
+    match unit {
+        "m" => [
+            with(&METRE, 1.0),
+            with(
+                &[
+                    "cm",
+                    "centimetre",
+                    "centimetres",
+                    "centimeter",
+                    "centimeters",
+                ],
+                0.01,
+            ),
+            with(
+                &[
+                    "mm",
+                    "millimetre",
+                    "millimetres",
+                    "millimeter",
+                    "millimeters",
+                ],
+                0.001,
+            ),
+            with(
+                &["km", "kilometre", "kilometres", "kilometer", "kilometers"],
+                1000.0,
+            ),
+        ]
+        .concat(),
+        "°" => [
+            with(&["°", "deg", "degs", "degree", "degrees"], 1.0),
+            with(&["rad", "rads", "radian", "radians"], deg_per_rad),
+        ]
+        .concat(),
+        "rad" => [
+            with(&["rad", "rads", "radian", "radians"], 1.0),
+            with(
+                &["°", "deg", "degs", "degree", "degrees"],
+                1.0 / deg_per_rad,
+            ),
+        ]
+        .concat(),
+        "%" => with(&["%", "percent", "per cent"], 1.0),
+        "m²" => [
+            with(
+                &[
+                    "m²",
+                    "m2",
+                    "m^2",
+                    "sq m",
+                    "square metre",
+                    "square metres",
+                    "square meter",
+                    "square meters",
+                ],
+                1.0,
+            ),
+            with(&["cm²", "cm2", "cm^2"], 1e-4),
+        ]
+        .concat(),
+        "1/m" => [
+            with(
+                &[
+                    "1/m",
+                    "/m",
+                    "m⁻¹",
+                    "m^-1",
+                    "m-1",
+                    "per m",
+                    "per metre",
+                    "per meter",
+                ],
+                1.0,
+            ),
+            with(&["1/cm", "/cm", "cm⁻¹", "cm^-1", "per cm"], 100.0),
+        ]
+        .concat(),
+        "m/rad" => with(
+            &["m/rad", "m / rad", "m per rad", "m/radian", "m per radian"],
+            1.0,
+        ),
+        _ => Vec::new(),
+    }
+}
+
+/// Splits `text` into its leading number (sign, digits, commas, one point,
+/// exponent) and the rest, both trimmed. Unicode minus and en dash count as `-`.
+fn split_number(text: &str) -> (String, String) {
+    let text: String = text.trim().replace(['\u{2212}', '\u{2013}'], "-");
+    let chars: Vec<char> = text.chars().collect();
+    let mut i = 0;
+    if matches!(chars.first(), Some('+' | '-')) {
+        i = 1;
+    }
+    while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.' || chars[i] == ',') {
+        i += 1;
+    }
+    // An exponent only when digits follow (`1e-3`; `5e` is 5 and a unit “e”).
+    if i > 0 && matches!(chars.get(i), Some('e' | 'E')) {
+        let mut j = i + 1;
+        if matches!(chars.get(j), Some('+' | '-')) {
+            j += 1;
+        }
+        if chars.get(j).is_some_and(char::is_ascii_digit) {
+            while chars.get(j).is_some_and(char::is_ascii_digit) {
+                j += 1;
+            }
+            i = j;
+        }
+    }
+    let number: String = chars[..i].iter().collect();
+    let rest: String = chars[i..].iter().collect();
+    (number, rest.trim().to_owned())
+}
+
+/// Reads the number part. The comma rule, the same everywhere: a comma is a
+/// thousands separator, allowed only between groups of exactly three digits
+/// before the decimal point (`8,000`, `1,234,567.5`). Any other comma (`1,5`,
+/// `0,25`, `12,34`) is ambiguous and refused with a message, never guessed.
+fn read_plain_number(number: &str, original: &str) -> Result<f64, ReadError> {
+    let (mantissa, _) = number
+        .find(['e', 'E'])
+        .map_or((number, ""), |k| number.split_at(k));
+    let unsigned = mantissa.trim_start_matches(['+', '-']);
+    let (int_part, frac_part) = unsigned.split_once('.').unwrap_or((unsigned, ""));
+    if unsigned.contains(',') {
+        let groups: Vec<&str> = int_part.split(',').collect();
+        let thousands = !frac_part.contains(',')
+            && (1..=3).contains(&groups[0].len())
+            && groups[1..].iter().all(|g| g.len() == 3);
+        if !thousands {
+            return Err(ReadError::AmbiguousComma {
+                text: truncate_chars(original.trim(), 30),
+            });
+        }
+    }
+    let cleaned = number.replace(',', "");
+    match cleaned.parse::<f64>() {
+        Ok(v) if v.is_finite() && cleaned.chars().any(|c| c.is_ascii_digit()) => Ok(v),
+        _ => Err(ReadError::NotANumber {
+            text: truncate_chars(original.trim(), 30),
+        }),
+    }
+}
+
+fn truncate_chars(s: &str, max: usize) -> String {
+    if s.chars().count() <= max {
+        s.to_owned()
+    } else {
+        let mut t: String = s.chars().take(max).collect();
+        t.push('…');
+        t
+    }
+}
+
+/// Reads an answer given in `unit`: a number (the comma rule of
+/// [`read_number`]), optionally followed by that unit or one convertible to
+/// it — `m`: metres/meters, cm, mm, km; `°`: deg, degrees, rad, radians;
+/// `rad`: radians, °, deg; `m²`: m2, m^2, cm²; `1/m`: /m, m⁻¹, per metre;
+/// `%`: percent. A number with no unit is taken in `unit`. The result says
+/// how the text was read (`8 km` → `8000 m`).
+///
+/// # Example
+/// ```
+/// use labcore::quiz::read_answer;
+/// assert_eq!(read_answer("8 km", "m").unwrap().read_as, "8000 m");
+/// assert_eq!(read_answer("51/m", "1/m").unwrap().value, 51.0);
+/// assert!(read_answer("1,5", "m").is_err());
+/// ```
+pub fn read_answer(text: &str, unit: &str) -> Result<Reading, ReadError> {
+    if text.trim().is_empty() {
+        return Err(ReadError::Empty);
+    }
+    let unit = unit.trim();
+    let (number, rest) = split_number(text);
+    if number.is_empty() {
+        return Err(ReadError::NotANumber {
+            text: truncate_chars(text.trim(), 30),
+        });
+    }
+    let value = read_plain_number(&number, text)?;
+    let factor = if rest.is_empty() {
+        1.0
+    } else {
+        let given = rest.to_lowercase();
+        let given = given.split_whitespace().collect::<Vec<_>>().join(" ");
+        let mut aliases = unit_aliases(unit);
+        if aliases.is_empty() && !unit.is_empty() {
+            aliases.push((unit, 1.0));
+        }
+        let found = aliases
+            .iter()
+            .find(|(name, _)| name.to_lowercase() == given)
+            .map(|(_, f)| *f);
+        match found {
+            Some(f) => f,
+            None => {
+                return Err(ReadError::WrongUnit {
+                    given: truncate_chars(&rest, 20),
+                    expected: unit.to_owned(),
+                })
+            }
+        }
+    };
+    let value = value * factor;
+    if !value.is_finite() {
+        return Err(ReadError::NotANumber {
+            text: truncate_chars(text.trim(), 30),
+        });
+    }
+    Ok(Reading {
+        value,
+        read_as: with_unit(&format_number(value, 6), unit),
+    })
+}
+
+/// [`read_answer`] without the details: the value, or `None`.
+#[must_use]
+pub fn parse_answer(text: &str, unit: &str) -> Option<f64> {
+    read_answer(text, unit).ok().map(|r| r.value)
+}
+
+/// Reads a number the way students type it (surrounding spaces, a Unicode
+/// minus, a leading `+`, an exponent, a trailing `°`), with the one comma rule
+/// of the lab: a comma separates thousands only (`8,000`); `1,5` is refused
+/// as ambiguous rather than read as 15 or 1.5. The [`Reading`] says what was
+/// read so a number box can show it (“read as 8000”); the error says what to
+/// type instead. For a field with a unit, [`read_answer`] also converts
+/// (`1.2 rad` in a degree field).
+pub fn read_number(text: &str) -> Result<Reading, ReadError> {
+    read_answer(text, "°").and_then(|r| {
+        // Only a degree sign may follow a bare number; other units need
+        // `read_answer` with the field's unit.
+        let (_, rest) = split_number(text);
+        if rest.is_empty() || rest == "°" {
+            Ok(Reading {
+                read_as: format_number(r.value, 6),
+                value: r.value,
+            })
+        } else {
+            Err(ReadError::WrongUnit {
+                given: truncate_chars(&rest, 20),
+                expected: String::new(),
+            })
+        }
+    })
+}
+
+/// [`read_number`] without the details: the value, or `None` (also for `1,5`).
 #[must_use]
 pub fn parse_number(text: &str) -> Option<f64> {
-    let cleaned: String = text
-        .trim()
-        .replace(['\u{2212}', '\u{2013}'], "-")
-        .replace(',', ".")
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect();
-    let numeric_end = cleaned
-        .char_indices()
-        .find(|(i, c)| {
-            !(c.is_ascii_digit()
-                || *c == '.'
-                || ((*c == '-' || *c == '+') && (*i == 0 || cleaned[..*i].ends_with(['e', 'E'])))
-                || ((*c == 'e' || *c == 'E') && *i > 0))
-        })
-        .map_or(cleaned.len(), |(i, _)| i);
-    let (number, suffix) = cleaned.split_at(numeric_end);
-    // Only a degree sign may follow; units are checked by `parse_answer`.
-    let suffix_ok = suffix.is_empty() || suffix == "°";
-    if !suffix_ok {
-        return None;
-    }
-    number.parse::<f64>().ok().filter(|v| v.is_finite())
+    read_number(text).ok().map(|r| r.value)
 }
 
 /// Formats with at most `decimals` places, trailing zeros trimmed, `-0` as `0`.
@@ -330,7 +721,7 @@ mod tests {
     #[test]
     fn parses_what_students_type() {
         assert_eq!(parse_number(" 1.5 "), Some(1.5));
-        assert_eq!(parse_number("−0,25"), Some(-0.25));
+        assert_eq!(parse_number("−0.25"), Some(-0.25));
         assert_eq!(parse_number("+3"), Some(3.0));
         assert_eq!(parse_number("45°"), Some(45.0));
         assert_eq!(parse_number("1.2 m"), None);
@@ -339,14 +730,263 @@ mod tests {
         assert_eq!(parse_answer("0.5 m²", "m²"), Some(0.5));
         assert_eq!(parse_answer("45 deg", "°"), Some(45.0));
         assert_eq!(parse_answer("45°", "°"), Some(45.0));
-        assert_eq!(parse_answer("1.2 rad", "°"), None);
-        assert_eq!(parse_answer("3 cm", "m"), None);
+        assert_eq!(parse_answer("1.2 s", "°"), None);
         assert_eq!(parse_number("1e-3"), Some(0.001));
         assert_eq!(parse_number(""), None);
         assert_eq!(parse_number("abc"), None);
         assert_eq!(parse_number("1.2.3"), None);
         assert_eq!(parse_number("NaN"), None);
         assert_eq!(parse_number("inf"), None);
+        assert_eq!(parse_number("1e999"), None);
+        assert_eq!(parse_number("-"), None);
+        assert_eq!(parse_number("."), None);
+    }
+
+    /// Regression: “51/m” was read as 5 for an answer in 1/m (the suffix
+    /// “1/m” was stripped from “51/m”), and “21/m” as 2.
+    #[test]
+    fn per_metre_answers_keep_every_digit() {
+        assert_eq!(parse_answer("51/m", "1/m"), Some(51.0));
+        assert_eq!(parse_answer("21/m", "1/m"), Some(21.0));
+        assert_eq!(parse_answer("5 1/m", "1/m"), Some(5.0));
+        assert_eq!(parse_answer("5 m⁻¹", "1/m"), Some(5.0));
+        assert_eq!(parse_answer("5 per metre", "1/m"), Some(5.0));
+        assert_eq!(parse_answer("5", "1/m"), Some(5.0));
+        let q = numeric(5.0, 0.05, "1/m");
+        let g = grade(&q, &Response::Text("51/m".into()));
+        assert!(!g.correct);
+        assert_eq!(g.read_as.as_deref(), Some("51 m⁻¹"));
+        assert!(!grade(&q, &Response::Text("21/m".into())).correct);
+    }
+
+    /// Regression: “0.5 m2” was not recognised for m².
+    #[test]
+    fn square_metres_accept_m2_and_m_caret_2() {
+        for text in [
+            "0.5 m2",
+            "0.5m2",
+            "0.5 m^2",
+            "0.5 M²",
+            "0.5 square metres",
+            "5000 cm²",
+        ] {
+            assert_eq!(parse_answer(text, "m²"), Some(0.5), "{text}");
+        }
+        assert_eq!(parse_answer("0.5 m", "m²"), None);
+    }
+
+    /// Regression: “1,000” was read as 1 and “8,000” as 8. The rule: a comma
+    /// only separates thousands, in groups of exactly three digits; any other
+    /// comma is refused with a message, never guessed.
+    #[test]
+    fn commas_separate_thousands_only() {
+        assert_eq!(parse_number("1,000"), Some(1000.0));
+        assert_eq!(parse_number("8,000"), Some(8000.0));
+        assert_eq!(parse_number("-1,234,567.25"), Some(-1_234_567.25));
+        assert_eq!(parse_answer("8,000 m", "m"), Some(8000.0));
+        for ambiguous in [
+            "1,5", "0,25", "12,34", "1,0000", "1,000,00", "1.000,5", ",5", "1,",
+        ] {
+            assert_eq!(parse_number(ambiguous), None, "{ambiguous}");
+            assert!(
+                matches!(
+                    read_number(ambiguous),
+                    Err(ReadError::AmbiguousComma { .. })
+                ),
+                "{ambiguous}: {:?}",
+                read_number(ambiguous)
+            );
+        }
+        let e = read_number("1,5").unwrap_err().to_string();
+        assert!(e.contains("thousands") && e.contains("1.5"), "{e}");
+        let q = numeric(8000.0, 0.5, "");
+        let g = grade(&q, &Response::Text("8,000".into()));
+        assert!(g.correct);
+        assert_eq!(g.read_as.as_deref(), Some("8000"));
+        let g = grade(&q, &Response::Text("8,0".into()));
+        assert!(g.unreadable && !g.correct);
+        assert!(g.problem.unwrap().contains("thousands"));
+    }
+
+    /// Unit words and abbreviations, converted where the unit allows, and the
+    /// grade says how the answer was read.
+    #[test]
+    fn unit_words_convert_and_grading_reports_the_reading() {
+        assert_eq!(parse_answer("8 km", "m"), Some(8000.0));
+        assert_eq!(parse_answer("150 cm", "m"), Some(1.5));
+        assert_eq!(parse_answer("150 mm", "m"), Some(0.15));
+        assert_eq!(parse_answer("1.5 metres", "m"), Some(1.5));
+        assert_eq!(parse_answer("1.5 Meters", "m"), Some(1.5));
+        assert_eq!(parse_answer("45 degrees", "°"), Some(45.0));
+        let rad = parse_answer("1 rad", "°").unwrap();
+        assert!((rad - 57.295_779_513_082_32).abs() < 1e-9);
+        let deg = parse_answer("180 deg", "rad").unwrap();
+        assert!((deg - std::f64::consts::PI).abs() < 1e-12);
+        assert_eq!(parse_answer("0.08 radians", "rad"), Some(0.08));
+        assert_eq!(parse_answer("70.7 percent", "%"), Some(70.7));
+        assert_eq!(parse_answer("1.2 m/rad", "m/rad"), Some(1.2));
+        assert_eq!(parse_answer("3 s", "m"), None);
+        let q = numeric(8000.0, 0.5, "m");
+        let g = grade(&q, &Response::Text("8 km".into()));
+        assert!(g.correct);
+        assert_eq!(g.read_as.as_deref(), Some("8000 m"));
+        let g = grade(&q, &Response::Text("8,000".into()));
+        assert_eq!(g.read_as.as_deref(), Some("8000 m"));
+        let g = grade(&q, &Response::Text("3 s".into()));
+        assert!(g.unreadable && g.problem.unwrap().contains("“s”"));
+    }
+
+    #[test]
+    fn percentages_round_half_up() {
+        assert_eq!(score_percent(8, 12), 67);
+        assert_eq!(score_percent(1, 8), 13); // 12.5 → 13
+        assert_eq!(score_percent(1, 3), 33);
+        assert_eq!(score_percent(12, 12), 100);
+        assert_eq!(score_percent(0, 12), 0);
+        assert_eq!(score_percent(3, 0), 0);
+    }
+
+    #[test]
+    fn saved_attempts_round_trip_and_fit_the_questions() {
+        let saved = SavedAttempt {
+            seed: 123,
+            answers: vec![
+                Response::Choice(Some(1)),
+                Response::Text("8,000 m \"quoted\" | ; ".into()),
+                Response::Choice(Some(9)),
+            ],
+        };
+        let text = saved.encode();
+        assert_eq!(SavedAttempt::decode(&text), Some(saved.clone()));
+        assert_eq!(SavedAttempt::decode("garbage"), None);
+        let questions = vec![
+            choice(vec!["a", "b"], 0),
+            numeric(1.0, 0.01, "m"),
+            choice(vec!["a", "b"], 0),
+            numeric(1.0, 0.01, "m"),
+        ];
+        assert_eq!(
+            saved.answers_for(&questions),
+            vec![
+                Response::Choice(Some(1)),
+                Response::Text("8,000 m \"quoted\" | ; ".into()),
+                Response::Choice(None),
+                Response::Text(String::new()),
+            ]
+        );
+    }
+
+    /// Regression: a choice with no options indexed out of bounds in `grade`.
+    #[test]
+    fn validation_rejects_questions_that_cannot_be_graded_fairly() {
+        assert!(choice(vec!["a", "b"], 1).validate().is_ok());
+        assert!(choice(vec!["a"], 0).validate().is_err());
+        assert!(choice(vec![], 0).validate().is_err());
+        assert!(choice(vec!["a", "b"], 2).validate().is_err());
+        assert!(numeric(1.0, 0.01, "m").validate().is_ok());
+        assert!(numeric(1.0, MIN_TOLERANCE, "m").validate().is_ok());
+        assert!(numeric(1.0, 0.0001, "m").validate().is_err());
+        assert!(numeric(1.0, f64::NAN, "m").validate().is_err());
+        assert!(numeric(f64::INFINITY, 0.1, "m").validate().is_err());
+        let g = grade(&choice(vec![], 0), &Response::Choice(Some(0)));
+        assert!(!g.correct);
+        let g = grade(&choice(vec!["a"], 5), &Response::Choice(Some(5)));
+        assert!(!g.correct);
+    }
+
+    /// Property: `grade` never panics, whatever the question and the response.
+    #[test]
+    fn grade_never_panics_on_any_prepared_value() {
+        let mut rng = Lcg64::new(2718);
+        let units = [
+            "", "m", "°", "rad", "%", "m²", "1/m", "m/rad", "weird", "1", "/", "é",
+        ];
+        let pieces = [
+            "1", "5", ",", ".", "e", "-", "+", "−", "°", "m", "/", "²", "^", " ", "é", "∞", "NaN",
+            "inf", "1,000", "km", "rad", "9e999", "\u{0}", "%",
+        ];
+        let numbers = [
+            0.0,
+            -1.0,
+            1e300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            5e-324,
+        ];
+        for _ in 0..50_000 {
+            let kind = if rng.next_f64() < 0.5 {
+                let n = rng.int(0, 4) as usize;
+                PreparedKind::Choice {
+                    options: (0..n).map(|k| k.to_string()).collect(),
+                    answer: match rng.int(0, 2) {
+                        0 => rng.int(0, 6) as usize,
+                        1 => usize::MAX,
+                        _ => 0,
+                    },
+                }
+            } else {
+                PreparedKind::Numeric {
+                    answer: numbers[rng.int(0, 6) as usize] * rng.range(-2.0, 2.0),
+                    tolerance: numbers[rng.int(0, 6) as usize],
+                    unit: units[rng.int(0, units.len() as i64 - 1) as usize].into(),
+                    angle_degrees: rng.next_f64() < 0.5,
+                }
+            };
+            let q = Prepared {
+                prompt: String::new(),
+                kind,
+                explanation: String::new(),
+                parameterised: false,
+            };
+            let response = if rng.next_f64() < 0.3 {
+                Response::Choice(match rng.int(0, 2) {
+                    0 => None,
+                    1 => Some(usize::MAX),
+                    _ => Some(rng.int(0, 5) as usize),
+                })
+            } else {
+                let n = rng.int(0, 6);
+                Response::Text(
+                    (0..n)
+                        .map(|_| pieces[rng.int(0, pieces.len() as i64 - 1) as usize])
+                        .collect(),
+                )
+            };
+            let g = grade(&q, &response);
+            if let PreparedKind::Choice { options, answer } = &q.kind {
+                if *answer >= options.len() {
+                    assert!(!g.correct);
+                }
+            }
+            assert_eq!(g.blank, response.is_blank());
+        }
+    }
+
+    fn numeric(answer: f64, tolerance: f64, unit: &str) -> Prepared {
+        Prepared {
+            prompt: String::new(),
+            kind: PreparedKind::Numeric {
+                answer,
+                tolerance,
+                unit: unit.into(),
+                angle_degrees: false,
+            },
+            explanation: String::new(),
+            parameterised: false,
+        }
+    }
+
+    fn choice(options: Vec<&str>, answer: usize) -> Prepared {
+        Prepared {
+            prompt: String::new(),
+            kind: PreparedKind::Choice {
+                options: options.into_iter().map(String::from).collect(),
+                answer,
+            },
+            explanation: String::new(),
+            parameterised: false,
+        }
     }
 
     #[test]
@@ -379,6 +1019,12 @@ mod tests {
         let blank = grade(&q, &Response::Text("  ".into()));
         assert!(blank.blank && !blank.unreadable && !blank.correct);
         assert!(!grade(&q, &Response::Text("1 rad".into())).correct);
+        assert_eq!(
+            grade(&q, &Response::Text("1.009".into()))
+                .read_as
+                .as_deref(),
+            Some("1.009 m")
+        );
     }
 
     #[test]

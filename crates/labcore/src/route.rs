@@ -76,6 +76,33 @@ pub enum Page {
 pub struct Route {
     pub page: Page,
     pub notices: Vec<String>,
+    /// The quiz attempt seed fixed by the link (`?quiz=123`), e.g. by an
+    /// instructor so a whole class draws the same numbers. Taken out of
+    /// [`Page::Experiment::params`]; `None` when absent or unreadable.
+    pub quiz_seed: Option<u64>,
+}
+
+/// The query key that fixes the quiz attempt's seed (`#/ik/quiz?quiz=123`).
+pub const QUIZ_KEY: &str = "quiz";
+
+/// How many notices the page shows before summarising the rest (see [`summarize_notices`]).
+pub const NOTICE_LIMIT: usize = 3;
+
+/// The notices to show: the first `limit`, then one line “… and N more
+/// problems with the link.” so a hostile 100 KB hash cannot flood the bar.
+/// Each shown notice is already short (values are truncated when parsed).
+#[must_use]
+pub fn summarize_notices(notices: &[String], limit: usize) -> Vec<String> {
+    if notices.len() <= limit {
+        return notices.to_vec();
+    }
+    let rest = notices.len() - limit;
+    let mut shown = notices[..limit].to_vec();
+    shown.push(format!(
+        "… and {rest} more problem{} with the link.",
+        if rest == 1 { "" } else { "s" }
+    ));
+    shown
 }
 
 /// Parses a location hash (with or without the leading `#`).
@@ -95,6 +122,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
         return Route {
             page: Page::Home,
             notices,
+            quiz_seed: None,
         };
     };
     let id = decode(first);
@@ -106,6 +134,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
         return Route {
             page: Page::Home,
             notices,
+            quiz_seed: None,
         };
     }
     let tab = match segments.get(1) {
@@ -122,8 +151,16 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
         notices.push("Ignored extra parts of the link.".into());
     }
     let mut params = Vec::new();
+    let mut quiz_seed = None;
     for pair in query.unwrap_or("").split('&').filter(|p| !p.is_empty()) {
         match pair.split_once('=') {
+            Some((k, v)) if decode(k) == QUIZ_KEY => match decode(v).trim().parse::<u64>() {
+                Ok(seed) => quiz_seed = Some(seed),
+                Err(_) => notices.push(format!(
+                    "Quiz seed “{}” is not a whole number; drew fresh questions.",
+                    truncate(&decode(v), 30)
+                )),
+            },
             Some((k, v)) if !k.is_empty() => params.push((decode(k), decode(v))),
             _ => notices.push(format!(
                 "Ignored “{}” in the link.",
@@ -134,6 +171,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
     Route {
         page: Page::Experiment { id, tab, params },
         notices,
+        quiz_seed,
     }
 }
 
@@ -198,6 +236,18 @@ pub fn format(experiment: &dyn Experiment, tab: Tab) -> String {
     }
 }
 
+/// [`format`] plus `quiz=<seed>` when the attempt's seed is fixed by the link,
+/// so a reload (or a link shared with a class) keeps the same questions.
+#[must_use]
+pub fn format_with_quiz(experiment: &dyn Experiment, tab: Tab, quiz_seed: Option<u64>) -> String {
+    let hash = format(experiment, tab);
+    match quiz_seed {
+        None => hash,
+        Some(seed) if hash.contains('?') => format!("{hash}&{QUIZ_KEY}={seed}"),
+        Some(seed) => format!("{hash}?{QUIZ_KEY}={seed}"),
+    }
+}
+
 /// Percent-decoding of a URL component; invalid escapes are kept verbatim.
 fn decode(s: &str) -> String {
     let bytes = s.as_bytes();
@@ -205,17 +255,31 @@ fn decode(s: &str) -> String {
     let mut i = 0;
     while i < bytes.len() {
         if bytes[i] == b'%' && i + 2 < bytes.len() {
-            let hex = std::str::from_utf8(&bytes[i + 1..i + 3]).ok();
-            if let Some(b) = hex.and_then(|h| u8::from_str_radix(h, 16).ok()) {
-                out.push(b);
-                i += 3;
-                continue;
+            // Exactly two hex digits: `u8::from_str_radix` alone would also
+            // take a sign (`%+3` → 3), turning `%+31` into a control character.
+            if let (Some(hi), Some(lo)) = (hex_digit(bytes[i + 1]), hex_digit(bytes[i + 2])) {
+                out.push(hi << 4 | lo);
+            } else {
+                // An invalid escape is kept exactly as written (`+` included).
+                out.extend_from_slice(&bytes[i..i + 3]);
             }
+            i += 3;
+            continue;
         }
         out.push(if bytes[i] == b'+' { b' ' } else { bytes[i] });
         i += 1;
     }
     String::from_utf8_lossy(&out).into_owned()
+}
+
+/// The value of one ASCII hex digit.
+fn hex_digit(b: u8) -> Option<u8> {
+    match b {
+        b'0'..=b'9' => Some(b - b'0'),
+        b'a'..=b'f' => Some(b - b'a' + 10),
+        b'A'..=b'F' => Some(b - b'A' + 10),
+        _ => None,
+    }
 }
 
 fn truncate(s: &str, max_chars: usize) -> String {
@@ -267,11 +331,78 @@ mod tests {
         assert_eq!(r.page, Page::Home);
     }
 
+    /// Regression: a 100 KB hash produced 17,524 notices joined into one bar.
+    #[test]
+    fn notice_flood_is_summarised() {
+        let mut hash = String::from("#/fk/simulation?");
+        while hash.len() < 100_000 {
+            hash.push_str("x&=1&");
+        }
+        let r = parse(&hash, IDS);
+        assert!(r.notices.len() > 10_000);
+        let shown = summarize_notices(&r.notices, NOTICE_LIMIT);
+        assert_eq!(shown.len(), NOTICE_LIMIT + 1);
+        assert_eq!(shown[..NOTICE_LIMIT], r.notices[..NOTICE_LIMIT]);
+        let rest = r.notices.len() - NOTICE_LIMIT;
+        assert_eq!(
+            shown[NOTICE_LIMIT],
+            format!("… and {rest} more problems with the link.")
+        );
+        assert!(shown.iter().map(String::len).sum::<usize>() < 400);
+        // Few notices pass through unchanged.
+        let two = vec!["a".to_owned(), "b".to_owned()];
+        assert_eq!(summarize_notices(&two, NOTICE_LIMIT), two);
+        let four: Vec<String> = (0..4).map(|i| i.to_string()).collect();
+        assert_eq!(
+            summarize_notices(&four, 3)[3],
+            "… and 1 more problem with the link."
+        );
+    }
+
+    #[test]
+    fn quiz_seed_comes_from_the_link() {
+        let r = parse("#/ik/quiz?quiz=123", IDS);
+        assert_eq!(r.quiz_seed, Some(123));
+        assert!(r.notices.is_empty());
+        assert_eq!(
+            r.page,
+            Page::Experiment {
+                id: "ik".into(),
+                tab: Tab::Quiz,
+                params: vec![]
+            }
+        );
+        let r = parse("#/ik/simulation?l1=1&quiz=7&l2=0.5", IDS);
+        assert_eq!(r.quiz_seed, Some(7));
+        assert!(matches!(&r.page, Page::Experiment { params, .. } if params.len() == 2));
+        let r = parse("#/ik/quiz?quiz=-3", IDS);
+        assert_eq!(r.quiz_seed, None);
+        assert_eq!(r.notices.len(), 1);
+        let exp = crate::experiments::fk::ForwardKinematics::default();
+        let hash = format_with_quiz(&exp, Tab::Quiz, Some(42));
+        assert!(hash.starts_with("#/fk/quiz?t1=35&") && hash.ends_with("&quiz=42"));
+        assert_eq!(parse(&hash, IDS).quiz_seed, Some(42));
+    }
+
     #[test]
     fn decodes_percent_escapes() {
         assert_eq!(decode("a%20b"), "a b");
         assert_eq!(decode("%zz"), "%zz");
         assert_eq!(decode("100%"), "100%");
         assert_eq!(decode("%4"), "%4");
+    }
+
+    /// Regression: a leading `+` passed the hex parse (`u8::from_str_radix`
+    /// accepts a sign), so `%+31` decoded to the control character U+0003.
+    #[test]
+    fn invalid_percent_escapes_stay_verbatim() {
+        assert_eq!(decode("%+31"), "%+31");
+        assert_eq!(decode("%+1"), "%+1");
+        assert_eq!(decode("%-1x"), "%-1x");
+        assert_eq!(decode("%1g"), "%1g");
+        assert_eq!(decode("%41%2b+x"), "A+ x");
+        for s in ["%+31", "%+0", "%+a%+f", "%-0"] {
+            assert!(!decode(s).chars().any(char::is_control), "{s}");
+        }
     }
 }

@@ -211,6 +211,272 @@ fn incomplete_content_is_rejected() {
     assert!(Content::parse("not json").is_err());
 }
 
+/// Regression: `set_param("n", 2.5)` on DLS returned `InRange(2.5)` but stored
+/// 3 (the workspace sample count likewise). Whatever is set, the returned
+/// value is the stored one and `param()` stays inside its spec's range.
+#[test]
+fn set_param_returns_exactly_the_stored_value() {
+    let mut rng = labcore::Lcg64::new(77);
+    for entry in registry() {
+        let mut exp = (entry.make)();
+        for _ in 0..2000 {
+            let spec = exp.params()[rng.int(0, exp.params().len() as i64 - 1) as usize];
+            let span = spec.max - spec.min;
+            let value = match rng.int(0, 3) {
+                0 => rng.range(spec.min, spec.max),
+                1 => rng.range(spec.min - span, spec.max + span),
+                2 => (rng.range(spec.min, spec.max) * 2.0).round() / 2.0 + 0.5,
+                _ => rng.int(spec.min as i64, spec.max as i64) as f64 + 0.5,
+            };
+            let applied = exp
+                .set_param(spec.key, value)
+                .unwrap_or_else(|e| panic!("{}.{}: {e}", entry.id, spec.key));
+            assert_eq!(
+                exp.param(spec.key),
+                Some(applied.value()),
+                "{}.{} set to {value}",
+                entry.id,
+                spec.key
+            );
+            if spec.integer {
+                assert_eq!(applied.value().fract(), 0.0, "{}.{}", entry.id, spec.key);
+            }
+            exp.step(1.0 / 60.0);
+            for s in exp.params() {
+                if let Some(v) = exp.param(s.key) {
+                    assert!(
+                        v >= s.min && v <= s.max,
+                        "{}.{} = {v} outside [{}, {}]",
+                        entry.id,
+                        s.key,
+                        s.min,
+                        s.max
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Regression: a click near the edge of a wide canvas or a few arrow-key
+/// nudges set an IK/DLS target beyond the typed range (`tx=3.24`), and the
+/// link then reloaded clamped, with a notice. Property: after any seeded
+/// sequence of pointer and keyboard input, the link formatted from the state,
+/// parsed and applied to a fresh experiment gives the same state — the same
+/// link and every parameter within the link's precision (3 decimals) — and
+/// no notice.
+#[test]
+fn permalinks_reproduce_every_state_reachable_by_pointer_and_keyboard() {
+    use labcore::route::{apply_params, format, parse, Page, Tab};
+    let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
+    for entry in registry() {
+        for seed in 0..60 {
+            let mut rng = labcore::Lcg64::new(seed);
+            let mut exp = (entry.make)();
+            let view = exp.view();
+            // Up to twice the view's half-size: a wide canvas shows more than the view.
+            let mut point = || {
+                glam::DVec2::new(
+                    rng.range(2.0 * view.min.x, 2.0 * view.max.x),
+                    rng.range(2.0 * view.min.y, 2.0 * view.max.y),
+                )
+            };
+            let mut moves = Vec::new();
+            for _ in 0..40 {
+                moves.push(point());
+            }
+            let mut rng = labcore::Lcg64::new(seed ^ 0xABCD);
+            for p in moves {
+                let input = match rng.int(0, 4) {
+                    0 => Input::PointerDown(p),
+                    1 => Input::PointerMove {
+                        pos: p,
+                        pressed: true,
+                    },
+                    2 => Input::PointerMove {
+                        pos: p,
+                        pressed: false,
+                    },
+                    3 => Input::PointerUp(p),
+                    _ => Input::Nudge(p * 0.1),
+                };
+                exp.input(input);
+                for _ in 0..rng.int(0, 30) {
+                    exp.step(1.0 / 60.0);
+                }
+            }
+            let link = format(exp.as_ref(), Tab::Simulation);
+            let route = parse(&link, &ids);
+            assert!(route.notices.is_empty(), "{link}: {:?}", route.notices);
+            let Page::Experiment { params, .. } = route.page else {
+                panic!("{link} is not an experiment page");
+            };
+            let mut fresh = (entry.make)();
+            let notices = apply_params(fresh.as_mut(), &params);
+            assert!(notices.is_empty(), "{link}: {notices:?}");
+            assert_eq!(format(fresh.as_ref(), Tab::Simulation), link);
+            for spec in exp.params() {
+                match (exp.param(spec.key), fresh.param(spec.key)) {
+                    (None, None) => {}
+                    (Some(a), Some(b)) => assert!(
+                        (a - b).abs() <= 5e-4 + 1e-12,
+                        "{}.{}: {a} became {b} via {link}",
+                        entry.id,
+                        spec.key
+                    ),
+                    (a, b) => panic!("{}.{}: {a:?} became {b:?}", entry.id, spec.key),
+                }
+            }
+        }
+    }
+}
+
+/// Regression: lengths showed 3 trimmed decimals in FK/IK (`1.5 m`), 4 in the
+/// workspace and 4 or `1.0e-7` in DLS; angles 1 decimal in IK, 0 in DLS; the
+/// condition number as `123456.79`. Now every length has 3 decimals, every
+/// angle 1, and huge or tiny magnitudes read as `2.4 × 10⁵`.
+#[test]
+fn readouts_use_the_same_decimals_in_every_experiment() {
+    fn decimals(number: &str) -> usize {
+        number.split_once('.').map_or(0, |(_, d)| d.len())
+    }
+    for entry in registry() {
+        let mut exp = (entry.make)();
+        for action in exp.actions() {
+            exp.action(action.key).unwrap();
+        }
+        for p in [
+            glam::DVec2::new(0.9, 0.8),
+            glam::DVec2::new(2.0, 0.3),
+            glam::DVec2::new(-0.2, 1.4),
+        ] {
+            exp.input(Input::PointerDown(p));
+            for _ in 0..200 {
+                exp.step(1.0 / 60.0);
+            }
+            for r in exp.readouts() {
+                for part in r.value.split(", ") {
+                    if part == "--" || part.contains('×') || part.contains('∞') {
+                        continue;
+                    }
+                    if let Some(number) = part.strip_suffix(" m") {
+                        assert_eq!(decimals(number), 3, "{}.{}: {part}", entry.id, r.key);
+                    } else if let Some(number) = part.strip_suffix('°') {
+                        assert_eq!(decimals(number), 1, "{}.{}: {part}", entry.id, r.key);
+                    } else if let Some(number) = part.strip_suffix('%') {
+                        assert_eq!(decimals(number), 1, "{}.{}: {part}", entry.id, r.key);
+                    }
+                }
+                if r.key == "cond" {
+                    let v = &r.value;
+                    assert!(
+                        v == "∞ (singular)" || v.contains(" × 10") || decimals(v) == 1,
+                        "condition number {v}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Validation rejects a choice with fewer than two options, an answer index
+/// out of range and a tolerance finer than the answer's shown precision.
+#[test]
+fn content_validation_rejects_unfair_questions() {
+    let good: serde_json::Value = serde_json::from_str(registry()[0].content_json).unwrap();
+    let check = |v: &serde_json::Value| Content::parse(&v.to_string());
+    let edit = |f: &dyn Fn(&mut serde_json::Value)| {
+        let mut v = good.clone();
+        let q = v["quiz"]
+            .as_array_mut()
+            .unwrap()
+            .iter_mut()
+            .find(|q| q["kind"] == "choice")
+            .unwrap();
+        f(q);
+        v
+    };
+    let one_option = edit(&|q| {
+        q["options"] = serde_json::json!(["only"]);
+        q["answer"] = serde_json::json!(0);
+    });
+    assert!(check(&one_option).is_err());
+    let out_of_range = edit(&|q| q["answer"] = serde_json::json!(4));
+    assert!(check(&out_of_range).is_err());
+    let mut too_fine = good.clone();
+    let q = too_fine["quiz"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|q| q["kind"] == "generated")
+        .unwrap();
+    q["tolerance"] = serde_json::json!(0.0001);
+    let err = check(&too_fine).unwrap_err();
+    assert!(
+        matches!(err, labcore::content::ContentError::ToleranceTooFine { .. }),
+        "{err}"
+    );
+    assert!(err.to_string().contains("finer than"));
+}
+
+/// References carry a DOI or a stable URL where one exists: every experiment
+/// links at least one, and a malformed DOI is refused.
+#[test]
+fn references_carry_dois_or_stable_urls() {
+    for entry in registry() {
+        let content = entry.content().unwrap();
+        let links: Vec<String> = content.references.iter().filter_map(|r| r.link()).collect();
+        assert!(
+            !links.is_empty(),
+            "{}: no reference links anywhere",
+            entry.id
+        );
+        assert!(links.iter().all(|l| l.starts_with("http")), "{links:?}");
+    }
+    let mut v: serde_json::Value = serde_json::from_str(registry()[0].content_json).unwrap();
+    v["references"][0]["doi"] = serde_json::json!("https://doi.org/10.1/x");
+    assert!(Content::parse(&v.to_string()).is_err());
+}
+
+/// labcore re-exports glam, so users of its `DVec2` API need no separate,
+/// version-matched dependency; every returned angle is wrapped to [-π, π].
+#[test]
+fn glam_is_reexported_and_returned_angles_are_wrapped() {
+    use labcore::glam::DVec2;
+    use labcore::kinematics::{chain, dls::DlsSolver, two_link_ik};
+    use std::f64::consts::PI;
+    let pose = chain::forward(&[1.0, 1.0], &[3.0, 3.0]);
+    let tip: DVec2 = pose.tip();
+    assert!(tip.is_finite());
+    assert!((-PI..=PI).contains(&pose.tip_angle_rad));
+    let mut rng = labcore::Lcg64::new(9);
+    for _ in 0..500 {
+        let mut q = [
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+        ];
+        let target = DVec2::new(rng.range(-3.5, 3.5), rng.range(-3.5, 3.5));
+        let lengths = [1.0, 0.8, 0.6];
+        DlsSolver::default()
+            .solve(&lengths, &mut q, target)
+            .unwrap();
+        assert!(q.iter().all(|a| (-PI..=PI).contains(a)), "{q:?}");
+        let mut q = [
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+            rng.range(-20.0, 20.0),
+        ];
+        DlsSolver::default().step(&lengths, &mut q, target).unwrap();
+        assert!(q.iter().all(|a| (-PI..=PI).contains(a)), "{q:?}");
+        if let Ok(sol) = two_link_ik::solve(1.0, 0.8, target) {
+            for a in [sol.elbow_up, sol.elbow_down] {
+                assert!((-PI..=PI).contains(&a.theta1_rad) && (-PI..=PI).contains(&a.theta2_rad));
+            }
+        }
+    }
+}
+
 /// Everything observable about an experiment: its link, display list,
 /// readouts, status and plots.
 fn snapshot(exp: &dyn labcore::Experiment) -> String {

@@ -68,6 +68,7 @@ impl App {
         let hash = dom::window().location().hash().unwrap_or_default();
         let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
         let parsed = route::parse(&hash, &ids);
+        let quiz_seed = parsed.quiz_seed;
         let mut notices = parsed.notices;
         close_nav_menu();
         match parsed.page {
@@ -98,11 +99,20 @@ impl App {
                     if !params.is_empty() {
                         notices.extend(page.apply_params(&params));
                     }
+                    // An instructor's link fixes the attempt (`?quiz=123`): the
+                    // whole class gets the same numbers.
+                    if let Some(seed) = quiz_seed {
+                        let mut p = page.inner.borrow_mut();
+                        if p.attempt.as_ref().map(|a| a.seed) != Some(seed) {
+                            p.new_attempt(seed);
+                        }
+                    }
                     let tab_changed = page.inner.borrow().tab != tab;
                     page.select(tab, !same || tab_changed);
                     // Keep the link complete: after a clamp, and when a link
                     // without parameters lands on the simulation.
-                    if !notices.is_empty() || (params.is_empty() && tab == Tab::Simulation) {
+                    let bare = params.is_empty() && quiz_seed.is_none();
+                    if !notices.is_empty() || (bare && matches!(tab, Tab::Simulation | Tab::Quiz)) {
                         page.write_hash();
                     }
                 }
@@ -112,7 +122,7 @@ impl App {
         if notices.is_empty() {
             dom::clear_notice();
         } else {
-            dom::notice(&notices);
+            dom::notice(&route::summarize_notices(&notices, route::NOTICE_LIMIT));
         }
     }
 
@@ -292,7 +302,9 @@ impl ExperimentPage {
             content: content.ok(),
             attempt: None,
         }));
-        inner.borrow_mut().new_attempt(random_seed());
+        // The attempt in progress before a reload, else a fresh one.
+        let seed = quiz_view::load_saved(entry.id).map_or_else(random_seed, |saved| saved.seed);
+        inner.borrow_mut().new_attempt(seed);
 
         let mut listeners = Vec::new();
         if let Some(tablist) = query(&root, "[role=tablist]") {
@@ -341,10 +353,19 @@ impl ExperimentPage {
                     e.prevent_default();
                     let p = page.borrow();
                     if let (Some(form), Some(attempt)) = (query(&p.root, "form.quiz"), &p.attempt) {
-                        quiz_view::grade_form(&form, attempt);
+                        // Asks for confirmation first when questions are unanswered.
+                        quiz_view::submit(&form, attempt);
                     }
                 },
             ));
+            // Keep the attempt's seed and answers across a reload.
+            let page = inner.clone();
+            listeners.push(Listener::new(quiz_panel.as_ref(), "input", move |_| {
+                let p = page.borrow();
+                if let (Some(form), Some(attempt)) = (query(&p.root, "form.quiz"), &p.attempt) {
+                    quiz_view::store(p.id, &form, attempt);
+                }
+            }));
             let page = inner.clone();
             listeners.push(Listener::new(
                 quiz_panel.as_ref(),
@@ -364,6 +385,7 @@ impl ExperimentPage {
                             next = seed.wrapping_add(1);
                         }
                         p.new_attempt(next);
+                        p.write_hash();
                         // The button was replaced: focus the top of the new attempt.
                         if let Some(intro) = query(&p.root, ".quiz-intro") {
                             if let Some(h) = intro.dyn_ref::<HtmlElement>() {
@@ -421,9 +443,14 @@ impl PageInner {
     }
 
     fn write_hash(&self) {
-        let hash = match &self.sim {
-            Some(sim) => sim.hash(self.tab),
-            None => format!("#/{}/{}", self.id, self.tab.slug()),
+        let hash = match (&self.sim, self.tab) {
+            // The Self-assessment link names its attempt, so it can be shared.
+            (_, Tab::Quiz) => match &self.attempt {
+                Some(a) => format!("#/{}/quiz?{}={}", self.id, route::QUIZ_KEY, a.seed),
+                None => format!("#/{}/quiz", self.id),
+            },
+            (Some(sim), tab) => sim.hash(tab),
+            (None, tab) => format!("#/{}/{}", self.id, tab.slug()),
         };
         replace_hash(&hash);
     }
@@ -437,6 +464,12 @@ impl PageInner {
             Ok(questions) => {
                 let attempt = Attempt { seed, questions };
                 form.set_inner_html(&quiz_view::render(&attempt));
+                let _ = form.remove_attribute("data-confirm-unanswered");
+                // Answers typed before a reload come back (same seed only).
+                if let Some(saved) = quiz_view::load_saved(self.id) {
+                    quiz_view::restore(&form, &attempt, &saved);
+                }
+                quiz_view::store(self.id, &form, &attempt);
                 self.attempt = Some(attempt);
             }
             Err(e) => form.set_inner_html(&content_html::content_error(&e.to_string())),

@@ -1,7 +1,12 @@
 //! The graded Self-assessment tab.
+//!
+//! Worked answers and explanations are not in the page before submission:
+//! [`render`] leaves their places empty and [`grade_form`] fills them from the
+//! attempt held in memory. Submitting with unanswered questions asks for
+//! confirmation first; the score shows at the top of the form.
 
 use crate::dom::{escape, query, query_all};
-use labcore::quiz::{grade, Prepared, PreparedKind, Response};
+use labcore::quiz::{grade, score_percent, Prepared, PreparedKind, Response, SavedAttempt};
 use wasm_bindgen::JsCast;
 use web_sys::{Element, HtmlInputElement};
 
@@ -15,7 +20,10 @@ pub struct Attempt {
 pub fn render(attempt: &Attempt) -> String {
     let mut html = format!(
         "<p class=\"quiz-intro\" tabindex=\"-1\">{} questions. Questions marked <span class=\"badge\">new numbers</span> \
-         draw fresh values for every attempt. Attempt seed <code class=\"quiz-seed\">{}</code>.</p><ol class=\"quiz-list\">",
+         draw fresh values for every attempt. Attempt seed <code class=\"quiz-seed\">{}</code>. \
+         Type numbers with a decimal point (1.5); a comma only separates thousands (8,000).</p>\
+         <p class=\"quiz-score\" role=\"status\" aria-live=\"polite\" tabindex=\"-1\" hidden></p>\
+         <p class=\"quiz-confirm\" role=\"alert\" hidden></p><ol class=\"quiz-list\">",
         attempt.questions.len(),
         attempt.seed
     );
@@ -68,15 +76,15 @@ pub fn render(attempt: &Attempt) -> String {
                 ));
             }
         }
-        html.push_str(&format!(
-            "<p class=\"quiz-feedback\" hidden></p><p class=\"quiz-explanation\" hidden>{}</p></li>",
-            q.explanation
-        ));
+        // Filled by `grade_form` from the attempt in memory: no worked answer
+        // sits in the page before submission.
+        html.push_str(
+            "<p class=\"quiz-feedback\" hidden></p><p class=\"quiz-explanation\" hidden></p></li>",
+        );
     }
     html.push_str(
         "</ol><div class=\"quiz-actions\"><button type=\"submit\" class=\"primary\">Submit answers</button>\
-         <button type=\"button\" class=\"quiz-new\">New attempt</button></div>\
-         <p class=\"quiz-score\" role=\"status\" aria-live=\"polite\"></p>",
+         <button type=\"button\" class=\"quiz-new\">New attempt</button></div>",
     );
     html
 }
@@ -99,8 +107,136 @@ fn response_of(item: &Element, kind: &PreparedKind) -> Response {
     }
 }
 
-/// Grades the form in place: marks each question right or wrong, shows the
-/// expected answer and the explanation, and writes the score.
+/// The answers currently in the form, one per question (for saving an
+/// attempt with [`SavedAttempt`]).
+pub fn responses(form: &Element, attempt: &Attempt) -> Vec<Response> {
+    attempt
+        .questions
+        .iter()
+        .enumerate()
+        .map(
+            |(i, q)| match query(form, &format!(".quiz-q[data-index=\"{i}\"]")) {
+                Some(item) => response_of(&item, &q.kind),
+                None => match q.kind {
+                    PreparedKind::Choice { .. } => Response::Choice(None),
+                    PreparedKind::Numeric { .. } => Response::Text(String::new()),
+                },
+            },
+        )
+        .collect()
+}
+
+/// The attempt and its answers so far, ready to keep across a reload.
+pub fn saved(form: &Element, attempt: &Attempt) -> SavedAttempt {
+    SavedAttempt {
+        seed: attempt.seed,
+        answers: responses(form, attempt),
+    }
+}
+
+/// Puts saved answers back into a freshly rendered form (answers that do not
+/// fit this attempt's questions are left blank).
+pub fn restore(form: &Element, attempt: &Attempt, saved: &SavedAttempt) {
+    if saved.seed != attempt.seed {
+        return;
+    }
+    for (i, answer) in saved.answers_for(&attempt.questions).iter().enumerate() {
+        let Some(item) = query(form, &format!(".quiz-q[data-index=\"{i}\"]")) else {
+            continue;
+        };
+        match answer {
+            Response::Choice(Some(k)) => {
+                if let Some(radio) = query(&item, &format!("input[type=radio][value=\"{k}\"]"))
+                    .and_then(|e| e.dyn_into::<HtmlInputElement>().ok())
+                {
+                    radio.set_checked(true);
+                }
+            }
+            Response::Text(text) if !text.is_empty() => {
+                if let Some(input) =
+                    query(&item, "input").and_then(|e| e.dyn_into::<HtmlInputElement>().ok())
+                {
+                    input.set_value(text);
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Numbers (1-based) of the questions with no answer yet.
+pub fn unanswered(form: &Element, attempt: &Attempt) -> Vec<usize> {
+    responses(form, attempt)
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.is_blank())
+        .map(|(i, _)| i + 1)
+        .collect()
+}
+
+/// The submit button: with unanswered questions the first press only asks
+/// for confirmation (the form remembers it), the next one grades. Returns
+/// true when the form was graded.
+pub fn submit(form: &Element, attempt: &Attempt) -> bool {
+    let missing = unanswered(form, attempt);
+    let confirmed = form.has_attribute("data-confirm-unanswered");
+    if !missing.is_empty() && !confirmed {
+        let list = missing
+            .iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join(", ");
+        let text = if missing.len() == 1 {
+            format!(
+                "Question {list} has no answer. Answer it, or press Submit anyway to grade now."
+            )
+        } else {
+            format!(
+                "{} questions have no answer ({list}). Answer them, or press Submit anyway to grade now.",
+                missing.len()
+            )
+        };
+        if let Some(confirm) = query(form, ".quiz-confirm") {
+            confirm.set_text_content(Some(&text));
+            crate::dom::set_hidden(&confirm, false);
+        }
+        let _ = form.set_attribute("data-confirm-unanswered", "");
+        if let Some(button) = query(form, "button[type=submit]") {
+            button.set_text_content(Some("Submit anyway"));
+        }
+        return false;
+    }
+    grade_form(form, attempt);
+    true
+}
+
+/// The line shown after grading: `✗ Not quite: read as 8000 m. Expected 8 m.`
+fn feedback(verdict: &labcore::quiz::Grade) -> String {
+    let read = verdict
+        .read_as
+        .as_ref()
+        .map_or(String::new(), |r| format!(" (read as {r})"));
+    if verdict.correct {
+        format!("✓ Correct{read}.")
+    } else if verdict.blank {
+        format!("✗ No answer given. Expected {}.", verdict.expected)
+    } else if verdict.unreadable {
+        let why = verdict
+            .problem
+            .as_deref()
+            .unwrap_or("that is not a number in this question's unit");
+        format!(
+            "✗ Could not read the answer: {why}. Expected {}.",
+            verdict.expected
+        )
+    } else {
+        format!("✗ Not quite{read}. Expected {}.", verdict.expected)
+    }
+}
+
+/// Grades the form in place: marks each question right or wrong, shows how
+/// each answer was read, the expected answer and the explanation (written
+/// into the page only now), and the score at the top.
 pub fn grade_form(form: &Element, attempt: &Attempt) {
     let mut score = 0;
     for item in query_all(form, ".quiz-q") {
@@ -122,22 +258,12 @@ pub fn grade_form(form: &Element, attempt: &Attempt) {
             .class_list()
             .add_1(if verdict.correct { "right" } else { "wrong" });
         if let Some(fb) = query(&item, ".quiz-feedback") {
-            let text = if verdict.correct {
-                "✓ Correct.".to_owned()
-            } else if verdict.blank {
-                format!("✗ No answer given. Expected {}.", verdict.expected)
-            } else if verdict.unreadable {
-                format!(
-                    "✗ That is not a number in this question's unit. Expected {}.",
-                    verdict.expected
-                )
-            } else {
-                format!("✗ Not quite. Expected {}.", verdict.expected)
-            };
-            fb.set_text_content(Some(&text));
+            fb.set_text_content(Some(&feedback(&verdict)));
             crate::dom::set_hidden(&fb, false);
         }
         if let Some(ex) = query(&item, ".quiz-explanation") {
+            // Content files are ours (trusted inline HTML/MathML).
+            ex.set_inner_html(&q.explanation);
             crate::dom::set_hidden(&ex, false);
         }
     }
@@ -145,12 +271,36 @@ pub fn grade_form(form: &Element, attempt: &Attempt) {
     for control in query_all(form, "input, button[type=submit]") {
         let _ = control.set_attribute("disabled", "");
     }
+    if let Some(confirm) = query(form, ".quiz-confirm") {
+        crate::dom::set_hidden(&confirm, true);
+    }
     if let Some(out) = query(form, ".quiz-score") {
-        out.scroll_into_view_with_bool(false);
+        let total = attempt.questions.len();
         out.set_text_content(Some(&format!(
-            "Score: {score} / {} ({}%). Press New attempt for fresh questions.",
-            attempt.questions.len(),
-            (100 * score) / attempt.questions.len().max(1)
+            "Score: {score} / {total} ({}%). Press New attempt for fresh questions.",
+            score_percent(score, total)
         )));
+        crate::dom::set_hidden(&out, false);
+        out.scroll_into_view_with_bool(true);
+    }
+}
+
+/// Local-storage key of an experiment's attempt in progress.
+fn storage_key(experiment_id: &str) -> String {
+    format!("labquiz:{experiment_id}")
+}
+
+/// The attempt saved for this experiment by [`store`], if any (and readable).
+pub fn load_saved(experiment_id: &str) -> Option<SavedAttempt> {
+    let storage = web_sys::window()?.local_storage().ok()??;
+    let text = storage.get_item(&storage_key(experiment_id)).ok()??;
+    SavedAttempt::decode(&text)
+}
+
+/// Keeps the attempt's seed and answers so a reload restores them
+/// (silently does nothing when storage is unavailable, e.g. private mode).
+pub fn store(experiment_id: &str, form: &Element, attempt: &Attempt) {
+    if let Some(Ok(Some(storage))) = web_sys::window().map(|w| w.local_storage()) {
+        let _ = storage.set_item(&storage_key(experiment_id), &saved(form, attempt).encode());
     }
 }

@@ -75,7 +75,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
              <div class=\"sim-frame\">\
                <canvas class=\"sim-canvas\" data-touch=\"{touch}\" tabindex=\"0\" role=\"application\" aria-roledescription=\"simulation\" \
                  aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps){keys}.\"></canvas>\
-               <p class=\"sim-status\" role=\"status\" data-tone=\"{tone}\">{text}</p>\
+               <p class=\"sim-status\" data-tone=\"{tone}\">{text}</p>\
              </div>{touch_note}\
              {timebar}\
              <div class=\"sim-actions\">{actions}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button></div>\
@@ -178,7 +178,7 @@ fn control_html(spec: &ParamSpec) -> String {
         ParamKind::Slider => format!(
             "<div class=\"ctl ctl-slider\"><label for=\"p-{key}\">{label}</label>\
              <input type=\"range\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"{step}\" value=\"{v}\">\
-             <span class=\"ctl-num\"><input type=\"number\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" value=\"{v}\" aria-label=\"{label} value{unit_aria}\">\
+             <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" value=\"{v}\" aria-label=\"{label} value{unit_aria}\">\
              <span class=\"unit\" aria-hidden=\"true\">{unit}</span></span></div>",
             min = spec.min,
             max = spec.max,
@@ -187,7 +187,7 @@ fn control_html(spec: &ParamSpec) -> String {
         ),
         ParamKind::OptionalNumber => format!(
             "<div class=\"ctl ctl-number\"><label for=\"p-{key}\">{label}</label>\
-             <span class=\"ctl-num\"><input type=\"number\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" \
+             <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" \
              placeholder=\"—\" aria-label=\"{label}{unit_aria}\"><span class=\"unit\" aria-hidden=\"true\">{unit}</span></span></div>",
             min = spec.min,
             max = spec.max,
@@ -195,7 +195,7 @@ fn control_html(spec: &ParamSpec) -> String {
         ),
         ParamKind::Number => format!(
             "<div class=\"ctl ctl-number\"><label for=\"p-{key}\">{label}</label>\
-             <span class=\"ctl-num\"><input type=\"number\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"1\" value=\"{v}\"></span></div>",
+             <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"1\" value=\"{v}\"></span></div>",
             min = spec.min,
             max = spec.max,
         ),
@@ -598,7 +598,7 @@ fn set_control_value(
         if let Some(input) = el.dyn_ref::<HtmlInputElement>() {
             match input.type_().as_str() {
                 "radio" => input.set_checked((input.value() == "1") == (v >= 0.5)),
-                "number" => {
+                "text" => {
                     if active != Some(&el) {
                         input.set_value(&format_number(v, (decimals(spec.step) + 1).min(3)));
                     }
@@ -897,7 +897,7 @@ impl SimView {
                 };
                 // Number boxes apply on change (Enter or leaving the box), never
                 // mid-typing: "1e9" on the way to "1e99", "0" on the way to "0.5".
-                if input.type_() == "number" {
+                if input.type_() == "text" {
                     return;
                 }
                 let value = input.value_as_number();
@@ -928,10 +928,45 @@ impl SimView {
                     target.and_then(|t| t.dyn_into::<HtmlInputElement>().ok())
                 {
                     if let Some(key) = input.get_attribute("data-param") {
-                        if input.type_() == "number" {
+                        if input.type_() == "text" {
                             let raw = input.value();
-                            let value = labcore::quiz::parse_number(&raw).unwrap_or(f64::NAN);
-                            st.set_param(&key, value);
+                            let unit = st
+                                .exp
+                                .params()
+                                .iter()
+                                .find(|p| p.key == key)
+                                .map_or("", |p| p.unit);
+                            // One rule for commas and units everywhere (see
+                            // `labcore::quiz::read_answer`); say what was read.
+                            let reading = if raw.trim().is_empty() {
+                                Err(None)
+                            } else {
+                                labcore::quiz::read_answer(&raw, unit).map_err(Some)
+                            };
+                            match reading {
+                                Ok(r) => {
+                                    st.set_param(&key, r.value);
+                                    let plain = raw.trim().parse::<f64>().is_ok();
+                                    if !plain {
+                                        st.show_message(Some(&format!(
+                                            "Read “{}” as {}.",
+                                            raw.trim(),
+                                            r.read_as
+                                        )));
+                                    }
+                                }
+                                Err(e) => {
+                                    let why = e.map_or_else(
+                                        || "nothing was typed".to_owned(),
+                                        |e| e.to_string(),
+                                    );
+                                    st.show_message(Some(&format!(
+                                        "Could not read that: {why}. Kept the previous value."
+                                    )));
+                                    // Show the kept value again.
+                                    st.shown_values.iter_mut().for_each(|v| *v = None);
+                                }
+                            }
                             if let Some(i) = st.exp.params().iter().position(|p| p.key == key) {
                                 st.shown_values[i] = None;
                             }

@@ -6,8 +6,9 @@
 //! singular values and left singular vectors of the Jacobian.
 
 use crate::experiment::{
-    check_param, with_coordinate, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout,
-    Sanitized, Status, Tone,
+    check_param, clamp_to_params, format_degrees, format_fixed, format_magnitude, format_metres,
+    with_coordinate, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized,
+    Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::dls::{AdaptiveDamping, DlsSolver};
@@ -19,11 +20,12 @@ use crate::scene::{Item, Role, Scene, ViewBox};
 use glam::DVec2;
 
 const PARAMS: &[ParamSpec] = &[
-    ParamSpec::slider("n", "Links", "", 2.0, 8.0, 1.0, 4.0),
+    ParamSpec::slider("n", "Links", "", 2.0, 8.0, 1.0, 4.0).whole_numbers(),
     ParamSpec::slider("lambda", "λ", "m", 0.0, 1.0, 0.01, 0.1),
     ParamSpec::toggle("adaptive", "Adaptive damping", "off", "on", false),
     ParamSpec::toggle("guard", "Safeguards", "off", "on", true),
     ParamSpec::slider("rate", "Speed", "it/s", 1.0, 60.0, 1.0, 12.0),
+    ParamSpec::slider("maxit", "Iteration limit", "", 20.0, 1000.0, 10.0, 500.0).whole_numbers(),
     ParamSpec::optional_number("tx", "Target x", "m", -VIEW_HALF_M, VIEW_HALF_M),
     ParamSpec::optional_number("ty", "Target y", "m", -VIEW_HALF_M, VIEW_HALF_M),
 ];
@@ -41,8 +43,13 @@ pub const START_ANGLE_RAD: f64 = 0.3;
 pub const ELLIPSE_SCALE: f64 = 0.3;
 /// The animation stops once the error is below this, metres.
 const TOLERANCE_M: f64 = 1e-6;
-/// … or after this many iterations.
-const MAX_ITERATIONS: usize = 500;
+/// … or after the iteration limit (the `maxit` parameter, default 500) …
+/// … or when the best error has not improved by [`PROGRESS_REL`] (relative)
+/// for [`NO_PROGRESS_ITERATIONS`] iterations: at 12 it/s that is under 2 s,
+/// where the bare update (λ = 0, no safeguards) would otherwise oscillate
+/// around an unreachable target until the limit (about 40 s).
+const NO_PROGRESS_ITERATIONS: usize = 20;
+const PROGRESS_REL: f64 = 1e-3;
 /// … or when the error changes by less than this for [`SETTLE_COUNT`] steps (unreachable target).
 const SETTLE_DELTA_M: f64 = 1e-9;
 const SETTLE_COUNT: usize = 5;
@@ -58,6 +65,11 @@ enum Run {
     Iterating,
     Converged,
     Settled,
+    /// The error stopped improving for [`NO_PROGRESS_ITERATIONS`] iterations;
+    /// `oscillating` when some of those steps went uphill.
+    NoProgress {
+        oscillating: bool,
+    },
     GaveUp,
 }
 
@@ -71,6 +83,8 @@ pub struct DampedLeastSquares {
     /// the bare update `Δq = Jᵀ(JJᵀ + λ²I)⁻¹e`.
     safeguards: bool,
     rate_hz: f64,
+    /// The iteration limit (the visible `maxit` setting).
+    max_iterations: usize,
     angles_rad: Vec<f64>,
     target: Option<DVec2>,
     run: Run,
@@ -81,6 +95,11 @@ pub struct DampedLeastSquares {
     flat_steps: usize,
     /// Error (log scale) and manipulability against iteration.
     plots: [Plot; 2],
+    /// Smallest error so far in this run, metres, and iterations since it
+    /// last improved by [`PROGRESS_REL`]; uphill steps among those.
+    best_error_m: f64,
+    since_best: usize,
+    uphill_since_best: usize,
 }
 
 fn new_plots() -> [Plot; 2] {
@@ -111,6 +130,7 @@ impl Default for DampedLeastSquares {
             adaptive: false,
             safeguards: true,
             rate_hz: PARAMS[4].default,
+            max_iterations: PARAMS[5].default as usize,
             angles_rad: vec![START_ANGLE_RAD; links],
             target: None,
             run: Run::Idle,
@@ -120,6 +140,9 @@ impl Default for DampedLeastSquares {
             clock_s: 0.0,
             flat_steps: 0,
             plots: new_plots(),
+            best_error_m: f64::INFINITY,
+            since_best: 0,
+            uphill_since_best: 0,
         }
     }
 }
@@ -164,6 +187,9 @@ impl DampedLeastSquares {
             self.flat_steps = 0;
             self.clock_s = 0.0;
             self.error_m = self.target.map(|t| (t - self.tip()).length());
+            self.best_error_m = self.error_m.unwrap_or(f64::INFINITY);
+            self.since_best = 0;
+            self.uphill_since_best = 0;
             self.plots.iter_mut().for_each(Plot::clear);
             self.record();
         }
@@ -180,9 +206,11 @@ impl DampedLeastSquares {
         self.plots.iter_mut().for_each(Plot::touch);
     }
 
+    /// Sets the target from the pointer or a nudge, clamped to the range of
+    /// the `tx`/`ty` fields so the link reproduces it.
     fn set_target(&mut self, p: DVec2) {
-        if p.is_finite() && p.length() < 1e3 {
-            self.target = Some(p);
+        if p.is_finite() {
+            self.target = Some(clamp_to_params(PARAMS, "tx", "ty", p));
             self.restart();
         }
     }
@@ -204,11 +232,30 @@ impl DampedLeastSquares {
         } else {
             self.flat_steps = 0;
         }
+        if step.error_after_m < self.best_error_m * (1.0 - PROGRESS_REL) {
+            self.best_error_m = step.error_after_m;
+            self.since_best = 0;
+            self.uphill_since_best = 0;
+        } else {
+            self.since_best += 1;
+            if step.error_after_m > step.error_before_m {
+                self.uphill_since_best += 1;
+            }
+        }
+        let out_of_reach = !Annulus::of_chain(&lengths).contains(target, TOLERANCE_M);
         self.run = if step.error_after_m < TOLERANCE_M {
             Run::Converged
         } else if self.flat_steps >= SETTLE_COUNT {
             Run::Settled
-        } else if self.iterations >= MAX_ITERATIONS {
+        } else if self.since_best >= NO_PROGRESS_ITERATIONS {
+            if self.uphill_since_best == 0 && out_of_reach {
+                Run::Settled
+            } else {
+                Run::NoProgress {
+                    oscillating: self.uphill_since_best > 0,
+                }
+            }
+        } else if self.iterations >= self.max_iterations {
             Run::GaveUp
         } else {
             Run::Iterating
@@ -232,6 +279,7 @@ impl Experiment for DampedLeastSquares {
             "adaptive" => f64::from(u8::from(self.adaptive)),
             "guard" => f64::from(u8::from(self.safeguards)),
             "rate" => self.rate_hz,
+            "maxit" => self.max_iterations as f64,
             "tx" => return self.target.map(|t| t.x),
             "ty" => return self.target.map(|t| t.y),
             _ => return None,
@@ -258,12 +306,22 @@ impl Experiment for DampedLeastSquares {
             "adaptive" => self.adaptive = v >= 0.5,
             "guard" => self.safeguards = v >= 0.5,
             "rate" => self.rate_hz = v,
+            "maxit" => {
+                self.max_iterations = v as usize;
+                // A lower limit applies to the run in progress; a higher one
+                // lets a run stopped by the old limit go on.
+                if self.run == Run::GaveUp && self.iterations < self.max_iterations {
+                    self.run = Run::Iterating;
+                } else if self.run == Run::Iterating && self.iterations >= self.max_iterations {
+                    self.run = Run::GaveUp;
+                }
+            }
             "tx" | "ty" => {
                 self.target = Some(with_coordinate(self.target, self.tip(), key, v));
             }
             _ => return Err(ParamError::UnknownKey { key: key.into() }),
         }
-        if key != "rate" {
+        if !matches!(key, "rate" | "maxit") {
             self.restart();
         }
         Ok(applied)
@@ -368,30 +426,22 @@ impl Experiment for DampedLeastSquares {
     fn readouts(&self) -> Vec<Readout> {
         let m = self.manipulability();
         let error = self.error_m.map_or("--".into(), |e| {
-            if e < 1e-3 {
-                format!("{e:.1e} m")
+            if e < 1e-3 && e > 0.0 {
+                format!("{} m", format_magnitude(e))
             } else {
-                format!("{} m", format_number(e, 4))
+                format_metres(e)
             }
         });
-        let condition = if m.condition.is_finite() {
-            format_number(m.condition, 2)
-        } else {
-            "∞".into()
-        };
         let angles: Vec<String> = self
             .angles_rad
             .iter()
-            .map(|a| {
-                let deg = crate::kinematics::two_link_ik::wrap_pi(*a).to_degrees();
-                format!("{}°", format_number(deg, 0))
-            })
+            .map(|a| format_degrees(crate::kinematics::two_link_ik::wrap_pi(*a).to_degrees()))
             .collect();
         vec![
             Readout::new("iterations", "Iterations", self.iterations.to_string()),
             Readout::new("error", "Error", error),
-            Readout::new("w", "Manipulability w", format_number(m.w, 4)),
-            Readout::new("cond", "Condition σmax/σmin", condition),
+            Readout::new("w", "Manipulability w", format_fixed(m.w, 3)),
+            Readout::new("cond", "Condition σmax/σmin", format_magnitude(m.condition)),
             Readout::metres("lambda_used", "λ used", self.lambda_used_m),
             Readout::new("angles", "Joint angles θ₁…θₙ", angles.join(", ")),
         ]
@@ -406,7 +456,20 @@ impl Experiment for DampedLeastSquares {
                 Tone::Good,
             ),
             Run::Settled => Status::new("closest reachable pose", Tone::Warning),
-            Run::GaveUp => Status::new("stopped: iteration limit", Tone::Warning),
+            Run::NoProgress { oscillating: true } => Status::new(
+                format!(
+                    "not converging: oscillating near a singularity (no progress in {NO_PROGRESS_ITERATIONS} iterations)"
+                ),
+                Tone::Bad,
+            ),
+            Run::NoProgress { oscillating: false } => Status::new(
+                format!("stalled: no progress in {NO_PROGRESS_ITERATIONS} iterations"),
+                Tone::Warning,
+            ),
+            Run::GaveUp => Status::new(
+                format!("stopped: iteration limit ({})", self.max_iterations),
+                Tone::Warning,
+            ),
         }
     }
 
@@ -571,5 +634,77 @@ mod tests {
         let get = |k: &str| d.var(k).unwrap();
         let w = get("l1") * get("l2") * get("t2").to_radians().sin().abs();
         assert!((d.answer - w).abs() < 1e-9);
+    }
+
+    /// Regression: with λ = 0, safeguards off and the unreachable target
+    /// (2.6, 0) the bare update oscillated for about 40 s (500 iterations at
+    /// 12 it/s) before "stopped: iteration limit".
+    #[test]
+    fn bare_update_oscillating_around_an_unreachable_target_stops_within_seconds() {
+        let mut d = DampedLeastSquares::default();
+        d.set_param("lambda", 0.0).unwrap();
+        d.set_param("guard", 0.0).unwrap();
+        d.input(Input::PointerDown(DVec2::new(2.6, 0.0)));
+        let mut t = 0.0;
+        while d.animating() && t < 60.0 {
+            d.step(1.0 / 60.0);
+            t += 1.0 / 60.0;
+        }
+        assert!(
+            t < 4.0,
+            "stopped after {t:.1} s ({} iterations)",
+            d.iterations
+        );
+        assert_eq!(d.run, Run::NoProgress { oscillating: true });
+        assert_eq!(
+            d.status().text,
+            "not converging: oscillating near a singularity (no progress in 20 iterations)"
+        );
+        assert!(d.angles_rad.iter().all(|a| a.is_finite()));
+    }
+
+    #[test]
+    fn iteration_limit_is_a_visible_setting() {
+        let spec = PARAMS.iter().find(|s| s.key == "maxit").unwrap();
+        assert!(spec.integer);
+        let mut d = DampedLeastSquares::default();
+        assert_eq!(d.param("maxit"), Some(500.0));
+        d.set_param("maxit", 20.0).unwrap();
+        d.set_param("lambda", 1.0).unwrap();
+        d.set_param("rate", 60.0).unwrap();
+        d.input(Input::PointerDown(DVec2::new(-1.0, -1.5)));
+        run(&mut d);
+        assert_eq!(d.iterations, 20);
+        assert_eq!(d.run, Run::GaveUp);
+        assert_eq!(d.status().text, "stopped: iteration limit (20)");
+        // Raising the limit lets the run go on.
+        d.set_param("maxit", 500.0).unwrap();
+        assert!(d.animating());
+        run(&mut d);
+        assert_eq!(d.run, Run::Converged);
+    }
+
+    /// Regression: the condition number showed as `∞` or as raw digits
+    /// (`123456.79`); now `∞ (singular)` or `2.4 × 10⁵`.
+    #[test]
+    fn condition_number_readout_is_readable() {
+        let cond = |d: &DampedLeastSquares| {
+            d.readouts()
+                .into_iter()
+                .find(|r| r.key == "cond")
+                .unwrap()
+                .value
+        };
+        let mut d = DampedLeastSquares {
+            angles_rad: vec![0.0; 4],
+            ..DampedLeastSquares::default()
+        };
+        assert_eq!(cond(&d), "∞ (singular)");
+        d.angles_rad = vec![0.0, 1e-5, 0.0, 0.0];
+        let c = d.manipulability().condition;
+        assert!(c > 1e4 && c.is_finite());
+        assert!(cond(&d).contains(" × 10"), "{}", cond(&d));
+        d.angles_rad = vec![START_ANGLE_RAD; 4];
+        assert!(!cond(&d).contains('×'));
     }
 }

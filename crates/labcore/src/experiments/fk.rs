@@ -8,7 +8,8 @@
 //! reachable point.
 
 use crate::experiment::{
-    check_param, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized,
+    Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};
@@ -83,6 +84,16 @@ impl ForwardKinematics {
             self.theta2_deg = a.theta2_rad.to_degrees().clamp(-180.0, 180.0);
         }
         self.drag_target = Some(target);
+    }
+}
+
+impl ForwardKinematics {
+    /// Distance from the dragging pointer to the tip when the pointer is
+    /// beyond reach (`None` when not dragging or when the tip reaches it).
+    fn target_gap_m(&self) -> Option<f64> {
+        let t = self.drag_target?;
+        let gap = (t - self.tip()).length();
+        (gap > 1e-6).then_some(gap)
     }
 }
 
@@ -174,20 +185,21 @@ impl Experiment for ForwardKinematics {
     fn readouts(&self) -> Vec<Readout> {
         let tip = self.tip();
         let annulus = Annulus::of_chain(&self.lengths());
-        let target = self.drag_target.map_or_else(
-            || "--".to_owned(),
-            |t| format!("{} m", format_number((t - tip).length(), 3)),
-        );
-        vec![
+        let mut r = vec![
             Readout::metres("x", "End-effector X", tip.x),
             Readout::metres("y", "End-effector Y", tip.y),
             Readout::new(
                 "reach",
                 "Reach used",
-                format!("{}%", format_number(100.0 * annulus.reach_used(tip), 1)),
+                format!("{}%", format_fixed(100.0 * annulus.reach_used(tip), 1)),
             ),
-            Readout::new("target", "Target dist", target),
-        ]
+        ];
+        // Only while a pointer drags beyond reach: inside, the tip follows the
+        // pointer and the distance is always 0.
+        if let Some(gap) = self.target_gap_m() {
+            r.push(Readout::metres("target", "Target dist", gap));
+        }
+        r
     }
 
     fn status(&self) -> Status {
@@ -289,7 +301,7 @@ mod tests {
         let x = 35f64.to_radians().cos() + 0.7 * 95f64.to_radians().cos();
         let y = 35f64.to_radians().sin() + 0.7 * 95f64.to_radians().sin();
         assert!((fk.tip() - DVec2::new(x, y)).length() < 1e-12);
-        assert_eq!(fk.readouts()[0].value, format!("{} m", format_number(x, 3)));
+        assert_eq!(fk.readouts()[0].value, format!("{x:.3} m"));
     }
 
     #[test]
@@ -308,6 +320,30 @@ mod tests {
         assert_eq!(fk.status().tone, Tone::Warning);
         fk.input(Input::PointerUp(DVec2::new(3.0, 0.0)));
         assert_eq!(fk.status().tone, Tone::Good);
+    }
+
+    /// Regression: "Target dist" showed `0 m` while the tip followed the
+    /// pointer, and `--` when nothing was dragged; it now appears only while
+    /// a dragging pointer is beyond reach.
+    #[test]
+    fn target_distance_shows_only_while_dragging_beyond_reach() {
+        let has_target = |fk: &ForwardKinematics| fk.readouts().iter().any(|r| r.key == "target");
+        let mut fk = ForwardKinematics::default();
+        assert!(!has_target(&fk));
+        fk.input(Input::PointerDown(DVec2::new(0.5, 1.2)));
+        assert!(!has_target(&fk), "inside reach the tip is on the pointer");
+        fk.input(Input::PointerMove {
+            pos: DVec2::new(3.0, 0.0),
+            pressed: true,
+        });
+        let gap = fk
+            .readouts()
+            .into_iter()
+            .find(|r| r.key == "target")
+            .unwrap();
+        assert_eq!(gap.value, "1.300 m");
+        fk.input(Input::PointerUp(DVec2::new(3.0, 0.0)));
+        assert!(!has_target(&fk));
     }
 
     #[test]

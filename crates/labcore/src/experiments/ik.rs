@@ -3,14 +3,16 @@
 //! Click a target: [`two_link_ik::solve`] gives both elbow branches; the arm
 //! moves to the chosen one by smooth (smoothstep-eased) interpolation in joint
 //! space while the other branch is drawn as a ghost. A target outside the
-//! annulus is reported and no solution is drawn. The θ sliders still drive
+//! annulus is reported (how far it is against the reach) and no solution is
+//! drawn; the arm stretches (or folds) towards it, to the nearest reachable
+//! point, so a move in progress never stops half-way. The θ sliders still drive
 //! forward kinematics. With a wrist link `L3 > 0`, the last link is held at the
 //! fixed absolute orientation `φ` and the wrist centre `p − L3 (cos φ, sin φ)`
 //! is what the two links solve for.
 
 use crate::experiment::{
-    check_param, with_coordinate, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized,
-    Status, Tone,
+    check_param, clamp_to_params, with_coordinate, Experiment, Input, ParamError, ParamSpec,
+    Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
@@ -45,7 +47,11 @@ const MOVE_TIME_S: f64 = 0.8;
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Solved {
     Reachable(TwoLinkSolution),
-    OutOfReach,
+    /// No solution; `stretch` reaches the annulus point nearest to the target
+    /// (the arm straight towards it, or folded towards a target in the hole).
+    OutOfReach {
+        stretch: Option<TwoLinkSolution>,
+    },
 }
 
 /// State of the inverse-kinematics experiment.
@@ -119,28 +125,69 @@ impl InverseKinematics {
         }
     }
 
-    /// Re-solves the current target and starts moving to the chosen branch.
+    /// Where the arm is moving: the chosen solution, or for an unreachable
+    /// target the stretched pose towards it.
+    fn goal(&self) -> Option<TwoLinkAngles> {
+        match self.solved {
+            Some(Solved::Reachable(sol)) | Some(Solved::OutOfReach { stretch: Some(sol) }) => {
+                Some(sol.branch(self.elbow))
+            }
+            _ => None,
+        }
+    }
+
+    /// Re-solves the current target and starts moving to the chosen branch
+    /// (or, out of reach, to the stretched pose), from wherever the arm is —
+    /// also half-way through an earlier move.
     fn resolve(&mut self) {
         let Some(target) = self.target else {
             self.solved = None;
             return;
         };
-        self.solved = Some(
-            match solve(self.l1_m, self.l2_m, target - self.wrist_offset()) {
-                Ok(sol) => Solved::Reachable(sol),
-                Err(IkError::Unreachable { .. } | IkError::InvalidInput) => Solved::OutOfReach,
-            },
-        );
+        let wrist_centre = target - self.wrist_offset();
+        self.solved = Some(match solve(self.l1_m, self.l2_m, wrist_centre) {
+            Ok(sol) => Solved::Reachable(sol),
+            Err(IkError::Unreachable { .. } | IkError::InvalidInput) => {
+                let nearest = Annulus::of_chain(&[self.l1_m, self.l2_m]).nearest(wrist_centre);
+                Solved::OutOfReach {
+                    stretch: solve(self.l1_m, self.l2_m, nearest).ok(),
+                }
+            }
+        });
         self.motion = self
-            .solution()
+            .goal()
             .map(|_| ([self.theta1_deg, self.theta2_deg], 0.0));
     }
 
+    /// Why an unreachable target is out of reach, with the numbers:
+    /// `target 2.66 m away > L₁ + L₂ = 1.70 m`.
+    fn out_of_reach_reason(&self) -> String {
+        let (centre, annulus) = self.reach();
+        let what = if self.l3_m > 0.0 {
+            "wrist centre"
+        } else {
+            "target"
+        };
+        let d = self.target.map_or(f64::NAN, |t| {
+            crate::math::hypot(t.x - centre.x, t.y - centre.y)
+        });
+        if d < annulus.inner_m {
+            format!(
+                "{what} {d:.2} m away < |L₁ − L₂| = {:.2} m",
+                annulus.inner_m
+            )
+        } else {
+            format!("{what} {d:.2} m away > L₁ + L₂ = {:.2} m", annulus.outer_m)
+        }
+    }
+
+    /// Sets the target from the pointer or a nudge, clamped to the range of
+    /// the `tx`/`ty` fields so the link reproduces it.
     fn set_target(&mut self, p: DVec2) {
-        if !p.is_finite() || p.length() > 1e6 {
+        if !p.is_finite() {
             return;
         }
-        self.target = Some(p);
+        self.target = Some(clamp_to_params(PARAMS, "tx", "ty", p));
         self.resolve();
     }
 
@@ -167,10 +214,6 @@ impl InverseKinematics {
 fn ease(t: f64) -> f64 {
     let t = t.clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
-}
-
-fn degrees(a: f64) -> String {
-    format!("{}°", format_number(a, 1))
 }
 
 impl Experiment for InverseKinematics {
@@ -239,7 +282,7 @@ impl Experiment for InverseKinematics {
         if !crate::clock::valid_dt(dt_s) {
             return;
         }
-        let Some(goal) = self.solution() else {
+        let Some(goal) = self.goal() else {
             self.motion = None;
             return;
         };
@@ -305,7 +348,7 @@ impl Experiment for InverseKinematics {
         let points = self.points(self.theta1_deg, self.theta2_deg);
         out.chain(&points, Role::Link);
         if let Some(target) = self.target {
-            let out_of_reach = self.solved == Some(Solved::OutOfReach);
+            let out_of_reach = matches!(self.solved, Some(Solved::OutOfReach { .. }));
             let role = if out_of_reach {
                 Role::Warning
             } else {
@@ -347,36 +390,37 @@ impl Experiment for InverseKinematics {
     fn readouts(&self) -> Vec<Readout> {
         let tip = self.tip();
         let sol = self.solution();
+        let angle = |key, label, a: Option<f64>| match a {
+            Some(rad) => Readout::degrees(key, label, rad.to_degrees()),
+            None => Readout::new(key, label, "--"),
+        };
         let mut r = vec![
             Readout::metres("x", "End-effector X", tip.x),
             Readout::metres("y", "End-effector Y", tip.y),
-            Readout::new(
-                "theta1",
-                "θ₁ solved",
-                sol.map_or("--".into(), |a| degrees(a.theta1_rad.to_degrees())),
-            ),
-            Readout::new(
-                "theta2",
-                "θ₂ solved",
-                sol.map_or("--".into(), |a| degrees(a.theta2_rad.to_degrees())),
-            ),
+            angle("theta1", "θ₁ solved", sol.map(|a| a.theta1_rad)),
+            angle("theta2", "θ₂ solved", sol.map(|a| a.theta2_rad)),
         ];
-        let wrist = match sol {
-            Some(a) if self.l3_m > 0.0 => {
-                let t3 = self.phi_deg.to_radians() - a.theta1_rad - a.theta2_rad;
-                degrees(crate::kinematics::two_link_ik::wrap_pi(t3).to_degrees())
-            }
-            _ if self.l3_m > 0.0 => "--".into(),
-            _ => "no wrist".into(),
-        };
-        r.push(Readout::new("theta3", "θ₃ (wrist)", wrist));
+        r.push(match sol {
+            Some(a) if self.l3_m > 0.0 => angle(
+                "theta3",
+                "θ₃ (wrist)",
+                Some(crate::kinematics::two_link_ik::wrap_pi(
+                    self.phi_deg.to_radians() - a.theta1_rad - a.theta2_rad,
+                )),
+            ),
+            _ if self.l3_m > 0.0 => Readout::new("theta3", "θ₃ (wrist)", "--"),
+            _ => Readout::new("theta3", "θ₃ (wrist)", "no wrist"),
+        });
         r
     }
 
     fn status(&self) -> Status {
         match self.solved {
             None => Status::new("click a target", Tone::Neutral),
-            Some(Solved::OutOfReach) => Status::new("out of reach", Tone::Bad),
+            Some(Solved::OutOfReach { .. }) => Status::new(
+                format!("out of reach: {}", self.out_of_reach_reason()),
+                Tone::Bad,
+            ),
             Some(Solved::Reachable(sol)) => match sol.singularity {
                 Singularity::Regular if self.near_boundary() => {
                     Status::new("near singular: the branches almost merge", Tone::Warning)
@@ -508,14 +552,19 @@ mod tests {
     }
 
     #[test]
-    fn out_of_reach_draws_no_solution() {
+    fn out_of_reach_draws_no_solution_and_stretches_towards_the_target() {
         let mut ik = InverseKinematics::default();
-        let before = ik.tip();
         ik.input(Input::PointerDown(DVec2::new(2.9, 0.0)));
         settle(&mut ik);
-        assert_eq!(ik.status().text, "out of reach");
+        assert_eq!(
+            ik.status().text,
+            "out of reach: target 2.90 m away > L₁ + L₂ = 1.70 m"
+        );
         assert_eq!(ik.readouts()[2].value, "--");
-        assert!((ik.tip() - before).length() < 1e-12, "the arm stays put");
+        assert!(
+            (ik.tip() - DVec2::new(1.7, 0.0)).length() < 1e-9,
+            "stretched"
+        );
         let mut scene = Scene::default();
         ik.scene(&mut scene);
         assert!(!scene.items.iter().any(|i| matches!(
@@ -525,6 +574,40 @@ mod tests {
                 ..
             }
         )));
+        // Inside the hole: folded towards the target.
+        ik.input(Input::PointerDown(DVec2::new(0.0, 0.1)));
+        settle(&mut ik);
+        assert_eq!(
+            ik.status().text,
+            "out of reach: target 0.10 m away < |L₁ − L₂| = 0.30 m"
+        );
+        assert!((ik.tip() - DVec2::new(0.0, 0.3)).length() < 1e-9);
+    }
+
+    /// Regression (issue repro): click (1, 0.8), switch the elbow to down,
+    /// then click (2.2, 1.5) within 0.4 s. The arm froze half-way between
+    /// poses (θ₁ 22.3°, θ₂ 45.5°) with no explanation.
+    #[test]
+    fn unreachable_click_during_a_move_does_not_freeze_the_arm() {
+        let mut ik = InverseKinematics::default();
+        ik.input(Input::PointerDown(DVec2::new(1.0, 0.8)));
+        settle(&mut ik);
+        ik.set_param("elbow", 0.0).unwrap();
+        for _ in 0..12 {
+            ik.step(1.0 / 60.0); // 0.2 s: mid-move
+        }
+        assert!(ik.animating());
+        let target = DVec2::new(2.2, 1.5);
+        ik.input(Input::PointerDown(target));
+        settle(&mut ik);
+        assert!(!ik.animating());
+        let reach = target * (1.7 / target.length());
+        assert!((ik.tip() - reach).length() < 1e-9, "tip {}", ik.tip());
+        assert_eq!(
+            ik.status().text,
+            "out of reach: target 2.66 m away > L₁ + L₂ = 1.70 m"
+        );
+        assert_eq!(ik.status().tone, Tone::Bad);
     }
 
     #[test]
@@ -537,6 +620,21 @@ mod tests {
         assert_eq!(ik.param("ty"), Some(0.8));
         settle(&mut ik);
         assert!((ik.tip() - DVec2::new(0.9, 0.8)).length() < 1e-9);
+    }
+
+    /// Regression: `PointerDown((3.3, 0))` wrote `tx=3.3`, beyond the ±3.1 m
+    /// range of the target fields, so reloading the link clamped it with a notice.
+    #[test]
+    fn pointer_and_nudge_targets_stay_inside_the_field_range() {
+        let mut ik = InverseKinematics::default();
+        ik.input(Input::PointerDown(DVec2::new(3.3, 0.0)));
+        assert_eq!(ik.param("tx"), Some(VIEW_HALF_M));
+        assert_eq!(ik.param("ty"), Some(0.0));
+        for _ in 0..10 {
+            ik.input(Input::Nudge(DVec2::new(-0.05, -0.5)));
+        }
+        assert_eq!(ik.param("ty"), Some(-VIEW_HALF_M));
+        assert!((ik.param("tx").unwrap() - (VIEW_HALF_M - 0.5)).abs() < 1e-12);
     }
 
     #[test]

@@ -32,7 +32,7 @@ const PARAMS: &[ParamSpec] = &[
     ParamSpec::slider("l2", "L₂", "m", 0.2, 1.2, 0.05, 0.8),
     ParamSpec::slider("l3", "L₃", "m", 0.1, 1.2, 0.05, 0.7),
     ParamSpec::choice("mode", "Sampling", MODES, 0),
-    ParamSpec::slider("n", "Samples", "", 1000.0, 60000.0, 1000.0, 20000.0),
+    ParamSpec::slider("n", "Samples", "", 1000.0, 60000.0, 1000.0, 20000.0).whole_numbers(),
     ParamSpec::number("seed", "Seed", 0.0, 999_999.0, 1.0),
 ];
 
@@ -64,8 +64,9 @@ fn density_cells(samples: usize, lengths_m: &[f64; 3]) -> usize {
     let cells = samples as f64 / SAMPLES_PER_CELL / disc_fraction;
     (cells.sqrt().round() as usize).clamp(24, 200)
 }
-/// A sweep spreads over about this many frames.
-const SWEEP_FRAMES: usize = 90;
+/// A sweep spreads over this many frames: each adds at most 1 % of the
+/// samples, so the progress badge can move in 1 % steps with the cloud.
+const SWEEP_FRAMES: usize = 100;
 /// Most tips stippled individually (the most recent ones); the density map shows them all.
 const STIPPLE_MAX: usize = 5000;
 
@@ -170,6 +171,25 @@ impl Workspace {
         self.plots[0].clear();
     }
 
+    /// In grid mode, why the sample count differs from the one asked for:
+    /// `grid of 39 angles per joint: 39³ = 59319 of 60000 requested`. `None`
+    /// in Monte-Carlo mode or when the grid gives exactly the count asked for.
+    fn grid_note(&self) -> Option<String> {
+        let sampler = self.sampler.as_ref()?;
+        let SamplingMode::Grid { per_joint } = sampler.mode() else {
+            return None;
+        };
+        let requested = self.samples;
+        let total = sampler.total();
+        Some(if total == requested {
+            format!("grid of {per_joint} angles per joint: {per_joint}³ = {total}")
+        } else {
+            format!(
+                "grid of {per_joint} angles per joint: {per_joint}³ = {total} of {requested} requested"
+            )
+        })
+    }
+
     fn sweeping(&self) -> bool {
         self.sampler.as_ref().is_some_and(|s| !s.is_done())
     }
@@ -268,7 +288,7 @@ impl Experiment for Workspace {
         if sampler.is_done() {
             return;
         }
-        let batch = (sampler.total() / SWEEP_FRAMES).max(100);
+        let batch = (sampler.total() / SWEEP_FRAMES).max(1);
         let start = self.tips.len();
         sampler.sample_batch(batch, &mut self.tips);
         self.density.add_all(&self.tips[start..]);
@@ -333,9 +353,9 @@ impl Experiment for Workspace {
         let tip = self.tip();
         let annulus = Annulus::of_chain(&self.lengths_m);
         let measured = self.sampler.as_ref().and_then(WorkspaceSampler::measured);
-        // Fixed 4 decimals: measured radii approach theory from inside, and
-        // the gap must stay visible.
-        let metres = |v: f64| format!("{v:.4} m");
+        // The same 3 decimals (1 mm) as every length readout: with the
+        // default 20,000 samples the measured radii stay a few mm inside theory.
+        let metres = crate::experiment::format_metres;
         let (outer, inner) = measured.map_or(("--".into(), "--".into()), |m| {
             (metres(m.outer_m), metres(m.inner_m))
         });
@@ -359,7 +379,15 @@ impl Experiment for Workspace {
                 "Samples drawn",
                 self.sampler
                     .as_ref()
-                    .map_or("0".into(), |s| format!("{} / {}", s.produced(), s.total())),
+                    .map_or("0".into(), |s| match s.mode() {
+                        SamplingMode::Grid { per_joint } if s.total() != self.samples => format!(
+                            "{} / {} ({per_joint}³ grid of {} requested)",
+                            s.produced(),
+                            s.total(),
+                            self.samples
+                        ),
+                        _ => format!("{} / {}", s.produced(), s.total()),
+                    }),
             ),
         ]
     }
@@ -368,12 +396,25 @@ impl Experiment for Workspace {
         match &self.sampler {
             _ if self.stale => Status::new("settings changed: sweep again", Tone::Warning),
             None => Status::new("ready to sweep", Tone::Neutral),
-            // Quarter steps: the badge is a live region, so it must not chatter.
+            // Whole percents, current with the cloud (the page decides how
+            // often its live region announces them).
             Some(s) if !s.is_done() => Status::new(
-                format!("sweeping… {}%", (4.0 * s.progress()).floor() * 25.0),
+                format!(
+                    "sweeping… {}%{}",
+                    // Integer arithmetic: 0.29 × 100 would floor to 28.
+                    s.produced().saturating_mul(100) / s.total().max(1),
+                    self.grid_note()
+                        .map_or(String::new(), |n| format!(" ({n})"))
+                ),
                 Tone::Neutral,
             ),
-            Some(s) => Status::new(format!("swept {} samples", s.produced()), Tone::Good),
+            Some(s) => Status::new(
+                match self.grid_note() {
+                    None => format!("swept {} samples", s.produced()),
+                    Some(note) => format!("swept {} samples ({note})", s.produced()),
+                },
+                Tone::Good,
+            ),
         }
     }
 
@@ -534,5 +575,77 @@ mod tests {
             });
         }
         assert!((ws.tip() - target).length() < 1e-4);
+    }
+
+    /// Regression: a pointer 1e200 m away used to fold the arm onto its base
+    /// (`Annulus::nearest` overflowed to (0, 0)); now the arm reaches towards it.
+    #[test]
+    fn very_far_drag_target_stretches_the_arm_towards_it() {
+        let mut ws = Workspace::default();
+        for _ in 0..20 {
+            ws.input(Input::PointerMove {
+                pos: DVec2::new(1e200, 1e200),
+                pressed: true,
+            });
+        }
+        let tip = ws.tip();
+        assert!((tip.length() - 2.5).abs() < 1e-2, "tip {tip}");
+        assert!((tip.x - tip.y).abs() < 1e-2, "along the diagonal: {tip}");
+    }
+
+    /// Regression: the badge moved in 25 % steps and lagged behind the cloud.
+    #[test]
+    fn sweep_progress_is_reported_at_least_every_percent() {
+        for (mode, n) in [(0.0, 20000.0), (1.0, 60000.0), (0.0, 1000.0)] {
+            let mut ws = Workspace::default();
+            ws.set_param("mode", mode).unwrap();
+            ws.set_param("n", n).unwrap();
+            ws.action("sweep").unwrap();
+            let total = ws.sampler.as_ref().unwrap().total();
+            let mut last = 0;
+            while ws.animating() {
+                ws.step(1.0 / 60.0);
+                let produced = ws.sampler.as_ref().unwrap().produced();
+                assert!(
+                    100 * (produced - last) <= total,
+                    "one frame added {} of {total}",
+                    produced - last
+                );
+                last = produced;
+                if ws.animating() {
+                    let percent = 100 * produced / total;
+                    assert!(
+                        ws.status()
+                            .text
+                            .starts_with(&format!("sweeping… {percent}%")),
+                        "{} at {produced}/{total}",
+                        ws.status().text
+                    );
+                }
+            }
+        }
+    }
+
+    /// In grid mode 60,000 requested samples become 39³ = 59,319: say so.
+    #[test]
+    fn grid_mode_explains_the_sample_count() {
+        let mut ws = Workspace::default();
+        ws.set_param("mode", 1.0).unwrap();
+        ws.set_param("n", 60000.0).unwrap();
+        sweep(&mut ws);
+        assert_eq!(
+            ws.status().text,
+            "swept 59319 samples (grid of 39 angles per joint: 39³ = 59319 of 60000 requested)"
+        );
+        let samples = ws
+            .readouts()
+            .into_iter()
+            .find(|r| r.key == "samples")
+            .unwrap();
+        assert_eq!(samples.value, "59319 / 59319 (39³ grid of 60000 requested)");
+        // Monte-Carlo keeps the plain wording.
+        let mut mc = Workspace::default();
+        sweep(&mut mc);
+        assert_eq!(mc.status().text, "swept 20000 samples");
     }
 }

@@ -19,7 +19,8 @@ use glam::DVec2;
 pub struct ChainPose {
     /// Base (origin), each joint, then the tip, in metres.
     pub points: Vec<DVec2>,
-    /// Orientation of the last link, `Θₙ = Σ θₖ`, in radians (not wrapped).
+    /// Orientation of the last link, `Θₙ = Σ θₖ`, in radians, wrapped to
+    /// `[-π, π]` like every angle labcore returns.
     pub tip_angle_rad: f64,
 }
 
@@ -53,7 +54,7 @@ pub fn forward(lengths_m: &[f64], angles_rad: &[f64]) -> ChainPose {
 }
 
 /// Allocation-free form of [`forward`]: clears `points`, fills base..tip and
-/// returns the tip orientation in radians.
+/// returns the tip orientation in radians, wrapped to `[-π, π]`.
 pub fn forward_into(lengths_m: &[f64], angles_rad: &[f64], points: &mut Vec<DVec2>) -> f64 {
     points.clear();
     let mut p = DVec2::ZERO;
@@ -65,7 +66,7 @@ pub fn forward_into(lengths_m: &[f64], angles_rad: &[f64], points: &mut Vec<DVec
         p += DVec2::new(c, s) * *length;
         points.push(p);
     }
-    heading
+    super::two_link_ik::wrap_pi(heading)
 }
 
 /// Only the tip position (no allocation).
@@ -107,27 +108,34 @@ impl Annulus {
     /// True when `p` lies in the closed annulus (with `eps_m` slack).
     #[must_use]
     pub fn contains(&self, p: DVec2, eps_m: f64) -> bool {
-        let d = p.length();
+        let d = crate::math::hypot(p.x, p.y);
         d >= self.inner_m - eps_m && d <= self.outer_m + eps_m
     }
 
     /// The reachable point nearest to `p`: `p` itself inside the annulus,
     /// otherwise its radial projection onto the nearer boundary. At the origin
-    /// with a hole, the point on the inner circle along +x.
+    /// with a hole, the point on the inner circle along +x. `|p|` is computed
+    /// with `hypot`, so far points (|p| up to `f64::MAX`) keep their direction.
     #[must_use]
     pub fn nearest(&self, p: DVec2) -> DVec2 {
-        let d = p.length();
-        if d < 1e-12 {
+        let d = crate::math::hypot(p.x, p.y);
+        if d < 1e-12 || !p.is_finite() {
             return DVec2::new(self.inner_m, 0.0);
         }
-        p * (d.clamp(self.inner_m, self.outer_m) / d)
+        if d >= self.inner_m && d <= self.outer_m {
+            return p;
+        }
+        // The direction from p scaled by its largest component: a unit vector
+        // even when |p| overflows (|p| may reach √2 · f64::MAX).
+        let scaled = p / p.x.abs().max(p.y.abs());
+        scaled.normalize() * d.clamp(self.inner_m, self.outer_m)
     }
 
     /// Fraction of the full reach used by a tip at `p`: `|p| / R` (0 when `R = 0`).
     #[must_use]
     pub fn reach_used(&self, p: DVec2) -> f64 {
         if self.outer_m > 0.0 {
-            p.length() / self.outer_m
+            crate::math::hypot(p.x, p.y) / self.outer_m
         } else {
             0.0
         }
@@ -175,6 +183,16 @@ mod tests {
         ));
     }
 
+    /// Every returned angle is wrapped to [-π, π] (the tip angle was not).
+    #[test]
+    fn tip_angle_is_wrapped() {
+        let p = forward(&[1.0, 1.0, 1.0], &[3.0, 3.0, 3.0]);
+        assert!((-PI..=PI).contains(&p.tip_angle_rad), "{}", p.tip_angle_rad);
+        assert!((p.tip_angle_rad - (9.0 - 2.0 * PI)).abs() < 1e-12);
+        let p = forward(&[1.0], &[-7.0]);
+        assert!((p.tip_angle_rad - (-7.0 + 2.0 * PI)).abs() < 1e-12);
+    }
+
     #[test]
     fn annulus_radii() {
         let a = Annulus::of_chain(&[1.2, 0.8]);
@@ -192,6 +210,28 @@ mod tests {
         assert!(close(a.nearest(DVec2::new(0.0, 0.1)), DVec2::new(0.0, 0.4)));
         assert!(close(a.nearest(DVec2::new(1.0, 0.0)), DVec2::new(1.0, 0.0)));
         assert!(close(a.nearest(DVec2::ZERO), DVec2::new(0.4, 0.0)));
+    }
+
+    /// Regression: `length()` overflows for |p| ≥ 1.34e154, which used to
+    /// fold the arm onto its base (nearest = (0, 0)).
+    #[test]
+    fn nearest_keeps_the_direction_of_very_far_points() {
+        let a = Annulus::of_chain(&[1.2, 0.8]);
+        assert!(close(
+            a.nearest(DVec2::new(1e200, 0.0)),
+            DVec2::new(2.0, 0.0)
+        ));
+        assert!(close(
+            a.nearest(DVec2::new(0.0, -1e200)),
+            DVec2::new(0.0, -2.0)
+        ));
+        let diag = a.nearest(DVec2::new(1e200, 1e200));
+        assert!(close(diag, DVec2::splat(2.0 / 2f64.sqrt())), "{diag}");
+        let huge = a.nearest(DVec2::new(f64::MAX, f64::MAX));
+        assert!((huge.length() - 2.0).abs() < 1e-12, "{huge}");
+        assert!(a.contains(DVec2::new(1.5, 0.0), 0.0));
+        assert!(!a.contains(DVec2::new(1e200, 1e200), 0.0));
+        assert!((a.reach_used(DVec2::new(1e200, 0.0)) - 5e199).abs() < 1e188);
     }
 
     /// Property: for any angles, |L1 − L2| ≤ |tip| ≤ L1 + L2, and every link

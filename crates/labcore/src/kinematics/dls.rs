@@ -69,6 +69,7 @@ use std::fmt;
 
 use super::chain::{tip, Annulus};
 use super::jacobian::{columns_into_array, det_jjt, jjt_entries, MAX_JOINTS};
+use super::two_link_ik::wrap_pi;
 
 /// Largest total reach `Σ Lₖ` accepted, metres: keeps every product in the
 /// 2×2 solve (≈ reach⁴) far from overflow.
@@ -337,7 +338,8 @@ impl DlsSolver {
     }
 
     /// One DLS iteration `Δθ = Jᵀ (J Jᵀ + λ² I)⁻¹ e`, `e = target − tip`,
-    /// applied to `angles_rad` in place (radians, relative joint angles;
+    /// applied to `angles_rad` in place (radians, relative joint angles,
+    /// written back wrapped to `[-π, π]`;
     /// `lengths_m` in metres, `target` in metres in the base frame).
     ///
     /// The error fed to the step is clamped to the arm's reach `Σ Lₖ` (only far
@@ -399,7 +401,9 @@ impl DlsSolver {
                     // Unreachable with validated input; kept so no NaN can escape.
                     return Err(DlsError::InvalidInput);
                 }
-                angles_rad.copy_from_slice(&q[..n]);
+                for (a, q) in angles_rad.iter_mut().zip(&q[..n]) {
+                    *a = wrap_pi(*q);
+                }
                 return Ok(DlsStep {
                     error_before_m,
                     error_after_m,
@@ -419,7 +423,8 @@ impl DlsSolver {
 
     /// Iterates DLS steps from `angles_rad` until `|e| < tolerance_m` or
     /// [`DlsSolver::max_iterations`] steps, writing the final pose back into
-    /// `angles_rad` (radians, not wrapped).
+    /// `angles_rad` (radians, each wrapped to `[-π, π]` by
+    /// [`wrap_pi`](super::two_link_ik::wrap_pi); wrapping leaves the pose unchanged).
     ///
     /// With [`DlsSolver::reject_uphill_steps`] (the default) this is a
     /// Levenberg–Marquardt iteration on the DLS step: an uphill step is undone
@@ -528,7 +533,9 @@ impl DlsSolver {
             // Unreachable with validated input; kept so no NaN can escape.
             return Err(DlsError::InvalidInput);
         }
-        angles_rad.copy_from_slice(&q[..n]);
+        for (a, q) in angles_rad.iter_mut().zip(&q[..n]) {
+            *a = wrap_pi(*q);
+        }
         Ok(DlsOutcome {
             iterations,
             error_m,

@@ -194,7 +194,8 @@ pub fn solve_with_wrist(
     })
 }
 
-/// Wraps an angle to `[-π, π]`.
+/// Wraps an angle to `[-π, π]`: the one convention for every angle labcore
+/// returns (`-π` stays `-π`, an angle above `π` maps into `(-π, π]`).
 #[must_use]
 pub fn wrap_pi(angle_rad: f64) -> f64 {
     if (-PI..=PI).contains(&angle_rad) {
