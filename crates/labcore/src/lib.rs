@@ -14,6 +14,8 @@
 //! - [`kinematics::jacobian`], [`kinematics::dls`] — planar geometric Jacobian,
 //!   manipulability and damped-least-squares IK (Buss 2004; Nakamura & Hanafusa 1986;
 //!   Wampler 1986).
+//! - [`linalg`] — dense row-major matrix, LU with partial pivoting, inverse, Cholesky
+//!   (Golub & Van Loan, *Matrix Computations*, 4th ed., §3.4, §4.2).
 //!
 //! ## The seam
 //! Every experiment implements [`Experiment`]; [`registry`] lists them with
@@ -23,6 +25,7 @@ pub mod content;
 pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
+pub mod linalg;
 pub mod math;
 pub mod quiz;
 pub mod rng;
