@@ -14,6 +14,9 @@
 //! - [`kinematics::jacobian`], [`kinematics::dls`] — planar geometric Jacobian,
 //!   manipulability and damped-least-squares IK (Buss 2004; Nakamura & Hanafusa 1986;
 //!   Wampler 1986).
+//! - [`control`] — PID on a mass with drag and its closed-loop poles, python-control
+//!   step metrics, the Barto–Sutton–Anderson cart-pole, LQR by the Riccati equation
+//!   (Åström & Murray, *Feedback Systems*; Barto, Sutton & Anderson 1983; Laub 1979).
 //! - [`linalg`] — dense row-major matrix, LU with partial pivoting, inverse, Cholesky
 //!   (Golub & Van Loan, *Matrix Computations*, 4th ed., §3.4, §4.2).
 //!
@@ -22,6 +25,7 @@
 //! their content file and quiz generators.
 
 pub mod content;
+pub mod control;
 pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
