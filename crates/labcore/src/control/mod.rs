@@ -18,8 +18,8 @@
 //! Every stepping function refuses a NaN, infinite, zero or negative `dt` and leaves the
 //! state untouched (it returns `false` or `None`); none of them panics on bad numbers.
 
-
-
+pub mod cartpole;
+pub mod lqr;
 pub mod pid;
 pub mod poly;
 pub mod step_info;
