@@ -951,5 +951,37 @@ mod tests {
         assert_eq!((s.x_m, s.v_m_s), (1.0, 0.0));
         // Stopping the cart throws the pole forward (toward +x).
         assert!(s.omega_rad_s > 1.0);
+
+        // The impulse model is the limit of a large, brief force: stop a cart moving at
+        // 1 m/s with θ = 0.1 by F = −J/δ over δ = 1 µs and compare the pole's kick.
+        let mut at_stop = CartPoleState {
+            x_m: 1.0,
+            v_m_s: 1.0,
+            theta_rad: 0.1,
+            omega_rad_s: 0.0,
+        };
+        let mut stopped = CartPoleState {
+            x_m: 1.5,
+            ..at_stop
+        };
+        p.apply_end_stop(&mut stopped);
+        let (m, mu, cos) = (0.1, 1.1, crate::math::cos(0.1));
+        let dprime = 4.0 / 3.0 - m * cos * cos / mu;
+        let impulse = -1.0 / (1.0 / mu + m * cos * cos / (mu * mu * dprime));
+        let delta = 1e-6;
+        let open = CartPoleParams {
+            track_limit_m: f64::INFINITY,
+            ..p
+        };
+        assert!(integrate(
+            &open,
+            &mut at_stop,
+            impulse / delta,
+            delta,
+            Integrator::Rk4,
+            1
+        ));
+        assert!(at_stop.v_m_s.abs() < 1e-4, "{at_stop:?}");
+        assert!((at_stop.omega_rad_s - stopped.omega_rad_s).abs() < 1e-4);
     }
 }
