@@ -14,6 +14,11 @@
 //! - [`kinematics::jacobian`], [`kinematics::dls`] — planar geometric Jacobian,
 //!   manipulability and damped-least-squares IK (Buss 2004; Nakamura & Hanafusa 1986;
 //!   Wampler 1986).
+//! - [`control`] — PID on a mass with drag and its closed-loop poles, python-control
+//!   step metrics, the Barto–Sutton–Anderson cart-pole, LQR by the Riccati equation
+//!   (Åström & Murray, *Feedback Systems*; Barto, Sutton & Anderson 1983; Laub 1979).
+//! - [`linalg`] — dense row-major matrix, LU with partial pivoting, inverse, Cholesky
+//!   (Golub & Van Loan, *Matrix Computations*, 4th ed., §3.4, §4.2).
 //!
 //! ## Angles
 //! Every angle labcore returns is in radians and wrapped to `[-π, π]` by
@@ -37,9 +42,11 @@ pub mod catalogue;
 pub mod clock;
 pub mod content;
 pub mod content_html;
+pub mod control;
 pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
+pub mod linalg;
 pub mod math;
 pub mod plot;
 pub mod quiz;

@@ -48,6 +48,13 @@ pub fn ln(x: f64) -> f64 {
     libm::log(x)
 }
 
+/// `eˣ`.
+#[inline]
+#[must_use]
+pub fn exp(x: f64) -> f64 {
+    libm::exp(x)
+}
+
 /// Cube root.
 #[inline]
 #[must_use]
