@@ -113,9 +113,12 @@ pub struct RefLine {
     pub label: String,
 }
 
-/// A shaded horizontal band `lo ≤ y ≤ hi` (a ±2 % band, χ² bounds).
+/// A shaded band: `lo ≤ y ≤ hi` across the plot when `axis` is [`Axis::Y`]
+/// (a ±2 % band, χ² bounds), or `lo ≤ x ≤ hi` top to bottom when it is
+/// [`Axis::X`] (an interval of time at a saturation limit).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Band {
+    pub axis: Axis,
     pub lo: f64,
     pub hi: f64,
     pub label: String,
@@ -238,7 +241,11 @@ impl Plot {
             .iter()
             .filter(|l| l.axis == Axis::Y)
             .map(|l| l.value);
-        let bands = self.bands.iter().flat_map(|b| [b.lo, b.hi]);
+        let bands = self
+            .bands
+            .iter()
+            .filter(|b| b.axis == Axis::Y)
+            .flat_map(|b| [b.lo, b.hi]);
         fold_range(samples.chain(lines).chain(bands).filter(|y| keep(*y)))
     }
 

@@ -323,13 +323,21 @@ fn paint_plot(
     };
     let (l, t, pw, ph) = rect;
     // Bands, then grid and ticks.
+    ctx.set_fill_style_str(&css(palette, "--p-band"));
+    ctx.set_global_alpha(0.22);
     for band in &plot.bands {
-        let (a, b) = (frame.px_y(band.hi.min(y1)), frame.px_y(band.lo.max(y0)));
-        ctx.set_fill_style_str(&css(palette, "--p-band"));
-        ctx.set_global_alpha(0.22);
-        ctx.fill_rect(l, a, pw, (b - a).max(0.0));
-        ctx.set_global_alpha(1.0);
+        match band.axis {
+            Axis::Y => {
+                let (a, b) = (frame.px_y(band.hi.min(y1)), frame.px_y(band.lo.max(y0)));
+                ctx.fill_rect(l, a, pw, (b - a).max(0.0));
+            }
+            Axis::X => {
+                let (a, b) = (frame.px_x(band.lo.max(x0)), frame.px_x(band.hi.min(x1)));
+                ctx.fill_rect(a, t, (b - a).max(0.0), ph);
+            }
+        }
     }
+    ctx.set_global_alpha(1.0);
     ctx.set_line_width(1.0);
     set_dash(ctx, &[]);
     ctx.set_stroke_style_str(&grid);
