@@ -14,6 +14,11 @@
 //! - [`kinematics::jacobian`], [`kinematics::dls`] — planar geometric Jacobian,
 //!   manipulability and damped-least-squares IK (Buss 2004; Nakamura & Hanafusa 1986;
 //!   Wampler 1986).
+//! - [`mobile::unicycle`], [`mobile::go_to_goal`] — unicycle model (Euler/RK4) and
+//!   proportional go-to-goal control (Siegwart, Nourbakhsh & Scaramuzza,
+//!   *Introduction to Autonomous Mobile Robots*, Ch. 3).
+//! - [`mobile::potential_field`] — artificial potential fields with local-minimum
+//!   detection (Khatib 1986; Koren & Borenstein 1991).
 //!
 //! ## The seam
 //! Every experiment implements [`Experiment`]; [`registry`] lists them with
@@ -24,6 +29,7 @@ pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
 pub mod math;
+pub mod mobile;
 pub mod quiz;
 pub mod rng;
 pub mod route;
