@@ -14,6 +14,8 @@
 //! - [`kinematics::jacobian`], [`kinematics::dls`] — planar geometric Jacobian,
 //!   manipulability and damped-least-squares IK (Buss 2004; Nakamura & Hanafusa 1986;
 //!   Wampler 1986).
+//! - [`linalg`] — dense row-major matrix, LU with partial pivoting, inverse, Cholesky
+//!   (Golub & Van Loan, *Matrix Computations*, 4th ed., §3.4, §4.2).
 //! - [`mobile::unicycle`], [`mobile::go_to_goal`] — unicycle model (Euler/RK4) and
 //!   proportional go-to-goal control (Siegwart, Nourbakhsh & Scaramuzza,
 //!   *Introduction to Autonomous Mobile Robots*, Ch. 3).
@@ -28,6 +30,7 @@ pub mod content;
 pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
+pub mod linalg;
 pub mod math;
 pub mod mobile;
 pub mod quiz;
