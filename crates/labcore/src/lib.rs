@@ -21,12 +21,16 @@
 //!   *Introduction to Autonomous Mobile Robots*, Ch. 3).
 //! - [`mobile::potential_field`] — artificial potential fields with local-minimum
 //!   detection (Khatib 1986; Koren & Borenstein 1991).
+//! - [`estimation::ekf`], [`estimation::slam`] — EKF localisation with known
+//!   landmarks and EKF-SLAM (Thrun, Burgard & Fox, *Probabilistic Robotics*,
+//!   Ch. 7 and 10); NEES consistency checks (Bar-Shalom, Li & Kirubarajan 2001).
 //!
 //! ## The seam
 //! Every experiment implements [`Experiment`]; [`registry`] lists them with
 //! their content file and quiz generators.
 
 pub mod content;
+pub mod estimation;
 pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
