@@ -39,16 +39,21 @@
 //! ```
 //!
 //! so `W = P Hᵀ` (n×2) costs `O(n)`, `S = H W + R`, `K = W S⁻¹`, and the
-//! Joseph-form covariance (Bucy & Joseph 1968) is evaluated in factored order
-//! without any `n × n × n` product:
+//! Joseph-form covariance (Bucy & Joseph 1968), expanded with `W` and `S`,
+//! needs no `n × n × n` product:
 //!
 //! ```text
-//! A = (I − K H) P = P − K Wᵀ                       O(n²)
-//! B = A Hᵀ  (five columns of A)                    O(n)
-//! P ← A (I − K H)ᵀ + K R Kᵀ = A + (K R − B) Kᵀ     O(n²)
+//! (I − K H) P (I − K H)ᵀ + K R Kᵀ = P − K Wᵀ − W Kᵀ + K S Kᵀ = P + K Vᵀ + V Kᵀ,
+//! V = ½ K S − W                                                  O(n²), one pass
 //! ```
 //!
-//! then symmetrised. One update is therefore `O(n²) = O(N²)`; landmarks are
+//! The identity holds for any gain, so, like the factored Joseph form, the
+//! result is insensitive to first order to rounding errors in `K` (for the
+//! optimal gain `S Kᵀ = Wᵀ` and it reduces to `P − K S Kᵀ`). Each entry is
+//! evaluated from products that are the same for `(i, c)` and `(c, i)`, so
+//! `P` stays exactly symmetric.
+//!
+//! One update is therefore `O(n²) = O(N²)`; landmarks are
 //! found by id in `O(N)`.
 
 use glam::{DMat2, DMat3, DVec2, DVec3};
@@ -87,9 +92,9 @@ pub struct EkfSlam {
     ids: Vec<usize>,
     /// Largest number of landmarks the state may hold.
     pub max_landmarks: usize,
-    // Scratch columns reused by `update` (n × 2 each).
-    w: Vec<[f64; 2]>,
-    k: Vec<[f64; 2]>,
+    // Scratch columns reused by `update`: the gain K and V = ½ K S − W, as
+    // four length-n columns (separate vectors so the O(n²) pass vectorises).
+    scratch: [Vec<f64>; 4],
 }
 
 impl EkfSlam {
@@ -107,8 +112,7 @@ impl EkfSlam {
             cov,
             ids: Vec::new(),
             max_landmarks: DEFAULT_MAX_LANDMARKS,
-            w: Vec::new(),
-            k: Vec::new(),
+            scratch: Default::default(),
         }
     }
 
@@ -348,24 +352,25 @@ impl EkfSlam {
             [d.y / q, -d.x / q, -1.0, -d.y / q, d.x / q],
         ];
         let p = self.cov.as_slice();
-        // W = P Hᵀ (n × 2).
-        self.w.clear();
-        self.w.extend((0..n).map(|i| {
+        let [k0, k1, v0, v1] = &mut self.scratch;
+        for col in [&mut *k0, &mut *k1, &mut *v0, &mut *v1] {
+            col.clear();
+            col.resize(n, 0.0);
+        }
+        // W = P Hᵀ (n × 2), held in (v0, v1) for now.
+        for (i, (w0, w1)) in v0.iter_mut().zip(v1.iter_mut()).enumerate() {
             let row = &p[i * n..(i + 1) * n];
-            let mut w = [0.0; 2];
             for (c, &col) in cols.iter().enumerate() {
-                w[0] += row[col] * h[0][c];
-                w[1] += row[col] * h[1][c];
+                *w0 += row[col] * h[0][c];
+                *w1 += row[col] * h[1][c];
             }
-            w
-        }));
+        }
         // S = H W + R.
         let mut s = [[0.0; 2]; 2];
         for (c, &col) in cols.iter().enumerate() {
-            let wc = self.w[col];
             for (s_row, h_row) in s.iter_mut().zip(&h) {
-                s_row[0] += h_row[c] * wc[0];
-                s_row[1] += h_row[c] * wc[1];
+                s_row[0] += h_row[c] * v0[col];
+                s_row[1] += h_row[c] * v1[col];
             }
         }
         let s00 = s[0][0] + r.x_axis.x;
@@ -376,57 +381,37 @@ impl EkfSlam {
             return Err(EstimationError::SingularInnovation);
         }
         let (i00, i01, i11) = (s11 / det, -s01 / det, s00 / det);
-        self.k.clear();
-        self.k.extend(
-            self.w
-                .iter()
-                .map(|w| [w[0] * i00 + w[1] * i01, w[0] * i01 + w[1] * i11]),
-        );
+        // K = W S⁻¹, then V = ½ K S − W in place of W.
+        for i in 0..n {
+            let (w0, w1) = (v0[i], v1[i]);
+            let (g0, g1) = (w0 * i00 + w1 * i01, w0 * i01 + w1 * i11);
+            k0[i] = g0;
+            k1[i] = g1;
+            v0[i] = 0.5 * (g0 * s00 + g1 * s01) - w0;
+            v1[i] = 0.5 * (g0 * s01 + g1 * s11) - w1;
+        }
         let zhat = DVec2::new(sq, wrap_angle(crate::math::atan2(d.y, d.x) - x.z));
         let nu = DVec2::new(z.range_m - zhat.x, wrap_angle(z.bearing_rad - zhat.y));
-        if !self.k.iter().flatten().all(|v| v.is_finite()) {
+        let finite = |v: &Vec<f64>| v.iter().all(|x| x.is_finite());
+        if !(finite(k0) && finite(k1) && finite(v0) && finite(v1)) {
             return Err(EstimationError::NonFinite);
         }
         // From here on the update cannot fail.
-        for (mi, k) in self.mean.iter_mut().zip(&self.k) {
-            *mi += k[0] * nu.x + k[1] * nu.y;
+        for ((mi, g0), g1) in self.mean.iter_mut().zip(k0.iter()).zip(k1.iter()) {
+            *mi += g0 * nu.x + g1 * nu.y;
         }
         self.mean[2] = wrap_angle(self.mean[2]);
-        let (r00, r01, r10, r11) = (r.x_axis.x, r.y_axis.x, r.x_axis.y, r.y_axis.y);
+        // Expanded Joseph form P − K Wᵀ − W Kᵀ + K S Kᵀ = P + K Vᵀ + V Kᵀ
+        // (splitting K S Kᵀ = ½ K S Kᵀ + ½ K (K S)ᵀ), in one row-wise pass.
+        // Entry (i, c) adds K_i·V_c + V_i·K_c and entry (c, i) the same two
+        // products in swapped order, so P stays exactly symmetric.
         let p = self.cov.as_mut_slice();
-        // A = P − K Wᵀ, in place.
-        for (i, ki) in self.k.iter().enumerate() {
-            let row = &mut p[i * n..(i + 1) * n];
-            for (pik, wk) in row.iter_mut().zip(&self.w) {
-                *pik -= ki[0] * wk[0] + ki[1] * wk[1];
-            }
-        }
-        // D = K R − A Hᵀ (reuse `w` for D).
-        for (i, (dst, ki)) in self.w.iter_mut().zip(&self.k).enumerate() {
-            let row = &p[i * n..(i + 1) * n];
-            let mut b = [0.0; 2];
-            for (c, &col) in cols.iter().enumerate() {
-                b[0] += row[col] * h[0][c];
-                b[1] += row[col] * h[1][c];
-            }
-            *dst = [
-                ki[0] * r00 + ki[1] * r10 - b[0],
-                ki[0] * r01 + ki[1] * r11 - b[1],
-            ];
-        }
-        // P = A + D Kᵀ, symmetrised: each pair (i, k), (k, i) once.
-        for i in 0..n {
-            let di = self.w[i];
-            let ki = self.k[i];
-            let pii = p[i * n + i] + di[0] * ki[0] + di[1] * ki[1];
-            p[i * n + i] = pii;
-            for c in (i + 1)..n {
-                let (dc, kc) = (self.w[c], self.k[c]);
-                let upper = p[i * n + c] + di[0] * kc[0] + di[1] * kc[1];
-                let lower = p[c * n + i] + dc[0] * ki[0] + dc[1] * ki[1];
-                let v = 0.5 * (upper + lower);
-                p[i * n + c] = v;
-                p[c * n + i] = v;
+        let (k0, k1, v0, v1) = (&k0[..n], &k1[..n], &v0[..n], &v1[..n]);
+        for (i, row) in p.chunks_exact_mut(n).enumerate() {
+            let (ki0, ki1, vi0, vi1) = (k0[i], k1[i], v0[i], v1[i]);
+            let cols = v0.iter().zip(v1).zip(k0.iter().zip(k1));
+            for (pic, ((vc0, vc1), (kc0, kc1))) in row.iter_mut().zip(cols) {
+                *pic += (ki0 * vc0 + ki1 * vc1) + (vi0 * kc0 + vi1 * kc1);
             }
         }
         let nis = nu.x * (i00 * nu.x + i01 * nu.y) + nu.y * (i01 * nu.x + i11 * nu.y);
