@@ -7,7 +7,10 @@
 //!
 //! - [`planar_ik`]: n-link planar arm, 2,000 reachable targets, our
 //!   [`labcore::kinematics::dls::DlsSolver`] against `k::JacobianIkSolver`.
+//! - [`ekf`]: one EKF localisation step (predict + one landmark update) and
+//!   one EKF-SLAM update at N = 20, 100, 200 landmarks.
 //!
 //! Run with `cargo bench -p labbench`.
 
+pub mod ekf;
 pub mod planar_ik;

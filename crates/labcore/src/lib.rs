@@ -19,6 +19,14 @@
 //!   (Åström & Murray, *Feedback Systems*; Barto, Sutton & Anderson 1983; Laub 1979).
 //! - [`linalg`] — dense row-major matrix, LU with partial pivoting, inverse, Cholesky
 //!   (Golub & Van Loan, *Matrix Computations*, 4th ed., §3.4, §4.2).
+//! - [`mobile::unicycle`], [`mobile::go_to_goal`] — unicycle model (Euler/RK4) and
+//!   proportional go-to-goal control (Siegwart, Nourbakhsh & Scaramuzza,
+//!   *Introduction to Autonomous Mobile Robots*, Ch. 3).
+//! - [`mobile::potential_field`] — artificial potential fields with local-minimum
+//!   detection (Khatib 1986; Koren & Borenstein 1991).
+//! - [`estimation::ekf`], [`estimation::slam`] — EKF localisation with known
+//!   landmarks and EKF-SLAM (Thrun, Burgard & Fox, *Probabilistic Robotics*,
+//!   Ch. 7 and 10); NEES consistency checks (Bar-Shalom, Li & Kirubarajan 2001).
 //!
 //! ## Angles
 //! Every angle labcore returns is in radians and wrapped to `[-π, π]` by
@@ -43,11 +51,13 @@ pub mod clock;
 pub mod content;
 pub mod content_html;
 pub mod control;
+pub mod estimation;
 pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
 pub mod linalg;
 pub mod math;
+pub mod mobile;
 pub mod plot;
 pub mod quiz;
 pub mod rng;
