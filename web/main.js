@@ -83,7 +83,11 @@ function showPage() {
     if (article && a.dataset.experiment === article.dataset.experiment) a.setAttribute("aria-current", "page");
     else a.removeAttribute("aria-current");
   }
-  if (!article) return;
+  if (!article) {
+    // A link that names no page is malformed: the wasm explains what was wrong.
+    if (!/^#?\/?$/.test(location.hash)) ensureWasm();
+    return;
+  }
   const tab = TABS.includes(match[2]) ? match[2] : "aim";
   article.dataset.tab = tab;
   for (const t of article.querySelectorAll("[role=tab]")) {

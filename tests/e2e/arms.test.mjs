@@ -3,7 +3,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { open, readouts, screenshot, useLab, withPage } from "./helpers.mjs";
+import { open, readNumber, readouts, screenshot, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 
@@ -74,16 +74,18 @@ test("ik: a clicked target is solved, the arm animates there, and the elbow togg
     await screenshot(page, "ik-elbow-down");
   }));
 
-test("ik: a target outside the annulus shows 'out of reach' and no solution", () =>
+test("ik: a target outside the annulus shows 'out of reach', says why, and the arm stretches toward it", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/ik/simulation");
-    const before = await readouts(page);
     await clickWorld(page, 2.8, 0.0);
-    await waitStatus(page, /out of reach/);
-    const r = await readouts(page);
-    assert.equal(r.theta1, "--");
-    assert.equal(r.theta2, "--");
-    assert.deepEqual([r.x, r.y], [before.x, before.y], "the arm stays where it was");
+    const status = await waitStatus(page, /out of reach/);
+    assert.match(status, /target 2\.[78]\d m away > L₁ \+ L₂ = 1\.70 m/);
+    // The arm reaches out along the line to the target (|tip| = L1 + L2, on the x axis).
+    await page.waitForFunction(() => {
+      const x = Number.parseFloat(document.querySelector("[data-readout=x]").textContent);
+      const y = Number.parseFloat(document.querySelector("[data-readout=y]").textContent);
+      return Math.abs(x - 1.7) < 0.02 && Math.abs(y) < 0.02;
+    });
     // Inside the inner hole (|p| < |L1 − L2| = 0.3) is out of reach too.
     await clickWorld(page, 0.1, 0.05);
     await waitStatus(page, /out of reach/);
@@ -97,14 +99,14 @@ test("workspace: Sweep fills the cloud over many frames and the radii match theo
     await waitStatus(page, /^swept 20000 samples$/);
     const r = await readouts(page);
     assert.equal(r.samples, "20000 / 20000");
-    assert.equal(r.outer_theory, "1.7000 m");
-    assert.equal(r.inner_theory, "0.3000 m");
+    assert.equal(r.outer_theory, "1.700 m");
+    assert.equal(r.inner_theory, "0.300 m");
     assert.ok(Math.abs(metres(r.outer) - 1.7) < 0.02, `outer measured ${r.outer}`);
     assert.ok(Math.abs(metres(r.inner) - 0.3) < 0.03, `inner measured ${r.inner}`);
     await screenshot(page, "workspace-swept");
     // Changing a length invalidates the cloud.
-    await page.locator("input[type=number][data-param=l3]").fill("0.6");
-    await page.locator("input[type=number][data-param=l3]").press("Enter");
+    await page.locator("input[type=text][data-param=l3]").fill("0.6");
+    await page.locator("input[type=text][data-param=l3]").press("Enter");
     await waitStatus(page, /sweep again/);
   }));
 
@@ -117,11 +119,11 @@ test("dls: a reachable click converges below 1e-6 m; an unreachable one settles 
     assert.match(status, /^converged in \d+ iterations$/);
     const r = await readouts(page);
     assert.ok(Number(r.iterations) > 0);
-    assert.ok(Number.parseFloat(r.error) < 1e-6, `error ${r.error}`);
+    assert.ok(readNumber(r.error) < 1e-6, `error ${r.error}`);
     assert.ok(Number.parseFloat(r.w) > 0);
     await clickWorld(page, 0, 2.6);
     await waitStatus(page, /closest reachable pose/);
     const far = await readouts(page);
-    assert.ok(Math.abs(Number.parseFloat(far.error) - 0.2) < 0.01, `error to (0, 2.6) is 2.6 − 2.4: ${far.error}`);
+    assert.ok(Math.abs(readNumber(far.error) - 0.2) < 0.01, `error to (0, 2.6) is 2.6 − 2.4: ${far.error}`);
     await screenshot(page, "dls-boundary");
   }));

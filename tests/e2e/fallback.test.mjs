@@ -23,30 +23,47 @@ test("without a 2D canvas context the reading tabs still work and the simulation
     async (page) => {
       await open(lab, page, "#/fk/aim");
       for (const slug of ["aim", "theory"]) {
-        await page.click(`[role=tab][data-tab="${slug}"]`);
-        const panel = page.locator(`[role=tabpanel][data-panel="${slug}"]`);
+        await page.click(`article.exp:not([hidden]) [role=tab][data-tab="${slug}"]`);
+        const panel = page.locator(`article.exp:not([hidden]) [role=tabpanel][data-panel="${slug}"]`);
         assert.ok(await panel.isVisible(), `${slug} panel visible`);
         const text = (await panel.innerText()).trim();
         assert.ok(text.length > 40, `${slug} panel shows its text (${text.length} chars)`);
       }
-      await page.click('[role=tab][data-tab="simulation"]');
-      const error = page.locator('[data-panel="simulation"] .sim-error');
+      await page.click('article.exp:not([hidden]) [role=tab][data-tab="simulation"]');
+      const error = page.locator('article.exp:not([hidden]) [data-panel="simulation"] .sim-error');
       await error.waitFor({ state: "visible" });
       assert.ok((await error.innerText()).trim().length > 0, "the error says what is wrong");
     },
   ));
 
-test("when the simulation engine cannot load, the page says so visibly", async () => {
+test("with the wasm request blocked, the reading tabs show and work, and the page says the engine could not load", async () => {
   // Not withPage: the failed request is the point of this test.
   const context = await lab.browser.newContext();
   try {
     const page = await context.newPage();
     await page.route(/labweb_bg\.wasm/, (route) => route.abort());
-    await page.goto(`${lab.server.base}index.html#/fk/aim`);
+    await page.goto(`${lab.server.base}index.html#/fk/theory`);
+    const article = page.locator("article.exp:not([hidden])");
+    assert.equal(await article.getAttribute("data-experiment"), "fk");
+    const theory = article.locator("[data-panel=theory]");
+    await theory.waitFor({ state: "visible" });
+    assert.ok((await theory.locator("math").count()) > 0, "the theory's formulas are there");
+    assert.equal(await article.locator("[role=tab][aria-selected=true]").getAttribute("data-tab"), "theory");
     const fatal = page.locator("#fatal");
     await fatal.waitFor({ state: "visible" });
     assert.match(await fatal.innerText(), /could not|failed/i);
-    assert.match(await page.locator("#app").innerText(), /could not start/);
+    // Tabs are links: they still switch without the wasm, and Back returns.
+    await article.locator("[role=tab][data-tab=references]").click();
+    await article.locator("[data-panel=references] ol.refs li").first().waitFor({ state: "visible" });
+    assert.ok(await theory.isHidden());
+    await article.locator("[role=tab][data-tab=simulation]").click();
+    assert.match(await article.locator("[data-panel=simulation]").innerText(), /could not start/);
+    await page.goBack();
+    await article.locator("[data-panel=references]").waitFor({ state: "visible" });
+    // The navigation works without the wasm too: two clicks to another experiment.
+    await page.locator("#lab-nav summary").click();
+    await page.locator("#lab-nav a[data-experiment=dls]").click();
+    await page.locator("article.exp[data-experiment=dls]:not([hidden]) [data-panel=aim]").waitFor({ state: "visible" });
   } finally {
     await context.close();
   }

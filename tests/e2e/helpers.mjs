@@ -146,10 +146,28 @@ export async function withPage(lab, options, fn) {
   }
 }
 
-/** Loads `<base>index.html<hash>` and waits until the wasm app has mounted. */
+/**
+ * Loads `<base>index.html<hash>`. An experiment page waits until the wasm app
+ * has mounted; the home page never loads the wasm, so it waits only for the
+ * pre-rendered page.
+ */
 export async function open(lab, page, hash = "#/") {
   await page.goto(`${lab.server.base}index.html${hash}`);
-  await waitReady(page);
+  if (/^#\/[^/?]+/.test(hash)) {
+    await waitReady(page);
+  } else {
+    await page.waitForSelector("[data-page=home]:not([hidden])");
+  }
+}
+
+/** A readout's number: "0.123 m" → 0.123, "1.1 × 10⁻⁷ m" → 1.1e-7, "∞ (singular)" → Infinity. */
+export function readNumber(text) {
+  const sup = { "⁰": "0", "¹": "1", "²": "2", "³": "3", "⁴": "4", "⁵": "5", "⁶": "6", "⁷": "7", "⁸": "8", "⁹": "9", "⁻": "-" };
+  const t = text.trim();
+  if (t.startsWith("∞")) return Infinity;
+  const m = t.match(/^(-?[\d.]+)\s*×\s*10([⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+)/);
+  if (m) return Number(m[1]) * 10 ** Number([...m[2]].map((c) => sup[c]).join(""));
+  return Number.parseFloat(t);
 }
 
 export async function waitReady(page) {

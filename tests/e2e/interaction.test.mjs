@@ -8,7 +8,7 @@ const lab = useLab();
 
 /** Canvas box and two points inside it to drag between. */
 async function dragPath(page) {
-  const canvas = page.locator('[data-panel="simulation"] canvas.sim-canvas');
+  const canvas = page.locator('article.exp:not([hidden]) [data-panel="simulation"] canvas.sim-canvas');
   await canvas.scrollIntoViewIfNeeded();
   const box = await canvas.boundingBox();
   assert.ok(box && box.width > 50 && box.height > 50, "the canvas has a usable size");
@@ -85,7 +85,15 @@ test("quiz: submitting with no answers scores 0 / N, and a new attempt draws new
         const n = await questions.count();
         assert.ok(n > 0, "the quiz has questions");
         const prompts = await questions.evaluateAll((qs) => qs.map((q) => q.innerText));
+        // No worked answer is in the page before submission.
+        assert.equal(await page.locator("form.quiz .quiz-explanation:not(:empty)").count(), 0);
 
+        // Unanswered questions ask for confirmation first.
+        await page.click("form.quiz button[type=submit]");
+        const confirm = page.locator("form.quiz .quiz-confirm");
+        await confirm.waitFor({ state: "visible" });
+        assert.match(await confirm.innerText(), new RegExp(`${n} questions have no answer`));
+        assert.ok(await page.locator(".quiz-score").isHidden(), "not graded yet");
         await page.click("form.quiz button[type=submit]");
         const score = page.locator(".quiz-score");
         await score.waitFor({ state: "visible" });
@@ -96,6 +104,15 @@ test("quiz: submitting with no answers scores 0 / N, and a new attempt draws new
           assert.ok(cls.includes("wrong") && !cls.includes("right"), `question ${i + 1} marked wrong`);
           assert.ok(await q.locator(".quiz-explanation").isVisible(), `question ${i + 1} explained`);
         }
+
+        // The score sits at the top of the form, above the questions.
+        const [scoreTop, firstTop] = await page.evaluate(() => [
+          document.querySelector("form.quiz .quiz-score").getBoundingClientRect().top,
+          document.querySelector("form.quiz .quiz-q").getBoundingClientRect().top,
+        ]);
+        assert.ok(scoreTop < firstTop, "score above the questions");
+        const seed = await page.locator("form.quiz .quiz-seed").innerText();
+        assert.match(await page.evaluate(() => location.hash), new RegExp(`quiz=${seed}`), "the link names the attempt");
 
         await page.click("form.quiz button.quiz-new");
         await settle(page);

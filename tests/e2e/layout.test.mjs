@@ -22,7 +22,7 @@ test("at phone width (360×740) nothing scrolls sideways, on home and on every t
         await settle(page);
         await screenshot(page, `${id}-simulation-phone`);
         for (const tab of TABS) {
-          await page.locator(`[role=tab][data-tab=${tab}]`).click();
+          await page.locator(`article.exp:not([hidden]) [role=tab][data-tab=${tab}]`).click();
           await settle(page);
           const width = await scrollWidth(page);
           assert.ok(width <= PHONE.width, `${id} ${tab} is ${width} px wide`);

@@ -73,11 +73,12 @@ test("malformed links show a notice and leave the lab usable", async (t) => {
           const shown = await readouts(page);
           assert.ok(!/NaN|inf/i.test(Object.values(shown).join(" ")), JSON.stringify(shown));
         }
-        // Usable: the nav still takes the reader to an experiment.
+        // Usable: the nav still takes the reader to an experiment (two clicks).
+        await page.click("nav#lab-nav summary");
         await page.click("nav#lab-nav a[data-experiment]");
-        await page.locator("[role=tablist]").waitFor();
-        await page.click('[role=tab][data-tab="simulation"]');
-        await page.locator('[role=tabpanel][data-panel="simulation"] canvas.sim-canvas').waitFor();
+        await page.locator("article.exp:not([hidden]) [role=tablist]").waitFor();
+        await page.click('article.exp:not([hidden]) [role=tab][data-tab="simulation"]');
+        await page.locator('article.exp:not([hidden]) [role=tabpanel][data-panel="simulation"] canvas.sim-canvas').waitFor();
       }),
     );
   }

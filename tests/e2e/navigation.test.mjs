@@ -18,10 +18,10 @@ import {
 const lab = useLab();
 
 async function assertOnlyPanelVisible(page, slug) {
-  const tab = page.locator(`[role=tablist] [role=tab][data-tab="${slug}"]`);
+  const tab = page.locator(`article.exp:not([hidden]) [role=tab][data-tab="${slug}"]`);
   assert.equal(await tab.getAttribute("aria-selected"), "true", `tab ${slug} is selected`);
   for (const other of TABS) {
-    const panel = page.locator(`[role=tabpanel][data-panel="${other}"]`);
+    const panel = page.locator(`article.exp:not([hidden]) [role=tabpanel][data-panel="${other}"]`);
     assert.equal(await panel.isVisible(), other === slug, `panel ${other} visible iff ${slug}`);
   }
 }
@@ -31,19 +31,19 @@ test("every experiment shows each of its six tabs when clicked, without errors",
     await t.test(`experiment ${id}`, () =>
       withPage(lab, { viewport: DESKTOP }, async (page) => {
         await open(lab, page, `#/${id}/aim`);
-        assert.equal(await page.locator("[role=tablist] [role=tab]").count(), 6, "six tabs");
+        assert.equal(await page.locator("article.exp:not([hidden]) [role=tab]").count(), 6, "six tabs");
         await assertOnlyPanelVisible(page, "aim");
         for (const slug of TABS) {
-          await page.click(`[role=tablist] [role=tab][data-tab="${slug}"]`);
+          await page.click(`article.exp:not([hidden]) [role=tab][data-tab="${slug}"]`);
           await assertOnlyPanelVisible(page, slug);
-          const text = await page.locator(`[role=tabpanel][data-panel="${slug}"]`).innerText();
+          const text = await page.locator(`article.exp:not([hidden]) [role=tabpanel][data-panel="${slug}"]`).innerText();
           assert.ok(text.trim().length > 0, `panel ${slug} of ${id} has content`);
           if (slug === "theory") {
-            const maths = await page.locator('[data-panel="theory"] math').count();
+            const maths = await page.locator('article.exp:not([hidden]) [data-panel="theory"] math').count();
             assert.ok(maths >= 1, `theory of ${id} has MathML`);
           }
           if (slug === "references") {
-            const refs = await page.locator('[data-panel="references"] ol > li').count();
+            const refs = await page.locator('article.exp:not([hidden]) [data-panel="references"] ol > li').count();
             assert.ok(refs >= 3, `references of ${id} list at least three sources`);
           }
           if (slug === "simulation") {
@@ -56,19 +56,25 @@ test("every experiment shows each of its six tabs when clicked, without errors",
   }
 });
 
-test("home page links every experiment from its cards and from the nav in one click", () =>
+test("home page links every experiment from its cards (one click) and from the grouped menu (two clicks)", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/");
     const cards = await page.$$eval("a.card[data-experiment]", (as) =>
       as.map((a) => [a.dataset.experiment, a.getAttribute("href")]),
     );
     for (const [id, href] of cards) assert.ok(href.endsWith(`#/${id}/aim`), `card ${id}: ${href}`);
+    // Eleven experiments in five groups, numbered 1–11 in the lab's order.
+    const groups = await page.$$eval("[data-page=home] section.group h2", (hs) => hs.map((h) => h.textContent));
+    assert.deepEqual(groups, ["Kinematics", "Mobile robots", "Planning", "Control", "Estimation"]);
+    const numbers = await page.$$eval("#lab-nav .num", (ns) => ns.map((n) => Number(n.textContent)).sort((a, b) => a - b));
+    assert.deepEqual(numbers, [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11]);
     const nav = await page.$$eval("nav#lab-nav a[data-experiment]", (as) =>
       as.map((a) => a.dataset.experiment),
     );
     assert.deepEqual([...nav].sort(), cards.map(([id]) => id).sort(), "nav reaches every experiment");
+    await page.click("nav#lab-nav summary");
     await page.click(`nav#lab-nav a[data-experiment="${nav[nav.length - 1]}"]`);
-    await page.locator("[role=tablist]").waitFor();
+    await page.locator("article.exp:not([hidden]) [role=tablist]").waitFor();
     assert.ok((await page.evaluate(() => location.hash)).startsWith(`#/${nav[nav.length - 1]}/`));
   }));
 
@@ -82,9 +88,12 @@ test("the lab works when hosted under a sub-path and never leaves its origin", (
     });
     // The folder URL itself (no index.html), as a static host serves it.
     await page.goto(lab.server.base);
-    await waitReady(page);
+    await page.waitForSelector("[data-page=home]:not([hidden])");
+    await page.waitForLoadState("networkidle");
+    assert.ok(!requests.some((u) => /\.wasm|labweb\.js/.test(u)), "the home page does not download the engine");
     await page.click("a.card[data-experiment]");
-    await page.locator("[role=tablist]").waitFor();
+    await waitReady(page);
+    await page.locator("article.exp:not([hidden]) [role=tablist]").waitFor();
     assert.ok(requests.length > 0);
     for (const url of requests) {
       const u = new URL(url);
@@ -101,9 +110,9 @@ test("keyboard: ArrowRight/ArrowLeft/Home/End on the tab list select and focus t
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/fk/aim");
     const selected = () =>
-      page.$eval("[role=tab][aria-selected=true]", (el) => el.dataset.tab);
+      page.$eval("article.exp:not([hidden]) [role=tab][aria-selected=true]", (el) => el.dataset.tab);
     const focused = () => page.evaluate(() => document.activeElement?.dataset?.tab ?? null);
-    await page.focus("[role=tab][aria-selected=true]");
+    await page.focus("article.exp:not([hidden]) [role=tab][aria-selected=true]");
     await page.keyboard.press("ArrowRight");
     assert.equal(await selected(), "theory", "ArrowRight selects the next tab");
     assert.equal(await focused(), "theory", "and focuses it");
@@ -119,7 +128,7 @@ test("keyboard: ArrowRight/ArrowLeft/Home/End on the tab list select and focus t
 test("keyboard: Tab reaches the sliders and ArrowRight on a slider changes the readouts", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/fk/simulation");
-    await page.focus("[role=tab][aria-selected=true]");
+    await page.focus("article.exp:not([hidden]) [role=tab][aria-selected=true]");
     let onRange = false;
     for (let i = 0; i < 40 && !onRange; i++) {
       await page.keyboard.press("Tab");

@@ -124,7 +124,7 @@ pub fn short_title(tab: Tab) -> &'static str {
 
 /// Placeholder of the Simulation and Self-assessment panels until the wasm
 /// front end is ready; `main.js` shows download progress in it.
-const LOADING: &str = "<div class=\"wasm-wait\"><p>Loading the simulation engine…</p>\
+pub const LOADING: &str = "<div class=\"wasm-wait\"><p>Loading the simulation engine…</p>\
      <progress class=\"wasm-progress\" max=\"100\" aria-label=\"Download progress\"></progress></div>";
 
 /// The whole `<article>` of one experiment: header, the tab row and six

@@ -420,6 +420,24 @@ impl ExperimentPage {
     }
 }
 
+impl Drop for ExperimentPage {
+    /// Leaving an experiment stops its simulation (listeners, frame loop,
+    /// observers) and puts the placeholders back, so no dead canvas or stale
+    /// quiz stays in the hidden article.
+    fn drop(&mut self) {
+        let mut p = self.inner.borrow_mut();
+        p.sim = None;
+        p.attempt = None;
+        if let Some(panel) = query(&p.root, "[data-panel=simulation]") {
+            let title = query(&panel, ".panel-title").map_or(String::new(), |h| h.outer_html());
+            panel.set_inner_html(&format!("{title}{}", content_html::LOADING));
+        }
+        if let Some(form) = query(&p.root, "form.quiz") {
+            form.set_inner_html(content_html::LOADING);
+        }
+    }
+}
+
 impl PageInner {
     fn select(&mut self, tab: Tab, scroll_top: bool) {
         self.tab = tab;
