@@ -14,6 +14,10 @@
 //! - [`kinematics::jacobian`], [`kinematics::dls`] — planar geometric Jacobian,
 //!   manipulability and damped-least-squares IK (Buss 2004; Nakamura & Hanafusa 1986;
 //!   Wampler 1986).
+//! - [`planning::astar`] — incremental A*, Dijkstra, weighted A* and greedy
+//!   best-first search on an occupancy grid (Hart, Nilsson & Raphael 1968;
+//!   Dijkstra 1959; Pohl 1970); [`planning::movingai`] reads the Moving AI
+//!   benchmark maps (Sturtevant 2012).
 //!
 //! ## The seam
 //! Every experiment implements [`Experiment`]; [`registry`] lists them with
@@ -24,6 +28,7 @@ pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
 pub mod math;
+pub mod planning;
 pub mod quiz;
 pub mod rng;
 pub mod route;
