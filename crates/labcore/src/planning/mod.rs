@@ -11,3 +11,4 @@ pub mod astar;
 pub mod grid;
 pub mod heuristic;
 pub mod maze;
+pub mod movingai;
