@@ -1,13 +1,16 @@
 //! # labbench — the benchmark scenarios of `shared/BENCHMARKS.md`
 //!
 //! Native only and outside the workspace's default members: it pulls in the
-//! peers the lab's solvers are measured against (the `k` crate), which never
+//! peers the lab's solvers are measured against (the `k` and `pathfinding` crates), which never
 //! reach the wasm bundle. Each scenario is built here as plain data so a test
 //! can check it and the `benches/` programs only time it.
 //!
 //! - [`planar_ik`]: n-link planar arm, 2,000 reachable targets, our
 //!   [`labcore::kinematics::dls::DlsSolver`] against `k::JacobianIkSolver`.
+//! - [`grid_astar`]: A* on a 1000 × 1000 random grid, our
+//!   [`labcore::planning::astar::Search`] against `pathfinding::prelude::astar`.
 //!
 //! Run with `cargo bench -p labbench`.
 
+pub mod grid_astar;
 pub mod planar_ik;

@@ -239,37 +239,36 @@ struct Node {
 
 const NONE: u32 = u32::MAX;
 
-/// Open-list key. `BinaryHeap` pops the largest, so each field is stored such
-/// that "larger" means "first": `!f` (smaller `f` first), `g` (larger `g`
-/// first), `!index` (smaller index first). For `x ≥ 0`, `x.to_bits()` orders
-/// like `x`.
+/// Open-list key packed into one `u128`; `BinaryHeap` pops the largest, so
+/// each part is stored such that "larger" means "first":
+///
+/// ```text
+/// bits 127..64: !f.to_bits()      smaller f first (for x ≥ 0, x.to_bits() orders like x)
+/// bits  63..32: (g as f32).to_bits()  larger g first
+/// bits  31..0 : !index            smaller cell index first
+/// ```
+///
+/// `f` is kept exactly; `g` only breaks ties, so single precision is enough
+/// (two equal-`f` cells whose `g` agree to 24 bits fall back on the index).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-struct HeapEntry {
-    not_f: u64,
-    g: u64,
-    not_index: u32,
-}
+struct HeapEntry(u128);
 
 impl HeapEntry {
     #[inline]
     fn new(f: f64, g: f64, index: u32) -> Self {
-        Self {
-            not_f: !f.to_bits(),
-            g: g.to_bits(),
-            not_index: !index,
-        }
+        Self(
+            (u128::from(!f.to_bits()) << 64)
+                | (u128::from((g as f32).to_bits()) << 32)
+                | u128::from(!index),
+        )
     }
     #[inline]
-    fn index(&self) -> usize {
-        !self.not_index as usize
+    fn index(self) -> usize {
+        !(self.0 as u32) as usize
     }
     #[inline]
-    fn f(&self) -> f64 {
-        f64::from_bits(!self.not_f)
-    }
-    #[inline]
-    fn g(&self) -> f64 {
-        f64::from_bits(self.g)
+    fn f(self) -> f64 {
+        f64::from_bits(!((self.0 >> 64) as u64))
     }
 }
 
@@ -385,7 +384,7 @@ impl Search {
         if grid.is_blocked(goal) {
             return Err(SearchError::GoalBlocked { cell: goal });
         }
-        let (g_factor, h_factor) = config.priority_factors()?;
+        config.priority_factors()?;
 
         let (w, h) = (grid.width(), grid.height());
         let pitch = w + 2;
@@ -410,6 +409,43 @@ impl Search {
             );
             self.generation = 0;
         }
+        self.width = w;
+        self.height = h;
+        self.pitch = pitch;
+        // Checked above, so this cannot fail.
+        self.restart(start, goal, config)
+    }
+
+    /// A new search on the grid copy this search already holds (e.g. another
+    /// strategy or other ends on the same grid, as the page's comparison does):
+    /// like [`Search::reset`] without copying the grid. On error nothing changes.
+    ///
+    /// # Errors
+    /// As [`Search::new`], against the held grid.
+    pub fn restart(
+        &mut self,
+        start: Cell,
+        goal: Cell,
+        config: SearchConfig,
+    ) -> Result<(), SearchError> {
+        let (w, h) = (self.width, self.height);
+        let inside = |c: Cell| c.x < w && c.y < h;
+        if !inside(start) {
+            return Err(SearchError::StartOutOfBounds { cell: start });
+        }
+        if !inside(goal) {
+            return Err(SearchError::GoalOutOfBounds { cell: goal });
+        }
+        let pitch = self.pitch;
+        let start_index = (start.y + 1) * pitch + start.x + 1;
+        let goal_index = (goal.y + 1) * pitch + goal.x + 1;
+        if self.blocked[start_index] != 0 {
+            return Err(SearchError::StartBlocked { cell: start });
+        }
+        if self.blocked[goal_index] != 0 {
+            return Err(SearchError::GoalBlocked { cell: goal });
+        }
+        let (g_factor, h_factor) = config.priority_factors()?;
         // Stamps 2·gen and 2·gen + 1 must stay clear of every earlier stamp.
         if self.generation >= u32::MAX / 2 - 1 {
             for n in &mut self.nodes {
@@ -418,34 +454,27 @@ impl Search {
             self.generation = 0;
         }
         self.generation += 1;
-
-        self.width = w;
-        self.height = h;
-        self.pitch = pitch;
         self.config = config;
         self.g_factor = g_factor;
         self.h_factor = h_factor;
         self.start = start;
         self.goal = goal;
-        self.start_index = (start.y + 1) * pitch + start.x + 1;
-        self.goal_index = (goal.y + 1) * pitch + goal.x + 1;
+        self.start_index = start_index;
+        self.goal_index = goal_index;
         self.expanded = 0;
         self.open_count = 1;
         self.last_expanded = None;
         self.status = SearchStatus::Searching;
         self.result = None;
         self.heap.clear();
-
         let open = self.open_stamp();
-        self.nodes[self.start_index] = Node {
+        self.nodes[start_index] = Node {
             g: 0.0,
             parent: NONE,
             stamp: open,
         };
-        let h0 = self.heuristic(start.x + 1, start.y + 1);
-        let f0 = self.h_factor * h0;
-        self.heap
-            .push(HeapEntry::new(f0, 0.0, self.start_index as u32));
+        let f0 = self.h_factor * self.heuristic(start.x + 1, start.y + 1);
+        self.heap.push(HeapEntry::new(f0, 0.0, start_index as u32));
         Ok(())
     }
 
@@ -464,7 +493,9 @@ impl Search {
 
     #[inline]
     fn cell_of_padded(&self, i: usize) -> Cell {
-        Cell::new(i % self.pitch - 1, i / self.pitch - 1)
+        // Padded indices fit in u32 (MAX_CELLS): 32-bit division is faster.
+        let (i, p) = (i as u32, self.pitch as u32);
+        Cell::new((i % p) as usize - 1, (i / p) as usize - 1)
     }
 
     #[inline]
@@ -532,7 +563,7 @@ impl Search {
     }
 
     /// Relaxes the neighbours of padded cell `i` = `(px, py)` with cost-so-far `g`.
-    #[inline]
+    #[inline(always)]
     fn expand(&mut self, i: usize, g: f64, px: usize, py: usize) {
         let p = self.pitch;
         let b = &self.blocked;
@@ -574,7 +605,7 @@ impl Search {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn relax(&mut self, j: usize, g: f64, parent: u32, px: usize, py: usize) {
         let open = self.open_stamp();
         let node = &mut self.nodes[j];
@@ -754,17 +785,16 @@ impl Search {
             return Vec::new();
         }
         let open = self.open_stamp();
-        // The live entry of an open cell is the one with its current g (each
-        // (cell, g) is pushed at most once, since g only ever decreases).
+        // A cell may sit in the heap more than once (each time its g dropped);
+        // the entry popped first is the one with the largest key.
         let mut live: Vec<HeapEntry> = self
             .heap
             .iter()
-            .filter(|e| {
-                let n = &self.nodes[e.index()];
-                n.stamp == open && n.g.to_bits() == e.g
-            })
+            .filter(|e| self.nodes[e.index()].stamp == open)
             .copied()
             .collect();
+        live.sort_unstable_by(|a, b| a.index().cmp(&b.index()).then(b.cmp(a)));
+        live.dedup_by_key(|e| e.index());
         if live.len() > k {
             live.select_nth_unstable_by(k - 1, |a, b| b.cmp(a));
             live.truncate(k);
@@ -775,7 +805,7 @@ impl Search {
                 let cell = self.cell_of_padded(e.index());
                 OpenEntry {
                     cell,
-                    g: e.g(),
+                    g: self.nodes[e.index()].g,
                     h: self.heuristic(cell.x + 1, cell.y + 1),
                     f: e.f(),
                 }
