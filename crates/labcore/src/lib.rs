@@ -18,6 +18,9 @@
 //!   best-first search on an occupancy grid (Hart, Nilsson & Raphael 1968;
 //!   Dijkstra 1959; Pohl 1970); [`planning::movingai`] reads the Moving AI
 //!   benchmark maps (Sturtevant 2012).
+//! - [`planning::rrt_star`] — RRT, RRT* and Informed RRT* with a growing-bin
+//!   spatial index (LaValle 1998; Karaman & Frazzoli, IJRR 2011; Gammell,
+//!   Srinivasa & Barfoot, IROS 2014).
 //!
 //! ## The seam
 //! Every experiment implements [`Experiment`]; [`registry`] lists them with
