@@ -9,8 +9,10 @@
 //!   [`labcore::kinematics::dls::DlsSolver`] against `k::JacobianIkSolver`.
 //! - [`grid_astar`]: A* on a 1000 × 1000 random grid, our
 //!   [`labcore::planning::astar::Search`] against `pathfinding::prelude::astar`.
+//! - [`rrt_star`]: RRT* on the 30-circle world at 10,000 and 100,000 iterations.
 //!
 //! Run with `cargo bench -p labbench`.
 
 pub mod grid_astar;
 pub mod planar_ik;
+pub mod rrt_star;

@@ -189,10 +189,11 @@ pub enum IterationOutcome {
     Full,
 }
 
-/// Choose-parent candidate: total cost through it, node, edge state.
+/// Choose-parent candidate: total cost through it, edge length, node, edge state.
 #[derive(Clone, Copy, Debug)]
 struct Candidate {
     total: f64,
+    dist: f64,
     node: u32,
     /// 0 unknown, 1 free, 2 blocked.
     edge: u8,
@@ -470,7 +471,8 @@ impl RrtStar {
         self.candidates.clear();
         let mut has_nearest = false;
         for &i in &self.near {
-            let total = self.cost[i as usize] + edge_len(x_new, pts[i as usize]);
+            let dist = edge_len(x_new, pts[i as usize]);
+            let total = self.cost[i as usize] + dist;
             let edge = if i == nearest {
                 has_nearest = true;
                 1
@@ -479,13 +481,16 @@ impl RrtStar {
             };
             self.candidates.push(Candidate {
                 total,
+                dist,
                 node: i,
                 edge,
             });
         }
         if !has_nearest {
+            let dist = edge_len(x_new, pts[nearest as usize]);
             self.candidates.push(Candidate {
-                total: self.cost[nearest as usize] + edge_len(x_new, pts[nearest as usize]),
+                total: self.cost[nearest as usize] + dist,
+                dist,
                 node: nearest,
                 edge: 1,
             });
@@ -529,38 +534,38 @@ impl RrtStar {
     }
 
     /// Rewires the near set through `node` (just added with parent `parent`).
+    /// The first `near.len()` candidates of [`Self::choose_parent`] are the
+    /// near set in order (`x_near` may follow when it lies outside the radius;
+    /// it is not rewired): their edge lengths and any collision verdicts are
+    /// reused.
     fn rewire(&mut self, node: u32, parent: u32) {
         let x_new = self.index.points()[node as usize];
         let cost_new = self.cost[node as usize];
         let res = self.config.check_resolution;
         for k in 0..self.near.len() {
-            let x = self.near[k];
-            if x == parent {
+            let c = self.candidates[k];
+            if c.node == parent {
                 continue;
             }
-            let px = self.index.points()[x as usize];
-            let through = cost_new + edge_len(px, x_new);
-            // Costs are finite sums of finite lengths: no NaN to guard against.
-            if through >= self.cost[x as usize] {
+            // Costs are finite sums of finite lengths (no NaN). Read the cost
+            // now: an earlier rewire in this loop may have lowered it.
+            if cost_new + c.dist >= self.cost[c.node as usize] {
                 continue;
             }
-            // Reuse the choose-parent verdict on this edge when there is one.
-            let known = self
-                .candidates
-                .iter()
-                .find(|c| c.node == x)
-                .map_or(0, |c| c.edge);
-            let free = match known {
+            let free = match c.edge {
                 1 => true,
                 2 => false,
-                _ => self.world.segment_free(x_new, px, res),
+                _ => {
+                    let px = self.index.points()[c.node as usize];
+                    self.world.segment_free(x_new, px, res)
+                }
             };
             if !free {
                 continue;
             }
-            self.reparent(x, node);
+            self.reparent(c.node, node);
             self.rewires += 1;
-            self.last_rewired.push(x);
+            self.last_rewired.push(c.node);
         }
     }
 

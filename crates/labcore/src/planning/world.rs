@@ -182,8 +182,9 @@ impl World {
     #[inline]
     fn bin_of_raw(min: DVec2, bin: DVec2, p: DVec2) -> (usize, usize) {
         let last = (OBSTACLE_BINS - 1) as f64;
-        let fx = ((p.x - min.x) / bin.x).floor().clamp(0.0, last);
-        let fy = ((p.y - min.y) / bin.y).floor().clamp(0.0, last);
+        // For x ≥ 0, `x as usize` is ⌊x⌋; NaN and negatives become 0.
+        let fx = ((p.x - min.x) / bin.x).clamp(0.0, last);
+        let fy = ((p.y - min.y) / bin.y).clamp(0.0, last);
         (fx as usize, fy as usize)
     }
 
