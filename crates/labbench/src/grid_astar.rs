@@ -290,9 +290,10 @@ mod tests {
         let mut rng = Lcg64::new(9);
         let grid = random_fill(60, 60, 20.0, &mut rng).unwrap();
         let peer = PeerGrid::new(&grid);
-        let tiny = OccupancyGrid::new(1, 1).unwrap();
-        let mut search =
-            Search::new(&tiny, Cell::new(0, 0), Cell::new(0, 0), our_config()).unwrap();
+        let free = (0..3600)
+            .find_map(|i| grid.cell_of(i).filter(|&c| grid.is_free(c)))
+            .unwrap();
+        let mut search = Search::new(&grid, free, free, our_config()).unwrap();
         let mut compared = 0;
         for _ in 0..50 {
             let s = Cell::new(rng.int(0, 59) as usize, rng.int(0, 59) as usize);
