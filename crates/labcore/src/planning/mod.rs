@@ -6,6 +6,7 @@
 //! - [`astar`]: incremental A*, Dijkstra, weighted A* and greedy best-first search
 //!   (Hart, Nilsson & Raphael 1968; Dijkstra 1959; Pohl 1970).
 //! - [`movingai`]: the Moving AI `.map` and `.scen` formats (Sturtevant 2012).
+//! - [`wall_code`]: a compact URL-safe run-length code of a grid's walls.
 //! - [`world`]: a continuous 2-D field with circle and rectangle obstacles and
 //!   fixed-resolution collision checks.
 //! - [`spatial_grid`]: a point index with growing bins for nearest and radius queries.
@@ -19,4 +20,5 @@ pub mod maze;
 pub mod movingai;
 pub mod rrt_star;
 pub mod spatial_grid;
+pub mod wall_code;
 pub mod world;
