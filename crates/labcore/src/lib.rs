@@ -27,6 +27,13 @@
 //! - [`estimation::ekf`], [`estimation::slam`] — EKF localisation with known
 //!   landmarks and EKF-SLAM (Thrun, Burgard & Fox, *Probabilistic Robotics*,
 //!   Ch. 7 and 10); NEES consistency checks (Bar-Shalom, Li & Kirubarajan 2001).
+//! - [`planning::astar`] — incremental A*, Dijkstra, weighted A* and greedy
+//!   best-first search on an occupancy grid (Hart, Nilsson & Raphael 1968;
+//!   Dijkstra 1959; Pohl 1970); [`planning::movingai`] reads the Moving AI
+//!   benchmark maps (Sturtevant 2012).
+//! - [`planning::rrt_star`] — RRT, RRT* and Informed RRT* with a growing-bin
+//!   spatial index (LaValle 1998; Karaman & Frazzoli, IJRR 2011; Gammell,
+//!   Srinivasa & Barfoot, IROS 2014).
 //!
 //! ## Angles
 //! Every angle labcore returns is in radians and wrapped to `[-π, π]` by
@@ -58,6 +65,7 @@ pub mod kinematics;
 pub mod linalg;
 pub mod math;
 pub mod mobile;
+pub mod planning;
 pub mod plot;
 pub mod quiz;
 pub mod rng;
