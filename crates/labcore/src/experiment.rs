@@ -6,6 +6,7 @@
 
 use crate::plot::Plot;
 use crate::scene::{Scene, ViewBox};
+use crate::table::Table;
 use glam::DVec2;
 use std::fmt;
 
@@ -266,6 +267,14 @@ impl Input {
     }
 }
 
+/// Keys held while a pointer input happened (Shift-click, Ctrl-click).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Modifiers {
+    pub shift: bool,
+    /// Ctrl, or ⌘ on a Mac.
+    pub ctrl: bool,
+}
+
 /// Tone of the status badge above the canvas.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Tone {
@@ -425,6 +434,11 @@ pub trait Experiment {
     }
     /// A pointer or keyboard input in world coordinates.
     fn input(&mut self, input: Input);
+    /// An input with the modifier keys held at the time (the page always
+    /// calls this). Default: the modifiers do not matter.
+    fn input_with(&mut self, input: Input, _modifiers: Modifiers) {
+        self.input(input);
+    }
     /// Advances the simulation by one fixed step of `dt_s` seconds
     /// (deterministic). Accepts `0 < dt_s ≤` [`crate::clock::MAX_DT_S`] (the
     /// shell uses [`crate::clock::Clock::DT_S`]); a NaN, infinite, negative,
@@ -449,6 +463,25 @@ pub trait Experiment {
     /// swipe that starts elsewhere scrolls the page; a tap still acts.
     fn handle_at(&self, _p: DVec2, _tolerance_m: f64) -> bool {
         false
+    }
+    /// Live tables shown beside the canvas (an open list, a comparison).
+    fn tables(&self) -> Vec<Table> {
+        Vec::new()
+    }
+    /// File name extensions the experiment can load (e.g. `[".map"]`); the
+    /// page offers a file picker and dropping a file on the canvas.
+    fn file_types(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// Loads a file the student chose. On error the state is unchanged and
+    /// the message (naming the line where it can) is shown on the page.
+    fn load_file(&mut self, _name: &str, _text: &str) -> Result<(), String> {
+        Err("this experiment does not load files".into())
+    }
+    /// A text file the student can save (file name, contents), e.g. the grid
+    /// as a map when it is too large for a link. `None`: no such button.
+    fn export_text(&self) -> Option<(String, String)> {
+        None
     }
     /// Whether the canvas must take every touch (e.g. painting walls), so a
     /// swipe over it never scrolls the page. The page says so and offers a

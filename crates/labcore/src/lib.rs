@@ -71,15 +71,17 @@ pub mod quiz;
 pub mod rng;
 pub mod route;
 pub mod scene;
+pub mod table;
 
 pub use clock::Clock;
 pub use content::Content;
 pub use experiment::{
-    ActionSpec, Experiment, Input, ParamError, ParamKind, ParamSpec, Readout, Sanitized, Status,
-    Tone,
+    ActionSpec, Experiment, Input, Modifiers, ParamError, ParamKind, ParamSpec, Readout, Sanitized,
+    Status, Tone,
 };
 pub use experiments::{find, registry, Entry};
 pub use glam;
 pub use plot::{Plot, Series, SeriesRole};
 pub use rng::Lcg64;
 pub use scene::{Item, RasterColour, Role, Scene, ViewBox};
+pub use table::Table;

@@ -65,3 +65,104 @@ pub fn reroute() {
         }
     });
 }
+
+/// The display list of the platform's big-scene budget: a 512×512 grid of
+/// cell states (one raster image) and a tree of 100,000 edges (one batch of
+/// segments), seeded so every run draws the same picture.
+#[must_use]
+pub fn big_scene() -> labcore::Scene {
+    use labcore::glam::DVec2;
+    use labcore::{Item, RasterColour, Role};
+    let mut rng = labcore::Lcg64::new(42);
+    let n = 512;
+    let cells: Vec<u8> = (0..n * n).map(|_| (rng.next_f64() * 4.0) as u8).collect();
+    let mut nodes = vec![DVec2::splat(50.0)];
+    let mut segments = Vec::with_capacity(100_000);
+    for _ in 0..100_000 {
+        let parent = nodes[(rng.next_f64() * nodes.len() as f64) as usize];
+        let child = parent + DVec2::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
+        let child = child.clamp(DVec2::ZERO, DVec2::splat(100.0));
+        segments.push((parent, child));
+        nodes.push(child);
+    }
+    let mut scene = labcore::Scene::default();
+    scene.push(Item::Raster {
+        min: DVec2::ZERO,
+        cell_m: 100.0 / n as f64,
+        cols: n,
+        rows: n,
+        cells,
+        palette: vec![
+            RasterColour {
+                role: Role::Obstacle,
+                alpha: 1.0,
+            },
+            RasterColour {
+                role: Role::Visited,
+                alpha: 0.5,
+            },
+            RasterColour {
+                role: Role::Estimate,
+                alpha: 0.6,
+            },
+        ],
+    });
+    scene.push(Item::Segments {
+        segments,
+        width_px: 0.6,
+        role: Role::Path,
+    });
+    scene
+}
+
+/// Paints [`big_scene`] `frames` times on an 800×600 canvas and returns the
+/// mean milliseconds per frame (the end-to-end tests report it).
+#[wasm_bindgen]
+pub fn bench_big_scene(frames: u32) -> f64 {
+    time_paint(big_scene(), frames)
+}
+
+/// Like [`bench_big_scene`] for one of its two items (0: the raster, 1: the segments).
+#[wasm_bindgen]
+pub fn bench_big_scene_part(frames: u32, item: usize) -> f64 {
+    let mut scene = big_scene();
+    let keep = scene.items.swap_remove(item.min(1));
+    scene.items = vec![keep];
+    time_paint(scene, frames)
+}
+
+fn time_paint(scene: labcore::Scene, frames: u32) -> f64 {
+    use wasm_bindgen::JsCast;
+    let Some(canvas) = dom::document()
+        .create_element("canvas")
+        .ok()
+        .and_then(|c| c.dyn_into::<web_sys::HtmlCanvasElement>().ok())
+    else {
+        return f64::NAN;
+    };
+    let (w, h) = (800.0, 600.0);
+    canvas.set_width(w as u32);
+    canvas.set_height(h as u32);
+    let Some(ctx) = canvas
+        .get_context("2d")
+        .ok()
+        .flatten()
+        .and_then(|c| c.dyn_into::<web_sys::CanvasRenderingContext2d>().ok())
+    else {
+        return f64::NAN;
+    };
+    let palette = draw::Palette::from_css(&canvas);
+    let view = labcore::ViewBox {
+        min: labcore::glam::DVec2::ZERO,
+        max: labcore::glam::DVec2::splat(100.0),
+    };
+    let viewport = draw::Viewport::fit(view, w, h);
+    let frames = frames.max(1);
+    let start = dom::now_ms();
+    for _ in 0..frames {
+        draw::paint(&ctx, &scene, &viewport, w, h, 1.0, &palette);
+    }
+    // Reading one pixel waits for the drawing to finish.
+    let _ = ctx.get_image_data(0.0, 0.0, 1.0, 1.0);
+    (dom::now_ms() - start) / f64::from(frames)
+}

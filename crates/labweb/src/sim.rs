@@ -797,8 +797,14 @@ impl SimView {
                 let w = st.to_world(e);
                 if let Some((id, start, start_px)) = st.pending_touch {
                     let px = DVec2::new(f64::from(e.client_x()), f64::from(e.client_y()));
-                    if id == e.pointer_id() && (px - start_px).length() > TOUCH_SLOP_PX {
-                        // The browser did not take it for a scroll: a sideways drag.
+                    let moved = px - start_px;
+                    // A mostly vertical move is the browser's (touch-action:
+                    // pan-y): it scrolls and cancels the pointer. A sideways
+                    // one it leaves to us: a drag from where the finger landed.
+                    if id == e.pointer_id()
+                        && moved.length() > TOUCH_SLOP_PX
+                        && moved.x.abs() > moved.y.abs()
+                    {
                         st.pending_touch = None;
                         let _ = st.canvas.set_pointer_capture(id);
                         st.pressed_pointer = Some(id);

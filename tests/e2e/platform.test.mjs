@@ -1,0 +1,289 @@
+// The lab platform shared by every experiment: grouped navigation, history,
+// a Simulation tab that fits the screen, time controls, plots, exports,
+// touch that scrolls unless it grabs a handle, and the big-scene budget.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { readFile } from "node:fs/promises";
+import { DESKTOP, open, readouts, screenshot, settle, useLab, waitReady, withPage } from "./helpers.mjs";
+
+const lab = useLab();
+const PHONE_390 = { width: 390, height: 844 };
+const ART = "article.exp:not([hidden])";
+
+for (const viewport of [DESKTOP, PHONE_390]) {
+  test(`navigation at ${viewport.width}px: the grouped menu reaches every experiment in two clicks, no label cut, no sideways scroll`, () =>
+    withPage(lab, { viewport }, async (page) => {
+      await open(lab, page, "#/");
+      await page.click("#lab-nav summary");
+      const links = page.locator("#lab-nav a[data-experiment]");
+      const n = await links.count();
+      assert.ok(n >= 4, `${n} experiments linked`);
+      const geometry = await links.evaluateAll((as) =>
+        as.map((a) => {
+          const r = a.getBoundingClientRect();
+          const t = a.querySelector(".nav-title");
+          return { id: a.dataset.experiment, left: r.left, right: r.right, cut: t.scrollWidth > t.clientWidth + 1 };
+        }),
+      );
+      for (const g of geometry) {
+        assert.ok(!g.cut, `${g.id}: label not cut`);
+        assert.ok(g.left >= 0 && g.right <= viewport.width, `${g.id}: inside the screen (${g.left}–${g.right})`);
+      }
+      assert.ok((await page.evaluate(() => document.documentElement.scrollWidth)) <= viewport.width);
+      await screenshot(page, `nav-menu-${viewport.width}`);
+      // Second click: the experiment opens and the menu closes.
+      const last = geometry[geometry.length - 1].id;
+      await page.click(`#lab-nav a[data-experiment=${last}]`);
+      await waitReady(page);
+      assert.equal(await page.locator(ART).getAttribute("data-experiment"), last);
+      assert.ok(!(await page.locator("#lab-nav details").evaluate((d) => d.open)), "menu closed");
+      assert.match(await page.locator("#lab-nav .nav-current").innerText(), /Experiment \d+/);
+    }));
+}
+
+test("on a phone the six tabs stay on one row", () =>
+  withPage(lab, { viewport: { width: 360, height: 740 } }, async (page) => {
+    await open(lab, page, "#/dls/aim");
+    const boxes = await page.locator(`${ART} [role=tab]`).evaluateAll((ts) =>
+      ts.map((t) => {
+        const r = t.getBoundingClientRect();
+        return { top: Math.round(r.top), right: r.right, name: t.textContent };
+      }),
+    );
+    assert.equal(boxes.length, 6);
+    assert.equal(new Set(boxes.map((b) => b.top)).size, 1, `one row: ${JSON.stringify(boxes)}`);
+    assert.ok(boxes.every((b) => b.right <= 360), "inside the screen");
+    // The full title stays the accessible name.
+    assert.match(boxes[4].name, /Self-assessment/);
+  }));
+
+test("Back returns to the tab and page seen before; parameter changes add no history entries", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/aim");
+    await page.click(`${ART} [role=tab][data-tab=theory]`);
+    await page.click(`${ART} [role=tab][data-tab=simulation]`);
+    await page.waitForFunction(() => /t1=/.test(location.hash));
+    const length = await page.evaluate(() => history.length);
+    await page.focus(`${ART} input[type=range][data-param=t1]`);
+    for (let i = 0; i < 4; i++) await page.keyboard.press("ArrowRight");
+    await page.waitForFunction(() => /t1=39/.test(location.hash));
+    assert.equal(await page.evaluate(() => history.length), length, "slider moves replace the entry");
+    await page.goBack();
+    await page.locator(`${ART} [data-panel=theory]`).waitFor({ state: "visible" });
+    await page.goBack();
+    await page.locator(`${ART} [data-panel=aim]`).waitFor({ state: "visible" });
+    await page.goForward();
+    await page.goForward();
+    await page.locator(`${ART} [data-panel=simulation] canvas`).waitFor({ state: "visible" });
+    assert.equal(await page.locator(`${ART} input[type=range][data-param=t1]`).inputValue(), "39", "state kept");
+    // Another experiment, then Back to this one.
+    await page.click("#lab-nav summary");
+    await page.click("#lab-nav a[data-experiment=ik]");
+    await page.locator("article.exp[data-experiment=ik]:not([hidden])").waitFor();
+    await page.goBack();
+    await page.locator("article.exp[data-experiment=fk]:not([hidden])").waitFor();
+  }));
+
+/** Bottom edge (page px, from the top of the viewport) of the first match. */
+const bottom = (page, selector) =>
+  page.locator(selector).first().evaluate((el) => el.getBoundingClientRect().bottom);
+
+test("at 1280×800 the Simulation tab shows the whole canvas, the time controls and the actions without scrolling, readouts beside", () =>
+  withPage(lab, { viewport: DESKTOP }, async (page) => {
+    await open(lab, page, "#/dls/simulation");
+    await settle(page);
+    for (const sel of ["canvas.sim-canvas", ".timebar", ".sim-actions button"]) {
+      const b = await bottom(page, `${ART} ${sel}`);
+      assert.ok(b <= DESKTOP.height, `${sel} ends at ${b} px`);
+    }
+    const [canvas, side] = await page.evaluate(() => [
+      document.querySelector("canvas.sim-canvas").getBoundingClientRect().toJSON(),
+      document.querySelector(".sim-side").getBoundingClientRect().toJSON(),
+    ]);
+    assert.ok(side.left >= canvas.right, "controls and readouts beside the canvas");
+    assert.ok(canvas.height >= 380, `a large canvas (${canvas.height} px)`);
+    await screenshot(page, "dls-simulation-1280");
+  }));
+
+test("at 390×844 the canvas, the primary action and the main readouts are on the first screen", () =>
+  withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page) => {
+    await open(lab, page, "#/workspace/simulation");
+    await settle(page);
+    for (const sel of ["canvas.sim-canvas", "button[data-action=sweep]", ".readouts .readout"]) {
+      const b = await bottom(page, `${ART} ${sel}`);
+      assert.ok(b <= PHONE_390.height, `${sel} ends at ${b} px`);
+    }
+    await screenshot(page, "workspace-simulation-390");
+  }));
+
+test("time controls: pause, single steps (button and key) are deterministic, Space plays without scrolling, speed is in the link", () =>
+  withPage(lab, {}, async (page, context) => {
+    const link = "#/workspace/simulation?n=30000&run=0";
+    await open(lab, page, link);
+    const play = page.locator(`${ART} button[data-time=play]`);
+    assert.equal(await play.getAttribute("aria-pressed"), "false", "the link paused it");
+    await page.click(`${ART} button[data-action=sweep]`);
+    await page.waitForTimeout(300);
+    assert.match((await readouts(page)).samples, /^0 \//, "paused: nothing sampled");
+    for (let i = 0; i < 5; i++) await page.click(`${ART} button[data-time=step]`);
+    await page.focus(`${ART} canvas.sim-canvas`);
+    for (let i = 0; i < 5; i++) await page.keyboard.press(".");
+    await settle(page);
+    const steps = await page.locator(`${ART} canvas.sim-canvas`).getAttribute("data-steps");
+    assert.equal(steps, "10");
+    assert.equal(await page.locator(`${ART} .tb-time`).innerText(), "t = 0.17 s");
+    const ten = await readouts(page);
+
+    const second = await context.newPage();
+    await open(lab, second, link);
+    await second.click(`${ART} button[data-action=sweep]`);
+    await second.focus(`${ART} canvas.sim-canvas`);
+    for (let i = 0; i < 10; i++) await second.keyboard.press(".");
+    await settle(second);
+    assert.deepEqual(await readouts(second), ten, "ten steps give the same state however they were taken");
+
+    // Space on the canvas plays without scrolling the page.
+    const scrollBefore = await page.evaluate(() => scrollY);
+    await page.focus(`${ART} canvas.sim-canvas`);
+    await page.keyboard.press(" ");
+    assert.equal(await play.getAttribute("aria-pressed"), "true");
+    assert.equal(await page.evaluate(() => scrollY), scrollBefore, "Space did not scroll");
+    await page.waitForFunction(() => /^swept/.test(document.querySelector(`article.exp:not([hidden]) .sim-status`).textContent));
+
+    await page.selectOption(`${ART} select[data-time=speed]`, "2");
+    await page.waitForFunction(() => /speed=2/.test(location.hash));
+    const hash = await page.evaluate(() => location.hash);
+    const third = await context.newPage();
+    await open(lab, third, hash);
+    assert.equal(await third.locator(`${ART} select[data-time=speed]`).inputValue(), "2");
+  }));
+
+/** How many distinct colours a canvas shows (a blank one shows one). */
+const colours = (locator) =>
+  locator.evaluate((c) => {
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    const seen = new Set();
+    for (let i = 0; i < d.length; i += 4 * 97) seen.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+    return seen.size;
+  });
+
+test("plots: DLS draws error (log) and manipulability against iteration, with hover values, a summary and a data table", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/dls/simulation?tx=1.3&ty=1.1&rate=60");
+    await page.waitForFunction(() => /converged/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    const figures = page.locator(`${ART} figure.plot`);
+    assert.deepEqual(await figures.evaluateAll((fs) => fs.map((f) => f.dataset.plot)), ["error", "manipulability"]);
+    const canvas = figures.first().locator("canvas");
+    await canvas.scrollIntoViewIfNeeded();
+    await settle(page);
+    assert.ok((await colours(canvas)) > 3, "the error plot is drawn");
+    assert.match(await figures.first().locator(".plot-summary").textContent(), /Tip error: Error against iteration\. error: \d+ samples/);
+    const box = await canvas.boundingBox();
+    await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+    const tip = figures.first().locator(".plot-tip");
+    await page.waitForFunction((el) => el.textContent.length > 0, await tip.elementHandle());
+    assert.match(await tip.textContent(), /^Iteration = \d+ · error: /);
+    await figures.first().locator("[data-plot-table]").click();
+    assert.equal(await figures.first().locator("[data-plot-table]").getAttribute("aria-expanded"), "true");
+    const rows = await figures.first().locator(".plot-table tbody tr").count();
+    assert.ok(rows >= 2, `${rows} rows`);
+    assert.equal(await figures.first().locator(".plot-table th").first().innerText(), "Iteration");
+    await screenshot(page, "dls-plots");
+  }));
+
+test("exports: a plot's CSV holds every sample with units in the header; the canvas saves as a PNG named after the experiment and seed", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/dls/simulation?tx=1.3&ty=1.1&rate=60");
+    await page.waitForFunction(() => /converged in (\d+)/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    const iterations = Number((await readouts(page)).iterations);
+    const [csv] = await Promise.all([page.waitForEvent("download"), page.click(`${ART} [data-plot-csv=error]`)]);
+    assert.equal(csv.suggestedFilename(), "dls-error.csv");
+    const text = await readFile(await csv.path(), "utf8");
+    const lines = text.trim().split(/\r?\n/);
+    assert.equal(lines[0], "Iteration,error (m)");
+    assert.equal(lines.length - 1, iterations + 1, "one row per iteration, plus the start");
+    assert.ok(Number(lines[lines.length - 1].split(",")[1]) < 1e-6);
+
+    const [png] = await Promise.all([page.waitForEvent("download"), page.click(`${ART} [data-export=png]`)]);
+    assert.equal(png.suggestedFilename(), "dls.png");
+    const bytes = await readFile(await png.path());
+    assert.deepEqual([...bytes.subarray(0, 8)], [137, 80, 78, 71, 13, 10, 26, 10], "a PNG file");
+    assert.ok(bytes.length > 2000, `${bytes.length} bytes`);
+
+    await page.goto(page.url().replace(/#.*/, "#/workspace/simulation?seed=7&n=5000"));
+    await waitReady(page);
+    await page.click(`${ART} button[data-action=sweep]`);
+    await page.waitForFunction(() => /^swept/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    const [radii] = await Promise.all([page.waitForEvent("download"), page.click(`${ART} [data-plot-csv=radii]`)]);
+    assert.equal(radii.suggestedFilename(), "workspace-seed7-radii.csv");
+    const head = (await readFile(await radii.path(), "utf8")).split(/\r?\n/)[0];
+    assert.equal(head, "Samples drawn,outer radius (measured) (m),inner hole (measured) (m)");
+  }));
+
+test("touch: a swipe from empty canvas scrolls the page, a drag from the target moves it, a tap still acts", () =>
+  withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page, context) => {
+    await open(lab, page, "#/ik/simulation?tx=1&ty=0.8");
+    await page.waitForFunction(() => /in reach/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    const cdp = await context.newCDPSession(page);
+    const touch = (type, p) =>
+      cdp.send("Input.dispatchTouchEvent", { type, touchPoints: p ? [{ x: Math.round(p.x), y: Math.round(p.y), id: 1 }] : [] });
+    const world = async (x, y) => {
+      const c = page.locator(`${ART} canvas.sim-canvas`);
+      const box = await c.boundingBox();
+      const [x0, y0, x1, y1] = (await c.getAttribute("data-view")).split(",").map(Number);
+      const s = Math.min(box.width / (x1 - x0), box.height / (y1 - y0));
+      return { x: box.x + box.width / 2 + (x - (x0 + x1) / 2) * s, y: box.y + box.height / 2 - (y - (y0 + y1) / 2) * s };
+    };
+    const target = () => page.evaluate(() => new URLSearchParams(location.hash.split("?")[1]).get("tx"));
+    const before = await target();
+    // A vertical swipe starting far from any handle: the page scrolls.
+    const start = await world(-2.2, -1.2);
+    const scroll0 = await page.evaluate(() => scrollY);
+    await touch("touchStart", start);
+    for (let i = 1; i <= 10; i++) await touch("touchMove", { x: start.x, y: start.y - 18 * i });
+    await touch("touchEnd");
+    await page.waitForTimeout(300);
+    assert.ok((await page.evaluate(() => scrollY)) > scroll0, "the page scrolled");
+    assert.equal(await target(), before, "the target did not move");
+    // A drag that starts on the target moves it and does not scroll.
+    const from = await world(1, 0.8);
+    const scroll1 = await page.evaluate(() => scrollY);
+    await touch("touchStart", from);
+    for (let i = 1; i <= 8; i++) await touch("touchMove", { x: from.x - 6 * i, y: from.y + 6 * i });
+    await touch("touchEnd");
+    await page.waitForFunction((b) => new URLSearchParams(location.hash.split("?")[1]).get("tx") !== b, before);
+    assert.equal(await page.evaluate(() => scrollY), scroll1, "dragging a handle does not scroll");
+    // A tap on empty canvas still sets a target there.
+    const tapAt = await world(-0.8, 0.9);
+    await touch("touchStart", tapAt);
+    await touch("touchEnd");
+    await page.waitForFunction(() => Math.abs(Number(new URLSearchParams(location.hash.split("?")[1]).get("tx")) + 0.8) < 0.05);
+  }));
+
+test("a 512×512 grid plus 100,000 segments paints as two display-list items within budget", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/simulation");
+    await page.waitForFunction(() => window.labweb && window.labweb.bench_big_scene);
+    await page.evaluate(() => window.labweb.bench_big_scene(2));
+    const ms = await page.evaluate(() => window.labweb.bench_big_scene(20));
+    const parts = await page.evaluate(() => [window.labweb.bench_big_scene_part(20, 0), window.labweb.bench_big_scene_part(20, 1)]);
+    console.log(`big scene (512×512 raster + 100,000 segments): ${ms.toFixed(2)} ms per frame (raster ${parts[0].toFixed(2)}, segments ${parts[1].toFixed(2)})`);
+    assert.ok(Number.isFinite(ms) && ms > 0);
+    // Headless Chromium renders in software here; a GPU does far better.
+    assert.ok(ms < 50, `${ms} ms per frame`);
+  }));
+
+test("dark mode: the simulation and its plots are drawn dark", () =>
+  withPage(lab, { colorScheme: "dark" }, async (page) => {
+    await open(lab, page, "#/dls/simulation?tx=1.3&ty=1.1&rate=60");
+    await page.waitForFunction(() => /converged/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    await settle(page);
+    const corner = (sel) =>
+      page.locator(sel).first().evaluate((c) => [...c.getContext("2d").getImageData(2, 2, 1, 1).data].slice(0, 3));
+    for (const sel of [`${ART} canvas.sim-canvas`, `${ART} .plot-canvas`]) {
+      const [r, g, b] = await corner(sel);
+      assert.ok(r + g + b < 150, `${sel} background is dark: ${r},${g},${b}`);
+    }
+    await screenshot(page, "dls-dark");
+  }));
