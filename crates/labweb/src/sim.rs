@@ -269,6 +269,7 @@ struct SimState {
     shown_readouts: Vec<String>,
     shown_status: String,
     shown_tables: Vec<labcore::Table>,
+    shown_view: labcore::ViewBox,
     hash_dirty: bool,
     last_hash_ms: f64,
     frame_times: FrameTimes,
@@ -322,7 +323,19 @@ impl SimState {
             self.canvas.set_height((h * dpr).round() as u32);
             self.needs_paint = true;
         }
-        self.viewport = Viewport::fit(self.exp.view(), w, h);
+        let view = self.exp.view();
+        if view != self.shown_view {
+            // The world rectangle shown, for tests and tools that click world points.
+            let _ = self.canvas.set_attribute(
+                "data-view",
+                &format!(
+                    "{},{},{},{}",
+                    view.min.x, view.min.y, view.max.x, view.max.y
+                ),
+            );
+            self.shown_view = view;
+        }
+        self.viewport = Viewport::fit(view, w, h);
     }
 
     fn to_world(&self, event: &PointerEvent) -> DVec2 {
@@ -725,14 +738,6 @@ impl SimView {
             })?;
         let palette = Palette::from_css(&canvas);
         let view = exp.view();
-        // The world rectangle shown, for tests and tools that click world points.
-        let _ = canvas.set_attribute(
-            "data-view",
-            &format!(
-                "{},{},{},{}",
-                view.min.x, view.min.y, view.max.x, view.max.y
-            ),
-        );
         let n_params = exp.params().len();
         let state = Rc::new(RefCell::new(SimState {
             exp,
@@ -756,6 +761,7 @@ impl SimView {
             shown_readouts: Vec::new(),
             shown_status: String::new(),
             shown_tables: Vec::new(),
+            shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
             last_hash_ms: 0.0,
             frame_times: FrameTimes::default(),
