@@ -80,7 +80,9 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
     };
     let tables = tables_html(&exp.tables());
     let touch_note = if exp.captures_touch() {
-        "<p class=\"touch-note\">On a touch screen this canvas takes every touch; scroll the page by the margin beside it.</p>"
+        "<p class=\"touch-note\">On a touch screen this canvas takes every touch (you draw on it). \
+         <button type=\"button\" class=\"mini\" data-touch-mode aria-pressed=\"true\">Touch draws</button> \
+         Switch it off to scroll the page with a swipe over the canvas.</p>"
     } else {
         ""
     };
@@ -258,6 +260,9 @@ struct SimState {
     /// A touch that started off every handle: a tap if it lifts in place, a
     /// scroll if the browser takes it, a drag if it moves sideways.
     pending_touch: Option<(i32, DVec2, DVec2)>,
+    /// For an experiment that captures touch: whether touches draw (true)
+    /// or, switched off by the student, scroll like elsewhere.
+    touch_draws: bool,
     last_time_ms: Option<f64>,
     clock: Clock,
     plots: PlotView,
@@ -751,6 +756,7 @@ impl SimView {
             dpr: 1.0,
             pressed_pointer: None,
             pending_touch: None,
+            touch_draws: true,
             last_time_ms: None,
             clock: Clock::default(),
             plots: PlotView::mount(panel),
@@ -782,7 +788,8 @@ impl SimView {
                 }
                 let mut st = s.borrow_mut();
                 let w = st.to_world(e);
-                if e.pointer_type() == "touch" && !st.exp.captures_touch() {
+                let captured = st.exp.captures_touch() && st.touch_draws;
+                if e.pointer_type() == "touch" && !captured {
                     let tolerance_m = TOUCH_GRAB_PX / st.viewport.scale_px_per_m;
                     if !st.exp.handle_at(w, tolerance_m) {
                         // Off every handle: let the browser scroll if it is a
@@ -1071,6 +1078,13 @@ impl SimView {
                         "reset" => st.reset_run(),
                         _ => {}
                     }
+                } else if button.has_attribute("data-touch-mode") {
+                    st.touch_draws = !st.touch_draws;
+                    let on = st.touch_draws;
+                    let _ = button.set_attribute("aria-pressed", if on { "true" } else { "false" });
+                    let _ = st
+                        .canvas
+                        .set_attribute("data-touch", if on { "all" } else { "handles" });
                 } else if attr("data-file").as_deref() == Some("pick") {
                     if let Some(input) = query(&st.panel, "input.file-input")
                         .and_then(|i| i.dyn_into::<HtmlInputElement>().ok())
