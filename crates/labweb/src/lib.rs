@@ -36,9 +36,18 @@ pub fn report_panic(details: &str) {
     ));
 }
 
+/// Drops the mounted application: its listeners, frame loop and pages
+/// (tests that mount again; a page only ever mounts once).
+#[wasm_bindgen]
+pub fn unmount() {
+    let old = APP.with(|a| a.borrow_mut().take());
+    drop(old);
+}
+
 /// Mounts the application into the current document.
 #[wasm_bindgen]
 pub fn boot() {
+    unmount();
     let app = app::App::boot(|_| reroute());
     APP.with(|a| *a.borrow_mut() = app);
 }
