@@ -8,6 +8,7 @@ use std::sync::OnceLock;
 pub mod dls;
 pub mod fk;
 pub mod ik;
+pub mod pid;
 pub mod workspace;
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
@@ -48,7 +49,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 4] = [
+static REGISTRY: [Entry; 5] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -68,6 +69,13 @@ static REGISTRY: [Entry; 4] = [
         content_json: include_str!("../../../../assets/workspace.json"),
         make: || Box::new(workspace::Workspace::default()),
         generators: workspace::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "pid",
+        content_json: include_str!("../../../../assets/pid.json"),
+        make: || Box::new(pid::PidControl::default()),
+        generators: pid::quiz_generator,
         parsed: OnceLock::new(),
     },
     Entry {
