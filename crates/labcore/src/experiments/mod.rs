@@ -5,6 +5,7 @@ use crate::experiment::Experiment;
 use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
+pub mod cartpole;
 pub mod dls;
 pub mod fk;
 pub mod ik;
@@ -49,7 +50,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 5] = [
+static REGISTRY: [Entry; 6] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -76,6 +77,13 @@ static REGISTRY: [Entry; 5] = [
         content_json: include_str!("../../../../assets/pid.json"),
         make: || Box::new(pid::PidControl::default()),
         generators: pid::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "cartpole",
+        content_json: include_str!("../../../../assets/cartpole.json"),
+        make: || Box::new(cartpole::CartPoleBalance::default()),
+        generators: cartpole::quiz_generator,
         parsed: OnceLock::new(),
     },
     Entry {
