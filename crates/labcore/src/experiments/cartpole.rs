@@ -1051,6 +1051,20 @@ mod tests {
         assert!(!e.animating(), "a balanced pole lets the page idle");
     }
 
+    /// The closed-loop polynomial of the default cart gains is
+    /// s⁴ + a₃s³ + a₂s² + a₁s + a₀ with a₂ = 1.4634·kθ − 18.70 (by hand from
+    /// A + B k); Hurwitz's a₃a₂a₁ > a₁² + a₃²a₀ needs kθ > 22.65 N/rad, well
+    /// above the (M + m)·g = 10.78 N/rad of angle feedback alone. The
+    /// procedure quotes "about 23".
+    #[test]
+    fn the_default_cart_gains_need_k_theta_above_about_23() {
+        let mut e = CartPoleBalance::default();
+        e.set_param("kth", 23.5).unwrap();
+        assert_eq!(readout(&e, "closed_verdict"), "stable");
+        e.set_param("kth", 22.0).unwrap();
+        assert_eq!(readout(&e, "closed_verdict"), "unstable");
+    }
+
     #[test]
     fn energy_stays_flat_under_rk4_with_control_off() {
         let drift = |integrator: f64| {

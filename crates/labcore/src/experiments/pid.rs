@@ -33,7 +33,10 @@
 //!
 //! **Pinned runs.** "Pin run" keeps the current response, its gains and
 //! its metrics; up to [`MAX_PINS`] pinned responses are overlaid on the
-//! response plot (the oldest is replaced by a fifth) and listed as readouts.
+//! response plot (the oldest is replaced by a fifth) and listed as readouts,
+//! one per slot A–D. The plot always holds the four slot series (empty
+//! until used): the page draws a plot's legend once, from the series it
+//! starts with, so the series set of a plot never changes.
 
 use crate::control::pid::{
     closed_loop_poles, MassDragPlant, Pid, PidConfig, PidGains, PidLoop, SecondOrder,
@@ -108,6 +111,14 @@ const PIN_ROLES: [SeriesRole; MAX_PINS] = [
     SeriesRole::Reference,
 ];
 
+/// The series names of the four pin slots.
+const PIN_NAMES: [&str; MAX_PINS] = [
+    "pinned run A",
+    "pinned run B",
+    "pinned run C",
+    "pinned run D",
+];
+
 /// World rectangle of the canvas (metres): the track from −2.6 m to 2.6 m.
 const VIEW_MIN: DVec2 = DVec2::new(-2.6, -0.7);
 const VIEW_MAX: DVec2 = DVec2::new(2.6, 1.3);
@@ -147,12 +158,13 @@ struct TermSums {
 /// One pinned response: the gains it ran with and its metrics.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pin {
+    /// Its slot, 0–3: the series "pinned run A"–"D" of the response plot.
+    pub slot: usize,
     /// 1, 2, 3, … in the order pinned.
     pub number: usize,
     pub gains: PidGains,
     /// The metrics when it was pinned (`None` when undefined, e.g. unstable).
     pub info: Option<StepInfo>,
-    role: SeriesRole,
 }
 
 impl Pin {
@@ -209,7 +221,14 @@ fn new_plots() -> [Plot; 2] {
             "Step response",
             ("Time since step", "s"),
             ("Position", "m"),
-            vec![Series::new("position x", "m", SeriesRole::Primary)],
+            std::iter::once(Series::new("position x", "m", SeriesRole::Primary))
+                .chain(
+                    PIN_NAMES
+                        .iter()
+                        .zip(PIN_ROLES)
+                        .map(|(name, role)| Series::new(*name, "m", role)),
+                )
+                .collect(),
         )
     };
     let effort = Plot {
@@ -512,37 +531,33 @@ impl PidControl {
         }
     }
 
-    /// Keeps the current response as a pinned run (replacing the oldest of
-    /// [`MAX_PINS`]).
+    /// Keeps the current response as a pinned run in the first free slot,
+    /// or in the oldest pin's slot when all [`MAX_PINS`] are taken.
     fn pin(&mut self) {
-        let response = &mut self.plots[0];
-        if self.pins.len() == MAX_PINS {
-            self.pins.remove(0);
-            response.series.remove(1);
-        }
-        let role = PIN_ROLES
-            .iter()
-            .copied()
-            .find(|r| self.pins.iter().all(|p| p.role != *r))
-            .unwrap_or(SeriesRole::Reference);
+        let slot = (0..MAX_PINS)
+            .find(|k| self.pins.iter().all(|p| p.slot != *k))
+            .unwrap_or_else(|| self.pins.remove(0).slot);
         self.pins_made += 1;
-        let pin = Pin {
+        self.pins.push(Pin {
+            slot,
             number: self.pins_made,
             gains: self.gains,
             info: self.info,
-            role,
-        };
-        let mut series = response.series[0].clone();
-        series.label = format!("pin {} ({})", pin.number, pin.gains_text());
-        series.role = role;
-        response.series.push(series);
+        });
+        let response = &mut self.plots[0];
+        let (x, y) = (response.series[0].x.clone(), response.series[0].y.clone());
+        let series = &mut response.series[1 + slot];
+        series.x = x;
+        series.y = y;
         response.touch();
-        self.pins.push(pin);
     }
 
     fn clear_pins(&mut self) {
         self.pins.clear();
-        self.plots[0].series.truncate(1);
+        for series in &mut self.plots[0].series[1..] {
+            series.x.clear();
+            series.y.clear();
+        }
         self.plots[0].touch();
     }
 
@@ -879,14 +894,16 @@ impl Experiment for PidControl {
             Readout::new("stability", "Linear loop", stability),
             Readout::new("second_order", "Second order (Ki = 0)", second),
         ];
-        const PIN_KEYS: [&str; MAX_PINS] = ["pin1", "pin2", "pin3", "pin4"];
+        const PIN_KEYS: [&str; MAX_PINS] = ["pinA", "pinB", "pinC", "pinD"];
         const PIN_LABELS: [&str; MAX_PINS] = [
             "Pinned run A",
             "Pinned run B",
             "Pinned run C",
             "Pinned run D",
         ];
-        for (k, pin) in self.pins.iter().enumerate() {
+        let mut pins: Vec<&Pin> = self.pins.iter().collect();
+        pins.sort_by_key(|p| p.slot);
+        for pin in pins {
             let metrics = pin.info.map_or("no metrics (no final value)".into(), |i| {
                 format!(
                     "overshoot {}, rise {}, settling {}",
@@ -896,9 +913,9 @@ impl Experiment for PidControl {
                 )
             });
             out.push(Readout::new(
-                PIN_KEYS[k],
-                PIN_LABELS[k],
-                format!("#{} {}, {metrics}", pin.number, pin.gains_text()),
+                PIN_KEYS[pin.slot],
+                PIN_LABELS[pin.slot],
+                format!("{}, {metrics}", pin.gains_text()),
             ));
         }
         out
@@ -1271,45 +1288,72 @@ mod tests {
     #[test]
     fn pinned_runs_keep_their_gains_and_metrics() {
         let mut e = underdamped();
+        // The slot series exist from the start (the page's legend is fixed).
+        let labels: Vec<&str> = e.plots()[0]
+            .series
+            .iter()
+            .map(|s| s.label.as_str())
+            .collect();
+        assert_eq!(
+            labels,
+            [
+                "position x",
+                "pinned run A",
+                "pinned run B",
+                "pinned run C",
+                "pinned run D"
+            ]
+        );
+        assert!(e.plots()[0].series[1..].iter().all(Series::is_empty));
         run_to_end(&mut e);
         let first = e.metrics().unwrap();
+        let curve = e.plots()[0].series[0].clone();
         e.action("pin").unwrap();
         e.set_param("kd", 10.0).unwrap();
         run_to_end(&mut e);
         e.action("pin").unwrap();
         let response = &e.plots()[0];
-        assert_eq!(response.series.len(), 3);
-        assert_eq!(response.series[1].label, "pin 1 (Kp 25 · Ki 0 · Kd 5)");
-        assert_eq!(response.series[2].label, "pin 2 (Kp 25 · Ki 0 · Kd 10)");
+        assert_eq!(
+            (&response.series[1].x, &response.series[1].y),
+            (&curve.x, &curve.y)
+        );
+        assert_eq!(response.series[2].len(), response.series[0].len());
         assert_eq!(response.series[1].role, SeriesRole::Secondary);
         assert_eq!(response.series[2].role, SeriesRole::Tertiary);
         assert_eq!(e.pins()[0].info, Some(first));
         assert_eq!(
-            readout(&e, "pin1"),
+            readout(&e, "pinA"),
             format!(
-                "#1 Kp 25 · Ki 0 · Kd 5, overshoot {}, rise {}, settling {}",
+                "Kp 25 · Ki 0 · Kd 5, overshoot {}, rise {}, settling {}",
                 percent(first.overshoot_pct),
                 seconds(first.rise_time_s),
                 seconds(first.settling_time_s)
             )
         );
+        assert!(readout(&e, "pinB").starts_with("Kp 25 · Ki 0 · Kd 10, overshoot "));
         // More damping, less overshoot.
         assert!(e.pins()[1].info.unwrap().overshoot_pct < first.overshoot_pct);
-        // A replayed step keeps the pins; the fifth pin replaces the oldest.
+        // A replayed step keeps the pins; the fifth pin replaces the oldest (slot A).
         e.action("step").unwrap();
-        assert_eq!(e.plots()[0].series.len(), 3);
+        assert_eq!(e.plots()[0].series[1].x, curve.x);
+        e.set_param("kd", 1.0).unwrap();
         for _ in 0..3 {
             e.action("pin").unwrap();
         }
         assert_eq!(e.pins().len(), MAX_PINS);
-        let numbers: Vec<usize> = e.pins().iter().map(|p| p.number).collect();
-        assert_eq!(numbers, [2, 3, 4, 5]);
-        let mut roles: Vec<SeriesRole> = e.plots()[0].series[1..].iter().map(|s| s.role).collect();
-        roles.sort_by_key(|r| SeriesRole::ALL.iter().position(|a| a == r));
-        assert_eq!(roles, PIN_ROLES);
-        assert!(e.plots()[0].series[1].label.starts_with("pin 2 "));
+        let numbers: Vec<(usize, usize)> = e.pins().iter().map(|p| (p.number, p.slot)).collect();
+        assert_eq!(numbers, [(2, 1), (3, 2), (4, 3), (5, 0)]);
+        assert!(readout(&e, "pinA").starts_with("Kp 25 · Ki 0 · Kd 1, "));
+        let keys: Vec<&str> = e
+            .readouts()
+            .iter()
+            .map(|r| r.key)
+            .filter(|k| k.starts_with("pin"))
+            .collect();
+        assert_eq!(keys, ["pinA", "pinB", "pinC", "pinD"]);
         e.action("clear_pins").unwrap();
-        assert_eq!(e.plots()[0].series.len(), 1);
+        assert_eq!(e.plots()[0].series.len(), 1 + MAX_PINS);
+        assert!(e.plots()[0].series[1..].iter().all(Series::is_empty));
         assert!(e.readouts().iter().all(|r| !r.key.starts_with("pin")));
     }
 
