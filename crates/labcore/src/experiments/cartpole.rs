@@ -763,7 +763,7 @@ impl Experiment for CartPoleBalance {
             pos: DVec2::new(x, 0.0),
             text: format!("F = {} N", format_fixed(f, 1)),
             role: Role::Text,
-            offset_px: DVec2::new(-24.0, 30.0),
+            offset_px: DVec2::new(-24.0, 44.0),
         });
     }
 

@@ -165,6 +165,11 @@ pub struct Pin {
     pub gains: PidGains,
     /// The metrics when it was pinned (`None` when undefined, e.g. unstable).
     pub info: Option<StepInfo>,
+    /// Time since the step when it was pinned (s).
+    pub time_s: f64,
+    /// Whether the run had ended (settled, complete or diverged) when pinned;
+    /// otherwise its metrics are those of the response so far.
+    pub finished: bool,
 }
 
 impl Pin {
@@ -543,6 +548,8 @@ impl PidControl {
             number: self.pins_made,
             gains: self.gains,
             info: self.info,
+            time_s: self.time_s(),
+            finished: self.state != RunState::Running,
         });
         let response = &mut self.plots[0];
         let (x, y) = (response.series[0].x.clone(), response.series[0].y.clone());
@@ -904,7 +911,12 @@ impl Experiment for PidControl {
         let mut pins: Vec<&Pin> = self.pins.iter().collect();
         pins.sort_by_key(|p| p.slot);
         for pin in pins {
-            let metrics = pin.info.map_or("no metrics (no final value)".into(), |i| {
+            let none = if pin.finished {
+                "no metrics (no final value)"
+            } else {
+                "no metrics yet"
+            };
+            let metrics = pin.info.map_or(none.into(), |i| {
                 format!(
                     "overshoot {}, rise {}, settling {}",
                     percent(i.overshoot_pct),
@@ -912,10 +924,15 @@ impl Experiment for PidControl {
                     seconds(i.settling_time_s)
                 )
             });
+            let partial = if pin.finished {
+                String::new()
+            } else {
+                format!(", so far (pinned at {})", seconds(Some(pin.time_s)))
+            };
             out.push(Readout::new(
                 PIN_KEYS[pin.slot],
                 PIN_LABELS[pin.slot],
-                format!("{}, {metrics}", pin.gains_text()),
+                format!("{}, {metrics}{partial}", pin.gains_text()),
             ));
         }
         out
@@ -1344,6 +1361,13 @@ mod tests {
         let numbers: Vec<(usize, usize)> = e.pins().iter().map(|p| (p.number, p.slot)).collect();
         assert_eq!(numbers, [(2, 1), (3, 2), (4, 3), (5, 0)]);
         assert!(readout(&e, "pinA").starts_with("Kp 25 · Ki 0 · Kd 1, "));
+        // Pinned mid-run: the metrics are marked as those so far.
+        assert!(
+            readout(&e, "pinA").ends_with(", so far (pinned at 0.00 s)"),
+            "{}",
+            readout(&e, "pinA")
+        );
+        assert!(!readout(&e, "pinB").contains("so far"));
         let keys: Vec<&str> = e
             .readouts()
             .iter()
