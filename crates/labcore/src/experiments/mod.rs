@@ -5,9 +5,11 @@ use crate::experiment::Experiment;
 use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
+pub mod cartpole;
 pub mod dls;
 pub mod fk;
 pub mod ik;
+pub mod pid;
 pub mod workspace;
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
@@ -54,7 +56,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 4] = [
+static REGISTRY: [Entry; 6] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -74,6 +76,20 @@ static REGISTRY: [Entry; 4] = [
         content_json: include_str!("../../../../assets/workspace.json"),
         make: || Box::new(workspace::Workspace::default()),
         generators: workspace::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "pid",
+        content_json: include_str!("../../../../assets/pid.json"),
+        make: || Box::new(pid::PidControl::default()),
+        generators: pid::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "cartpole",
+        content_json: include_str!("../../../../assets/cartpole.json"),
+        make: || Box::new(cartpole::CartPoleBalance::default()),
+        generators: cartpole::quiz_generator,
         parsed: OnceLock::new(),
     },
     Entry {
