@@ -6,6 +6,7 @@ use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
 pub mod dls;
+pub mod ekf;
 pub mod fk;
 pub mod ik;
 pub mod workspace;
@@ -48,7 +49,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 4] = [
+static REGISTRY: [Entry; 5] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -75,6 +76,13 @@ static REGISTRY: [Entry; 4] = [
         content_json: include_str!("../../../../assets/dls.json"),
         make: || Box::new(dls::DampedLeastSquares::default()),
         generators: dls::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "ekf",
+        content_json: include_str!("../../../../assets/ekf.json"),
+        make: || Box::new(ekf::EkfExperiment::default()),
+        generators: ekf::quiz_generator,
         parsed: OnceLock::new(),
     },
 ];
