@@ -270,7 +270,7 @@ impl Run {
         self.truth = truth;
         self.steps += 1;
         self.track_laps();
-        if (self.steps - 1) % SENSOR_EVERY == 0 {
+        if (self.steps - 1).is_multiple_of(SENSOR_EVERY) {
             let mut obs = std::mem::take(&mut self.observations);
             settings
                 .sensor
@@ -680,7 +680,7 @@ impl EkfExperiment {
             }
             p.touch();
         }
-        if run.steps % TRAIL_EVERY == 0 {
+        if run.steps.is_multiple_of(TRAIL_EVERY) {
             let points = [
                 truth.truncate(),
                 est.truncate(),
@@ -1211,8 +1211,10 @@ mod tests {
 
     /// An experiment whose filter starts exactly on the truth with `P₀`.
     fn exact_start(landmarks: Vec<DVec2>) -> EkfExperiment {
-        let mut e = EkfExperiment::default();
-        e.landmarks = landmarks;
+        let mut e = EkfExperiment {
+            landmarks,
+            ..EkfExperiment::default()
+        };
         e.live.filter = Filter::Localisation(Belief {
             mean: START,
             cov: initial_cov(),
@@ -1654,7 +1656,7 @@ mod tests {
             let g = |k: &str| d.var(k).unwrap();
             let b = ((g("my") - g("y")).atan2(g("mx") - g("x")) - g("t").to_radians()).to_degrees();
             let diff = (d.answer - b).rem_euclid(360.0);
-            assert!(diff < 1e-9 || diff > 360.0 - 1e-9, "{d:?}");
+            assert!(!(1e-9..=360.0 - 1e-9).contains(&diff), "{d:?}");
             assert!((-180.0..180.0).contains(&d.answer));
 
             let d = quiz_nees_diagonal(&mut rng);
