@@ -135,7 +135,7 @@ pub const SINGLE_RUN_BAND: (f64, f64) = (0.2158, 9.3484);
 /// Share of time steps whose average NEES must lie inside the band for the
 /// check to call the filter consistent (95 % expected; a little slack).
 const INSIDE_NEEDED: f64 = 0.9;
-const VIEW_HALF_M: f64 = 5.3;
+const VIEW_HALF_M: f64 = 4.7;
 
 /// What the truth and the filter are told: noises, sensor and mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -535,12 +535,12 @@ fn new_plots() -> [Plot; 5] {
         "Uncertainty trace(P)",
         ("Time", "s"),
         ("trace(P)", "m² + rad²"),
-        vec![Series::new("trace(P)", "m² + rad²", SeriesRole::Secondary)],
+        vec![Series::new("trace(P)", "m² + rad²", SeriesRole::Primary)],
     );
     trace.window = XWindow::Rolling(WINDOW_S);
     let mut anees = Plot::new(
         "anees",
-        "Consistency check: average NEES over N runs",
+        "Average NEES over N runs",
         ("Time", "s"),
         ("Average NEES", ""),
         vec![Series::new("average NEES", "", SeriesRole::Primary)],
