@@ -1537,19 +1537,19 @@ mod tests {
         );
         // Each estimate lies within its own uncertainty of the true landmark:
         // eᵀ P⁻¹ e below the 99.9 % point of χ²(2), 13.8.
-        for id in 0..6 {
+        for (id, truth) in LANDMARKS.iter().enumerate() {
             let (m, cov) = s.landmark(id).unwrap();
-            let e = m - LANDMARKS[id];
+            let e = m - *truth;
             let d2 = e.dot(cov.inverse() * e);
             assert!(d2 < 13.8, "landmark {id} at {m}: {d2}");
         }
         // The map's shape is known better than where it sits: the absolute
         // frame carries the initial pose error, the distances between
         // landmarks do not.
-        for i in 0..6 {
-            for j in i + 1..6 {
+        for (i, ti) in LANDMARKS.iter().enumerate() {
+            for (j, tj) in LANDMARKS.iter().enumerate().skip(i + 1) {
                 let (a, b) = (s.landmark(i).unwrap().0, s.landmark(j).unwrap().0);
-                let err = (a - b).length() - (LANDMARKS[i] - LANDMARKS[j]).length();
+                let err = (a - b).length() - (*ti - *tj).length();
                 assert!(err.abs() < 0.15, "distance {i}–{j} off by {err} m");
             }
         }
