@@ -98,7 +98,7 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
     assert.match(anees.name, /anees\.csv$/);
     const lines = anees.text.trim().split(/\r?\n/);
     assert.equal(lines[0], "Time (s),average NEES");
-    assert.equal(lines.length, 1 + 800, "one row per step of a 40 s run");
+    assert.equal(lines.length, 1 + 1600, "one row per filter step of an 80 s run");
     assert.ok(lines.slice(1).every((l) => l.split(",").map(Number).every(Number.isFinite)));
     const errorX = await downloadCsv(page, "error_x");
     assert.equal(errorX.text.split(/\r?\n/)[0], "Time (s),x error (m),+3σx (m),−3σx (m)");
