@@ -7,6 +7,7 @@ use std::sync::OnceLock;
 
 pub mod cartpole;
 pub mod dls;
+pub mod ekf;
 pub mod fk;
 pub mod ik;
 pub mod pid;
@@ -56,7 +57,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 6] = [
+static REGISTRY: [Entry; 7] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -97,6 +98,13 @@ static REGISTRY: [Entry; 6] = [
         content_json: include_str!("../../../../assets/dls.json"),
         make: || Box::new(dls::DampedLeastSquares::default()),
         generators: dls::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "ekf",
+        content_json: include_str!("../../../../assets/ekf.json"),
+        make: || Box::new(ekf::EkfExperiment::default()),
+        generators: ekf::quiz_generator,
         parsed: OnceLock::new(),
     },
 ];
