@@ -5,9 +5,12 @@ use crate::experiment::Experiment;
 use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
+pub mod cartpole;
 pub mod dls;
+pub mod ekf;
 pub mod fk;
 pub mod ik;
+pub mod pid;
 pub mod workspace;
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
@@ -54,7 +57,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 4] = [
+static REGISTRY: [Entry; 7] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -77,10 +80,31 @@ static REGISTRY: [Entry; 4] = [
         parsed: OnceLock::new(),
     },
     Entry {
+        id: "pid",
+        content_json: include_str!("../../../../assets/pid.json"),
+        make: || Box::new(pid::PidControl::default()),
+        generators: pid::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "cartpole",
+        content_json: include_str!("../../../../assets/cartpole.json"),
+        make: || Box::new(cartpole::CartPoleBalance::default()),
+        generators: cartpole::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
         id: "dls",
         content_json: include_str!("../../../../assets/dls.json"),
         make: || Box::new(dls::DampedLeastSquares::default()),
         generators: dls::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "ekf",
+        content_json: include_str!("../../../../assets/ekf.json"),
+        make: || Box::new(ekf::EkfExperiment::default()),
+        generators: ekf::quiz_generator,
         parsed: OnceLock::new(),
     },
 ];
