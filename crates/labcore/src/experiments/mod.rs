@@ -5,9 +5,11 @@ use crate::experiment::Experiment;
 use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
+pub mod diffdrive;
 pub mod dls;
 pub mod fk;
 pub mod ik;
+pub mod potential;
 pub mod workspace;
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
@@ -48,7 +50,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 4] = [
+static REGISTRY: [Entry; 6] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -68,6 +70,20 @@ static REGISTRY: [Entry; 4] = [
         content_json: include_str!("../../../../assets/workspace.json"),
         make: || Box::new(workspace::Workspace::default()),
         generators: workspace::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "diffdrive",
+        content_json: include_str!("../../../../assets/diffdrive.json"),
+        make: || Box::new(diffdrive::DiffDrive::default()),
+        generators: diffdrive::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "potential",
+        content_json: include_str!("../../../../assets/potential.json"),
+        make: || Box::new(potential::PotentialFieldLab::default()),
+        generators: potential::quiz_generator,
         parsed: OnceLock::new(),
     },
     Entry {
