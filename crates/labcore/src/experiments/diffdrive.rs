@@ -95,14 +95,14 @@ const ACTIONS: &[ActionSpec] = &[
 /// The slot (0-based) of a waypoint key `w3x` → 2, and whether it is x.
 fn slot_of(key: &str) -> Option<(usize, bool)> {
     let rest = key.strip_prefix('w')?;
-    let (digit, axis) = rest.split_at(rest.len().checked_sub(1)?);
-    let n: usize = digit.parse().ok()?;
-    let is_x = match axis {
-        "x" => true,
-        "y" => false,
-        _ => return None,
+    let (digits, is_x) = match rest.strip_suffix('x') {
+        Some(d) => (d, true),
+        None => (rest.strip_suffix('y')?, false),
     };
-    (1..=MAX_WAYPOINTS).contains(&n).then_some((n - 1, is_x))
+    let n: usize = digits.parse().ok()?;
+    n.checked_sub(1)
+        .filter(|i| *i < MAX_WAYPOINTS)
+        .map(|i| (i, is_x))
 }
 
 /// Rounds a clicked coordinate to whole centimetres, so the link (three
@@ -1271,6 +1271,17 @@ mod tests {
             .all(|s| s.len() <= MAX_PLOT_SAMPLES));
         assert!(d.trail.len() <= MAX_TRAIL_POINTS);
         assert!(d.plots[0].bands.len() <= MAX_BANDS);
+    }
+
+    #[test]
+    fn waypoint_keys_parse_and_odd_keys_are_refused() {
+        assert_eq!(slot_of("w1x"), Some((0, true)));
+        assert_eq!(slot_of("w6y"), Some((5, false)));
+        for bad in ["w7x", "w0y", "w1z", "wé", "w", "wx", "x1w", "w1xx", "w-1x"] {
+            assert_eq!(slot_of(bad), None, "{bad}");
+        }
+        let d = DiffDrive::default();
+        assert_eq!(d.param("wé"), None);
     }
 
     #[test]

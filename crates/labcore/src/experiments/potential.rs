@@ -129,14 +129,14 @@ const ACTIONS: &[ActionSpec] = &[
 /// The slot (0-based) of an obstacle key `o3x` → 2, and whether it is x.
 fn slot_of(key: &str) -> Option<(usize, bool)> {
     let rest = key.strip_prefix('o')?;
-    let (digit, axis) = rest.split_at(rest.len().checked_sub(1)?);
-    let n: usize = digit.parse().ok()?;
-    let is_x = match axis {
-        "x" => true,
-        "y" => false,
-        _ => return None,
+    let (digits, is_x) = match rest.strip_suffix('x') {
+        Some(d) => (d, true),
+        None => (rest.strip_suffix('y')?, false),
     };
-    (1..=MAX_OBSTACLES).contains(&n).then_some((n - 1, is_x))
+    let n: usize = digits.parse().ok()?;
+    n.checked_sub(1)
+        .filter(|i| *i < MAX_OBSTACLES)
+        .map(|i| (i, is_x))
 }
 
 /// What the next click does after an action button.
@@ -1468,6 +1468,16 @@ mod tests {
         assert_eq!(readout(&e, "speed"), "0.000 m/s");
         e.step(DT);
         assert_ne!(readout(&e, "speed"), "0.000 m/s");
+    }
+
+    #[test]
+    fn obstacle_keys_parse_and_odd_keys_are_refused() {
+        assert_eq!(slot_of("o1x"), Some((0, true)));
+        assert_eq!(slot_of("o6y"), Some((5, false)));
+        for bad in ["o7x", "o0y", "o1z", "oé", "o", "ox", "obs", "o1xx"] {
+            assert_eq!(slot_of(bad), None, "{bad}");
+        }
+        assert_eq!(PotentialFieldLab::default().param("o0x"), None);
     }
 
     #[test]
