@@ -472,10 +472,9 @@ impl DiffDrive {
                 }
             }
         }
+        // The page redraws a plot when it is touched: only when a sample is added.
         if self.steps.is_multiple_of(PLOT_EVERY) || cmd.arrived {
             push_bounded(plot, t, &[cmd.v_mps, cmd.omega_radps, vl, vr]);
-        } else {
-            plot.touch();
         }
     }
 
@@ -739,12 +738,10 @@ impl Experiment for DiffDrive {
         {
             let done = k < reached;
             let role = if done { Role::Visited } else { Role::Target };
-            out.push(Item::Circle {
+            out.push(Item::Dot {
                 center: w,
-                radius_m: TOLERANCE_M.max(0.08),
+                radius_px: if k == reached { 8.0 } else { 6.0 },
                 role,
-                fill: true,
-                dashed: false,
             });
             out.push(Item::Label {
                 pos: w,

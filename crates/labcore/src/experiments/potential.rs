@@ -60,6 +60,8 @@ pub const BASIN_MAX_TIME_S: f64 = 60.0;
 /// Heat map resolution: 0.1 m cells.
 const HEAT_COLS: usize = 80;
 const HEAT_ROWS: usize = 60;
+/// Number of equal potential steps shaded as alternate bands.
+const HEAT_BANDS: usize = 16;
 /// Spacing of the field-arrow grid, metres.
 const ARROW_SPACING_M: f64 = 0.5;
 /// Drawn length of a unit force on the robot, metres.
@@ -466,7 +468,10 @@ impl PotentialFieldLab {
         }
     }
 
-    /// Potential over the field, scaled into `(0, 1]` for the heat map.
+    /// Potential over the field, scaled into `(0, 1]` for the heat map:
+    /// darker is higher, and alternate bands of [`HEAT_BANDS`] equal steps of
+    /// `U` are shaded a little darker, so the level sets (which bend around
+    /// the obstacles' small hills) show even where the goal's cone dominates.
     fn heat_values(&self) -> Vec<f32> {
         let mut field = self.field.clone();
         if self.goal.is_none() {
@@ -484,7 +489,8 @@ impl PotentialFieldLab {
         u.iter()
             .map(|v| {
                 let t = ((v - lo) / span).clamp(0.0, 1.0);
-                (0.03 + 0.97 * t.sqrt()) as f32
+                let band = (t * HEAT_BANDS as f64).floor() as u64 % 2;
+                (0.02 + 0.5 * t + 0.18 * band as f64) as f32
             })
             .collect()
     }
@@ -833,7 +839,7 @@ impl Experiment for PotentialFieldLab {
                 pos: g,
                 text: "goal".into(),
                 role: Role::Text,
-                offset_px: DVec2::new(-12.0, -12.0),
+                offset_px: DVec2::new(-14.0, -20.0),
             });
         }
         if self.trail.len() > 1 {
