@@ -168,6 +168,42 @@ test("potential: a goal behind two close obstacles is trapped in bounded time; t
     near(link.o3y, 1.2, "o3y");
   }));
 
+test("diffdrive on a touch screen: a tap drops a waypoint, a drag from it moves it, a swipe elsewhere scrolls", () =>
+  withPage(lab, { hasTouch: true, viewport: PHONE_TALL }, async (page, context) => {
+    await open(lab, page, "#/diffdrive/simulation?run=0");
+    const cdp = await context.newCDPSession(page);
+    const touch = (type, p) =>
+      cdp.send("Input.dispatchTouchEvent", {
+        type,
+        touchPoints: p ? [{ x: Math.round(p.x), y: Math.round(p.y), id: 1 }] : [],
+      });
+    const tapAt = await worldToPage(page, 5, 2);
+    await touch("touchStart", tapAt);
+    await touch("touchEnd");
+    await page.waitForFunction(() => document.querySelector("[data-readout=waypoints]").textContent === "0 of 1");
+    // A drag that starts on the waypoint moves it, and the page does not scroll.
+    const scrollBefore = await page.evaluate(() => scrollY);
+    const to = await worldToPage(page, 3, 4);
+    await touch("touchStart", tapAt);
+    for (let i = 1; i <= 8; i++) {
+      await touch("touchMove", { x: tapAt.x + ((to.x - tapAt.x) * i) / 8, y: tapAt.y + ((to.y - tapAt.y) * i) / 8 });
+    }
+    await touch("touchEnd");
+    await page.waitForFunction(() => /w1y=/.test(location.hash));
+    await settle(page);
+    const link = await linkParams(page);
+    near(link.w1x, 3, "w1x after the drag");
+    near(link.w1y, 4, "w1y after the drag");
+    assert.equal(await page.evaluate(() => scrollY), scrollBefore, "dragging a waypoint does not scroll");
+    // A vertical swipe that starts off every waypoint scrolls the page instead.
+    const from = await worldToPage(page, 7, 1);
+    await touch("touchStart", from);
+    for (let i = 1; i <= 8; i++) await touch("touchMove", { x: from.x, y: from.y - 25 * i });
+    await touch("touchEnd");
+    await page.waitForFunction((y) => scrollY > y, scrollBefore);
+    assert.equal((await readouts(page)).waypoints, "0 of 1", "the swipe dropped no waypoint");
+  }));
+
 test("mobile experiments: screenshots of the Simulation tab at desktop and phone sizes", async () => {
   const pages = [
     ["diffdrive", "#/diffdrive/simulation?w1x=3&w1y=4.5&w2x=6.5&w2y=4&w3x=7&w3y=1.2", /waypoint 2 of 3/],

@@ -46,7 +46,7 @@ pub const TOLERANCE_M: f64 = 0.05;
 /// A press within this distance of a waypoint grabs it, metres.
 const GRAB_M: f64 = 0.25;
 /// A press that moves less than this before release is a tap, metres.
-const TAP_SLOP_M: f64 = 0.05;
+const TAP_SLOP_M: f64 = 0.08;
 /// Drawn body radius of the robot, metres.
 pub const BODY_RADIUS_M: f64 = 0.18;
 /// Plots keep at most this many samples per series (older ones are dropped).
@@ -213,10 +213,12 @@ pub(crate) fn draw_field(out: &mut Scene, w: f64, h: f64) {
     });
 }
 
-/// A press in progress on a waypoint: a tap removes it, a drag moves it.
+/// A press in progress. On a waypoint (`slot`) a tap removes it and a drag
+/// moves it; elsewhere a tap queues a new waypoint when it is released, and
+/// a drag does nothing (on a touch screen it is a swipe that scrolls the page).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Press {
-    slot: usize,
+    slot: Option<usize>,
     at: DVec2,
     moved: bool,
 }
@@ -589,44 +591,45 @@ impl Experiment for DiffDrive {
                 if !p.is_finite() {
                     return;
                 }
-                if let Some(slot) = self.waypoint_near(p, GRAB_M) {
-                    self.press = Some(Press {
-                        slot,
-                        at: p,
-                        moved: false,
-                    });
-                    self.selected = Some(slot);
-                } else {
-                    // A new waypoint, held so a drag can place it precisely.
-                    self.press = self.add_waypoint(p).map(|slot| Press {
-                        slot,
-                        at: p,
-                        moved: true,
-                    });
+                let slot = self.waypoint_near(p, GRAB_M);
+                if slot.is_some() {
+                    self.selected = slot;
                 }
+                self.press = Some(Press {
+                    slot,
+                    at: p,
+                    moved: false,
+                });
             }
             Input::PointerMove { pos, pressed: true } => {
-                if let Some(press) = self.press.as_mut() {
-                    if !pos.is_finite() {
-                        return;
-                    }
-                    if (pos - press.at).length() > TAP_SLOP_M {
-                        press.moved = true;
-                    }
-                    let slot = press.slot;
-                    if press.moved {
-                        self.move_waypoint(slot, pos);
-                    }
+                let Some(mut press) = self.press else { return };
+                if !pos.is_finite() {
+                    return;
+                }
+                if (pos - press.at).length() > TAP_SLOP_M {
+                    press.moved = true;
+                }
+                self.press = Some(press);
+                if let (Some(slot), true) = (press.slot, press.moved) {
+                    self.move_waypoint(slot, pos);
                 }
             }
             Input::PointerMove { pressed: false, .. } => {}
-            Input::PointerUp(_) => {
-                if let Some(press) = self.press.take() {
-                    if !press.moved {
-                        self.remove_waypoint(press.slot);
-                    }
+            Input::PointerUp(_) => match self.press.take() {
+                Some(Press {
+                    slot: Some(slot),
+                    moved: false,
+                    ..
+                }) => self.remove_waypoint(slot),
+                Some(Press {
+                    slot: None,
+                    moved: false,
+                    at,
+                }) => {
+                    self.add_waypoint(at);
                 }
-            }
+                _ => {}
+            },
             Input::Nudge(delta) => {
                 if !delta.is_finite() {
                     return;
@@ -1138,6 +1141,29 @@ mod tests {
         assert_eq!(d.waypoints()[0], DVec2::new(2.16, 5.0));
         d.action("clear").unwrap();
         assert!(d.waypoints().is_empty() && !d.animating());
+    }
+
+    /// On a touch screen a swipe that starts off every waypoint scrolls the
+    /// page; the page still reports it as a press and a move, so a press
+    /// only queues a waypoint when it is released where it started.
+    #[test]
+    fn a_swipe_off_the_waypoints_queues_nothing() {
+        let mut d = DiffDrive::default();
+        d.input(Input::PointerDown(DVec2::new(4.0, 1.0)));
+        d.input(Input::PointerMove {
+            pos: DVec2::new(4.0, 1.6),
+            pressed: true,
+        });
+        d.input(Input::PointerUp(DVec2::new(4.0, 1.6)));
+        assert!(d.waypoints().is_empty());
+        // A click with a little jitter still counts as a tap.
+        d.input(Input::PointerDown(DVec2::new(4.0, 1.0)));
+        d.input(Input::PointerMove {
+            pos: DVec2::new(4.02, 1.01),
+            pressed: true,
+        });
+        d.input(Input::PointerUp(DVec2::new(4.02, 1.01)));
+        assert_eq!(d.waypoints(), vec![DVec2::new(4.0, 1.0)]);
     }
 
     #[test]

@@ -68,6 +68,8 @@ const ARROW_SPACING_M: f64 = 0.5;
 const FORCE_SCALE_M: f64 = 0.6;
 /// A press within this distance of the goal or the start grabs it, metres.
 const GRAB_M: f64 = 0.3;
+/// A press that moves less than this before release is a tap, metres.
+const TAP_SLOP_M: f64 = 0.08;
 /// Plot samples every this many steps.
 const PLOT_EVERY: u64 = 2;
 /// Where obstacle slots 1–6 sit until placed elsewhere (the first two are
@@ -148,6 +150,13 @@ enum Mode {
     Remove,
 }
 
+/// A press that places something when it is released in place.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Tap {
+    at: DVec2,
+    moved: bool,
+}
+
 /// Something that can be dragged (and moved with the arrow keys).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Handle {
@@ -174,6 +183,9 @@ pub struct PotentialFieldLab {
     steps: u64,
     mode: Option<Mode>,
     dragging: Option<Handle>,
+    /// A press off every handle: a goal (or, after Add obstacle, an
+    /// obstacle) is placed where it was pressed if it is released without moving.
+    tap: Option<Tap>,
     selected: Handle,
     notice: Option<&'static str>,
     /// Goal distance and |F_rep| against time.
@@ -237,6 +249,7 @@ impl Default for PotentialFieldLab {
             steps: 0,
             mode: None,
             dragging: None,
+            tap: None,
             selected: Handle::Goal,
             notice: None,
             plots: new_plots(),
@@ -645,36 +658,63 @@ impl Experiment for PotentialFieldLab {
                     return;
                 }
                 self.notice = None;
-                match self.mode.take() {
+                self.tap = None;
+                match self.mode {
                     Some(Mode::Add) => {
-                        self.dragging = self.add_obstacle(p).map(Handle::Obstacle);
+                        self.tap = Some(Tap {
+                            at: p,
+                            moved: false,
+                        });
                     }
                     Some(Mode::Remove) => {
+                        self.mode = None;
                         if let Some(i) = self.obstacle_at(p, 0.1) {
                             self.remove_obstacle(i);
                         } else {
                             self.notice = Some("no obstacle there: nothing removed");
                         }
                     }
-                    None => {
-                        let handle = self.handle_under(p, GRAB_M).unwrap_or_else(|| {
-                            self.set_goal(p);
-                            Handle::Goal
-                        });
-                        self.dragging = Some(handle);
-                    }
-                }
-                if let Some(h) = self.dragging {
-                    self.selected = h;
+                    None => match self.handle_under(p, GRAB_M) {
+                        Some(handle) => {
+                            self.dragging = Some(handle);
+                            self.selected = handle;
+                        }
+                        None => {
+                            self.tap = Some(Tap {
+                                at: p,
+                                moved: false,
+                            });
+                        }
+                    },
                 }
             }
             Input::PointerMove { pos, pressed: true } => {
                 if let Some(h) = self.dragging {
                     self.move_handle(h, pos);
+                } else if let Some(tap) = self.tap.as_mut() {
+                    if pos.is_finite() && (pos - tap.at).length() > TAP_SLOP_M {
+                        tap.moved = true;
+                    }
                 }
             }
             Input::PointerMove { pressed: false, .. } => {}
-            Input::PointerUp(_) => self.dragging = None,
+            Input::PointerUp(_) => {
+                self.dragging = None;
+                let Some(tap) = self.tap.take() else { return };
+                if tap.moved {
+                    // A swipe (it scrolls the page on a touch screen): nothing placed.
+                    return;
+                }
+                if self.mode == Some(Mode::Add) {
+                    self.mode = None;
+                    if let Some(slot) = self.add_obstacle(tap.at) {
+                        self.selected = Handle::Obstacle(slot);
+                    }
+                } else {
+                    self.set_goal(tap.at);
+                    self.selected = Handle::Goal;
+                }
+            }
             Input::Nudge(delta) => {
                 if !delta.is_finite() {
                     return;
@@ -746,6 +786,7 @@ impl Experiment for PotentialFieldLab {
         self.restart_run();
         self.mode = None;
         self.notice = None;
+        self.tap = None;
         if self.basin.is_some() {
             self.start_basin();
         }
@@ -1264,16 +1305,28 @@ mod tests {
         let mut e = PotentialFieldLab::default();
         e.action("add").unwrap();
         assert_eq!(e.status().text, "click where the new obstacle goes");
+        // A swipe places nothing and keeps the mode; a tap places the obstacle.
         e.input(Input::PointerDown(DVec2::new(6.0, 1.0)));
         e.input(Input::PointerMove {
-            pos: DVec2::new(6.5, 1.25),
+            pos: DVec2::new(6.0, 2.0),
             pressed: true,
         });
-        e.input(Input::PointerUp(DVec2::new(6.5, 1.25)));
+        e.input(Input::PointerUp(DVec2::new(6.0, 2.0)));
+        assert_eq!(e.obstacles().len(), 2);
+        assert_eq!(e.status().text, "click where the new obstacle goes");
+        click(&mut e, DVec2::new(6.5, 1.25));
         assert_eq!(e.obstacles().len(), 3);
         assert_eq!(e.param("o3x"), Some(6.5));
         assert_eq!(e.param("nobs"), Some(3.0));
         assert!(e.goal.is_none(), "placing an obstacle sets no goal");
+        // A swipe off every handle sets no goal either.
+        e.input(Input::PointerDown(DVec2::new(7.0, 5.0)));
+        e.input(Input::PointerMove {
+            pos: DVec2::new(7.0, 4.0),
+            pressed: true,
+        });
+        e.input(Input::PointerUp(DVec2::new(7.0, 4.0)));
+        assert!(e.goal.is_none());
         // Drag obstacle 1 by its edge.
         let c = e.obstacles()[0].centre;
         e.input(Input::PointerDown(c + DVec2::new(0.3, 0.0)));
