@@ -609,6 +609,8 @@ fn plots_hold_finite_data_and_export_every_sample() {
     for (id, keys) in [
         ("dls", &["error", "manipulability"][..]),
         ("workspace", &["radii"][..]),
+        ("diffdrive", &["motion"][..]),
+        ("potential", &["run"][..]),
         ("ekf", &["error_x", "error_y", "nees", "trace", "anees"][..]),
     ] {
         let mut exp = (labcore::find(id).expect("registered").make)();

@@ -6,11 +6,13 @@ use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
 pub mod cartpole;
+pub mod diffdrive;
 pub mod dls;
 pub mod ekf;
 pub mod fk;
 pub mod ik;
 pub mod pid;
+pub mod potential;
 pub mod workspace;
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
@@ -57,7 +59,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 7] = [
+static REGISTRY: [Entry; 9] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -77,6 +79,20 @@ static REGISTRY: [Entry; 7] = [
         content_json: include_str!("../../../../assets/workspace.json"),
         make: || Box::new(workspace::Workspace::default()),
         generators: workspace::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "diffdrive",
+        content_json: include_str!("../../../../assets/diffdrive.json"),
+        make: || Box::new(diffdrive::DiffDrive::default()),
+        generators: diffdrive::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "potential",
+        content_json: include_str!("../../../../assets/potential.json"),
+        make: || Box::new(potential::PotentialFieldLab::default()),
+        generators: potential::quiz_generator,
         parsed: OnceLock::new(),
     },
     Entry {
