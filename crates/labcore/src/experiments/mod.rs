@@ -5,6 +5,7 @@ use crate::experiment::Experiment;
 use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
+pub mod astar;
 pub mod dls;
 pub mod fk;
 pub mod ik;
