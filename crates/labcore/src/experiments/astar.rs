@@ -715,7 +715,7 @@ impl AStarGrid {
         let mut left = self.driven_m;
         for w in self.path.windows(2) {
             let len = (w[1] - w[0]).length();
-            if left <= len && len > 0.0 {
+            if left < len && len > 0.0 {
                 return Some(w[0] + (w[1] - w[0]) * (left / len));
             }
             left -= len;

@@ -9,6 +9,7 @@ pub mod astar;
 pub mod dls;
 pub mod fk;
 pub mod ik;
+pub mod rrtstar;
 pub mod workspace;
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
