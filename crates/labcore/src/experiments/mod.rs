@@ -50,7 +50,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 4] = [
+static REGISTRY: [Entry; 6] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -73,10 +73,24 @@ static REGISTRY: [Entry; 4] = [
         parsed: OnceLock::new(),
     },
     Entry {
+        id: "astar",
+        content_json: include_str!("../../../../assets/astar.json"),
+        make: || Box::new(astar::AStarGrid::default()),
+        generators: astar::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
         id: "dls",
         content_json: include_str!("../../../../assets/dls.json"),
         make: || Box::new(dls::DampedLeastSquares::default()),
         generators: dls::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "rrtstar",
+        content_json: include_str!("../../../../assets/rrtstar.json"),
+        make: || Box::new(rrtstar::RrtStarField::default()),
+        generators: rrtstar::quiz_generator,
         parsed: OnceLock::new(),
     },
 ];
