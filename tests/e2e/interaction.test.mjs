@@ -124,3 +124,36 @@ test("quiz: submitting with no answers scores 0 / N, and a new attempt draws new
     );
   }
 });
+
+test("quiz: an instructor's link fixes the attempt, and answers survive a reload", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/ik/quiz?quiz=123");
+    assert.equal(await page.locator("form.quiz .quiz-seed").innerText(), "123");
+    const prompts = await page.locator("form.quiz .quiz-q").evaluateAll((qs) => qs.map((q) => q.innerText));
+    // Answer the first numeric question, then reload the page.
+    const field = page.locator("form.quiz .quiz-numeric input").first();
+    await field.fill("0.5");
+    await field.dispatchEvent("input");
+    await page.reload();
+    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    assert.equal(await page.locator("form.quiz .quiz-seed").innerText(), "123");
+    assert.equal(await page.locator("form.quiz .quiz-numeric input").first().inputValue(), "0.5");
+    const again = await page.locator("form.quiz .quiz-q").evaluateAll((qs) => qs.map((q) => q.innerText));
+    assert.deepEqual(again, prompts, "the same numbers for the whole class");
+  }));
+
+test("a number field says what it read: '1,5' is refused with a reason, '0.5 rad' converts to degrees", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/simulation?t1=35");
+    const box = page.locator("article.exp:not([hidden]) input[type=text][data-param=t1]");
+    await box.fill("1,5");
+    await box.press("Enter");
+    const message = page.locator("article.exp:not([hidden]) .sim-message");
+    await message.waitFor({ state: "visible" });
+    assert.match(await message.innerText(), /comma only separates thousands/);
+    assert.equal(await page.locator("article.exp:not([hidden]) input[type=range][data-param=t1]").inputValue(), "35", "kept");
+    await box.fill("0.5 rad");
+    await box.press("Enter");
+    await page.waitForFunction(() => /Read “0\.5 rad” as 28\.6/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
+    await page.waitForFunction(() => /t1=28\.648/.test(location.hash));
+  }));

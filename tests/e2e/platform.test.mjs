@@ -274,6 +274,37 @@ test("a 512×512 grid plus 100,000 segments paints as two display-list items wit
     assert.ok(ms < 50, `${ms} ms per frame`);
   }));
 
+test("a plot of two 10,000-point series draws well within a frame (decimated; the CSV keeps every sample)", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/simulation");
+    await page.waitForFunction(() => window.labweb && window.labweb.bench_plot);
+    await page.evaluate(() => window.labweb.bench_plot(10000, 2));
+    const ms = await page.evaluate(() => window.labweb.bench_plot(10000, 20));
+    console.log(`plot of 2 × 10,000 points: ${ms.toFixed(2)} ms per frame`);
+    assert.ok(ms < 8, `${ms} ms per frame`);
+  }));
+
+test("while the engine downloads, the Simulation tab shows its progress", async () => {
+  const context = await lab.browser.newContext();
+  try {
+    const page = await context.newPage();
+    // Hold the wasm back a moment, as a slow network would.
+    await page.route(/labweb_bg\.wasm/, async (route) => {
+      await new Promise((ok) => setTimeout(ok, 1200));
+      await route.continue();
+    });
+    await page.goto(`${lab.server.base}index.html#/fk/simulation`);
+    const wait = page.locator(`${ART} [data-panel=simulation] .wasm-wait`);
+    await wait.waitFor({ state: "visible" });
+    assert.match(await wait.innerText(), /Loading the simulation engine/);
+    assert.equal(await wait.locator("progress").count(), 1);
+    await waitReady(page);
+    await page.locator(`${ART} canvas.sim-canvas`).waitFor({ state: "visible" });
+  } finally {
+    await context.close();
+  }
+});
+
 test("dark mode: the simulation and its plots are drawn dark", () =>
   withPage(lab, { colorScheme: "dark" }, async (page) => {
     await open(lab, page, "#/dls/simulation?tx=1.3&ty=1.1&rate=60");

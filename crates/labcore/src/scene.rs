@@ -13,6 +13,15 @@ pub struct ViewBox {
 }
 
 impl ViewBox {
+    /// A square view centred on the origin that frames an arm of reach
+    /// `reach_m`: the reach fills the canvas with a 15 % margin for targets
+    /// just outside it.
+    #[must_use]
+    pub fn framing(reach_m: f64) -> Self {
+        let reach = if reach_m.is_finite() { reach_m } else { 1.0 };
+        Self::centered((reach * 1.15).max(0.5))
+    }
+
     /// A square view centred on the origin with half-width `half_m`.
     #[must_use]
     pub fn centered(half_m: f64) -> Self {

@@ -136,6 +136,7 @@ pub fn paint(
     dpr: f64,
     palette: &Palette,
 ) {
+    let width_px_canvas = width_px;
     let _ = ctx.set_transform(dpr, 0.0, 0.0, dpr, 0.0, 0.0);
     ctx.set_fill_style_str(&palette.background);
     ctx.fill_rect(0.0, 0.0, width_px, height_px);
@@ -351,8 +352,21 @@ pub fn paint(
                 segments,
                 width_px,
                 role,
+            } if segments.len() >= RASTER_SEGMENTS_MIN => paint_segments_raster(
+                ctx,
+                viewport,
+                palette.colour(*role),
+                segments,
+                *width_px,
+                (width_px_canvas, height_px),
+                dpr,
+            ),
+            Item::Segments {
+                segments,
+                width_px,
+                role,
             } => {
-                // One path, one stroke: 100,000 edges cost one draw call.
+                // One path, one stroke.
                 ctx.begin_path();
                 for (a, b) in segments {
                     let (a, b) = (viewport.to_px(*a), viewport.to_px(*b));
@@ -434,6 +448,117 @@ fn trace_arrow(ctx: &CanvasRenderingContext2d, a: DVec2, b: DVec2, width_px: f64
     ctx.move_to(back.x + n.x * head * 0.5, back.y + n.y * head * 0.5);
     ctx.line_to(b.x, b.y);
     ctx.line_to(back.x - n.x * head * 0.5, back.y - n.y * head * 0.5);
+}
+
+/// Segment batches at least this large are rasterised in wasm into one image
+/// (a call per vertex across the wasm boundary costs more than the drawing:
+/// 100,000 edges took about 24 ms stroked as a path in software-rendered
+/// Chromium); smaller batches are stroked as an anti-aliased path.
+const RASTER_SEGMENTS_MIN: usize = 4000;
+
+thread_local! {
+    /// The RGBA buffer big segment batches are drawn into, reused across frames.
+    static SEGMENT_BUFFER: std::cell::RefCell<Vec<u8>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Draws a large batch of segments as 1–2 device-pixel lines (Bresenham,
+/// clipped to the canvas by Liang–Barsky) into one RGBA image, then composites
+/// it with a single `drawImage`.
+fn paint_segments_raster(
+    ctx: &CanvasRenderingContext2d,
+    viewport: &Viewport,
+    colour: &str,
+    segments: &[(DVec2, DVec2)],
+    width_px: f64,
+    (css_w, css_h): (f64, f64),
+    dpr: f64,
+) {
+    let w = (css_w * dpr).round().max(1.0) as usize;
+    let h = (css_h * dpr).round().max(1.0) as usize;
+    let [r, g, b] = hex_rgb(colour);
+    let pixel = [r, g, b, 235];
+    let thick = (width_px * dpr).round() >= 2.0;
+    SEGMENT_BUFFER.with(|buffer| {
+        let mut rgba = buffer.borrow_mut();
+        rgba.clear();
+        rgba.resize(w * h * 4, 0);
+        let mut plot = |x: i64, y: i64| {
+            if x >= 0 && y >= 0 && (x as usize) < w && (y as usize) < h {
+                let i = (y as usize * w + x as usize) * 4;
+                rgba[i..i + 4].copy_from_slice(&pixel);
+            }
+        };
+        for (a, b) in segments {
+            let (a, b) = (viewport.to_px(*a) * dpr, viewport.to_px(*b) * dpr);
+            let Some((a, b)) = clip_segment(a, b, w as f64 - 1.0, h as f64 - 1.0) else {
+                continue;
+            };
+            bresenham(a, b, |x, y| {
+                plot(x, y);
+                if thick {
+                    plot(x + 1, y);
+                    plot(x, y + 1);
+                }
+            });
+        }
+        blit_to(ctx, &rgba, (w, h), (0.0, 0.0, css_w, css_h), true);
+    });
+}
+
+/// Liang–Barsky clipping of segment `a`–`b` to `[0, max_x] × [0, max_y]`.
+fn clip_segment(a: DVec2, b: DVec2, max_x: f64, max_y: f64) -> Option<(DVec2, DVec2)> {
+    if !(a.is_finite() && b.is_finite()) {
+        return None;
+    }
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-d.x, a.x),
+        (d.x, max_x - a.x),
+        (-d.y, a.y),
+        (d.y, max_y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+            if t0 > t1 {
+                return None;
+            }
+        }
+    }
+    Some((a + d * t0, a + d * t1))
+}
+
+/// Integer Bresenham line from `a` to `b` (both already clipped).
+fn bresenham(a: DVec2, b: DVec2, mut plot: impl FnMut(i64, i64)) {
+    let (mut x, mut y) = (a.x.round() as i64, a.y.round() as i64);
+    let (x1, y1) = (b.x.round() as i64, b.y.round() as i64);
+    let (dx, dy) = ((x1 - x).abs(), -(y1 - y).abs());
+    let (sx, sy) = (if x < x1 { 1 } else { -1 }, if y < y1 { 1 } else { -1 });
+    let mut err = dx + dy;
+    loop {
+        plot(x, y);
+        if x == x1 && y == y1 {
+            break;
+        }
+        let e2 = 2 * err;
+        if e2 >= dy {
+            err += dy;
+            x += sx;
+        }
+        if e2 <= dx {
+            err += dx;
+            y += sy;
+        }
+    }
 }
 
 /// Cell states as one RGBA image drawn by a single `drawImage`.
@@ -533,11 +658,32 @@ fn blit(
     cols: usize,
     rows: usize,
 ) {
+    let top_left = viewport.to_px(min + DVec2::new(0.0, rows as f64 * cell_m));
+    let size = cell_m * viewport.scale_px_per_m;
+    let rect = (
+        top_left.x,
+        top_left.y,
+        cols as f64 * size,
+        rows as f64 * size,
+    );
+    // Crisp cells: smoothing would smear them across boundaries.
+    blit_to(ctx, rgba, (cols, rows), rect, false);
+}
+
+/// Puts `rgba` (`w` × `h` pixels) on the reused off-screen canvas and draws
+/// it into `(x, y, width, height)` (CSS pixels) with one `drawImage`.
+fn blit_to(
+    ctx: &CanvasRenderingContext2d,
+    rgba: &[u8],
+    (w, h): (usize, usize),
+    (x, y, width, height): (f64, f64, f64, f64),
+    smooth: bool,
+) {
     HEATMAP_CANVAS.with(|offscreen| {
         let Some(offscreen) = offscreen else { return };
-        if offscreen.width() != cols as u32 || offscreen.height() != rows as u32 {
-            offscreen.set_width(cols as u32);
-            offscreen.set_height(rows as u32);
+        if offscreen.width() != w as u32 || offscreen.height() != h as u32 {
+            offscreen.set_width(w as u32);
+            offscreen.set_height(h as u32);
         }
         let Some(octx) = offscreen
             .get_context("2d")
@@ -549,22 +695,57 @@ fn blit(
         };
         let Ok(image) = web_sys::ImageData::new_with_u8_clamped_array_and_sh(
             wasm_bindgen::Clamped(rgba),
-            cols as u32,
-            rows as u32,
+            w as u32,
+            h as u32,
         ) else {
             return;
         };
         let _ = octx.put_image_data(&image, 0.0, 0.0);
-        let top_left = viewport.to_px(min + DVec2::new(0.0, rows as f64 * cell_m));
-        let size = cell_m * viewport.scale_px_per_m;
-        // Crisp cells: smoothing would smear them across boundaries.
-        ctx.set_image_smoothing_enabled(false);
-        let _ = ctx.draw_image_with_html_canvas_element_and_dw_and_dh(
-            offscreen,
-            top_left.x,
-            top_left.y,
-            cols as f64 * size,
-            rows as f64 * size,
-        );
+        ctx.set_image_smoothing_enabled(smooth);
+        let _ =
+            ctx.draw_image_with_html_canvas_element_and_dw_and_dh(offscreen, x, y, width, height);
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clipping_keeps_inside_parts_only() {
+        let c =
+            |a: (f64, f64), b: (f64, f64)| clip_segment(DVec2::from(a), DVec2::from(b), 10.0, 10.0);
+        assert_eq!(
+            c((1.0, 1.0), (5.0, 5.0)),
+            Some((DVec2::new(1.0, 1.0), DVec2::new(5.0, 5.0)))
+        );
+        assert_eq!(
+            c((-10.0, 5.0), (20.0, 5.0)),
+            Some((DVec2::new(0.0, 5.0), DVec2::new(10.0, 5.0)))
+        );
+        assert_eq!(c((-5.0, -5.0), (-1.0, 20.0)), None);
+        assert_eq!(c((f64::NAN, 0.0), (1.0, 1.0)), None);
+        // A far-away endpoint is clipped, not walked pixel by pixel.
+        let (a, b) = c((5.0, 5.0), (1e300, 5.0)).expect("crosses the canvas");
+        assert_eq!((a.x, b.x), (5.0, 10.0));
+    }
+
+    #[test]
+    fn bresenham_visits_every_pixel_once_from_end_to_end() {
+        let mut seen = Vec::new();
+        bresenham(DVec2::new(0.0, 0.0), DVec2::new(5.0, 2.0), |x, y| {
+            seen.push((x, y))
+        });
+        assert_eq!(seen.first(), Some(&(0, 0)));
+        assert_eq!(seen.last(), Some(&(5, 2)));
+        assert_eq!(seen.len(), 6, "one pixel per column of an x-major line");
+        let mut steep = Vec::new();
+        bresenham(DVec2::new(3.0, 7.0), DVec2::new(2.0, 0.0), |x, y| {
+            steep.push((x, y))
+        });
+        assert_eq!(steep.len(), 8);
+        assert!(steep
+            .windows(2)
+            .all(|w| (w[0].0 - w[1].0).abs() <= 1 && (w[0].1 - w[1].1).abs() == 1));
+    }
 }

@@ -166,3 +166,53 @@ fn time_paint(scene: labcore::Scene, frames: u32) -> f64 {
     let _ = ctx.get_image_data(0.0, 0.0, 1.0, 1.0);
     (dom::now_ms() - start) / f64::from(frames)
 }
+
+/// Paints a plot of two 10,000-sample series (`points` each) `frames` times
+/// on a 600×240 canvas; returns the mean milliseconds per frame. The plot
+/// keeps every sample and draws a min/max decimation of them.
+#[wasm_bindgen]
+pub fn bench_plot(points: u32, frames: u32) -> f64 {
+    use labcore::plot::{Plot, Series, SeriesRole};
+    use wasm_bindgen::JsCast;
+    let mut plot = Plot::new(
+        "bench",
+        "Benchmark",
+        ("Time", "s"),
+        ("Value", "m"),
+        vec![
+            Series::new("a", "m", SeriesRole::Primary),
+            Series::new("b", "m", SeriesRole::Secondary),
+        ],
+    );
+    let mut rng = labcore::Lcg64::new(3);
+    for i in 0..points {
+        let t = f64::from(i) * 0.01;
+        plot.series[0].push(t, labcore::math::sin(t) + rng.range(-0.1, 0.1));
+        plot.series[1].push(t, labcore::math::cos(t * 0.3));
+    }
+    let Some(canvas) = dom::document()
+        .create_element("canvas")
+        .ok()
+        .and_then(|c| c.dyn_into::<web_sys::HtmlCanvasElement>().ok())
+    else {
+        return f64::NAN;
+    };
+    canvas.set_width(600);
+    canvas.set_height(240);
+    let Some(ctx) = canvas
+        .get_context("2d")
+        .ok()
+        .flatten()
+        .and_then(|c| c.dyn_into::<web_sys::CanvasRenderingContext2d>().ok())
+    else {
+        return f64::NAN;
+    };
+    let palette = draw::Palette::from_css(&canvas);
+    let frames = frames.max(1);
+    let start = dom::now_ms();
+    for _ in 0..frames {
+        plot_view::paint_plot(&ctx, &plot, &palette, (600.0, 240.0, 1.0));
+    }
+    let _ = ctx.get_image_data(0.0, 0.0, 1.0, 1.0);
+    (dom::now_ms() - start) / f64::from(frames)
+}

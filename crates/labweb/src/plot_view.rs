@@ -69,7 +69,7 @@ pub fn render(plot: &Plot) -> String {
 
 /// The pixel mapping of the last drawing, for the hover read-out.
 #[derive(Clone, Copy, Debug, Default)]
-struct Frame {
+pub(crate) struct Frame {
     x: (f64, f64),
     y: (f64, f64),
     log: bool,
@@ -275,7 +275,7 @@ fn css(palette: &Palette, var: &str) -> String {
 }
 
 /// Paints one plot; returns the mapping used.
-fn paint_plot(
+pub(crate) fn paint_plot(
     ctx: &CanvasRenderingContext2d,
     plot: &Plot,
     palette: &Palette,

@@ -63,8 +63,26 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
     } else {
         format!("<section class=\"plots\" aria-label=\"Plots\">{plots}</section>")
     };
+    let files = if exp.file_types().is_empty() {
+        String::new()
+    } else {
+        let accept = exp.file_types().join(",");
+        format!(
+            "<button type=\"button\" class=\"mini\" data-file=\"pick\">Load file…</button>\
+             <input type=\"file\" class=\"file-input\" accept=\"{}\" hidden>",
+            escape(&accept)
+        )
+    };
+    let save = if exp.export_text().is_some() {
+        "<button type=\"button\" class=\"mini\" data-export=\"text\">Save file</button>"
+    } else {
+        ""
+    };
+    let tables = tables_html(&exp.tables());
     let touch_note = if exp.captures_touch() {
-        "<p class=\"touch-note\">On a touch screen this canvas takes every touch; scroll the page by the margin beside it.</p>"
+        "<p class=\"touch-note\">On a touch screen this canvas takes every touch (you draw on it). \
+         <button type=\"button\" class=\"mini\" data-touch-mode aria-pressed=\"true\">Touch draws</button> \
+         Switch it off to scroll the page with a swipe over the canvas.</p>"
     } else {
         ""
     };
@@ -78,11 +96,12 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
                <p class=\"sim-status\" data-tone=\"{tone}\">{text}</p>\
              </div>{touch_note}\
              {timebar}\
-             <div class=\"sim-actions\">{actions}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button></div>\
+             <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button></div>\
            </div>\
            <div class=\"sim-side\">\
              <dl class=\"readouts\">{readouts}</dl>\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
+             <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
              <form class=\"sim-controls\" aria-label=\"Parameters\" onsubmit=\"return false\">{controls}</form>\
              <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
            </div>\
@@ -241,6 +260,9 @@ struct SimState {
     /// A touch that started off every handle: a tap if it lifts in place, a
     /// scroll if the browser takes it, a drag if it moves sideways.
     pending_touch: Option<(i32, DVec2, DVec2)>,
+    /// For an experiment that captures touch: whether touches draw (true)
+    /// or, switched off by the student, scroll like elsewhere.
+    touch_draws: bool,
     last_time_ms: Option<f64>,
     clock: Clock,
     plots: PlotView,
@@ -251,6 +273,8 @@ struct SimState {
     shown_values: Vec<Option<Option<f64>>>,
     shown_readouts: Vec<String>,
     shown_status: String,
+    shown_tables: Vec<labcore::Table>,
+    shown_view: labcore::ViewBox,
     hash_dirty: bool,
     last_hash_ms: f64,
     frame_times: FrameTimes,
@@ -304,7 +328,19 @@ impl SimState {
             self.canvas.set_height((h * dpr).round() as u32);
             self.needs_paint = true;
         }
-        self.viewport = Viewport::fit(self.exp.view(), w, h);
+        let view = self.exp.view();
+        if view != self.shown_view {
+            // The world rectangle shown, for tests and tools that click world points.
+            let _ = self.canvas.set_attribute(
+                "data-view",
+                &format!(
+                    "{},{},{},{}",
+                    view.min.x, view.min.y, view.max.x, view.max.y
+                ),
+            );
+            self.shown_view = view;
+        }
+        self.viewport = Viewport::fit(view, w, h);
     }
 
     fn to_world(&self, event: &PointerEvent) -> DVec2 {
@@ -504,6 +540,13 @@ impl SimState {
             }
             self.shown_status = status.text;
         }
+        let tables = self.exp.tables();
+        if tables != self.shown_tables {
+            if let Some(section) = query(&self.panel, ".tables") {
+                section.set_inner_html(&tables_html(&tables));
+            }
+            self.shown_tables = tables;
+        }
     }
 
     /// After a pointer release or a keyboard nudge: repaint, put the new state
@@ -700,14 +743,6 @@ impl SimView {
             })?;
         let palette = Palette::from_css(&canvas);
         let view = exp.view();
-        // The world rectangle shown, for tests and tools that click world points.
-        let _ = canvas.set_attribute(
-            "data-view",
-            &format!(
-                "{},{},{},{}",
-                view.min.x, view.min.y, view.max.x, view.max.y
-            ),
-        );
         let n_params = exp.params().len();
         let state = Rc::new(RefCell::new(SimState {
             exp,
@@ -721,6 +756,7 @@ impl SimView {
             dpr: 1.0,
             pressed_pointer: None,
             pending_touch: None,
+            touch_draws: true,
             last_time_ms: None,
             clock: Clock::default(),
             plots: PlotView::mount(panel),
@@ -730,6 +766,8 @@ impl SimView {
             shown_values: vec![None; n_params],
             shown_readouts: Vec::new(),
             shown_status: String::new(),
+            shown_tables: Vec::new(),
+            shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
             last_hash_ms: 0.0,
             frame_times: FrameTimes::default(),
@@ -750,7 +788,8 @@ impl SimView {
                 }
                 let mut st = s.borrow_mut();
                 let w = st.to_world(e);
-                if e.pointer_type() == "touch" && !st.exp.captures_touch() {
+                let captured = st.exp.captures_touch() && st.touch_draws;
+                if e.pointer_type() == "touch" && !captured {
                     let tolerance_m = TOUCH_GRAB_PX / st.viewport.scale_px_per_m;
                     if !st.exp.handle_at(w, tolerance_m) {
                         // Off every handle: let the browser scroll if it is a
@@ -765,10 +804,28 @@ impl SimView {
                 // on a handle is kept from scrolling by the touchstart below.
                 let _ = st.canvas.set_pointer_capture(e.pointer_id());
                 st.pressed_pointer = Some(e.pointer_id());
-                st.exp.input(Input::PointerDown(w));
+                st.exp.input_with(Input::PointerDown(w), modifiers(e));
                 st.needs_paint = true;
             },
         ));
+        // Files dropped on the canvas load like picked ones.
+        if !state.borrow().exp.file_types().is_empty() {
+            listeners.push(Listener::new(canvas_target, "dragover", |e: Event| {
+                e.prevent_default();
+            }));
+            let s = state.clone();
+            listeners.push(Listener::new(canvas_target, "drop", move |e: Event| {
+                e.prevent_default();
+                let file = e
+                    .dyn_ref::<web_sys::DragEvent>()
+                    .and_then(|d| d.data_transfer())
+                    .and_then(|d| d.files())
+                    .and_then(|f| f.get(0));
+                if let Some(file) = file {
+                    read_file(&s, file);
+                }
+            }));
+        }
         // A touch that grabbed a handle must not scroll the page.
         let s = state.clone();
         listeners.push(Listener::new(
@@ -808,11 +865,12 @@ impl SimView {
                         st.pending_touch = None;
                         let _ = st.canvas.set_pointer_capture(id);
                         st.pressed_pointer = Some(id);
-                        st.exp.input(Input::PointerDown(start));
+                        st.exp.input_with(Input::PointerDown(start), modifiers(e));
                     }
                 }
                 let pressed = st.pressed_pointer == Some(e.pointer_id());
-                st.exp.input(Input::PointerMove { pos: w, pressed });
+                st.exp
+                    .input_with(Input::PointerMove { pos: w, pressed }, modifiers(e));
                 if pressed {
                     st.needs_paint = true;
                     st.hash_dirty = true;
@@ -831,8 +889,8 @@ impl SimView {
                         st.pending_touch = None;
                         if kind == "pointerup" {
                             // A tap: it acts where it landed.
-                            st.exp.input(Input::PointerDown(start));
-                            st.exp.input(Input::PointerUp(start));
+                            st.exp.input_with(Input::PointerDown(start), modifiers(e));
+                            st.exp.input_with(Input::PointerUp(start), modifiers(e));
                             st.interaction_ended();
                         }
                         return;
@@ -843,7 +901,7 @@ impl SimView {
                 }
                 st.pressed_pointer = None;
                 let w = st.to_world(e);
-                st.exp.input(Input::PointerUp(w));
+                st.exp.input_with(Input::PointerUp(w), modifiers(e));
                 st.interaction_ended();
             }));
         }
@@ -885,7 +943,11 @@ impl SimView {
             let view = st.exp.view();
             let fraction = if e.shift_key() { 0.002 } else { 0.02 };
             let delta = dir * (view.max.x - view.min.x) * fraction;
-            st.exp.input(Input::Nudge(delta));
+            let mods = labcore::Modifiers {
+                shift: false,
+                ctrl: e.ctrl_key() || e.meta_key(),
+            };
+            st.exp.input_with(Input::Nudge(delta), mods);
             st.interaction_ended();
         }));
 
@@ -1016,6 +1078,23 @@ impl SimView {
                         "reset" => st.reset_run(),
                         _ => {}
                     }
+                } else if button.has_attribute("data-touch-mode") {
+                    st.touch_draws = !st.touch_draws;
+                    let on = st.touch_draws;
+                    let _ = button.set_attribute("aria-pressed", if on { "true" } else { "false" });
+                    let _ = st
+                        .canvas
+                        .set_attribute("data-touch", if on { "all" } else { "handles" });
+                } else if attr("data-file").as_deref() == Some("pick") {
+                    if let Some(input) = query(&st.panel, "input.file-input")
+                        .and_then(|i| i.dyn_into::<HtmlInputElement>().ok())
+                    {
+                        input.click();
+                    }
+                } else if attr("data-export").as_deref() == Some("text") {
+                    if let Some((name, text)) = st.exp.export_text() {
+                        plot_view::download(&name, "text/plain", &text);
+                    }
                 } else if attr("data-export").as_deref() == Some("png") {
                     st.paint();
                     export_png(&st.canvas, &format!("{}.png", st.file_stem()));
@@ -1031,6 +1110,17 @@ impl SimView {
             }));
             let s = state.clone();
             listeners.push(Listener::new(sim.as_ref(), "change", move |e: Event| {
+                if let Some(input) = e
+                    .target()
+                    .and_then(|t| t.dyn_into::<HtmlInputElement>().ok())
+                    .filter(|i| i.type_() == "file")
+                {
+                    if let Some(file) = input.files().and_then(|f| f.get(0)) {
+                        read_file(&s, file);
+                    }
+                    input.set_value("");
+                    return;
+                }
                 let Some(select) = e
                     .target()
                     .and_then(|t| t.dyn_into::<HtmlSelectElement>().ok())
@@ -1177,6 +1267,78 @@ impl SimView {
         st.plots.draw(st.exp.plots(), &st.palette, true);
         st.sync_timebar();
     }
+}
+
+/// The modifier keys of a pointer event (⌘ counts as Ctrl on a Mac).
+fn modifiers(e: &PointerEvent) -> labcore::Modifiers {
+    labcore::Modifiers {
+        shift: e.shift_key(),
+        ctrl: e.ctrl_key() || e.meta_key(),
+    }
+}
+
+/// The HTML of the experiment's tables.
+fn tables_html(tables: &[labcore::Table]) -> String {
+    tables
+        .iter()
+        .map(|t| {
+            let head: String = t
+                .columns
+                .iter()
+                .map(|c| format!("<th scope=\"col\">{}</th>", escape(c)))
+                .collect();
+            let body: String = t
+                .rows
+                .iter()
+                .enumerate()
+                .map(|(i, r)| {
+                    let cells: String = r.iter().map(|c| format!("<td>{}</td>", escape(c))).collect();
+                    let mark = if t.highlight == Some(i) {
+                        " class=\"current\" aria-current=\"true\""
+                    } else {
+                        ""
+                    };
+                    format!("<tr{mark}>{cells}</tr>")
+                })
+                .collect();
+            format!(
+                "<div class=\"table-scroll live-table\" data-table=\"{}\" tabindex=\"0\"><table><caption>{}</caption>\
+                 <thead><tr>{head}</tr></thead><tbody>{body}</tbody></table></div>",
+                t.key,
+                escape(&t.caption)
+            )
+        })
+        .collect()
+}
+
+/// Reads a dropped or picked file as text and hands it to the experiment.
+fn read_file(state: &Rc<RefCell<SimState>>, file: web_sys::File) {
+    let Ok(reader) = web_sys::FileReader::new() else {
+        return;
+    };
+    let name = file.name();
+    let s = state.clone();
+    let r = reader.clone();
+    let onload = Closure::once_into_js(move || {
+        let text = r
+            .result()
+            .ok()
+            .and_then(|v| v.as_string())
+            .unwrap_or_default();
+        let mut st = s.borrow_mut();
+        match st.exp.load_file(&name, &text) {
+            Ok(()) => {
+                st.show_message(Some(&format!("Loaded “{name}”.")));
+                st.clock.reset();
+            }
+            Err(e) => st.show_message(Some(&format!("Could not load “{name}”: {e}"))),
+        }
+        st.needs_paint = true;
+        st.hash_dirty = true;
+        st.plots_force = true;
+    });
+    reader.set_onload(Some(onload.unchecked_ref()));
+    let _ = reader.read_as_text(&file);
 }
 
 /// Saves the canvas as a PNG through a Blob URL.

@@ -10,13 +10,17 @@ const NAV_SLOT: &str = "<!--NAV-->";
 const PAGES_SLOT: &str = "<!--PAGES-->";
 const WASM_BYTES_SLOT: &str = "<!--WASM-BYTES-->";
 
-/// Every registered experiment's content file, parsed and validated; the
-/// error names the file and what is wrong in it.
+/// Every registered experiment's content file, read from `assets/` as it is
+/// on disk now, parsed and validated; the error names the file and what is
+/// wrong in it (the section, question or field).
 pub fn validate_content() -> Result<(), String> {
     let mut problems = Vec::new();
     for entry in labcore::registry() {
-        if let Err(e) = entry.parse_content() {
-            problems.push(format!("assets/{}.json: {e}", entry.id));
+        let path = crate::util::root().join(format!("assets/{}.json", entry.id));
+        let text = fs::read_to_string(&path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        if let Err(e) = check_one(entry, &text) {
+            problems.push(e);
         }
     }
     if problems.is_empty() {
@@ -27,6 +31,14 @@ pub fn validate_content() -> Result<(), String> {
             problems.join("\n  ")
         ))
     }
+}
+
+/// One content file's problem, prefixed with its path.
+fn check_one(entry: &labcore::Entry, text: &str) -> Result<(), String> {
+    entry
+        .parse_content_text(text)
+        .map(|_| ())
+        .map_err(|e| format!("assets/{}.json: {e}", entry.id))
 }
 
 /// The HTML of every page: the home page, then one hidden article per
@@ -69,6 +81,27 @@ mod tests {
     #[test]
     fn every_content_file_is_valid() {
         validate_content().expect("content validates");
+    }
+
+    #[test]
+    fn a_broken_content_file_is_named_with_its_field() {
+        let entry = labcore::find("fk").expect("fk");
+        let good = entry.content_json;
+        assert!(check_one(entry, good).is_ok());
+        let no_aim = good.replacen("\"aim\"", "\"aims\"", 1);
+        let e = check_one(entry, &no_aim).unwrap_err();
+        assert!(
+            e.starts_with("assets/fk.json: ") && e.contains("aim"),
+            "{e}"
+        );
+        let bad_json = &good[..good.len() / 2];
+        let e = check_one(entry, bad_json).unwrap_err();
+        assert!(
+            e.starts_with("assets/fk.json: ") && e.contains("line"),
+            "{e}"
+        );
+        let no_refs = good.replace("\"references\": [", "\"references\": [] , \"x\": [");
+        assert!(check_one(entry, &no_refs).is_err());
     }
 
     #[test]

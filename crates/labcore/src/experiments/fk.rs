@@ -25,9 +25,6 @@ const PARAMS: &[ParamSpec] = &[
     ParamSpec::slider("l2", "L₂", "m", 0.2, 1.2, 0.05, 0.7),
 ];
 
-/// World half-width shown: the longest possible arm plus a margin (metres).
-const VIEW_HALF_M: f64 = 2.6;
-
 /// State of the forward-kinematics experiment.
 #[derive(Clone, Debug)]
 pub struct ForwardKinematics {
@@ -147,8 +144,9 @@ impl Experiment for ForwardKinematics {
         (self.tip() - p).length() <= tolerance_m
     }
 
+    /// The arm's current reach fills the canvas.
     fn view(&self) -> ViewBox {
-        ViewBox::centered(VIEW_HALF_M)
+        ViewBox::framing(self.l1_m + self.l2_m)
     }
 
     fn scene(&self, out: &mut Scene) {

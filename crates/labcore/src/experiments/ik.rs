@@ -318,8 +318,9 @@ impl Experiment for InverseKinematics {
         near(self.tip()) || self.target.is_some_and(near)
     }
 
+    /// The arm's current reach fills the canvas.
     fn view(&self) -> ViewBox {
-        ViewBox::centered(VIEW_HALF_M)
+        ViewBox::framing(self.l1_m + self.l2_m + self.l3_m)
     }
 
     fn scene(&self, out: &mut Scene) {

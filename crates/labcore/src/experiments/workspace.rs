@@ -320,8 +320,9 @@ impl Experiment for Workspace {
         (self.tip() - p).length() <= tolerance_m
     }
 
+    /// The arm's current reach fills the canvas.
     fn view(&self) -> ViewBox {
-        ViewBox::centered(VIEW_HALF_M)
+        ViewBox::framing(self.lengths_m.iter().sum::<f64>())
     }
 
     fn scene(&self, out: &mut Scene) {
