@@ -22,7 +22,7 @@
 //!
 //! **The link** holds every parameter and the walls as a wall code
 //! ([`encode_walls`], key `walls`) up to [`LINK_WALLS_MAX`] characters; a
-//! larger grid is left out of the link and the page says to use *Save map*
+//! larger grid is left out of the link and the page says to use *Save file*
 //! ([`Experiment::export_text`], a Moving AI `.map`) instead.
 
 use crate::experiment::{
@@ -1342,7 +1342,7 @@ impl Experiment for AStarGrid {
                 if self.walls_in_link() {
                     "holds the walls".to_owned()
                 } else {
-                    "too large for the walls: use Save map".to_owned()
+                    "too large for the walls: use Save file (.map)".to_owned()
                 },
             ),
         ]
@@ -1378,7 +1378,7 @@ impl Experiment for AStarGrid {
             Phase::Idle => Status::new(
                 match (&self.note, self.walls_in_link()) {
                     (_, false) => {
-                        "ready: the grid is too large for the link; use Save map to keep it"
+                        "ready: the grid is too large for the link; use Save file to keep it as a .map file"
                             .to_owned()
                     }
                     (Some(note), true) => format!("ready: {note}"),
@@ -1426,7 +1426,7 @@ impl Experiment for AStarGrid {
         if self.walls_in_link() {
             "Drag to paint or erase walls; Shift-click sets the start, Ctrl-click the goal (or drag them). Then press Plan & drive."
         } else {
-            "This grid is too large to keep in the link: use Save map to keep it as a .map file. Drag to paint walls; Shift-click sets the start, Ctrl-click the goal."
+            "This grid is too large to keep in the link: use Save file to keep it as a .map file. Drag to paint walls; Shift-click sets the start, Ctrl-click the goal."
         }
     }
 
@@ -1847,13 +1847,13 @@ mod tests {
         let link = format(&a, Tab::Simulation);
         assert!(!link.contains("walls="), "{}", &link[..200.min(link.len())]);
         assert!(link.len() < 300);
-        assert!(a.hint().contains("Save map"));
-        assert!(a.status().text.contains("Save map"));
+        assert!(a.hint().contains("Save file"));
+        assert!(a.status().text.contains("Save file"));
         assert_eq!(a.status().tone, Tone::Warning);
         let r = a.readouts();
         assert!(r
             .iter()
-            .any(|x| x.key == "link" && x.value.contains("Save map")));
+            .any(|x| x.key == "link" && x.value.contains("Save file")));
         // A malformed wall code is refused with a notice and changes nothing.
         let mut b = AStarGrid::default();
         let before = format(&b, Tab::Simulation);
