@@ -67,10 +67,10 @@ test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds 
 
     await page.click(`${ART} button[data-action=plan]`);
     // The open list panel: the cell being expanded is highlighted.
-    const open = page.locator(`${ART} [data-table=open]`);
-    await open.locator("tr.current").waitFor({ state: "visible" });
-    assert.deepEqual(await open.locator("thead th").allInnerTexts(), ["", "cell", "g", "h", "f"]);
-    assert.equal(await open.locator("tr.current td").first().innerText(), "expanding");
+    const openList = page.locator(`${ART} [data-table=open]`);
+    await openList.locator("tr.current").waitFor({ state: "visible" });
+    assert.deepEqual(await openList.locator("thead th").allInnerTexts(), ["", "cell", "g", "h", "f"]);
+    assert.equal(await openList.locator("tr.current td").first().innerText(), "expanding");
     await screenshot(page, "astar-searching");
     await waitStatus(page, /^arrived: path cost/);
     const r = await readouts(page);
