@@ -1228,8 +1228,11 @@ impl Experiment for AStarGrid {
             role: Role::Bound,
             fill: false,
         });
-        let compare_roles = [Role::Path, Role::Robot, Role::Warning, Role::Accent];
-        for (r, role) in self.compare.iter().zip(compare_roles) {
+        // Each planner's path in its own colour and dash, named in a legend
+        // at the top-left corner (labels on the paths would overlap where
+        // the paths agree).
+        let compare_roles = [Role::Path, Role::Robot, Role::Warning, Role::Target];
+        for (i, (r, role)) in self.compare.iter().zip(compare_roles).enumerate() {
             if r.path.len() >= 2 {
                 out.push(Item::Polyline {
                     points: r.path.clone(),
@@ -1238,14 +1241,18 @@ impl Experiment for AStarGrid {
                     dashed: role != Role::Path,
                     closed: false,
                 });
-                let mid = r.path[r.path.len() / 2];
-                out.push(Item::Label {
-                    pos: mid,
-                    text: r.name.clone(),
-                    role,
-                    offset_px: DVec2::new(6.0, -6.0),
-                });
             }
+            let line = if role == Role::Path {
+                "━━"
+            } else {
+                "╍╍"
+            };
+            out.push(Item::Label {
+                pos: DVec2::new(0.0, size.y),
+                text: format!("{line} {}", r.name),
+                role,
+                offset_px: DVec2::new(8.0, 18.0 + 17.0 * i as f64),
+            });
         }
         if self.compare.is_empty() && self.path.len() >= 2 {
             out.push(Item::Polyline {
