@@ -131,7 +131,7 @@ test("astar: a 512 × 512 maze is too large for the link and the page says to sa
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/astar/simulation?size=5&rate=50");
     await page.click(`${ART} button[data-action=maze]`);
-    await waitStatus(page, /too large for the link; use Save file/);
+    await waitStatus(page, /too large for the link: use Save file/);
     assert.match((await readouts(page)).link, /Save file/);
     await page.click(`${ART} button[data-action=plan]`);
     await waitStatus(page, /^(path found|arrived)/, 30_000);

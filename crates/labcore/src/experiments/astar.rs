@@ -509,12 +509,12 @@ impl AStarGrid {
     fn ends_problem(&self) -> Option<String> {
         if self.grid.is_blocked(self.start) {
             Some(format!(
-                "the start {} is inside a wall: Shift-click a free cell or erase the wall",
+                "the start {} is in a wall: move it or erase the wall",
                 self.start
             ))
         } else if self.grid.is_blocked(self.goal) {
             Some(format!(
-                "the goal {} is inside a wall: Ctrl-click a free cell or erase the wall",
+                "the goal {} is in a wall: move it or erase the wall",
                 self.goal
             ))
         } else {
@@ -1065,9 +1065,9 @@ impl Experiment for AStarGrid {
                 open.push_row(vec![
                     "expanding".into(),
                     cell.to_string(),
-                    format_fixed(g, 3),
-                    format_fixed(h, 3),
-                    format_fixed(f_of(g, h), 3),
+                    format_number(g, 3),
+                    format_number(h, 3),
+                    format_number(f_of(g, h), 3),
                 ]);
                 open.highlight = Some(0);
             }
@@ -1075,9 +1075,9 @@ impl Experiment for AStarGrid {
                 open.push_row(vec![
                     format!("{}", i + 1),
                     e.cell.to_string(),
-                    format_fixed(e.g, 3),
-                    format_fixed(e.h, 3),
-                    format_fixed(e.f, 3),
+                    format_number(e.g, 3),
+                    format_number(e.h, 3),
+                    format_number(e.f, 3),
                 ]);
             }
             tables.push(open);
@@ -1358,12 +1358,9 @@ impl Experiment for AStarGrid {
     fn status(&self) -> Status {
         let inadmissible = !self.heuristic.is_admissible(self.connectivity) || self.weight > 1.0;
         let caveat = if self.weight > 1.0 {
-            format!(
-                " (weighted: at most {}× the optimum)",
-                format_number(self.weight, 1)
-            )
+            format!(" (weighted: ≤ {}× optimum)", format_number(self.weight, 1))
         } else if inadmissible {
-            " (Manhattan overestimates diagonal moves: may not be optimal)".to_owned()
+            " (Manhattan overestimates diagonals)".to_owned()
         } else {
             String::new()
         };
@@ -1384,10 +1381,7 @@ impl Experiment for AStarGrid {
             }
             Phase::Idle => Status::new(
                 match (&self.note, self.walls_in_link()) {
-                    (_, false) => {
-                        "ready: the grid is too large for the link; use Save file to keep it as a .map file"
-                            .to_owned()
-                    }
+                    (_, false) => "ready; too large for the link: use Save file".to_owned(),
                     (Some(note), true) => format!("ready: {note}"),
                     (None, true) => "ready: press Plan & drive".to_owned(),
                 },
@@ -1637,11 +1631,7 @@ mod tests {
         assert_eq!(a.start(), Cell::new(9, 9));
         let st = a.status();
         assert_eq!(st.tone, Tone::Bad);
-        assert!(
-            st.text.contains("start (9, 9) is inside a wall"),
-            "{}",
-            st.text
-        );
+        assert!(st.text.contains("start (9, 9) is in a wall"), "{}", st.text);
         a.action("plan").unwrap();
         assert!(!a.animating());
         assert_eq!(a.status().tone, Tone::Bad);
@@ -1658,7 +1648,7 @@ mod tests {
         b.set_param("gx", 1.0).unwrap();
         b.set_param("gy", 1.0).unwrap();
         b.action("plan").unwrap();
-        assert!(b.status().text.contains("goal (1, 1) is inside a wall"));
+        assert!(b.status().text.contains("goal (1, 1) is in a wall"));
     }
 
     #[test]

@@ -1014,12 +1014,10 @@ impl Experiment for RrtStarField {
         if let Some(e) = self.error {
             let text = match e {
                 RrtError::StartNotFree => {
-                    "the start is inside an obstacle: drag it (or Shift-click) to free space"
-                        .to_owned()
+                    "the start is in an obstacle: drag it to free space".to_owned()
                 }
                 RrtError::GoalNotFree => {
-                    "the goal is inside an obstacle: drag it (or Ctrl-click) to free space"
-                        .to_owned()
+                    "the goal is in an obstacle: drag it to free space".to_owned()
                 }
                 e => e.to_string(),
             };
@@ -1052,18 +1050,12 @@ impl Experiment for RrtStarField {
                 format!("{what}… {} nodes, no path yet", tree.len()),
                 Tone::Neutral,
             ),
-            (true, Some(c)) => Status::new(
-                format!("{what}… best path {}", format_metres(c)),
-                Tone::Good,
-            ),
-            (false, Some(c)) => Status::new(
-                format!(
-                    "done: best path {} after {} iterations",
-                    format_metres(c),
-                    tree.iterations()
-                ),
-                Tone::Good,
-            ),
+            (true, Some(c)) => {
+                Status::new(format!("{what}… best {}", format_metres(c)), Tone::Good)
+            }
+            (false, Some(c)) => {
+                Status::new(format!("done: best path {}", format_metres(c)), Tone::Good)
+            }
             (false, None) => Status::new(
                 format!("no path found in {} iterations", tree.iterations()),
                 Tone::Warning,
@@ -1375,11 +1367,7 @@ mod tests {
         assert!(!f.animating());
         let st = f.status();
         assert_eq!(st.tone, Tone::Bad);
-        assert!(
-            st.text.contains("start is inside an obstacle"),
-            "{}",
-            st.text
-        );
+        assert!(st.text.contains("start is in an obstacle"), "{}", st.text);
         f.action("drive").unwrap();
         settle(&mut f);
         let mut scene = Scene::default();
