@@ -1440,4 +1440,34 @@ mod tests {
             assert!(d.answer.is_finite());
         }
     }
+
+    /// A 20,000-iteration tree: one frame's step and scene stay fast
+    /// (generous bound for a debug build on a shared machine).
+    #[test]
+    fn a_large_tree_steps_and_draws_quickly() {
+        let mut f = RrtStarField::default();
+        f.set_param("iters", 20000.0).unwrap();
+        f.set_param("batch", 24.0).unwrap();
+        f.action("grow").unwrap();
+        if let Some(run) = f.runs.first_mut() {
+            run.tree.iterate(19_000);
+        }
+        let mut scene = Scene::default();
+        let mut worst = 0.0f64;
+        for _ in 0..20 {
+            let t = std::time::Instant::now();
+            f.step(DT);
+            scene.clear();
+            f.scene(&mut scene);
+            worst = worst.max(t.elapsed().as_secs_f64());
+        }
+        let edges = f.shown().unwrap().len() - 1;
+        eprintln!(
+            "RRT* with {edges} edges: worst step + scene {:.2} ms",
+            worst * 1e3
+        );
+        assert!(edges > 10_000);
+        let bound = if cfg!(debug_assertions) { 0.25 } else { 0.01 };
+        assert!(worst < bound, "worst frame {worst} s");
+    }
 }
