@@ -219,9 +219,21 @@ pub struct ActionSpec {
 /// Why a parameter or action was refused. The experiment's state is unchanged.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ParamError {
-    UnknownKey { key: String },
-    NotFinite { key: &'static str },
-    UnknownAction { key: String },
+    UnknownKey {
+        key: String,
+    },
+    NotFinite {
+        key: &'static str,
+    },
+    UnknownAction {
+        key: String,
+    },
+    /// A text value of [`Experiment::set_extra_state`] that could not be read
+    /// (e.g. a malformed wall code); `reason` says what was wrong.
+    BadText {
+        key: String,
+        reason: String,
+    },
 }
 
 impl fmt::Display for ParamError {
@@ -230,6 +242,7 @@ impl fmt::Display for ParamError {
             ParamError::UnknownKey { key } => write!(f, "unknown parameter “{key}”"),
             ParamError::NotFinite { .. } => write!(f, "needs a finite number"),
             ParamError::UnknownAction { key } => write!(f, "unknown action “{key}”"),
+            ParamError::BadText { reason, .. } => write!(f, "{reason}"),
         }
     }
 }
@@ -482,6 +495,24 @@ pub trait Experiment {
     /// as a map when it is too large for a link. `None`: no such button.
     fn export_text(&self) -> Option<(String, String)> {
         None
+    }
+    /// Text-valued state that belongs in the link beside the numeric
+    /// parameters (e.g. a grid's walls as a wall code, obstacles), as
+    /// `(key, value)` pairs; [`crate::route::format`] appends them after the
+    /// parameters (percent-encoding anything outside the URL's unreserved
+    /// characters). A key may be left out, e.g. when the value would make the
+    /// link too long; the experiment then says so in its status or readouts.
+    /// Keys must differ from the [`Experiment::params`] keys. Default: none.
+    fn extra_state(&self) -> Vec<(&'static str, String)> {
+        Vec::new()
+    }
+    /// Applies one text value from a link ([`crate::route::apply_params`]
+    /// applies these before the numeric parameters, so e.g. a start cell is
+    /// checked against the grid the link describes). On error the state is
+    /// unchanged: [`ParamError::UnknownKey`] for a key the experiment does not
+    /// keep, [`ParamError::BadText`] for a value it cannot read.
+    fn set_extra_state(&mut self, key: &str, _value: &str) -> Result<(), ParamError> {
+        Err(ParamError::UnknownKey { key: key.into() })
     }
     /// Whether the canvas must take every touch (e.g. painting walls), so a
     /// swipe over it never scrolls the page. The page says so and offers a

@@ -3,7 +3,7 @@
 //! Parsing never fails: anything malformed falls back to a default and adds a
 //! short notice for the page to show.
 
-use crate::experiment::{Experiment, Sanitized};
+use crate::experiment::{Experiment, ParamError, Sanitized};
 use crate::quiz::format_number;
 
 /// The six tabs of an experiment page, in order.
@@ -177,12 +177,35 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
 
 /// Applies raw URL parameters to an experiment: unknown keys and unreadable
 /// numbers are skipped, out-of-range values are clamped; each problem becomes
-/// a notice. Returns the notices.
+/// a notice. Keys that are not numeric parameters go to
+/// [`Experiment::set_extra_state`] first (a grid before the start cell that
+/// must lie in it), then the numeric parameters in link order. Returns the
+/// notices in link order.
 pub fn apply_params(experiment: &mut dyn Experiment, params: &[(String, String)]) -> Vec<String> {
-    let mut notices = Vec::new();
-    for (key, raw) in params {
+    let is_numeric = |exp: &dyn Experiment, key: &str| exp.params().iter().any(|s| s.key == key);
+    let mut notices: Vec<(usize, String)> = Vec::new();
+    for (i, (key, raw)) in params.iter().enumerate() {
+        if is_numeric(experiment, key) {
+            continue;
+        }
+        match experiment.set_extra_state(key, raw) {
+            Ok(()) => {}
+            Err(ParamError::UnknownKey { .. }) => notices.push((
+                i,
+                format!("Unknown setting “{}” ignored.", truncate(key, 30)),
+            )),
+            Err(e) => notices.push((
+                i,
+                format!(
+                    "{}: {}; kept the current value.",
+                    truncate(key, 30),
+                    truncate(&e.to_string(), 120)
+                ),
+            )),
+        }
+    }
+    for (i, (key, raw)) in params.iter().enumerate() {
         let Some(spec) = experiment.params().iter().find(|s| s.key == key) else {
-            notices.push(format!("Unknown setting “{}” ignored.", truncate(key, 30)));
             continue;
         };
         let label = spec.label;
@@ -197,30 +220,38 @@ pub fn apply_params(experiment: &mut dyn Experiment, params: &[(String, String)]
                 }
             }
             _ => {
-                notices.push(format!(
-                    "{label}: “{}” is not a number; kept the current value.",
-                    truncate(raw, 30)
+                notices.push((
+                    i,
+                    format!(
+                        "{label}: “{}” is not a number; kept the current value.",
+                        truncate(raw, 30)
+                    ),
                 ));
                 continue;
             }
         };
         match experiment.set_param(key, value) {
             Ok(Sanitized::InRange(_)) => {}
-            Ok(Sanitized::Clamped(v)) => notices.push(format!(
-                "{label}: “{}” is out of range; using {}.",
-                truncate(raw.trim(), 30),
-                format_number(v, 3)
+            Ok(Sanitized::Clamped(v)) => notices.push((
+                i,
+                format!(
+                    "{label}: “{}” is out of range; using {}.",
+                    truncate(raw.trim(), 30),
+                    format_number(v, 3)
+                ),
             )),
-            Err(e) => notices.push(format!("{label}: {e}.")),
+            Err(e) => notices.push((i, format!("{label}: {e}."))),
         }
     }
-    notices
+    notices.sort_by_key(|(i, _)| *i);
+    notices.into_iter().map(|(_, n)| n).collect()
 }
 
-/// Builds the hash for an experiment, its tab and every parameter's current value.
+/// Builds the hash for an experiment, its tab, every parameter's current
+/// value and then its [`Experiment::extra_state`].
 #[must_use]
 pub fn format(experiment: &dyn Experiment, tab: Tab) -> String {
-    let query: Vec<String> = experiment
+    let mut query: Vec<String> = experiment
         .params()
         .iter()
         .filter_map(|s| {
@@ -229,11 +260,32 @@ pub fn format(experiment: &dyn Experiment, tab: Tab) -> String {
                 .map(|v| format!("{}={}", s.key, format_number(v, 3)))
         })
         .collect();
+    query.extend(
+        experiment
+            .extra_state()
+            .into_iter()
+            .map(|(k, v)| format!("{}={}", encode(k), encode(&v))),
+    );
     if query.is_empty() {
         format!("#/{}/{}", experiment.id(), tab.slug())
     } else {
         format!("#/{}/{}?{}", experiment.id(), tab.slug(), query.join("&"))
     }
+}
+
+/// Percent-encodes every byte outside RFC 3986's unreserved characters
+/// (`A–Z a–z 0–9 - . _ ~`), so a text value survives [`parse`] unchanged.
+#[must_use]
+pub fn encode(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for b in s.bytes() {
+        if b.is_ascii_alphanumeric() || matches!(b, b'-' | b'.' | b'_' | b'~') {
+            out.push(b as char);
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
 }
 
 /// [`format`] plus `quiz=<seed>` when the attempt's seed is fixed by the link,
@@ -404,5 +456,104 @@ mod tests {
         for s in ["%+31", "%+0", "%+a%+f", "%-0"] {
             assert!(!decode(s).chars().any(char::is_control), "{s}");
         }
+    }
+
+    /// A minimal experiment with one numeric parameter that must fit the
+    /// text-valued "grid" (its width), to test [`Experiment::extra_state`].
+    struct Texty {
+        width: usize,
+        x: f64,
+    }
+
+    impl Experiment for Texty {
+        fn id(&self) -> &'static str {
+            "fk"
+        }
+        fn params(&self) -> &'static [crate::ParamSpec] {
+            const P: &[crate::ParamSpec] = &[crate::ParamSpec::number("x", "X", 0.0, 100.0, 0.0)];
+            P
+        }
+        fn param(&self, key: &str) -> Option<f64> {
+            (key == "x").then_some(self.x)
+        }
+        fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
+            let applied = crate::experiment::check_param(self.params(), key, value)?;
+            // Clamped to the grid the text state describes.
+            let limit = (self.width - 1) as f64;
+            if applied.value() > limit {
+                self.x = limit;
+                return Ok(Sanitized::Clamped(limit));
+            }
+            self.x = applied.value();
+            Ok(applied)
+        }
+        fn extra_state(&self) -> Vec<(&'static str, String)> {
+            vec![("grid", format!("{}x1 é&", self.width))]
+        }
+        fn set_extra_state(&mut self, key: &str, value: &str) -> Result<(), ParamError> {
+            if key != "grid" {
+                return Err(ParamError::UnknownKey { key: key.into() });
+            }
+            let bad = || ParamError::BadText {
+                key: key.into(),
+                reason: "not a grid".into(),
+            };
+            let w = value.split_once('x').ok_or_else(bad)?.0;
+            self.width = w.parse().ok().filter(|w| *w > 0).ok_or_else(bad)?;
+            Ok(())
+        }
+        fn input(&mut self, _input: crate::Input) {}
+        fn step(&mut self, _dt_s: f64) {}
+        fn view(&self) -> crate::ViewBox {
+            crate::ViewBox::centered(1.0)
+        }
+        fn scene(&self, _out: &mut crate::Scene) {}
+        fn readouts(&self) -> Vec<crate::Readout> {
+            Vec::new()
+        }
+        fn status(&self) -> crate::Status {
+            crate::Status::new("", crate::experiment::Tone::Neutral)
+        }
+        fn hint(&self) -> &'static str {
+            ""
+        }
+    }
+
+    #[test]
+    fn text_state_round_trips_and_is_applied_before_numbers() {
+        let exp = Texty { width: 50, x: 42.0 };
+        let link = format(&exp, Tab::Simulation);
+        assert_eq!(link, "#/fk/simulation?x=42&grid=50x1%20%C3%A9%26");
+        let Page::Experiment { params, .. } = parse(&link, IDS).page else {
+            panic!("{link}");
+        };
+        assert_eq!(params[1], ("grid".to_owned(), "50x1 é&".to_owned()));
+        // x=42 only fits once the 50-wide grid is applied, though it comes first.
+        let mut fresh = Texty { width: 10, x: 0.0 };
+        assert!(apply_params(&mut fresh, &params).is_empty());
+        assert_eq!((fresh.width, fresh.x), (50, 42.0));
+        assert_eq!(format(&fresh, Tab::Simulation), link);
+        // A bad text value keeps the state and says why; notices stay in link order.
+        let raw = |pairs: &[(&str, &str)]| -> Vec<(String, String)> {
+            pairs
+                .iter()
+                .map(|(k, v)| ((*k).into(), (*v).into()))
+                .collect()
+        };
+        let notices = apply_params(
+            &mut fresh,
+            &raw(&[("x", "nope"), ("grid", "zz"), ("what", "1")]),
+        );
+        assert_eq!(
+            notices,
+            vec![
+                "X: “nope” is not a number; kept the current value.".to_owned(),
+                "grid: not a grid; kept the current value.".to_owned(),
+                "Unknown setting “what” ignored.".to_owned(),
+            ]
+        );
+        assert_eq!((fresh.width, fresh.x), (50, 42.0));
+        assert_eq!(encode("a-b.c_d~e09AZ"), "a-b.c_d~e09AZ");
+        assert_eq!(decode(&encode("x y/z%")), "x y/z%");
     }
 }

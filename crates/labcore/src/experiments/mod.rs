@@ -5,6 +5,7 @@ use crate::experiment::Experiment;
 use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
+pub mod astar;
 pub mod cartpole;
 pub mod diffdrive;
 pub mod dls;
@@ -13,6 +14,7 @@ pub mod fk;
 pub mod ik;
 pub mod pid;
 pub mod potential;
+pub mod rrtstar;
 pub mod workspace;
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
@@ -59,7 +61,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 9] = [
+static REGISTRY: [Entry; 11] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -96,6 +98,13 @@ static REGISTRY: [Entry; 9] = [
         parsed: OnceLock::new(),
     },
     Entry {
+        id: "astar",
+        content_json: include_str!("../../../../assets/astar.json"),
+        make: || Box::new(astar::AStarGrid::default()),
+        generators: astar::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
         id: "pid",
         content_json: include_str!("../../../../assets/pid.json"),
         make: || Box::new(pid::PidControl::default()),
@@ -114,6 +123,13 @@ static REGISTRY: [Entry; 9] = [
         content_json: include_str!("../../../../assets/dls.json"),
         make: || Box::new(dls::DampedLeastSquares::default()),
         generators: dls::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "rrtstar",
+        content_json: include_str!("../../../../assets/rrtstar.json"),
+        make: || Box::new(rrtstar::RrtStarField::default()),
+        generators: rrtstar::quiz_generator,
         parsed: OnceLock::new(),
     },
     Entry {

@@ -1,0 +1,1987 @@
+//! Experiment 6 — A* and Dijkstra on an editable occupancy grid.
+//!
+//! The student paints walls, places the start (Shift-click) and the goal
+//! (Ctrl-click), picks a heuristic, the connectivity and a weight, and presses
+//! *Plan & drive*: [`Search::step`] expands a fixed number of cells per fixed
+//! time step, so the open list (frontier) and the closed set grow on screen,
+//! then the robot drives the path found. A* orders its open list by
+//!
+//! ```text
+//! f(n) = g(n) + w · h(n)        (w = 1: plain A*; h = 0: Dijkstra)
+//! ```
+//!
+//! (Hart, Nilsson & Raphael, *IEEE Trans. SSC* 4(2), 1968; Dijkstra,
+//! *Numer. Math.* 1, 1959; Pohl, *Artificial Intelligence* 1(3), 1970 for the
+//! weight). *Compare* runs A*, Dijkstra, greedy best-first and weighted A* on
+//! the same grid and tabulates expansions, path cost and the ratio to the
+//! optimum (Dijkstra's cost).
+//!
+//! **World coordinates.** A cell is 1 m wide; cell `(x, y)` (row `y` counted
+//! downwards, as in [`OccupancyGrid`] and `.map` files) covers
+//! `[x, x + 1] × [H − y − 1, H − y]` of the world (y up).
+//!
+//! **The link** holds every parameter and the walls as a wall code
+//! ([`encode_walls`], key `walls`) up to [`LINK_WALLS_MAX`] characters; a
+//! larger grid is left out of the link and the page says to use *Save file*
+//! ([`Experiment::export_text`], a Moving AI `.map`) instead.
+
+use crate::experiment::{
+    check_param, format_fixed, ActionSpec, Experiment, Input, Modifiers, ParamError, ParamSpec,
+    Readout, Sanitized, Status, Tone,
+};
+use crate::planning::astar::{Search, SearchConfig, StepOutcome, Strategy};
+use crate::planning::grid::{Cell, Connectivity, OccupancyGrid};
+use crate::planning::heuristic::Heuristic;
+use crate::planning::maze::recursive_backtracker;
+use crate::planning::movingai::{parse_map, parse_scen, write_map, ARENA_MAP, ARENA_SCEN};
+use crate::planning::wall_code::{decode_walls, encode_walls, encoded_len};
+use crate::plot::{Plot, Series, SeriesRole};
+use crate::quiz::{format_number, Draw, Generator};
+use crate::rng::Lcg64;
+use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
+use crate::table::Table;
+use glam::DVec2;
+
+const HEURISTICS: &[&str] = &["Manhattan", "Octile", "Euclidean", "None (Dijkstra)"];
+const CONNECTIVITY: &[&str] = &["4-connected", "8-connected"];
+/// The grid sizes of the `size` choice (columns × rows); the last choice,
+/// "other", is any other size (a loaded map).
+pub const SIZES: [(usize, usize); 6] = [
+    (20, 15),
+    (32, 24),
+    (64, 48),
+    (128, 96),
+    (256, 192),
+    (512, 512),
+];
+const SIZE_LABELS: &[&str] = &[
+    "20 × 15",
+    "32 × 24",
+    "64 × 48",
+    "128 × 96",
+    "256 × 192",
+    "512 × 512",
+    "other (loaded map)",
+];
+const OTHER_SIZE: usize = SIZES.len();
+/// The largest grid side the experiment accepts (a loaded map or a link).
+pub const MAX_SIDE: usize = 1024;
+/// The longest wall code kept in the link, characters; above it the link
+/// leaves the walls out (about 2 kB keeps every link well inside what
+/// browsers and chat programs pass on).
+pub const LINK_WALLS_MAX: usize = 2000;
+/// Expansions per fixed step at speed 1 on a grid of this many cells; larger
+/// grids expand proportionally more, so every search takes a similar time.
+const CELLS_PER_EXPANSION: usize = 768;
+/// Rows of the open-list panel (the expanded cell and the next open cells).
+pub const OPEN_ROWS: usize = 8;
+/// The robot drives a path in at most this many seconds (and at least
+/// [`MIN_DRIVE_SPEED`] m/s), so a 512 × 512 path does not take minutes.
+const DRIVE_TIME_S: f64 = 6.0;
+const MIN_DRIVE_SPEED: f64 = 4.0; // m/s (cells per second)
+
+const PARAMS: &[ParamSpec] = &[
+    ParamSpec::choice("h", "Heuristic", HEURISTICS, 1),
+    ParamSpec::choice("conn", "Moves", CONNECTIVITY, 1),
+    ParamSpec::slider("w", "Weight w", "", 1.0, 5.0, 0.1, 1.0),
+    ParamSpec::slider("rate", "Speed", "×", 1.0, 50.0, 1.0, 3.0).whole_numbers(),
+    ParamSpec::choice("size", "Grid size", SIZE_LABELS, 1),
+    ParamSpec::number("seed", "Maze seed", 0.0, 999_999.0, 1.0),
+    ParamSpec::number("sx", "Start column", 0.0, (MAX_SIDE - 1) as f64, 3.0),
+    ParamSpec::number("sy", "Start row", 0.0, (MAX_SIDE - 1) as f64, 12.0),
+    ParamSpec::number("gx", "Goal column", 0.0, (MAX_SIDE - 1) as f64, 28.0),
+    ParamSpec::number("gy", "Goal row", 0.0, (MAX_SIDE - 1) as f64, 11.0),
+];
+
+const ACTIONS: &[ActionSpec] = &[
+    ActionSpec {
+        key: "plan",
+        label: "Plan & drive",
+    },
+    ActionSpec {
+        key: "compare",
+        label: "Compare",
+    },
+    ActionSpec {
+        key: "clear",
+        label: "Clear",
+    },
+    ActionSpec {
+        key: "maze",
+        label: "Random maze",
+    },
+    ActionSpec {
+        key: "arena",
+        label: "Arena map",
+    },
+];
+
+/// The default grid (32 × 24): two walls between the start and the goal.
+fn default_grid() -> OccupancyGrid {
+    let (w, h) = SIZES[1];
+    let mut g = OccupancyGrid::new(w, h).unwrap_or_else(|_| unreachable_grid());
+    for y in 4..20 {
+        g.set_blocked(Cell::new(11, y), true);
+    }
+    for y in 0..16 {
+        g.set_blocked(Cell::new(20, y), true);
+    }
+    for x in 11..17 {
+        g.set_blocked(Cell::new(x, 4), true);
+    }
+    g
+}
+
+/// A 1 × 1 grid; `OccupancyGrid::new` only fails for 0 or huge sizes, so
+/// this is never used with the constant sizes above.
+fn unreachable_grid() -> OccupancyGrid {
+    OccupancyGrid::from_cells(1, 1, vec![false]).expect("a 1 × 1 grid is valid")
+}
+
+/// What a pointer drag does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Drag {
+    None,
+    /// Painting walls (`true`) or erasing them (`false`), decided by the first cell.
+    Paint(bool),
+    Start,
+    Goal,
+}
+
+/// Where the run stands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Phase {
+    /// Nothing planned since the last edit.
+    Idle,
+    /// The search animates.
+    Searching,
+    /// The robot follows the path.
+    Driving,
+    /// The robot reached the goal.
+    Arrived,
+    /// The open list emptied without reaching the goal.
+    NoPath,
+    /// `Plan` was pressed with the start or goal in a wall.
+    Refused,
+    /// The comparison of planners is shown.
+    Compared,
+}
+
+/// One planner of the comparison.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CompareRow {
+    /// Name shown in the table (with the heuristic or the weight).
+    pub name: String,
+    pub config: SearchConfig,
+    /// Cells expanded until the search ended.
+    pub expanded: usize,
+    /// Path cost, `None` when there is no path.
+    pub cost: Option<f64>,
+    /// The path as world points (cell centres).
+    pub path: Vec<DVec2>,
+}
+
+/// State of the A* experiment.
+#[derive(Clone, Debug)]
+pub struct AStarGrid {
+    grid: OccupancyGrid,
+    start: Cell,
+    goal: Cell,
+    heuristic: Heuristic,
+    connectivity: Connectivity,
+    weight: f64,
+    rate: usize,
+    /// The `size` choice: for Clear and Random maze; shows the grid's size.
+    size_choice: usize,
+    seed: u64,
+    /// Cell states in display order (row 0 at the bottom, world `y = 0`):
+    /// 0 free, then [`crate::planning::astar::CellState`] values.
+    raster: Vec<u8>,
+    scratch: Vec<u8>,
+    search: Option<Search>,
+    phase: Phase,
+    /// Fixed steps the search has run.
+    search_steps: usize,
+    /// The path as world points and its length, metres.
+    path: Vec<DVec2>,
+    path_cells: usize,
+    path_cost: f64,
+    /// Distance driven along `path`, metres.
+    driven_m: f64,
+    compare: Vec<CompareRow>,
+    drag: Drag,
+    last_cell: Option<Cell>,
+    /// The handle arrow keys move (the one placed or dragged last).
+    nudge_goal: bool,
+    /// Length of the wall code, characters (kept current on every edit).
+    code_len: usize,
+    /// A message from the last Plan, Load or maze (e.g. what went wrong).
+    note: Option<String>,
+    /// Expanded cells and frontier size against fixed steps.
+    plots: [Plot; 1],
+}
+
+fn new_plots() -> [Plot; 1] {
+    [Plot::new(
+        "expanded",
+        "Search progress",
+        ("Step", ""),
+        ("Cells", ""),
+        vec![
+            Series::new("expanded", "", SeriesRole::Primary),
+            Series::new("frontier", "", SeriesRole::Secondary),
+        ],
+    )]
+}
+
+impl Default for AStarGrid {
+    fn default() -> Self {
+        let grid = default_grid();
+        let mut s = Self {
+            start: Cell::new(PARAMS[6].default as usize, PARAMS[7].default as usize),
+            goal: Cell::new(PARAMS[8].default as usize, PARAMS[9].default as usize),
+            heuristic: Heuristic::Octile,
+            connectivity: Connectivity::Eight,
+            weight: 1.0,
+            rate: PARAMS[3].default as usize,
+            size_choice: 1,
+            seed: PARAMS[5].default as u64,
+            raster: Vec::new(),
+            scratch: Vec::new(),
+            search: None,
+            phase: Phase::Idle,
+            search_steps: 0,
+            path: Vec::new(),
+            path_cells: 0,
+            path_cost: 0.0,
+            driven_m: 0.0,
+            compare: Vec::new(),
+            drag: Drag::None,
+            last_cell: None,
+            nudge_goal: false,
+            code_len: 0,
+            note: None,
+            plots: new_plots(),
+            grid,
+        };
+        s.grid_changed();
+        s
+    }
+}
+
+/// The heuristic of choice index `i`.
+fn heuristic_of(i: usize) -> Heuristic {
+    Heuristic::ALL.get(i).copied().unwrap_or_default()
+}
+
+fn heuristic_index(h: Heuristic) -> usize {
+    Heuristic::ALL.iter().position(|x| *x == h).unwrap_or(1)
+}
+
+/// A name for tables: `octile`, `Manhattan`.
+fn heuristic_label(h: Heuristic) -> &'static str {
+    HEURISTICS[heuristic_index(h)]
+}
+
+impl AStarGrid {
+    /// The occupancy grid being edited.
+    #[must_use]
+    pub fn grid(&self) -> &OccupancyGrid {
+        &self.grid
+    }
+
+    #[must_use]
+    pub fn start(&self) -> Cell {
+        self.start
+    }
+
+    #[must_use]
+    pub fn goal(&self) -> Cell {
+        self.goal
+    }
+
+    /// The comparison's rows (empty before *Compare*).
+    #[must_use]
+    pub fn comparison(&self) -> &[CompareRow] {
+        &self.compare
+    }
+
+    /// The search configuration of *Plan & drive*: A* with the chosen
+    /// heuristic, weighted when `w > 1`.
+    #[must_use]
+    pub fn config(&self) -> SearchConfig {
+        if self.weight > 1.0 {
+            SearchConfig::weighted(self.connectivity, self.heuristic, self.weight)
+        } else {
+            SearchConfig::astar(self.connectivity, self.heuristic)
+        }
+    }
+
+    /// The centre of `cell` in world coordinates.
+    #[must_use]
+    pub fn cell_center(&self, cell: Cell) -> DVec2 {
+        DVec2::new(
+            cell.x as f64 + 0.5,
+            self.grid.height() as f64 - cell.y as f64 - 0.5,
+        )
+    }
+
+    /// The cell under world point `p`, `None` outside the grid or for NaN.
+    #[must_use]
+    pub fn cell_at(&self, p: DVec2) -> Option<Cell> {
+        if !p.is_finite() {
+            return None;
+        }
+        let x = p.x.floor() as i64;
+        let y = (self.grid.height() as f64 - p.y).floor() as i64;
+        self.grid.cell_at(x, y)
+    }
+
+    /// The cell nearest world point `p` (on the grid's edge for a point
+    /// outside), `None` for NaN.
+    fn clamped_cell(&self, p: DVec2) -> Option<Cell> {
+        if !p.is_finite() {
+            return None;
+        }
+        let (w, h) = (self.grid.width() as f64, self.grid.height() as f64);
+        let x = p.x.floor().clamp(0.0, w - 1.0) as usize;
+        let y = (h - p.y).floor().clamp(0.0, h - 1.0) as usize;
+        Some(Cell::new(x, y))
+    }
+
+    /// The wall code length and the raster after the grid changed; the run
+    /// and the comparison are dropped.
+    fn grid_changed(&mut self) {
+        self.code_len = encoded_len(&self.grid);
+        self.invalidate();
+    }
+
+    /// Drops the search, the path and the comparison (the grid, an end or a
+    /// search setting changed) and repaints the raster from the walls.
+    fn invalidate(&mut self) {
+        self.search = None;
+        self.phase = Phase::Idle;
+        self.search_steps = 0;
+        self.path.clear();
+        self.path_cells = 0;
+        self.path_cost = 0.0;
+        self.driven_m = 0.0;
+        self.compare.clear();
+        self.plots[0].clear();
+        self.walls_raster();
+    }
+
+    /// The raster showing only the walls.
+    fn walls_raster(&mut self) {
+        let (w, h) = (self.grid.width(), self.grid.height());
+        self.raster.clear();
+        self.raster.resize(w * h, 0);
+        for (y, row) in self.grid.cells().chunks(w).enumerate() {
+            let r = (h - 1 - y) * w;
+            for (dst, &b) in self.raster[r..r + w].iter_mut().zip(row) {
+                *dst = if b { BLOCKED } else { 0 };
+            }
+        }
+    }
+
+    /// The raster from the search's cell states (rows flipped to y up).
+    fn search_raster(&mut self) {
+        let Some(search) = &self.search else {
+            return;
+        };
+        search.write_cell_states(&mut self.scratch);
+        let (w, h) = (self.grid.width(), self.grid.height());
+        if self.scratch.len() != w * h {
+            return;
+        }
+        self.raster.resize(w * h, 0);
+        for (y, row) in self.scratch.chunks(w).enumerate() {
+            let r = (h - 1 - y) * w;
+            self.raster[r..r + w].copy_from_slice(row);
+        }
+    }
+
+    /// Sets one cell's wall, keeping the start and goal free of paint, and
+    /// updates the raster and code length lazily (see [`Self::end_edit`]).
+    fn paint(&mut self, cell: Cell, blocked: bool) -> bool {
+        if cell == self.start || cell == self.goal {
+            return false;
+        }
+        if !self.grid.set_blocked(cell, blocked) {
+            return false;
+        }
+        if self.phase == Phase::Idle {
+            let (w, h) = (self.grid.width(), self.grid.height());
+            let i = (h - 1 - cell.y) * w + cell.x;
+            if let Some(v) = self.raster.get_mut(i) {
+                *v = if blocked { BLOCKED } else { 0 };
+            }
+        }
+        true
+    }
+
+    /// Paints the cells on the line from `a` to `b` (Bresenham), so a fast
+    /// drag leaves no gaps.
+    fn paint_line(&mut self, a: Cell, b: Cell, blocked: bool) -> bool {
+        let (mut x, mut y) = (a.x as i64, a.y as i64);
+        let (x1, y1) = (b.x as i64, b.y as i64);
+        let (dx, dy) = ((x1 - x).abs(), -(y1 - y).abs());
+        let (sx, sy) = (if x < x1 { 1 } else { -1 }, if y < y1 { 1 } else { -1 });
+        let mut err = dx + dy;
+        let mut changed = false;
+        // At most dx + 1 + |dy| + 1 cells on the line.
+        for _ in 0..=(dx - dy + 1) {
+            if let Some(c) = self.grid.cell_at(x, y) {
+                changed |= self.paint(c, blocked);
+            }
+            if x == x1 && y == y1 {
+                break;
+            }
+            let e2 = 2 * err;
+            if e2 >= dy {
+                err += dy;
+                x += sx;
+            }
+            if e2 <= dx {
+                err += dx;
+                y += sy;
+            }
+        }
+        changed
+    }
+
+    /// After walls changed: the code length, and the run is dropped.
+    fn end_edit(&mut self) {
+        self.code_len = encoded_len(&self.grid);
+        if self.phase != Phase::Idle || !self.compare.is_empty() {
+            self.invalidate();
+        }
+    }
+
+    fn set_start(&mut self, cell: Cell) {
+        if cell != self.start && cell != self.goal {
+            self.start = cell;
+            self.invalidate();
+        }
+    }
+
+    fn set_goal(&mut self, cell: Cell) {
+        if cell != self.goal && cell != self.start {
+            self.goal = cell;
+            self.invalidate();
+        }
+    }
+
+    /// Replaces the grid, keeping the start and goal where they fit (clamped
+    /// onto the grid otherwise).
+    fn replace_grid(&mut self, grid: OccupancyGrid) {
+        let clamp = |c: Cell| Cell::new(c.x.min(grid.width() - 1), c.y.min(grid.height() - 1));
+        self.start = clamp(self.start);
+        self.goal = clamp(self.goal);
+        if self.goal == self.start {
+            // A 1-cell-wide grid can leave them on one cell; move the goal.
+            self.goal = Cell::new(grid.width() - 1, grid.height() - 1);
+        }
+        self.grid = grid;
+        self.size_choice = size_index(&self.grid).unwrap_or(self.size_choice);
+        self.grid_changed();
+    }
+
+    /// A new grid with free start and goal cells: the free cells nearest the
+    /// top-left and bottom-right corners (reading order from each end).
+    fn replace_grid_with_free_ends(&mut self, grid: OccupancyGrid) {
+        let cells = grid.cells();
+        let first = cells.iter().position(|b| !b);
+        let last = cells.iter().rposition(|b| !b);
+        let start = first.and_then(|i| grid.cell_of(i));
+        let goal = last.and_then(|i| grid.cell_of(i));
+        self.replace_grid(grid);
+        if let (Some(s), Some(g)) = (start, goal) {
+            if s != g {
+                self.start = s;
+                self.goal = g;
+                self.invalidate();
+            }
+        }
+    }
+
+    /// Why the ends cannot be planned between, if they cannot.
+    fn ends_problem(&self) -> Option<String> {
+        if self.grid.is_blocked(self.start) {
+            Some(format!(
+                "the start {} is in a wall: move it or erase the wall",
+                self.start
+            ))
+        } else if self.grid.is_blocked(self.goal) {
+            Some(format!(
+                "the goal {} is in a wall: move it or erase the wall",
+                self.goal
+            ))
+        } else {
+            None
+        }
+    }
+
+    /// Starts the animated search (*Plan & drive*).
+    fn plan(&mut self) {
+        self.invalidate();
+        self.note = None;
+        if self.ends_problem().is_some() {
+            self.phase = Phase::Refused;
+            return;
+        }
+        match Search::new(&self.grid, self.start, self.goal, self.config()) {
+            Ok(search) => {
+                self.search = Some(search);
+                self.phase = Phase::Searching;
+                self.search_raster();
+            }
+            Err(e) => {
+                self.note = Some(e.to_string());
+                self.phase = Phase::Refused;
+            }
+        }
+    }
+
+    /// Expansions per fixed step: `rate · max(1, cells / 768)`.
+    fn expansions_per_step(&self) -> usize {
+        let cells = self.grid.width() * self.grid.height();
+        self.rate * (cells / CELLS_PER_EXPANSION).max(1)
+    }
+
+    /// The path of a finished search as world points.
+    fn world_path(&self, cells: &[Cell]) -> Vec<DVec2> {
+        cells.iter().map(|c| self.cell_center(*c)).collect()
+    }
+
+    /// Takes the finished search's result: the path to drive, or no path.
+    fn search_finished(&mut self) {
+        let Some(search) = &self.search else {
+            return;
+        };
+        match search.result() {
+            Some(r) => {
+                self.path = r.path.iter().map(|c| self.cell_center(*c)).collect();
+                self.path_cells = r.path.len();
+                self.path_cost = r.cost;
+                self.driven_m = 0.0;
+                self.phase = Phase::Driving;
+            }
+            None => self.phase = Phase::NoPath,
+        }
+    }
+
+    /// Runs the four planners of the comparison on the current grid, and
+    /// leaves the main search finished (its closed set is shown).
+    fn run_compare(&mut self) {
+        self.plan();
+        if self.phase != Phase::Searching {
+            return;
+        }
+        let conn = self.connectivity;
+        // Greedy and weighted A* need a heuristic; with "none" they use the
+        // admissible one of the connectivity.
+        let h = match (self.heuristic, conn) {
+            (Heuristic::Zero, Connectivity::Four) => Heuristic::Manhattan,
+            (Heuristic::Zero, Connectivity::Eight) => Heuristic::Octile,
+            (h, _) => h,
+        };
+        let w = if self.weight > 1.0 { self.weight } else { 2.0 };
+        let planners = [
+            (
+                format!("A* ({})", heuristic_label(self.heuristic)),
+                SearchConfig::astar(conn, self.heuristic),
+            ),
+            ("Dijkstra".to_owned(), SearchConfig::dijkstra(conn)),
+            (
+                format!("Greedy ({})", heuristic_label(h)),
+                SearchConfig::greedy(conn, h),
+            ),
+            (
+                format!("Weighted A* (w = {})", format_number(w, 1)),
+                SearchConfig::weighted(conn, h, w),
+            ),
+        ];
+        let Some(mut search) = self.search.take() else {
+            return;
+        };
+        let mut rows = Vec::with_capacity(planners.len());
+        for (name, config) in planners {
+            if search.restart(self.start, self.goal, config).is_err() {
+                continue;
+            }
+            search.run();
+            let result = search.result();
+            rows.push(CompareRow {
+                name,
+                config,
+                expanded: search.expanded(),
+                cost: result.map(|r| r.cost),
+                path: result.map_or_else(Vec::new, |r| self.world_path(&r.path)),
+            });
+        }
+        // The main search, finished, for the raster and the readouts.
+        if search.restart(self.start, self.goal, self.config()).is_ok() {
+            search.run();
+        }
+        self.search = Some(search);
+        self.search_raster();
+        if let Some(r) = self.search.as_ref().and_then(Search::result) {
+            self.path = self.world_path(&r.path);
+            self.path_cells = r.path.len();
+            self.path_cost = r.cost;
+        }
+        self.compare = rows;
+        self.phase = Phase::Compared;
+    }
+
+    /// The optimum of the comparison: Dijkstra's cost.
+    fn optimum(&self) -> Option<f64> {
+        self.compare
+            .iter()
+            .find(|r| r.config.heuristic == Heuristic::Zero && r.config.strategy == Strategy::AStar)
+            .and_then(|r| r.cost)
+    }
+
+    fn new_grid_of_choice(&self) -> Option<OccupancyGrid> {
+        let (w, h) = match SIZES.get(self.size_choice) {
+            Some(&s) => s,
+            None => (self.grid.width(), self.grid.height()),
+        };
+        OccupancyGrid::new(w, h).ok()
+    }
+
+    fn maze(&mut self) {
+        let (w, h) = match SIZES.get(self.size_choice) {
+            Some(&s) => s,
+            None => (self.grid.width(), self.grid.height()),
+        };
+        let Ok(maze) = recursive_backtracker(w, h, self.seed) else {
+            return;
+        };
+        self.replace_grid(maze);
+        // Rooms have odd coordinates up to n − 2: the first and the last room.
+        let last = |n: usize| {
+            let m = n - 2;
+            if m % 2 == 1 {
+                m
+            } else {
+                m - 1
+            }
+        };
+        if w >= 4 && h >= 4 {
+            self.start = Cell::new(1, 1);
+            self.goal = Cell::new(last(w), last(h));
+            if self.goal == self.start {
+                self.goal = Cell::new(w - 1, h - 1);
+            }
+            self.invalidate();
+        }
+        self.note = Some(format!("maze from seed {}", self.seed));
+    }
+
+    fn arena(&mut self) {
+        let Ok(grid) = parse_map(ARENA_MAP) else {
+            return;
+        };
+        // The longest scenario of the benchmark's list.
+        let scenario = parse_scen(ARENA_SCEN).ok().and_then(|s| s.last().cloned());
+        self.replace_grid(grid);
+        if let Some(s) = scenario {
+            if self.grid.in_bounds(s.start) && self.grid.in_bounds(s.goal) && s.start != s.goal {
+                self.start = s.start;
+                self.goal = s.goal;
+                self.invalidate();
+                self.note = Some(format!(
+                    "arena map (Moving AI): optimal length {}",
+                    format_fixed(s.optimal_length, 3)
+                ));
+                return;
+            }
+        }
+        self.note = Some("arena map (Moving AI)".into());
+    }
+
+    /// Whether the walls fit in the link.
+    #[must_use]
+    pub fn walls_in_link(&self) -> bool {
+        self.code_len <= LINK_WALLS_MAX
+    }
+
+    fn robot(&self) -> Option<DVec2> {
+        if !matches!(self.phase, Phase::Driving | Phase::Arrived) {
+            return None;
+        }
+        let mut left = self.driven_m;
+        for w in self.path.windows(2) {
+            let len = (w[1] - w[0]).length();
+            if left < len && len > 0.0 {
+                return Some(w[0] + (w[1] - w[0]) * (left / len));
+            }
+            left -= len;
+        }
+        self.path.last().copied()
+    }
+
+    fn path_length_m(&self) -> f64 {
+        self.path.windows(2).map(|w| (w[1] - w[0]).length()).sum()
+    }
+
+    fn moving_handle(&mut self, cell: Cell) {
+        match self.drag {
+            Drag::Start => self.set_start(cell),
+            Drag::Goal => self.set_goal(cell),
+            _ => {}
+        }
+    }
+}
+
+/// How the comparison draws each planner's path (A*, Dijkstra, greedy,
+/// weighted A*), and how the table names those lines.
+const COMPARE_ROLES: [Role; 4] = [Role::Path, Role::Robot, Role::Warning, Role::Target];
+const COMPARE_LINES: [&str; 4] = ["solid amber", "blue dashes", "orange dashes", "pink dashes"];
+
+/// The raster value of a wall ([`crate::planning::astar::CellState::Blocked`]).
+const BLOCKED: u8 = crate::planning::astar::CellState::Blocked as u8;
+
+/// The `size` choice of a grid's dimensions.
+fn size_index(grid: &OccupancyGrid) -> Option<usize> {
+    SIZES
+        .iter()
+        .position(|&(w, h)| w == grid.width() && h == grid.height())
+}
+
+/// Checks a loaded or linked grid's size.
+fn check_side(grid: &OccupancyGrid) -> Result<(), String> {
+    if grid.width() > MAX_SIDE || grid.height() > MAX_SIDE {
+        Err(format!(
+            "the grid is {} × {}; this page takes grids up to {MAX_SIDE} × {MAX_SIDE}",
+            grid.width(),
+            grid.height()
+        ))
+    } else if grid.width() * grid.height() < 2 {
+        Err("the grid needs at least two cells".into())
+    } else {
+        Ok(())
+    }
+}
+
+impl Experiment for AStarGrid {
+    fn id(&self) -> &'static str {
+        "astar"
+    }
+
+    fn params(&self) -> &'static [ParamSpec] {
+        PARAMS
+    }
+
+    fn param(&self, key: &str) -> Option<f64> {
+        Some(match key {
+            "h" => heuristic_index(self.heuristic) as f64,
+            "conn" => match self.connectivity {
+                Connectivity::Four => 0.0,
+                Connectivity::Eight => 1.0,
+            },
+            "w" => self.weight,
+            "rate" => self.rate as f64,
+            "size" => size_index(&self.grid).unwrap_or(OTHER_SIZE) as f64,
+            "seed" => self.seed as f64,
+            "sx" => self.start.x as f64,
+            "sy" => self.start.y as f64,
+            "gx" => self.goal.x as f64,
+            "gy" => self.goal.y as f64,
+            _ => return None,
+        })
+    }
+
+    fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
+        let applied = check_param(PARAMS, key, value)?;
+        let v = applied.value();
+        match key {
+            "h" => {
+                self.heuristic = heuristic_of(v as usize);
+                self.invalidate();
+            }
+            "conn" => {
+                self.connectivity = if v == 0.0 {
+                    Connectivity::Four
+                } else {
+                    Connectivity::Eight
+                };
+                self.invalidate();
+            }
+            "w" => {
+                self.weight = v;
+                self.invalidate();
+            }
+            "rate" => self.rate = v as usize,
+            "size" => {
+                let i = v as usize;
+                if i >= OTHER_SIZE {
+                    // "other" names a loaded size; it cannot be chosen.
+                    let current = size_index(&self.grid).unwrap_or(OTHER_SIZE);
+                    return Ok(if current == OTHER_SIZE {
+                        applied
+                    } else {
+                        Sanitized::Clamped(current as f64)
+                    });
+                }
+                self.size_choice = i;
+                if size_index(&self.grid) != Some(i) {
+                    if let Some(grid) = self.new_grid_of_choice() {
+                        self.replace_grid(grid);
+                    }
+                }
+            }
+            "seed" => self.seed = v as u64,
+            "sx" | "sy" | "gx" | "gy" => {
+                let limit = if key.ends_with('x') {
+                    self.grid.width() - 1
+                } else {
+                    self.grid.height() - 1
+                };
+                let n = (v as usize).min(limit);
+                let mut cell = if key.starts_with('s') {
+                    self.start
+                } else {
+                    self.goal
+                };
+                if key.ends_with('x') {
+                    cell.x = n;
+                } else {
+                    cell.y = n;
+                }
+                let other = if key.starts_with('s') {
+                    self.goal
+                } else {
+                    self.start
+                };
+                if cell == other {
+                    // Start and goal never share a cell: keep the old value.
+                    let kept = self.param(key).unwrap_or(0.0);
+                    return Ok(Sanitized::Clamped(kept));
+                }
+                if key.starts_with('s') {
+                    self.start = cell;
+                } else {
+                    self.goal = cell;
+                }
+                self.invalidate();
+                if n as f64 != v {
+                    return Ok(Sanitized::Clamped(n as f64));
+                }
+            }
+            _ => return Err(ParamError::UnknownKey { key: key.into() }),
+        }
+        Ok(applied)
+    }
+
+    fn actions(&self) -> &'static [ActionSpec] {
+        ACTIONS
+    }
+
+    fn action(&mut self, key: &str) -> Result<(), ParamError> {
+        match key {
+            "plan" => self.plan(),
+            "compare" => self.run_compare(),
+            "clear" => {
+                if let Some(grid) = self.new_grid_of_choice() {
+                    self.replace_grid(grid);
+                }
+                self.note = None;
+            }
+            "maze" => self.maze(),
+            "arena" => self.arena(),
+            _ => return Err(ParamError::UnknownAction { key: key.into() }),
+        }
+        Ok(())
+    }
+
+    fn input(&mut self, input: Input) {
+        self.input_with(input, Modifiers::default());
+    }
+
+    /// Shift-click sets the start, Ctrl-click the goal (and a drag goes on
+    /// moving it); a press on the start or goal drags it; elsewhere a drag
+    /// paints walls, or erases them when the first cell was a wall. Arrow
+    /// keys move the start or goal (the one placed last) one cell.
+    fn input_with(&mut self, input: Input, modifiers: Modifiers) {
+        match input {
+            Input::PointerDown(p) => {
+                self.drag = Drag::None;
+                self.last_cell = None;
+                if modifiers.shift || modifiers.ctrl {
+                    let Some(cell) = self.clamped_cell(p) else {
+                        return;
+                    };
+                    self.drag = if modifiers.shift {
+                        Drag::Start
+                    } else {
+                        Drag::Goal
+                    };
+                    self.nudge_goal = self.drag == Drag::Goal;
+                    self.moving_handle(cell);
+                    return;
+                }
+                let Some(cell) = self.cell_at(p) else {
+                    return;
+                };
+                if cell == self.start || cell == self.goal {
+                    self.drag = if cell == self.start {
+                        Drag::Start
+                    } else {
+                        Drag::Goal
+                    };
+                    self.nudge_goal = self.drag == Drag::Goal;
+                    return;
+                }
+                let paint = !self.grid.is_blocked(cell);
+                self.drag = Drag::Paint(paint);
+                self.last_cell = Some(cell);
+                if self.paint(cell, paint) {
+                    self.end_edit();
+                }
+            }
+            Input::PointerMove { pos, pressed: true } => match self.drag {
+                Drag::Paint(paint) => {
+                    let Some(cell) = self.cell_at(pos) else {
+                        self.last_cell = None;
+                        return;
+                    };
+                    let from = self.last_cell.unwrap_or(cell);
+                    self.last_cell = Some(cell);
+                    if self.paint_line(from, cell, paint) {
+                        self.end_edit();
+                    }
+                }
+                Drag::Start | Drag::Goal => {
+                    if let Some(cell) = self.clamped_cell(pos) {
+                        self.moving_handle(cell);
+                    }
+                }
+                Drag::None => {}
+            },
+            Input::PointerMove { pressed: false, .. } => {}
+            Input::PointerUp(_) => {
+                self.drag = Drag::None;
+                self.last_cell = None;
+            }
+            Input::Nudge(d) => {
+                if !d.is_finite() || d == DVec2::ZERO {
+                    return;
+                }
+                // One cell along the larger component; world y up = row up.
+                let (dx, dy): (i64, i64) = if d.x.abs() >= d.y.abs() {
+                    (d.x.signum() as i64, 0)
+                } else {
+                    (0, -(d.y.signum() as i64))
+                };
+                let c = if self.nudge_goal {
+                    self.goal
+                } else {
+                    self.start
+                };
+                if let Some(to) = self.grid.cell_at(c.x as i64 + dx, c.y as i64 + dy) {
+                    if self.nudge_goal {
+                        self.set_goal(to);
+                    } else {
+                        self.set_start(to);
+                    }
+                }
+            }
+        }
+    }
+
+    fn step(&mut self, dt_s: f64) {
+        if !crate::clock::valid_dt(dt_s) {
+            return;
+        }
+        match self.phase {
+            Phase::Searching => {
+                let n = self.expansions_per_step();
+                let Some(search) = self.search.as_mut() else {
+                    self.phase = Phase::Idle;
+                    return;
+                };
+                let outcome = search.step_n(n);
+                let (expanded, frontier) = (search.expanded(), search.frontier_len());
+                self.search_steps += 1;
+                let plot = &mut self.plots[0];
+                plot.series[0].push(self.search_steps as f64, expanded as f64);
+                plot.series[1].push(self.search_steps as f64, frontier as f64);
+                plot.touch();
+                self.search_raster();
+                if matches!(outcome, Some(StepOutcome::Found | StepOutcome::NoPath)) {
+                    self.search_finished();
+                }
+            }
+            Phase::Driving => {
+                let length = self.path_length_m();
+                let speed = (length / DRIVE_TIME_S).max(MIN_DRIVE_SPEED);
+                self.driven_m = (self.driven_m + speed * dt_s).min(length);
+                if self.driven_m >= length {
+                    self.phase = Phase::Arrived;
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn animated(&self) -> bool {
+        true
+    }
+
+    /// Restarts the search (or the comparison) from the first expansion,
+    /// with the same grid, ends and settings.
+    fn reset(&mut self) {
+        match self.phase {
+            Phase::Searching | Phase::Driving | Phase::Arrived | Phase::NoPath => self.plan(),
+            Phase::Compared => self.run_compare(),
+            Phase::Idle | Phase::Refused => {}
+        }
+    }
+
+    fn plots(&self) -> &[Plot] {
+        &self.plots
+    }
+
+    fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
+        let near = |c: Cell| (self.cell_center(c) - p).length() <= tolerance_m.max(0.5);
+        near(self.start) || near(self.goal)
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        let mut tables = Vec::new();
+        if let Some(search) = &self.search {
+            let mut open = Table::new(
+                "open",
+                "Open list: the cell being expanded, then the next cells by f",
+                &["", "cell", "g", "h", "f"],
+            );
+            let config = search.config();
+            let f_of = |g: f64, h: f64| match config.strategy {
+                Strategy::AStar => g + h,
+                Strategy::Weighted { weight } => g + weight * h,
+                Strategy::Greedy => h,
+            };
+            if let Some(cell) = search.last_expanded() {
+                let g = search.g_of(cell).unwrap_or(0.0);
+                let h = config.heuristic.between(cell, search.goal());
+                open.push_row(vec![
+                    "expanding".into(),
+                    cell.to_string(),
+                    format_number(g, 3),
+                    format_number(h, 3),
+                    format_number(f_of(g, h), 3),
+                ]);
+                open.highlight = Some(0);
+            }
+            for (i, e) in search.open_top(OPEN_ROWS).into_iter().enumerate() {
+                open.push_row(vec![
+                    format!("{}", i + 1),
+                    e.cell.to_string(),
+                    format_number(e.g, 3),
+                    format_number(e.h, 3),
+                    format_number(e.f, 3),
+                ]);
+            }
+            tables.push(open);
+        }
+        if !self.compare.is_empty() {
+            let mut t = Table::new(
+                "compare",
+                "Compare on this grid (time estimated from expansions, relative to Dijkstra)",
+                &[
+                    "planner",
+                    "expanded",
+                    "path cost",
+                    "cost / optimum",
+                    "time (rel.)",
+                    "drawn as",
+                ],
+            );
+            let optimum = self.optimum();
+            let dijkstra_expanded = self
+                .compare
+                .iter()
+                .find(|r| r.name == "Dijkstra")
+                .map_or(0, |r| r.expanded);
+            for (r, line) in self.compare.iter().zip(COMPARE_LINES) {
+                let (cost, ratio) = match (r.cost, optimum) {
+                    (Some(c), Some(o)) if o > 0.0 => (format_fixed(c, 3), format_fixed(c / o, 3)),
+                    (Some(c), _) => (format_fixed(c, 3), "1.000".into()),
+                    (None, _) => ("no path".into(), "--".into()),
+                };
+                let time = if dijkstra_expanded > 0 {
+                    format_fixed(r.expanded as f64 / dijkstra_expanded as f64, 3)
+                } else {
+                    "--".into()
+                };
+                t.push_row(vec![
+                    r.name.clone(),
+                    r.expanded.to_string(),
+                    cost,
+                    ratio,
+                    time,
+                    line.to_owned(),
+                ]);
+            }
+            tables.push(t);
+        }
+        tables
+    }
+
+    fn file_types(&self) -> &'static [&'static str] {
+        &[".map"]
+    }
+
+    /// Loads a Moving AI `.map`; the start and goal move to the first and
+    /// last free cells. A malformed file leaves everything as it was.
+    fn load_file(&mut self, name: &str, text: &str) -> Result<(), String> {
+        let grid = parse_map(text).map_err(|e| format!("{name}: {e}"))?;
+        check_side(&grid).map_err(|e| format!("{name}: {e}"))?;
+        if grid.blocked_count() + 2 > grid.width() * grid.height() {
+            return Err(format!("{name}: the map has fewer than two free cells"));
+        }
+        self.replace_grid_with_free_ends(grid);
+        self.note = Some(format!("loaded {name}"));
+        Ok(())
+    }
+
+    fn export_text(&self) -> Option<(String, String)> {
+        Some(("grid.map".into(), write_map(&self.grid)))
+    }
+
+    fn captures_touch(&self) -> bool {
+        true
+    }
+
+    fn extra_state(&self) -> Vec<(&'static str, String)> {
+        if self.walls_in_link() {
+            vec![("walls", encode_walls(&self.grid))]
+        } else {
+            Vec::new()
+        }
+    }
+
+    fn set_extra_state(&mut self, key: &str, value: &str) -> Result<(), ParamError> {
+        if key != "walls" {
+            return Err(ParamError::UnknownKey { key: key.into() });
+        }
+        let bad = |reason: String| ParamError::BadText {
+            key: key.into(),
+            reason,
+        };
+        let grid = decode_walls(value).map_err(|e| bad(e.to_string()))?;
+        check_side(&grid).map_err(bad)?;
+        self.replace_grid(grid);
+        Ok(())
+    }
+
+    fn view(&self) -> ViewBox {
+        ViewBox {
+            min: DVec2::ZERO,
+            max: DVec2::new(self.grid.width() as f64, self.grid.height() as f64),
+        }
+    }
+
+    fn scene(&self, out: &mut Scene) {
+        let (w, h) = (self.grid.width(), self.grid.height());
+        let size = DVec2::new(w as f64, h as f64);
+        out.push(Item::Raster {
+            min: DVec2::ZERO,
+            cell_m: 1.0,
+            cols: w,
+            rows: h,
+            cells: self.raster.clone(),
+            palette: vec![
+                // CellState 1..4: open, closed, path, wall.
+                RasterColour {
+                    role: Role::Estimate,
+                    alpha: 0.55,
+                },
+                RasterColour {
+                    role: Role::Visited,
+                    alpha: 0.45,
+                },
+                RasterColour {
+                    role: Role::Path,
+                    alpha: 0.35,
+                },
+                RasterColour {
+                    role: Role::Obstacle,
+                    alpha: 1.0,
+                },
+            ],
+        });
+        // Cell lines on small grids only (one batch).
+        if w <= 64 && h <= 64 {
+            let mut lines = Vec::with_capacity(w + h + 2);
+            for x in 0..=w {
+                lines.push((DVec2::new(x as f64, 0.0), DVec2::new(x as f64, size.y)));
+            }
+            for y in 0..=h {
+                lines.push((DVec2::new(0.0, y as f64), DVec2::new(size.x, y as f64)));
+            }
+            out.push(Item::Segments {
+                segments: lines,
+                width_px: 0.5,
+                role: Role::Grid,
+            });
+        }
+        out.push(Item::Rect {
+            min: DVec2::ZERO,
+            max: size,
+            role: Role::Bound,
+            fill: false,
+        });
+        // Each planner's path in its own colour and dash; the Compare table
+        // names them ([`COMPARE_LINES`]).
+        for (r, role) in self.compare.iter().zip(COMPARE_ROLES) {
+            if r.path.len() >= 2 {
+                out.push(Item::Polyline {
+                    points: r.path.clone(),
+                    width_px: 2.5,
+                    role,
+                    dashed: role != Role::Path,
+                    closed: false,
+                });
+            }
+        }
+        if self.compare.is_empty() && self.path.len() >= 2 {
+            out.push(Item::Polyline {
+                points: self.path.clone(),
+                width_px: 3.0,
+                role: Role::Path,
+                dashed: false,
+                closed: false,
+            });
+        }
+        if self.phase == Phase::Searching {
+            if let Some(c) = self.search.as_ref().and_then(Search::last_expanded) {
+                let p = self.cell_center(c);
+                out.push(Item::Rect {
+                    min: p - 0.5,
+                    max: p + 0.5,
+                    role: Role::Accent,
+                    fill: false,
+                });
+            }
+        }
+        let start = self.cell_center(self.start);
+        let goal = self.cell_center(self.goal);
+        let marker = ((900.0 / w.max(h) as f64).clamp(3.0, 9.0)).min(9.0);
+        out.push(Item::Dot {
+            center: start,
+            radius_px: marker,
+            role: Role::Sample,
+        });
+        out.push(Item::Dot {
+            center: goal,
+            radius_px: marker,
+            role: Role::Tip,
+        });
+        out.push(Item::Label {
+            pos: start,
+            text: "start".into(),
+            role: Role::Text,
+            offset_px: DVec2::new(8.0, -10.0),
+        });
+        out.push(Item::Label {
+            pos: goal,
+            text: "goal".into(),
+            role: Role::Text,
+            offset_px: DVec2::new(8.0, -10.0),
+        });
+        if let Some(p) = self.robot() {
+            out.push(Item::Circle {
+                center: p,
+                radius_m: 0.4,
+                role: Role::Robot,
+                fill: true,
+                dashed: false,
+            });
+        }
+    }
+
+    fn readouts(&self) -> Vec<Readout> {
+        let (expanded, frontier) = self
+            .search
+            .as_ref()
+            .map_or((0, 0), |s| (s.expanded(), s.frontier_len()));
+        let found = self.path_cells > 0;
+        vec![
+            Readout::new("expanded", "Expanded", expanded.to_string()),
+            Readout::new("frontier", "Frontier", frontier.to_string()),
+            Readout::new(
+                "path_cells",
+                "Path cells",
+                if found {
+                    self.path_cells.to_string()
+                } else {
+                    "--".into()
+                },
+            ),
+            Readout::metres(
+                "path_cost",
+                "Path cost",
+                if found { self.path_cost } else { f64::NAN },
+            ),
+            Readout::new(
+                "grid",
+                "Grid",
+                format!(
+                    "{} × {}, {} walls",
+                    self.grid.width(),
+                    self.grid.height(),
+                    self.grid.blocked_count()
+                ),
+            ),
+            Readout::new(
+                "link",
+                "Link",
+                if self.walls_in_link() {
+                    "holds the walls".to_owned()
+                } else {
+                    "too large for the walls: use Save file (.map)".to_owned()
+                },
+            ),
+        ]
+    }
+
+    fn status(&self) -> Status {
+        let inadmissible = !self.heuristic.is_admissible(self.connectivity) || self.weight > 1.0;
+        let caveat = if self.weight > 1.0 {
+            format!(" (weighted: ≤ {}× optimum)", format_number(self.weight, 1))
+        } else if inadmissible {
+            " (Manhattan overestimates diagonals)".to_owned()
+        } else {
+            String::new()
+        };
+        let good = if inadmissible {
+            Tone::Warning
+        } else {
+            Tone::Good
+        };
+        match self.phase {
+            Phase::Refused => Status::new(
+                self.ends_problem()
+                    .or_else(|| self.note.clone())
+                    .unwrap_or_else(|| "cannot plan".into()),
+                Tone::Bad,
+            ),
+            _ if self.ends_problem().is_some() => {
+                Status::new(self.ends_problem().unwrap_or_default(), Tone::Bad)
+            }
+            Phase::Idle => Status::new(
+                match (&self.note, self.walls_in_link()) {
+                    (_, false) => "ready; too large for the link: use Save file".to_owned(),
+                    (Some(note), true) => format!("ready: {note}"),
+                    (None, true) => "ready: press Plan & drive".to_owned(),
+                },
+                if self.walls_in_link() {
+                    Tone::Neutral
+                } else {
+                    Tone::Warning
+                },
+            ),
+            Phase::Searching => Status::new(
+                format!(
+                    "searching… {} expanded",
+                    self.search.as_ref().map_or(0, Search::expanded)
+                ),
+                Tone::Neutral,
+            ),
+            Phase::Driving => Status::new(
+                format!(
+                    "path found, cost {}: driving{caveat}",
+                    format_fixed(self.path_cost, 3)
+                ),
+                good,
+            ),
+            Phase::Arrived => Status::new(
+                format!(
+                    "arrived: path cost {}{caveat}",
+                    format_fixed(self.path_cost, 3)
+                ),
+                good,
+            ),
+            Phase::NoPath => Status::new(
+                "no path: the goal cannot be reached from the start",
+                Tone::Bad,
+            ),
+            Phase::Compared => Status::new(
+                format!("compared {} planners on this grid", self.compare.len()),
+                Tone::Good,
+            ),
+        }
+    }
+
+    fn hint(&self) -> &'static str {
+        if self.walls_in_link() {
+            "Drag to paint or erase walls; Shift-click sets the start, Ctrl-click the goal (or drag them). Then press Plan & drive."
+        } else {
+            "This grid is too large to keep in the link: use Save file to keep it as a .map file. Drag to paint walls; Shift-click sets the start, Ctrl-click the goal."
+        }
+    }
+
+    fn preview(&mut self) {
+        self.plan();
+        if let Some(search) = self.search.as_mut() {
+            search.run();
+        }
+        self.search_raster();
+        self.search_finished();
+        self.driven_m = self.path_length_m() * 0.6;
+    }
+
+    fn animating(&self) -> bool {
+        matches!(self.phase, Phase::Searching | Phase::Driving)
+    }
+}
+
+/// The octile distance `max(dx, dy) + (√2 − 1) · min(dx, dy)` between two cells.
+fn quiz_octile(rng: &mut Lcg64) -> Draw {
+    let dx = rng.int(1, 20);
+    let dy = rng.int(1, 20);
+    Draw {
+        vars: vec![("dx", dx.to_string()), ("dy", dy.to_string())],
+        answer: Heuristic::Octile.of_offsets(dx as f64, dy as f64),
+    }
+}
+
+/// `f = g + h` with the octile `h`.
+fn quiz_f_value(rng: &mut Lcg64) -> Draw {
+    let g = rng.int(20, 300) as f64 / 10.0;
+    let dx = rng.int(0, 15);
+    let dy = rng.int(1, 15);
+    Draw {
+        vars: vec![
+            ("g", format_number(g, 1)),
+            ("dx", dx.to_string()),
+            ("dy", dy.to_string()),
+        ],
+        answer: g + Heuristic::Octile.of_offsets(dx as f64, dy as f64),
+    }
+}
+
+/// Weighted A*'s bound `w · C*`.
+fn quiz_weighted_bound(rng: &mut Lcg64) -> Draw {
+    let c = rng.int(100, 900) as f64 / 10.0;
+    let w = rng.int(11, 30) as f64 / 10.0;
+    Draw {
+        vars: vec![("cost", format_number(c, 1)), ("w", format_number(w, 1))],
+        answer: w * c,
+    }
+}
+
+/// Cells within Manhattan distance `d` of a cell on an open grid (the
+/// diamond Dijkstra expands with 4-connected moves): `2d² + 2d + 1`.
+fn quiz_diamond(rng: &mut Lcg64) -> Draw {
+    let d = rng.int(2, 12);
+    Draw {
+        vars: vec![("d", d.to_string())],
+        answer: (2 * d * d + 2 * d + 1) as f64,
+    }
+}
+
+/// The quiz generators of experiment 6, by name.
+#[must_use]
+pub fn quiz_generator(name: &str) -> Option<Generator> {
+    match name {
+        "octile" => Some(quiz_octile),
+        "f_value" => Some(quiz_f_value),
+        "weighted_bound" => Some(quiz_weighted_bound),
+        "diamond" => Some(quiz_diamond),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planning::astar::{astar_path, SearchStatus};
+    use crate::route::{apply_params, format, parse, Page, Tab};
+
+    const DT: f64 = 1.0 / 60.0;
+
+    fn shift() -> Modifiers {
+        Modifiers {
+            shift: true,
+            ctrl: false,
+        }
+    }
+
+    fn ctrl() -> Modifiers {
+        Modifiers {
+            shift: false,
+            ctrl: true,
+        }
+    }
+
+    /// Runs until nothing moves; returns the steps taken.
+    fn settle(a: &mut AStarGrid) -> usize {
+        let mut n = 0;
+        while a.animating() {
+            a.step(DT);
+            n += 1;
+            assert!(n < 100_000, "never settles");
+        }
+        n
+    }
+
+    fn empty(w: usize, h: usize) -> AStarGrid {
+        let mut a = AStarGrid::default();
+        a.replace_grid(OccupancyGrid::new(w, h).unwrap());
+        a
+    }
+
+    #[test]
+    fn dragging_paints_a_gapless_wall_and_the_first_cell_decides_erase() {
+        let mut a = empty(20, 15);
+        let p = |c: Cell| a.cell_center(c);
+        let (from, to) = (p(Cell::new(2, 2)), p(Cell::new(12, 7)));
+        a.input(Input::PointerDown(from));
+        a.input(Input::PointerMove {
+            pos: to,
+            pressed: true,
+        });
+        a.input(Input::PointerUp(to));
+        // A line from (2, 2) to (12, 7): 11 cells, no gaps.
+        assert_eq!(a.grid().blocked_count(), 11);
+        assert!(a.grid().is_blocked(Cell::new(2, 2)) && a.grid().is_blocked(Cell::new(12, 7)));
+        // Starting on a wall erases along the drag.
+        let mid = a.cell_center(Cell::new(7, 4));
+        assert!(a.grid().is_blocked(Cell::new(7, 4)) || a.grid().is_blocked(Cell::new(7, 5)));
+        let start_on = if a.grid().is_blocked(Cell::new(7, 4)) {
+            mid
+        } else {
+            a.cell_center(Cell::new(7, 5))
+        };
+        a.input(Input::PointerDown(start_on));
+        a.input(Input::PointerMove {
+            pos: a.cell_center(Cell::new(12, 7)),
+            pressed: true,
+        });
+        a.input(Input::PointerUp(DVec2::ZERO));
+        assert!(a.grid().blocked_count() < 11);
+        assert!(a.grid().is_free(Cell::new(12, 7)));
+        // The raster shows the walls, row 0 at the bottom.
+        let (w, h) = (a.grid().width(), a.grid().height());
+        for (i, &b) in a.grid().cells().iter().enumerate() {
+            let (x, y) = (i % w, i / w);
+            assert_eq!(a.raster[(h - 1 - y) * w + x] == BLOCKED, b);
+        }
+    }
+
+    #[test]
+    fn walls_are_never_painted_over_the_start_or_goal() {
+        let mut a = empty(20, 15);
+        let (s, g) = (a.start(), a.goal());
+        a.input(Input::PointerDown(a.cell_center(Cell::new(0, s.y))));
+        a.input(Input::PointerMove {
+            pos: a.cell_center(Cell::new(19, s.y)),
+            pressed: true,
+        });
+        assert!(a.grid().is_free(s));
+        a.input(Input::PointerUp(DVec2::ZERO));
+        assert_eq!(a.goal(), g);
+    }
+
+    #[test]
+    fn shift_click_sets_the_start_and_ctrl_click_the_goal_and_drags_move_them() {
+        let mut a = empty(20, 15);
+        a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), shift());
+        a.input_with(Input::PointerUp(DVec2::ZERO), shift());
+        assert_eq!(a.start(), Cell::new(4, 5));
+        assert_eq!(a.param("sx"), Some(4.0));
+        assert_eq!(a.param("sy"), Some(5.0));
+        a.input_with(Input::PointerDown(a.cell_center(Cell::new(15, 9))), ctrl());
+        assert_eq!(a.goal(), Cell::new(15, 9));
+        assert_eq!(a.grid().blocked_count(), 0, "no paint with modifiers");
+        // Plain drag of the goal marker moves it; off the grid it stops at the edge.
+        a.input(Input::PointerDown(a.cell_center(Cell::new(15, 9))));
+        a.input(Input::PointerMove {
+            pos: DVec2::new(100.0, -50.0),
+            pressed: true,
+        });
+        a.input(Input::PointerUp(DVec2::ZERO));
+        assert_eq!(a.goal(), Cell::new(19, 14));
+        assert_eq!(a.grid().blocked_count(), 0);
+        // Arrow keys move the last handle by one cell (world y up = row up).
+        a.input(Input::Nudge(DVec2::new(0.0, 0.3)));
+        assert_eq!(a.goal(), Cell::new(19, 13));
+        // The start and goal never share a cell.
+        a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), ctrl());
+        assert_eq!(a.goal(), Cell::new(19, 13));
+    }
+
+    #[test]
+    fn start_or_goal_inside_a_wall_is_refused_with_a_clear_status() {
+        let mut a = empty(20, 15);
+        a.grid.set_blocked(Cell::new(9, 9), true);
+        a.grid_changed();
+        a.input_with(Input::PointerDown(a.cell_center(Cell::new(9, 9))), shift());
+        assert_eq!(a.start(), Cell::new(9, 9));
+        let st = a.status();
+        assert_eq!(st.tone, Tone::Bad);
+        assert!(st.text.contains("start (9, 9) is in a wall"), "{}", st.text);
+        a.action("plan").unwrap();
+        assert!(!a.animating());
+        assert_eq!(a.status().tone, Tone::Bad);
+        a.action("compare").unwrap();
+        assert!(a.comparison().is_empty());
+        settle(&mut a);
+        let mut scene = Scene::default();
+        a.scene(&mut scene);
+        assert!(scene.is_finite());
+        // The goal likewise, via the link.
+        let mut b = empty(20, 15);
+        b.grid.set_blocked(Cell::new(1, 1), true);
+        b.grid_changed();
+        b.set_param("gx", 1.0).unwrap();
+        b.set_param("gy", 1.0).unwrap();
+        b.action("plan").unwrap();
+        assert!(b.status().text.contains("goal (1, 1) is in a wall"));
+    }
+
+    #[test]
+    fn plan_animates_expansions_then_drives_to_the_goal() {
+        let mut a = AStarGrid::default();
+        a.action("plan").unwrap();
+        assert!(a.animating());
+        a.step(DT);
+        let per_step = a.expansions_per_step();
+        assert_eq!(a.search.as_ref().unwrap().expanded(), per_step);
+        // The open list panel: the expanded cell highlighted, then cells by f.
+        let tables = a.tables();
+        let open = tables.iter().find(|t| t.key == "open").unwrap();
+        assert_eq!(open.highlight, Some(0));
+        assert_eq!(open.rows[0][0], "expanding");
+        let f: Vec<f64> = open.rows[1..]
+            .iter()
+            .map(|r| r[4].parse().unwrap())
+            .collect();
+        assert!(f.windows(2).all(|w| w[0] <= w[1]), "{f:?}");
+        for r in &open.rows[1..] {
+            let (g, h, f): (f64, f64, f64) = (
+                r[2].parse().unwrap(),
+                r[3].parse().unwrap(),
+                r[4].parse().unwrap(),
+            );
+            assert!((g + h - f).abs() < 2e-3);
+        }
+        settle(&mut a);
+        assert_eq!(a.phase, Phase::Arrived);
+        let expected = astar_path(&a.grid, a.start, a.goal, a.config())
+            .unwrap()
+            .unwrap();
+        assert_eq!(a.path_cost, expected.cost);
+        let r = a.readouts();
+        let get = |k: &str| r.iter().find(|x| x.key == k).unwrap().value.clone();
+        assert_eq!(
+            get("path_cost"),
+            crate::experiment::format_metres(expected.cost)
+        );
+        assert_eq!(get("path_cells"), expected.path.len().to_string());
+        assert_eq!(get("expanded"), expected.expanded.to_string());
+        assert!((a.robot().unwrap() - a.cell_center(a.goal)).length() < 1e-9);
+        assert_eq!(a.status().tone, Tone::Good);
+        // The plot followed the search.
+        assert!(a.plots()[0].series[0].len() > 2);
+    }
+
+    #[test]
+    fn no_path_is_reported_without_hanging() {
+        let mut a = empty(20, 15);
+        for y in 0..15 {
+            a.grid.set_blocked(Cell::new(10, y), true);
+        }
+        a.grid_changed();
+        a.action("plan").unwrap();
+        settle(&mut a);
+        assert_eq!(a.phase, Phase::NoPath);
+        assert_eq!(a.status().tone, Tone::Bad);
+        assert!(a.status().text.starts_with("no path"));
+        a.action("compare").unwrap();
+        let t = a.tables().into_iter().find(|t| t.key == "compare").unwrap();
+        assert!(t.rows.iter().all(|r| r[2] == "no path"));
+    }
+
+    #[test]
+    fn compare_table_equals_the_solvers_results() {
+        let mut a = AStarGrid::default();
+        a.set_param("w", 1.5).unwrap();
+        a.action("compare").unwrap();
+        let rows = a.comparison().to_vec();
+        assert_eq!(rows.len(), 4);
+        let table = a.tables().into_iter().find(|t| t.key == "compare").unwrap();
+        let optimum = astar_path(
+            &a.grid,
+            a.start,
+            a.goal,
+            SearchConfig::dijkstra(Connectivity::Eight),
+        )
+        .unwrap()
+        .unwrap()
+        .cost;
+        for (row, cells) in rows.iter().zip(&table.rows) {
+            let r = astar_path(&a.grid, a.start, a.goal, row.config)
+                .unwrap()
+                .unwrap();
+            assert_eq!(row.expanded, r.expanded, "{}", row.name);
+            assert_eq!(row.cost, Some(r.cost), "{}", row.name);
+            assert_eq!(cells[1], r.expanded.to_string());
+            assert_eq!(cells[2], format_fixed(r.cost, 3));
+            assert_eq!(cells[3], format_fixed(r.cost / optimum, 3));
+            assert!(r.cost >= optimum - 1e-9);
+        }
+        assert_eq!(rows[0].cost, Some(optimum), "octile A* is optimal");
+        assert_eq!(rows[1].name, "Dijkstra");
+        assert_eq!(table.rows[1][3], "1.000");
+        assert_eq!(table.rows[1][4], "1.000");
+        assert_eq!(table.rows[1][5], "blue dashes");
+        assert!(rows[0].expanded <= rows[1].expanded);
+        assert!(rows[3].cost.unwrap() <= 1.5 * optimum + 1e-9);
+        // Every path is drawn.
+        let mut scene = Scene::default();
+        a.scene(&mut scene);
+        let polylines = scene
+            .items
+            .iter()
+            .filter(|i| matches!(i, Item::Polyline { .. }))
+            .count();
+        assert_eq!(polylines, 4);
+        // An edit drops the comparison.
+        a.input(Input::PointerDown(DVec2::new(0.5, 0.5)));
+        assert!(a.comparison().is_empty());
+    }
+
+    #[test]
+    fn load_file_reads_a_map_and_refuses_a_malformed_one_unchanged() {
+        let mut a = AStarGrid::default();
+        a.load_file("arena.map", ARENA_MAP).unwrap();
+        assert_eq!((a.grid().width(), a.grid().height()), (49, 49));
+        assert!(a.grid().is_free(a.start()) && a.grid().is_free(a.goal()));
+        assert_eq!(a.param("size"), Some(OTHER_SIZE as f64));
+        let before = (
+            a.grid().clone(),
+            a.start(),
+            a.goal(),
+            format(&a, Tab::Simulation),
+        );
+        let bad = "type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n";
+        let e = a.load_file("bad.map", bad).unwrap_err();
+        assert!(e.starts_with("bad.map: line 6"), "{e}");
+        let e = a
+            .load_file("short.map", "type octile\nheight 3\n")
+            .unwrap_err();
+        assert!(e.contains("line"), "{e}");
+        let e = a
+            .load_file("walls.map", "type octile\nheight 1\nwidth 2\nmap\n@@\n")
+            .unwrap_err();
+        assert!(e.contains("free cells"), "{e}");
+        assert_eq!(
+            before,
+            (
+                a.grid().clone(),
+                a.start(),
+                a.goal(),
+                format(&a, Tab::Simulation)
+            )
+        );
+        // Saving writes the same map back.
+        let (name, text) = a.export_text().unwrap();
+        assert_eq!(name, "grid.map");
+        assert_eq!(parse_map(&text).unwrap(), *a.grid());
+        // The bundled arena map comes with the benchmark's longest scenario.
+        a.action("arena").unwrap();
+        a.action("plan").unwrap();
+        settle(&mut a);
+        let s = parse_scen(ARENA_SCEN).unwrap().pop().unwrap();
+        assert!((a.path_cost - s.optimal_length).abs() < 1e-6);
+    }
+
+    fn round_trip(a: &AStarGrid) -> (AStarGrid, String, Vec<String>) {
+        let link = format(a, Tab::Simulation);
+        let Page::Experiment { params, .. } = parse(&link, &["astar"]).page else {
+            panic!("{link}");
+        };
+        let mut fresh = AStarGrid::default();
+        let notices = apply_params(&mut fresh, &params);
+        (fresh, link, notices)
+    }
+
+    #[test]
+    fn the_link_holds_the_walls_and_ends_and_leaves_out_large_grids() {
+        let mut a = AStarGrid::default();
+        a.action("maze").unwrap();
+        a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 3))), shift());
+        a.set_param("h", 2.0).unwrap();
+        a.set_param("w", 1.7).unwrap();
+        let (fresh, link, notices) = round_trip(&a);
+        assert!(notices.is_empty(), "{notices:?}");
+        assert!(link.contains("walls=32x24."), "{link}");
+        assert_eq!(fresh.grid(), a.grid());
+        assert_eq!((fresh.start(), fresh.goal()), (a.start(), a.goal()));
+        assert_eq!(format(&fresh, Tab::Simulation), link);
+        // A loaded 49 × 49 map round-trips with size "other".
+        a.action("arena").unwrap();
+        let (fresh, link, notices) = round_trip(&a);
+        assert!(notices.is_empty(), "{notices:?}");
+        assert_eq!(fresh.grid(), a.grid());
+        assert_eq!(format(&fresh, Tab::Simulation), link);
+        // A 512 × 512 maze is far over the limit: no walls in the link, and the page says so.
+        a.set_param("size", 5.0).unwrap();
+        a.action("maze").unwrap();
+        assert!(encoded_len(a.grid()) > LINK_WALLS_MAX);
+        assert!(!a.walls_in_link());
+        let link = format(&a, Tab::Simulation);
+        assert!(!link.contains("walls="), "{}", &link[..200.min(link.len())]);
+        assert!(link.len() < 300);
+        assert!(a.hint().contains("Save file"));
+        assert!(a.status().text.contains("Save file"));
+        assert_eq!(a.status().tone, Tone::Warning);
+        let r = a.readouts();
+        assert!(r
+            .iter()
+            .any(|x| x.key == "link" && x.value.contains("Save file")));
+        // A malformed wall code is refused with a notice and changes nothing.
+        let mut b = AStarGrid::default();
+        let before = format(&b, Tab::Simulation);
+        let notices = apply_params(&mut b, &[("walls".into(), "32x24.zz!".into())]);
+        assert_eq!(notices.len(), 1);
+        assert!(notices[0].starts_with("walls:"), "{notices:?}");
+        assert_eq!(format(&b, Tab::Simulation), before);
+    }
+
+    #[test]
+    fn a_start_out_of_the_linked_grid_is_clamped_with_a_notice() {
+        let mut b = AStarGrid::default();
+        let notices = apply_params(
+            &mut b,
+            &[
+                ("sx".into(), "100".into()),
+                ("walls".into(), "20x15".into()),
+            ],
+        );
+        assert_eq!(b.start().x, 19);
+        assert_eq!(notices.len(), 1, "{notices:?}");
+    }
+
+    #[test]
+    fn reset_replays_the_search_and_size_choice_makes_new_grids() {
+        let mut a = AStarGrid::default();
+        a.action("plan").unwrap();
+        for _ in 0..5 {
+            a.step(DT);
+        }
+        let expanded = a.search.as_ref().unwrap().expanded();
+        a.reset();
+        assert_eq!(a.search.as_ref().unwrap().expanded(), 0);
+        for _ in 0..5 {
+            a.step(DT);
+        }
+        assert_eq!(a.search.as_ref().unwrap().expanded(), expanded);
+        a.set_param("size", 0.0).unwrap();
+        assert_eq!((a.grid().width(), a.grid().height()), (20, 15));
+        assert!(a.grid().in_bounds(a.start()) && a.grid().in_bounds(a.goal()));
+        // "other" cannot be chosen for a preset grid.
+        assert_eq!(a.set_param("size", 6.0), Ok(Sanitized::Clamped(0.0)));
+        assert_eq!(a.param("size"), Some(0.0));
+    }
+
+    #[test]
+    fn same_seed_same_maze_and_it_is_solvable() {
+        let mut a = AStarGrid::default();
+        let mut b = AStarGrid::default();
+        a.action("maze").unwrap();
+        b.action("maze").unwrap();
+        assert_eq!(a.grid(), b.grid());
+        b.set_param("seed", 2.0).unwrap();
+        b.action("maze").unwrap();
+        assert_ne!(a.grid(), b.grid());
+        a.action("plan").unwrap();
+        settle(&mut a);
+        assert_eq!(a.phase, Phase::Arrived);
+        assert_eq!(
+            a.search.as_ref().map(Search::status),
+            Some(SearchStatus::Found)
+        );
+    }
+
+    /// A 512 × 512 grid: step() + scene() + tables() stay fast (generous
+    /// bound for a debug build on a shared machine).
+    #[test]
+    fn a_512_grid_steps_and_draws_quickly() {
+        let mut a = AStarGrid::default();
+        a.set_param("size", 5.0).unwrap();
+        let mut rng = Lcg64::new(3);
+        let grid = crate::planning::maze::random_fill(512, 512, 25.0, &mut rng).unwrap();
+        a.replace_grid(grid);
+        a.set_param("sx", 0.0).unwrap();
+        a.set_param("sy", 0.0).unwrap();
+        a.set_param("gx", 511.0).unwrap();
+        a.set_param("gy", 511.0).unwrap();
+        a.grid.set_blocked(Cell::new(0, 0), false);
+        a.grid.set_blocked(Cell::new(511, 511), false);
+        a.grid_changed();
+        a.action("plan").unwrap();
+        let mut scene = Scene::default();
+        let mut worst = 0.0f64;
+        let mut frames = 0;
+        while a.animating() && frames < 60 {
+            let t = std::time::Instant::now();
+            a.step(DT);
+            scene.clear();
+            a.scene(&mut scene);
+            let _ = a.tables();
+            worst = worst.max(t.elapsed().as_secs_f64());
+            frames += 1;
+        }
+        let rasters = scene
+            .items
+            .iter()
+            .filter(|i| matches!(i, Item::Raster { .. }))
+            .count();
+        assert_eq!(rasters, 1, "the grid is one raster");
+        eprintln!(
+            "512 × 512 grid: worst step + scene + tables {:.2} ms over {frames} frames",
+            worst * 1e3
+        );
+        // Release builds take well under 2 ms; a debug build on a busy machine is slower.
+        let bound = if cfg!(debug_assertions) { 0.25 } else { 0.01 };
+        assert!(worst < bound, "worst frame {worst} s");
+    }
+
+    #[test]
+    fn quiz_answers_match_the_solvers() {
+        let mut rng = Lcg64::new(5);
+        for _ in 0..20 {
+            let d = quiz_octile(&mut rng);
+            let (dx, dy) = (d.var("dx").unwrap(), d.var("dy").unwrap());
+            let g = OccupancyGrid::new(dx as usize + 1, dy as usize + 1).unwrap();
+            let r = astar_path(
+                &g,
+                Cell::new(0, 0),
+                Cell::new(dx as usize, dy as usize),
+                SearchConfig::dijkstra(Connectivity::Eight),
+            )
+            .unwrap()
+            .unwrap();
+            assert!((r.cost - d.answer).abs() < 1e-9);
+            let d = quiz_diamond(&mut rng);
+            let n = d.var("d").unwrap() as usize;
+            // Cells Dijkstra closes with g ≤ d on an open 4-connected grid.
+            let side = 2 * n + 1;
+            let g = OccupancyGrid::new(side, side).unwrap();
+            let within = (0..side * side)
+                .filter(|&i| {
+                    let c = g.cell_of(i).unwrap();
+                    c.x.abs_diff(n) + c.y.abs_diff(n) <= n
+                })
+                .count();
+            assert_eq!(within as f64, d.answer);
+        }
+    }
+}

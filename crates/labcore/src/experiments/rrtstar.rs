@@ -1,0 +1,1473 @@
+//! Experiment 10 — RRT* among circle and rectangle obstacles.
+//!
+//! *Grow tree* runs [`RrtStar::iterate`] for a fixed number of iterations per
+//! fixed time step (the *Iterations per frame* setting; no clock inside), up
+//! to an iteration budget. Each iteration samples `x_rand` (the goal with
+//! probability *goal bias*), steers from the nearest node by at most `η`,
+//!
+//! ```text
+//! x_new = x_near + min(η, |x_rand − x_near|) · (x_rand − x_near) / |x_rand − x_near|
+//! ```
+//!
+//! and, for RRT*, chooses the cheapest parent and rewires within
+//!
+//! ```text
+//! r = min(γ · (log n / n)^(1/d), η),   d = 2
+//! ```
+//!
+//! (LaValle, TR 98-11, 1998; Karaman & Frazzoli, *IJRR* 30(7), 2011; Gammell,
+//! Srinivasa & Barfoot, *IROS* 2014 for the informed variant). The scene draws
+//! the whole tree as one batch of segments, the edges rewired during the last
+//! frame as a second, flashing batch, the rewiring radius around the newest
+//! node and the best path in amber. *Compare* grows RRT, RRT* and Informed
+//! RRT* from the same seed side by side and overlays their best-cost curves.
+//!
+//! **The link** holds every parameter, the start and goal (snapped to 1 cm)
+//! and the obstacles as text (key `obs`, see [`encode_obstacles`]).
+
+use crate::experiment::{
+    check_param, format_metres, ActionSpec, Experiment, Input, Modifiers, ParamError, ParamSpec,
+    Readout, Sanitized, Status, Tone,
+};
+use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar, NO_PARENT};
+use crate::planning::world::{Obstacle, World};
+use crate::plot::{Plot, Series, SeriesRole};
+use crate::quiz::{format_number, Draw, Generator};
+use crate::rng::Lcg64;
+use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::table::Table;
+use glam::DVec2;
+
+/// The field, metres.
+pub const FIELD_M: DVec2 = DVec2::new(10.0, 6.0);
+/// Radius of the goal disc, metres.
+pub const GOAL_RADIUS_M: f64 = 0.25;
+/// Spacing of edge collision checks, metres.
+pub const CHECK_RESOLUTION_M: f64 = 0.02;
+/// Radius of an obstacle added by a click, metres.
+pub const NEW_OBSTACLE_RADIUS_M: f64 = 0.4;
+/// The most obstacles the field holds.
+pub const MAX_OBSTACLES: usize = 40;
+/// The robot's speed along the path, m/s.
+const DRIVE_SPEED: f64 = 1.2;
+/// Pick-up distance of the start and goal markers, metres.
+const HANDLE_M: f64 = 0.25;
+/// Obstacle coordinates in a link are read within ±this many centimetres.
+const LINK_CM_LIMIT: i64 = 100_000;
+
+const PLANNERS: &[&str] = &["RRT", "RRT*", "Informed RRT*"];
+const PLANNER_KINDS: [Planner; 3] = [Planner::Rrt, Planner::RrtStar, Planner::InformedRrtStar];
+
+const PARAMS: &[ParamSpec] = &[
+    ParamSpec::choice("planner", "Planner", PLANNERS, 1),
+    ParamSpec::slider("eta", "Step η", "m", 0.1, 2.0, 0.05, 0.5),
+    ParamSpec::slider("bias", "Goal bias", "%", 0.0, 50.0, 1.0, 8.0),
+    ParamSpec::number("seed", "Seed", 0.0, 999_999.0, 1.0),
+    ParamSpec::slider("batch", "Iterations per frame", "/f", 1.0, 400.0, 1.0, 24.0).whole_numbers(),
+    ParamSpec::slider(
+        "iters",
+        "Iteration budget",
+        "",
+        500.0,
+        20000.0,
+        500.0,
+        4000.0,
+    )
+    .whole_numbers(),
+    ParamSpec::optional_number("sx", "Start x", "m", 0.0, FIELD_M.x),
+    ParamSpec::optional_number("sy", "Start y", "m", 0.0, FIELD_M.y),
+    ParamSpec::optional_number("gx", "Goal x", "m", 0.0, FIELD_M.x),
+    ParamSpec::optional_number("gy", "Goal y", "m", 0.0, FIELD_M.y),
+];
+
+const ACTIONS: &[ActionSpec] = &[
+    ActionSpec {
+        key: "grow",
+        label: "Grow tree",
+    },
+    ActionSpec {
+        key: "compare",
+        label: "Compare",
+    },
+    ActionSpec {
+        key: "drive",
+        label: "Drive path",
+    },
+    ActionSpec {
+        key: "clear",
+        label: "Clear obstacles",
+    },
+    ActionSpec {
+        key: "field",
+        label: "Default field",
+    },
+];
+
+const DEFAULT_START: DVec2 = DVec2::new(0.8, 3.0);
+const DEFAULT_GOAL: DVec2 = DVec2::new(9.2, 3.0);
+
+/// The default obstacle field: a wall with a gap, discs and a block.
+#[must_use]
+pub fn default_obstacles() -> Vec<Obstacle> {
+    let c = |x, y, r| Obstacle::Circle {
+        center: DVec2::new(x, y),
+        radius: r,
+    };
+    let r = |x0, y0, x1, y1| Obstacle::rect(DVec2::new(x0, y0), DVec2::new(x1, y1));
+    vec![
+        c(2.8, 3.6, 0.9),
+        r(1.8, 0.6, 2.6, 1.8),
+        r(4.6, 0.0, 5.3, 2.6),
+        r(4.6, 3.6, 5.3, 6.0),
+        c(7.2, 1.9, 0.8),
+        c(7.3, 4.5, 0.7),
+    ]
+}
+
+/// Rounds to whole centimetres, so a state always equals its link.
+fn cm(v: f64) -> f64 {
+    (v * 100.0).round() / 100.0
+}
+
+fn cm_vec(p: DVec2) -> DVec2 {
+    DVec2::new(cm(p.x), cm(p.y))
+}
+
+/// The obstacles as link text: `c<x>_<y>_<r>` and `r<x0>_<y0>_<x1>_<y1>` in
+/// whole centimetres, joined by `~` (all URL-unreserved); `none` for none.
+///
+/// # Example
+/// ```
+/// use labcore::glam::DVec2;
+/// use labcore::experiments::rrtstar::{decode_obstacles, encode_obstacles};
+/// use labcore::planning::world::Obstacle;
+/// let obs = vec![
+///     Obstacle::Circle { center: DVec2::new(2.5, 3.0), radius: 0.6 },
+///     Obstacle::rect(DVec2::new(4.0, 1.0), DVec2::new(4.8, 3.5)),
+/// ];
+/// assert_eq!(encode_obstacles(&obs), "c250_300_60~r400_100_480_350");
+/// assert_eq!(decode_obstacles("c250_300_60~r400_100_480_350").unwrap(), obs);
+/// assert!(decode_obstacles("c1_2").is_err());
+/// ```
+#[must_use]
+pub fn encode_obstacles(obstacles: &[Obstacle]) -> String {
+    if obstacles.is_empty() {
+        return "none".into();
+    }
+    let n = |v: f64| format!("{}", (v * 100.0).round() as i64);
+    obstacles
+        .iter()
+        .map(|o| match *o {
+            Obstacle::Circle { center, radius } => {
+                format!("c{}_{}_{}", n(center.x), n(center.y), n(radius))
+            }
+            Obstacle::Rect { min, max } => {
+                format!("r{}_{}_{}_{}", n(min.x), n(min.y), n(max.x), n(max.y))
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("~")
+}
+
+/// Reads [`encode_obstacles`]' text.
+///
+/// # Errors
+/// A message naming the first obstacle that could not be read.
+pub fn decode_obstacles(text: &str) -> Result<Vec<Obstacle>, String> {
+    if text == "none" {
+        return Ok(Vec::new());
+    }
+    let mut out = Vec::new();
+    for (i, item) in text.split('~').enumerate() {
+        let bad = || {
+            format!(
+                "obstacle {} (“{}”) is not c<x>_<y>_<r> or r<x0>_<y0>_<x1>_<y1> in cm",
+                i + 1,
+                item.chars().take(30).collect::<String>()
+            )
+        };
+        let mut chars = item.chars();
+        let kind = chars.next().ok_or_else(bad)?;
+        let numbers: Vec<i64> = chars
+            .as_str()
+            .split('_')
+            .map(|s| s.parse::<i64>().ok().filter(|v| v.abs() <= LINK_CM_LIMIT))
+            .collect::<Option<Vec<_>>>()
+            .ok_or_else(bad)?;
+        let m = |v: i64| v as f64 / 100.0;
+        let o = match (kind, numbers.as_slice()) {
+            ('c', &[x, y, r]) if r > 0 => Obstacle::Circle {
+                center: DVec2::new(m(x), m(y)),
+                radius: m(r),
+            },
+            ('r', &[x0, y0, x1, y1]) if x0 <= x1 && y0 <= y1 => Obstacle::Rect {
+                min: DVec2::new(m(x0), m(y0)),
+                max: DVec2::new(m(x1), m(y1)),
+            },
+            _ => return Err(bad()),
+        };
+        out.push(o);
+        if out.len() > MAX_OBSTACLES {
+            return Err(format!("at most {MAX_OBSTACLES} obstacles"));
+        }
+    }
+    Ok(out)
+}
+
+/// What a pointer drag moves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Drag {
+    None,
+    Start,
+    Goal,
+    /// Obstacle `index`, grabbed at `grab` (world) when its reference point
+    /// (centre or min corner) was at `origin`.
+    Obstacle {
+        index: usize,
+        grab: DVec2,
+        origin: DVec2,
+    },
+}
+
+/// One planner's tree in the current run.
+#[derive(Clone, Debug)]
+struct Run {
+    planner: Planner,
+    tree: RrtStar,
+}
+
+/// State of the RRT* experiment.
+#[derive(Clone, Debug)]
+pub struct RrtStarField {
+    planner: Planner,
+    eta_m: f64,
+    bias_percent: f64,
+    seed: u64,
+    batch: usize,
+    budget: usize,
+    start: DVec2,
+    goal: DVec2,
+    obstacles: Vec<Obstacle>,
+    /// The trees of the current run: one (*Grow tree*) or three (*Compare*).
+    runs: Vec<Run>,
+    growing: bool,
+    /// Why the last run could not start.
+    error: Option<RrtError>,
+    /// Settings changed after a run: the tree was dropped.
+    stale: bool,
+    /// Distance driven along the frozen path, metres.
+    driven_m: Option<f64>,
+    drive_path: Vec<DVec2>,
+    drag: Drag,
+    /// Which handle arrow keys move (the one grabbed last).
+    nudge: Drag,
+    note: Option<String>,
+    plots: [Plot; 1],
+}
+
+fn series_role(p: Planner) -> SeriesRole {
+    match p {
+        Planner::Rrt => SeriesRole::Secondary,
+        Planner::RrtStar => SeriesRole::Primary,
+        Planner::InformedRrtStar => SeriesRole::Tertiary,
+    }
+}
+
+fn path_role(p: Planner) -> Role {
+    match p {
+        Planner::Rrt => Role::Warning,
+        Planner::RrtStar => Role::Path,
+        Planner::InformedRrtStar => Role::Robot,
+    }
+}
+
+fn cost_plot(planners: &[Planner]) -> Plot {
+    Plot::new(
+        "cost",
+        "Best path length",
+        ("Iteration", ""),
+        ("Best length", "m"),
+        planners
+            .iter()
+            .map(|p| Series::new(p.name(), "m", series_role(*p)))
+            .collect(),
+    )
+}
+
+impl Default for RrtStarField {
+    fn default() -> Self {
+        Self {
+            planner: Planner::RrtStar,
+            eta_m: PARAMS[1].default,
+            bias_percent: PARAMS[2].default,
+            seed: PARAMS[3].default as u64,
+            batch: PARAMS[4].default as usize,
+            budget: PARAMS[5].default as usize,
+            start: DEFAULT_START,
+            goal: DEFAULT_GOAL,
+            obstacles: default_obstacles(),
+            runs: Vec::new(),
+            growing: false,
+            error: None,
+            stale: false,
+            driven_m: None,
+            drive_path: Vec::new(),
+            drag: Drag::None,
+            nudge: Drag::Start,
+            note: None,
+            plots: [cost_plot(&[Planner::RrtStar])],
+        }
+    }
+}
+
+impl RrtStarField {
+    /// The planner settings of a run.
+    #[must_use]
+    pub fn config(&self, planner: Planner) -> RrtConfig {
+        RrtConfig {
+            planner,
+            step_eta: self.eta_m,
+            goal_bias: self.bias_percent / 100.0,
+            check_resolution: CHECK_RESOLUTION_M,
+            goal_radius: GOAL_RADIUS_M,
+            gamma: None,
+            max_nodes: self.budget + 1,
+            seed: self.seed,
+        }
+    }
+
+    /// The field with the current obstacles.
+    ///
+    /// # Errors
+    /// When an obstacle is invalid (never for obstacles made by the page).
+    pub fn world(&self) -> Result<World, String> {
+        World::new(DVec2::ZERO, FIELD_M, self.obstacles.clone()).map_err(|e| e.to_string())
+    }
+
+    /// The tree shown: the selected planner's, else the first.
+    fn shown(&self) -> Option<&RrtStar> {
+        self.runs
+            .iter()
+            .find(|r| r.planner == self.planner)
+            .or_else(|| self.runs.first())
+            .map(|r| &r.tree)
+    }
+
+    /// The best path of the tree shown.
+    #[must_use]
+    pub fn best_path(&self) -> Option<Vec<DVec2>> {
+        self.shown().and_then(RrtStar::best_path)
+    }
+
+    /// Starts a run of `planners` from the same seed.
+    fn start_run(&mut self, planners: &[Planner]) {
+        self.runs.clear();
+        self.growing = false;
+        self.stale = false;
+        self.driven_m = None;
+        self.drive_path.clear();
+        self.error = None;
+        self.note = None;
+        self.plots = [cost_plot(planners)];
+        let world = match self.world() {
+            Ok(w) => w,
+            Err(e) => {
+                self.note = Some(e);
+                return;
+            }
+        };
+        for &planner in planners {
+            match RrtStar::new(world.clone(), self.start, self.goal, self.config(planner)) {
+                Ok(tree) => self.runs.push(Run { planner, tree }),
+                Err(e) => {
+                    self.runs.clear();
+                    self.error = Some(e);
+                    return;
+                }
+            }
+        }
+        self.growing = true;
+    }
+
+    /// The planners of the current run (to replay it).
+    fn run_planners(&self) -> Vec<Planner> {
+        self.runs.iter().map(|r| r.planner).collect()
+    }
+
+    /// Drops the run after a change of the field or of a planner setting.
+    fn invalidate(&mut self) {
+        if !self.runs.is_empty() || self.error.is_some() {
+            self.stale = !self.runs.is_empty();
+        }
+        self.runs.clear();
+        self.growing = false;
+        self.error = None;
+        self.driven_m = None;
+        self.drive_path.clear();
+        self.plots = [cost_plot(&[self.planner])];
+    }
+
+    fn obstacle_at(&self, p: DVec2, tolerance_m: f64) -> Option<usize> {
+        // The topmost (last drawn) first.
+        self.obstacles.iter().rposition(|o| match *o {
+            Obstacle::Circle { center, radius } => (p - center).length() <= radius + tolerance_m,
+            Obstacle::Rect { min, max } => {
+                p.x >= min.x - tolerance_m
+                    && p.x <= max.x + tolerance_m
+                    && p.y >= min.y - tolerance_m
+                    && p.y <= max.y + tolerance_m
+            }
+        })
+    }
+
+    /// The obstacle's reference point: the centre of a circle, the min corner of a rectangle.
+    fn origin_of(o: &Obstacle) -> DVec2 {
+        match *o {
+            Obstacle::Circle { center, .. } => center,
+            Obstacle::Rect { min, .. } => min,
+        }
+    }
+
+    fn centre_of(o: &Obstacle) -> DVec2 {
+        match *o {
+            Obstacle::Circle { center, .. } => center,
+            Obstacle::Rect { min, max } => (min + max) * 0.5,
+        }
+    }
+
+    /// Moves obstacle `i` so its reference point is at `to` (centimetres,
+    /// within a metre of the field, so a drag can take it off the field).
+    fn move_obstacle(&mut self, i: usize, to: DVec2) {
+        let to = cm_vec(to.clamp(DVec2::splat(-1.0), FIELD_M + 1.0));
+        let Some(o) = self.obstacles.get_mut(i) else {
+            return;
+        };
+        let moved = match *o {
+            Obstacle::Circle { radius, .. } => Obstacle::Circle { center: to, radius },
+            Obstacle::Rect { min, max } => Obstacle::Rect {
+                min: to,
+                max: cm_vec(to + (max - min)),
+            },
+        };
+        if moved != *o {
+            *o = moved;
+            self.invalidate();
+        }
+    }
+
+    fn in_field(p: DVec2) -> bool {
+        p.x >= 0.0 && p.y >= 0.0 && p.x <= FIELD_M.x && p.y <= FIELD_M.y
+    }
+
+    fn clamp_to_field(p: DVec2) -> DVec2 {
+        cm_vec(p.clamp(DVec2::ZERO, FIELD_M))
+    }
+
+    fn set_start(&mut self, p: DVec2) {
+        let p = Self::clamp_to_field(p);
+        if p != self.start {
+            self.start = p;
+            self.invalidate();
+        }
+    }
+
+    fn set_goal(&mut self, p: DVec2) {
+        let p = Self::clamp_to_field(p);
+        if p != self.goal {
+            self.goal = p;
+            self.invalidate();
+        }
+    }
+
+    fn drive(&mut self) {
+        match self.best_path() {
+            Some(path) if path.len() >= 2 => {
+                self.growing = false;
+                self.drive_path = path;
+                self.driven_m = Some(0.0);
+                self.note = None;
+            }
+            _ => self.note = Some("no path to drive yet: grow the tree first".into()),
+        }
+    }
+
+    fn robot(&self) -> Option<DVec2> {
+        let mut left = self.driven_m?;
+        if left >= self.drive_length() {
+            return self.drive_path.last().copied();
+        }
+        for w in self.drive_path.windows(2) {
+            let len = (w[1] - w[0]).length();
+            if left < len && len > 0.0 {
+                return Some(w[0] + (w[1] - w[0]) * (left / len));
+            }
+            left -= len;
+        }
+        self.drive_path.last().copied()
+    }
+
+    fn drive_length(&self) -> f64 {
+        self.drive_path
+            .windows(2)
+            .map(|w| (w[1] - w[0]).length())
+            .sum()
+    }
+
+    fn driving(&self) -> bool {
+        self.driven_m.is_some_and(|d| d < self.drive_length())
+    }
+}
+
+impl Experiment for RrtStarField {
+    fn id(&self) -> &'static str {
+        "rrtstar"
+    }
+
+    fn params(&self) -> &'static [ParamSpec] {
+        PARAMS
+    }
+
+    fn param(&self, key: &str) -> Option<f64> {
+        Some(match key {
+            "planner" => PLANNER_KINDS
+                .iter()
+                .position(|p| *p == self.planner)
+                .unwrap_or(1) as f64,
+            "eta" => self.eta_m,
+            "bias" => self.bias_percent,
+            "seed" => self.seed as f64,
+            "batch" => self.batch as f64,
+            "iters" => self.budget as f64,
+            "sx" => self.start.x,
+            "sy" => self.start.y,
+            "gx" => self.goal.x,
+            "gy" => self.goal.y,
+            _ => return None,
+        })
+    }
+
+    fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
+        let mut applied = check_param(PARAMS, key, value)?;
+        let v = applied.value();
+        match key {
+            "planner" => {
+                self.planner = PLANNER_KINDS[(v as usize).min(2)];
+                self.invalidate();
+            }
+            "eta" => {
+                self.eta_m = v;
+                self.invalidate();
+            }
+            "bias" => {
+                self.bias_percent = v;
+                self.invalidate();
+            }
+            "seed" => {
+                self.seed = v as u64;
+                self.invalidate();
+            }
+            "batch" => self.batch = v as usize,
+            "iters" => {
+                self.budget = v as usize;
+                self.invalidate();
+            }
+            "sx" | "sy" | "gx" | "gy" => {
+                // Whole centimetres, like a drag.
+                let c = cm(v);
+                if c != v {
+                    applied = Sanitized::Clamped(c);
+                }
+                let mut p = if key.starts_with('s') {
+                    self.start
+                } else {
+                    self.goal
+                };
+                if key.ends_with('x') {
+                    p.x = c;
+                } else {
+                    p.y = c;
+                }
+                if key.starts_with('s') {
+                    self.set_start(p);
+                } else {
+                    self.set_goal(p);
+                }
+            }
+            _ => return Err(ParamError::UnknownKey { key: key.into() }),
+        }
+        Ok(applied)
+    }
+
+    fn actions(&self) -> &'static [ActionSpec] {
+        ACTIONS
+    }
+
+    fn action(&mut self, key: &str) -> Result<(), ParamError> {
+        match key {
+            "grow" => self.start_run(&[self.planner]),
+            "compare" => self.start_run(&PLANNER_KINDS),
+            "drive" => self.drive(),
+            "clear" => {
+                self.obstacles.clear();
+                self.invalidate();
+            }
+            "field" => {
+                self.obstacles = default_obstacles();
+                self.start = DEFAULT_START;
+                self.goal = DEFAULT_GOAL;
+                self.invalidate();
+            }
+            _ => return Err(ParamError::UnknownAction { key: key.into() }),
+        }
+        Ok(())
+    }
+
+    fn input(&mut self, input: Input) {
+        self.input_with(input, Modifiers::default());
+    }
+
+    /// Shift-click sets the start, Ctrl-click the goal; a press on the
+    /// start, the goal or an obstacle drags it; a press on free space adds a
+    /// disc there (drag to place it). An obstacle dropped outside the field
+    /// is removed. Arrow keys move the handle grabbed last.
+    fn input_with(&mut self, input: Input, modifiers: Modifiers) {
+        match input {
+            Input::PointerDown(p) => {
+                self.drag = Drag::None;
+                if !p.is_finite() {
+                    return;
+                }
+                if modifiers.shift {
+                    self.drag = Drag::Start;
+                    self.set_start(p);
+                } else if modifiers.ctrl {
+                    self.drag = Drag::Goal;
+                    self.set_goal(p);
+                } else if (p - self.start).length() <= HANDLE_M {
+                    self.drag = Drag::Start;
+                } else if (p - self.goal).length() <= HANDLE_M {
+                    self.drag = Drag::Goal;
+                } else if let Some(index) = self.obstacle_at(p, 0.0) {
+                    self.drag = Drag::Obstacle {
+                        index,
+                        grab: p,
+                        origin: Self::origin_of(&self.obstacles[index]),
+                    };
+                } else if Self::in_field(p) {
+                    if self.obstacles.len() >= MAX_OBSTACLES {
+                        self.note =
+                            Some(format!("the field holds at most {MAX_OBSTACLES} obstacles"));
+                        return;
+                    }
+                    let center = cm_vec(p);
+                    self.obstacles.push(Obstacle::Circle {
+                        center,
+                        radius: NEW_OBSTACLE_RADIUS_M,
+                    });
+                    self.invalidate();
+                    self.drag = Drag::Obstacle {
+                        index: self.obstacles.len() - 1,
+                        grab: center,
+                        origin: center,
+                    };
+                }
+                if self.drag != Drag::None {
+                    self.nudge = self.drag;
+                }
+            }
+            Input::PointerMove { pos, pressed: true } if pos.is_finite() => match self.drag {
+                Drag::Start => self.set_start(pos),
+                Drag::Goal => self.set_goal(pos),
+                Drag::Obstacle {
+                    index,
+                    grab,
+                    origin,
+                } => self.move_obstacle(index, origin + (pos - grab)),
+                Drag::None => {}
+            },
+            Input::PointerMove { .. } => {}
+            Input::PointerUp(_) => {
+                if let Drag::Obstacle { index, .. } = self.drag {
+                    let off = self
+                        .obstacles
+                        .get(index)
+                        .is_some_and(|o| !Self::in_field(Self::centre_of(o)));
+                    if off {
+                        self.obstacles.remove(index);
+                        self.nudge = Drag::Start;
+                        self.invalidate();
+                    }
+                }
+                self.drag = Drag::None;
+            }
+            Input::Nudge(d) => {
+                if !d.is_finite() {
+                    return;
+                }
+                match self.nudge {
+                    Drag::Goal => self.set_goal(self.goal + d),
+                    Drag::Obstacle { index, .. } => {
+                        if let Some(o) = self.obstacles.get(index) {
+                            let to = Self::origin_of(o) + d;
+                            self.move_obstacle(index, to);
+                        }
+                    }
+                    _ => self.set_start(self.start + d),
+                }
+            }
+        }
+    }
+
+    fn step(&mut self, dt_s: f64) {
+        if !crate::clock::valid_dt(dt_s) {
+            return;
+        }
+        if self.growing {
+            let (batch, budget) = (self.batch, self.budget);
+            let mut all_done = true;
+            for (i, run) in self.runs.iter_mut().enumerate() {
+                let left = budget.saturating_sub(run.tree.iterations());
+                if left == 0 {
+                    continue;
+                }
+                run.tree.iterate(batch.min(left));
+                if let Some(c) = run.tree.best_cost() {
+                    if let Some(s) = self.plots[0].series.get_mut(i) {
+                        s.push(run.tree.iterations() as f64, c);
+                    }
+                }
+                if run.tree.iterations() < budget && run.tree.len() < budget + 1 {
+                    all_done = false;
+                }
+            }
+            self.plots[0].touch();
+            if all_done {
+                self.growing = false;
+            }
+        } else if let Some(d) = self.driven_m {
+            let length = self.drive_length();
+            self.driven_m = Some((d + DRIVE_SPEED * dt_s).min(length));
+        }
+    }
+
+    fn animated(&self) -> bool {
+        true
+    }
+
+    /// Regrows the current run from its first iteration (same seed, same trees).
+    fn reset(&mut self) {
+        let planners = self.run_planners();
+        if !planners.is_empty() {
+            self.start_run(&planners);
+        }
+    }
+
+    fn plots(&self) -> &[Plot] {
+        &self.plots
+    }
+
+    fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
+        let tol = tolerance_m.max(HANDLE_M);
+        (p - self.start).length() <= tol
+            || (p - self.goal).length() <= tol
+            || self.obstacle_at(p, tolerance_m.max(0.0)).is_some()
+    }
+
+    fn tables(&self) -> Vec<Table> {
+        if self.runs.len() < 2 {
+            return Vec::new();
+        }
+        let mut t = Table::new(
+            "compare",
+            "Same seed, same field: RRT, RRT* and Informed RRT*",
+            &[
+                "planner",
+                "iterations",
+                "nodes",
+                "first path at",
+                "best length",
+            ],
+        );
+        for r in &self.runs {
+            let first = r.tree.cost_history().first();
+            t.push_row(vec![
+                r.planner.name().into(),
+                r.tree.iterations().to_string(),
+                r.tree.len().to_string(),
+                first.map_or("--".into(), |s| format!("iteration {}", s.iteration)),
+                format_metres(r.tree.best_cost().unwrap_or(f64::NAN)),
+            ]);
+        }
+        if let Some(i) = self.runs.iter().position(|r| r.planner == self.planner) {
+            t.highlight = Some(i);
+        }
+        vec![t]
+    }
+
+    fn extra_state(&self) -> Vec<(&'static str, String)> {
+        vec![("obs", encode_obstacles(&self.obstacles))]
+    }
+
+    fn set_extra_state(&mut self, key: &str, value: &str) -> Result<(), ParamError> {
+        if key != "obs" {
+            return Err(ParamError::UnknownKey { key: key.into() });
+        }
+        let obstacles = decode_obstacles(value).map_err(|reason| ParamError::BadText {
+            key: key.into(),
+            reason,
+        })?;
+        if obstacles != self.obstacles {
+            self.obstacles = obstacles;
+            self.invalidate();
+        }
+        Ok(())
+    }
+
+    fn view(&self) -> ViewBox {
+        ViewBox {
+            min: DVec2::splat(-0.2),
+            max: FIELD_M + 0.2,
+        }
+    }
+
+    fn scene(&self, out: &mut Scene) {
+        out.push(Item::Rect {
+            min: DVec2::ZERO,
+            max: FIELD_M,
+            role: Role::Bound,
+            fill: false,
+        });
+        for o in &self.obstacles {
+            out.push(match *o {
+                Obstacle::Circle { center, radius } => Item::Circle {
+                    center,
+                    radius_m: radius,
+                    role: Role::Obstacle,
+                    fill: true,
+                    dashed: false,
+                },
+                Obstacle::Rect { min, max } => Item::Rect {
+                    min,
+                    max,
+                    role: Role::Obstacle,
+                    fill: true,
+                },
+            });
+        }
+        if let Some(tree) = self.shown() {
+            // The whole tree: one batch.
+            let nodes = tree.nodes();
+            let segments: Vec<(DVec2, DVec2)> = tree
+                .parents()
+                .iter()
+                .zip(nodes)
+                .filter(|(p, _)| **p != NO_PARENT)
+                .map(|(p, n)| (nodes[*p as usize], *n))
+                .collect();
+            out.push(Item::Segments {
+                segments,
+                width_px: 1.0,
+                role: Role::Visited,
+            });
+            if self.growing {
+                let rewired: Vec<(DVec2, DVec2)> = tree
+                    .rewired_in_last_batch()
+                    .iter()
+                    .filter_map(|&i| {
+                        let p = tree.parent(i as usize)?;
+                        Some((nodes[p], nodes[i as usize]))
+                    })
+                    .collect();
+                if !rewired.is_empty() {
+                    out.push(Item::Segments {
+                        segments: rewired,
+                        width_px: 2.5,
+                        role: Role::Warning,
+                    });
+                }
+                if let Some(n) = tree.newest() {
+                    let r = tree.last_radius();
+                    if r > 0.0 {
+                        out.push(Item::Circle {
+                            center: nodes[n],
+                            radius_m: r,
+                            role: Role::Accent,
+                            fill: false,
+                            dashed: true,
+                        });
+                    }
+                }
+            }
+        }
+        // The other planners' best paths (Compare), then the shown one on top.
+        if self.runs.len() > 1 {
+            for r in self.runs.iter().filter(|r| r.planner != self.planner) {
+                if let Some(path) = r.tree.best_path() {
+                    if let Some(&end) = path.last() {
+                        out.push(Item::Polyline {
+                            points: path,
+                            width_px: 2.0,
+                            role: path_role(r.planner),
+                            dashed: true,
+                            closed: false,
+                        });
+                        out.push(Item::Label {
+                            pos: end,
+                            text: r.planner.name().into(),
+                            role: path_role(r.planner),
+                            offset_px: DVec2::new(-40.0, 16.0),
+                        });
+                    }
+                }
+            }
+        }
+        let path = if self.driven_m.is_some() {
+            Some(self.drive_path.clone())
+        } else {
+            self.best_path()
+        };
+        if let Some(path) = path.filter(|p| p.len() >= 2) {
+            out.push(Item::Polyline {
+                points: path,
+                width_px: 3.0,
+                role: Role::Path,
+                dashed: false,
+                closed: false,
+            });
+        }
+        out.push(Item::Circle {
+            center: self.goal,
+            radius_m: GOAL_RADIUS_M,
+            role: Role::Tip,
+            fill: false,
+            dashed: true,
+        });
+        out.push(Item::Dot {
+            center: self.start,
+            radius_px: 8.0,
+            role: Role::Sample,
+        });
+        out.push(Item::Dot {
+            center: self.goal,
+            radius_px: 8.0,
+            role: Role::Tip,
+        });
+        out.push(Item::Label {
+            pos: self.start,
+            text: "start".into(),
+            role: Role::Text,
+            offset_px: DVec2::new(10.0, -10.0),
+        });
+        out.push(Item::Label {
+            pos: self.goal,
+            text: "goal".into(),
+            role: Role::Text,
+            offset_px: DVec2::new(10.0, -10.0),
+        });
+        if let Some(p) = self.robot() {
+            out.push(Item::Circle {
+                center: p,
+                radius_m: 0.18,
+                role: Role::Robot,
+                fill: true,
+                dashed: false,
+            });
+        }
+    }
+
+    fn readouts(&self) -> Vec<Readout> {
+        let tree = self.shown();
+        let status = self.status().text;
+        vec![
+            Readout::new("nodes", "Nodes", tree.map_or(1, RrtStar::len).to_string()),
+            Readout::new(
+                "iterations",
+                "Iterations",
+                tree.map_or(0, RrtStar::iterations).to_string(),
+            ),
+            Readout::new(
+                "rewires",
+                "Rewires",
+                tree.map_or(0, RrtStar::rewire_count).to_string(),
+            ),
+            Readout::metres(
+                "best",
+                "Best length",
+                tree.and_then(RrtStar::best_cost).unwrap_or(f64::NAN),
+            ),
+            Readout::metres(
+                "radius",
+                "Rewiring radius r",
+                tree.map_or(f64::NAN, |t| {
+                    if self.planner == Planner::Rrt {
+                        f64::NAN
+                    } else {
+                        t.radius(t.len())
+                    }
+                }),
+            ),
+            Readout::new("status", "Status", status),
+        ]
+    }
+
+    fn status(&self) -> Status {
+        if let Some(e) = self.error {
+            let text = match e {
+                RrtError::StartNotFree => {
+                    "the start is in an obstacle: drag it to free space".to_owned()
+                }
+                RrtError::GoalNotFree => {
+                    "the goal is in an obstacle: drag it to free space".to_owned()
+                }
+                e => e.to_string(),
+            };
+            return Status::new(text, Tone::Bad);
+        }
+        if let Some(note) = &self.note {
+            return Status::new(note.clone(), Tone::Warning);
+        }
+        if self.stale {
+            return Status::new("field or settings changed: grow again", Tone::Warning);
+        }
+        let Some(tree) = self.shown() else {
+            return Status::new("idle: press Grow tree", Tone::Neutral);
+        };
+        let best = tree.best_cost();
+        if self.driven_m.is_some() {
+            return if self.driving() {
+                Status::new("driving the best path", Tone::Good)
+            } else {
+                Status::new("arrived at the goal", Tone::Good)
+            };
+        }
+        let what = if self.runs.len() > 1 {
+            "comparing"
+        } else {
+            "growing"
+        };
+        match (self.growing, best) {
+            (true, None) => Status::new(
+                format!("{what}… {} nodes, no path yet", tree.len()),
+                Tone::Neutral,
+            ),
+            (true, Some(c)) => {
+                Status::new(format!("{what}… best {}", format_metres(c)), Tone::Good)
+            }
+            (false, Some(c)) => {
+                Status::new(format!("done: best path {}", format_metres(c)), Tone::Good)
+            }
+            (false, None) => Status::new(
+                format!("no path found in {} iterations", tree.iterations()),
+                Tone::Warning,
+            ),
+        }
+    }
+
+    fn hint(&self) -> &'static str {
+        "Press Grow tree. Drag the start, goal or obstacles; click free space to add a disc (drop one outside the field to remove it); Shift-click sets the start, Ctrl-click the goal."
+    }
+
+    fn preview(&mut self) {
+        self.start_run(&[self.planner]);
+        if let Some(run) = self.runs.first_mut() {
+            run.tree.iterate(1500);
+        }
+        self.growing = false;
+    }
+
+    fn animating(&self) -> bool {
+        self.growing || self.driving()
+    }
+}
+
+/// `r = min(γ √(ln n / n), η)`.
+fn quiz_radius(rng: &mut Lcg64) -> Draw {
+    let gamma = rng.int(20, 80) as f64 / 2.0;
+    let n = [100, 200, 500, 1000, 2000, 5000, 10000][rng.int(0, 6) as usize];
+    let eta = rng.int(2, 10) as f64;
+    let r = (gamma * (crate::math::ln(n as f64) / n as f64).sqrt()).min(eta);
+    Draw {
+        vars: vec![
+            ("gamma", format_number(gamma, 1)),
+            ("n", n.to_string()),
+            ("eta", format_number(eta, 0)),
+        ],
+        answer: r,
+    }
+}
+
+/// The x coordinate of `x_new` after steering by `η` from `x_near` to `x_rand`.
+fn quiz_steer_x(rng: &mut Lcg64) -> Draw {
+    let near = DVec2::new(rng.int(0, 20) as f64, rng.int(0, 20) as f64);
+    let rand = loop {
+        let p = DVec2::new(rng.int(0, 40) as f64, rng.int(0, 40) as f64);
+        if (p - near).length() > 6.0 {
+            break p;
+        }
+    };
+    let eta = rng.int(2, 5) as f64;
+    let d = (rand - near).length();
+    let new = near + (rand - near) * (eta.min(d) / d);
+    Draw {
+        vars: vec![
+            ("nx", format_number(near.x, 0)),
+            ("ny", format_number(near.y, 0)),
+            ("rx", format_number(rand.x, 0)),
+            ("ry", format_number(rand.y, 0)),
+            ("eta", format_number(eta, 0)),
+        ],
+        answer: new.x,
+    }
+}
+
+/// The informed ellipse's conjugate (short) diameter `√(c_best² − c_min²)`.
+fn quiz_ellipse(rng: &mut Lcg64) -> Draw {
+    let c_min = rng.int(40, 120) as f64 / 10.0;
+    let c_best = c_min + rng.int(2, 40) as f64 / 10.0;
+    Draw {
+        vars: vec![
+            ("cmin", format_number(c_min, 1)),
+            ("cbest", format_number(c_best, 1)),
+        ],
+        answer: (c_best * c_best - c_min * c_min).sqrt(),
+    }
+}
+
+/// The quiz generators of experiment 10, by name.
+#[must_use]
+pub fn quiz_generator(name: &str) -> Option<Generator> {
+    match name {
+        "radius" => Some(quiz_radius),
+        "steer_x" => Some(quiz_steer_x),
+        "ellipse" => Some(quiz_ellipse),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::route::{apply_params, format, parse, Page, Tab};
+
+    const DT: f64 = 1.0 / 60.0;
+
+    fn settle(f: &mut RrtStarField) -> usize {
+        let mut n = 0;
+        while f.animating() {
+            f.step(DT);
+            n += 1;
+            assert!(n < 100_000);
+        }
+        n
+    }
+
+    #[test]
+    fn grow_tree_animates_a_fixed_batch_per_step_and_finds_a_short_path() {
+        let mut f = RrtStarField::default();
+        f.action("grow").unwrap();
+        f.step(DT);
+        assert_eq!(f.shown().unwrap().iterations(), 24);
+        let frames = settle(&mut f);
+        assert_eq!(frames + 1, 4000_usize.div_ceil(24));
+        let tree = f.shown().unwrap();
+        assert_eq!(tree.iterations(), 4000);
+        let best = tree.best_cost().expect("a path");
+        // Straight start → goal is 8.4 m; the gap in the wall costs a detour.
+        assert!(best > 8.4 && best < 12.0, "{best}");
+        assert!(f.status().text.starts_with("done: best path"));
+        // Every tree edge and the path are collision-free.
+        let world = f.world().unwrap();
+        for (i, &p) in tree.parents().iter().enumerate() {
+            if p != NO_PARENT {
+                let (a, b) = (tree.nodes()[p as usize], tree.nodes()[i]);
+                assert!(world.segment_free(a, b, CHECK_RESOLUTION_M));
+            }
+        }
+        // The plot is non-increasing.
+        let s = &f.plots()[0].series[0];
+        assert!(s.len() > 10);
+        assert!(s.y.windows(2).all(|w| w[1] <= w[0]));
+        assert_eq!(s.role, SeriesRole::Primary);
+    }
+
+    #[test]
+    fn the_tree_is_one_segments_item_and_rewired_edges_a_second() {
+        let mut f = RrtStarField::default();
+        f.action("grow").unwrap();
+        for _ in 0..60 {
+            f.step(DT);
+        }
+        let mut scene = Scene::default();
+        f.scene(&mut scene);
+        let batches: Vec<(Role, usize)> = scene
+            .items
+            .iter()
+            .filter_map(|i| match i {
+                Item::Segments { segments, role, .. } => Some((*role, segments.len())),
+                _ => None,
+            })
+            .collect();
+        let tree = f.shown().unwrap();
+        assert_eq!(batches[0], (Role::Visited, tree.len() - 1));
+        assert!(batches.len() <= 2);
+        if let Some(&(role, n)) = batches.get(1) {
+            assert_eq!(role, Role::Warning);
+            assert_eq!(n, tree.rewired_in_last_batch().len());
+        }
+        // The radius circle around the newest node, and the amber best path.
+        let newest = tree.nodes()[tree.newest().unwrap()];
+        assert!(scene.items.iter().any(|i| matches!(i,
+            Item::Circle { center, dashed: true, role: Role::Accent, .. } if *center == newest)));
+        if tree.best_cost().is_some() {
+            assert!(scene.items.iter().any(|i| matches!(
+                i,
+                Item::Polyline {
+                    role: Role::Path,
+                    ..
+                }
+            )));
+        }
+        assert!(scene.is_finite());
+    }
+
+    #[test]
+    fn same_seed_same_tree_and_reset_replays_it() {
+        let grow = |seed: f64| {
+            let mut f = RrtStarField::default();
+            f.set_param("seed", seed).unwrap();
+            f.action("grow").unwrap();
+            for _ in 0..40 {
+                f.step(DT);
+            }
+            f
+        };
+        let (a, b, c) = (grow(7.0), grow(7.0), grow(8.0));
+        assert_eq!(a.shown().unwrap().nodes(), b.shown().unwrap().nodes());
+        assert_eq!(a.shown().unwrap().parents(), b.shown().unwrap().parents());
+        assert_ne!(a.shown().unwrap().nodes(), c.shown().unwrap().nodes());
+        let mut a = a;
+        let nodes = a.shown().unwrap().nodes().to_vec();
+        a.reset();
+        assert_eq!(a.shown().unwrap().len(), 1);
+        for _ in 0..40 {
+            a.step(DT);
+        }
+        assert_eq!(a.shown().unwrap().nodes(), &nodes[..]);
+    }
+
+    #[test]
+    fn compare_grows_three_planners_on_one_seed_with_one_curve_each() {
+        let mut f = RrtStarField::default();
+        f.action("compare").unwrap();
+        settle(&mut f);
+        let plot = &f.plots()[0];
+        let names: Vec<&str> = plot.series.iter().map(|s| s.label.as_str()).collect();
+        assert_eq!(names, ["RRT", "RRT*", "Informed RRT*"]);
+        let roles: Vec<SeriesRole> = plot.series.iter().map(|s| s.role).collect();
+        assert_eq!(
+            roles,
+            [
+                SeriesRole::Secondary,
+                SeriesRole::Primary,
+                SeriesRole::Tertiary
+            ]
+        );
+        assert!(plot.series.iter().all(|s| !s.is_empty()));
+        // Each curve is its planner's own: the same as growing it alone.
+        for (i, planner) in PLANNER_KINDS.iter().enumerate() {
+            let mut alone = RrtStarField::default();
+            alone.set_param("planner", i as f64).unwrap();
+            alone.action("grow").unwrap();
+            settle(&mut alone);
+            assert_eq!(
+                alone.plots()[0].series[0].y,
+                plot.series[i].y,
+                "{planner:?}"
+            );
+        }
+        let t = f.tables().pop().unwrap();
+        assert_eq!(t.key, "compare");
+        assert_eq!(t.rows.len(), 3);
+        assert_eq!(t.highlight, Some(1));
+        let rrt = f.runs[0].tree.best_cost().unwrap();
+        let star = f.runs[1].tree.best_cost().unwrap();
+        assert!(star <= rrt, "RRT* {star} vs RRT {rrt}");
+        assert_eq!(t.rows[1][4], format_metres(star));
+        // Other planners' paths are drawn too.
+        let mut scene = Scene::default();
+        f.scene(&mut scene);
+        let paths = scene
+            .items
+            .iter()
+            .filter(|i| matches!(i, Item::Polyline { .. }))
+            .count();
+        assert_eq!(paths, 3);
+    }
+
+    #[test]
+    fn obstacles_are_added_dragged_and_removed_by_pointer() {
+        let mut f = RrtStarField::default();
+        let n = f.obstacles.len();
+        // A click on free space adds a disc; dragging places it.
+        f.input(Input::PointerDown(DVec2::new(3.5, 5.3)));
+        f.input(Input::PointerMove {
+            pos: DVec2::new(3.6, 5.2),
+            pressed: true,
+        });
+        f.input(Input::PointerUp(DVec2::new(3.6, 5.2)));
+        assert_eq!(f.obstacles.len(), n + 1);
+        assert_eq!(
+            f.obstacles[n],
+            Obstacle::Circle {
+                center: DVec2::new(3.6, 5.2),
+                radius: NEW_OBSTACLE_RADIUS_M
+            }
+        );
+        // Dragging an existing rectangle moves it by the pointer's motion.
+        f.input(Input::PointerDown(DVec2::new(2.2, 1.2)));
+        f.input(Input::PointerMove {
+            pos: DVec2::new(2.5, 1.0),
+            pressed: true,
+        });
+        f.input(Input::PointerUp(DVec2::ZERO));
+        assert_eq!(
+            f.obstacles[1],
+            Obstacle::rect(DVec2::new(2.1, 0.4), DVec2::new(2.9, 1.6))
+        );
+        // Dropped outside the field: removed.
+        f.input(Input::PointerDown(DVec2::new(7.2, 1.9)));
+        f.input(Input::PointerMove {
+            pos: DVec2::new(12.0, 1.9),
+            pressed: true,
+        });
+        f.input(Input::PointerUp(DVec2::new(12.0, 1.9)));
+        assert_eq!(f.obstacles.len(), n);
+        assert!(f.handle_at(f.start, 0.05) && f.handle_at(DVec2::new(2.8, 3.6), 0.05));
+        assert!(!f.handle_at(DVec2::new(9.0, 0.5), 0.05));
+    }
+
+    #[test]
+    fn shift_and_ctrl_click_move_the_ends_and_a_blocked_start_is_explained() {
+        let mut f = RrtStarField::default();
+        let shift = Modifiers {
+            shift: true,
+            ctrl: false,
+        };
+        let ctrl = Modifiers {
+            shift: false,
+            ctrl: true,
+        };
+        f.input_with(Input::PointerDown(DVec2::new(0.5, 0.512)), shift);
+        assert_eq!(f.start, DVec2::new(0.5, 0.51));
+        f.input_with(Input::PointerDown(DVec2::new(20.0, 5.0)), ctrl);
+        assert_eq!(f.goal, DVec2::new(10.0, 5.0));
+        // Into an obstacle: growing is refused with a clear status, no panic.
+        f.input_with(Input::PointerDown(DVec2::new(2.8, 3.6)), shift);
+        f.action("grow").unwrap();
+        assert!(!f.animating());
+        let st = f.status();
+        assert_eq!(st.tone, Tone::Bad);
+        assert!(st.text.contains("start is in an obstacle"), "{}", st.text);
+        f.action("drive").unwrap();
+        settle(&mut f);
+        let mut scene = Scene::default();
+        f.scene(&mut scene);
+        assert!(scene.is_finite());
+    }
+
+    #[test]
+    fn drive_follows_the_best_path_to_the_goal() {
+        let mut f = RrtStarField::default();
+        f.action("drive").unwrap();
+        assert!(f.status().text.contains("no path to drive"));
+        f.action("grow").unwrap();
+        settle(&mut f);
+        let path = f.best_path().unwrap();
+        f.action("drive").unwrap();
+        assert!(f.animating());
+        settle(&mut f);
+        assert_eq!(f.robot(), path.last().copied());
+        assert_eq!(f.status().text, "arrived at the goal");
+    }
+
+    #[test]
+    fn the_link_holds_obstacles_and_ends_exactly() {
+        let mut f = RrtStarField::default();
+        f.input(Input::PointerDown(DVec2::new(3.456, 5.3)));
+        f.input(Input::PointerMove {
+            pos: DVec2::new(3.111, 5.2229),
+            pressed: true,
+        });
+        f.input(Input::Nudge(DVec2::new(0.05, -0.05)));
+        f.set_param("eta", 0.75).unwrap();
+        let link = format(&f, Tab::Simulation);
+        assert!(link.contains("&obs=c280_360_90~"), "{link}");
+        let Page::Experiment { params, .. } = parse(&link, &["rrtstar"]).page else {
+            panic!("{link}");
+        };
+        let mut fresh = RrtStarField::default();
+        assert!(apply_params(&mut fresh, &params).is_empty());
+        assert_eq!(fresh.obstacles, f.obstacles);
+        assert_eq!(format(&fresh, Tab::Simulation), link);
+        let notices = apply_params(&mut fresh, &[("obs".into(), "c1_2~q".into())]);
+        assert_eq!(notices.len(), 1, "{notices:?}");
+        assert_eq!(fresh.obstacles, f.obstacles);
+        assert_eq!(decode_obstacles("none").unwrap(), vec![]);
+        assert!(decode_obstacles("r5_5_1_1").is_err());
+        assert!(decode_obstacles("c1_1_0").is_err());
+        assert!(decode_obstacles("c99999999999999999999_1_1").is_err());
+    }
+
+    #[test]
+    fn quiz_radius_matches_the_planner() {
+        let mut rng = Lcg64::new(4);
+        for _ in 0..20 {
+            let d = quiz_radius(&mut rng);
+            let (gamma, n, eta) = (
+                d.var("gamma").unwrap(),
+                d.var("n").unwrap() as usize,
+                d.var("eta").unwrap(),
+            );
+            let world = World::new(DVec2::ZERO, DVec2::splat(10.0), vec![]).unwrap();
+            let config = RrtConfig {
+                gamma: Some(gamma),
+                step_eta: eta,
+                ..RrtConfig::default()
+            };
+            let tree = RrtStar::new(world, DVec2::ONE, DVec2::splat(9.0), config).unwrap();
+            assert!((tree.radius(n) - d.answer).abs() < 1e-12);
+            let d = quiz_steer_x(&mut rng);
+            assert!(d.answer.is_finite());
+        }
+    }
+
+    /// A 20,000-iteration tree: one frame's step and scene stay fast
+    /// (generous bound for a debug build on a shared machine).
+    #[test]
+    fn a_large_tree_steps_and_draws_quickly() {
+        let mut f = RrtStarField::default();
+        f.set_param("iters", 20000.0).unwrap();
+        f.set_param("batch", 24.0).unwrap();
+        f.action("grow").unwrap();
+        if let Some(run) = f.runs.first_mut() {
+            run.tree.iterate(19_000);
+        }
+        let mut scene = Scene::default();
+        let mut worst = 0.0f64;
+        for _ in 0..20 {
+            let t = std::time::Instant::now();
+            f.step(DT);
+            scene.clear();
+            f.scene(&mut scene);
+            worst = worst.max(t.elapsed().as_secs_f64());
+        }
+        let edges = f.shown().unwrap().len() - 1;
+        eprintln!(
+            "RRT* with {edges} edges: worst step + scene {:.2} ms",
+            worst * 1e3
+        );
+        assert!(edges > 10_000);
+        let bound = if cfg!(debug_assertions) { 0.25 } else { 0.01 };
+        assert!(worst < bound, "worst frame {worst} s");
+    }
+}

@@ -1,0 +1,195 @@
+// Experiments 6 (A*) and 10 (RRT*) driven like a student would: paint walls,
+// Shift-click the start, plan and drive, read the open list and the
+// comparison, load the arena map and a broken one, grow an RRT* tree and
+// download its cost curve.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { readFile } from "node:fs/promises";
+import { dirname, join, resolve } from "node:path";
+import { fileURLToPath } from "node:url";
+import { DESKTOP, open, readNumber, readouts, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+
+const lab = useLab();
+const ART = "article.exp:not([hidden])";
+const PHONE_390 = { width: 390, height: 844 };
+const ARENA = join(resolve(dirname(fileURLToPath(import.meta.url)), "..", ".."), "assets", "maps", "arena.map");
+
+/** Page coordinates of world point (x, y) on the simulation canvas (uniform fit, y up). */
+async function worldToPage(page, x, y) {
+  const canvas = page.locator(`${ART} canvas.sim-canvas`);
+  const box = await canvas.boundingBox();
+  const [minX, minY, maxX, maxY] = (await canvas.getAttribute("data-view")).split(",").map(Number);
+  const scale = Math.min(box.width / (maxX - minX), box.height / (maxY - minY));
+  return {
+    x: box.x + box.width / 2 + (x - (minX + maxX) / 2) * scale,
+    y: box.y + box.height / 2 - (y - (minY + maxY) / 2) * scale,
+  };
+}
+
+/** Page point of the centre of grid cell (col, row) of an A* grid `rows` high (row 0 at the top). */
+function cellToPage(page, col, row, rows) {
+  return worldToPage(page, col + 0.5, rows - row - 0.5);
+}
+
+function waitStatus(page, pattern, timeout = 20_000) {
+  return page.waitForFunction(
+    (source) => new RegExp(source).test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent),
+    pattern.source,
+    { timeout },
+  );
+}
+
+const walls = async (page) => Number((await readouts(page)).grid.match(/(\d+) walls/)[1]);
+
+test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds the path; open list and Compare tables render", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/astar/simulation");
+    assert.equal(await page.locator(`${ART} canvas.sim-canvas`).getAttribute("data-touch"), "all");
+    const before = await walls(page);
+    // Paint a wall down column 25, rows 16 to 22 (free in the default grid).
+    const a = await cellToPage(page, 25, 16, 24);
+    const b = await cellToPage(page, 25, 22, 24);
+    await page.mouse.move(a.x, a.y);
+    await page.mouse.down();
+    await page.mouse.move(b.x, b.y, { steps: 8 });
+    await page.mouse.up();
+    await page.waitForFunction((n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] > n, before);
+    assert.equal(await walls(page), before + 7, "seven cells painted, no gaps");
+    // Shift-click sets the start.
+    const s = await cellToPage(page, 2, 2, 24);
+    await page.keyboard.down("Shift");
+    await page.mouse.click(s.x, s.y);
+    await page.keyboard.up("Shift");
+    await page.waitForFunction(() => /sx=2&sy=2/.test(location.hash));
+    assert.equal(await walls(page), before + 7, "Shift-click paints nothing");
+    assert.match(await page.evaluate(() => location.hash), /walls=32x24\./);
+
+    await page.click(`${ART} button[data-action=plan]`);
+    // The open list panel: the cell being expanded is highlighted.
+    const openList = page.locator(`${ART} [data-table=open]`);
+    await openList.locator("tr.current").waitFor({ state: "visible" });
+    assert.deepEqual(await openList.locator("thead th").allInnerTexts(), ["", "cell", "g", "h", "f"]);
+    assert.equal(await openList.locator("tr.current td").first().innerText(), "expanding");
+    await screenshot(page, "astar-searching");
+    await waitStatus(page, /^arrived: path cost/);
+    const r = await readouts(page);
+    assert.ok(readNumber(r.path_cost) > 20, `path cost ${r.path_cost}`);
+    assert.ok(Number(r.expanded) > Number(r.path_cells), `${r.expanded} expanded, ${r.path_cells} on the path`);
+
+    await page.click(`${ART} button[data-action=compare]`);
+    const compare = page.locator(`${ART} [data-table=compare]`);
+    await compare.locator("tbody tr").nth(3).waitFor({ state: "visible" });
+    const rows = await compare.locator("tbody tr").evaluateAll((trs) => trs.map((tr) => [...tr.cells].map((c) => c.textContent)));
+    assert.equal(rows.length, 4);
+    assert.match(rows[0][0], /^A\* \(Octile\)/);
+    assert.equal(rows[1][0], "Dijkstra");
+    assert.equal(rows[1][3], "1.000", "Dijkstra is the optimum");
+    assert.equal(rows[0][2], rows[1][2], "octile A* is optimal too");
+    assert.ok(Number(rows[0][1]) <= Number(rows[1][1]), "A* expands no more than Dijkstra");
+    assert.match(rows[2][0], /^Greedy/);
+    assert.ok(Number(rows[2][3]) >= 1);
+    await screenshot(page, "astar-compare");
+  }));
+
+test("astar: the arena map loads from the file input, a malformed map is refused with its line, and the link keeps the walls", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/astar/simulation");
+    const input = page.locator(`${ART} input.file-input`);
+    await input.setInputFiles(ARENA);
+    await page.waitForFunction(() => /^49 × 49/.test(document.querySelector("[data-readout=grid]").textContent));
+    const message = page.locator(`${ART} .sim-message`);
+    await page.waitForFunction(() => /Loaded “arena\.map”/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
+    await page.waitForFunction(() => /walls=49x49\./.test(location.hash));
+    const grid = (await readouts(page)).grid;
+
+    await input.setInputFiles({
+      name: "broken.map",
+      mimeType: "text/plain",
+      buffer: Buffer.from("type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n"),
+    });
+    await page.waitForFunction(() => /broken\.map/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
+    assert.match(await message.innerText(), /Could not load “broken\.map”: .*line 6/);
+    assert.equal((await readouts(page)).grid, grid, "the arena map is kept");
+
+    await page.click(`${ART} button[data-action=plan]`);
+    await waitStatus(page, /^arrived/);
+    // A reload of the link gives the same grid.
+    const hash = await page.evaluate(() => location.hash);
+    await page.reload();
+    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    assert.equal(await page.evaluate(() => location.hash), hash);
+    assert.equal((await readouts(page)).grid, grid);
+    // Save file gives the map back.
+    const [download] = await Promise.all([page.waitForEvent("download"), page.click(`${ART} [data-export=text]`)]);
+    assert.equal(download.suggestedFilename(), "grid.map");
+    const text = await readFile(await download.path(), "utf8");
+    assert.match(text, /^type octile\nheight 49\nwidth 49\nmap\n/);
+  }));
+
+test("astar: a 512 × 512 maze is too large for the link and the page says to save a file", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/astar/simulation?size=5&rate=50");
+    await page.click(`${ART} button[data-action=maze]`);
+    await waitStatus(page, /too large for the link: use Save file/);
+    assert.match((await readouts(page)).link, /Save file/);
+    await page.click(`${ART} button[data-action=plan]`);
+    await waitStatus(page, /^(path found|arrived)/, 30_000);
+    await page.waitForFunction(() => !/walls=/.test(location.hash) && /size=5/.test(location.hash));
+    await screenshot(page, "astar-512-maze");
+  }));
+
+test("rrtstar: the best length shrinks as the tree grows, Compare overlays three curves, and the cost CSV downloads", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/rrtstar/simulation?batch=8&iters=4000");
+    await page.click(`${ART} button[data-action=grow]`);
+    await page.waitForFunction(() => /\d/.test(document.querySelector("[data-readout=best]").textContent), null, { timeout: 20_000 });
+    const first = readNumber((await readouts(page)).best);
+    await page.waitForFunction(
+      (b) => Number.parseFloat(document.querySelector("[data-readout=best]").textContent) < b - 0.05,
+      first,
+      { timeout: 30_000 },
+    );
+    await screenshot(page, "rrtstar-growing");
+    await waitStatus(page, /^done: best path/, 60_000);
+    const r = await readouts(page);
+    assert.ok(readNumber(r.best) < first, `${r.best} < ${first}`);
+    assert.ok(Number(r.rewires) > 0);
+    const [csv] = await Promise.all([page.waitForEvent("download"), page.click(`${ART} [data-plot-csv=cost]`)]);
+    assert.equal(csv.suggestedFilename(), "rrtstar-seed1-cost.csv");
+    const lines = (await readFile(await csv.path(), "utf8")).trim().split(/\r?\n/);
+    assert.equal(lines[0], "Iteration,RRT* (m)");
+    const costs = lines.slice(1).map((l) => Number(l.split(",")[1]));
+    assert.ok(costs.length > 10);
+    assert.ok(costs.every((c, i) => i === 0 || c <= costs[i - 1]), "the best cost never increases");
+
+    await page.click(`${ART} button[data-action=compare]`);
+    await waitStatus(page, /^comparing/);
+    await waitStatus(page, /^done: best path/, 60_000);
+    const table = page.locator(`${ART} [data-table=compare] tbody tr`);
+    assert.equal(await table.count(), 3);
+    const [both] = await Promise.all([page.waitForEvent("download"), page.click(`${ART} [data-plot-csv=cost]`)]);
+    const head = (await readFile(await both.path(), "utf8")).split(/\r?\n/)[0];
+    assert.match(head, /RRT \(m\).*RRT\* \(m\).*Informed RRT\* \(m\)/);
+    await page.click(`${ART} button[data-action=drive]`);
+    await waitStatus(page, /^arrived at the goal/);
+  }));
+
+for (const viewport of [DESKTOP, PHONE_390]) {
+  test(`screenshots at ${viewport.width}px: both planning Simulation tabs fit without sideways scrolling`, () =>
+    withPage(lab, { viewport }, async (page) => {
+      await open(lab, page, "#/astar/simulation");
+      await page.click(`${ART} button[data-action=plan]`);
+      await page.locator(`${ART} [data-table=open] tr.current`).waitFor({ state: "visible" });
+      await settle(page);
+      assert.ok((await page.evaluate(() => document.documentElement.scrollWidth)) <= viewport.width);
+      await screenshot(page, `astar-sim-${viewport.width}`);
+      await page.goto(page.url().replace(/#.*/, "#/rrtstar/simulation?iters=1500&batch=60"));
+      await page.waitForFunction(() => document.body.dataset.ready === "1");
+      await page.click(`${ART} button[data-action=grow]`);
+      await waitStatus(page, /^done/, 30_000);
+      await settle(page);
+      assert.ok((await page.evaluate(() => document.documentElement.scrollWidth)) <= viewport.width);
+      await screenshot(page, `rrtstar-sim-${viewport.width}`);
+    }));
+}
