@@ -74,7 +74,8 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
     // EKF-SLAM: the map starts empty and fills as landmarks are seen.
     await page.locator("select[data-param=mode]").selectOption("1");
     await waitStatus(page, /^EKF-SLAM: 0 of 6 landmarks mapped$/);
-    assert.match(await page.evaluate(() => location.hash), /mode=1/);
+    // The link follows within its update interval.
+    await page.waitForFunction(() => /mode=1/.test(location.hash));
     assert.match(await page.evaluate(() => location.hash), /run=0/, "still paused, and the link says so");
     await play.click();
     await waitPressed(page, "true");
