@@ -84,7 +84,7 @@ test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds 
     assert.equal(rows.length, 4);
     assert.match(rows[0][0], /^A\* \(Octile\)/);
     assert.equal(rows[1][0], "Dijkstra");
-    assert.equal(rows[1][3], "1.000", "Dijkstra is the optimum");
+    assert.equal(rows[1][3], "1.00", "Dijkstra is the optimum");
     assert.equal(rows[0][2], rows[1][2], "octile A* is optimal too");
     assert.ok(Number(rows[0][1]) <= Number(rows[1][1]), "A* expands no more than Dijkstra");
     assert.match(rows[2][0], /^Greedy/);
