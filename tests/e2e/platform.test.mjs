@@ -147,7 +147,7 @@ test("time controls: pause, single steps (button and key) are deterministic, Spa
     const scrollBefore = await page.evaluate(() => scrollY);
     await page.focus(`${ART} canvas.sim-canvas`);
     await page.keyboard.press(" ");
-    assert.equal(await play.getAttribute("aria-pressed"), "true");
+    await page.waitForFunction(() => document.querySelector("article.exp:not([hidden]) button[data-time=play]").getAttribute("aria-pressed") === "true");
     assert.equal(await page.evaluate(() => scrollY), scrollBefore, "Space did not scroll");
     await page.waitForFunction(() => /^swept/.test(document.querySelector(`article.exp:not([hidden]) .sim-status`).textContent));
 

@@ -11,7 +11,9 @@
 //!   one EKF-SLAM update at N = 20, 100, 200 landmarks.
 //! - [`grid_astar`]: A* on a 1000 × 1000 random grid, our
 //!   [`labcore::planning::astar::Search`] against `pathfinding::prelude::astar`.
-//! - [`rrt_star`]: RRT* on the 30-circle world at 10,000 and 100,000 iterations.
+//! - [`rrt_star`]: RRT* on the 30-circle world at 10,000 and 100,000 iterations,
+//!   against OMPL's `RRTstar` (C++ peer `peers/ompl_rrtstar.cpp`, compiled by the
+//!   bench with `g++ … -lompl` when `libompl-dev` is installed, skipped otherwise).
 //!
 //! Run with `cargo bench -p labbench`.
 

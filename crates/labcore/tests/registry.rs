@@ -605,10 +605,13 @@ fn plots_hold_finite_data_and_export_every_sample() {
             assert!(!plot.summary().is_empty());
         }
     }
-    // The arm experiments named in the platform issue plot something once in motion.
+    // The experiments named in the platform issues plot something once in motion.
     for (id, keys) in [
         ("dls", &["error", "manipulability"][..]),
         ("workspace", &["radii"][..]),
+        ("diffdrive", &["motion"][..]),
+        ("potential", &["run"][..]),
+        ("ekf", &["error_x", "error_y", "nees", "trace", "anees"][..]),
     ] {
         let mut exp = (labcore::find(id).expect("registered").make)();
         set_in_motion(exp.as_mut());

@@ -36,9 +36,18 @@ pub fn report_panic(details: &str) {
     ));
 }
 
+/// Drops the mounted application: its listeners, frame loop and pages
+/// (tests that mount again; a page only ever mounts once).
+#[wasm_bindgen]
+pub fn unmount() {
+    let old = APP.with(|a| a.borrow_mut().take());
+    drop(old);
+}
+
 /// Mounts the application into the current document.
 #[wasm_bindgen]
 pub fn boot() {
+    unmount();
     let app = app::App::boot(|_| reroute());
     APP.with(|a| *a.borrow_mut() = app);
 }
@@ -132,23 +141,8 @@ pub fn bench_big_scene_part(frames: u32, item: usize) -> f64 {
 }
 
 fn time_paint(scene: labcore::Scene, frames: u32) -> f64 {
-    use wasm_bindgen::JsCast;
-    let Some(canvas) = dom::document()
-        .create_element("canvas")
-        .ok()
-        .and_then(|c| c.dyn_into::<web_sys::HtmlCanvasElement>().ok())
-    else {
-        return f64::NAN;
-    };
     let (w, h) = (800.0, 600.0);
-    canvas.set_width(w as u32);
-    canvas.set_height(h as u32);
-    let Some(ctx) = canvas
-        .get_context("2d")
-        .ok()
-        .flatten()
-        .and_then(|c| c.dyn_into::<web_sys::CanvasRenderingContext2d>().ok())
-    else {
+    let Some((canvas, ctx)) = scratch_canvas(w as u32, h as u32) else {
         return f64::NAN;
     };
     let palette = draw::Palette::from_css(&canvas);
@@ -173,7 +167,6 @@ fn time_paint(scene: labcore::Scene, frames: u32) -> f64 {
 #[wasm_bindgen]
 pub fn bench_plot(points: u32, frames: u32) -> f64 {
     use labcore::plot::{Plot, Series, SeriesRole};
-    use wasm_bindgen::JsCast;
     let mut plot = Plot::new(
         "bench",
         "Benchmark",
@@ -190,21 +183,7 @@ pub fn bench_plot(points: u32, frames: u32) -> f64 {
         plot.series[0].push(t, labcore::math::sin(t) + rng.range(-0.1, 0.1));
         plot.series[1].push(t, labcore::math::cos(t * 0.3));
     }
-    let Some(canvas) = dom::document()
-        .create_element("canvas")
-        .ok()
-        .and_then(|c| c.dyn_into::<web_sys::HtmlCanvasElement>().ok())
-    else {
-        return f64::NAN;
-    };
-    canvas.set_width(600);
-    canvas.set_height(240);
-    let Some(ctx) = canvas
-        .get_context("2d")
-        .ok()
-        .flatten()
-        .and_then(|c| c.dyn_into::<web_sys::CanvasRenderingContext2d>().ok())
-    else {
+    let Some((canvas, ctx)) = scratch_canvas(600, 240) else {
         return f64::NAN;
     };
     let palette = draw::Palette::from_css(&canvas);
@@ -215,4 +194,24 @@ pub fn bench_plot(points: u32, frames: u32) -> f64 {
     }
     let _ = ctx.get_image_data(0.0, 0.0, 1.0, 1.0);
     (dom::now_ms() - start) / f64::from(frames)
+}
+
+/// A detached canvas of `w` × `h` pixels and its 2D context (benchmarks).
+fn scratch_canvas(
+    w: u32,
+    h: u32,
+) -> Option<(
+    web_sys::HtmlCanvasElement,
+    web_sys::CanvasRenderingContext2d,
+)> {
+    use wasm_bindgen::JsCast;
+    let canvas: web_sys::HtmlCanvasElement = dom::document()
+        .create_element("canvas")
+        .ok()?
+        .dyn_into()
+        .ok()?;
+    canvas.set_width(w);
+    canvas.set_height(h);
+    let ctx = canvas.get_context("2d").ok()??.dyn_into().ok()?;
+    Some((canvas, ctx))
 }

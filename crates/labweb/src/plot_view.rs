@@ -42,13 +42,15 @@ pub fn render(plot: &Plot) -> String {
     let legend: String = plot
         .series
         .iter()
-        .map(|s| {
+        .enumerate()
+        .map(|(i, s)| {
             let (var, dash) = role_style(s.role);
             format!(
-                "<span class=\"legend-item\"><svg width=\"26\" height=\"10\" aria-hidden=\"true\">\
+                "<span class=\"legend-item\" data-series=\"{i}\"{hidden}><svg width=\"26\" height=\"10\" aria-hidden=\"true\">\
                  <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" style=\"stroke:var({var})\" stroke-width=\"2.5\" stroke-dasharray=\"{}\"/></svg>{}</span>",
                 dash_attr(dash),
-                escape(&s.label)
+                escape(&s.label),
+                hidden = if s.is_empty() { " hidden" } else { "" },
             )
         })
         .collect();
@@ -175,6 +177,16 @@ impl PlotView {
             }
             if let Some(summary) = query(&drawn.figure, ".plot-summary") {
                 summary.set_text_content(Some(&plot.summary()));
+            }
+            // A series with no samples yet (an empty slot for a pinned run)
+            // has no legend entry.
+            for item in query_all(&drawn.figure, ".legend-item[data-series]") {
+                let empty = item
+                    .get_attribute("data-series")
+                    .and_then(|i| i.parse::<usize>().ok())
+                    .and_then(|i| plot.series.get(i))
+                    .is_none_or(|s| s.is_empty());
+                dom::set_hidden(&item, empty);
             }
             if let Some(table) = query(&drawn.figure, ".plot-table") {
                 if !table.has_attribute("hidden") {

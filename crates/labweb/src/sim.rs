@@ -22,6 +22,8 @@ use web_sys::{
     HtmlSelectElement, KeyboardEvent, PointerEvent, ResizeObserver,
 };
 
+/// Shortest time between two redraws of the plots, milliseconds.
+const PLOT_INTERVAL_MS: f64 = 66.0;
 /// How close (CSS pixels) a touch must start to a handle to grab it.
 const TOUCH_GRAB_PX: f64 = 28.0;
 /// A touch that moves this far (CSS pixels) without the browser scrolling becomes a drag.
@@ -267,6 +269,7 @@ struct SimState {
     clock: Clock,
     plots: PlotView,
     plots_force: bool,
+    last_plot_ms: f64,
     shown_time: (bool, f64, u64),
     needs_paint: bool,
     /// What each control shows; `None` = unknown (refresh it), `Some(None)` = empty.
@@ -385,9 +388,14 @@ impl SimState {
             self.sync_dom();
             self.needs_paint = false;
         }
-        self.plots
-            .draw(self.exp.plots(), &self.palette, self.plots_force);
-        self.plots_force = false;
+        // Plots follow the data at most every PLOT_INTERVAL_MS: a curve
+        // needs no 60 Hz, and the frame keeps its budget for the simulation.
+        if self.plots_force || time_ms - self.last_plot_ms >= PLOT_INTERVAL_MS {
+            self.plots
+                .draw(self.exp.plots(), &self.palette, self.plots_force);
+            self.plots_force = false;
+            self.last_plot_ms = time_ms;
+        }
         self.sync_timebar();
         if self.hash_dirty && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS {
             self.write_hash();
@@ -406,6 +414,8 @@ impl SimState {
         }
         self.needs_paint = true;
         self.hash_dirty = true;
+        self.plots_force = true;
+        self.sync_timebar();
         if was_animating && !self.exp.animating() {
             self.announce();
         }
@@ -415,6 +425,8 @@ impl SimState {
         self.clock.set_running(running);
         self.last_time_ms = None;
         self.hash_dirty = true;
+        // The button says so at once, not at the next frame.
+        self.sync_timebar();
     }
 
     fn reset_run(&mut self) {
@@ -761,6 +773,7 @@ impl SimView {
             clock: Clock::default(),
             plots: PlotView::mount(panel),
             plots_force: true,
+            last_plot_ms: f64::NEG_INFINITY,
             shown_time: (true, 0.0, u64::MAX),
             needs_paint: true,
             shown_values: vec![None; n_params],

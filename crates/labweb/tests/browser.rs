@@ -15,6 +15,8 @@ fn document() -> web_sys::Document {
 
 /// A minimal copy of the shell: the elements the app mounts into.
 fn mount(hash: &str) {
+    // The previous test's app must not hear this test's hash change.
+    labweb::unmount();
     // The test runner reports through elements of its own page: keep them,
     // and swap only our wrapper between tests.
     if let Some(old) = document().get_element_by_id("lab-under-test") {
@@ -91,10 +93,24 @@ fn slider_moves_the_readout_and_the_drawn_arm() {
     mount("#/fk/simulation?t1=30&t2=60&l1=1&l2=0.5");
     // Tip (cos 30° + 0.5 cos 90°, sin 30° + 0.5 sin 90°) = (0.866, 1), off every drawn circle.
     assert_eq!(readout("x"), "0.866 m");
-    assert_eq!(readout("y"), "1 m");
+    assert_eq!(readout("y"), "1.000 m");
     assert_eq!(readout("reach"), "88.2%");
     // Where the canvas shows a world point (same mapping the app uses).
-    let view = (labcore::find("fk").unwrap().make)().view();
+    // The view the page shows (it frames the arm's current reach).
+    let canvas = document()
+        .query_selector("canvas.sim-canvas")
+        .unwrap()
+        .unwrap();
+    let v: Vec<f64> = canvas
+        .get_attribute("data-view")
+        .expect("the canvas names its view")
+        .split(',')
+        .map(|n| n.parse().unwrap())
+        .collect();
+    let view = labcore::ViewBox {
+        min: glam::DVec2::new(v[0], v[1]),
+        max: glam::DVec2::new(v[2], v[3]),
+    };
     let viewport = labweb::draw::Viewport::fit(view, 400.0, 400.0);
     let at = |x: f64, y: f64| {
         let p = viewport.to_px(glam::DVec2::new(x, y));
@@ -109,10 +125,10 @@ fn slider_moves_the_readout_and_the_drawn_arm() {
     fire(slider.as_ref(), "input");
     labweb::paint_now();
     // Tip now at (cos 120° + 0.5 cos 180°, sin 120°) = (−1, 0.866).
-    assert_eq!(readout("x"), "-1 m");
+    assert_eq!(readout("x"), "-1.000 m");
     assert_eq!(readout("y"), "0.866 m");
     // The number box mirrors the slider.
-    assert_eq!(input("input[type=number][data-param=t1]").value(), "120");
+    assert_eq!(input("input[type=text][data-param=t1]").value(), "120");
     assert_ne!(at(-1.0, 120f64.to_radians().sin()), background);
     assert_eq!(at(old_tip.0, old_tip.1), background, "the old tip is gone");
 }
@@ -120,7 +136,7 @@ fn slider_moves_the_readout_and_the_drawn_arm() {
 #[wasm_bindgen_test]
 fn typed_nonsense_keeps_the_last_good_value_with_a_message() {
     mount("#/fk/simulation");
-    let number = input("input[type=number][data-param=t2]");
+    let number = input("input[type=text][data-param=t2]");
     number.set_value("");
     fire(number.as_ref(), "change");
     labweb::paint_now();
@@ -137,7 +153,12 @@ fn typed_nonsense_keeps_the_last_good_value_with_a_message() {
 fn malformed_hash_shows_a_notice_and_clamps() {
     mount("#/fk/simulation?t1=abc&t2=9999");
     let notice = document().get_element_by_id("notice").unwrap();
-    assert!(!notice.dyn_ref::<HtmlElement>().unwrap().hidden());
+    assert!(
+        !notice.dyn_ref::<HtmlElement>().unwrap().hidden(),
+        "notice hidden; text {:?}; hash {:?}",
+        notice.text_content(),
+        web_sys::window().unwrap().location().hash()
+    );
     let text = notice.text_content().unwrap();
     assert!(
         text.contains("not a number") && text.contains("out of range"),

@@ -9,6 +9,7 @@ mod pages;
 mod serve;
 mod size;
 mod test;
+mod thumbs;
 mod util;
 
 use std::process::ExitCode;

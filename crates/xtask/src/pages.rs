@@ -45,7 +45,7 @@ fn check_one(entry: &labcore::Entry, text: &str) -> Result<(), String> {
 /// experiment (`main.js` shows the one the link names).
 #[must_use]
 pub fn pages_html() -> String {
-    let mut html = labcore::content_html::home(|_| String::new());
+    let mut html = labcore::content_html::home(crate::thumbs::thumbnail);
     for entry in labcore::registry() {
         let article =
             labcore::content_html::article(entry.id, entry.content().map_err(|e| e.to_string()));

@@ -339,6 +339,104 @@ pub fn integrate(
     true
 }
 
+/// The upright linearisation `ṡ = A s + B F` as plain arrays, for simulating
+/// the linear model beside the nonlinear one (e.g. to see where they part).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinearModel {
+    /// `A`, row by row, state `[x, ẋ, θ, θ̇]`.
+    pub a: [[f64; 4]; 4],
+    /// `B`.
+    pub b: [f64; 4],
+}
+
+impl LinearModel {
+    /// `(A, B)` of [`CartPoleParams::linearize`].
+    #[must_use]
+    pub fn of(params: &CartPoleParams) -> Self {
+        let (a, b) = params.linearize();
+        let mut out = Self {
+            a: [[0.0; 4]; 4],
+            b: [0.0; 4],
+        };
+        for i in 0..4 {
+            for j in 0..4 {
+                out.a[i][j] = a.get(i, j).unwrap_or(0.0);
+            }
+            out.b[i] = b.get(i, 0).unwrap_or(0.0);
+        }
+        out
+    }
+
+    /// `A s + B F`.
+    #[must_use]
+    pub fn derivative(&self, s: [f64; 4], force_n: f64) -> [f64; 4] {
+        let mut d = [0.0; 4];
+        for (i, row) in self.a.iter().enumerate() {
+            d[i] = row.iter().zip(&s).map(|(a, s)| a * s).sum::<f64>() + self.b[i] * force_n;
+        }
+        d
+    }
+
+    /// Advances `state` by `dt_s` under the constant force `force_n` (not
+    /// clipped here; there are no end stops in the linear model) in `substeps`
+    /// steps of `integrator` — the same schemes as [`integrate`]. Returns
+    /// `false` and leaves `state` unchanged for a bad `dt_s`, force, zero
+    /// sub-steps or a non-finite result.
+    ///
+    /// # Example
+    /// ```
+    /// use labcore::control::cartpole::{CartPoleParams, CartPoleState, Integrator, LinearModel};
+    /// let lin = LinearModel::of(&CartPoleParams::default());
+    /// let mut s = CartPoleState { theta_rad: 0.01, ..Default::default() };
+    /// assert!(lin.integrate(&mut s, 0.0, 0.02, Integrator::Rk4, 4));
+    /// assert!(s.theta_rad > 0.01, "the upright pole falls");
+    /// ```
+    pub fn integrate(
+        &self,
+        state: &mut CartPoleState,
+        force_n: f64,
+        dt_s: f64,
+        integrator: Integrator,
+        substeps: u32,
+    ) -> bool {
+        if !(dt_s.is_finite() && dt_s > 0.0 && force_n.is_finite() && substeps > 0) {
+            return false;
+        }
+        let h = dt_s / f64::from(substeps);
+        let add = |a: [f64; 4], b: [f64; 4], k: f64| {
+            [
+                a[0] + k * b[0],
+                a[1] + k * b[1],
+                a[2] + k * b[2],
+                a[3] + k * b[3],
+            ]
+        };
+        let mut y = state.to_array();
+        for _ in 0..substeps {
+            y = match integrator {
+                Integrator::Euler => add(y, self.derivative(y, force_n), h),
+                Integrator::Rk4 => {
+                    let k1 = self.derivative(y, force_n);
+                    let k2 = self.derivative(add(y, k1, 0.5 * h), force_n);
+                    let k3 = self.derivative(add(y, k2, 0.5 * h), force_n);
+                    let k4 = self.derivative(add(y, k3, h), force_n);
+                    let mut out = y;
+                    for i in 0..4 {
+                        out[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+                    }
+                    out
+                }
+            };
+        }
+        let next = CartPoleState::from_array(y);
+        if !next.is_finite() {
+            return false;
+        }
+        *state = next;
+        true
+    }
+}
+
 /// Linear state feedback `F = kx·x + kv·ẋ + kθ·θ + kω·θ̇` (N).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StateFeedback {

@@ -158,6 +158,20 @@ pub struct Pid {
     has_previous: bool,
 }
 
+impl Default for Pid {
+    /// A controller at rest with [`PidConfig::default`] (which always validates).
+    fn default() -> Self {
+        Self {
+            config: PidConfig::default(),
+            integral_m_s: 0.0,
+            prev_error_m: 0.0,
+            prev_measurement_m: 0.0,
+            derivative_filtered: 0.0,
+            has_previous: false,
+        }
+    }
+}
+
 impl Pid {
     /// A controller at rest, or the reason the configuration is refused.
     pub fn new(config: PidConfig) -> Result<Self, PidError> {

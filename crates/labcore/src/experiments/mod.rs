@@ -6,9 +6,14 @@ use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
 pub mod astar;
+pub mod cartpole;
+pub mod diffdrive;
 pub mod dls;
+pub mod ekf;
 pub mod fk;
 pub mod ik;
+pub mod pid;
+pub mod potential;
 pub mod rrtstar;
 pub mod workspace;
 
@@ -56,7 +61,7 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 6] = [
+static REGISTRY: [Entry; 11] = [
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -79,10 +84,38 @@ static REGISTRY: [Entry; 6] = [
         parsed: OnceLock::new(),
     },
     Entry {
+        id: "diffdrive",
+        content_json: include_str!("../../../../assets/diffdrive.json"),
+        make: || Box::new(diffdrive::DiffDrive::default()),
+        generators: diffdrive::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "potential",
+        content_json: include_str!("../../../../assets/potential.json"),
+        make: || Box::new(potential::PotentialFieldLab::default()),
+        generators: potential::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
         id: "astar",
         content_json: include_str!("../../../../assets/astar.json"),
         make: || Box::new(astar::AStarGrid::default()),
         generators: astar::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "pid",
+        content_json: include_str!("../../../../assets/pid.json"),
+        make: || Box::new(pid::PidControl::default()),
+        generators: pid::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "cartpole",
+        content_json: include_str!("../../../../assets/cartpole.json"),
+        make: || Box::new(cartpole::CartPoleBalance::default()),
+        generators: cartpole::quiz_generator,
         parsed: OnceLock::new(),
     },
     Entry {
@@ -97,6 +130,13 @@ static REGISTRY: [Entry; 6] = [
         content_json: include_str!("../../../../assets/rrtstar.json"),
         make: || Box::new(rrtstar::RrtStarField::default()),
         generators: rrtstar::quiz_generator,
+        parsed: OnceLock::new(),
+    },
+    Entry {
+        id: "ekf",
+        content_json: include_str!("../../../../assets/ekf.json"),
+        make: || Box::new(ekf::EkfExperiment::default()),
+        generators: ekf::quiz_generator,
         parsed: OnceLock::new(),
     },
 ];

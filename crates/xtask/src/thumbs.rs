@@ -1,0 +1,283 @@
+//! Build-time pictures for the home page's cards: an experiment's preview
+//! display list written as a small inline SVG, so the home page shows every
+//! experiment without downloading the simulation engine. Colours are the
+//! page's theme variables, so the pictures follow light and dark mode.
+
+use labcore::glam::DVec2;
+use labcore::{Item, Role, Scene, ViewBox};
+use std::fmt::Write;
+
+/// Thumbnail size in CSS pixels (the card picture is 3:2).
+const W: f64 = 240.0;
+const H: f64 = 160.0;
+/// Most points of a sample cloud drawn (the rest add bytes, not insight).
+const POINTS_MAX: usize = 500;
+/// Most segments of a batch drawn.
+const SEGMENTS_MAX: usize = 1500;
+
+fn var(role: Role) -> &'static str {
+    match role {
+        Role::Grid => "--c-grid",
+        Role::Bound => "--c-bound",
+        Role::Link => "--c-link",
+        Role::Joint => "--c-joint",
+        Role::Base => "--c-base",
+        Role::Tip => "--c-tip",
+        Role::Target => "--c-target",
+        Role::Ghost => "--c-ghost",
+        Role::Sample => "--c-sample",
+        Role::Accent => "--c-accent",
+        Role::Warning => "--c-warning",
+        Role::Text => "--c-text",
+        Role::Robot => "--c-robot",
+        Role::Obstacle => "--c-obstacle",
+        Role::Path => "--c-path",
+        Role::Estimate => "--c-estimate",
+        Role::Visited => "--c-visited",
+    }
+}
+
+/// World → thumbnail pixels (uniform fit, y up), as the canvas does it.
+struct Map {
+    scale: f64,
+    centre: DVec2,
+}
+
+impl Map {
+    fn new(view: ViewBox) -> Self {
+        let size = (view.max - view.min).max(DVec2::splat(1e-9));
+        Self {
+            scale: (W / size.x).min(H / size.y),
+            centre: (view.min + view.max) * 0.5,
+        }
+    }
+
+    fn px(&self, p: DVec2) -> (f64, f64) {
+        let d = (p - self.centre) * self.scale;
+        (W / 2.0 + d.x, H / 2.0 - d.y)
+    }
+}
+
+fn points_attr(map: &Map, points: &[DVec2]) -> String {
+    points
+        .iter()
+        .map(|p| {
+            let (x, y) = map.px(*p);
+            format!("{x:.1},{y:.1}")
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The SVG of one display list.
+#[must_use]
+pub fn svg(scene: &Scene, view: ViewBox) -> String {
+    let map = Map::new(view);
+    let mut out = format!(
+        "<svg viewBox=\"0 0 {W} {H}\" width=\"100%\" height=\"100%\" role=\"img\" aria-hidden=\"true\" \
+         style=\"background:var(--c-canvas)\" stroke-linecap=\"round\" stroke-linejoin=\"round\">"
+    );
+    for item in &scene.items {
+        let _ = match item {
+            Item::Line {
+                from,
+                to,
+                width_px,
+                role,
+                dashed,
+            } => {
+                let ((x1, y1), (x2, y2)) = (map.px(*from), map.px(*to));
+                write!(
+                    out,
+                    "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" style=\"stroke:var({})\" stroke-width=\"{:.1}\"{}/>",
+                    var(*role),
+                    (width_px * 0.6).max(0.8),
+                    if *dashed { " stroke-dasharray=\"4 3\"" } else { "" }
+                )
+            }
+            Item::Circle {
+                center,
+                radius_m,
+                role,
+                fill,
+                dashed,
+            } => {
+                let (x, y) = map.px(*center);
+                let style = if *fill {
+                    format!("fill:var({});fill-opacity:.18", var(*role))
+                } else {
+                    format!("fill:none;stroke:var({})", var(*role))
+                };
+                write!(
+                    out,
+                    "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" style=\"{style}\"{}/>",
+                    radius_m * map.scale,
+                    if *dashed {
+                        " stroke-dasharray=\"4 3\""
+                    } else {
+                        ""
+                    }
+                )
+            }
+            Item::Dot {
+                center,
+                radius_px,
+                role,
+            } => {
+                let (x, y) = map.px(*center);
+                write!(
+                    out,
+                    "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" style=\"fill:var({})\"/>",
+                    radius_px * 0.6,
+                    var(*role)
+                )
+            }
+            Item::Points { points, role, .. } => {
+                let stride = points.len().div_ceil(POINTS_MAX).max(1);
+                let mut d = String::new();
+                for p in points.iter().step_by(stride) {
+                    let (x, y) = map.px(*p);
+                    let _ = write!(d, "M{x:.0} {y:.0}h1");
+                }
+                write!(
+                    out,
+                    "<path d=\"{d}\" style=\"stroke:var({})\" stroke-opacity=\".6\" stroke-width=\"1.5\"/>",
+                    var(*role)
+                )
+            }
+            Item::Ellipse {
+                center,
+                semi_axis_a,
+                semi_axis_b,
+                role,
+            } => {
+                let (x, y) = map.px(*center);
+                let angle = -semi_axis_a.y.atan2(semi_axis_a.x).to_degrees();
+                write!(
+                    out,
+                    "<ellipse cx=\"{x:.1}\" cy=\"{y:.1}\" rx=\"{:.1}\" ry=\"{:.1}\" transform=\"rotate({angle:.1} {x:.1} {y:.1})\" \
+                     style=\"fill:var({v});fill-opacity:.18;stroke:var({v})\"/>",
+                    semi_axis_a.length() * map.scale,
+                    semi_axis_b.length() * map.scale,
+                    v = var(*role)
+                )
+            }
+            Item::Polyline {
+                points,
+                role,
+                dashed,
+                closed,
+                ..
+            } => write!(
+                out,
+                "<{tag} points=\"{}\" style=\"fill:none;stroke:var({})\"{}/>",
+                points_attr(&map, points),
+                var(*role),
+                if *dashed {
+                    " stroke-dasharray=\"4 3\""
+                } else {
+                    ""
+                },
+                tag = if *closed { "polygon" } else { "polyline" }
+            ),
+            Item::Polygon { points, role } => write!(
+                out,
+                "<polygon points=\"{}\" style=\"fill:var({v});fill-opacity:.35;stroke:var({v})\"/>",
+                points_attr(&map, points),
+                v = var(*role)
+            ),
+            Item::Rect {
+                min,
+                max,
+                role,
+                fill,
+            } => {
+                let ((x1, y1), (x2, y2)) = (map.px(*min), map.px(*max));
+                write!(
+                    out,
+                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" style=\"fill:{};stroke:var({})\"/>",
+                    x1.min(x2),
+                    y1.min(y2),
+                    (x2 - x1).abs(),
+                    (y2 - y1).abs(),
+                    if *fill { format!("var({})", var(*role)) } else { "none".into() },
+                    var(*role)
+                )
+            }
+            Item::Arrow { from, to, role, .. } => {
+                let ((x1, y1), (x2, y2)) = (map.px(*from), map.px(*to));
+                write!(
+                    out,
+                    "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" style=\"stroke:var({})\" stroke-width=\"1.5\"/>",
+                    var(*role)
+                )
+            }
+            Item::Arrows {
+                arrows: pairs,
+                role,
+                ..
+            }
+            | Item::Segments {
+                segments: pairs,
+                role,
+                ..
+            } => {
+                let stride = pairs.len().div_ceil(SEGMENTS_MAX).max(1);
+                let mut d = String::new();
+                for (a, b) in pairs.iter().step_by(stride) {
+                    let ((x1, y1), (x2, y2)) = (map.px(*a), map.px(*b));
+                    let _ = write!(d, "M{x1:.0} {y1:.0}L{x2:.0} {y2:.0}");
+                }
+                write!(
+                    out,
+                    "<path d=\"{d}\" style=\"stroke:var({})\" stroke-width=\".7\"/>",
+                    var(*role)
+                )
+            }
+            // Cell images and text are left to the live canvas.
+            Item::Heatmap { .. } | Item::Raster { .. } | Item::Label { .. } => Ok(()),
+        };
+    }
+    out.push_str("</svg>");
+    out
+}
+
+/// The card picture of a registered experiment: its preview state as SVG.
+#[must_use]
+pub fn thumbnail(id: &str) -> String {
+    let Some(entry) = labcore::find(id) else {
+        return String::new();
+    };
+    let mut exp = (entry.make)();
+    exp.preview();
+    let mut scene = Scene::default();
+    exp.scene(&mut scene);
+    svg(&scene, exp.view())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_experiment_has_a_small_well_formed_picture() {
+        for entry in labcore::registry() {
+            let s = thumbnail(entry.id);
+            assert!(
+                s.starts_with("<svg") && s.ends_with("</svg>"),
+                "{}",
+                entry.id
+            );
+            assert!(!s.contains("NaN") && !s.contains("inf"), "{}", entry.id);
+            assert!(s.len() < 40_000, "{}: {} bytes", entry.id, s.len());
+        }
+    }
+
+    #[test]
+    fn world_points_map_like_the_canvas() {
+        let map = Map::new(ViewBox::centered(1.0));
+        assert_eq!(map.px(DVec2::ZERO), (W / 2.0, H / 2.0));
+        // y up in the world is up on screen; the scale fits the height.
+        assert_eq!(map.px(DVec2::new(0.0, 1.0)), (W / 2.0, 0.0));
+    }
+}

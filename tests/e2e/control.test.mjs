@@ -1,0 +1,175 @@
+// Experiments 7 (PID) and 8 (cart-pole) driven like a student would: watch
+// the readouts move, press the actions, pause and single-step with the time
+// bar, and download a plot's CSV.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { readFile } from "node:fs/promises";
+import { join } from "node:path";
+import { DESKTOP, SHOTS, open, readouts, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+
+const lab = useLab();
+const PHONE_TALL = { width: 390, height: 844 };
+
+const num = (text) => Number.parseFloat(text);
+
+/** Waits until `[data-readout=key]` satisfies `predicate(number)`. */
+async function waitReadout(page, key, predicate) {
+  await page.waitForFunction(
+    ([k, source]) => {
+      const el = document.querySelector(`[data-readout="${k}"]`);
+      return el && new Function("v", `return (${source})(v)`)(Number.parseFloat(el.textContent));
+    },
+    [key, predicate.toString()],
+  );
+  return (await readouts(page))[key];
+}
+
+/** Clicks a plot's CSV button and returns the downloaded text. */
+async function downloadCsv(page, key) {
+  const [download] = await Promise.all([
+    page.waitForEvent("download"),
+    page.locator(`button[data-plot-csv="${key}"]`).click(),
+  ]);
+  assert.match(download.suggestedFilename(), new RegExp(`${key}\\.csv$`));
+  return readFile(await download.path(), "utf8");
+}
+
+/** A screenshot of the whole page into target/e2e-shots/. */
+async function fullPage(page, name) {
+  await page.screenshot({ path: join(SHOTS, `${name}.png`), fullPage: true });
+}
+
+/** Pauses with the time bar, then checks one Step advances exactly one fixed step. */
+async function pauseAndStep(page) {
+  const play = page.locator("button[data-time=play]");
+  await play.click();
+  await page.waitForFunction(
+    () => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "false",
+  );
+  const canvas = page.locator("canvas.sim-canvas");
+  const before = Number(await canvas.getAttribute("data-steps"));
+  await settle(page);
+  assert.equal(Number(await canvas.getAttribute("data-steps")), before, "paused: the clock stands still");
+  await page.locator("button[data-time=step]").click();
+  await page.waitForFunction(
+    (n) => Number(document.querySelector("canvas.sim-canvas").dataset.steps) === n + 1,
+    before,
+  );
+  assert.match(await page.evaluate(() => location.hash), /run=0/);
+  await play.click();
+  await page.waitForFunction(
+    () => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "true",
+  );
+}
+
+test("pid: the cart chases the setpoint, runs can be pinned, the time bar steps and the CSV downloads", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/pid/simulation");
+    let r = await readouts(page);
+    assert.ok(num(r.x) < 0.5, `the cart starts near 0: ${r.x}`);
+    assert.match(r.poles, /^-0\.18\d, /);
+    assert.equal(r.stability, "stable");
+    // The readouts follow the cart toward the 1 m setpoint.
+    await waitReadout(page, "x", (v) => v > 0.9);
+    await waitReadout(page, "rise", (v) => v > 0);
+    r = await readouts(page);
+    assert.match(r.overshoot, /^\d+\.\d%$/);
+    assert.match(r.rise, /^\d+\.\d\d s$/);
+    await pauseAndStep(page);
+
+    await page.locator("button[data-action=pin]").click();
+    await page.waitForSelector("[data-readout=pinA]");
+    assert.match((await readouts(page)).pinA, /^Kp 12 · Ki 2 · Kd 6, overshoot \d+\.\d%, rise /);
+
+    // A gain change replays the step from x = 0 with the pin kept.
+    await page.locator("input[type=text][data-param=kd]").fill("2");
+    await page.locator("input[type=text][data-param=kd]").press("Enter");
+    await page.waitForFunction(() => /kd=2(&|$)/.test(location.hash));
+    await waitReadout(page, "x", (v) => v > 0.9);
+    await page.locator("button[data-action=step]").click();
+    await waitReadout(page, "x", (v) => v < 0.5);
+    await waitReadout(page, "x", (v) => v > 0.5);
+    assert.ok((await readouts(page)).pinA, "pins survive a new step");
+
+    const csv = await downloadCsv(page, "response");
+    const header = csv.split("\r\n")[0];
+    const columns = ["position x", "pinned run A", "pinned run B", "pinned run C", "pinned run D"]
+      .map((s) => `${s} Time since step (s),${s} (m)`)
+      .join(",");
+    assert.equal(header, columns);
+    assert.ok(csv.split("\r\n").length > 20, "every sample is exported");
+    const effort = await downloadCsv(page, "effort");
+    assert.equal(
+      effort.split("\r\n")[0],
+      "Time since step (s),u (applied) (N),P = Kp·e (N),I = Ki·∫e (N),D = Kd·de/dt (N)",
+    );
+    await page.locator("button[data-action=clear_pins]").click();
+    await page.waitForFunction(() => !document.querySelector("[data-readout=pinA]"));
+  }));
+
+test("cartpole: the pole is caught, nudged, dropped and caught again; LQR gains go to the sliders", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/cartpole/simulation");
+    let r = await readouts(page);
+    assert.match(r.open_eig, /^3\.972, /);
+    assert.equal(r.closed_verdict, "stable");
+    // Caught from 6°: the angle readout falls toward zero.
+    await waitReadout(page, "theta", (v) => Math.abs(v) < 1);
+    await pauseAndStep(page);
+
+    await page.locator("button[data-action=nudge]").click();
+    await waitReadout(page, "omega", (v) => Math.abs(v) > 5);
+    await waitReadout(page, "theta", (v) => Math.abs(v) < 0.5);
+
+    await page.locator("button[data-action=drop]").click();
+    await page.waitForFunction(() => /control off/.test(document.querySelector(".sim-status").textContent));
+    await waitReadout(page, "theta", (v) => Math.abs(v) > 3);
+    await page.locator("button[data-action=catch]").click();
+    await waitReadout(page, "theta", (v) => Math.abs(v) < 1);
+    assert.equal((await readouts(page)).status, "up");
+
+    await page.locator("button[data-action=lqr]").click();
+    const proposal = (await readouts(page)).lqr;
+    const kth = /kθ ([\d.]+)/.exec(proposal)[1];
+    await page.waitForFunction((k) => location.hash.includes(`kth=${Number(k)}`), kth);
+    assert.equal(await page.locator("input[type=text][data-param=kth]").inputValue(), String(Number(kth)));
+
+    const csv = await downloadCsv(page, "angle");
+    assert.equal(csv.split("\r\n")[0], "Time (s),θ (nonlinear) (°),θ (linear model) (°)");
+    const energy = await downloadCsv(page, "energy");
+    assert.equal(energy.split("\r\n")[0], "Time (s),E (J)");
+  }));
+
+test("cartpole: with control off and RK4 the pole falls and the run ends", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/cartpole/simulation?ctl=0&integ=1&fall=1&th0=5");
+    await page.waitForFunction(() => /pole fallen/.test(document.querySelector(".sim-status").textContent));
+    const r = await readouts(page);
+    assert.match(r.status, /^fallen at \d+\.\d\d s$/);
+    assert.ok(Math.abs(num(r.theta)) > 12);
+  }));
+
+for (const [name, viewport] of [
+  ["desktop", DESKTOP],
+  ["phone", PHONE_TALL],
+]) {
+  test(`screenshots of both simulation tabs (${name})`, () =>
+    withPage(lab, { viewport }, async (page) => {
+      await open(lab, page, "#/pid/simulation");
+      await waitReadout(page, "x", (v) => v > 0.95);
+      await page.locator("button[data-action=pin]").click();
+      await page.locator("input[type=text][data-param=kd]").fill("2");
+      await page.locator("input[type=text][data-param=kd]").press("Enter");
+      await waitReadout(page, "settling", (v) => v > 0);
+      await settle(page);
+      await page.evaluate(() => window.scrollTo(0, 0));
+      await screenshot(page, `pid-simulation-${name}`);
+      await fullPage(page, `pid-full-${name}`);
+      await open(lab, page, "#/cartpole/simulation?th0=20");
+      await page.waitForTimeout(1500);
+      await settle(page);
+      await screenshot(page, `cartpole-simulation-${name}`);
+      await fullPage(page, `cartpole-full-${name}`);
+    }));
+}
