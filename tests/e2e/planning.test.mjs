@@ -84,12 +84,31 @@ test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds 
     assert.equal(rows.length, 4);
     assert.match(rows[0][0], /^A\* \(Octile\)/);
     assert.equal(rows[1][0], "Dijkstra");
-    assert.equal(rows[1][3], "1.000", "Dijkstra is the optimum");
+    assert.equal(rows[1][3], "1.00", "Dijkstra is the optimum");
     assert.equal(rows[0][2], rows[1][2], "octile A* is optimal too");
     assert.ok(Number(rows[0][1]) <= Number(rows[1][1]), "A* expands no more than Dijkstra");
     assert.match(rows[2][0], /^Greedy/);
     assert.ok(Number(rows[2][3]) >= 1);
     await screenshot(page, "astar-compare");
+  }));
+
+test("astar: a finger paints walls too: the canvas takes the touch and the page does not scroll", () =>
+  withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page, context) => {
+    await open(lab, page, "#/astar/simulation");
+    await page.locator(`${ART} canvas.sim-canvas`).scrollIntoViewIfNeeded();
+    const before = await walls(page);
+    const scrollY = await page.evaluate(() => scrollY);
+    const a = await cellToPage(page, 25, 16, 24);
+    const b = await cellToPage(page, 25, 22, 24);
+    const cdp = await context.newCDPSession(page);
+    const touch = (type, p) =>
+      cdp.send("Input.dispatchTouchEvent", { type, touchPoints: p ? [{ x: Math.round(p.x), y: Math.round(p.y), id: 1 }] : [] });
+    await touch("touchStart", a);
+    for (let i = 1; i <= 8; i++) await touch("touchMove", { x: a.x, y: a.y + ((b.y - a.y) * i) / 8 });
+    await touch("touchEnd");
+    await page.waitForFunction((n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] > n, before);
+    assert.equal(await walls(page), before + 7, "a vertical swipe painted seven cells");
+    assert.equal(await page.evaluate(() => scrollY), scrollY, "the page did not scroll");
   }));
 
 test("astar: the arena map loads from the file input, a malformed map is refused with its line, and the link keeps the walls", () =>

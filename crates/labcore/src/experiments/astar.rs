@@ -739,7 +739,7 @@ impl AStarGrid {
 /// How the comparison draws each planner's path (A*, Dijkstra, greedy,
 /// weighted A*), and how the table names those lines.
 const COMPARE_ROLES: [Role; 4] = [Role::Path, Role::Robot, Role::Warning, Role::Target];
-const COMPARE_LINES: [&str; 4] = ["solid amber", "blue dashes", "orange dashes", "pink dashes"];
+const COMPARE_LINES: [&str; 4] = ["━ amber", "╍ blue", "╍ orange", "╍ pink"];
 
 /// The raster value of a wall ([`crate::planning::astar::CellState::Blocked`]).
 const BLOCKED: u8 = crate::planning::astar::CellState::Blocked as u8;
@@ -1090,14 +1090,14 @@ impl Experiment for AStarGrid {
         if !self.compare.is_empty() {
             let mut t = Table::new(
                 "compare",
-                "Compare on this grid (time estimated from expansions, relative to Dijkstra)",
+                "Compare on this grid (time: expansions relative to Dijkstra, a deterministic estimate)",
                 &[
                     "planner",
                     "expanded",
-                    "path cost",
-                    "cost / optimum",
-                    "time (rel.)",
-                    "drawn as",
+                    "cost",
+                    "× optimum",
+                    "time",
+                    "line",
                 ],
             );
             let optimum = self.optimum();
@@ -1108,12 +1108,12 @@ impl Experiment for AStarGrid {
                 .map_or(0, |r| r.expanded);
             for (r, line) in self.compare.iter().zip(COMPARE_LINES) {
                 let (cost, ratio) = match (r.cost, optimum) {
-                    (Some(c), Some(o)) if o > 0.0 => (format_fixed(c, 3), format_fixed(c / o, 3)),
-                    (Some(c), _) => (format_fixed(c, 3), "1.000".into()),
+                    (Some(c), Some(o)) if o > 0.0 => (format_fixed(c, 3), format_fixed(c / o, 2)),
+                    (Some(c), _) => (format_fixed(c, 3), "1.00".into()),
                     (None, _) => ("no path".into(), "--".into()),
                 };
                 let time = if dijkstra_expanded > 0 {
-                    format_fixed(r.expanded as f64 / dijkstra_expanded as f64, 3)
+                    format_fixed(r.expanded as f64 / dijkstra_expanded as f64, 2)
                 } else {
                     "--".into()
                 };
@@ -1733,14 +1733,14 @@ mod tests {
             assert_eq!(row.cost, Some(r.cost), "{}", row.name);
             assert_eq!(cells[1], r.expanded.to_string());
             assert_eq!(cells[2], format_fixed(r.cost, 3));
-            assert_eq!(cells[3], format_fixed(r.cost / optimum, 3));
+            assert_eq!(cells[3], format_fixed(r.cost / optimum, 2));
             assert!(r.cost >= optimum - 1e-9);
         }
         assert_eq!(rows[0].cost, Some(optimum), "octile A* is optimal");
         assert_eq!(rows[1].name, "Dijkstra");
-        assert_eq!(table.rows[1][3], "1.000");
-        assert_eq!(table.rows[1][4], "1.000");
-        assert_eq!(table.rows[1][5], "blue dashes");
+        assert_eq!(table.rows[1][3], "1.00");
+        assert_eq!(table.rows[1][4], "1.00");
+        assert_eq!(table.rows[1][5], "╍ blue");
         assert!(rows[0].expanded <= rows[1].expanded);
         assert!(rows[3].cost.unwrap() <= 1.5 * optimum + 1e-9);
         // Every path is drawn.

@@ -794,7 +794,7 @@ impl Experiment for RrtStarField {
                 r.planner.name().into(),
                 r.tree.iterations().to_string(),
                 r.tree.len().to_string(),
-                first.map_or("--".into(), |s| format!("iteration {}", s.iteration)),
+                first.map_or("--".into(), |s| s.iteration.to_string()),
                 format_metres(r.tree.best_cost().unwrap_or(f64::NAN)),
             ]);
         }
