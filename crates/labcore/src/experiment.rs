@@ -539,6 +539,17 @@ pub trait Experiment {
     }
 }
 
+/// The formatted value of the readout `key`, or `None` when the experiment
+/// shows no such readout now.
+#[must_use]
+pub fn readout_value(experiment: &dyn Experiment, key: &str) -> Option<String> {
+    experiment
+        .readouts()
+        .into_iter()
+        .find(|r| r.key == key)
+        .map(|r| r.value)
+}
+
 /// A target point after setting one coordinate from a `tx`/`ty` parameter:
 /// `key` ending in `x` sets x, otherwise y; with no point yet, the other
 /// coordinate comes from `fallback` (usually the current tip).

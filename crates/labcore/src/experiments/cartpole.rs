@@ -970,11 +970,7 @@ mod tests {
     }
 
     fn readout(e: &CartPoleBalance, key: &str) -> String {
-        e.readouts()
-            .into_iter()
-            .find(|r| r.key == key)
-            .map(|r| r.value)
-            .unwrap_or_else(|| panic!("no readout {key}"))
+        crate::experiment::readout_value(e, key).unwrap_or_else(|| panic!("no readout {key}"))
     }
 
     #[test]

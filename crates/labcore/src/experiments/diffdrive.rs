@@ -998,11 +998,7 @@ mod tests {
     }
 
     fn readout(d: &DiffDrive, key: &str) -> String {
-        d.readouts()
-            .into_iter()
-            .find(|r| r.key == key)
-            .unwrap_or_else(|| panic!("no readout {key}"))
-            .value
+        crate::experiment::readout_value(d, key).unwrap_or_else(|| panic!("no readout {key}"))
     }
 
     fn click(d: &mut DiffDrive, p: DVec2) {

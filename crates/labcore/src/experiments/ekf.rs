@@ -1222,11 +1222,7 @@ mod tests {
     }
 
     fn readout(e: &EkfExperiment, key: &str) -> String {
-        e.readouts()
-            .into_iter()
-            .find(|r| r.key == key)
-            .map(|r| r.value)
-            .unwrap_or_default()
+        crate::experiment::readout_value(e, key).unwrap_or_default()
     }
 
     fn close(a: f64, b: f64) -> bool {

@@ -1086,11 +1086,7 @@ mod tests {
     }
 
     fn readout(e: &PidControl, key: &str) -> String {
-        e.readouts()
-            .into_iter()
-            .find(|r| r.key == key)
-            .map(|r| r.value)
-            .unwrap_or_else(|| panic!("no readout {key}"))
+        crate::experiment::readout_value(e, key).unwrap_or_else(|| panic!("no readout {key}"))
     }
 
     /// `Kp = 25, Kd = 5, c = 1, m = 1, Ki = 0`: `s² + 6 s + 25`, poles

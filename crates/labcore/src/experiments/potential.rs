@@ -1162,11 +1162,7 @@ mod tests {
     }
 
     fn readout(e: &PotentialFieldLab, key: &str) -> String {
-        e.readouts()
-            .into_iter()
-            .find(|r| r.key == key)
-            .unwrap_or_else(|| panic!("no readout {key}"))
-            .value
+        crate::experiment::readout_value(e, key).unwrap_or_else(|| panic!("no readout {key}"))
     }
 
     fn click(e: &mut PotentialFieldLab, p: DVec2) {
