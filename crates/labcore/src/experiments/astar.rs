@@ -737,9 +737,8 @@ impl AStarGrid {
 }
 
 /// How the comparison draws each planner's path (A*, Dijkstra, greedy,
-/// weighted A*), and how the table names those lines.
+/// weighted A*); the table's caption names the lines.
 const COMPARE_ROLES: [Role; 4] = [Role::Path, Role::Robot, Role::Warning, Role::Target];
-const COMPARE_LINES: [&str; 4] = ["━ amber", "╍ blue", "╍ orange", "╍ pink"];
 
 /// The raster value of a wall ([`crate::planning::astar::CellState::Blocked`]).
 const BLOCKED: u8 = crate::planning::astar::CellState::Blocked as u8;
@@ -1090,14 +1089,13 @@ impl Experiment for AStarGrid {
         if !self.compare.is_empty() {
             let mut t = Table::new(
                 "compare",
-                "Compare on this grid (time: expansions relative to Dijkstra, a deterministic estimate)",
+                "Compare on this grid. Ratio: cost ÷ optimum; time: expansions relative to Dijkstra (a deterministic estimate). Paths: A* solid amber; Dijkstra blue, greedy orange, weighted A* pink dashes.",
                 &[
                     "planner",
                     "expanded",
                     "cost",
-                    "× optimum",
+                    "ratio",
                     "time",
-                    "line",
                 ],
             );
             let optimum = self.optimum();
@@ -1106,7 +1104,7 @@ impl Experiment for AStarGrid {
                 .iter()
                 .find(|r| r.name == "Dijkstra")
                 .map_or(0, |r| r.expanded);
-            for (r, line) in self.compare.iter().zip(COMPARE_LINES) {
+            for r in &self.compare {
                 let (cost, ratio) = match (r.cost, optimum) {
                     (Some(c), Some(o)) if o > 0.0 => (format_fixed(c, 3), format_fixed(c / o, 2)),
                     (Some(c), _) => (format_fixed(c, 3), "1.00".into()),
@@ -1123,7 +1121,6 @@ impl Experiment for AStarGrid {
                     cost,
                     ratio,
                     time,
-                    line.to_owned(),
                 ]);
             }
             tables.push(t);
@@ -1236,7 +1233,7 @@ impl Experiment for AStarGrid {
             fill: false,
         });
         // Each planner's path in its own colour and dash; the Compare table
-        // names them ([`COMPARE_LINES`]).
+        // names them.
         for (r, role) in self.compare.iter().zip(COMPARE_ROLES) {
             if r.path.len() >= 2 {
                 out.push(Item::Polyline {
@@ -1740,7 +1737,8 @@ mod tests {
         assert_eq!(rows[1].name, "Dijkstra");
         assert_eq!(table.rows[1][3], "1.00");
         assert_eq!(table.rows[1][4], "1.00");
-        assert_eq!(table.rows[1][5], "╍ blue");
+        assert_eq!(table.rows[1].len(), 5);
+        assert!(table.caption.contains("Dijkstra blue"));
         assert!(rows[0].expanded <= rows[1].expanded);
         assert!(rows[3].cost.unwrap() <= 1.5 * optimum + 1e-9);
         // Every path is drawn.

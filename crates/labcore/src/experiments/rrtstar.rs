@@ -779,13 +779,13 @@ impl Experiment for RrtStarField {
         }
         let mut t = Table::new(
             "compare",
-            "Same seed, same field: RRT, RRT* and Informed RRT*",
+            "Same seed, same field. The selected planner's path is solid amber; the others are dashed (RRT orange, RRT* amber, Informed RRT* blue).",
             &[
                 "planner",
-                "iterations",
+                "iter.",
                 "nodes",
-                "first path at",
-                "best length",
+                "first path",
+                "best",
             ],
         );
         for r in &self.runs {
@@ -903,21 +903,13 @@ impl Experiment for RrtStarField {
         if self.runs.len() > 1 {
             for r in self.runs.iter().filter(|r| r.planner != self.planner) {
                 if let Some(path) = r.tree.best_path() {
-                    if let Some(&end) = path.last() {
-                        out.push(Item::Polyline {
-                            points: path,
-                            width_px: 2.0,
-                            role: path_role(r.planner),
-                            dashed: true,
-                            closed: false,
-                        });
-                        out.push(Item::Label {
-                            pos: end,
-                            text: r.planner.name().into(),
-                            role: path_role(r.planner),
-                            offset_px: DVec2::new(-40.0, 16.0),
-                        });
-                    }
+                    out.push(Item::Polyline {
+                        points: path,
+                        width_px: 2.0,
+                        role: path_role(r.planner),
+                        dashed: true,
+                        closed: false,
+                    });
                 }
             }
         }
