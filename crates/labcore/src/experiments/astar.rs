@@ -148,11 +148,17 @@ enum Drag {
     Goal,
 }
 
+/// Expansions a step of the comparison may make (about a millisecond in the
+/// browser), so even a 512 × 512 comparison spreads over frames.
+const COMPARE_EXPANSIONS_PER_STEP: usize = 20_000;
+
 /// Where the run stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Phase {
     /// Nothing planned since the last edit.
     Idle,
+    /// The comparison runs, a bounded number of expansions per step.
+    Comparing,
     /// The search animates.
     Searching,
     /// The robot follows the path.
@@ -209,6 +215,10 @@ pub struct AStarGrid {
     /// Distance driven along `path`, metres.
     driven_m: f64,
     compare: Vec<CompareRow>,
+    /// Planners of a comparison still to run (the one running first).
+    compare_queue: Vec<(String, SearchConfig)>,
+    /// Whether the first planner in the queue has been started.
+    compare_started: bool,
     drag: Drag,
     last_cell: Option<Cell>,
     /// The handle arrow keys move (the one placed or dragged last).
@@ -256,6 +266,8 @@ impl Default for AStarGrid {
             path_cost: 0.0,
             driven_m: 0.0,
             compare: Vec::new(),
+            compare_queue: Vec::new(),
+            compare_started: false,
             drag: Drag::None,
             last_cell: None,
             nudge_goal: false,
@@ -367,6 +379,8 @@ impl AStarGrid {
         self.path_cost = 0.0;
         self.driven_m = 0.0;
         self.compare.clear();
+        self.compare_queue.clear();
+        self.compare_started = false;
         self.plots[0].clear();
         self.walls_raster();
     }
@@ -571,8 +585,10 @@ impl AStarGrid {
         }
     }
 
-    /// Runs the four planners of the comparison on the current grid, and
-    /// leaves the main search finished (its closed set is shown).
+    /// Starts the comparison of four planners on the current grid. It runs
+    /// over the following steps, [`COMPARE_EXPANSIONS_PER_STEP`] expansions a
+    /// step (a 512 × 512 grid must not block the page), and ends with the main
+    /// search finished (its closed set is shown).
     fn run_compare(&mut self) {
         self.plan();
         if self.phase != Phase::Searching {
@@ -587,7 +603,7 @@ impl AStarGrid {
             (h, _) => h,
         };
         let w = if self.weight > 1.0 { self.weight } else { 2.0 };
-        let planners = [
+        self.compare_queue = vec![
             (
                 format!("A* ({})", heuristic_label(self.heuristic)),
                 SearchConfig::astar(conn, self.heuristic),
@@ -602,17 +618,58 @@ impl AStarGrid {
                 SearchConfig::weighted(conn, h, w),
             ),
         ];
+        self.compare_started = false;
+        self.compare.clear();
+        self.phase = Phase::Comparing;
+    }
+
+    /// One step of the comparison: up to [`COMPARE_EXPANSIONS_PER_STEP`]
+    /// expansions of the planner at the front of the queue; a finished
+    /// planner becomes a table row; after the last, the main search runs to
+    /// its end the same way and the comparison is shown.
+    fn compare_step(&mut self) {
         let Some(mut search) = self.search.take() else {
+            self.phase = Phase::Idle;
             return;
         };
-        let mut rows = Vec::with_capacity(planners.len());
-        for (name, config) in planners {
-            if search.restart(self.start, self.goal, config).is_err() {
+        let mut budget = COMPARE_EXPANSIONS_PER_STEP;
+        while budget > 0 {
+            let config = match self.compare_queue.first() {
+                Some((_, config)) => *config,
+                None => self.config(),
+            };
+            if !self.compare_started {
+                if search.restart(self.start, self.goal, config).is_err() {
+                    if self.compare_queue.is_empty() {
+                        break;
+                    }
+                    self.compare_queue.remove(0);
+                    continue;
+                }
+                self.compare_started = true;
+            }
+            let before = search.expanded();
+            let outcome = search.step_n(budget);
+            budget = budget.saturating_sub((search.expanded() - before).max(1));
+            if !matches!(outcome, Some(StepOutcome::Found | StepOutcome::NoPath)) {
                 continue;
             }
-            search.run();
+            self.compare_started = false;
+            if self.compare_queue.is_empty() {
+                // The main search is finished: show it and the table.
+                self.search = Some(search);
+                self.search_raster();
+                if let Some(r) = self.search.as_ref().and_then(Search::result) {
+                    self.path = self.world_path(&r.path);
+                    self.path_cells = r.path.len();
+                    self.path_cost = r.cost;
+                }
+                self.phase = Phase::Compared;
+                return;
+            }
+            let (name, config) = self.compare_queue.remove(0);
             let result = search.result();
-            rows.push(CompareRow {
+            self.compare.push(CompareRow {
                 name,
                 config,
                 expanded: search.expanded(),
@@ -620,19 +677,7 @@ impl AStarGrid {
                 path: result.map_or_else(Vec::new, |r| self.world_path(&r.path)),
             });
         }
-        // The main search, finished, for the raster and the readouts.
-        if search.restart(self.start, self.goal, self.config()).is_ok() {
-            search.run();
-        }
         self.search = Some(search);
-        self.search_raster();
-        if let Some(r) = self.search.as_ref().and_then(Search::result) {
-            self.path = self.world_path(&r.path);
-            self.path_cells = r.path.len();
-            self.path_cost = r.cost;
-        }
-        self.compare = rows;
-        self.phase = Phase::Compared;
     }
 
     /// The optimum of the comparison: Dijkstra's cost.
@@ -996,6 +1041,7 @@ impl Experiment for AStarGrid {
             return;
         }
         match self.phase {
+            Phase::Comparing => self.compare_step(),
             Phase::Searching => {
                 let n = self.expansions_per_step();
                 let Some(search) = self.search.as_mut() else {
@@ -1035,7 +1081,7 @@ impl Experiment for AStarGrid {
     fn reset(&mut self) {
         match self.phase {
             Phase::Searching | Phase::Driving | Phase::Arrived | Phase::NoPath => self.plan(),
-            Phase::Compared => self.run_compare(),
+            Phase::Compared | Phase::Comparing => self.run_compare(),
             Phase::Idle | Phase::Refused => {}
         }
     }
@@ -1382,6 +1428,10 @@ impl Experiment for AStarGrid {
                     Tone::Warning
                 },
             ),
+            Phase::Comparing => Status::new(
+                format!("comparing… {} of 4 planners done", self.compare.len()),
+                Tone::Neutral,
+            ),
             Phase::Searching => Status::new(
                 format!(
                     "searching… {} expanded",
@@ -1433,7 +1483,10 @@ impl Experiment for AStarGrid {
     }
 
     fn animating(&self) -> bool {
-        matches!(self.phase, Phase::Searching | Phase::Driving)
+        matches!(
+            self.phase,
+            Phase::Searching | Phase::Comparing | Phase::Driving
+        )
     }
 }
 
@@ -1701,8 +1754,22 @@ mod tests {
         assert_eq!(a.status().tone, Tone::Bad);
         assert!(a.status().text.starts_with("no path"));
         a.action("compare").unwrap();
+        settle(&mut a);
         let t = a.tables().into_iter().find(|t| t.key == "compare").unwrap();
         assert!(t.rows.iter().all(|r| r[2] == "no path"));
+    }
+
+    #[test]
+    fn a_512_comparison_spreads_over_steps_of_bounded_work() {
+        let mut a = AStarGrid::default();
+        a.set_param("size", 4.0).unwrap();
+        a.action("maze").unwrap();
+        a.action("compare").unwrap();
+        let steps = settle(&mut a);
+        assert_eq!(a.comparison().len(), 4);
+        // Four searches plus the main one over a 512 × 512 grid cannot fit in
+        // a few steps of 20,000 expansions.
+        assert!(steps >= 5, "{steps} steps");
     }
 
     #[test]
@@ -1710,6 +1777,12 @@ mod tests {
         let mut a = AStarGrid::default();
         a.set_param("w", 1.5).unwrap();
         a.action("compare").unwrap();
+        assert!(
+            a.comparison().is_empty(),
+            "the comparison runs over the next steps"
+        );
+        let steps = settle(&mut a);
+        assert!(steps >= 1);
         let rows = a.comparison().to_vec();
         assert_eq!(rows.len(), 4);
         let table = a.tables().into_iter().find(|t| t.key == "compare").unwrap();
