@@ -247,6 +247,20 @@ pub fn apply_params(experiment: &mut dyn Experiment, params: &[(String, String)]
     notices.into_iter().map(|(_, n)| n).collect()
 }
 
+/// Rebuilds an experiment from a link: `fresh` (usually at its defaults)
+/// with the link's parameters applied. Returns it with every notice — about
+/// the link itself and about its parameters; none means the link reproduced
+/// a state exactly as written.
+pub fn restore<E: Experiment>(link: &str, mut fresh: E) -> (E, Vec<String>) {
+    let route = parse(link, &[fresh.id()]);
+    let mut notices = route.notices;
+    match route.page {
+        Page::Experiment { params, .. } => notices.extend(apply_params(&mut fresh, &params)),
+        Page::Home => notices.push("The link names no experiment.".into()),
+    }
+    (fresh, notices)
+}
+
 /// Builds the hash for an experiment, its tab, every parameter's current
 /// value and then its [`Experiment::extra_state`].
 #[must_use]
@@ -347,6 +361,18 @@ fn truncate(s: &str, max_chars: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn restore_applies_a_link_and_reports_what_it_could_not() {
+        use crate::experiments::fk::ForwardKinematics;
+        let (fk, notices) = restore("#/fk/simulation?t1=10&t2=20", ForwardKinematics::default());
+        assert!(notices.is_empty(), "{notices:?}");
+        assert_eq!((fk.param("t1"), fk.param("t2")), (Some(10.0), Some(20.0)));
+        let (_, notices) = restore("#/fk/simulation?t1=abc", ForwardKinematics::default());
+        assert_eq!(notices.len(), 1);
+        let (_, notices) = restore("#/ik/simulation?t1=10", ForwardKinematics::default());
+        assert!(notices.len() >= 2, "another experiment's link: {notices:?}");
+    }
 
     const IDS: &[&str] = &["fk", "ik"];
 

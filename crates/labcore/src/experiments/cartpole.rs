@@ -961,7 +961,7 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 mod tests {
     use super::*;
     use crate::control::count_right_half_plane;
-    use crate::route::{apply_params, format, parse, Page, Tab};
+    use crate::route::{format, restore, Tab};
 
     fn run(e: &mut CartPoleBalance, seconds: f64) {
         for _ in 0..(seconds * 60.0).round() as usize {
@@ -1245,13 +1245,8 @@ mod tests {
             e.set_param(k, v).unwrap();
         }
         let link = format(&e, Tab::Simulation);
-        let route = parse(&link, &["cartpole"]);
-        assert!(route.notices.is_empty());
-        let Page::Experiment { params, .. } = route.page else {
-            panic!("{link}");
-        };
-        let mut fresh = CartPoleBalance::default();
-        assert!(apply_params(&mut fresh, &params).is_empty());
+        let (mut fresh, notices) = restore(&link, CartPoleBalance::default());
+        assert!(notices.is_empty(), "{notices:?}");
         assert_eq!(format(&fresh, Tab::Simulation), link);
         for spec in PARAMS {
             assert_eq!(fresh.param(spec.key), e.param(spec.key), "{}", spec.key);

@@ -983,7 +983,7 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::route::{apply_params, format, parse, Page, Tab};
+    use crate::route::{format, restore, Tab};
     use std::f64::consts::PI;
 
     const DT: f64 = crate::clock::Clock::DT_S;
@@ -1215,12 +1215,8 @@ mod tests {
             link,
             "#/diffdrive/simulation?kw=5&kv=1.2&vmax=1.1&wmax=1.4&track=0.3&integ=1&w1x=3.33&w1y=2&w2x=8&w2y=0"
         );
-        let route = parse(&link, &["diffdrive"]);
-        let Page::Experiment { params, .. } = route.page else {
-            panic!()
-        };
-        let mut fresh = DiffDrive::default();
-        assert!(apply_params(&mut fresh, &params).is_empty());
+        let (mut fresh, notices) = restore(&link, DiffDrive::default());
+        assert!(notices.is_empty(), "{notices:?}");
         assert_eq!(fresh.waypoints(), d.waypoints());
         assert_eq!(format(&fresh, Tab::Simulation), link);
         // The loaded route drives the same run as the clicked one, after a reset.

@@ -1565,7 +1565,7 @@ mod tests {
 
     #[test]
     fn every_parameter_round_trips_through_the_link() {
-        use crate::route::{apply_params, format, parse, Page, Tab};
+        use crate::route::{format, restore, Tab};
         let mut e = EkfExperiment::default();
         for (key, v) in [
             ("sv", 0.23),
@@ -1585,13 +1585,8 @@ mod tests {
             link.contains("fov=215") && link.contains("seed=4242"),
             "{link}"
         );
-        let route = parse(&link, &["ekf"]);
-        assert!(route.notices.is_empty());
-        let Page::Experiment { params, .. } = route.page else {
-            panic!("{link}");
-        };
-        let mut fresh = EkfExperiment::default();
-        assert!(apply_params(&mut fresh, &params).is_empty());
+        let (mut fresh, notices) = restore(&link, EkfExperiment::default());
+        assert!(notices.is_empty(), "{notices:?}");
         for spec in PARAMS {
             assert_eq!(fresh.param(spec.key), e.param(spec.key), "{}", spec.key);
         }

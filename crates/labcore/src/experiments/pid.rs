@@ -1074,7 +1074,7 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::route::{apply_params, format, parse, Page, Tab};
+    use crate::route::{format, restore, Tab};
 
     fn run_to_end(e: &mut PidControl) -> usize {
         let mut frames = 0;
@@ -1422,13 +1422,8 @@ mod tests {
             e.set_param(k, v).unwrap();
         }
         let link = format(&e, Tab::Simulation);
-        let route = parse(&link, &["pid"]);
-        assert!(route.notices.is_empty());
-        let Page::Experiment { params, .. } = route.page else {
-            panic!("{link}");
-        };
-        let mut fresh = PidControl::default();
-        assert!(apply_params(&mut fresh, &params).is_empty());
+        let (mut fresh, notices) = restore(&link, PidControl::default());
+        assert!(notices.is_empty(), "{notices:?}");
         assert_eq!(format(&fresh, Tab::Simulation), link);
         for spec in PARAMS {
             assert_eq!(fresh.param(spec.key), e.param(spec.key), "{}", spec.key);

@@ -1148,7 +1148,7 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 mod tests {
     use super::*;
     use crate::mobile::potential_field::run_to_end;
-    use crate::route::{apply_params, format, parse, Page, Tab};
+    use crate::route::{format, restore, Tab};
 
     const DT: f64 = crate::clock::Clock::DT_S;
 
@@ -1364,11 +1364,8 @@ mod tests {
             link,
             "#/potential/simulation?ka=1&kr=1.6&d0=1&rad=0.5&view=2&nobs=2&sx=0.6&sy=3&gx=7&gy=2.5&o1x=5.2&o1y=2.2&o2x=1.23&o2y=4"
         );
-        let Page::Experiment { params, .. } = parse(&link, &["potential"]).page else {
-            panic!()
-        };
-        let mut fresh = PotentialFieldLab::default();
-        assert!(apply_params(&mut fresh, &params).is_empty());
+        let (fresh, notices) = restore(&link, PotentialFieldLab::default());
+        assert!(notices.is_empty(), "{notices:?}");
         assert_eq!(fresh.obstacles(), e.obstacles());
         assert_eq!(format(&fresh, Tab::Simulation), link);
         // Every obstacle removed is a state too: `nobs=0`.
@@ -1379,11 +1376,8 @@ mod tests {
         }
         let link = format(&e, Tab::Simulation);
         assert!(link.contains("nobs=0") && !link.contains("o1x"), "{link}");
-        let Page::Experiment { params, .. } = parse(&link, &["potential"]).page else {
-            panic!()
-        };
-        let mut fresh = PotentialFieldLab::default();
-        assert!(apply_params(&mut fresh, &params).is_empty());
+        let (mut fresh, notices) = restore(&link, PotentialFieldLab::default());
+        assert!(notices.is_empty(), "{notices:?}");
         assert!(fresh.obstacles().is_empty());
         // The same link drives the same run.
         run(&mut e, 30.0);

@@ -1139,7 +1139,7 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::route::{apply_params, format, parse, Page, Tab};
+    use crate::route::{apply_params, format, restore, Tab};
 
     const DT: f64 = 1.0 / 60.0;
 
@@ -1394,11 +1394,8 @@ mod tests {
         f.set_param("eta", 0.75).unwrap();
         let link = format(&f, Tab::Simulation);
         assert!(link.contains("&obs=c280_360_90~"), "{link}");
-        let Page::Experiment { params, .. } = parse(&link, &["rrtstar"]).page else {
-            panic!("{link}");
-        };
-        let mut fresh = RrtStarField::default();
-        assert!(apply_params(&mut fresh, &params).is_empty());
+        let (mut fresh, notices) = restore(&link, RrtStarField::default());
+        assert!(notices.is_empty(), "{notices:?}");
         assert_eq!(fresh.obstacles, f.obstacles);
         assert_eq!(format(&fresh, Tab::Simulation), link);
         let notices = apply_params(&mut fresh, &[("obs".into(), "c1_2~q".into())]);
