@@ -1088,13 +1088,11 @@ fn quiz_net_force(rng: &mut Lcg64) -> Draw {
     let d0 = rng.int(8, 15) as f64 / 10.0;
     let r = rng.int(3, 8) as f64 / 10.0;
     let s = r + rng.int(1, (d0 * 10.0) as i64) as f64 / 10.0;
-    let mut field = PotentialField::new(
+    let field = quiz_field(
         DVec2::new(10.0, 0.0),
-        vec![CircleObstacle::new(DVec2::new(s, 0.0), r)],
+        CircleObstacle::new(DVec2::new(s, 0.0), r),
+        (ka, kr, d0),
     );
-    field.params.k_att = ka;
-    field.params.k_rep = kr;
-    field.params.influence_m = d0;
     Draw {
         vars: vec![
             ("ka", format_number(ka, 1)),
@@ -1107,6 +1105,20 @@ fn quiz_net_force(rng: &mut Lcg64) -> Draw {
     }
 }
 
+/// The field of a quiz question: one goal, one obstacle and the gains
+/// `(k_a, k_r, d₀)` the question names.
+fn quiz_field(
+    goal: DVec2,
+    obstacle: CircleObstacle,
+    (ka, kr, d0): (f64, f64, f64),
+) -> PotentialField {
+    let mut field = PotentialField::new(goal, vec![obstacle]);
+    field.params.k_att = ka;
+    field.params.k_rep = kr;
+    field.params.influence_m = d0;
+    field
+}
+
 /// The potential `U = k_a |goal − p| + k_r (d₀ − d)²/(2 d₀)` at a point.
 fn quiz_potential(rng: &mut Lcg64) -> Draw {
     let ka = rng.int(5, 20) as f64 / 10.0;
@@ -1114,13 +1126,11 @@ fn quiz_potential(rng: &mut Lcg64) -> Draw {
     let d0 = rng.int(5, 20) as f64 / 10.0;
     let g = rng.int(10, 50) as f64 / 10.0;
     let d = rng.int(1, (d0 * 10.0) as i64 - 1) as f64 / 10.0;
-    let mut field = PotentialField::new(
+    let field = quiz_field(
         DVec2::new(g, 0.0),
-        vec![CircleObstacle::new(DVec2::new(0.0, -d), 0.0)],
+        CircleObstacle::new(DVec2::new(0.0, -d), 0.0),
+        (ka, kr, d0),
     );
-    field.params.k_att = ka;
-    field.params.k_rep = kr;
-    field.params.influence_m = d0;
     Draw {
         vars: vec![
             ("ka", format_number(ka, 1)),
