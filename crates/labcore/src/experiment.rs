@@ -297,20 +297,91 @@ pub enum Tone {
     Bad,
 }
 
-/// The badge above the canvas (e.g. "in reach", "out of reach").
+/// Where the run stands, as the model's evidence says.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Phase {
+    /// The run can go on (running, waiting for input, balancing…).
+    #[default]
+    Live,
+    /// The run is over (a goal reached, a pole fallen, a loop unstable, a
+    /// search done): stepping changes nothing worth watching, so the time bar
+    /// offers Replay instead of Pause.
+    Ended,
+}
+
+/// The run's state shown in the status badge (e.g. "in reach", "reached the
+/// goal"). It is derived from the model every frame, never from a message:
+/// transient messages are [`Notice`]s.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Status {
     pub text: String,
     pub tone: Tone,
+    pub phase: Phase,
 }
 
 impl Status {
+    /// A status of a run that can go on.
     #[must_use]
     pub fn new(text: impl Into<String>, tone: Tone) -> Self {
         Self {
             text: text.into(),
             tone,
+            phase: Phase::Live,
         }
+    }
+
+    /// A status of a run that has ended ([`Phase::Ended`]).
+    #[must_use]
+    pub fn ended(text: impl Into<String>, tone: Tone) -> Self {
+        Self {
+            text: text.into(),
+            tone,
+            phase: Phase::Ended,
+        }
+    }
+}
+
+/// A transient message beside the status ("all 6 waypoints are queued",
+/// "settings changed: run the check again"). The page shows it under the
+/// badge, never in its place, and hides it after a few seconds or at the
+/// student's next input, action or parameter change, unless that posted a
+/// new one (a new [`Notice::serial`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Notice {
+    /// Grows with every post, so the page can tell a new notice from an old one.
+    pub serial: u64,
+    pub text: String,
+    pub tone: Tone,
+}
+
+/// The notice an experiment last posted: keep one as a field and return
+/// [`Notices::current`] from [`Experiment::notice`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Notices {
+    serial: u64,
+    current: Option<Notice>,
+}
+
+impl Notices {
+    /// Posts a notice (it replaces the previous one).
+    pub fn post(&mut self, text: impl Into<String>, tone: Tone) {
+        self.serial += 1;
+        self.current = Some(Notice {
+            serial: self.serial,
+            text: text.into(),
+            tone,
+        });
+    }
+
+    /// Withdraws the current notice (e.g. when what it warned about is over).
+    pub fn clear(&mut self) {
+        self.current = None;
+    }
+
+    /// The notice to show, if any.
+    #[must_use]
+    pub fn current(&self) -> Option<Notice> {
+        self.current.clone()
     }
 }
 
@@ -526,8 +597,12 @@ pub trait Experiment {
     fn scene(&self, out: &mut Scene);
     /// The live numbers beside the canvas.
     fn readouts(&self) -> Vec<Readout>;
-    /// The status badge.
+    /// The status badge: the run's state from the model's evidence.
     fn status(&self) -> Status;
+    /// The latest transient notice, if any (see [`Notice`]). Default: none.
+    fn notice(&self) -> Option<Notice> {
+        None
+    }
     /// One line above the canvas telling the student how to interact.
     fn hint(&self) -> &'static str;
     /// Puts the experiment in a representative state for its home-page

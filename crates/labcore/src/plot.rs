@@ -49,6 +49,9 @@ pub struct Series {
     pub role: SeriesRole,
     pub x: Vec<f64>,
     pub y: Vec<f64>,
+    /// A run kept for comparison (a pinned run, an overlay): the page can fit
+    /// the x axis to the other series only ("fit the latest run").
+    pub comparison: bool,
 }
 
 impl Series {
@@ -60,7 +63,15 @@ impl Series {
             role,
             x: Vec::new(),
             y: Vec::new(),
+            comparison: false,
         }
+    }
+
+    /// Marks the series as a run kept for comparison (see [`Series::comparison`]).
+    #[must_use]
+    pub fn for_comparison(mut self) -> Self {
+        self.comparison = true;
+        self
     }
 
     /// Appends a sample; non-finite samples are skipped (they would poison

@@ -162,6 +162,17 @@ pub enum Item {
         width_px: f64,
         role: Role,
     },
+    /// A metre scale bar the page draws in a lower corner of the canvas,
+    /// with a round length that fits the current zoom (for scenes whose grid
+    /// carries no numbers).
+    ScaleBar,
+    /// The page marks the canvas edge in the direction of `at` while `at` is
+    /// outside the view (a robot or cart that drove off), with `label`.
+    OffView {
+        at: DVec2,
+        label: String,
+        role: Role,
+    },
     /// A grid of cells painted as one image: cell `(col, row)` has state
     /// `cells[row * cols + col]`, row 0 at `min.y`; state `s > 0` takes the
     /// colour of `palette[s - 1]` and 0 is transparent (an occupancy grid with
@@ -287,6 +298,8 @@ impl Scene {
                 ..
             } => ok(center) && ok(semi_axis_a) && ok(semi_axis_b),
             Item::Label { pos, .. } => ok(pos),
+            Item::ScaleBar => true,
+            Item::OffView { at, .. } => ok(at),
             Item::Polyline { points, .. } | Item::Polygon { points, .. } => points.iter().all(ok),
             Item::Rect { min, max, .. } => ok(min) && ok(max),
             Item::Arrow { from, to, .. } => ok(from) && ok(to),

@@ -391,6 +391,8 @@ pub fn paint(
                 set_dash(ctx, false);
                 ctx.stroke();
             }
+            // Drawn by the platform work on issue 13 (scale bar, off-view marks).
+            Item::ScaleBar | Item::OffView { .. } => {}
             Item::Raster {
                 min,
                 cell_m,

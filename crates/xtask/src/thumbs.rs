@@ -235,7 +235,11 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
                 )
             }
             // Cell images and text are left to the live canvas.
-            Item::Heatmap { .. } | Item::Raster { .. } | Item::Label { .. } => Ok(()),
+            Item::Heatmap { .. }
+            | Item::Raster { .. }
+            | Item::Label { .. }
+            | Item::ScaleBar
+            | Item::OffView { .. } => Ok(()),
         };
     }
     out.push_str("</svg>");
