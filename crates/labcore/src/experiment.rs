@@ -44,6 +44,10 @@ pub struct ParamSpec {
     /// rounds it, so what `set_param` returns is what the experiment stores.
     /// Always true for toggles, choices and [`ParamKind::Number`].
     pub integer: bool,
+    /// A heading the page groups this control under, collapsed by default
+    /// (e.g. twelve waypoint coordinates under "Waypoints"); `None`: among
+    /// the main controls. Set with [`ParamSpec::in_group`].
+    pub group: Option<&'static str>,
 }
 
 impl ParamSpec {
@@ -68,6 +72,7 @@ impl ParamSpec {
             default,
             kind: ParamKind::Slider,
             integer: false,
+            group: None,
         }
     }
 
@@ -90,6 +95,7 @@ impl ParamSpec {
             default,
             kind: ParamKind::Number,
             integer: true,
+            group: None,
         }
     }
 
@@ -112,6 +118,7 @@ impl ParamSpec {
             default: 0.0,
             kind: ParamKind::OptionalNumber,
             integer: false,
+            group: None,
         }
     }
 
@@ -134,6 +141,7 @@ impl ParamSpec {
             default: if default_on { 1.0 } else { 0.0 },
             kind: ParamKind::Toggle { off, on },
             integer: true,
+            group: None,
         }
     }
 
@@ -155,6 +163,7 @@ impl ParamSpec {
             default: default as f64,
             kind: ParamKind::Choice(options),
             integer: true,
+            group: None,
         }
     }
 
@@ -164,6 +173,16 @@ impl ParamSpec {
     pub const fn whole_numbers(self) -> Self {
         Self {
             integer: true,
+            ..self
+        }
+    }
+
+    /// The same parameter shown under a collapsed group heading (see
+    /// [`ParamSpec::group`]).
+    #[must_use]
+    pub const fn in_group(self, group: &'static str) -> Self {
+        Self {
+            group: Some(group),
             ..self
         }
     }
@@ -605,6 +624,16 @@ pub trait Experiment {
     }
     /// One line above the canvas telling the student how to interact.
     fn hint(&self) -> &'static str;
+    /// The hint to show while the student uses touch, when it differs
+    /// (e.g. no Shift-click on a phone). Default: [`Experiment::hint`].
+    fn touch_hint(&self) -> &'static str {
+        self.hint()
+    }
+    /// The canvas's size in CSS pixels, told by the page on mount and on every
+    /// resize, so an experiment can choose a view that keeps handles and cells
+    /// finger-sized on a phone. It must not change the link state. Default:
+    /// ignored.
+    fn viewport_px(&mut self, _width_px: f64, _height_px: f64) {}
     /// Puts the experiment in a representative state for its home-page
     /// picture (e.g. a swept workspace, a solved target). Default: as built.
     fn preview(&mut self) {}
