@@ -184,6 +184,12 @@ pub enum ContentError {
         expected: String,
         found: String,
     },
+    /// A text field whose inline markup does not nest (`<em>unclosed`), so
+    /// the page built from it would come out unbalanced.
+    UnbalancedMarkup {
+        /// Where: "aim paragraph 2", "question 5 option 3", …
+        field: String,
+    },
 }
 
 impl fmt::Display for ContentError {
@@ -234,6 +240,10 @@ impl fmt::Display for ContentError {
             ContentError::UnknownGenerator { question, name } => {
                 write!(f, "question {}: no generator named “{name}”", question + 1)
             }
+            ContentError::UnbalancedMarkup { field } => write!(
+                f,
+                "{field}: its inline markup does not nest (an unclosed or stray tag, or a bare “<” that should be written &lt;)"
+            ),
             ContentError::WrongId { expected, found } => {
                 write!(
                     f,
@@ -381,7 +391,59 @@ impl Content {
                 found: self.references.len(),
             });
         }
+        for (field, text) in self.text_fields() {
+            if !tags_balanced(text) {
+                return Err(ContentError::UnbalancedMarkup { field });
+            }
+        }
         Ok(())
+    }
+
+    /// Every text field that goes into the page, named as an author finds it.
+    fn text_fields(&self) -> Vec<(String, &str)> {
+        let mut out: Vec<(String, &str)> = vec![
+            ("title".into(), self.title.as_str()),
+            ("summary".into(), self.summary.as_str()),
+        ];
+        for (i, p) in self.aim.iter().enumerate() {
+            out.push((format!("aim paragraph {}", i + 1), p));
+        }
+        for (i, b) in self.theory.iter().enumerate() {
+            let (Block::Heading(t) | Block::Paragraph(t) | Block::Formula(t) | Block::Note(t)) = b;
+            out.push((format!("theory block {}", i + 1), t));
+        }
+        for (i, p) in self.procedure.iter().enumerate() {
+            out.push((format!("procedure step {}", i + 1), p));
+        }
+        for (i, q) in self.quiz.iter().enumerate() {
+            let n = i + 1;
+            out.push((format!("question {n} prompt"), q.prompt()));
+            match q {
+                Question::Choice {
+                    options,
+                    explanation,
+                    ..
+                } => {
+                    for (k, o) in options.iter().enumerate() {
+                        out.push((format!("question {n} option {}", k + 1), o));
+                    }
+                    out.push((format!("question {n} explanation"), explanation));
+                }
+                Question::Numeric { explanation, .. } | Question::Generated { explanation, .. } => {
+                    out.push((format!("question {n} explanation"), explanation));
+                }
+            }
+        }
+        for (i, r) in self.references.iter().enumerate() {
+            let n = i + 1;
+            out.push((format!("reference {n} authors"), &r.authors));
+            out.push((format!("reference {n} title"), &r.title));
+            out.push((format!("reference {n} venue"), &r.venue));
+            if let Some(d) = &r.detail {
+                out.push((format!("reference {n} detail"), d));
+            }
+        }
+        out
     }
 }
 
@@ -461,6 +523,47 @@ mod tests {
         )
         .unwrap();
         assert_eq!(r.link().as_deref(), Some("https://example.org/x"));
+    }
+
+    #[test]
+    fn unbalanced_inline_markup_is_refused_naming_the_field() {
+        let entry = crate::find("fk").expect("fk");
+        let good: serde_json::Value = serde_json::from_str(entry.content_json).unwrap();
+        let cases: [(&str, fn(&mut serde_json::Value), &str); 4] = [
+            (
+                "aim",
+                |v| v["aim"][1] = "<em>unclosed".into(),
+                "aim paragraph 2",
+            ),
+            (
+                "procedure",
+                |v| v["procedure"][0] = "Drag the tip </strong>".into(),
+                "procedure step 1",
+            ),
+            (
+                "option",
+                |v| v["quiz"][0]["options"][2] = "θ <sub>1".into(),
+                "question 1 option 3",
+            ),
+            (
+                "bare less-than",
+                |v| v["theory"][1]["paragraph"] = "when a < b and c > d".into(),
+                "theory block 2",
+            ),
+        ];
+        for (what, edit, field) in cases {
+            let mut v = good.clone();
+            edit(&mut v);
+            let err = entry.parse_content_text(&v.to_string()).expect_err(what);
+            assert_eq!(
+                err,
+                ContentError::UnbalancedMarkup {
+                    field: field.into()
+                },
+                "{what}"
+            );
+            assert!(err.to_string().starts_with(field));
+        }
     }
 
     #[test]

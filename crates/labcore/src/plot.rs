@@ -319,7 +319,7 @@ impl Plot {
             out.push_str("\r\n");
             let xs = self.series.first().map_or(&[][..], |s| &s.x[..]);
             for (i, x) in xs.iter().enumerate() {
-                let mut row = vec![csv_number(*x)];
+                let mut row = vec![csv_x(*x)];
                 row.extend(self.series.iter().map(|s| csv_number(s.y[i])));
                 out.push_str(&row.join(","));
                 out.push_str("\r\n");
@@ -340,7 +340,7 @@ impl Plot {
                 for s in &self.series {
                     match (s.x.get(i), s.y.get(i)) {
                         (Some(x), Some(y)) => {
-                            row.push(csv_number(*x));
+                            row.push(csv_x(*x));
                             row.push(csv_number(*y));
                         }
                         _ => {
@@ -369,6 +369,15 @@ fn with_unit(v: f64, unit: &str) -> String {
 /// Full precision, shortest round-trip form (Rust's `Display` for f64).
 fn csv_number(v: f64) -> String {
     format!("{v}")
+}
+
+/// An x value (time, iteration) as the CSV writes it: rounded to 12
+/// significant digits first, so a time accumulated or computed as
+/// step × dt reads `0.15`, not `0.15000000000000002`. Twelve digits keep
+/// microseconds over a week-long run.
+fn csv_x(v: f64) -> String {
+    let rounded: f64 = format!("{v:.11e}").parse().unwrap_or(v);
+    csv_number(rounded)
 }
 
 /// Quotes a CSV field when it holds a comma, quote or line break.
@@ -522,6 +531,36 @@ pub fn decimate_min_max(
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn csv_time_column_reads_as_step_times_dt() {
+        // Issue 13 §5: 0.05000000000000001 in the time column.
+        let mut plot = Plot::new(
+            "p",
+            "P",
+            ("t", "s"),
+            ("x", "m"),
+            vec![Series::new("x", "m", SeriesRole::Primary)],
+        );
+        let mut t = 0.0;
+        for k in 0..200 {
+            plot.series[0].push(t, 0.1 + 0.2 * f64::from(k));
+            t += 0.05;
+        }
+        let csv = plot.to_csv();
+        let times: Vec<&str> = csv
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').next().unwrap())
+            .collect();
+        for (k, text) in times.iter().enumerate() {
+            let expected = format!("{}", (k as f64 * 5.0).round() / 100.0);
+            assert_eq!(*text, expected, "row {k}");
+        }
+        // y keeps full precision.
+        assert!(csv.contains(",0.30000000000000004\r\n"));
+    }
+
     use super::*;
 
     fn demo() -> Plot {
