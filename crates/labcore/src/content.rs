@@ -529,7 +529,8 @@ mod tests {
     fn unbalanced_inline_markup_is_refused_naming_the_field() {
         let entry = crate::find("fk").expect("fk");
         let good: serde_json::Value = serde_json::from_str(entry.content_json).unwrap();
-        let cases: [(&str, fn(&mut serde_json::Value), &str); 4] = [
+        type Edit = fn(&mut serde_json::Value);
+        let cases: [(&str, Edit, &str); 4] = [
             (
                 "aim",
                 |v| v["aim"][1] = "<em>unclosed".into(),
