@@ -128,6 +128,14 @@ pub fn dist() -> Result<PathBuf, String> {
     crate::pages::render_index(&dist, file_len(&dist.join("pkg/labweb_bg.wasm")).ok())?;
     check_relative_urls(&dist)?;
     stamp_version(&dist)?;
+    step("precompressed siblings (.gz, .br)");
+    let (n, raw, gz, br) = crate::precompress::write_siblings(&dist)?;
+    println!(
+        "{n} files: {} raw, {} gzip -9, {} brotli -q 11",
+        util::human(raw),
+        util::human(gz),
+        util::human(br)
+    );
 
     println!(
         "dist/ ready ({} files) in {:.1} s",

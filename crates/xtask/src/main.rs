@@ -6,6 +6,7 @@
 
 mod dist;
 mod pages;
+mod precompress;
 mod serve;
 mod size;
 mod test;
@@ -24,7 +25,11 @@ commands:
   size                      raw and gzip -9 size of every file in dist/
   test [--quick]            every check and test, stopping at the first failure
                             (--quick skips cargo fmt and clippy)
-  bench [args...]           run `cargo bench -p labbench` if that crate exists
+  bench [args...]           run `cargo bench -p labbench` (solver benchmarks
+                            against their peers, same run)
+  bench --browser           build dist/ and print the page's frame times, paint
+                            costs and long tasks against their budgets
+                            (tests/bench/; never pass/fail)
   help                      this text
 ";
 
@@ -62,9 +67,21 @@ fn no_args(cmd: &str, rest: &[String]) -> Result<(), String> {
     }
 }
 
-/// `cargo bench -p labbench` when the benchmark crate exists.
+/// `cargo bench -p labbench` when the benchmark crate exists; with
+/// `--browser`, the browser benchmark of the built site.
 fn bench(rest: &[String]) -> Result<(), String> {
     let root = util::root();
+    if rest.first().map(String::as_str) == Some("--browser") {
+        no_args("bench --browser", &rest[1..])?;
+        test::ensure_chromium()?;
+        // dist() runs `npm ci` when node_modules is missing.
+        dist::dist()?;
+        return util::run(
+            std::process::Command::new("node")
+                .args(["--test", "--test-concurrency=1", "tests/bench/"])
+                .current_dir(&root),
+        );
+    }
     if !root.join("crates/labbench/Cargo.toml").is_file() {
         println!("no benchmarks exist yet (crates/labbench is not in the workspace)");
         return Ok(());

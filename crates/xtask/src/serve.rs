@@ -116,7 +116,7 @@ fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
         // Headers: only Connection and Content-Length matter here.
         let mut keep_alive = version == Some("HTTP/1.1");
         let mut body_len = 0u64;
-        let mut gzip_ok = false;
+        let mut encodings = Encodings::default();
         loop {
             let mut h = String::new();
             if reader.read_line(&mut h)? == 0 {
@@ -132,7 +132,12 @@ fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
                     "connection" if value == "close" => keep_alive = false,
                     "connection" if value == "keep-alive" => keep_alive = true,
                     "content-length" => body_len = value.parse().unwrap_or(0),
-                    "accept-encoding" => gzip_ok = accepts_gzip(&value),
+                    "accept-encoding" => {
+                        encodings = Encodings {
+                            gzip: accepts(&value, "gzip"),
+                            br: accepts(&value, "br"),
+                        }
+                    }
                     _ => {}
                 }
             }
@@ -155,7 +160,7 @@ fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
             )?;
         } else {
             match resolve(root, base, target) {
-                Resolved::File(path) => send_file(&mut out, &path, head, keep_alive, gzip_ok)?,
+                Resolved::File(path) => send_file(&mut out, &path, head, keep_alive, encodings)?,
                 Resolved::Redirect(to) => {
                     let msg = format!("moved to {to}\n");
                     write!(
@@ -281,47 +286,74 @@ pub fn mime(path: &Path) -> &'static str {
     }
 }
 
-/// Whether an `Accept-Encoding` value (lower-cased) allows gzip: listed
-/// and not refused with `q=0`.
-fn accepts_gzip(value: &str) -> bool {
+/// The content codings a client accepts.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Encodings {
+    gzip: bool,
+    br: bool,
+}
+
+/// Whether an `Accept-Encoding` value (lower-cased) allows `coding`: listed
+/// (or `*`) and not refused with `q=0`.
+fn accepts(value: &str, coding: &str) -> bool {
     value.split(',').any(|item| {
         let mut parts = item.split(';').map(str::trim);
-        let coding = parts.next().unwrap_or("");
+        let listed = parts.next().unwrap_or("");
         let refused = parts.any(|p| {
             p.strip_prefix("q=")
                 .and_then(|q| q.parse::<f64>().ok())
                 .is_some_and(|q| q == 0.0)
         });
-        (coding == "gzip" || coding == "*") && !refused
+        (listed == coding || listed == "*") && !refused
     })
 }
 
-/// Text-like files are sent gzip-compressed to clients that accept it, as a
-/// production server would, so local timings are honest.
-fn compressible(path: &Path) -> bool {
-    matches!(
-        path.extension().and_then(|e| e.to_str()),
-        Some("html" | "js" | "mjs" | "css" | "svg" | "json" | "wasm" | "txt" | "map" | "csv")
-    )
-}
-
+/// Sends a file: its precompressed `.br` or `.gz` sibling (written by
+/// `cargo xtask dist`) when the client accepts that coding, as nginx's
+/// `brotli_static`/`gzip_static` would; text compressed on the fly when there
+/// is no sibling; the file as it is otherwise.
 fn send_file(
     out: &mut TcpStream,
     path: &Path,
     head: bool,
     keep_alive: bool,
-    gzip_ok: bool,
+    accepted: Encodings,
 ) -> std::io::Result<()> {
-    let body = match std::fs::read(path) {
-        Ok(b) => b,
-        Err(_) => return respond_text(out, 404, "Not Found", "not found\n", head, keep_alive),
+    let sibling = |ext: &str| {
+        let mut name = path.as_os_str().to_owned();
+        name.push(ext);
+        std::fs::read(name).ok()
     };
-    let (body, encoding) = if gzip_ok && compressible(path) {
-        let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::new(6));
-        enc.write_all(&body)?;
-        (enc.finish()?, "Content-Encoding: gzip\r\n")
+    let compressible = crate::precompress::compressible(path);
+    let precompressed = if !compressible {
+        None
+    } else if let Some(b) = accepted.br.then(|| sibling(".br")).flatten() {
+        Some((b, "Content-Encoding: br\r\n"))
     } else {
-        (body, "")
+        accepted
+            .gzip
+            .then(|| sibling(".gz"))
+            .flatten()
+            .map(|b| (b, "Content-Encoding: gzip\r\n"))
+    };
+    let (body, encoding) = match precompressed {
+        Some(found) => found,
+        None => {
+            let body = match std::fs::read(path) {
+                Ok(b) => b,
+                Err(_) => {
+                    return respond_text(out, 404, "Not Found", "not found\n", head, keep_alive)
+                }
+            };
+            if accepted.gzip && compressible {
+                (
+                    crate::precompress::gzip(&body),
+                    "Content-Encoding: gzip\r\n",
+                )
+            } else {
+                (body, "")
+            }
+        }
     };
     write!(
         out,
@@ -436,13 +468,19 @@ mod tests {
 
     #[test]
     fn gzip_negotiation() {
+        let accepts_gzip = |v: &str| accepts(v, "gzip");
         assert!(accepts_gzip("gzip, deflate, br"));
         assert!(accepts_gzip("br;q=1.0, gzip;q=0.8"));
         assert!(accepts_gzip("*"));
         assert!(!accepts_gzip("gzip;q=0"));
         assert!(!accepts_gzip("br, identity"));
-        assert!(compressible(Path::new("a/labweb_bg.wasm")));
-        assert!(!compressible(Path::new("a/b.png")));
+        assert!(accepts("gzip, deflate, br", "br"));
+        assert!(!accepts("gzip, deflate", "br"));
+        assert!(!accepts("br;q=0, gzip", "br"));
+        assert!(crate::precompress::compressible(Path::new(
+            "a/labweb_bg.wasm"
+        )));
+        assert!(!crate::precompress::compressible(Path::new("a/b.png")));
     }
 
     #[test]

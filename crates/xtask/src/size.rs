@@ -23,6 +23,10 @@ pub fn size() -> Result<(), String> {
     }
     let mut rows = Vec::new();
     for rel in files_below(&dist)? {
+        // The .gz/.br siblings are other encodings of the same files.
+        if crate::precompress::is_sibling(&rel) {
+            continue;
+        }
         let bytes = std::fs::read(dist.join(&rel))
             .map_err(|e| format!("cannot read dist/{}: {e}", rel.display()))?;
         rows.push((slash_path(&rel), bytes.len() as u64, gzip_len(&bytes)));

@@ -174,7 +174,7 @@ fn summary(done: &[(&str, Duration)], total: Duration) {
 
 /// Installs Debian's chromium + chromium-driver when missing (as root), or
 /// fails with the command to run.
-fn ensure_chromium() -> Result<(), String> {
+pub fn ensure_chromium() -> Result<(), String> {
     if Path::new(CHROMIUM).exists() && Path::new(CHROMEDRIVER).exists() {
         return Ok(());
     }
