@@ -238,7 +238,8 @@ impl Experiment for Workspace {
     fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
         let applied = check_param(PARAMS, key, value)?;
         let v = applied.value();
-        let had_cloud = self.sampler.is_some();
+        // A value set to what it already was changes nothing (the cloud stays).
+        let had_cloud = self.sampler.is_some() && self.param(key) != Some(v);
         match key {
             "t1" => self.angles_deg[0] = v,
             "t2" => self.angles_deg[1] = v,
@@ -677,6 +678,13 @@ mod tests {
         assert_eq!(ws.status().phase, Phase::Live);
         sweep(&mut ws);
         assert_eq!(ws.status().phase, Phase::Ended);
+        assert_eq!(ws.notice(), None);
+        ws.set_param("l2", 0.8).unwrap();
+        assert_eq!(
+            ws.status().phase,
+            Phase::Ended,
+            "the same value keeps the cloud"
+        );
         assert_eq!(ws.notice(), None);
         ws.set_param("l2", 0.5).unwrap();
         assert_eq!(ws.status(), Status::new("ready to sweep", Tone::Neutral));
