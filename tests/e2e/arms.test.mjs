@@ -104,10 +104,14 @@ test("workspace: Sweep fills the cloud over many frames and the radii match theo
     assert.ok(Math.abs(metres(r.outer) - 1.7) < 0.02, `outer measured ${r.outer}`);
     assert.ok(Math.abs(metres(r.inner) - 0.3) < 0.03, `inner measured ${r.inner}`);
     await screenshot(page, "workspace-swept");
-    // Changing a length invalidates the cloud.
+    // Changing a length clears the cloud: the status is the state (ready to
+    // sweep); "settings changed: sweep again" is a notice beside it.
     await page.locator("input[type=text][data-param=l3]").fill("0.6");
     await page.locator("input[type=text][data-param=l3]").press("Enter");
-    await waitStatus(page, /sweep again/);
+    await waitStatus(page, /^ready to sweep$/);
+    const cleared = await readouts(page);
+    assert.equal(cleared.samples, "0");
+    assert.equal(cleared.outer, "--");
   }));
 
 test("dls: a reachable click converges below 1e-6 m; an unreachable one settles on the boundary", () =>

@@ -8,8 +8,8 @@
 //! reachable point.
 
 use crate::experiment::{
-    check_param, format_fixed, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized,
-    Status, Tone,
+    check_param, format_fixed, format_magnitude, format_metres, Experiment, Input, ParamError,
+    ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};
@@ -195,7 +195,7 @@ impl Experiment for ForwardKinematics {
         // Only while a pointer drags beyond reach: inside, the tip follows the
         // pointer and the distance is always 0.
         if let Some(gap) = self.target_gap_m() {
-            r.push(Readout::metres("target", "Target dist", gap));
+            r.push(Readout::new("target", "Target dist", format_gap(gap)));
         }
         r
     }
@@ -218,12 +218,25 @@ impl Experiment for ForwardKinematics {
     }
 }
 
-/// Draws link lengths and joint angles for a question, in the units shown.
+/// A pointer's distance from the tip as the readout shows it: millimetres
+/// up to a kilometre, beyond that a power of ten (`6.9 × 10³³ m`), never
+/// dozens of digits.
+fn format_gap(gap_m: f64) -> String {
+    if gap_m < 1e3 {
+        format_metres(gap_m)
+    } else {
+        format!("{} m", format_magnitude(gap_m))
+    }
+}
+
+/// Draws link lengths and joint angles for a question, in the units shown,
+/// inside the sliders' ranges (so the student can set the arm up and read
+/// the answer off the readouts).
 fn draw_arm(rng: &mut Lcg64) -> (f64, f64, f64, f64) {
     let t1 = rng.int(-170, 170) as f64;
     let t2 = rng.int(-170, 170) as f64;
-    let l1 = rng.int(5, 20) as f64 / 10.0;
-    let l2 = rng.int(3, 15) as f64 / 10.0;
+    let l1 = rng.int(4, 12) as f64 / 10.0;
+    let l2 = rng.int(3, 12) as f64 / 10.0;
     (t1, t2, l1, l2)
 }
 
@@ -353,5 +366,283 @@ mod tests {
         assert_eq!(fk.set_param("l1", 9.0), Ok(Sanitized::Clamped(1.2)));
         fk.input(Input::PointerDown(DVec2::new(f64::NAN, 0.0)));
         assert!(fk.tip().is_finite());
+    }
+
+    fn readout(fk: &ForwardKinematics, key: &str) -> Option<String> {
+        crate::experiment::readout_value(fk, key)
+    }
+
+    fn circles(fk: &ForwardKinematics) -> Vec<f64> {
+        let mut scene = Scene::default();
+        fk.scene(&mut scene);
+        scene
+            .items
+            .iter()
+            .filter_map(|i| match i {
+                Item::Circle {
+                    radius_m,
+                    role: Role::Bound,
+                    dashed: true,
+                    ..
+                } => Some(*radius_m),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Issue 14: a pointer 6.85·10³³ m away printed 34 digits.
+    #[test]
+    fn a_far_pointer_distance_reads_as_a_power_of_ten() {
+        let mut fk = ForwardKinematics::default();
+        fk.input(Input::PointerDown(DVec2::new(6.85e33, 0.0)));
+        let gap = readout(&fk, "target").unwrap();
+        assert!(gap.ends_with("× 10³³ m"), "{gap}");
+        assert!(gap.chars().count() <= 14, "{gap}");
+        fk.input(Input::PointerDown(DVec2::new(3.0, 0.0)));
+        assert_eq!(readout(&fk, "target").unwrap(), "1.300 m");
+        fk.input(Input::PointerDown(DVec2::new(1001.7, 0.0)));
+        assert_eq!(readout(&fk, "target").unwrap(), "1.0 × 10³ m");
+    }
+
+    /// Issue 15: quizzes 9–12 drew L₁ up to 2.0 m, beyond the 1.2 m slider,
+    /// so "what would the readout show?" could not be set up.
+    #[test]
+    fn generators_draw_inside_the_sliders_ranges() {
+        for name in ["tip_x", "tip_y", "tip_distance", "reach_percent"] {
+            for seed in 0..500 {
+                let draw = quiz_generator(name).unwrap()(&mut Lcg64::new(seed));
+                let mut fk = ForwardKinematics::default();
+                for (key, _) in &draw.vars {
+                    let v = draw.var(key).unwrap();
+                    assert_eq!(
+                        fk.set_param(key, v),
+                        Ok(Sanitized::InRange(v)),
+                        "{name} seed {seed}: {key} = {v}"
+                    );
+                    let spec = PARAMS.iter().find(|s| s.key == *key).unwrap();
+                    let steps = (v - spec.min) / spec.step;
+                    assert!(
+                        (steps - steps.round()).abs() < 1e-9,
+                        "{key} = {v} is on the slider"
+                    );
+                }
+                // The readouts then show the answer.
+                let shown = match name {
+                    "tip_x" => fk.tip().x,
+                    "tip_y" => fk.tip().y,
+                    "tip_distance" => fk.tip().length(),
+                    _ => 100.0 * fk.tip().length() / (fk.l1_m + fk.l2_m),
+                };
+                assert!((shown - draw.answer).abs() < 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn fk_step_1_the_start_pose_reads_as_the_worked_example() {
+        let fk = ForwardKinematics::default();
+        assert_eq!(
+            [
+                fk.param("t1"),
+                fk.param("t2"),
+                fk.param("l1"),
+                fk.param("l2")
+            ],
+            [Some(35.0), Some(60.0), Some(1.0), Some(0.7)]
+        );
+        assert_eq!(readout(&fk, "x").unwrap(), "0.758 m");
+        assert_eq!(readout(&fk, "y").unwrap(), "1.271 m");
+        let theory = format!(
+            "{:?}",
+            crate::content::Content::parse(include_str!("../../../../assets/fk.json"))
+                .unwrap()
+                .theory
+        );
+        assert!(theory.contains("0.758 m") && theory.contains("1.271 m"));
+    }
+
+    #[test]
+    fn fk_step_2_theta1_turns_the_arm_rigidly_and_keeps_reach_used() {
+        let mut fk = ForwardKinematics::default();
+        let before = forward(&fk.lengths(), &fk.angles_rad());
+        let reach = readout(&fk, "reach").unwrap();
+        for t1 in [-150.0, -20.0, 80.0, 175.0] {
+            fk.set_param("t1", t1).unwrap();
+            let after = forward(&fk.lengths(), &fk.angles_rad());
+            let turn = (t1 - 35.0f64).to_radians();
+            let rotate = |p: DVec2| DVec2::from_angle(turn).rotate(p);
+            for (a, b) in before.points.iter().zip(&after.points) {
+                assert!(
+                    (rotate(*a) - *b).length() < 1e-12,
+                    "rigid turn about the base"
+                );
+            }
+            assert_eq!(readout(&fk, "reach").unwrap(), reach);
+            assert_ne!(readout(&fk, "x"), Some("0.758 m".into()));
+        }
+    }
+
+    #[test]
+    fn fk_step_3_theta2_swings_the_outer_link_from_straight_to_folded() {
+        let mut fk = ForwardKinematics::default();
+        let elbow = forward(&fk.lengths(), &fk.angles_rad()).points[1];
+        let mut reach = Vec::new();
+        for t2 in -180i32..=180 {
+            fk.set_param("t2", f64::from(t2)).unwrap();
+            let points = forward(&fk.lengths(), &fk.angles_rad()).points;
+            assert!((points[1] - elbow).length() < 1e-12, "the elbow stays put");
+            reach.push((readout(&fk, "reach").unwrap(), t2));
+        }
+        let pct = |s: &str| s.trim_end_matches('%').parse::<f64>().unwrap();
+        let at = |t2: i32| reach.iter().find(|r| r.1 == t2).unwrap().0.clone();
+        assert_eq!(at(0), "100.0%", "straight arm");
+        assert!(reach.iter().all(|r| pct(&r.0) <= 100.0));
+        assert_eq!(at(180), "17.6%", "folded: (1.0 − 0.7) / 1.7");
+        assert_eq!(at(-180), "17.6%");
+        assert!(reach.iter().all(|r| pct(&r.0) >= 17.6));
+    }
+
+    #[test]
+    fn fk_step_4_the_dashed_circles_follow_the_lengths_and_equal_links_close_the_hole() {
+        let mut fk = ForwardKinematics::default();
+        fk.set_param("l1", 1.2).unwrap();
+        fk.set_param("l2", 0.4).unwrap();
+        let c = circles(&fk);
+        assert_eq!(c.len(), 2);
+        assert!(
+            (c[0] - 1.6).abs() < 1e-12 && (c[1] - 0.8).abs() < 1e-12,
+            "{c:?}"
+        );
+        fk.set_param("l2", 1.2).unwrap();
+        let c = circles(&fk);
+        assert_eq!(c.len(), 1, "the inner circle shrank to the base: {c:?}");
+        assert!((c[0] - 2.4).abs() < 1e-12);
+    }
+
+    #[test]
+    fn fk_step_5_dragging_the_tip_moves_the_angle_sliders_and_keeps_the_elbow() {
+        let mut fk = ForwardKinematics::default();
+        let path = [
+            DVec2::new(0.6, 1.3),
+            DVec2::new(-0.4, 1.1),
+            DVec2::new(-1.2, 0.2),
+        ];
+        fk.input(Input::PointerDown(fk.tip()));
+        for p in path {
+            let before = (fk.param("t1"), fk.param("t2"));
+            fk.input(Input::PointerMove {
+                pos: p,
+                pressed: true,
+            });
+            assert!(
+                (fk.tip() - p).length() < 1e-9,
+                "the tip is under the pointer"
+            );
+            assert_ne!((fk.param("t1"), fk.param("t2")), before);
+            assert!(
+                fk.param("t2").unwrap() > 0.0,
+                "the elbow stays bent the same way"
+            );
+        }
+        fk.input(Input::PointerUp(path[2]));
+        // Arrow keys nudge the tip.
+        let tip = fk.tip();
+        fk.input(Input::Nudge(DVec2::new(0.0, 0.05)));
+        assert!((fk.tip() - (tip + DVec2::new(0.0, 0.05))).length() < 1e-9);
+    }
+
+    #[test]
+    fn fk_step_6_beyond_reach_the_badge_warns_and_target_dist_shows_the_gap() {
+        let mut fk = ForwardKinematics::default();
+        fk.input(Input::PointerDown(DVec2::new(1.0, 1.0)));
+        let outside = DVec2::new(1.8, 1.5);
+        fk.input(Input::PointerMove {
+            pos: outside,
+            pressed: true,
+        });
+        assert_eq!(fk.status().text, "out of reach");
+        let nearest = outside.normalize() * 1.7;
+        assert!((fk.tip() - nearest).length() < 1e-9);
+        assert_eq!(
+            readout(&fk, "target").unwrap(),
+            format_metres(outside.length() - 1.7)
+        );
+        // Into the hole of unequal links (0.3 m here).
+        let hole = DVec2::new(0.1, 0.05);
+        fk.input(Input::PointerMove {
+            pos: hole,
+            pressed: true,
+        });
+        assert_eq!(fk.status().text, "out of reach");
+        assert!((fk.tip().length() - 0.3).abs() < 1e-9);
+        assert_eq!(
+            readout(&fk, "target").unwrap(),
+            format_metres(0.3 - hole.length())
+        );
+    }
+
+    #[test]
+    fn fk_step_7_the_link_restores_the_same_arm() {
+        let mut fk = ForwardKinematics::default();
+        fk.set_param("l1", 0.85).unwrap();
+        fk.set_param("l2", 1.15).unwrap();
+        fk.set_param("t1", -42.0).unwrap();
+        fk.set_param("t2", 127.0).unwrap();
+        let link = crate::route::format(&fk, crate::route::Tab::Simulation);
+        let (fresh, notices) = crate::route::restore(&link, ForwardKinematics::default());
+        assert!(notices.is_empty(), "{notices:?}");
+        assert_eq!(fresh.readouts(), fk.readouts());
+        for key in ["t1", "t2", "l1", "l2"] {
+            assert_eq!(fresh.param(key), fk.param(key), "{key}");
+        }
+        // A dragged pose too (to the link's precision until links carry
+        // the shortest round-trip form).
+        fk.input(Input::PointerDown(DVec2::new(0.3, -1.4)));
+        fk.input(Input::PointerUp(DVec2::new(0.3, -1.4)));
+        let link = crate::route::format(&fk, crate::route::Tab::Simulation);
+        let (fresh, notices) = crate::route::restore(&link, ForwardKinematics::default());
+        assert!(notices.is_empty(), "{notices:?}");
+        assert!((fresh.tip() - fk.tip()).length() < 1e-4);
+    }
+
+    /// Issue 15: the correct option was the longest in most choice
+    /// questions. In the four arm experiments it is now neither the strictly
+    /// longest nor the strictly shortest in more than a quarter of them.
+    #[test]
+    fn arm_quiz_option_lengths_do_not_give_the_answer_away() {
+        use crate::content::{Content, Question};
+        let files = [
+            include_str!("../../../../assets/fk.json"),
+            include_str!("../../../../assets/ik.json"),
+            include_str!("../../../../assets/workspace.json"),
+            include_str!("../../../../assets/dls.json"),
+        ];
+        let (mut choices, mut longest, mut shortest) = (0, 0, 0);
+        for json in files {
+            for q in Content::parse(json).unwrap().quiz {
+                if let Question::Choice {
+                    options, answer, ..
+                } = q
+                {
+                    let len = |o: &String| o.chars().count();
+                    let right = len(&options[answer]);
+                    let others: Vec<usize> = options
+                        .iter()
+                        .enumerate()
+                        .filter(|(i, _)| *i != answer)
+                        .map(|(_, o)| len(o))
+                        .collect();
+                    choices += 1;
+                    longest += usize::from(others.iter().all(|&l| right > l));
+                    shortest += usize::from(others.iter().all(|&l| right < l));
+                }
+            }
+        }
+        assert!(choices >= 20);
+        assert!(4 * longest <= choices, "longest in {longest} of {choices}");
+        assert!(
+            4 * shortest <= choices,
+            "shortest in {shortest} of {choices}"
+        );
     }
 }

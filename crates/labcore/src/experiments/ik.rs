@@ -191,6 +191,18 @@ impl InverseKinematics {
         self.resolve();
     }
 
+    /// Whether the arm has finished its move: no move in progress and the
+    /// joints at the goal (the chosen solution or the stretched pose).
+    fn arrived(&self) -> bool {
+        self.motion.is_none()
+            && self.goal().is_some_and(|g| {
+                let close = |a_deg: f64, b_rad: f64| {
+                    crate::kinematics::two_link_ik::wrap_pi(a_deg.to_radians() - b_rad).abs() < 1e-9
+                };
+                close(self.theta1_deg, g.theta1_rad) && close(self.theta2_deg, g.theta2_rad)
+            })
+    }
+
     /// True when the target lies within [`NEAR_SINGULAR_M`] of a boundary circle.
     fn near_boundary(&self) -> bool {
         let (centre, annulus) = self.reach();
@@ -416,24 +428,35 @@ impl Experiment for InverseKinematics {
     }
 
     fn status(&self) -> Status {
+        // A move that has arrived is over (the page offers Replay); while
+        // the arm moves, or after a slider took it off its goal, it is live.
+        let status = |text: String, tone| {
+            if self.arrived() {
+                Status::ended(text, tone)
+            } else {
+                Status::new(text, tone)
+            }
+        };
         match self.solved {
             None => Status::new("click a target", Tone::Neutral),
-            Some(Solved::OutOfReach { .. }) => Status::new(
+            Some(Solved::OutOfReach { .. }) => status(
                 format!("out of reach: {}", self.out_of_reach_reason()),
                 Tone::Bad,
             ),
             Some(Solved::Reachable(sol)) => match sol.singularity {
-                Singularity::Regular if self.near_boundary() => {
-                    Status::new("near singular: the branches almost merge", Tone::Warning)
-                }
-                Singularity::Regular => Status::new("in reach", Tone::Good),
-                Singularity::OuterBoundary => {
-                    Status::new("singular: arm straight, branches merge", Tone::Warning)
-                }
+                Singularity::Regular if self.near_boundary() => status(
+                    "near singular: the branches almost merge".into(),
+                    Tone::Warning,
+                ),
+                Singularity::Regular => status("in reach".into(), Tone::Good),
+                Singularity::OuterBoundary => status(
+                    "singular: arm straight, branches merge".into(),
+                    Tone::Warning,
+                ),
                 Singularity::InnerBoundary => {
-                    Status::new("singular: arm folded, branches merge", Tone::Warning)
+                    status("singular: arm folded, branches merge".into(), Tone::Warning)
                 }
-                Singularity::AtBase => Status::new("singular: any θ₁ works", Tone::Warning),
+                Singularity::AtBase => status("singular: any θ₁ works".into(), Tone::Warning),
             },
         }
     }
@@ -458,7 +481,8 @@ impl Experiment for InverseKinematics {
 /// rounded as the question shows them.
 fn draw_target(rng: &mut Lcg64) -> (f64, f64, DVec2, TwoLinkSolution) {
     loop {
-        let l1 = rng.int(5, 15) as f64 / 10.0;
+        // Inside the L sliders' range (0.2–1.2 m), so the arm can be set up.
+        let l1 = rng.int(5, 12) as f64 / 10.0;
         let l2 = rng.int(3, 12) as f64 / 10.0;
         let angle = rng.range(-std::f64::consts::PI, std::f64::consts::PI);
         let radius = rng.range((l1 - l2).abs() + 0.1, l1 + l2 - 0.1);
@@ -689,5 +713,266 @@ mod tests {
         let (l1, l2, x, y) = (get("l1"), get("l2"), get("x"), get("y"));
         let c = (x * x + y * y - l1 * l1 - l2 * l2) / (2.0 * l1 * l2);
         assert!((d.answer - c).abs() < 1e-12);
+    }
+
+    use crate::experiment::format_degrees;
+
+    fn readout(ik: &InverseKinematics, key: &str) -> String {
+        crate::experiment::readout_value(ik, key).unwrap()
+    }
+
+    fn dashed_circles(ik: &InverseKinematics) -> Vec<(DVec2, f64)> {
+        let mut scene = Scene::default();
+        ik.scene(&mut scene);
+        scene
+            .items
+            .iter()
+            .filter_map(|i| match i {
+                Item::Circle {
+                    center,
+                    radius_m,
+                    role: Role::Bound,
+                    ..
+                } => Some((*center, *radius_m)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The ghost's elbow, when a ghost is drawn.
+    fn ghost_elbow(ik: &InverseKinematics) -> Option<DVec2> {
+        let mut scene = Scene::default();
+        ik.scene(&mut scene);
+        scene.items.iter().find_map(|i| match i {
+            Item::Line {
+                to,
+                role: Role::Ghost,
+                ..
+            } => Some(*to),
+            _ => None,
+        })
+    }
+
+    /// Issue 13 §4: a move that has arrived is an ended run; a move in
+    /// progress is live.
+    #[test]
+    fn an_arrived_move_is_an_ended_phase() {
+        use crate::experiment::Phase;
+        let mut ik = InverseKinematics::default();
+        assert_eq!(ik.status().phase, Phase::Live);
+        ik.input(Input::PointerDown(DVec2::new(0.9, 0.8)));
+        assert_eq!(ik.status().phase, Phase::Live);
+        settle(&mut ik);
+        assert_eq!(ik.status(), Status::ended("in reach", Tone::Good));
+        ik.input(Input::PointerDown(DVec2::new(2.9, 0.0)));
+        assert_eq!(ik.status().phase, Phase::Live);
+        settle(&mut ik);
+        assert_eq!(ik.status().phase, Phase::Ended);
+        // A slider takes the arm off its goal: live again.
+        ik.set_param("t1", 0.0).unwrap();
+        assert_eq!(ik.status().phase, Phase::Live);
+    }
+
+    /// Issue 15: generators draw inside the sliders' and target fields' ranges.
+    #[test]
+    fn generators_draw_inside_the_sliders_ranges() {
+        for name in ["elbow_angle", "shoulder_angle", "cos_elbow"] {
+            for seed in 0..500 {
+                let draw = quiz_generator(name).unwrap()(&mut Lcg64::new(seed));
+                let mut ik = InverseKinematics::default();
+                for (key, field) in [("l1", "l1"), ("l2", "l2"), ("x", "tx"), ("y", "ty")] {
+                    let v = draw.var(key).unwrap();
+                    assert_eq!(
+                        ik.set_param(field, v),
+                        Ok(Sanitized::InRange(v)),
+                        "{name}: {key} = {v}"
+                    );
+                }
+                // Elbow down, as the questions ask: the readouts show the answer.
+                ik.set_param("elbow", 0.0).unwrap();
+                settle(&mut ik);
+                let sol = ik.solution().unwrap();
+                let shown = match name {
+                    "elbow_angle" => sol.theta2_rad.to_degrees(),
+                    "shoulder_angle" => sol.theta1_rad.to_degrees(),
+                    _ => sol.theta2_rad.cos(),
+                };
+                assert!((shown - draw.answer).abs() < 1e-9, "{name} seed {seed}");
+            }
+        }
+    }
+
+    #[test]
+    fn ik_step_1_the_dashed_circles_mark_the_annulus_and_the_sliders_pose_the_arm() {
+        let mut ik = InverseKinematics::default();
+        let circles = dashed_circles(&ik);
+        assert_eq!(circles.len(), 2);
+        assert!((circles[0].1 - 1.7).abs() < 1e-12 && (circles[1].1 - 0.3).abs() < 1e-12);
+        ik.set_param("t1", -120.0).unwrap();
+        ik.set_param("t2", 45.0).unwrap();
+        let fk = forward(&[1.0, 0.7], &[(-120f64).to_radians(), 45f64.to_radians()]).tip();
+        assert!((ik.tip() - fk).length() < 1e-12);
+        assert_eq!(readout(&ik, "x"), crate::experiment::format_metres(fk.x));
+    }
+
+    #[test]
+    fn ik_step_2_the_arm_turns_smoothly_along_a_curve_to_the_target() {
+        let mut ik = InverseKinematics::default();
+        let start = ik.tip();
+        let target = DVec2::new(-0.6, 1.1);
+        ik.input(Input::PointerDown(target));
+        let mut off_line: f64 = 0.0;
+        let mut frames = 0;
+        while ik.animating() {
+            ik.step(1.0 / 60.0);
+            frames += 1;
+            let along = (target - start).normalize();
+            let rel = ik.tip() - start;
+            off_line = off_line.max((rel - along * rel.dot(along)).length());
+        }
+        assert!(frames >= 40, "a smooth move over {frames} frames");
+        assert!(
+            off_line > 0.05,
+            "the tip leaves the straight line by {off_line} m"
+        );
+        assert_eq!(readout(&ik, "x"), "-0.600 m");
+        assert_eq!(readout(&ik, "y"), "1.100 m");
+        assert_ne!(readout(&ik, "theta1"), "--");
+        assert_ne!(readout(&ik, "theta2"), "--");
+    }
+
+    #[test]
+    fn ik_step_3_the_solved_angles_match_the_theory_formulas() {
+        let mut ik = InverseKinematics::default();
+        ik.input(Input::PointerDown(DVec2::new(-0.6, 1.1)));
+        settle(&mut ik);
+        let x: f64 = readout(&ik, "x").trim_end_matches(" m").parse().unwrap();
+        let y: f64 = readout(&ik, "y").trim_end_matches(" m").parse().unwrap();
+        let (l1, l2) = (1.0, 0.7);
+        let d = (x * x + y * y - l1 * l1 - l2 * l2) / (2.0 * l1 * l2);
+        // Elbow up (the default): the negative root.
+        let t2 = (-(1.0 - d * d).sqrt()).atan2(d);
+        let t1 = y.atan2(x) - (l2 * t2.sin()).atan2(l1 + l2 * t2.cos());
+        assert_eq!(readout(&ik, "theta2"), format_degrees(t2.to_degrees()));
+        assert_eq!(readout(&ik, "theta1"), format_degrees(t1.to_degrees()));
+    }
+
+    #[test]
+    fn ik_step_4_the_elbow_toggle_mirrors_the_arm_and_leaves_a_ghost() {
+        let mut ik = InverseKinematics::default();
+        let target = DVec2::new(-0.6, 1.1);
+        ik.input(Input::PointerDown(target));
+        settle(&mut ik);
+        let up = (ik.theta1_deg, ik.theta2_deg);
+        let up_elbow = ik.points(up.0, up.1)[1];
+        ik.set_param("elbow", 0.0).unwrap();
+        settle(&mut ik);
+        let down = (ik.theta1_deg, ik.theta2_deg);
+        assert!((ik.tip() - target).length() < 1e-9);
+        assert!(
+            up.1 < 0.0 && down.1 > 0.0 && (up.1 + down.1).abs() < 1e-9,
+            "θ₂ flips sign"
+        );
+        // The ghost is the branch left behind.
+        assert!((ghost_elbow(&ik).unwrap() - up_elbow).length() < 1e-9);
+        // θ₁ = β ± ψ: the two θ₁ sit symmetrically about the target's direction β.
+        let beta = target.y.atan2(target.x).to_degrees();
+        assert!(((up.0 + down.0) / 2.0 - beta).abs() < 1e-9);
+    }
+
+    #[test]
+    fn ik_step_5_outside_the_circle_and_inside_the_hole_are_out_of_reach() {
+        let mut ik = InverseKinematics::default();
+        for target in [DVec2::new(1.5, 1.2), DVec2::new(0.1, -0.15)] {
+            ik.input(Input::PointerDown(target));
+            settle(&mut ik);
+            assert!(
+                ik.status().text.starts_with("out of reach"),
+                "{}",
+                ik.status().text
+            );
+            assert_eq!(readout(&ik, "theta1"), "--");
+            assert_eq!(ghost_elbow(&ik), None);
+        }
+        ik.set_param("l2", 0.3).unwrap();
+        ik.input(Input::PointerDown(DVec2::new(0.3, 0.4)));
+        settle(&mut ik);
+        assert_eq!(
+            ik.status().text,
+            "out of reach: target 0.50 m away < |L₁ − L₂| = 0.70 m"
+        );
+    }
+
+    #[test]
+    fn ik_step_6_creeping_outwards_the_branches_merge_and_on_the_circle_it_is_singular() {
+        let mut ik = InverseKinematics::default();
+        ik.input(Input::PointerDown(DVec2::new(1.5, 0.0)));
+        let view = ik.view();
+        let nudge = DVec2::X * (view.max.x - view.min.x) * 0.002; // Shift+arrow
+        let mut statuses = Vec::new();
+        let mut gaps = Vec::new();
+        for _ in 0..200 {
+            settle(&mut ik);
+            if let Some(ghost) = ghost_elbow(&ik) {
+                gaps.push((ghost - ik.points(ik.theta1_deg, ik.theta2_deg)[1]).length());
+            }
+            let text = ik.status().text;
+            if statuses.last() != Some(&text) {
+                statuses.push(text.clone());
+            }
+            if text.starts_with("out of reach") {
+                break;
+            }
+            ik.input(Input::Nudge(nudge));
+        }
+        assert_eq!(statuses[0], "in reach");
+        assert_eq!(statuses[1], "near singular: the branches almost merge");
+        assert!(statuses[2].starts_with("out of reach"), "{statuses:?}");
+        assert!(
+            gaps.windows(2).all(|w| w[1] < w[0]),
+            "arm and ghost close up"
+        );
+        assert!(*gaps.last().unwrap() < 0.25 * gaps[0]);
+        // Typed exactly onto the circle.
+        ik.set_param("tx", 1.7).unwrap();
+        ik.set_param("ty", 0.0).unwrap();
+        settle(&mut ik);
+        assert_eq!(ik.status().text, "singular: arm straight, branches merge");
+        assert_eq!(ghost_elbow(&ik), None, "one straight arm");
+        assert!(ik.theta2_deg.abs() < 1e-6);
+    }
+
+    #[test]
+    fn ik_step_7_the_wrist_keeps_phi_and_the_reachable_region_shifts_with_it() {
+        let mut ik = InverseKinematics::default();
+        ik.set_param("l3", 0.4).unwrap();
+        ik.set_param("phi", 30.0).unwrap();
+        for target in [DVec2::new(1.2, 0.9), DVec2::new(-0.5, 1.3)] {
+            ik.input(Input::PointerDown(target));
+            settle(&mut ik);
+            assert!((ik.tip() - target).length() < 1e-9);
+            let pts = ik.points(ik.theta1_deg, ik.theta2_deg);
+            assert!(((pts[3] - pts[2]).to_angle().to_degrees() - 30.0).abs() < 1e-9);
+            let t1: f64 = readout(&ik, "theta1")
+                .trim_end_matches('°')
+                .parse()
+                .unwrap();
+            let t2: f64 = readout(&ik, "theta2")
+                .trim_end_matches('°')
+                .parse()
+                .unwrap();
+            let t3: f64 = readout(&ik, "theta3")
+                .trim_end_matches('°')
+                .parse()
+                .unwrap();
+            let by_hand =
+                crate::kinematics::two_link_ik::wrap_pi((30.0 - t1 - t2).to_radians()).to_degrees();
+            assert!((by_hand - t3).abs() <= 0.15, "θ₃ {t3} vs {by_hand}");
+        }
+        let before = dashed_circles(&ik)[0].0;
+        ik.set_param("phi", 120.0).unwrap();
+        let after = dashed_circles(&ik)[0].0;
+        assert!((before - DVec2::from_angle(30f64.to_radians()) * 0.4).length() < 1e-12);
+        assert!((after - DVec2::from_angle(120f64.to_radians()) * 0.4).length() < 1e-12);
     }
 }

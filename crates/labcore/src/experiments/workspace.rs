@@ -9,8 +9,8 @@
 //! `r = max(0, L_max − (R − L_max))`.
 
 use crate::experiment::{
-    check_param, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout, Sanitized, Status,
-    Tone,
+    check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Readout,
+    Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, tip, Annulus};
 use crate::kinematics::dls::DlsSolver;
@@ -81,8 +81,8 @@ pub struct Workspace {
     sampler: Option<WorkspaceSampler>,
     tips: Vec<DVec2>,
     density: DensityGrid,
-    /// Set when geometry or sampling settings changed after a sweep.
-    stale: bool,
+    /// "settings changed: sweep again" when a change cleared the cloud.
+    notices: Notices,
     /// Measured outer and inner radius against samples drawn, with the
     /// theoretical radii as reference lines.
     plots: [Plot; 1],
@@ -112,7 +112,7 @@ impl Default for Workspace {
             sampler: None,
             tips: Vec::new(),
             density: DensityGrid::new(VIEW_HALF_M, DENSITY_CELLS),
-            stale: false,
+            notices: Notices::default(),
             plots: new_plots(),
         }
     }
@@ -167,7 +167,7 @@ impl Workspace {
         self.sampler = None;
         self.tips.clear();
         self.density.clear();
-        self.stale = false;
+        self.notices.clear();
         self.plots[0].clear();
     }
 
@@ -238,7 +238,8 @@ impl Experiment for Workspace {
     fn set_param(&mut self, key: &str, value: f64) -> Result<Sanitized, ParamError> {
         let applied = check_param(PARAMS, key, value)?;
         let v = applied.value();
-        let had_cloud = self.sampler.is_some();
+        // A value set to what it already was changes nothing (the cloud stays).
+        let had_cloud = self.sampler.is_some() && self.param(key) != Some(v);
         match key {
             "t1" => self.angles_deg[0] = v,
             "t2" => self.angles_deg[1] = v,
@@ -254,7 +255,8 @@ impl Experiment for Workspace {
         // A cloud belongs to the geometry and sampling settings it was drawn with.
         if had_cloud && !matches!(key, "t1" | "t2" | "t3") {
             self.clear();
-            self.stale = true;
+            self.notices
+                .post("settings changed: sweep again", Tone::Warning);
         }
         Ok(applied)
     }
@@ -395,7 +397,6 @@ impl Experiment for Workspace {
 
     fn status(&self) -> Status {
         match &self.sampler {
-            _ if self.stale => Status::new("settings changed: sweep again", Tone::Warning),
             None => Status::new("ready to sweep", Tone::Neutral),
             // Whole percents, current with the cloud (the page decides how
             // often its live region announces them).
@@ -409,7 +410,7 @@ impl Experiment for Workspace {
                 ),
                 Tone::Neutral,
             ),
-            Some(s) => Status::new(
+            Some(s) => Status::ended(
                 match self.grid_note() {
                     None => format!("swept {} samples", s.produced()),
                     Some(note) => format!("swept {} samples ({note})", s.produced()),
@@ -417,6 +418,10 @@ impl Experiment for Workspace {
                 Tone::Good,
             ),
         }
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
     }
 
     fn hint(&self) -> &'static str {
@@ -436,10 +441,12 @@ impl Experiment for Workspace {
     }
 }
 
+/// Link lengths inside the L sliders' ranges (so a question can be set up
+/// and swept), often with one link dominant so that some arms have a hole.
 fn draw_lengths(rng: &mut Lcg64) -> [f64; 3] {
     [
-        rng.int(3, 20) as f64 / 10.0,
-        rng.int(2, 12) as f64 / 10.0,
+        rng.int(5, 12) as f64 / 10.0,
+        rng.int(2, 10) as f64 / 10.0,
         rng.int(1, 8) as f64 / 10.0,
     ]
 }
@@ -550,7 +557,8 @@ mod tests {
         assert_eq!(a.tips, b.tips);
         b.set_param("seed", 2.0).unwrap();
         assert!(b.tips.is_empty());
-        assert!(b.status().text.contains("sweep again"));
+        assert_eq!(b.notice().unwrap().text, "settings changed: sweep again");
+        assert_eq!(b.status().text, "ready to sweep");
         sweep(&mut b);
         assert_ne!(a.tips, b.tips);
     }
@@ -648,5 +656,296 @@ mod tests {
         let mut mc = Workspace::default();
         sweep(&mut mc);
         assert_eq!(mc.status().text, "swept 20000 samples");
+    }
+
+    fn readout(ws: &Workspace, key: &str) -> String {
+        crate::experiment::readout_value(ws, key).unwrap()
+    }
+
+    fn measured(ws: &Workspace) -> crate::kinematics::workspace::MeasuredRadii {
+        ws.sampler.as_ref().unwrap().measured().unwrap()
+    }
+
+    /// Issue 13 §4: a changed setting is a notice beside the state, and a
+    /// finished sweep is an ended run.
+    #[test]
+    fn a_finished_sweep_has_ended_and_a_changed_setting_is_a_notice() {
+        use crate::experiment::Phase;
+        let mut ws = Workspace::default();
+        assert_eq!(ws.status().phase, Phase::Live);
+        ws.action("sweep").unwrap();
+        ws.step(1.0 / 60.0);
+        assert_eq!(ws.status().phase, Phase::Live);
+        sweep(&mut ws);
+        assert_eq!(ws.status().phase, Phase::Ended);
+        assert_eq!(ws.notice(), None);
+        ws.set_param("l2", 0.8).unwrap();
+        assert_eq!(
+            ws.status().phase,
+            Phase::Ended,
+            "the same value keeps the cloud"
+        );
+        assert_eq!(ws.notice(), None);
+        ws.set_param("l2", 0.5).unwrap();
+        assert_eq!(ws.status(), Status::new("ready to sweep", Tone::Neutral));
+        let notice = ws.notice().unwrap();
+        assert_eq!(
+            (notice.text.as_str(), notice.tone),
+            ("settings changed: sweep again", Tone::Warning)
+        );
+        // Sweeping again withdraws it; a pose change never posts it.
+        ws.action("sweep").unwrap();
+        assert_eq!(ws.notice(), None);
+        ws.set_param("t1", 10.0).unwrap();
+        assert_eq!(ws.notice(), None);
+    }
+
+    /// Issue 15: in grid mode with an even number of angles per joint the
+    /// straight pose is a sample, so the measured outer radius equals
+    /// L₁ + L₂ + L₃; with an odd number it falls short.
+    #[test]
+    fn an_even_grid_measures_the_outer_radius_exactly() {
+        for (n, per_joint) in [(8000.0, 20), (27000.0, 30), (1000.0, 10)] {
+            let mut ws = Workspace::default();
+            ws.set_param("mode", 1.0).unwrap();
+            ws.set_param("n", n).unwrap();
+            sweep(&mut ws);
+            assert_eq!(
+                ws.sampler.as_ref().unwrap().mode(),
+                SamplingMode::Grid { per_joint }
+            );
+            assert!(
+                (measured(&ws).outer_m - 2.5).abs() < 1e-12,
+                "{n}: {}",
+                measured(&ws).outer_m
+            );
+            assert_eq!(readout(&ws, "outer"), readout(&ws, "outer_theory"));
+        }
+        for (n, per_joint) in [(9000.0, 21), (20000.0, 27)] {
+            let mut ws = Workspace::default();
+            ws.set_param("mode", 1.0).unwrap();
+            ws.set_param("n", n).unwrap();
+            sweep(&mut ws);
+            assert_eq!(
+                ws.sampler.as_ref().unwrap().mode(),
+                SamplingMode::Grid { per_joint }
+            );
+            assert!(
+                measured(&ws).outer_m < 2.5 - 1e-3,
+                "{n}: {}",
+                measured(&ws).outer_m
+            );
+        }
+        let content = format!(
+            "{:?}",
+            crate::content::Content::parse(include_str!("../../../../assets/workspace.json"))
+                .unwrap()
+        );
+        assert!(content.contains("even number"), "theory and quiz say so");
+    }
+
+    /// Issue 15: generators draw inside the sliders' ranges.
+    #[test]
+    fn generators_draw_inside_the_sliders_ranges() {
+        for name in ["outer_radius", "inner_radius", "tip_x"] {
+            for seed in 0..500 {
+                let draw = quiz_generator(name).unwrap()(&mut Lcg64::new(seed));
+                let mut ws = Workspace::default();
+                for (key, _) in &draw.vars {
+                    let v = draw.var(key).unwrap();
+                    assert_eq!(
+                        ws.set_param(key, v),
+                        Ok(Sanitized::InRange(v)),
+                        "{name}: {key} = {v}"
+                    );
+                }
+                let shown = match name {
+                    "outer_radius" => Annulus::of_chain(&ws.lengths_m).outer_m,
+                    "inner_radius" => Annulus::of_chain(&ws.lengths_m).inner_m,
+                    _ => ws.tip().x,
+                };
+                assert!((shown - draw.answer).abs() < 1e-12, "{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn workspace_step_1_the_tip_readouts_follow_the_three_link_fk() {
+        let ws = Workspace::default();
+        assert_eq!(ws.angles_deg, [40.0, 50.0, -35.0]);
+        let [l1, l2, l3] = ws.lengths_m;
+        let (a, b, c) = (40f64.to_radians(), 90f64.to_radians(), 55f64.to_radians());
+        let x = l1 * a.cos() + l2 * b.cos() + l3 * c.cos();
+        let y = l1 * a.sin() + l2 * b.sin() + l3 * c.sin();
+        assert_eq!(readout(&ws, "x"), format!("{x:.3} m"));
+        assert_eq!(readout(&ws, "y"), format!("{y:.3} m"));
+    }
+
+    #[test]
+    fn workspace_step_2_a_sweep_adds_shaded_dots_over_frames_and_counts_them() {
+        let mut ws = Workspace::default();
+        ws.set_param("n", 10000.0).unwrap();
+        ws.set_param("seed", 7.0).unwrap();
+        ws.action("sweep").unwrap();
+        let mut counts = vec![readout(&ws, "samples")];
+        while ws.animating() {
+            ws.step(1.0 / 60.0);
+            counts.push(readout(&ws, "samples"));
+        }
+        assert_eq!(counts[0], "0 / 10000");
+        assert_eq!(counts[1], "100 / 10000");
+        assert_eq!(counts.last().unwrap(), "10000 / 10000");
+        assert!(counts.len() > 50, "over {} frames", counts.len());
+        let mut scene = Scene::default();
+        ws.scene(&mut scene);
+        assert!(scene
+            .items
+            .iter()
+            .any(|i| matches!(i, Item::Heatmap { .. })));
+        assert!(scene
+            .items
+            .iter()
+            .any(|i| matches!(i, Item::Points { points, .. } if points.len() == STIPPLE_MAX)));
+    }
+
+    #[test]
+    fn workspace_step_3_the_inner_hole_needs_many_samples_the_rim_only_a_few() {
+        for seed in 1..=4 {
+            let radii = |n: f64| {
+                let mut ws = Workspace::default();
+                ws.set_param("seed", f64::from(seed)).unwrap();
+                ws.set_param("n", n).unwrap();
+                sweep(&mut ws);
+                assert_eq!(readout(&ws, "outer_theory"), "2.500 m");
+                assert_eq!(readout(&ws, "inner_theory"), "0.000 m");
+                measured(&ws)
+            };
+            let few = radii(1000.0);
+            let many = radii(20000.0);
+            assert!(
+                few.inner_m > 0.04,
+                "seed {seed}: hole {} with 1000",
+                few.inner_m
+            );
+            assert!(
+                many.inner_m < 0.02,
+                "seed {seed}: hole {} with 20000",
+                many.inner_m
+            );
+            assert!(
+                2.5 - few.outer_m < 0.01,
+                "seed {seed}: rim {} with 1000",
+                few.outer_m
+            );
+            assert!(many.outer_m >= few.outer_m - 1e-3 && many.outer_m < 2.5);
+        }
+    }
+
+    #[test]
+    fn workspace_step_4_the_seed_reproduces_the_cloud_and_another_seed_scatters_it() {
+        let mut ws = Workspace::default();
+        sweep(&mut ws);
+        let first = ws.tips.clone();
+        sweep(&mut ws);
+        assert_eq!(ws.tips, first, "same seed, same dots");
+        ws.set_param("seed", 2.0).unwrap();
+        sweep(&mut ws);
+        assert_ne!(ws.tips, first);
+        let annulus = Annulus::of_chain(&ws.lengths_m);
+        assert!(
+            ws.tips.iter().all(|p| annulus.contains(*p, 1e-9)),
+            "same envelope"
+        );
+        let (a, b) = (measured(&ws).outer_m, 2.5);
+        assert!(b - a < 0.02);
+    }
+
+    #[test]
+    fn workspace_step_5_an_even_grid_reaches_the_rim_exactly_and_an_odd_one_falls_short() {
+        let mut mc = Workspace::default();
+        mc.set_param("n", 8000.0).unwrap();
+        sweep(&mut mc);
+        let mut grid = Workspace::default();
+        grid.set_param("mode", 1.0).unwrap();
+        grid.set_param("n", 8000.0).unwrap();
+        sweep(&mut grid);
+        assert!((measured(&grid).outer_m - 2.5).abs() < 1e-12);
+        assert!(measured(&mc).outer_m < 2.5);
+        assert_eq!(readout(&grid, "outer"), "2.500 m");
+        assert!(
+            measured(&grid).inner_m > measured(&mc).inner_m + 0.05,
+            "the grid's hole is further from theory"
+        );
+        // 20,000 requested becomes an odd 27³ grid, which misses the rim.
+        grid.set_param("n", 20000.0).unwrap();
+        sweep(&mut grid);
+        assert_eq!(grid.tips.len(), 19683);
+        assert_eq!(readout(&grid, "outer"), "2.496 m");
+    }
+
+    #[test]
+    fn workspace_step_6_a_dominant_link_opens_a_hole_that_longer_links_close() {
+        let mut ws = Workspace::default();
+        ws.set_param("l1", 1.2).unwrap();
+        ws.set_param("l2", 0.3).unwrap();
+        ws.set_param("l3", 0.2).unwrap();
+        sweep(&mut ws);
+        let hole = (2.0f64 * 1.2 - (1.2 + 0.3 + 0.2)).max(0.0);
+        assert_eq!(readout(&ws, "inner_theory"), format!("{hole:.3} m"));
+        assert!((measured(&ws).inner_m - hole).abs() < 0.02);
+        ws.set_param("l2", 0.6).unwrap();
+        ws.set_param("l3", 0.6).unwrap();
+        sweep(&mut ws);
+        assert_eq!(readout(&ws, "inner_theory"), "0.000 m");
+        assert!(measured(&ws).inner_m < 0.05);
+    }
+
+    #[test]
+    fn workspace_step_7_dots_are_sparse_at_the_rim_and_crowded_inside() {
+        let mut ws = Workspace::default();
+        sweep(&mut ws);
+        let r = 2.5;
+        let per_area = |from: f64, to: f64| {
+            let n = ws
+                .tips
+                .iter()
+                .filter(|p| (from..to).contains(&p.length()))
+                .count();
+            n as f64 / (std::f64::consts::PI * (to * to - from * from))
+        };
+        let rim = per_area(0.9 * r, r);
+        let inside = per_area(0.3 * r, 0.6 * r);
+        assert!(rim < inside / 3.0, "rim {rim:.0}/m², inside {inside:.0}/m²");
+    }
+
+    #[test]
+    fn workspace_step_8_another_pose_reaches_the_same_tip_inside_the_cloud() {
+        use crate::kinematics::two_link_ik::solve;
+        let mut ws = Workspace::default();
+        sweep(&mut ws);
+        let (x, y) = (readout(&ws, "x"), readout(&ws, "y"));
+        let tip = ws.tip();
+        let t3 = ws.angles_deg[2] + 30.0;
+        ws.set_param("t3", t3).unwrap();
+        assert_ne!(readout(&ws, "x"), x);
+        // Links 2 and 3 at a fixed θ₃ are one rigid link from the elbow.
+        let [l1, l2, l3] = ws.lengths_m;
+        let forearm = DVec2::new(l2, 0.0) + DVec2::from_angle(t3.to_radians()) * l3;
+        let sol = solve(l1, forearm.length(), tip).unwrap();
+        let offset = forearm.to_angle();
+        let pose = sol.elbow_down;
+        ws.set_param("t1", pose.theta1_rad.to_degrees()).unwrap();
+        ws.set_param("t2", wrap_pi(pose.theta2_rad - offset).to_degrees())
+            .unwrap();
+        assert_eq!((readout(&ws, "x"), readout(&ws, "y")), (x, y));
+        let nearest = ws
+            .tips
+            .iter()
+            .map(|p| (*p - ws.tip()).length())
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            nearest < 0.05,
+            "the tip sits in the cloud ({nearest} m from a dot)"
+        );
     }
 }

@@ -57,6 +57,11 @@ const SETTLE_COUNT: usize = 5;
 const ADAPTIVE_W0: f64 = 0.15;
 const ADAPTIVE_LAMBDA_MAX_M: f64 = 0.4;
 const VIEW_HALF_M: f64 = 2.7;
+/// The link key of the pose a run started from (see [`Experiment::extra_state`]).
+const RUN_START_KEY: &str = "q0";
+/// Largest joint angle a link may give for `q0`, radians (the solver's
+/// angles are not wrapped, but stay far below this).
+const MAX_START_ANGLE_RAD: f64 = 1e6;
 
 /// Why the iterations ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,6 +91,11 @@ pub struct DampedLeastSquares {
     /// The iteration limit (the visible `maxit` setting).
     max_iterations: usize,
     angles_rad: Vec<f64>,
+    /// The joint angles the current run started from (the start pose, or
+    /// where an earlier target left the arm): the time bar's Reset replays
+    /// the run from here, and the link carries it (`q0`) when it differs
+    /// from the start pose, so a link rebuilds the same run.
+    run_start_rad: Vec<f64>,
     target: Option<DVec2>,
     run: Run,
     iterations: usize,
@@ -132,6 +142,7 @@ impl Default for DampedLeastSquares {
             rate_hz: PARAMS[4].default,
             max_iterations: PARAMS[5].default as usize,
             angles_rad: vec![START_ANGLE_RAD; links],
+            run_start_rad: vec![START_ANGLE_RAD; links],
             target: None,
             run: Run::Idle,
             iterations: 0,
@@ -180,7 +191,12 @@ impl DampedLeastSquares {
         manipulability(&jacobian(&self.lengths(), &self.angles_rad))
     }
 
+    /// Starts a new run from the current pose: the run's start, the damping
+    /// shown, the iteration count, the stopping counters and the plots all
+    /// begin again (with no target there is nothing to run).
     fn restart(&mut self) {
+        self.run_start_rad.clone_from(&self.angles_rad);
+        self.lambda_used_m = self.lambda_m;
         if self.target.is_some() {
             self.run = Run::Iterating;
             self.iterations = 0;
@@ -295,6 +311,7 @@ impl Experiment for DampedLeastSquares {
                 if links != self.links {
                     self.links = links;
                     self.angles_rad = vec![START_ANGLE_RAD; links];
+                    self.run_start_rad = vec![START_ANGLE_RAD; links];
                 }
             }
             "lambda" => {
@@ -339,11 +356,59 @@ impl Experiment for DampedLeastSquares {
                 self.run = Run::Idle;
                 self.iterations = 0;
                 self.error_m = None;
+                self.clock_s = 0.0;
+                self.flat_steps = 0;
                 self.plots.iter_mut().for_each(Plot::clear);
+                self.restart();
                 Ok(())
             }
             _ => Err(ParamError::UnknownAction { key: key.into() }),
         }
+    }
+
+    /// The pose the run started from (`q0`, radians, `_`-separated, in the
+    /// shortest form that reads back exactly), when it is not the start pose.
+    fn extra_state(&self) -> Vec<(&'static str, String)> {
+        if self.run_start_rad.iter().all(|&a| a == START_ANGLE_RAD) {
+            return Vec::new();
+        }
+        let angles: Vec<String> = self.run_start_rad.iter().map(|a| format!("{a}")).collect();
+        vec![(RUN_START_KEY, angles.join("_"))]
+    }
+
+    /// `q0`: the pose a run starts from; it also sets the number of links.
+    fn set_extra_state(&mut self, key: &str, value: &str) -> Result<(), ParamError> {
+        if key != RUN_START_KEY {
+            return Err(ParamError::UnknownKey { key: key.into() });
+        }
+        let bad = |reason: String| ParamError::BadText {
+            key: key.into(),
+            reason,
+        };
+        let angles = value
+            .split('_')
+            .map(|a| a.trim().parse::<f64>())
+            .collect::<Result<Vec<f64>, _>>()
+            .map_err(|_| bad(format!("“{value}” is not a list of angles")))?;
+        let links = PARAMS[0].min as usize..=PARAMS[0].max as usize;
+        if !links.contains(&angles.len()) {
+            return Err(bad(format!(
+                "needs {} to {} joint angles, not {}",
+                links.start(),
+                links.end(),
+                angles.len()
+            )));
+        }
+        if angles
+            .iter()
+            .any(|a| !a.is_finite() || a.abs() > MAX_START_ANGLE_RAD)
+        {
+            return Err(bad("angles must be finite radians".into()));
+        }
+        self.links = angles.len();
+        self.angles_rad = angles;
+        self.restart();
+        Ok(())
     }
 
     fn input(&mut self, input: Input) {
@@ -368,9 +433,11 @@ impl Experiment for DampedLeastSquares {
         true
     }
 
-    /// Back to the start pose, iterating again toward the same target.
+    /// Back to the pose the run started from, iterating again toward the
+    /// same target: every reset gives the same start, and the replay is the
+    /// same run.
     fn reset(&mut self) {
-        self.angles_rad = vec![START_ANGLE_RAD; self.links];
+        self.angles_rad.clone_from(&self.run_start_rad);
         self.restart();
     }
 
@@ -451,22 +518,22 @@ impl Experiment for DampedLeastSquares {
         match self.run {
             Run::Idle => Status::new("click a target", Tone::Neutral),
             Run::Iterating => Status::new("iterating…", Tone::Neutral),
-            Run::Converged => Status::new(
+            Run::Converged => Status::ended(
                 format!("converged in {} iterations", self.iterations),
                 Tone::Good,
             ),
-            Run::Settled => Status::new("closest reachable pose", Tone::Warning),
-            Run::NoProgress { oscillating: true } => Status::new(
+            Run::Settled => Status::ended("closest reachable pose", Tone::Warning),
+            Run::NoProgress { oscillating: true } => Status::ended(
                 format!(
                     "not converging: oscillating near a singularity (no progress in {NO_PROGRESS_ITERATIONS} iterations)"
                 ),
                 Tone::Bad,
             ),
-            Run::NoProgress { oscillating: false } => Status::new(
+            Run::NoProgress { oscillating: false } => Status::ended(
                 format!("stalled: no progress in {NO_PROGRESS_ITERATIONS} iterations"),
                 Tone::Warning,
             ),
-            Run::GaveUp => Status::new(
+            Run::GaveUp => Status::ended(
                 format!("stopped: iteration limit ({})", self.max_iterations),
                 Tone::Warning,
             ),
@@ -490,9 +557,10 @@ impl Experiment for DampedLeastSquares {
 }
 
 /// `w = L1 L2 |sin θ2|` of a 2-link arm (ranges keep w ≥ 0.2 m², so the
-/// ±0.01 tolerance is at most 5 %).
+/// ±0.01 tolerance is at most 5 %). Lengths within the L sliders of
+/// experiments 1 and 2 (0.2–1.2 m), so the arm can be set up there.
 fn quiz_manipulability(rng: &mut Lcg64) -> Draw {
-    let l1 = rng.int(8, 15) as f64 / 10.0;
+    let l1 = rng.int(8, 12) as f64 / 10.0;
     let l2 = rng.int(5, 12) as f64 / 10.0;
     let t2 = rng.int(30, 150) as f64 * if rng.next_f64() < 0.5 { -1.0 } else { 1.0 };
     let m = manipulability(&jacobian(&[l1, l2], &[0.0, t2.to_radians()]));
@@ -519,9 +587,10 @@ fn quiz_damped_gain(rng: &mut Lcg64) -> Draw {
     }
 }
 
-/// `J11 = ∂x/∂θ1 = −(L1 sin θ1 + L2 sin(θ1+θ2))`.
+/// `J11 = ∂x/∂θ1 = −(L1 sin θ1 + L2 sin(θ1+θ2))`, lengths and angles within
+/// the sliders of experiment 1.
 fn quiz_jacobian_entry(rng: &mut Lcg64) -> Draw {
-    let l1 = rng.int(5, 15) as f64 / 10.0;
+    let l1 = rng.int(5, 12) as f64 / 10.0;
     let l2 = rng.int(3, 12) as f64 / 10.0;
     let t1 = rng.int(-170, 170) as f64;
     let t2 = rng.int(-170, 170) as f64;
@@ -549,162 +618,4 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn run(d: &mut DampedLeastSquares) {
-        for _ in 0..60 * 60 {
-            d.step(1.0 / 60.0);
-            if !d.animating() {
-                break;
-            }
-        }
-    }
-
-    #[test]
-    fn reachable_target_converges_iteration_by_iteration() {
-        let mut d = DampedLeastSquares::default();
-        d.set_param("rate", 60.0).unwrap();
-        let target = DVec2::new(1.0, 1.2);
-        d.input(Input::PointerDown(target));
-        d.step(1.0 / 60.0);
-        assert_eq!(d.iterations, 1, "one iteration per 1/rate seconds");
-        run(&mut d);
-        assert_eq!(d.run, Run::Converged);
-        assert!((d.tip() - target).length() < 1e-6);
-        assert!(d.status().text.starts_with("converged"));
-    }
-
-    #[test]
-    fn unreachable_target_settles_at_the_boundary() {
-        let mut d = DampedLeastSquares::default();
-        d.set_param("rate", 60.0).unwrap();
-        d.input(Input::PointerDown(DVec2::new(0.0, 2.6)));
-        run(&mut d);
-        assert!(matches!(d.run, Run::Settled | Run::GaveUp));
-        assert!((d.tip() - DVec2::new(0.0, TOTAL_REACH_M)).length() < 1e-3);
-        assert!(d.angles_rad.iter().all(|a| a.is_finite()));
-    }
-
-    #[test]
-    fn without_safeguards_the_bare_update_runs_and_stays_finite() {
-        let mut d = DampedLeastSquares::default();
-        d.set_param("guard", 0.0).unwrap();
-        d.set_param("lambda", 0.0).unwrap();
-        d.set_param("rate", 60.0).unwrap();
-        assert!(!d.solver().reject_uphill_steps);
-        d.set_param("tx", 0.0).unwrap();
-        d.set_param("ty", 2.39).unwrap();
-        run(&mut d);
-        assert!(d.angles_rad.iter().all(|a| a.is_finite()));
-        assert!(d.iterations > 0);
-        let mut scene = Scene::default();
-        d.scene(&mut scene);
-        assert!(scene.is_finite());
-    }
-
-    #[test]
-    fn link_count_changes_the_chain_and_ellipse_uses_singular_values() {
-        let mut d = DampedLeastSquares::default();
-        d.set_param("n", 7.0).unwrap();
-        assert_eq!(d.angles_rad.len(), 7);
-        let mut scene = Scene::default();
-        d.scene(&mut scene);
-        let m = d.manipulability();
-        let ellipse = scene
-            .items
-            .iter()
-            .find_map(|i| match i {
-                Item::Ellipse {
-                    semi_axis_a,
-                    semi_axis_b,
-                    ..
-                } => Some((*semi_axis_a, *semi_axis_b)),
-                _ => None,
-            })
-            .unwrap();
-        assert!((ellipse.0.length() - m.sigma_max * ELLIPSE_SCALE).abs() < 1e-12);
-        assert!((ellipse.1.length() - m.sigma_min * ELLIPSE_SCALE).abs() < 1e-12);
-    }
-
-    #[test]
-    fn manipulability_generator_matches_closed_form() {
-        let mut rng = Lcg64::new(4);
-        let d = quiz_manipulability(&mut rng);
-        let get = |k: &str| d.var(k).unwrap();
-        let w = get("l1") * get("l2") * get("t2").to_radians().sin().abs();
-        assert!((d.answer - w).abs() < 1e-9);
-    }
-
-    /// Regression: with λ = 0, safeguards off and the unreachable target
-    /// (2.6, 0) the bare update oscillated for about 40 s (500 iterations at
-    /// 12 it/s) before "stopped: iteration limit".
-    #[test]
-    fn bare_update_oscillating_around_an_unreachable_target_stops_within_seconds() {
-        let mut d = DampedLeastSquares::default();
-        d.set_param("lambda", 0.0).unwrap();
-        d.set_param("guard", 0.0).unwrap();
-        d.input(Input::PointerDown(DVec2::new(2.6, 0.0)));
-        let mut t = 0.0;
-        while d.animating() && t < 60.0 {
-            d.step(1.0 / 60.0);
-            t += 1.0 / 60.0;
-        }
-        assert!(
-            t < 4.0,
-            "stopped after {t:.1} s ({} iterations)",
-            d.iterations
-        );
-        assert_eq!(d.run, Run::NoProgress { oscillating: true });
-        assert_eq!(
-            d.status().text,
-            "not converging: oscillating near a singularity (no progress in 20 iterations)"
-        );
-        assert!(d.angles_rad.iter().all(|a| a.is_finite()));
-    }
-
-    #[test]
-    fn iteration_limit_is_a_visible_setting() {
-        let spec = PARAMS.iter().find(|s| s.key == "maxit").unwrap();
-        assert!(spec.integer);
-        let mut d = DampedLeastSquares::default();
-        assert_eq!(d.param("maxit"), Some(500.0));
-        d.set_param("maxit", 20.0).unwrap();
-        d.set_param("lambda", 1.0).unwrap();
-        d.set_param("rate", 60.0).unwrap();
-        d.input(Input::PointerDown(DVec2::new(-1.0, -1.5)));
-        run(&mut d);
-        assert_eq!(d.iterations, 20);
-        assert_eq!(d.run, Run::GaveUp);
-        assert_eq!(d.status().text, "stopped: iteration limit (20)");
-        // Raising the limit lets the run go on.
-        d.set_param("maxit", 500.0).unwrap();
-        assert!(d.animating());
-        run(&mut d);
-        assert_eq!(d.run, Run::Converged);
-    }
-
-    /// Regression: the condition number showed as `∞` or as raw digits
-    /// (`123456.79`); now `∞ (singular)` or `2.4 × 10⁵`.
-    #[test]
-    fn condition_number_readout_is_readable() {
-        let cond = |d: &DampedLeastSquares| {
-            d.readouts()
-                .into_iter()
-                .find(|r| r.key == "cond")
-                .unwrap()
-                .value
-        };
-        let mut d = DampedLeastSquares {
-            angles_rad: vec![0.0; 4],
-            ..DampedLeastSquares::default()
-        };
-        assert_eq!(cond(&d), "∞ (singular)");
-        d.angles_rad = vec![0.0, 1e-5, 0.0, 0.0];
-        let c = d.manipulability().condition;
-        assert!(c > 1e4 && c.is_finite());
-        assert!(cond(&d).contains(" × 10"), "{}", cond(&d));
-        d.angles_rad = vec![START_ANGLE_RAD; 4];
-        assert!(!cond(&d).contains('×'));
-    }
-}
+mod tests;

@@ -1,0 +1,599 @@
+//! Tests of experiment 9, among them one per Procedure step.
+
+use super::*;
+
+fn run(d: &mut DampedLeastSquares) {
+    for _ in 0..60 * 60 {
+        d.step(1.0 / 60.0);
+        if !d.animating() {
+            break;
+        }
+    }
+}
+
+#[test]
+fn reachable_target_converges_iteration_by_iteration() {
+    let mut d = DampedLeastSquares::default();
+    d.set_param("rate", 60.0).unwrap();
+    let target = DVec2::new(1.0, 1.2);
+    d.input(Input::PointerDown(target));
+    d.step(1.0 / 60.0);
+    assert_eq!(d.iterations, 1, "one iteration per 1/rate seconds");
+    run(&mut d);
+    assert_eq!(d.run, Run::Converged);
+    assert!((d.tip() - target).length() < 1e-6);
+    assert!(d.status().text.starts_with("converged"));
+}
+
+#[test]
+fn unreachable_target_settles_at_the_boundary() {
+    let mut d = DampedLeastSquares::default();
+    d.set_param("rate", 60.0).unwrap();
+    d.input(Input::PointerDown(DVec2::new(0.0, 2.6)));
+    run(&mut d);
+    assert!(matches!(d.run, Run::Settled | Run::GaveUp));
+    assert!((d.tip() - DVec2::new(0.0, TOTAL_REACH_M)).length() < 1e-3);
+    assert!(d.angles_rad.iter().all(|a| a.is_finite()));
+}
+
+#[test]
+fn without_safeguards_the_bare_update_runs_and_stays_finite() {
+    let mut d = DampedLeastSquares::default();
+    d.set_param("guard", 0.0).unwrap();
+    d.set_param("lambda", 0.0).unwrap();
+    d.set_param("rate", 60.0).unwrap();
+    assert!(!d.solver().reject_uphill_steps);
+    d.set_param("tx", 0.0).unwrap();
+    d.set_param("ty", 2.39).unwrap();
+    run(&mut d);
+    assert!(d.angles_rad.iter().all(|a| a.is_finite()));
+    assert!(d.iterations > 0);
+    let mut scene = Scene::default();
+    d.scene(&mut scene);
+    assert!(scene.is_finite());
+}
+
+#[test]
+fn link_count_changes_the_chain_and_ellipse_uses_singular_values() {
+    let mut d = DampedLeastSquares::default();
+    d.set_param("n", 7.0).unwrap();
+    assert_eq!(d.angles_rad.len(), 7);
+    let mut scene = Scene::default();
+    d.scene(&mut scene);
+    let m = d.manipulability();
+    let ellipse = scene
+        .items
+        .iter()
+        .find_map(|i| match i {
+            Item::Ellipse {
+                semi_axis_a,
+                semi_axis_b,
+                ..
+            } => Some((*semi_axis_a, *semi_axis_b)),
+            _ => None,
+        })
+        .unwrap();
+    assert!((ellipse.0.length() - m.sigma_max * ELLIPSE_SCALE).abs() < 1e-12);
+    assert!((ellipse.1.length() - m.sigma_min * ELLIPSE_SCALE).abs() < 1e-12);
+}
+
+#[test]
+fn manipulability_generator_matches_closed_form() {
+    let mut rng = Lcg64::new(4);
+    let d = quiz_manipulability(&mut rng);
+    let get = |k: &str| d.var(k).unwrap();
+    let w = get("l1") * get("l2") * get("t2").to_radians().sin().abs();
+    assert!((d.answer - w).abs() < 1e-9);
+}
+
+/// Regression: with λ = 0, safeguards off and the unreachable target
+/// (2.6, 0) the bare update oscillated for about 40 s (500 iterations at
+/// 12 it/s) before "stopped: iteration limit".
+#[test]
+fn bare_update_oscillating_around_an_unreachable_target_stops_within_seconds() {
+    let mut d = DampedLeastSquares::default();
+    d.set_param("lambda", 0.0).unwrap();
+    d.set_param("guard", 0.0).unwrap();
+    d.input(Input::PointerDown(DVec2::new(2.6, 0.0)));
+    let mut t = 0.0;
+    while d.animating() && t < 60.0 {
+        d.step(1.0 / 60.0);
+        t += 1.0 / 60.0;
+    }
+    assert!(
+        t < 4.0,
+        "stopped after {t:.1} s ({} iterations)",
+        d.iterations
+    );
+    assert_eq!(d.run, Run::NoProgress { oscillating: true });
+    assert_eq!(
+        d.status().text,
+        "not converging: oscillating near a singularity (no progress in 20 iterations)"
+    );
+    assert!(d.angles_rad.iter().all(|a| a.is_finite()));
+}
+
+#[test]
+fn iteration_limit_is_a_visible_setting() {
+    let spec = PARAMS.iter().find(|s| s.key == "maxit").unwrap();
+    assert!(spec.integer);
+    let mut d = DampedLeastSquares::default();
+    assert_eq!(d.param("maxit"), Some(500.0));
+    d.set_param("maxit", 20.0).unwrap();
+    d.set_param("lambda", 1.0).unwrap();
+    d.set_param("rate", 60.0).unwrap();
+    d.input(Input::PointerDown(DVec2::new(-1.0, -1.5)));
+    run(&mut d);
+    assert_eq!(d.iterations, 20);
+    assert_eq!(d.run, Run::GaveUp);
+    assert_eq!(d.status().text, "stopped: iteration limit (20)");
+    // Raising the limit lets the run go on.
+    d.set_param("maxit", 500.0).unwrap();
+    assert!(d.animating());
+    run(&mut d);
+    assert_eq!(d.run, Run::Converged);
+}
+
+/// Regression: the condition number showed as `∞` or as raw digits
+/// (`123456.79`); now `∞ (singular)` or `2.4 × 10⁵`.
+#[test]
+fn condition_number_readout_is_readable() {
+    let cond = |d: &DampedLeastSquares| {
+        d.readouts()
+            .into_iter()
+            .find(|r| r.key == "cond")
+            .unwrap()
+            .value
+    };
+    let mut d = DampedLeastSquares {
+        angles_rad: vec![0.0; 4],
+        ..DampedLeastSquares::default()
+    };
+    assert_eq!(cond(&d), "∞ (singular)");
+    d.angles_rad = vec![0.0, 1e-5, 0.0, 0.0];
+    let c = d.manipulability().condition;
+    assert!(c > 1e4 && c.is_finite());
+    assert!(cond(&d).contains(" × 10"), "{}", cond(&d));
+    d.angles_rad = vec![START_ANGLE_RAD; 4];
+    assert!(!cond(&d).contains('×'));
+}
+
+fn readout(d: &DampedLeastSquares, key: &str) -> String {
+    d.readouts()
+        .into_iter()
+        .find(|r| r.key == key)
+        .unwrap_or_else(|| panic!("no readout {key}"))
+        .value
+}
+
+/// Runs at the page's frame rate until the run ends (at most two minutes);
+/// returns the largest change of one joint angle between two frames, radians.
+fn run_measuring_jumps(d: &mut DampedLeastSquares) -> f64 {
+    let mut largest: f64 = 0.0;
+    for _ in 0..60 * 120 {
+        let before = d.angles_rad.clone();
+        d.step(crate::clock::Clock::DT_S);
+        let jump = before
+            .iter()
+            .zip(&d.angles_rad)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        largest = largest.max(jump);
+        if !d.animating() {
+            break;
+        }
+    }
+    largest
+}
+
+/// Everything the page shows of the run.
+fn shown(d: &DampedLeastSquares) -> String {
+    let mut scene = Scene::default();
+    d.scene(&mut scene);
+    format!(
+        "{:?}\n{:?}\n{:?}\n{:?}",
+        d.readouts(),
+        d.status(),
+        scene,
+        d.plots()
+            .iter()
+            .map(|p| (p.series[0].x.clone(), p.series[0].y.clone()))
+            .collect::<Vec<_>>()
+    )
+}
+
+/// The state a link of `d` rebuilds in a fresh page, with its notices.
+fn through_link(d: &DampedLeastSquares) -> (DampedLeastSquares, Vec<String>) {
+    let link = crate::route::format(d, crate::route::Tab::Simulation);
+    crate::route::restore(&link, DampedLeastSquares::default())
+}
+
+/// Issue 14: after `PointerDown(2.42, 0.41)`, stepping k times then
+/// resetting showed "λ used" 0.100 / 0.316 / 0.100 / 0.316 m for k = 0 / 45 /
+/// 90 / 300. Reset now gives the same start, and the same replay, every time.
+#[test]
+fn reset_restores_the_same_start_whatever_was_stepped_before() {
+    let mut starts = Vec::new();
+    let mut replays = Vec::new();
+    for k in [0, 45, 90, 300] {
+        let mut d = DampedLeastSquares::default();
+        d.input(Input::PointerDown(DVec2::new(2.42, 0.41)));
+        for _ in 0..k {
+            d.step(crate::clock::Clock::DT_S);
+        }
+        d.reset();
+        assert_eq!(readout(&d, "lambda_used"), "0.100 m", "k = {k}");
+        starts.push(shown(&d));
+        for _ in 0..300 {
+            d.step(crate::clock::Clock::DT_S);
+        }
+        replays.push(shown(&d));
+    }
+    assert!(starts.iter().all(|s| *s == starts[0]), "{starts:#?}");
+    assert!(replays.iter().all(|s| *s == replays[0]));
+}
+
+/// Issue 13 §2: the target, and the pose a run started from after an
+/// earlier target, travel in the link; a fresh page rebuilt from it runs
+/// the same run, with no notice.
+#[test]
+fn a_link_rebuilds_the_run_target_and_start_pose_included() {
+    let mut d = DampedLeastSquares::default();
+    d.set_param("n", 6.0).unwrap();
+    d.set_param("lambda", 0.25).unwrap();
+    d.input(Input::PointerDown(DVec2::new(-1.25, 0.75)));
+    run(&mut d);
+    d.input(Input::PointerDown(DVec2::new(1.5, -0.5)));
+    d.step(crate::clock::Clock::DT_S);
+    let (mut fresh, notices) = through_link(&d);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(fresh.param("tx"), Some(1.5));
+    assert_eq!(fresh.param("ty"), Some(-0.5));
+    assert_eq!(fresh.run_start_rad, d.run_start_rad);
+    // The page replays the run the link describes.
+    d.reset();
+    assert_eq!(shown(&fresh), shown(&d));
+    run(&mut d);
+    run(&mut fresh);
+    assert_eq!(shown(&fresh), shown(&d));
+    // A link that leaves the start pose out starts from the start pose.
+    let (plain, notices) = crate::route::restore(
+        "#/dls/simulation?n=6&tx=1.5&ty=-0.5",
+        DampedLeastSquares::default(),
+    );
+    assert!(notices.is_empty());
+    assert_eq!(plain.run_start_rad, vec![START_ANGLE_RAD; 6]);
+    // Bad start poses are refused with a notice and change nothing.
+    for bad in ["1_2_x", "1", "1_2_3_4_5_6_7_8_9", "1_NaN", "1_1e9"] {
+        let mut e = DampedLeastSquares::default();
+        assert!(
+            e.set_extra_state("q0", bad).is_err(),
+            "{bad} should be refused"
+        );
+        assert_eq!(shown(&e), shown(&DampedLeastSquares::default()));
+    }
+}
+
+/// Every state reachable by clicks, keys, parameters and the two resets
+/// reproduces from its link with no notice (up to the replay of the run).
+#[test]
+fn every_reachable_state_round_trips_through_the_link() {
+    for seed in 0..40 {
+        let mut rng = Lcg64::new(seed);
+        let mut d = DampedLeastSquares::default();
+        for _ in 0..12 {
+            match rng.int(0, 6) {
+                0 | 1 => d.input(Input::PointerDown(DVec2::new(
+                    rng.range(-3.0, 3.0),
+                    rng.range(-3.0, 3.0),
+                ))),
+                2 => d.input(Input::Nudge(DVec2::new(0.05, -0.05))),
+                3 => {
+                    d.set_param("n", rng.int(2, 8) as f64).unwrap();
+                }
+                4 => {
+                    d.set_param("lambda", rng.int(0, 100) as f64 / 100.0)
+                        .unwrap();
+                }
+                5 => d.reset(),
+                _ => d.action("reset").unwrap(),
+            }
+            for _ in 0..rng.int(0, 90) {
+                d.step(crate::clock::Clock::DT_S);
+            }
+        }
+        let (fresh, notices) = through_link(&d);
+        assert!(notices.is_empty(), "seed {seed}: {notices:?}");
+        let link = |e: &DampedLeastSquares| crate::route::format(e, crate::route::Tab::Simulation);
+        assert_eq!(link(&fresh), link(&d));
+        // Numbers keep the link's precision (exact once links carry the
+        // shortest round-trip form); the start pose is always exact.
+        for spec in PARAMS {
+            match (fresh.param(spec.key), d.param(spec.key)) {
+                (Some(a), Some(b)) => assert!((a - b).abs() <= 5e-4, "{}: {a} vs {b}", spec.key),
+                (a, b) => assert_eq!(a, b, "{}", spec.key),
+            }
+        }
+        assert_eq!(fresh.run_start_rad, d.run_start_rad, "seed {seed}");
+    }
+}
+
+/// Issue 13 §4: a run that is over says so (the page offers Replay).
+#[test]
+fn a_finished_solve_is_an_ended_phase() {
+    use crate::experiment::Phase;
+    let mut d = DampedLeastSquares::default();
+    assert_eq!(d.status().phase, Phase::Live);
+    d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
+    assert_eq!(d.status().phase, Phase::Live);
+    run(&mut d);
+    assert_eq!(d.run, Run::Converged);
+    assert_eq!(d.status().phase, Phase::Ended);
+    d.input(Input::PointerDown(DVec2::new(2.0, 2.0)));
+    run(&mut d);
+    assert_eq!(d.run, Run::Settled);
+    assert_eq!(d.status().phase, Phase::Ended);
+    d.set_param("maxit", 20.0).unwrap();
+    d.set_param("lambda", 1.0).unwrap();
+    d.input(Input::PointerDown(DVec2::new(-1.0, -1.5)));
+    run(&mut d);
+    assert_eq!(d.run, Run::GaveUp);
+    assert_eq!(d.status().phase, Phase::Ended);
+    d.action("reset").unwrap();
+    assert_eq!(d.status().phase, Phase::Live);
+}
+
+/// Issue 15, dls quiz 2's explanation: θ₂ = 90° maximises w but not
+/// isotropy; for L₁ = L₂ the condition number is smallest at
+/// cos θ₂ = −2/3 (κ ≈ 1.618); L₁ = √2·L₂ with θ₂ = ±135° is isotropic; the
+/// marked answer (κ ≈ 2.618 at 90°) stays.
+#[test]
+fn quiz_condition_number_claims_hold_for_the_solver() {
+    let m = |l: [f64; 2], t2_deg: f64| manipulability(&jacobian(&l, &[0.3, t2_deg.to_radians()]));
+    assert!((m([1.0, 1.0], 90.0).condition - 2.618).abs() < 5e-4);
+    let (mut best_w, mut best_kappa) = ((0.0, 0.0), (f64::INFINITY, 0.0));
+    for i in 1..18_000 {
+        let t2 = i as f64 / 100.0;
+        let mi = m([1.0, 1.0], t2);
+        if mi.w > best_w.0 {
+            best_w = (mi.w, t2);
+        }
+        if mi.condition < best_kappa.0 {
+            best_kappa = (mi.condition, t2);
+        }
+    }
+    assert!((best_w.1 - 90.0).abs() < 0.02, "w largest at {}", best_w.1);
+    assert!(
+        (best_kappa.0 - 1.618).abs() < 5e-4,
+        "κ min {}",
+        best_kappa.0
+    );
+    let cos = best_kappa.1.to_radians().cos();
+    assert!((cos + 2.0 / 3.0).abs() < 1e-3, "cos θ₂ {cos}");
+    for t2 in [135.0, -135.0] {
+        let iso = m([2f64.sqrt(), 1.0], t2);
+        assert!((iso.condition - 1.0).abs() < 1e-9, "κ {}", iso.condition);
+    }
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/dls.json")).unwrap();
+    let text = format!("{:?}", content.quiz[1]);
+    for claim in ["2/3", "1.618", "√2", "135°"] {
+        assert!(text.contains(claim), "quiz 2 explains {claim}");
+    }
+}
+
+/// The generators draw their inputs inside the sliders' ranges where the
+/// lab has a slider for them: the 2-link arms of quizzes 10 and 12 within
+/// the Links/Joint-angle ranges of experiments 1 and 2 (L 0.2–1.2 m,
+/// θ ±180°), λ within the λ slider (0–1 m).
+#[test]
+fn generators_draw_inside_the_sliders_ranges() {
+    let lambda = PARAMS.iter().find(|s| s.key == "lambda").unwrap();
+    for seed in 0..500 {
+        for name in ["manipulability_2link", "damped_gain", "jacobian_entry"] {
+            let draw = quiz_generator(name).unwrap()(&mut Lcg64::new(seed));
+            for (key, _) in &draw.vars {
+                let v = draw.var(key).unwrap();
+                let ok = match *key {
+                    "l1" | "l2" => (0.2..=1.2).contains(&v),
+                    "t1" | "t2" => (-180.0..=180.0).contains(&v),
+                    "lambda" => (lambda.min..=lambda.max).contains(&v),
+                    "sigma" => v > 0.0,
+                    other => panic!("unchecked variable {other}"),
+                };
+                assert!(ok, "{name}: {key} = {v}");
+            }
+        }
+    }
+}
+
+#[test]
+fn dls_step_1_starts_with_four_links_and_reset_pose_returns_to_the_start() {
+    let mut d = DampedLeastSquares::default();
+    assert_eq!(d.param("n"), Some(4.0));
+    assert_eq!(d.param("lambda"), Some(0.1));
+    let start = shown(&d);
+    d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
+    run(&mut d);
+    assert_ne!(shown(&d), start);
+    d.action("reset").unwrap();
+    assert_eq!(shown(&d), start);
+    assert_eq!(d.status().text, "click a target");
+}
+
+#[test]
+fn dls_step_2_iterations_count_up_every_few_frames_while_the_error_falls() {
+    let mut d = DampedLeastSquares::default();
+    d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
+    let mut errors = vec![d.error_m.unwrap()];
+    let mut frames_per_iteration = Vec::new();
+    let mut frames = 0;
+    while d.animating() && frames < 600 {
+        d.step(crate::clock::Clock::DT_S);
+        frames += 1;
+        if d.iterations == errors.len() {
+            errors.push(d.error_m.unwrap());
+            frames_per_iteration.push(frames);
+            frames = 0;
+        }
+    }
+    // 12 iterations a second at 60 frames a second: one every 5 frames.
+    assert!(
+        frames_per_iteration.iter().all(|&f| f == 5),
+        "{frames_per_iteration:?}"
+    );
+    assert!(errors.windows(2).all(|w| w[1] < w[0]), "{errors:?}");
+    assert!(*errors.last().unwrap() < TOLERANCE_M);
+    assert_eq!(readout(&d, "iterations"), (errors.len() - 1).to_string());
+    assert!(d.status().text.starts_with("converged in"));
+}
+
+#[test]
+fn dls_step_3_near_the_outer_circle_the_ellipse_flattens_and_the_condition_grows() {
+    let mut d = DampedLeastSquares::default();
+    d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
+    run(&mut d);
+    let inside = d.manipulability();
+    d.input(Input::PointerDown(DVec2::new(0.0, 2.38)));
+    run(&mut d);
+    assert_eq!(d.run, Run::Converged);
+    let near = d.manipulability();
+    assert!(near.w < inside.w / 5.0, "w {} → {}", inside.w, near.w);
+    assert!(
+        near.condition > 10.0 * inside.condition,
+        "κ {} → {}",
+        inside.condition,
+        near.condition
+    );
+    // The ellipse: the ratio of its axes is 1/κ.
+    let flat = near.sigma_min / near.sigma_max;
+    assert!(flat < 0.05, "axis ratio {flat}");
+}
+
+#[test]
+fn dls_step_4_the_bare_update_jumps_and_stops_and_large_damping_is_slow() {
+    // Safeguards off, λ = 0: the near-boundary target, then one just outside.
+    let mut d = DampedLeastSquares::default();
+    d.set_param("guard", 0.0).unwrap();
+    d.set_param("lambda", 0.0).unwrap();
+    d.input(Input::PointerDown(DVec2::new(0.0, 2.38)));
+    run_measuring_jumps(&mut d);
+    d.input(Input::PointerDown(DVec2::new(0.0, 2.5)));
+    let jump = run_measuring_jumps(&mut d);
+    assert!(jump > 1.0, "largest joint jump {jump} rad");
+    assert_eq!(
+        d.status().text,
+        "not converging: oscillating near a singularity (no progress in 20 iterations)"
+    );
+    // Safeguards back on: the near-boundary target with λ = 0.1, then 0.5 and 1.
+    let iterations = |lambda: f64| {
+        let mut d = DampedLeastSquares::default();
+        d.set_param("lambda", lambda).unwrap();
+        d.input(Input::PointerDown(DVec2::new(0.0, 2.38)));
+        run(&mut d);
+        (d.iterations, d.run)
+    };
+    let (small, run_small) = iterations(0.1);
+    let (large, run_large) = iterations(0.5);
+    assert_eq!((run_small, run_large), (Run::Converged, Run::Converged));
+    assert!(large > 5 * small, "{small} → {large} iterations");
+    assert_eq!(iterations(1.0), (500, Run::GaveUp), "capped by the limit");
+}
+
+#[test]
+fn dls_step_5_far_outside_the_arm_settles_stretched_with_the_gap_as_error() {
+    let mut d = DampedLeastSquares::default();
+    d.set_param("lambda", 0.3).unwrap();
+    let target = DVec2::new(2.0, 2.0);
+    d.input(Input::PointerDown(target));
+    run(&mut d);
+    assert_eq!(d.status().text, "closest reachable pose");
+    let gap = target.length() - TOTAL_REACH_M;
+    assert_eq!(readout(&d, "error"), format_metres(gap));
+    let stretched = target.normalize() * TOTAL_REACH_M;
+    assert!((d.tip() - stretched).length() < 1e-3);
+}
+
+#[test]
+fn dls_step_6_adaptive_damping_settles_where_fixed_damping_oscillates() {
+    let solve = |adaptive: f64| {
+        let mut d = DampedLeastSquares::default();
+        d.set_param("guard", 0.0).unwrap();
+        d.set_param("lambda", 0.01).unwrap();
+        d.set_param("adaptive", adaptive).unwrap();
+        d.set_param("tx", 0.0).unwrap();
+        d.set_param("ty", 2.45).unwrap();
+        let mut largest_lambda: f64 = 0.0;
+        while d.animating() {
+            d.step(crate::clock::Clock::DT_S);
+            largest_lambda = largest_lambda.max(d.lambda_used_m);
+        }
+        (d, largest_lambda)
+    };
+    let (fixed, fixed_lambda) = solve(0.0);
+    assert!(
+        fixed.status().text.starts_with("not converging"),
+        "{}",
+        fixed.status().text
+    );
+    assert_eq!(fixed_lambda, 0.01);
+    let (adaptive, adaptive_lambda) = solve(1.0);
+    assert_eq!(adaptive.status().text, "closest reachable pose");
+    assert_eq!(readout(&adaptive, "error"), "0.050 m");
+    assert!(adaptive_lambda > 0.3, "λ used rose to {adaptive_lambda}");
+}
+
+#[test]
+fn dls_step_7_two_links_find_a_closed_form_branch_and_more_links_depend_on_the_start() {
+    use crate::kinematics::two_link_ik::{solve, wrap_pi};
+    let target = DVec2::new(0.9, 1.3);
+    let mut d = DampedLeastSquares::default();
+    d.set_param("n", 2.0).unwrap();
+    d.input(Input::PointerDown(target));
+    run(&mut d);
+    assert_eq!(d.run, Run::Converged);
+    let sol = solve(1.2, 1.2, target).unwrap();
+    let found = [wrap_pi(d.angles_rad[0]), wrap_pi(d.angles_rad[1])];
+    let branches = [sol.elbow_up, sol.elbow_down];
+    assert!(
+        branches
+            .iter()
+            .any(|b| (b.theta1_rad - found[0]).abs() < 1e-5
+                && (b.theta2_rad - found[1]).abs() < 1e-5),
+        "{found:?} is one of {branches:?}"
+    );
+    // The readout shows those angles in degrees.
+    assert_eq!(
+        readout(&d, "angles"),
+        format!(
+            "{}, {}",
+            format_degrees(found[0].to_degrees()),
+            format_degrees(found[1].to_degrees())
+        )
+    );
+    // Five links: straight after Reset pose, and after another target first.
+    let shape = |detour: Option<DVec2>| {
+        let mut d = DampedLeastSquares::default();
+        d.set_param("n", 5.0).unwrap();
+        d.action("reset").unwrap();
+        if let Some(p) = detour {
+            d.input(Input::PointerDown(p));
+            run(&mut d);
+        }
+        d.input(Input::PointerDown(target));
+        run(&mut d);
+        assert_eq!(d.run, Run::Converged);
+        d.angles_rad.clone()
+    };
+    let direct = shape(None);
+    let detour = shape(Some(DVec2::new(-1.5, -0.8)));
+    let difference = direct
+        .iter()
+        .zip(&detour)
+        .map(|(a, b)| wrap_pi(a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        difference > 0.1,
+        "same tip, different shapes: {difference} rad"
+    );
+}
