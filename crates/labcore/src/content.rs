@@ -7,6 +7,13 @@
 use serde::Deserialize;
 use std::fmt;
 
+/// Decimals with which numeric answers are shown (`{answer}`, “Expected …”).
+pub const ANSWER_DECIMALS: usize = 3;
+
+/// Smallest tolerance a numeric question may have: half a unit of the last
+/// decimal the answer is shown with, so the shown answer is always accepted.
+pub const MIN_TOLERANCE: f64 = 0.0005;
+
 /// Everything the reading tabs and the quiz show for one experiment.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
@@ -153,12 +160,12 @@ pub enum ContentError {
         question: usize,
     },
     /// A tolerance finer than the decimals the answer is shown with
-    /// ([`crate::quiz::MIN_TOLERANCE`]): the shown answer could be marked wrong.
+    /// ([`MIN_TOLERANCE`]): the shown answer could be marked wrong.
     ToleranceTooFine {
         question: usize,
         tolerance: f64,
     },
-    /// A prepared question that cannot be graded fairly (see [`crate::quiz::Prepared::validate`]).
+    /// A prepared question that cannot be graded fairly (see `quiz::Prepared::validate`).
     BadQuestion {
         question: usize,
         reason: String,
@@ -204,8 +211,8 @@ impl fmt::Display for ContentError {
                 f,
                 "question {}: tolerance {tolerance} is finer than the {} decimals the answer is shown with (at least {} needed)",
                 question + 1,
-                crate::quiz::ANSWER_DECIMALS,
-                crate::quiz::MIN_TOLERANCE
+                ANSWER_DECIMALS,
+                MIN_TOLERANCE
             ),
             ContentError::BadReference { reference, reason } => {
                 write!(f, "reference {}: {reason}", reference + 1)
@@ -380,7 +387,7 @@ impl Content {
 
 /// Refuses a tolerance finer than the precision the answer is shown with.
 fn check_precision(question: usize, tolerance: f64) -> Result<(), ContentError> {
-    if tolerance < crate::quiz::MIN_TOLERANCE {
+    if tolerance < MIN_TOLERANCE {
         Err(ContentError::ToleranceTooFine {
             question,
             tolerance,

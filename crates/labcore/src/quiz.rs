@@ -104,12 +104,7 @@ pub fn score_percent(score: usize, total: usize) -> usize {
     ((200 * score + total) / (2 * total)) as usize
 }
 
-/// Decimals with which numeric answers are shown (`{answer}`, “Expected …”).
-pub const ANSWER_DECIMALS: usize = 3;
-
-/// Smallest tolerance a numeric question may have: half a unit of the last
-/// decimal the answer is shown with, so the shown answer is always accepted.
-pub const MIN_TOLERANCE: f64 = 0.0005;
+pub use crate::content::{ANSWER_DECIMALS, MIN_TOLERANCE};
 
 impl Prepared {
     /// Checks that this question can be graded fairly: a choice has at least
@@ -318,6 +313,18 @@ fn question_seed(seed: u64, index: usize) -> u64 {
 #[must_use]
 pub fn grade(q: &Prepared, response: &Response) -> Grade {
     let blank = response.is_blank();
+    if let Err(problem) = q.validate() {
+        // An invalid question (one option, an answer outside the options, an
+        // infinite or too fine tolerance) is never correct, whatever is given.
+        return Grade {
+            correct: false,
+            expected: expected_text(q),
+            unreadable: false,
+            blank,
+            read_as: None,
+            problem: Some(format!("this question cannot be graded: {problem}")),
+        };
+    }
     let verdict = |correct, expected, unreadable| Grade {
         correct,
         expected,
@@ -370,6 +377,18 @@ pub fn grade(q: &Prepared, response: &Response) -> Grade {
             with_unit(&format_number(*answer, ANSWER_DECIMALS), unit),
             !blank,
         ),
+    }
+}
+
+/// What a question expects, as shown after grading.
+fn expected_text(q: &Prepared) -> String {
+    match &q.kind {
+        PreparedKind::Choice { options, answer } => {
+            options.get(*answer).cloned().unwrap_or_else(|| "--".into())
+        }
+        PreparedKind::Numeric { answer, unit, .. } => {
+            with_unit(&format_number(*answer, ANSWER_DECIMALS), unit)
+        }
     }
 }
 
@@ -954,10 +973,8 @@ mod tests {
                 )
             };
             let g = grade(&q, &response);
-            if let PreparedKind::Choice { options, answer } = &q.kind {
-                if *answer >= options.len() {
-                    assert!(!g.correct);
-                }
+            if q.validate().is_err() {
+                assert!(!g.correct, "an invalid question was graded correct: {q:?}");
             }
             assert_eq!(g.blank, response.is_blank());
         }
@@ -975,6 +992,30 @@ mod tests {
             explanation: String::new(),
             parameterised: false,
         }
+    }
+
+    #[test]
+    fn invalid_questions_are_never_graded_correct() {
+        // One option, with the one answer picked.
+        let g = grade(&choice(vec!["only"], 0), &Response::Choice(Some(0)));
+        assert!(!g.correct);
+        assert!(g.problem.unwrap().contains("at least two options"));
+        // An infinite tolerance accepts anything, a 1e-9 one nothing shown:
+        // both are refused, the right number included.
+        for tolerance in [f64::INFINITY, 1e-9, f64::NAN] {
+            let g = grade(&numeric(2.0, tolerance, "m"), &Response::Text("2 m".into()));
+            assert!(!g.correct, "tolerance {tolerance}");
+            assert_eq!(g.expected, "2 m");
+        }
+        // A valid question with the same answer is still graded correct.
+        assert!(
+            grade(
+                &numeric(2.0, MIN_TOLERANCE, "m"),
+                &Response::Text("2 m".into())
+            )
+            .correct
+        );
+        assert!(grade(&choice(vec!["a", "b"], 1), &Response::Choice(Some(1))).correct);
     }
 
     fn choice(options: Vec<&str>, answer: usize) -> Prepared {

@@ -261,6 +261,24 @@ pub fn restore<E: Experiment>(link: &str, mut fresh: E) -> (E, Vec<String>) {
     (fresh, notices)
 }
 
+/// Opens a link's parameters in a tab that may already show the experiment.
+/// A link with parameters describes a whole state, so the experiment is
+/// rebuilt from `make` (its defaults) before the link is applied: whatever
+/// the link leaves out takes its default, never a value kept from before.
+/// A link without parameters (`#/id/tab`) keeps the current state. Returns
+/// the notices of [`apply_params`].
+pub fn open_in_tab(
+    current: &mut Box<dyn Experiment>,
+    make: fn() -> Box<dyn Experiment>,
+    params: &[(String, String)],
+) -> Vec<String> {
+    if params.is_empty() {
+        return Vec::new();
+    }
+    *current = make();
+    apply_params(current.as_mut(), params)
+}
+
 /// Builds the hash for an experiment, its tab, every parameter's current
 /// value and then its [`Experiment::extra_state`].
 #[must_use]
@@ -271,7 +289,7 @@ pub fn format(experiment: &dyn Experiment, tab: Tab) -> String {
         .filter_map(|s| {
             experiment
                 .param(s.key)
-                .map(|v| format!("{}={}", s.key, format_number(v, 3)))
+                .map(|v| format!("{}={}", s.key, link_number(v)))
         })
         .collect();
     query.extend(
@@ -284,6 +302,24 @@ pub fn format(experiment: &dyn Experiment, tab: Tab) -> String {
         format!("#/{}/{}", experiment.id(), tab.slug())
     } else {
         format!("#/{}/{}?{}", experiment.id(), tab.slug(), query.join("&"))
+    }
+}
+
+/// A parameter value as the link writes it: the shortest text that parses
+/// back to exactly the same `f64` (`12.3456`, `1e-9`, `2`), so a link keeps
+/// whatever a field or a pointer set. Whole numbers print without a point;
+/// very large or small magnitudes use an exponent (`1e300`, `5e-324`).
+#[must_use]
+pub fn link_number(value: f64) -> String {
+    if value == 0.0 {
+        return "0".into();
+    }
+    // `{:?}` is Rust's shortest round-trip form, switching to an exponent
+    // outside 1e-5..1e16; drop its trailing ".0" on whole numbers.
+    let text = format!("{value:?}");
+    match text.strip_suffix(".0") {
+        Some(whole) => whole.to_owned(),
+        None => text,
     }
 }
 
@@ -360,6 +396,46 @@ fn truncate(s: &str, max_chars: usize) -> String {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn link_numbers_round_trip_exactly_and_stay_short() {
+        assert_eq!(link_number(12.3456), "12.3456");
+        assert_eq!(link_number(2.0), "2");
+        assert_eq!(link_number(-0.5), "-0.5");
+        assert_eq!(link_number(0.0), "0");
+        assert_eq!(link_number(-0.0), "0");
+        assert_eq!(link_number(1e-9), "1e-9");
+        assert_eq!(link_number(1e300), "1e300");
+        assert_eq!(link_number(0.1 + 0.2), "0.30000000000000004");
+        let mut rng = crate::Lcg64::new(7);
+        for _ in 0..20_000 {
+            let v = match rng.int(0, 3) {
+                0 => rng.range(-10.0, 10.0),
+                1 => rng.range(-1.0, 1.0) * 10f64.powi(rng.int(-320, 300) as i32),
+                2 => (rng.range(-1000.0, 1000.0) * 1000.0).round() / 1000.0,
+                _ => rng.int(-100_000, 100_000) as f64,
+            };
+            let text = link_number(v);
+            let back: f64 = text.parse().unwrap();
+            assert!(back == v, "{v:?} → {text} → {back:?}");
+            assert!(text.len() <= 24, "{text}");
+        }
+    }
+
+    #[test]
+    fn typed_values_reload_exactly() {
+        // Issue 14: "12.3456" in the Kp box reloaded as 12.346; r = 1e-9 as 0.
+        use crate::experiments::fk::ForwardKinematics;
+        let mut exp = ForwardKinematics::default();
+        exp.set_param("t1", 12.3456).unwrap();
+        exp.set_param("l1", 0.300_000_001).unwrap();
+        let link = format(&exp, Tab::Simulation);
+        let (back, notices) = restore(&link, ForwardKinematics::default());
+        assert!(notices.is_empty(), "{notices:?}");
+        assert_eq!(back.param("t1"), Some(12.3456));
+        assert_eq!(back.param("l1"), Some(0.300_000_001));
+    }
+
     use super::*;
 
     #[test]

@@ -265,46 +265,82 @@ fn set_param_returns_exactly_the_stored_value() {
 /// parsed and applied to a fresh experiment gives the same state — the same
 /// link and every parameter within the link's precision (3 decimals) — and
 /// no notice.
+/// Drives an experiment the way a student can: pointer presses, drags and
+/// releases with and without Shift/Ctrl, keyboard nudges, typed parameter
+/// values (any value the field accepts, clamped or not), buttons, and time.
+fn random_session(exp: &mut dyn labcore::Experiment, seed: u64) {
+    let view = exp.view();
+    let mut rng = labcore::Lcg64::new(seed);
+    for _ in 0..40 {
+        // Up to twice the view's half-size: a wide canvas shows more than the view.
+        let p = glam::DVec2::new(
+            rng.range(2.0 * view.min.x, 2.0 * view.max.x),
+            rng.range(2.0 * view.min.y, 2.0 * view.max.y),
+        );
+        let modifiers = labcore::Modifiers {
+            shift: rng.next_f64() < 0.2,
+            ctrl: rng.next_f64() < 0.1,
+        };
+        match rng.int(0, 7) {
+            0 => exp.input_with(Input::PointerDown(p), modifiers),
+            1 => exp.input_with(
+                Input::PointerMove {
+                    pos: p,
+                    pressed: true,
+                },
+                modifiers,
+            ),
+            2 => exp.input_with(
+                Input::PointerMove {
+                    pos: p,
+                    pressed: false,
+                },
+                modifiers,
+            ),
+            3 => exp.input_with(Input::PointerUp(p), modifiers),
+            4 => exp.input_with(Input::Nudge(p * 0.1), modifiers),
+            5 => {
+                let specs = exp.params();
+                if !specs.is_empty() {
+                    let spec = specs[rng.int(0, specs.len() as i64 - 1) as usize];
+                    // A typed value: anywhere in (a little beyond) the range,
+                    // with as many decimals as a student cares to type.
+                    let span = (spec.max - spec.min).max(1e-9);
+                    let v = rng.range(spec.min - 0.1 * span, spec.max + 0.1 * span);
+                    let v = match rng.int(0, 2) {
+                        0 => v,
+                        1 => (v * 1e4).round() / 1e4,
+                        _ => spec.default,
+                    };
+                    let _ = exp.set_param(spec.key, v);
+                }
+            }
+            6 => {
+                let actions = exp.actions();
+                if !actions.is_empty() {
+                    let a = actions[rng.int(0, actions.len() as i64 - 1) as usize];
+                    let _ = exp.action(a.key);
+                }
+            }
+            _ => exp.reset(),
+        }
+        for _ in 0..rng.int(0, 30) {
+            exp.step(1.0 / 60.0);
+        }
+    }
+}
+
+/// Every state a student reaches by pointer, keyboard, typed values and
+/// buttons reloads exactly from its link: format, parse, apply gives the
+/// same link, every parameter exactly, and no notice.
 #[test]
 fn permalinks_reproduce_every_state_reachable_by_pointer_and_keyboard() {
     use labcore::route::{apply_params, format, parse, Page, Tab};
     let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
     for entry in registry() {
         for seed in 0..60 {
-            let mut rng = labcore::Lcg64::new(seed);
             let mut exp = (entry.make)();
-            let view = exp.view();
-            // Up to twice the view's half-size: a wide canvas shows more than the view.
-            let mut point = || {
-                glam::DVec2::new(
-                    rng.range(2.0 * view.min.x, 2.0 * view.max.x),
-                    rng.range(2.0 * view.min.y, 2.0 * view.max.y),
-                )
-            };
-            let mut moves = Vec::new();
-            for _ in 0..40 {
-                moves.push(point());
-            }
-            let mut rng = labcore::Lcg64::new(seed ^ 0xABCD);
-            for p in moves {
-                let input = match rng.int(0, 4) {
-                    0 => Input::PointerDown(p),
-                    1 => Input::PointerMove {
-                        pos: p,
-                        pressed: true,
-                    },
-                    2 => Input::PointerMove {
-                        pos: p,
-                        pressed: false,
-                    },
-                    3 => Input::PointerUp(p),
-                    _ => Input::Nudge(p * 0.1),
-                };
-                exp.input(input);
-                for _ in 0..rng.int(0, 30) {
-                    exp.step(1.0 / 60.0);
-                }
-            }
+            random_session(exp.as_mut(), seed);
             let link = format(exp.as_ref(), Tab::Simulation);
             let route = parse(&link, &ids);
             assert!(route.notices.is_empty(), "{link}: {:?}", route.notices);
@@ -313,21 +349,71 @@ fn permalinks_reproduce_every_state_reachable_by_pointer_and_keyboard() {
             };
             let mut fresh = (entry.make)();
             let notices = apply_params(fresh.as_mut(), &params);
-            assert!(notices.is_empty(), "{link}: {notices:?}");
-            assert_eq!(format(fresh.as_ref(), Tab::Simulation), link);
+            assert!(
+                notices.is_empty(),
+                "{} seed {seed}: {link}: {notices:?}",
+                entry.id
+            );
+            assert_eq!(format(fresh.as_ref(), Tab::Simulation), link, "seed {seed}");
             for spec in exp.params() {
-                match (exp.param(spec.key), fresh.param(spec.key)) {
-                    (None, None) => {}
-                    (Some(a), Some(b)) => assert!(
-                        (a - b).abs() <= 5e-4 + 1e-12,
-                        "{}.{}: {a} became {b} via {link}",
-                        entry.id,
-                        spec.key
-                    ),
-                    (a, b) => panic!("{}.{}: {a:?} became {b:?}", entry.id, spec.key),
-                }
+                let (a, b) = (exp.param(spec.key), fresh.param(spec.key));
+                // Exact equality (−0 and 0 are one value).
+                assert!(
+                    a == b,
+                    "{}.{}: {a:?} became {b:?} via {link}",
+                    entry.id,
+                    spec.key
+                );
             }
         }
+    }
+}
+
+/// Issue 13 §2: a link opened in a tab that already shows the experiment
+/// gives exactly what a fresh page gives: what the link leaves out takes its
+/// default, nothing is kept from what the tab showed before.
+#[test]
+fn a_link_opened_in_a_used_tab_gives_the_fresh_page_state() {
+    use labcore::route::{apply_params, format, open_in_tab, parse, Page, Tab};
+    let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
+    for entry in registry() {
+        for seed in 0..20 {
+            // The second link: another student's state, or the default link.
+            let mut other = (entry.make)();
+            if seed % 4 != 0 {
+                random_session(other.as_mut(), 1000 + seed);
+            }
+            let link = format(other.as_ref(), Tab::Simulation);
+            let Page::Experiment { params, .. } = parse(&link, &ids).page else {
+                panic!("{link}");
+            };
+            let mut fresh = (entry.make)();
+            let fresh_notices = apply_params(fresh.as_mut(), &params);
+            // The tab: this student's own session, then the link pasted.
+            let mut tab = (entry.make)();
+            random_session(tab.as_mut(), seed);
+            let notices = open_in_tab(&mut tab, entry.make, &params);
+            assert_eq!(notices, fresh_notices);
+            assert_eq!(
+                snapshot(tab.as_ref()),
+                snapshot(fresh.as_ref()),
+                "{} seed {seed}: {link}",
+                entry.id
+            );
+        }
+    }
+}
+
+/// A tab link (`#/id/theory`, no parameters) keeps the state.
+#[test]
+fn a_tab_link_keeps_the_state() {
+    use labcore::route::open_in_tab;
+    for entry in registry() {
+        let mut tab = (entry.make)();
+        random_session(tab.as_mut(), 5);
+        let before = snapshot(tab.as_ref());
+        assert!(open_in_tab(&mut tab, entry.make, &[]).is_empty());
+        assert_eq!(snapshot(tab.as_ref()), before, "{}", entry.id);
     }
 }
 
