@@ -21,8 +21,8 @@
 //! [`RunStats`] "run card" per waypoint reached.
 
 use crate::experiment::{
-    check_param, with_coordinate, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout,
-    Sanitized, Status,
+    check_param, with_coordinate, ActionSpec, Experiment, Input, Notice, Notices, ParamError,
+    ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::mobile::go_to_goal::{Command, GoToGoal, RunStats, WaypointFollower};
 use crate::mobile::unicycle::{wheel_speeds, Integrator, Pose};
@@ -35,8 +35,10 @@ pub const MAX_WAYPOINTS: usize = 6;
 /// The field shown, metres: `[0, FIELD_W_M] × [0, FIELD_H_M]`.
 pub const FIELD_W_M: f64 = 8.0;
 pub const FIELD_H_M: f64 = 6.0;
-/// The start pose: the lower-left corner, facing +x.
-pub const START: Pose = Pose::new(0.6, 0.6, 0.0);
+/// The start pose: the middle of the field, facing +x, so that the whole
+/// left half of the field lies behind the robot (`|eθ| > 90°`: it turns on
+/// the spot before it rolls) and the right half in front of it.
+pub const START: Pose = Pose::new(0.5 * FIELD_W_M, 0.5 * FIELD_H_M, 0.0);
 /// Integration sub-steps per fixed step (the controller is sampled once per step).
 pub const SUBSTEPS: usize = 4;
 /// Arrival radius, metres.
@@ -65,18 +67,18 @@ const PARAMS: &[ParamSpec] = &[
     ParamSpec::slider("wmax", "Max ω", "rad/s", 0.2, 4.0, 0.1, 1.4),
     ParamSpec::slider("track", "Track width b", "m", 0.1, 0.6, 0.01, 0.3),
     ParamSpec::choice("integ", "Integrator", INTEGRATORS, 0),
-    ParamSpec::optional_number("w1x", "Waypoint 1 x", "m", 0.0, FIELD_W_M),
-    ParamSpec::optional_number("w1y", "Waypoint 1 y", "m", 0.0, FIELD_H_M),
-    ParamSpec::optional_number("w2x", "Waypoint 2 x", "m", 0.0, FIELD_W_M),
-    ParamSpec::optional_number("w2y", "Waypoint 2 y", "m", 0.0, FIELD_H_M),
-    ParamSpec::optional_number("w3x", "Waypoint 3 x", "m", 0.0, FIELD_W_M),
-    ParamSpec::optional_number("w3y", "Waypoint 3 y", "m", 0.0, FIELD_H_M),
-    ParamSpec::optional_number("w4x", "Waypoint 4 x", "m", 0.0, FIELD_W_M),
-    ParamSpec::optional_number("w4y", "Waypoint 4 y", "m", 0.0, FIELD_H_M),
-    ParamSpec::optional_number("w5x", "Waypoint 5 x", "m", 0.0, FIELD_W_M),
-    ParamSpec::optional_number("w5y", "Waypoint 5 y", "m", 0.0, FIELD_H_M),
-    ParamSpec::optional_number("w6x", "Waypoint 6 x", "m", 0.0, FIELD_W_M),
-    ParamSpec::optional_number("w6y", "Waypoint 6 y", "m", 0.0, FIELD_H_M),
+    ParamSpec::optional_number("w1x", "Waypoint 1 x", "m", 0.0, FIELD_W_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w1y", "Waypoint 1 y", "m", 0.0, FIELD_H_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w2x", "Waypoint 2 x", "m", 0.0, FIELD_W_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w2y", "Waypoint 2 y", "m", 0.0, FIELD_H_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w3x", "Waypoint 3 x", "m", 0.0, FIELD_W_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w3y", "Waypoint 3 y", "m", 0.0, FIELD_H_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w4x", "Waypoint 4 x", "m", 0.0, FIELD_W_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w4y", "Waypoint 4 y", "m", 0.0, FIELD_H_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w5x", "Waypoint 5 x", "m", 0.0, FIELD_W_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w5y", "Waypoint 5 y", "m", 0.0, FIELD_H_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w6x", "Waypoint 6 x", "m", 0.0, FIELD_W_M).in_group("Waypoints"),
+    ParamSpec::optional_number("w6y", "Waypoint 6 y", "m", 0.0, FIELD_H_M).in_group("Waypoints"),
 ];
 
 const ACTIONS: &[ActionSpec] = &[
@@ -183,7 +185,8 @@ pub struct DiffDrive {
     press: Option<Press>,
     /// The waypoint the arrow keys move (the last one placed or grabbed).
     selected: Option<usize>,
-    notice: Option<&'static str>,
+    /// "all 6 waypoints are queued" while a click could not queue one.
+    notices: Notices,
     /// v, ω, vL, vR against time.
     plots: [Plot; 1],
 }
@@ -223,7 +226,7 @@ impl Default for DiffDrive {
             steps: 0,
             press: None,
             selected: None,
-            notice: None,
+            notices: Notices::default(),
             plots: new_plots(),
         };
         d.restart();
@@ -337,8 +340,10 @@ impl DiffDrive {
                 self.slots[0] = None;
                 self.compact();
             } else {
-                self.notice =
-                    Some("all 6 waypoints are queued: tap one to remove it, or Clear waypoints");
+                self.notices.post(
+                    "all 6 waypoints are queued: tap one to remove it, or Clear waypoints",
+                    Tone::Warning,
+                );
                 return None;
             }
             slot = self.route().len();
@@ -349,7 +354,7 @@ impl DiffDrive {
         if was_idle {
             self.follower.current = RunStats::default();
         }
-        self.notice = None;
+        self.notices.clear();
         self.selected = Some(slot);
         Some(slot)
     }
@@ -370,7 +375,7 @@ impl DiffDrive {
         self.slots[slot] = None;
         self.compact();
         self.rebuild_queue();
-        self.notice = None;
+        self.notices.clear();
     }
 
     /// Moves the waypoint in `slot` to `p` (snapped, clamped).
@@ -506,7 +511,7 @@ impl Experiment for DiffDrive {
             "clear" => {
                 self.slots = [None; MAX_WAYPOINTS];
                 self.selected = None;
-                self.notice = None;
+                self.notices.clear();
                 self.follower.queue.clear();
                 self.follower.completed.clear();
                 self.follower.current = RunStats::default();
@@ -599,6 +604,8 @@ impl Experiment for DiffDrive {
         push_trail(&mut self.trail, p);
         self.record(&cmd);
         if cmd.arrived {
+            // A reached waypoint makes room for a new one.
+            self.notices.clear();
             let n = self.reached();
             let t = self.time_s;
             self.plots[0].markers.push(Marker {
@@ -640,6 +647,10 @@ impl Experiment for DiffDrive {
 
     fn status(&self) -> Status {
         view::status(self)
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
     }
 
     fn hint(&self) -> &'static str {

@@ -2,10 +2,10 @@
 
 use super::quiz::*;
 use super::*;
-use crate::experiment::{format_degrees, format_fixed, Tone};
+use crate::experiment::{format_degrees, format_fixed, Phase, Tone};
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};
-use crate::scene::Scene;
+use crate::scene::{Item, Role, Scene};
 use std::f64::consts::PI;
 
 const DT: f64 = crate::clock::Clock::DT_S;
@@ -29,7 +29,7 @@ fn click(d: &mut DiffDrive, p: DVec2) {
 }
 
 #[test]
-fn idle_robot_waits_in_the_corner() {
+fn idle_robot_waits_in_the_middle_facing_right() {
     let mut d = DiffDrive::default();
     assert!(!d.animating());
     d.step(DT);
@@ -39,13 +39,13 @@ fn idle_robot_waits_in_the_corner() {
     assert_eq!(readout(&d, "card"), "--");
 }
 
-/// The first step toward a goal straight up from the corner, by hand:
+/// The first step toward a goal straight up from the start, by hand:
 /// eθ = π/2, ω = clamp(3.5·π/2, ±1.4) = 1.4 rad/s, v = Kv·d·max(0, cos eθ) ≈ 0,
 /// so vL = −ωb/2 = −0.21 m/s and vR = +0.21 m/s (b = 0.3 m).
 #[test]
 fn readouts_and_wheel_speeds_match_a_hand_computation() {
     let mut d = DiffDrive::default();
-    click(&mut d, DVec2::new(0.6, 3.6));
+    click(&mut d, START.position() + DVec2::new(0.0, 3.0));
     d.step(DT);
     assert_eq!(readout(&d, "omega"), "1.400 rad/s");
     assert_eq!(readout(&d, "v"), "0.000 m/s");
@@ -56,7 +56,9 @@ fn readouts_and_wheel_speeds_match_a_hand_computation() {
         format_degrees((1.4 * DT).to_degrees())
     );
     assert_eq!(readout(&d, "goal"), "3.000 m");
-    assert_eq!(d.status().text, "waypoint 1 of 1: turning on the spot");
+    // A goal exactly beside the robot: after one step of turning it is less
+    // than 90° off the heading, and the robot already rolls (slowly).
+    assert_eq!(d.status().text, "waypoint 1 of 1: driving");
     // Once aligned it drives at the speed limit: 1.2 · 3 m > 1.1 m/s.
     for _ in 0..90 {
         d.step(DT);
@@ -72,15 +74,15 @@ fn readouts_and_wheel_speeds_match_a_hand_computation() {
 fn reaches_each_waypoint_in_order_with_a_run_card_each() {
     let mut d = DiffDrive::default();
     let goals = [
-        DVec2::new(4.0, 0.6),
-        DVec2::new(4.0, 4.0),
-        DVec2::new(1.0, 5.0),
+        DVec2::new(7.4, 3.0),
+        DVec2::new(7.4, 5.5),
+        DVec2::new(4.4, 5.9),
     ];
     for g in goals {
         click(&mut d, g);
     }
     assert_eq!(d.waypoints(), goals.to_vec());
-    assert_eq!(d.param("w3x"), Some(1.0));
+    assert_eq!(d.param("w3x"), Some(4.4));
     let t = run(&mut d, 60.0);
     assert!(!d.animating(), "arrived after {t} s");
     assert_eq!(d.reached(), 3);
@@ -204,25 +206,52 @@ fn removing_a_reached_waypoint_drops_its_card() {
     assert_eq!(d.reached(), 2);
 }
 
+/// Issue 13 §4: "all 6 waypoints are queued" is a notice beside the status,
+/// never the status itself, and it goes once a waypoint is reached (today it
+/// stayed after all six were reached).
 #[test]
-fn a_full_queue_recycles_reached_waypoints_or_says_why() {
+fn a_full_queue_posts_a_notice_that_goes_when_a_waypoint_is_reached() {
     let mut d = DiffDrive::default();
     for i in 0..MAX_WAYPOINTS {
         click(&mut d, DVec2::new(1.0 + i as f64, 2.0 + (i % 2) as f64));
     }
+    assert_eq!(d.notice(), None);
     click(&mut d, DVec2::new(7.5, 5.5));
     assert_eq!(d.waypoints().len(), MAX_WAYPOINTS);
-    assert_eq!(d.status().tone, Tone::Warning);
-    assert!(d.status().text.contains("all 6 waypoints"));
-    // Once the first is reached it makes room.
+    let notice = d.notice().expect("a refused click says why");
+    assert_eq!(notice.tone, Tone::Warning);
+    assert!(notice.text.contains("all 6 waypoints"), "{notice:?}");
+    // The status keeps telling the run's state.
+    assert!(d.status().text.starts_with("waypoint 1 of 6: "));
+    assert_eq!(d.status().phase, Phase::Live);
+    // Once the first is reached the notice no longer applies, and it goes.
     while d.reached() == 0 {
         d.step(DT);
     }
+    assert_eq!(d.notice(), None);
+    // The last one reached ends the run, with no warning left over.
+    run(&mut d, 120.0);
+    assert_eq!(d.reached(), MAX_WAYPOINTS);
+    assert_eq!(
+        d.status(),
+        Status::ended("reached all 6 waypoints", Tone::Good)
+    );
+    assert_eq!(d.notice(), None);
+    // With every slot used, a reached waypoint makes room for a new one.
     click(&mut d, DVec2::new(7.5, 5.5));
     assert_eq!(d.waypoints().len(), MAX_WAYPOINTS);
     assert_eq!(d.waypoints()[MAX_WAYPOINTS - 1], DVec2::new(7.5, 5.5));
-    assert_eq!(d.reached(), 0);
-    assert_ne!(d.status().tone, Tone::Warning);
+    assert_eq!(d.reached(), MAX_WAYPOINTS - 1);
+    assert_eq!(d.notice(), None);
+    assert_eq!(d.status().phase, Phase::Live);
+    // Removing a waypoint also withdraws the notice.
+    let mut e = DiffDrive::default();
+    for i in 0..=MAX_WAYPOINTS {
+        click(&mut e, DVec2::new(1.0 + i as f64, 1.0));
+    }
+    assert!(e.notice().is_some());
+    click(&mut e, DVec2::new(1.0, 1.0));
+    assert_eq!(e.notice(), None);
 }
 
 #[test]
@@ -341,4 +370,61 @@ fn generators_agree_with_hand_formulas() {
         .min(f.var("vmax").unwrap());
         assert!((f.answer - v).abs() < 1e-12);
     }
+}
+
+/// Issue 13 §3: the twelve waypoint fields sit under one collapsed
+/// "Waypoints" heading; the gains and limits stay among the main controls.
+#[test]
+fn the_waypoint_fields_are_grouped_under_waypoints() {
+    let d = DiffDrive::default();
+    let grouped: Vec<&str> = d
+        .params()
+        .iter()
+        .filter(|s| s.group == Some("Waypoints"))
+        .map(|s| s.key)
+        .collect();
+    assert_eq!(grouped.len(), 2 * MAX_WAYPOINTS);
+    assert!(grouped.iter().all(|k| slot_of(k).is_some()));
+    for s in d.params().iter().filter(|s| slot_of(s.key).is_none()) {
+        assert_eq!(s.group, None, "{}", s.key);
+    }
+}
+
+/// Issue 13 §3: the grid carries no numbers, so the scene asks for a metre
+/// scale bar; and a robot that circles off the field (Kv above twice Max ω)
+/// is marked on the canvas edge.
+#[test]
+fn the_scene_has_a_scale_bar_and_marks_the_robot_when_it_leaves_the_field() {
+    let off_view = |d: &DiffDrive| {
+        let mut scene = Scene::default();
+        d.scene(&mut scene);
+        assert!(scene.items.iter().any(|i| matches!(i, Item::ScaleBar)));
+        scene.items.iter().find_map(|i| match i {
+            Item::OffView { at, label, role } => Some((*at, label.clone(), *role)),
+            _ => None,
+        })
+    };
+    let mut d = DiffDrive::default();
+    assert_eq!(
+        off_view(&d),
+        Some((START.position(), "robot".to_owned(), Role::Robot))
+    );
+    d.set_param("kv", 3.0).unwrap();
+    d.set_param("vmax", 2.0).unwrap();
+    d.set_param("wmax", 0.2).unwrap();
+    click(&mut d, DVec2::new(1.0, 3.0));
+    let view = d.view();
+    let inside = |p: DVec2| p.cmpge(view.min).all() && p.cmple(view.max).all();
+    let mut left_at = None;
+    for k in 0..60 * 20 {
+        d.step(DT);
+        if !inside(d.pose().position()) {
+            left_at = Some(k);
+            break;
+        }
+    }
+    assert!(left_at.is_some(), "the robot stays in the field");
+    let (at, _, _) = off_view(&d).expect("an edge mark for the robot");
+    assert_eq!(at, d.pose().position());
+    assert!(!inside(at));
 }

@@ -91,6 +91,8 @@ pub(super) fn view() -> ViewBox {
 
 pub(super) fn scene(d: &DiffDrive, out: &mut Scene) {
     draw_field(out, FIELD_W_M, FIELD_H_M);
+    // The grid lines are 1 m apart but carry no numbers: a scale bar says so.
+    out.push(Item::ScaleBar);
     out.push(Item::Circle {
         center: START.position(),
         radius_m: BODY_RADIUS_M,
@@ -155,6 +157,15 @@ pub(super) fn scene(d: &DiffDrive, out: &mut Scene) {
     }
     let pose = d.pose();
     draw_robot(out, pose, d.track_m);
+    // With Kv above twice Max ω the robot can circle wide of its goal and
+    // leave the field: the page marks the canvas edge toward it meanwhile.
+    if pose.is_finite() {
+        out.push(Item::OffView {
+            at: pose.position(),
+            label: "robot".into(),
+            role: Role::Robot,
+        });
+    }
     let cmd = d.command();
     if cmd.v_mps > 1e-3 {
         out.push(Item::Arrow {
@@ -241,16 +252,15 @@ pub(super) fn readouts(d: &DiffDrive) -> Vec<Readout> {
 }
 
 pub(super) fn status(d: &DiffDrive) -> Status {
-    if let Some(notice) = d.notice {
-        return Status::new(notice, Tone::Warning);
-    }
     let total = d.waypoints().len();
     if total == 0 {
         return Status::new("idle: click to drop a goal", Tone::Neutral);
     }
     let reached = d.reached();
-    if d.follower.queue.is_empty() {
-        return Status::new(
+    let Some(goal) = d.follower.goal() else {
+        // Every waypoint of the route reached: the run is over until the
+        // student adds one (or replays it).
+        return Status::ended(
             if total == 1 {
                 "reached the goal".to_owned()
             } else {
@@ -258,8 +268,10 @@ pub(super) fn status(d: &DiffDrive) -> Status {
             },
             Tone::Good,
         );
-    }
-    let cmd = d.command();
+    };
+    // What the controller commands from here: no forward speed while the
+    // goal is more than 90° off the heading.
+    let cmd = d.follower.controller.command(d.pose(), goal);
     let doing = if cmd.v_mps < 1e-3 && cmd.heading_error_rad.abs() > 0.1 {
         "turning on the spot"
     } else {
