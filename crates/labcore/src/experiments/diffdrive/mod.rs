@@ -279,7 +279,7 @@ impl DiffDrive {
         wheel_speeds(c.v_mps, c.omega_radps, self.track_m)
     }
 
-    /// Back to the corner with the whole route to drive again.
+    /// Back to the start pose with the whole route to drive again.
     fn restart(&mut self) {
         self.follower.reset(START);
         self.sync_follower();
@@ -620,7 +620,7 @@ impl Experiment for DiffDrive {
         true
     }
 
-    /// The robot back to the corner, driving the same route again.
+    /// The robot back to the start pose, driving the same route again.
     fn reset(&mut self) {
         self.restart();
     }

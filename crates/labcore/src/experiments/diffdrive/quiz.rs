@@ -27,11 +27,12 @@ pub(super) fn quiz_right_wheel(rng: &mut Lcg64) -> Draw {
 }
 
 /// The wrapped heading error in degrees for a robot at the origin facing
-/// `θ` and a goal at `(x, y)` (often across ±180°).
+/// `θ` and a goal at `(x, y)` (often across ±180°). The offset is one the
+/// field allows from the start pose: `|x| ≤ 4 m`, `|y| ≤ 3 m`.
 pub(super) fn quiz_heading_error(rng: &mut Lcg64) -> Draw {
     let theta = rng.int(-179, 179) as f64;
     let x = rng.int(-40, 40) as f64 / 10.0;
-    let mut y = rng.int(-40, 40) as f64 / 10.0;
+    let mut y = rng.int(-30, 30) as f64 / 10.0;
     if x == 0.0 && y == 0.0 {
         y = 1.0;
     }

@@ -2,7 +2,7 @@
 
 use super::quiz::*;
 use super::*;
-use crate::experiment::{format_degrees, format_fixed, Phase, Tone};
+use crate::experiment::{format_degrees, format_fixed, format_metres, Phase, Tone};
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};
 use crate::scene::{Item, Role, Scene};
@@ -56,9 +56,8 @@ fn readouts_and_wheel_speeds_match_a_hand_computation() {
         format_degrees((1.4 * DT).to_degrees())
     );
     assert_eq!(readout(&d, "goal"), "3.000 m");
-    // A goal exactly beside the robot: after one step of turning it is less
-    // than 90° off the heading, and the robot already rolls (slowly).
-    assert_eq!(d.status().text, "waypoint 1 of 1: driving");
+    // The badge agrees with the readouts of the step just taken.
+    assert_eq!(d.status().text, "waypoint 1 of 1: turning on the spot");
     // Once aligned it drives at the speed limit: 1.2 · 3 m > 1.1 m/s.
     for _ in 0..90 {
         d.step(DT);
@@ -427,4 +426,487 @@ fn the_scene_has_a_scale_bar_and_marks_the_robot_when_it_leaves_the_field() {
     let (at, _, _) = off_view(&d).expect("an edge mark for the robot");
     assert_eq!(at, d.pose().position());
     assert!(!inside(at));
+}
+
+// ---- The Procedure of assets/diffdrive.json, one test per numbered step. ----
+
+/// Step 1's goal: near the left edge, behind the robot.
+const STEP_1_GOAL: DVec2 = DVec2::new(0.8, 4.5);
+/// Step 3's clicks: four more waypoints.
+const STEP_3_CLICKS: [DVec2; 4] = [
+    DVec2::new(2.0, 1.0),
+    DVec2::new(6.5, 1.0),
+    DVec2::new(7.0, 5.0),
+    DVec2::new(3.0, 5.5),
+];
+
+/// Steps until the run ends (bounded), returning the steps taken.
+fn run_to_end(d: &mut DiffDrive) -> usize {
+    let mut n = 0;
+    while d.animating() && n < 60 * 120 {
+        d.step(DT);
+        n += 1;
+    }
+    assert!(!d.animating(), "the route is driven within two minutes");
+    n
+}
+
+fn step_1(d: &mut DiffDrive) {
+    click(d, STEP_1_GOAL);
+    run_to_end(d);
+}
+
+/// Step 2 leaves the robot replaying step 1's goal, half a second in.
+fn step_2(d: &mut DiffDrive) {
+    d.action("reset").unwrap();
+    for _ in 0..30 {
+        d.step(DT);
+    }
+}
+
+/// Step 3: four more waypoints, the third of them (waypoint 4) tapped away,
+/// the last dragged; then the route is driven to its end.
+fn step_3(d: &mut DiffDrive) {
+    for p in STEP_3_CLICKS {
+        click(d, p);
+    }
+    click(d, STEP_3_CLICKS[2]);
+    d.input(Input::PointerDown(STEP_3_CLICKS[3]));
+    d.input(Input::PointerMove {
+        pos: DVec2::new(3.0, 3.0),
+        pressed: true,
+    });
+    d.input(Input::PointerMove {
+        pos: DVec2::new(2.5, 2.0),
+        pressed: true,
+    });
+    d.input(Input::PointerUp(DVec2::new(2.5, 2.0)));
+    run_to_end(d);
+}
+
+fn total_path(d: &DiffDrive) -> f64 {
+    d.run_cards().iter().map(|c| c.path_length_m).sum()
+}
+
+fn replay(d: &mut DiffDrive) {
+    d.action("reset").unwrap();
+    run_to_end(d);
+}
+
+/// The Procedure's steps as the content file states them.
+fn procedure_step(k: usize) -> String {
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/diffdrive.json"))
+            .unwrap();
+    content.procedure[k - 1].clone()
+}
+
+fn scene_of(d: &DiffDrive) -> Scene {
+    let mut scene = Scene::default();
+    d.scene(&mut scene);
+    scene
+}
+
+/// Step 1: the robot waits in the middle facing right, with a scale bar; a
+/// goal near the left edge is turned to on the spot, then driven to, and
+/// the badge says so, ending at "reached the goal".
+#[test]
+fn diffdrive_step_1_a_goal_behind_is_turned_to_then_driven_to() {
+    assert!(procedure_step(1).contains("middle of the field, facing right"));
+    assert!(procedure_step(1).contains("near the left edge of the field, behind the robot"));
+    let mut d = DiffDrive::default();
+    assert_eq!(d.pose(), START);
+    assert_eq!(START.position(), DVec2::new(4.0, 3.0));
+    assert_eq!(START.theta_rad, 0.0);
+    assert!(scene_of(&d)
+        .items
+        .iter()
+        .any(|i| matches!(i, Item::ScaleBar)));
+    assert_eq!(d.status().text, "idle: click to drop a goal");
+    click(&mut d, STEP_1_GOAL);
+    let mut seen = vec![d.status().text];
+    let mut n = 0;
+    while d.animating() && n < 60 * 30 {
+        d.step(DT);
+        n += 1;
+        let text = d.status().text;
+        if seen.last() != Some(&text) {
+            seen.push(text);
+        }
+    }
+    assert_eq!(
+        seen,
+        [
+            "waypoint 1 of 1: turning on the spot",
+            "waypoint 1 of 1: driving",
+            "reached the goal"
+        ]
+    );
+    assert_eq!(d.status().phase, Phase::Ended);
+    assert!((d.pose().position() - STEP_1_GOAL).length() <= TOLERANCE_M);
+    let trail = scene_of(&d).items.into_iter().find_map(|i| match i {
+        Item::Polyline {
+            points,
+            role: Role::Path,
+            ..
+        } => Some(points),
+        _ => None,
+    });
+    let trail = trail.expect("a trail");
+    assert_eq!(trail[0], START.position());
+    assert!(trail.len() > 50 && (*trail.last().unwrap() - STEP_1_GOAL).length() < 0.06);
+}
+
+/// Step 2 (issue 13 §1): replayed, the first half-second is a spin on the
+/// spot — v = 0, ω at its limit, vL = −vR, vR − vL = ω b — until the goal is
+/// less than 90° off the heading; then the robot rolls. The same holds for
+/// any goal near the left edge, the issue's (0.7, 4.5) among them.
+#[test]
+fn diffdrive_step_2_speed_stays_zero_while_the_robot_spins_at_its_turn_limit() {
+    assert!(procedure_step(2).contains("more than 90°"));
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    d.action("reset").unwrap();
+    let mut spinning = 0;
+    loop {
+        d.step(DT);
+        if d.command().heading_error_rad.abs() <= std::f64::consts::FRAC_PI_2 {
+            break;
+        }
+        spinning += 1;
+        assert_eq!(readout(&d, "v"), "0.000 m/s");
+        assert_eq!(readout(&d, "omega"), "1.400 rad/s");
+        let (vl, vr) = (readout(&d, "vl"), readout(&d, "vr"));
+        assert_eq!(vl, format!("-{vr}"));
+        let (vl, vr) = d.wheels();
+        assert!((vr - vl - d.command().omega_radps * 0.3).abs() < 1e-12);
+        assert_eq!(d.status().text, "waypoint 1 of 1: turning on the spot");
+        assert!(spinning < 600);
+    }
+    assert!(spinning >= 30, "{spinning} frames of spinning");
+    for _ in 0..5 {
+        d.step(DT);
+    }
+    assert!(d.command().v_mps > 0.01, "then it rolls");
+    assert_eq!(d.status().text, "waypoint 1 of 1: driving");
+    // Any goal near the left edge gives at least half a second of it.
+    let mut goals = vec![DVec2::new(0.7, 4.5)];
+    for x in [0.0, 0.5, 1.0] {
+        for y in [0.0, 1.5, 3.0, 4.5, 6.0] {
+            goals.push(DVec2::new(x, y));
+        }
+    }
+    for g in goals {
+        let mut e = DiffDrive::default();
+        click(&mut e, g);
+        let mut frames = 0;
+        while {
+            e.step(DT);
+            e.command().heading_error_rad.abs() > std::f64::consts::FRAC_PI_2
+        } {
+            assert_eq!(e.command().v_mps, 0.0, "{g}");
+            assert_eq!(e.command().omega_radps.abs(), 1.4, "{g}");
+            frames += 1;
+        }
+        assert!(frames >= 30, "{g}: {frames} frames");
+    }
+}
+
+/// Step 3: more clicks queue numbered waypoints; a tap removes one (the
+/// later ones move up a number), a drag moves one; each waypoint reached
+/// shows its path length and time, and the run card its four numbers.
+#[test]
+fn diffdrive_step_3_queued_waypoints_are_numbered_and_each_gets_a_run_card() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    for p in STEP_3_CLICKS {
+        click(&mut d, p);
+    }
+    let labels = |d: &DiffDrive| -> Vec<(DVec2, String)> {
+        scene_of(d)
+            .items
+            .into_iter()
+            .filter_map(|i| match i {
+                Item::Label { pos, text, .. } if text.parse::<usize>().is_ok() => Some((pos, text)),
+                _ => None,
+            })
+            .collect()
+    };
+    let expected: Vec<(DVec2, String)> = std::iter::once(STEP_1_GOAL)
+        .chain(STEP_3_CLICKS)
+        .enumerate()
+        .map(|(i, p)| (p, (i + 1).to_string()))
+        .collect();
+    assert_eq!(labels(&d), expected);
+    // Tap waypoint 4: it goes, and waypoint 5 becomes 4.
+    click(&mut d, STEP_3_CLICKS[2]);
+    assert_eq!(d.waypoints().len(), 4);
+    assert_eq!(labels(&d)[3], (STEP_3_CLICKS[3], "4".to_owned()));
+    // Drag waypoint 4 elsewhere.
+    d.input(Input::PointerDown(STEP_3_CLICKS[3]));
+    d.input(Input::PointerMove {
+        pos: DVec2::new(2.5, 2.0),
+        pressed: true,
+    });
+    d.input(Input::PointerUp(DVec2::new(2.5, 2.0)));
+    assert_eq!(d.waypoints()[3], DVec2::new(2.5, 2.0));
+    // Each waypoint reached shows its card's path length and time beside it.
+    let mut reached = 0;
+    while d.animating() {
+        d.step(DT);
+        if d.reached() > reached {
+            reached = d.reached();
+            let card = d.run_cards()[reached - 1];
+            let text = format!(
+                "{} m · {} s",
+                format_fixed(card.path_length_m, 2),
+                format_fixed(card.time_to_goal_s.unwrap(), 1)
+            );
+            let w = d.waypoints()[reached - 1];
+            assert!(
+                scene_of(&d).items.iter().any(
+                    |i| matches!(i, Item::Label { pos, text: t, .. } if *pos == w && *t == text)
+                ),
+                "{text} beside waypoint {reached}"
+            );
+        }
+    }
+    assert_eq!(reached, 4);
+    assert_eq!(readout(&d, "card"), "waypoint 4 (reached)");
+    let card = d.run_cards()[3];
+    assert_eq!(readout(&d, "path"), format_metres(card.path_length_m));
+    assert_eq!(
+        readout(&d, "time"),
+        format!("{} s", format_fixed(card.time_to_goal_s.unwrap(), 2))
+    );
+    assert_eq!(
+        readout(&d, "max_error"),
+        format_degrees(card.max_heading_error_rad.to_degrees())
+    );
+    assert!(readout(&d, "at_limit").starts_with("v ") && readout(&d, "at_limit").contains("%, ω "));
+    // The route driven: the route step_3 builds for the later steps.
+    let mut e = DiffDrive::default();
+    step_1(&mut e);
+    step_2(&mut e);
+    step_3(&mut e);
+    assert_eq!(e.waypoints(), d.waypoints());
+}
+
+/// Step 4: Kω = 1 drives the same route in wider arcs (a longer path on the
+/// cards, different largest heading errors); Kω = 10 is shorter than Kω = 1
+/// and about the default's length, as the turn limit sets the early turns.
+#[test]
+fn diffdrive_step_4_a_low_k_omega_drives_wider_arcs() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    step_3(&mut d);
+    let default_path = total_path(&d);
+    let default_cards = d.run_cards().to_vec();
+    d.set_param("kw", 1.0).unwrap();
+    replay(&mut d);
+    assert_eq!(d.reached(), 4);
+    let lazy_path = total_path(&d);
+    assert!(
+        lazy_path > default_path + 0.3,
+        "{lazy_path} vs {default_path}"
+    );
+    assert!(d.run_cards()[0].path_length_m > default_cards[0].path_length_m + 0.2);
+    assert!(d
+        .run_cards()
+        .iter()
+        .zip(&default_cards)
+        .any(|(a, b)| (a.max_heading_error_rad - b.max_heading_error_rad).abs() > 0.5));
+    d.set_param("kw", 10.0).unwrap();
+    replay(&mut d);
+    let brisk_path = total_path(&d);
+    assert!(brisk_path < lazy_path - 0.3);
+    assert!((brisk_path - default_path).abs() < 0.05);
+}
+
+/// Step 5: with Max v = 0.6 the shaded "at a limit" time of each leg lies
+/// between the larger of the card's two percentages and their sum; a lower
+/// Max ω makes the first turn slower; a wider track changes the wheel
+/// speeds and not the path.
+#[test]
+fn diffdrive_step_5_limits_shade_the_plot_and_the_track_changes_only_wheel_speeds() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    step_3(&mut d);
+    d.set_param("kw", 10.0).unwrap();
+    d.set_param("vmax", 0.6).unwrap();
+    replay(&mut d);
+    let plot = &d.plots()[0];
+    assert_eq!(plot.markers.len(), 4);
+    let mut start = 0.0;
+    for (card, marker) in d.run_cards().iter().zip(&plot.markers) {
+        let shaded: f64 = plot
+            .bands
+            .iter()
+            .map(|b| (b.hi.min(marker.x) - b.lo.max(start)).max(0.0))
+            .sum();
+        let (v, w) = (
+            card.v_limit_share() * card.elapsed_s,
+            card.omega_limit_share() * card.elapsed_s,
+        );
+        assert!(v > 0.5 && w > 0.2, "{card:?}");
+        assert!(shaded >= v.max(w) - 2.0 * DT && shaded <= v + w + 2.0 * DT);
+        start = marker.x;
+    }
+    // Max ω halved: the first turn on the spot takes about twice as long.
+    let spin = |d: &mut DiffDrive| {
+        d.action("reset").unwrap();
+        let mut frames = 0;
+        while {
+            d.step(DT);
+            d.command().v_mps == 0.0
+        } {
+            frames += 1;
+        }
+        frames
+    };
+    let fast = spin(&mut d);
+    d.set_param("wmax", 0.7).unwrap();
+    let slow = spin(&mut d);
+    assert!(
+        slow >= 2 * fast - 2 && slow <= 2 * fast + 2,
+        "{fast} → {slow}"
+    );
+    d.set_param("wmax", 1.4).unwrap();
+    // Track 0.3 m → 0.6 m: the same path, twice the wheel-speed difference.
+    let mut wide = d.clone();
+    wide.set_param("track", 0.6).unwrap();
+    d.action("reset").unwrap();
+    wide.action("reset").unwrap();
+    while d.animating() {
+        d.step(DT);
+        wide.step(DT);
+        assert_eq!(d.pose(), wide.pose());
+        let ((l, r), (wl, wr)) = (d.wheels(), wide.wheels());
+        assert!(((wr - wl) - 2.0 * (r - l)).abs() < 1e-12);
+    }
+    assert_eq!(d.trail, wide.trail);
+}
+
+/// Step 6: RK4 against Euler on the same route: the cards agree within a
+/// centimetre and a frame or two.
+#[test]
+fn diffdrive_step_6_rk4_and_euler_cards_agree_closely() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    step_3(&mut d);
+    d.set_param("kw", 10.0).unwrap();
+    d.set_param("vmax", 0.6).unwrap();
+    replay(&mut d);
+    let euler = d.run_cards().to_vec();
+    d.set_param("integ", 1.0).unwrap();
+    replay(&mut d);
+    assert_eq!(d.run_cards().len(), euler.len());
+    for (a, b) in euler.iter().zip(d.run_cards()) {
+        assert!(
+            (a.path_length_m - b.path_length_m).abs() < 0.01,
+            "{a:?} {b:?}"
+        );
+        let (ta, tb) = (a.time_to_goal_s.unwrap(), b.time_to_goal_s.unwrap());
+        assert!((ta - tb).abs() <= 2.0 * DT + 1e-9, "{ta} {tb}");
+        assert!(a != b, "the two integrators differ slightly");
+    }
+}
+
+/// Step 7: the link holds the gains and every waypoint; opened fresh it
+/// replays exactly the same run. Clear waypoints and Reset robot return to
+/// the start with an empty route.
+#[test]
+fn diffdrive_step_7_the_link_replays_the_run_and_clear_returns_to_the_start() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    step_3(&mut d);
+    d.set_param("kw", 10.0).unwrap();
+    d.set_param("vmax", 0.6).unwrap();
+    d.set_param("integ", 1.0).unwrap();
+    replay(&mut d);
+    let link = format(&d, Tab::Simulation);
+    let (mut opened, notices) = restore(&link, DiffDrive::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(format(&opened, Tab::Simulation), link);
+    d.action("reset").unwrap();
+    while d.animating() {
+        d.step(DT);
+        opened.step(DT);
+        assert_eq!(d.pose(), opened.pose());
+    }
+    assert!(!opened.animating());
+    assert_eq!(d.run_cards(), opened.run_cards());
+    d.action("clear").unwrap();
+    d.action("reset").unwrap();
+    assert_eq!(d.pose(), START);
+    assert!(d.waypoints().is_empty());
+    assert_eq!(d.status().text, "idle: click to drop a goal");
+    assert!(!format(&d, Tab::Simulation).contains("w1x"));
+}
+
+/// Issue 15: every generated question can be set up on the Simulation tab —
+/// speeds, turn rates, gains and the track inside their sliders' ranges, and
+/// the goal offset one the field allows from the start pose.
+#[test]
+fn generators_draw_inside_the_slider_ranges() {
+    let spec = |key: &str| *crate::experiment::find_spec(PARAMS, key).unwrap();
+    let within = |key: &str, v: f64| {
+        let s = spec(key);
+        assert!((s.min..=s.max).contains(&v), "{key} = {v}");
+    };
+    let mut rng = Lcg64::new(15);
+    for _ in 0..2000 {
+        let w = quiz_right_wheel(&mut rng);
+        assert!((0.0..=spec("vmax").max).contains(&w.var("v").unwrap()));
+        assert!(w.var("w").unwrap().abs() <= spec("wmax").max);
+        within("track", w.var("b").unwrap());
+        let h = quiz_heading_error(&mut rng);
+        let goal = START.position() + DVec2::new(h.var("x").unwrap(), h.var("y").unwrap());
+        assert!(
+            goal.cmpge(DVec2::ZERO).all() && goal.cmple(DVec2::new(FIELD_W_M, FIELD_H_M)).all(),
+            "{h:?}"
+        );
+        let f = quiz_forward_speed(&mut rng);
+        within("kv", f.var("kv").unwrap());
+        within("vmax", f.var("vmax").unwrap());
+        assert!(f.var("d").unwrap() <= DVec2::new(FIELD_W_M, FIELD_H_M).length());
+    }
+}
+
+/// Issue 15: the correct option is the strictly longest in at most a
+/// quarter of the choice questions, so its length gives nothing away.
+#[test]
+fn quiz_option_lengths_do_not_give_the_answer_away() {
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/diffdrive.json"))
+            .unwrap();
+    let (mut choices, mut longest) = (0, 0);
+    for q in &content.quiz {
+        if let crate::content::Question::Choice {
+            options, answer, ..
+        } = q
+        {
+            choices += 1;
+            let len = |s: &String| s.chars().count();
+            let correct = len(&options[*answer]);
+            if options
+                .iter()
+                .enumerate()
+                .all(|(i, o)| i == *answer || len(o) < correct)
+            {
+                longest += 1;
+            }
+        }
+    }
+    assert!(choices >= 4);
+    assert!(4 * longest <= choices, "{longest} of {choices}");
+    assert!(content
+        .references
+        .iter()
+        .all(|r| !r.authors.contains("Virtual Labs")));
 }

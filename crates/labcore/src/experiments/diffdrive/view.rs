@@ -269,9 +269,14 @@ pub(super) fn status(d: &DiffDrive) -> Status {
             Tone::Good,
         );
     };
-    // What the controller commands from here: no forward speed while the
-    // goal is more than 90° off the heading.
-    let cmd = d.follower.controller.command(d.pose(), goal);
+    // The command the readouts show, once the robot has been stepped toward
+    // this goal; before that, what the controller commands from here. No
+    // forward speed while the goal is more than 90° off the heading.
+    let cmd = if d.follower.current.elapsed_s > 0.0 {
+        d.command()
+    } else {
+        d.follower.controller.command(d.pose(), goal)
+    };
     let doing = if cmd.v_mps < 1e-3 && cmd.heading_error_rad.abs() > 0.1 {
         "turning on the spot"
     } else {
