@@ -910,3 +910,118 @@ fn quiz_option_lengths_do_not_give_the_answer_away() {
         .iter()
         .all(|r| !r.authors.contains("Virtual Labs")));
 }
+
+/// A student's session that touches every way of making waypoints: clicks
+/// (also outside the field), taps that remove, drags, arrow-key nudges,
+/// typed fields with many decimals or out of range, gains, the two buttons
+/// and time.
+fn waypoint_session(d: &mut DiffDrive, seed: u64) {
+    let mut rng = Lcg64::new(seed);
+    for _ in 0..40 {
+        let any_point = |rng: &mut Lcg64| DVec2::new(rng.range(-1.0, 9.0), rng.range(-1.0, 7.0));
+        let existing = |d: &DiffDrive, rng: &mut Lcg64| {
+            let w = d.waypoints();
+            (!w.is_empty()).then(|| w[rng.int(0, w.len() as i64 - 1) as usize])
+        };
+        match rng.int(0, 9) {
+            0 | 1 => click(d, any_point(&mut rng)),
+            2 => {
+                if let Some(w) = existing(d, &mut rng) {
+                    click(d, w);
+                }
+            }
+            3 => {
+                let from = existing(d, &mut rng).unwrap_or_else(|| any_point(&mut rng));
+                let to = any_point(&mut rng);
+                d.input(Input::PointerDown(from));
+                d.input(Input::PointerMove {
+                    pos: (from + to) * 0.5,
+                    pressed: true,
+                });
+                d.input(Input::PointerMove {
+                    pos: to,
+                    pressed: true,
+                });
+                d.input(Input::PointerUp(to));
+            }
+            4 => d.input(Input::Nudge(DVec2::new(
+                rng.range(-0.3, 0.3),
+                rng.range(-0.3, 0.3),
+            ))),
+            5 => {
+                let slot = rng.int(1, MAX_WAYPOINTS as i64);
+                let axis = if rng.int(0, 1) == 0 { 'x' } else { 'y' };
+                let _ = d.set_param(&format!("w{slot}{axis}"), rng.range(-1.0, 9.0));
+            }
+            6 => {
+                let spec = PARAMS[rng.int(0, 5) as usize];
+                let _ = d.set_param(spec.key, rng.range(spec.min, spec.max));
+            }
+            7 => {
+                let key = if rng.int(0, 3) == 0 { "clear" } else { "reset" };
+                d.action(key).unwrap();
+            }
+            _ => {
+                for _ in 0..rng.int(0, 300) {
+                    d.step(DT);
+                }
+            }
+        }
+    }
+}
+
+/// Issue 13 §2: every route a student can make is in the link — format,
+/// parse and apply to a fresh experiment reproduce every waypoint and gain
+/// exactly, with no notice, and the same run.
+#[test]
+fn links_reproduce_every_route_a_student_can_make() {
+    for seed in 0..150 {
+        let mut d = DiffDrive::default();
+        waypoint_session(&mut d, seed);
+        let link = format(&d, Tab::Simulation);
+        let (mut opened, notices) = restore(&link, DiffDrive::default());
+        assert!(notices.is_empty(), "seed {seed}: {link}: {notices:?}");
+        assert_eq!(format(&opened, Tab::Simulation), link, "seed {seed}");
+        assert_eq!(opened.slots, d.slots, "seed {seed}: {link}");
+        for spec in PARAMS {
+            assert!(d.param(spec.key) == opened.param(spec.key), "{}", spec.key);
+        }
+        d.reset();
+        for _ in 0..120 {
+            d.step(DT);
+            opened.step(DT);
+        }
+        assert_eq!(d.pose(), opened.pose(), "seed {seed}");
+    }
+}
+
+/// Issue 13 §2's repro: the default link pasted into a tab where three
+/// waypoints were clicked gives no waypoints ("0 of 0"), as a fresh page.
+#[test]
+fn the_default_link_in_a_used_tab_gives_no_waypoints() {
+    use crate::route::{open_in_tab, parse, Page};
+    let default_link = format(&DiffDrive::default(), Tab::Simulation);
+    let Page::Experiment { params, .. } = parse(&default_link, &["diffdrive"]).page else {
+        panic!("{default_link}");
+    };
+    let make = || -> Box<dyn Experiment> { Box::new(DiffDrive::default()) };
+    let mut tab = make();
+    for p in [
+        DVec2::new(1.0, 1.0),
+        DVec2::new(2.0, 5.0),
+        DVec2::new(7.0, 2.0),
+    ] {
+        tab.input(Input::PointerDown(p));
+        tab.input(Input::PointerUp(p));
+    }
+    assert_eq!(
+        crate::experiment::readout_value(tab.as_ref(), "waypoints").unwrap(),
+        "0 of 3"
+    );
+    assert!(open_in_tab(&mut tab, make, &params).is_empty());
+    assert_eq!(
+        crate::experiment::readout_value(tab.as_ref(), "waypoints").unwrap(),
+        "0 of 0"
+    );
+    assert_eq!(format(tab.as_ref(), Tab::Simulation), default_link);
+}
