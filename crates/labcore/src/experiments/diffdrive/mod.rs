@@ -12,13 +12,19 @@
 //!
 //! so it turns on the spot while the goal is behind it, then drives in
 //! (Siegwart, Nourbakhsh & Scaramuzza, *Introduction to Autonomous Mobile
-//! Robots*, 2nd ed., 2011, §3.6.2.4). Wheel rim speeds follow from the track
-//! `b`: `v_L = v − ωb/2`, `v_R = v + ωb/2` (ibid. §3.2.1).
+//! Robots*, 2nd ed., 2011, §3.6.2). Wheel rim speeds follow from the track
+//! `b`: `v_L = v − ωb/2`, `v_R = v + ωb/2` (ibid. §3.2.2).
 //!
 //! Clicks queue up to [`MAX_WAYPOINTS`] numbered waypoints; they are
 //! parameters (`w1x`, `w1y`, … `w6y`), so a link reproduces the route and the
 //! run. A [`WaypointFollower`] visits them in order and keeps one
-//! [`RunStats`] "run card" per waypoint reached.
+//! [`RunStats`] "run card" per waypoint reached. The robot starts in the
+//! middle of the field facing +x ([`START`]), so the left half of the field
+//! is behind it.
+//!
+//! This file is the model (parameters, state, step, input, actions, link
+//! state); `view.rs` draws it and words its readouts and status, `quiz.rs`
+//! holds the generated questions and `tests.rs` one test per Procedure step.
 
 use crate::experiment::{
     check_param, with_coordinate, ActionSpec, Experiment, Input, Notice, Notices, ParamError,
@@ -105,8 +111,8 @@ fn slot_of(key: &str) -> Option<(usize, bool)> {
         .map(|i| (i, is_x))
 }
 
-/// Rounds a clicked coordinate to whole centimetres, so the link (three
-/// decimals) reproduces it exactly.
+/// Rounds a clicked coordinate to whole centimetres, so the link shows
+/// short numbers (it reproduces any value exactly).
 #[must_use]
 pub(crate) fn snap_cm(v: f64) -> f64 {
     (v * 100.0).round() / 100.0
