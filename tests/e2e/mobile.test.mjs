@@ -66,12 +66,13 @@ test("diffdrive: clicked waypoints are driven in order, the time bar pauses and 
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/diffdrive/simulation");
     assert.match(await waitStatus(page, /idle/), /^idle: click to drop a goal$/);
-    await clickWorld(page, 4, 3);
+    // The robot starts in the middle of the field, (4, 3), facing right.
+    await clickWorld(page, 6, 1.5);
     await clickWorld(page, 6.5, 4.5);
     await waitStatus(page, /^waypoint 1 of 2: /);
     await page.waitForFunction(() => /w2y=/.test(location.hash));
     const link = await linkParams(page);
-    for (const [key, value] of Object.entries({ w1x: 4, w1y: 3, w2x: 6.5, w2y: 4.5 })) near(link[key], value, key);
+    for (const [key, value] of Object.entries({ w1x: 6, w1y: 1.5, w2x: 6.5, w2y: 4.5 })) near(link[key], value, key);
     // Readouts change over time while the robot turns and drives.
     const first = await readouts(page);
     await page.waitForTimeout(400);

@@ -3,7 +3,7 @@
 //! With the goal `d` metres away along bearing `atan2(dy, dx)`, the heading
 //! error, the commanded turn rate and the forward speed are (lab spec,
 //! experiment 4; Siegwart, Nourbakhsh & Scaramuzza, *Introduction to
-//! Autonomous Mobile Robots*, 2nd ed., 2011, §3.6.2.4 "feedback control"):
+//! Autonomous Mobile Robots*, 2nd ed., 2011, §3.6.2 "Feedback control"):
 //!
 //! ```text
 //! eθ = wrap(atan2(dy, dx) − θ)  ∈ [−π, π]

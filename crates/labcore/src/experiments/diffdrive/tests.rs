@@ -1,0 +1,1027 @@
+//! Tests of experiment 4, the Procedure steps among them.
+
+use super::quiz::*;
+use super::*;
+use crate::experiment::{format_degrees, format_fixed, format_metres, Phase, Tone};
+use crate::rng::Lcg64;
+use crate::route::{format, restore, Tab};
+use crate::scene::{Item, Role, Scene};
+use std::f64::consts::PI;
+
+const DT: f64 = crate::clock::Clock::DT_S;
+
+fn run(d: &mut DiffDrive, max_s: f64) -> f64 {
+    let mut t = 0.0;
+    while d.animating() && t < max_s {
+        d.step(DT);
+        t += DT;
+    }
+    t
+}
+
+fn readout(d: &DiffDrive, key: &str) -> String {
+    crate::experiment::readout_value(d, key).unwrap_or_else(|| panic!("no readout {key}"))
+}
+
+fn click(d: &mut DiffDrive, p: DVec2) {
+    d.input(Input::PointerDown(p));
+    d.input(Input::PointerUp(p));
+}
+
+#[test]
+fn idle_robot_waits_in_the_middle_facing_right() {
+    let mut d = DiffDrive::default();
+    assert!(!d.animating());
+    d.step(DT);
+    assert_eq!(d.pose(), START);
+    assert_eq!(d.status().text, "idle: click to drop a goal");
+    assert_eq!(readout(&d, "goal"), "--");
+    assert_eq!(readout(&d, "card"), "--");
+}
+
+/// The first step toward a goal straight up from the start, by hand:
+/// eθ = π/2, ω = clamp(3.5·π/2, ±1.4) = 1.4 rad/s, v = Kv·d·max(0, cos eθ) ≈ 0,
+/// so vL = −ωb/2 = −0.21 m/s and vR = +0.21 m/s (b = 0.3 m).
+#[test]
+fn readouts_and_wheel_speeds_match_a_hand_computation() {
+    let mut d = DiffDrive::default();
+    click(&mut d, START.position() + DVec2::new(0.0, 3.0));
+    d.step(DT);
+    assert_eq!(readout(&d, "omega"), "1.400 rad/s");
+    assert_eq!(readout(&d, "v"), "0.000 m/s");
+    assert_eq!(readout(&d, "vl"), "-0.210 m/s");
+    assert_eq!(readout(&d, "vr"), "0.210 m/s");
+    assert_eq!(
+        readout(&d, "heading"),
+        format_degrees((1.4 * DT).to_degrees())
+    );
+    assert_eq!(readout(&d, "goal"), "3.000 m");
+    // The badge agrees with the readouts of the step just taken.
+    assert_eq!(d.status().text, "waypoint 1 of 1: turning on the spot");
+    // Once aligned it drives at the speed limit: 1.2 · 3 m > 1.1 m/s.
+    for _ in 0..90 {
+        d.step(DT);
+    }
+    assert_eq!(readout(&d, "v"), "1.100 m/s");
+    let (vl, vr) = d.wheels();
+    let c = d.command();
+    assert!((vr - vl - c.omega_radps * 0.3).abs() < 1e-12);
+    assert!((0.5 * (vl + vr) - c.v_mps).abs() < 1e-12);
+}
+
+#[test]
+fn reaches_each_waypoint_in_order_with_a_run_card_each() {
+    let mut d = DiffDrive::default();
+    let goals = [
+        DVec2::new(7.4, 3.0),
+        DVec2::new(7.4, 5.5),
+        DVec2::new(4.4, 5.9),
+    ];
+    for g in goals {
+        click(&mut d, g);
+    }
+    assert_eq!(d.waypoints(), goals.to_vec());
+    assert_eq!(d.param("w3x"), Some(4.4));
+    let t = run(&mut d, 60.0);
+    assert!(!d.animating(), "arrived after {t} s");
+    assert_eq!(d.reached(), 3);
+    assert!((d.pose().position() - goals[2]).length() <= TOLERANCE_M);
+    assert_eq!(d.status().text, "reached all 3 waypoints");
+    // Card 1: straight ahead along +x, 3.4 m: path ≈ 3.4 m, no heading error.
+    let c1 = d.run_cards()[0];
+    assert!((c1.path_length_m - 3.4).abs() < 0.06, "{c1:?}");
+    assert!(c1.max_heading_error_rad < 1e-9);
+    assert!(c1.v_limit_share() > 0.3 && c1.omega_limit_share() == 0.0);
+    // Card 2: a quarter turn left first.
+    let c2 = d.run_cards()[1];
+    assert!((c2.max_heading_error_rad - PI / 2.0).abs() < 0.05, "{c2:?}");
+    assert!(c2.omega_limit_share() > 0.0);
+    // Times add up to the run's time.
+    let sum: f64 = d
+        .run_cards()
+        .iter()
+        .map(|c| c.time_to_goal_s.unwrap())
+        .sum();
+    assert!((sum - d.time_s).abs() < 4.0 * DT, "{sum} vs {}", d.time_s);
+    assert_eq!(readout(&d, "card"), "waypoint 3 (reached)");
+    assert_eq!(
+        readout(&d, "time"),
+        format!(
+            "{} s",
+            format_fixed(d.run_cards()[2].time_to_goal_s.unwrap(), 2)
+        )
+    );
+    assert!(readout(&d, "at_limit").starts_with("v "));
+    // The plot shows v, ω, vL, vR with a marker per arrival.
+    let plot = &d.plots()[0];
+    assert_eq!(plot.series.len(), 4);
+    assert!(plot.sample_count() > 100);
+    assert_eq!(plot.markers.len(), 3);
+    assert!(!plot.bands.is_empty(), "time at a limit is shaded");
+    assert!(plot
+        .to_csv()
+        .starts_with("Time (s),v (m/s),ω (rad/s),vL (m/s),vR (m/s)"));
+}
+
+#[test]
+fn tapping_a_waypoint_removes_it_and_dragging_moves_it() {
+    let mut d = DiffDrive::default();
+    for p in [
+        DVec2::new(3.0, 3.0),
+        DVec2::new(5.0, 3.0),
+        DVec2::new(7.0, 3.0),
+    ] {
+        click(&mut d, p);
+    }
+    // Tap on waypoint 2: removed, 3 becomes 2.
+    click(&mut d, DVec2::new(5.05, 3.0));
+    assert_eq!(
+        d.waypoints(),
+        vec![DVec2::new(3.0, 3.0), DVec2::new(7.0, 3.0)]
+    );
+    assert_eq!(d.param("w2x"), Some(7.0));
+    assert_eq!(d.param("w3x"), None);
+    // Drag waypoint 1 to (2, 5).
+    d.input(Input::PointerDown(DVec2::new(3.0, 3.1)));
+    d.input(Input::PointerMove {
+        pos: DVec2::new(2.5, 4.0),
+        pressed: true,
+    });
+    d.input(Input::PointerMove {
+        pos: DVec2::new(2.0, 5.0),
+        pressed: true,
+    });
+    d.input(Input::PointerUp(DVec2::new(2.0, 5.0)));
+    assert_eq!(d.waypoints()[0], DVec2::new(2.0, 5.0));
+    assert_eq!(d.follower.queue.len(), 2);
+    assert_eq!(d.follower.goal(), Some(DVec2::new(2.0, 5.0)));
+    // The arrow keys move the waypoint last grabbed.
+    d.input(Input::Nudge(DVec2::new(0.16, 0.0)));
+    assert_eq!(d.waypoints()[0], DVec2::new(2.16, 5.0));
+    d.action("clear").unwrap();
+    assert!(d.waypoints().is_empty() && !d.animating());
+}
+
+/// On a touch screen a swipe that starts off every waypoint scrolls the
+/// page; the page still reports it as a press and a move, so a press
+/// only queues a waypoint when it is released where it started.
+#[test]
+fn a_swipe_off_the_waypoints_queues_nothing() {
+    let mut d = DiffDrive::default();
+    d.input(Input::PointerDown(DVec2::new(4.0, 1.0)));
+    d.input(Input::PointerMove {
+        pos: DVec2::new(4.0, 1.6),
+        pressed: true,
+    });
+    d.input(Input::PointerUp(DVec2::new(4.0, 1.6)));
+    assert!(d.waypoints().is_empty());
+    // A click with a little jitter still counts as a tap.
+    d.input(Input::PointerDown(DVec2::new(4.0, 1.0)));
+    d.input(Input::PointerMove {
+        pos: DVec2::new(4.02, 1.01),
+        pressed: true,
+    });
+    d.input(Input::PointerUp(DVec2::new(4.02, 1.01)));
+    assert_eq!(d.waypoints(), vec![DVec2::new(4.0, 1.0)]);
+}
+
+#[test]
+fn removing_a_reached_waypoint_drops_its_card() {
+    let mut d = DiffDrive::default();
+    click(&mut d, DVec2::new(2.0, 0.6));
+    click(&mut d, DVec2::new(3.0, 0.6));
+    run(&mut d, 30.0);
+    assert_eq!(d.reached(), 2);
+    let second = d.run_cards()[1];
+    click(&mut d, DVec2::new(2.0, 0.6));
+    assert_eq!(d.reached(), 1);
+    assert_eq!(d.run_cards()[0], second);
+    assert!(!d.animating());
+    // A new click continues from where the robot stands.
+    click(&mut d, DVec2::new(3.0, 2.0));
+    assert!(d.animating());
+    assert_eq!(readout(&d, "card"), "waypoint 2 (driving)");
+    run(&mut d, 30.0);
+    assert_eq!(d.reached(), 2);
+}
+
+/// Issue 13 §4: "all 6 waypoints are queued" is a notice beside the status,
+/// never the status itself, and it goes once a waypoint is reached (today it
+/// stayed after all six were reached).
+#[test]
+fn a_full_queue_posts_a_notice_that_goes_when_a_waypoint_is_reached() {
+    let mut d = DiffDrive::default();
+    for i in 0..MAX_WAYPOINTS {
+        click(&mut d, DVec2::new(1.0 + i as f64, 2.0 + (i % 2) as f64));
+    }
+    assert_eq!(d.notice(), None);
+    click(&mut d, DVec2::new(7.5, 5.5));
+    assert_eq!(d.waypoints().len(), MAX_WAYPOINTS);
+    let notice = d.notice().expect("a refused click says why");
+    assert_eq!(notice.tone, Tone::Warning);
+    assert!(notice.text.contains("all 6 waypoints"), "{notice:?}");
+    // The status keeps telling the run's state.
+    assert!(d.status().text.starts_with("waypoint 1 of 6: "));
+    assert_eq!(d.status().phase, Phase::Live);
+    // Once the first is reached the notice no longer applies, and it goes.
+    while d.reached() == 0 {
+        d.step(DT);
+    }
+    assert_eq!(d.notice(), None);
+    // The last one reached ends the run, with no warning left over.
+    run(&mut d, 120.0);
+    assert_eq!(d.reached(), MAX_WAYPOINTS);
+    assert_eq!(
+        d.status(),
+        Status::ended("reached all 6 waypoints", Tone::Good)
+    );
+    assert_eq!(d.notice(), None);
+    // With every slot used, a reached waypoint makes room for a new one.
+    click(&mut d, DVec2::new(7.5, 5.5));
+    assert_eq!(d.waypoints().len(), MAX_WAYPOINTS);
+    assert_eq!(d.waypoints()[MAX_WAYPOINTS - 1], DVec2::new(7.5, 5.5));
+    assert_eq!(d.reached(), MAX_WAYPOINTS - 1);
+    assert_eq!(d.notice(), None);
+    assert_eq!(d.status().phase, Phase::Live);
+    // Removing a waypoint also withdraws the notice.
+    let mut e = DiffDrive::default();
+    for i in 0..=MAX_WAYPOINTS {
+        click(&mut e, DVec2::new(1.0 + i as f64, 1.0));
+    }
+    assert!(e.notice().is_some());
+    click(&mut e, DVec2::new(1.0, 1.0));
+    assert_eq!(e.notice(), None);
+}
+
+#[test]
+fn waypoints_round_trip_through_the_link() {
+    let mut d = DiffDrive::default();
+    click(&mut d, DVec2::new(3.333_333, 2.0));
+    click(&mut d, DVec2::new(9.0, -1.0));
+    d.set_param("kw", 5.0).unwrap();
+    d.set_param("integ", 1.0).unwrap();
+    let link = format(&d, Tab::Simulation);
+    assert_eq!(
+        link,
+        "#/diffdrive/simulation?kw=5&kv=1.2&vmax=1.1&wmax=1.4&track=0.3&integ=1&w1x=3.33&w1y=2&w2x=8&w2y=0"
+    );
+    let (mut fresh, notices) = restore(&link, DiffDrive::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(fresh.waypoints(), d.waypoints());
+    assert_eq!(format(&fresh, Tab::Simulation), link);
+    // The loaded route drives the same run as the clicked one, after a reset.
+    d.reset();
+    for _ in 0..300 {
+        d.step(DT);
+        fresh.step(DT);
+    }
+    assert_eq!(d.pose(), fresh.pose());
+}
+
+#[test]
+fn typed_waypoint_fields_create_and_move_waypoints() {
+    let mut d = DiffDrive::default();
+    d.set_param("w2x", 4.0).unwrap();
+    assert_eq!(d.waypoints(), vec![DVec2::new(4.0, START.y_m)]);
+    d.set_param("w2y", 5.0).unwrap();
+    assert_eq!(d.follower.goal(), Some(DVec2::new(4.0, 5.0)));
+    assert_eq!(d.set_param("w1y", 99.0), Ok(Sanitized::Clamped(FIELD_H_M)));
+    assert_eq!(d.waypoints()[0], DVec2::new(START.x_m, FIELD_H_M));
+    assert!(d.set_param("w7x", 1.0).is_err());
+    assert!(d.set_param("w1x", f64::NAN).is_err());
+}
+
+#[test]
+fn rk4_and_euler_both_arrive_and_differ_slightly() {
+    let mut a = DiffDrive::default();
+    let mut b = DiffDrive::default();
+    b.set_param("integ", 1.0).unwrap();
+    for d in [&mut a, &mut b] {
+        click(d, DVec2::new(5.0, 5.0));
+        run(d, 30.0);
+        assert_eq!(d.reached(), 1);
+    }
+    let (ca, cb) = (a.run_cards()[0], b.run_cards()[0]);
+    assert!((ca.path_length_m - cb.path_length_m).abs() < 0.05);
+}
+
+#[test]
+fn hostile_values_keep_the_state_finite() {
+    let mut d = DiffDrive::default();
+    click(&mut d, DVec2::new(f64::NAN, 1.0));
+    click(&mut d, DVec2::new(1e300, -1e300));
+    assert_eq!(d.waypoints(), vec![DVec2::new(FIELD_W_M, 0.0)]);
+    d.input(Input::Nudge(DVec2::new(f64::INFINITY, 0.0)));
+    d.set_param("kw", 1e9).unwrap();
+    d.set_param("wmax", 1e9).unwrap();
+    run(&mut d, 60.0);
+    assert!(d.pose().is_finite());
+    let mut scene = Scene::default();
+    d.scene(&mut scene);
+    assert!(scene.is_finite());
+}
+
+#[test]
+fn plots_and_trail_stay_bounded() {
+    let mut d = DiffDrive::default();
+    d.set_param("vmax", 0.1).unwrap();
+    click(&mut d, DVec2::new(7.9, 5.9));
+    click(&mut d, DVec2::new(0.1, 0.1));
+    for _ in 0..60 * 400 {
+        d.step(DT);
+    }
+    assert!(d.plots[0]
+        .series
+        .iter()
+        .all(|s| s.len() <= MAX_PLOT_SAMPLES));
+    assert!(d.trail.len() <= MAX_TRAIL_POINTS);
+    assert!(d.plots[0].bands.len() <= MAX_BANDS);
+}
+
+#[test]
+fn waypoint_keys_parse_and_odd_keys_are_refused() {
+    assert_eq!(slot_of("w1x"), Some((0, true)));
+    assert_eq!(slot_of("w6y"), Some((5, false)));
+    for bad in ["w7x", "w0y", "w1z", "wé", "w", "wx", "x1w", "w1xx", "w-1x"] {
+        assert_eq!(slot_of(bad), None, "{bad}");
+    }
+    let d = DiffDrive::default();
+    assert_eq!(d.param("wé"), None);
+}
+
+#[test]
+fn generators_agree_with_hand_formulas() {
+    let mut rng = Lcg64::new(3);
+    for _ in 0..50 {
+        let w = quiz_right_wheel(&mut rng);
+        let expected = w.var("v").unwrap() + w.var("w").unwrap() * w.var("b").unwrap() / 2.0;
+        assert!((w.answer - expected).abs() < 1e-12);
+        let h = quiz_heading_error(&mut rng);
+        assert!(h.answer.abs() <= 180.0);
+        let raw =
+            h.var("y").unwrap().atan2(h.var("x").unwrap()).to_degrees() - h.var("theta").unwrap();
+        let wrapped = (raw + 540.0).rem_euclid(360.0) - 180.0;
+        assert!((h.answer - wrapped).abs() < 1e-9, "{h:?}");
+        let f = quiz_forward_speed(&mut rng);
+        let v = (f.var("kv").unwrap()
+            * f.var("d").unwrap()
+            * f.var("e").unwrap().to_radians().cos().max(0.0))
+        .min(f.var("vmax").unwrap());
+        assert!((f.answer - v).abs() < 1e-12);
+    }
+}
+
+/// Issue 13 §3: the twelve waypoint fields sit under one collapsed
+/// "Waypoints" heading; the gains and limits stay among the main controls.
+#[test]
+fn the_waypoint_fields_are_grouped_under_waypoints() {
+    let d = DiffDrive::default();
+    let grouped: Vec<&str> = d
+        .params()
+        .iter()
+        .filter(|s| s.group == Some("Waypoints"))
+        .map(|s| s.key)
+        .collect();
+    assert_eq!(grouped.len(), 2 * MAX_WAYPOINTS);
+    assert!(grouped.iter().all(|k| slot_of(k).is_some()));
+    for s in d.params().iter().filter(|s| slot_of(s.key).is_none()) {
+        assert_eq!(s.group, None, "{}", s.key);
+    }
+}
+
+/// Issue 13 §3: the grid carries no numbers, so the scene asks for a metre
+/// scale bar; and a robot that circles off the field (Kv above twice Max ω)
+/// is marked on the canvas edge.
+#[test]
+fn the_scene_has_a_scale_bar_and_marks_the_robot_when_it_leaves_the_field() {
+    let off_view = |d: &DiffDrive| {
+        let mut scene = Scene::default();
+        d.scene(&mut scene);
+        assert!(scene.items.iter().any(|i| matches!(i, Item::ScaleBar)));
+        scene.items.iter().find_map(|i| match i {
+            Item::OffView { at, label, role } => Some((*at, label.clone(), *role)),
+            _ => None,
+        })
+    };
+    let mut d = DiffDrive::default();
+    assert_eq!(
+        off_view(&d),
+        Some((START.position(), "robot".to_owned(), Role::Robot))
+    );
+    d.set_param("kv", 3.0).unwrap();
+    d.set_param("vmax", 2.0).unwrap();
+    d.set_param("wmax", 0.2).unwrap();
+    click(&mut d, DVec2::new(1.0, 3.0));
+    let view = d.view();
+    let inside = |p: DVec2| p.cmpge(view.min).all() && p.cmple(view.max).all();
+    let mut left_at = None;
+    for k in 0..60 * 20 {
+        d.step(DT);
+        if !inside(d.pose().position()) {
+            left_at = Some(k);
+            break;
+        }
+    }
+    assert!(left_at.is_some(), "the robot stays in the field");
+    let (at, _, _) = off_view(&d).expect("an edge mark for the robot");
+    assert_eq!(at, d.pose().position());
+    assert!(!inside(at));
+}
+
+// ---- The Procedure of assets/diffdrive.json, one test per numbered step. ----
+
+/// Step 1's goal: near the left edge, behind the robot.
+const STEP_1_GOAL: DVec2 = DVec2::new(0.8, 4.5);
+/// Step 3's clicks: four more waypoints.
+const STEP_3_CLICKS: [DVec2; 4] = [
+    DVec2::new(2.0, 1.0),
+    DVec2::new(6.5, 1.0),
+    DVec2::new(7.0, 5.0),
+    DVec2::new(3.0, 5.5),
+];
+
+/// Steps until the run ends (bounded), returning the steps taken.
+fn run_to_end(d: &mut DiffDrive) -> usize {
+    let mut n = 0;
+    while d.animating() && n < 60 * 120 {
+        d.step(DT);
+        n += 1;
+    }
+    assert!(!d.animating(), "the route is driven within two minutes");
+    n
+}
+
+fn step_1(d: &mut DiffDrive) {
+    click(d, STEP_1_GOAL);
+    run_to_end(d);
+}
+
+/// Step 2 leaves the robot replaying step 1's goal, half a second in.
+fn step_2(d: &mut DiffDrive) {
+    d.action("reset").unwrap();
+    for _ in 0..30 {
+        d.step(DT);
+    }
+}
+
+/// Step 3: four more waypoints, the third of them (waypoint 4) tapped away,
+/// the last dragged; then the route is driven to its end.
+fn step_3(d: &mut DiffDrive) {
+    for p in STEP_3_CLICKS {
+        click(d, p);
+    }
+    click(d, STEP_3_CLICKS[2]);
+    d.input(Input::PointerDown(STEP_3_CLICKS[3]));
+    d.input(Input::PointerMove {
+        pos: DVec2::new(3.0, 3.0),
+        pressed: true,
+    });
+    d.input(Input::PointerMove {
+        pos: DVec2::new(2.5, 2.0),
+        pressed: true,
+    });
+    d.input(Input::PointerUp(DVec2::new(2.5, 2.0)));
+    run_to_end(d);
+}
+
+fn total_path(d: &DiffDrive) -> f64 {
+    d.run_cards().iter().map(|c| c.path_length_m).sum()
+}
+
+fn replay(d: &mut DiffDrive) {
+    d.action("reset").unwrap();
+    run_to_end(d);
+}
+
+/// The Procedure's steps as the content file states them.
+fn procedure_step(k: usize) -> String {
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/diffdrive.json"))
+            .unwrap();
+    content.procedure[k - 1].clone()
+}
+
+fn scene_of(d: &DiffDrive) -> Scene {
+    let mut scene = Scene::default();
+    d.scene(&mut scene);
+    scene
+}
+
+/// Step 1: the robot waits in the middle facing right, with a scale bar; a
+/// goal near the left edge is turned to on the spot, then driven to, and
+/// the badge says so, ending at "reached the goal".
+#[test]
+fn diffdrive_step_1_a_goal_behind_is_turned_to_then_driven_to() {
+    assert!(procedure_step(1).contains("middle of the field, facing right"));
+    assert!(procedure_step(1).contains("near the left edge of the field, behind the robot"));
+    let mut d = DiffDrive::default();
+    assert_eq!(d.pose(), START);
+    assert_eq!(START.position(), DVec2::new(4.0, 3.0));
+    assert_eq!(START.theta_rad, 0.0);
+    assert!(scene_of(&d)
+        .items
+        .iter()
+        .any(|i| matches!(i, Item::ScaleBar)));
+    assert_eq!(d.status().text, "idle: click to drop a goal");
+    click(&mut d, STEP_1_GOAL);
+    let mut seen = vec![d.status().text];
+    let mut n = 0;
+    while d.animating() && n < 60 * 30 {
+        d.step(DT);
+        n += 1;
+        let text = d.status().text;
+        if seen.last() != Some(&text) {
+            seen.push(text);
+        }
+    }
+    assert_eq!(
+        seen,
+        [
+            "waypoint 1 of 1: turning on the spot",
+            "waypoint 1 of 1: driving",
+            "reached the goal"
+        ]
+    );
+    assert_eq!(d.status().phase, Phase::Ended);
+    assert!((d.pose().position() - STEP_1_GOAL).length() <= TOLERANCE_M);
+    let trail = scene_of(&d).items.into_iter().find_map(|i| match i {
+        Item::Polyline {
+            points,
+            role: Role::Path,
+            ..
+        } => Some(points),
+        _ => None,
+    });
+    let trail = trail.expect("a trail");
+    assert_eq!(trail[0], START.position());
+    assert!(trail.len() > 50 && (*trail.last().unwrap() - STEP_1_GOAL).length() < 0.06);
+}
+
+/// Step 2 (issue 13 §1): replayed, the first half-second is a spin on the
+/// spot — v = 0, ω at its limit, vL = −vR, vR − vL = ω b — until the goal is
+/// less than 90° off the heading; then the robot rolls. The same holds for
+/// any goal near the left edge, the issue's (0.7, 4.5) among them.
+#[test]
+fn diffdrive_step_2_speed_stays_zero_while_the_robot_spins_at_its_turn_limit() {
+    assert!(procedure_step(2).contains("more than 90°"));
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    d.action("reset").unwrap();
+    let mut spinning = 0;
+    loop {
+        d.step(DT);
+        if d.command().heading_error_rad.abs() <= std::f64::consts::FRAC_PI_2 {
+            break;
+        }
+        spinning += 1;
+        assert_eq!(readout(&d, "v"), "0.000 m/s");
+        assert_eq!(readout(&d, "omega"), "1.400 rad/s");
+        let (vl, vr) = (readout(&d, "vl"), readout(&d, "vr"));
+        assert_eq!(vl, format!("-{vr}"));
+        let (vl, vr) = d.wheels();
+        assert!((vr - vl - d.command().omega_radps * 0.3).abs() < 1e-12);
+        assert_eq!(d.status().text, "waypoint 1 of 1: turning on the spot");
+        assert!(spinning < 600);
+    }
+    assert!(spinning >= 30, "{spinning} frames of spinning");
+    for _ in 0..5 {
+        d.step(DT);
+    }
+    assert!(d.command().v_mps > 0.01, "then it rolls");
+    assert_eq!(d.status().text, "waypoint 1 of 1: driving");
+    // Any goal near the left edge gives at least half a second of it.
+    let mut goals = vec![DVec2::new(0.7, 4.5)];
+    for x in [0.0, 0.5, 1.0] {
+        for y in [0.0, 1.5, 3.0, 4.5, 6.0] {
+            goals.push(DVec2::new(x, y));
+        }
+    }
+    for g in goals {
+        let mut e = DiffDrive::default();
+        click(&mut e, g);
+        let mut frames = 0;
+        while {
+            e.step(DT);
+            e.command().heading_error_rad.abs() > std::f64::consts::FRAC_PI_2
+        } {
+            assert_eq!(e.command().v_mps, 0.0, "{g}");
+            assert_eq!(e.command().omega_radps.abs(), 1.4, "{g}");
+            frames += 1;
+        }
+        assert!(frames >= 30, "{g}: {frames} frames");
+    }
+}
+
+/// Step 3: more clicks queue numbered waypoints; a tap removes one (the
+/// later ones move up a number), a drag moves one; each waypoint reached
+/// shows its path length and time, and the run card its four numbers.
+#[test]
+fn diffdrive_step_3_queued_waypoints_are_numbered_and_each_gets_a_run_card() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    for p in STEP_3_CLICKS {
+        click(&mut d, p);
+    }
+    let labels = |d: &DiffDrive| -> Vec<(DVec2, String)> {
+        scene_of(d)
+            .items
+            .into_iter()
+            .filter_map(|i| match i {
+                Item::Label { pos, text, .. } if text.parse::<usize>().is_ok() => Some((pos, text)),
+                _ => None,
+            })
+            .collect()
+    };
+    let expected: Vec<(DVec2, String)> = std::iter::once(STEP_1_GOAL)
+        .chain(STEP_3_CLICKS)
+        .enumerate()
+        .map(|(i, p)| (p, (i + 1).to_string()))
+        .collect();
+    assert_eq!(labels(&d), expected);
+    // Tap waypoint 4: it goes, and waypoint 5 becomes 4.
+    click(&mut d, STEP_3_CLICKS[2]);
+    assert_eq!(d.waypoints().len(), 4);
+    assert_eq!(labels(&d)[3], (STEP_3_CLICKS[3], "4".to_owned()));
+    // Drag waypoint 4 elsewhere.
+    d.input(Input::PointerDown(STEP_3_CLICKS[3]));
+    d.input(Input::PointerMove {
+        pos: DVec2::new(2.5, 2.0),
+        pressed: true,
+    });
+    d.input(Input::PointerUp(DVec2::new(2.5, 2.0)));
+    assert_eq!(d.waypoints()[3], DVec2::new(2.5, 2.0));
+    // Each waypoint reached shows its card's path length and time beside it.
+    let mut reached = 0;
+    while d.animating() {
+        d.step(DT);
+        if d.reached() > reached {
+            reached = d.reached();
+            let card = d.run_cards()[reached - 1];
+            let text = format!(
+                "{} m · {} s",
+                format_fixed(card.path_length_m, 2),
+                format_fixed(card.time_to_goal_s.unwrap(), 1)
+            );
+            let w = d.waypoints()[reached - 1];
+            assert!(
+                scene_of(&d).items.iter().any(
+                    |i| matches!(i, Item::Label { pos, text: t, .. } if *pos == w && *t == text)
+                ),
+                "{text} beside waypoint {reached}"
+            );
+        }
+    }
+    assert_eq!(reached, 4);
+    assert_eq!(readout(&d, "card"), "waypoint 4 (reached)");
+    let card = d.run_cards()[3];
+    assert_eq!(readout(&d, "path"), format_metres(card.path_length_m));
+    assert_eq!(
+        readout(&d, "time"),
+        format!("{} s", format_fixed(card.time_to_goal_s.unwrap(), 2))
+    );
+    assert_eq!(
+        readout(&d, "max_error"),
+        format_degrees(card.max_heading_error_rad.to_degrees())
+    );
+    assert!(readout(&d, "at_limit").starts_with("v ") && readout(&d, "at_limit").contains("%, ω "));
+    // The route driven: the route step_3 builds for the later steps.
+    let mut e = DiffDrive::default();
+    step_1(&mut e);
+    step_2(&mut e);
+    step_3(&mut e);
+    assert_eq!(e.waypoints(), d.waypoints());
+}
+
+/// Step 4: Kω = 1 drives the same route in wider arcs (a longer path on the
+/// cards, different largest heading errors); Kω = 10 is shorter than Kω = 1
+/// and about the default's length, as the turn limit sets the early turns.
+#[test]
+fn diffdrive_step_4_a_low_k_omega_drives_wider_arcs() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    step_3(&mut d);
+    let default_path = total_path(&d);
+    let default_cards = d.run_cards().to_vec();
+    d.set_param("kw", 1.0).unwrap();
+    replay(&mut d);
+    assert_eq!(d.reached(), 4);
+    let lazy_path = total_path(&d);
+    assert!(
+        lazy_path > default_path + 0.3,
+        "{lazy_path} vs {default_path}"
+    );
+    assert!(d.run_cards()[0].path_length_m > default_cards[0].path_length_m + 0.2);
+    assert!(d
+        .run_cards()
+        .iter()
+        .zip(&default_cards)
+        .any(|(a, b)| (a.max_heading_error_rad - b.max_heading_error_rad).abs() > 0.5));
+    d.set_param("kw", 10.0).unwrap();
+    replay(&mut d);
+    let brisk_path = total_path(&d);
+    assert!(brisk_path < lazy_path - 0.3);
+    assert!((brisk_path - default_path).abs() < 0.05);
+}
+
+/// Step 5: with Max v = 0.6 the shaded "at a limit" time of each leg lies
+/// between the larger of the card's two percentages and their sum; a lower
+/// Max ω makes the first turn slower; a wider track changes the wheel
+/// speeds and not the path.
+#[test]
+fn diffdrive_step_5_limits_shade_the_plot_and_the_track_changes_only_wheel_speeds() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    step_3(&mut d);
+    d.set_param("kw", 10.0).unwrap();
+    d.set_param("vmax", 0.6).unwrap();
+    replay(&mut d);
+    let plot = &d.plots()[0];
+    assert_eq!(plot.markers.len(), 4);
+    let mut start = 0.0;
+    for (card, marker) in d.run_cards().iter().zip(&plot.markers) {
+        let shaded: f64 = plot
+            .bands
+            .iter()
+            .map(|b| (b.hi.min(marker.x) - b.lo.max(start)).max(0.0))
+            .sum();
+        let (v, w) = (
+            card.v_limit_share() * card.elapsed_s,
+            card.omega_limit_share() * card.elapsed_s,
+        );
+        assert!(v > 0.5 && w > 0.2, "{card:?}");
+        assert!(shaded >= v.max(w) - 2.0 * DT && shaded <= v + w + 2.0 * DT);
+        start = marker.x;
+    }
+    // Max ω halved: the first turn on the spot takes about twice as long.
+    let spin = |d: &mut DiffDrive| {
+        d.action("reset").unwrap();
+        let mut frames = 0;
+        while {
+            d.step(DT);
+            d.command().v_mps == 0.0
+        } {
+            frames += 1;
+        }
+        frames
+    };
+    let fast = spin(&mut d);
+    d.set_param("wmax", 0.7).unwrap();
+    let slow = spin(&mut d);
+    assert!(
+        slow >= 2 * fast - 2 && slow <= 2 * fast + 2,
+        "{fast} → {slow}"
+    );
+    d.set_param("wmax", 1.4).unwrap();
+    // Track 0.3 m → 0.6 m: the same path, twice the wheel-speed difference.
+    let mut wide = d.clone();
+    wide.set_param("track", 0.6).unwrap();
+    d.action("reset").unwrap();
+    wide.action("reset").unwrap();
+    while d.animating() {
+        d.step(DT);
+        wide.step(DT);
+        assert_eq!(d.pose(), wide.pose());
+        let ((l, r), (wl, wr)) = (d.wheels(), wide.wheels());
+        assert!(((wr - wl) - 2.0 * (r - l)).abs() < 1e-12);
+    }
+    assert_eq!(d.trail, wide.trail);
+}
+
+/// Step 6: RK4 against Euler on the same route: the cards agree within a
+/// centimetre and a frame or two.
+#[test]
+fn diffdrive_step_6_rk4_and_euler_cards_agree_closely() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    step_3(&mut d);
+    d.set_param("kw", 10.0).unwrap();
+    d.set_param("vmax", 0.6).unwrap();
+    replay(&mut d);
+    let euler = d.run_cards().to_vec();
+    d.set_param("integ", 1.0).unwrap();
+    replay(&mut d);
+    assert_eq!(d.run_cards().len(), euler.len());
+    for (a, b) in euler.iter().zip(d.run_cards()) {
+        assert!(
+            (a.path_length_m - b.path_length_m).abs() < 0.01,
+            "{a:?} {b:?}"
+        );
+        let (ta, tb) = (a.time_to_goal_s.unwrap(), b.time_to_goal_s.unwrap());
+        assert!((ta - tb).abs() <= 2.0 * DT + 1e-9, "{ta} {tb}");
+        assert!(a != b, "the two integrators differ slightly");
+    }
+}
+
+/// Step 7: the link holds the gains and every waypoint; opened fresh it
+/// replays exactly the same run. Clear waypoints and Reset robot return to
+/// the start with an empty route.
+#[test]
+fn diffdrive_step_7_the_link_replays_the_run_and_clear_returns_to_the_start() {
+    let mut d = DiffDrive::default();
+    step_1(&mut d);
+    step_2(&mut d);
+    step_3(&mut d);
+    d.set_param("kw", 10.0).unwrap();
+    d.set_param("vmax", 0.6).unwrap();
+    d.set_param("integ", 1.0).unwrap();
+    replay(&mut d);
+    let link = format(&d, Tab::Simulation);
+    let (mut opened, notices) = restore(&link, DiffDrive::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(format(&opened, Tab::Simulation), link);
+    d.action("reset").unwrap();
+    while d.animating() {
+        d.step(DT);
+        opened.step(DT);
+        assert_eq!(d.pose(), opened.pose());
+    }
+    assert!(!opened.animating());
+    assert_eq!(d.run_cards(), opened.run_cards());
+    d.action("clear").unwrap();
+    d.action("reset").unwrap();
+    assert_eq!(d.pose(), START);
+    assert!(d.waypoints().is_empty());
+    assert_eq!(d.status().text, "idle: click to drop a goal");
+    assert!(!format(&d, Tab::Simulation).contains("w1x"));
+}
+
+/// Issue 15: every generated question can be set up on the Simulation tab —
+/// speeds, turn rates, gains and the track inside their sliders' ranges, and
+/// the goal offset one the field allows from the start pose.
+#[test]
+fn generators_draw_inside_the_slider_ranges() {
+    let spec = |key: &str| *crate::experiment::find_spec(PARAMS, key).unwrap();
+    let within = |key: &str, v: f64| {
+        let s = spec(key);
+        assert!((s.min..=s.max).contains(&v), "{key} = {v}");
+    };
+    let mut rng = Lcg64::new(15);
+    for _ in 0..2000 {
+        let w = quiz_right_wheel(&mut rng);
+        assert!((0.0..=spec("vmax").max).contains(&w.var("v").unwrap()));
+        assert!(w.var("w").unwrap().abs() <= spec("wmax").max);
+        within("track", w.var("b").unwrap());
+        let h = quiz_heading_error(&mut rng);
+        let goal = START.position() + DVec2::new(h.var("x").unwrap(), h.var("y").unwrap());
+        assert!(
+            goal.cmpge(DVec2::ZERO).all() && goal.cmple(DVec2::new(FIELD_W_M, FIELD_H_M)).all(),
+            "{h:?}"
+        );
+        let f = quiz_forward_speed(&mut rng);
+        within("kv", f.var("kv").unwrap());
+        within("vmax", f.var("vmax").unwrap());
+        assert!(f.var("d").unwrap() <= DVec2::new(FIELD_W_M, FIELD_H_M).length());
+    }
+}
+
+/// Issue 15: the correct option is the strictly longest in at most a
+/// quarter of the choice questions, so its length gives nothing away.
+#[test]
+fn quiz_option_lengths_do_not_give_the_answer_away() {
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/diffdrive.json"))
+            .unwrap();
+    let (mut choices, mut longest) = (0, 0);
+    for q in &content.quiz {
+        if let crate::content::Question::Choice {
+            options, answer, ..
+        } = q
+        {
+            choices += 1;
+            let len = |s: &String| s.chars().count();
+            let correct = len(&options[*answer]);
+            if options
+                .iter()
+                .enumerate()
+                .all(|(i, o)| i == *answer || len(o) < correct)
+            {
+                longest += 1;
+            }
+        }
+    }
+    assert!(choices >= 4);
+    assert!(4 * longest <= choices, "{longest} of {choices}");
+    assert!(content
+        .references
+        .iter()
+        .all(|r| !r.authors.contains("Virtual Labs")));
+}
+
+/// A student's session that touches every way of making waypoints: clicks
+/// (also outside the field), taps that remove, drags, arrow-key nudges,
+/// typed fields with many decimals or out of range, gains, the two buttons
+/// and time.
+fn waypoint_session(d: &mut DiffDrive, seed: u64) {
+    let mut rng = Lcg64::new(seed);
+    for _ in 0..40 {
+        let any_point = |rng: &mut Lcg64| DVec2::new(rng.range(-1.0, 9.0), rng.range(-1.0, 7.0));
+        let existing = |d: &DiffDrive, rng: &mut Lcg64| {
+            let w = d.waypoints();
+            (!w.is_empty()).then(|| w[rng.int(0, w.len() as i64 - 1) as usize])
+        };
+        match rng.int(0, 9) {
+            0 | 1 => click(d, any_point(&mut rng)),
+            2 => {
+                if let Some(w) = existing(d, &mut rng) {
+                    click(d, w);
+                }
+            }
+            3 => {
+                let from = existing(d, &mut rng).unwrap_or_else(|| any_point(&mut rng));
+                let to = any_point(&mut rng);
+                d.input(Input::PointerDown(from));
+                d.input(Input::PointerMove {
+                    pos: (from + to) * 0.5,
+                    pressed: true,
+                });
+                d.input(Input::PointerMove {
+                    pos: to,
+                    pressed: true,
+                });
+                d.input(Input::PointerUp(to));
+            }
+            4 => d.input(Input::Nudge(DVec2::new(
+                rng.range(-0.3, 0.3),
+                rng.range(-0.3, 0.3),
+            ))),
+            5 => {
+                let slot = rng.int(1, MAX_WAYPOINTS as i64);
+                let axis = if rng.int(0, 1) == 0 { 'x' } else { 'y' };
+                let _ = d.set_param(&format!("w{slot}{axis}"), rng.range(-1.0, 9.0));
+            }
+            6 => {
+                let spec = PARAMS[rng.int(0, 5) as usize];
+                let _ = d.set_param(spec.key, rng.range(spec.min, spec.max));
+            }
+            7 => {
+                let key = if rng.int(0, 3) == 0 { "clear" } else { "reset" };
+                d.action(key).unwrap();
+            }
+            _ => {
+                for _ in 0..rng.int(0, 300) {
+                    d.step(DT);
+                }
+            }
+        }
+    }
+}
+
+/// Issue 13 §2: every route a student can make is in the link — format,
+/// parse and apply to a fresh experiment reproduce every waypoint and gain
+/// exactly, with no notice, and the same run.
+#[test]
+fn links_reproduce_every_route_a_student_can_make() {
+    for seed in 0..150 {
+        let mut d = DiffDrive::default();
+        waypoint_session(&mut d, seed);
+        let link = format(&d, Tab::Simulation);
+        let (mut opened, notices) = restore(&link, DiffDrive::default());
+        assert!(notices.is_empty(), "seed {seed}: {link}: {notices:?}");
+        assert_eq!(format(&opened, Tab::Simulation), link, "seed {seed}");
+        assert_eq!(opened.slots, d.slots, "seed {seed}: {link}");
+        for spec in PARAMS {
+            assert!(d.param(spec.key) == opened.param(spec.key), "{}", spec.key);
+        }
+        d.reset();
+        for _ in 0..120 {
+            d.step(DT);
+            opened.step(DT);
+        }
+        assert_eq!(d.pose(), opened.pose(), "seed {seed}");
+    }
+}
+
+/// Issue 13 §2's repro: the default link pasted into a tab where three
+/// waypoints were clicked gives no waypoints ("0 of 0"), as a fresh page.
+#[test]
+fn the_default_link_in_a_used_tab_gives_no_waypoints() {
+    use crate::route::{open_in_tab, parse, Page};
+    let default_link = format(&DiffDrive::default(), Tab::Simulation);
+    let Page::Experiment { params, .. } = parse(&default_link, &["diffdrive"]).page else {
+        panic!("{default_link}");
+    };
+    let make = || -> Box<dyn Experiment> { Box::new(DiffDrive::default()) };
+    let mut tab = make();
+    for p in [
+        DVec2::new(1.0, 1.0),
+        DVec2::new(2.0, 5.0),
+        DVec2::new(7.0, 2.0),
+    ] {
+        tab.input(Input::PointerDown(p));
+        tab.input(Input::PointerUp(p));
+    }
+    assert_eq!(
+        crate::experiment::readout_value(tab.as_ref(), "waypoints").unwrap(),
+        "0 of 3"
+    );
+    assert!(open_in_tab(&mut tab, make, &params).is_empty());
+    assert_eq!(
+        crate::experiment::readout_value(tab.as_ref(), "waypoints").unwrap(),
+        "0 of 0"
+    );
+    assert_eq!(format(tab.as_ref(), Tab::Simulation), default_link);
+}

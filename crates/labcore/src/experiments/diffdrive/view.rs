@@ -1,0 +1,293 @@
+//! What experiment 4 shows: the field, the robot and its route, the readouts
+//! and the status. Only reads the model.
+
+use super::{DiffDrive, BODY_RADIUS_M, FIELD_H_M, FIELD_W_M, START};
+use crate::experiment::{format_degrees, format_fixed, format_metres, Readout, Status, Tone};
+use crate::mobile::go_to_goal::RunStats;
+use crate::mobile::unicycle::Pose;
+use crate::scene::{Item, Role, Scene, ViewBox};
+use glam::DVec2;
+
+/// Draws a differential-drive robot at `pose`: a round body with a nose
+/// showing the heading and two wheels `track_m` apart.
+pub(crate) fn draw_robot(out: &mut Scene, pose: Pose, track_m: f64) {
+    if !pose.is_finite() {
+        return;
+    }
+    let c = pose.position();
+    let f = pose.heading();
+    let left = f.perp();
+    let body: Vec<DVec2> = (0..20)
+        .map(|i| {
+            let a = pose.theta_rad + std::f64::consts::TAU * f64::from(i) / 20.0;
+            let (s, co) = crate::math::sin_cos(a);
+            c + DVec2::new(co, s) * BODY_RADIUS_M
+        })
+        .collect();
+    out.push(Item::Polygon {
+        points: body,
+        role: Role::Robot,
+    });
+    let half = 0.5 * track_m.clamp(0.05, 1.0);
+    for side in [1.0, -1.0] {
+        let w = c + left * side * half;
+        let (along, across) = (f * 0.09, left * 0.025);
+        out.push(Item::Polygon {
+            points: vec![
+                w - along - across,
+                w + along - across,
+                w + along + across,
+                w - along + across,
+            ],
+            role: Role::Base,
+        });
+    }
+    out.push(Item::Line {
+        from: c,
+        to: c + f * BODY_RADIUS_M * 1.35,
+        width_px: 3.0,
+        role: Role::Base,
+        dashed: false,
+    });
+}
+
+/// A light 1 m grid over `[0, w] × [0, h]` as one batch of segments.
+pub(crate) fn draw_field(out: &mut Scene, w: f64, h: f64) {
+    let mut segments = Vec::new();
+    let mut x = 0.0;
+    while x <= w + 1e-9 {
+        segments.push((DVec2::new(x, 0.0), DVec2::new(x, h)));
+        x += 1.0;
+    }
+    let mut y = 0.0;
+    while y <= h + 1e-9 {
+        segments.push((DVec2::new(0.0, y), DVec2::new(w, y)));
+        y += 1.0;
+    }
+    out.push(Item::Segments {
+        segments,
+        width_px: 1.0,
+        role: Role::Grid,
+    });
+}
+
+/// The run card shown in the readouts: the active run, else the last one
+/// finished; with its 1-based waypoint number and whether it is done.
+pub(super) fn shown_card(d: &DiffDrive) -> Option<(usize, RunStats, bool)> {
+    let reached = d.reached();
+    if !d.follower.queue.is_empty() {
+        Some((reached + 1, d.follower.current, false))
+    } else {
+        d.follower.completed.last().map(|s| (reached, *s, true))
+    }
+}
+
+pub(super) fn view() -> ViewBox {
+    ViewBox {
+        min: DVec2::ZERO,
+        max: DVec2::new(FIELD_W_M, FIELD_H_M),
+    }
+}
+
+pub(super) fn scene(d: &DiffDrive, out: &mut Scene) {
+    draw_field(out, FIELD_W_M, FIELD_H_M);
+    // The grid lines are 1 m apart but carry no numbers: a scale bar says so.
+    out.push(Item::ScaleBar);
+    out.push(Item::Circle {
+        center: START.position(),
+        radius_m: BODY_RADIUS_M,
+        role: Role::Ghost,
+        fill: false,
+        dashed: true,
+    });
+    if d.trail.len() > 1 {
+        out.push(Item::Polyline {
+            points: d.trail.clone(),
+            width_px: 2.5,
+            role: Role::Path,
+            dashed: false,
+            closed: false,
+        });
+    }
+    // The route still to drive, dashed.
+    if !d.follower.queue.is_empty() {
+        let mut route = vec![d.pose().position()];
+        route.extend(d.follower.queue.iter().copied());
+        out.push(Item::Polyline {
+            points: route,
+            width_px: 1.5,
+            role: Role::Target,
+            dashed: true,
+            closed: false,
+        });
+    }
+    let reached = d.reached();
+    for (k, (slot, w)) in d
+        .slots
+        .iter()
+        .enumerate()
+        .filter_map(|(i, w)| w.map(|w| (i, w)))
+        .enumerate()
+    {
+        let done = k < reached;
+        let role = if done { Role::Visited } else { Role::Target };
+        out.push(Item::Dot {
+            center: w,
+            radius_px: if k == reached { 8.0 } else { 6.0 },
+            role,
+        });
+        out.push(Item::Label {
+            pos: w,
+            text: (slot + 1).to_string(),
+            role: Role::Text,
+            offset_px: DVec2::new(-4.0, 18.0),
+        });
+        if let Some(card) = d.follower.completed.get(k) {
+            out.push(Item::Label {
+                pos: w,
+                text: format!(
+                    "{} m · {} s",
+                    format_fixed(card.path_length_m, 2),
+                    format_fixed(card.time_to_goal_s.unwrap_or(card.elapsed_s), 1)
+                ),
+                role: Role::Text,
+                offset_px: DVec2::new(10.0, -10.0),
+            });
+        }
+    }
+    let pose = d.pose();
+    draw_robot(out, pose, d.track_m);
+    // With Kv above twice Max ω the robot can circle wide of its goal and
+    // leave the field: the page marks the canvas edge toward it meanwhile.
+    if pose.is_finite() {
+        out.push(Item::OffView {
+            at: pose.position(),
+            label: "robot".into(),
+            role: Role::Robot,
+        });
+    }
+    let cmd = d.command();
+    if cmd.v_mps > 1e-3 {
+        out.push(Item::Arrow {
+            from: pose.position(),
+            to: pose.position() + pose.heading() * cmd.v_mps,
+            width_px: 2.0,
+            role: Role::Accent,
+        });
+    }
+}
+
+pub(super) fn readouts(d: &DiffDrive) -> Vec<Readout> {
+    let cmd = d.command();
+    let (vl, vr) = d.wheels();
+    let pose = d.pose();
+    let speed = |v: f64| format!("{} m/s", format_fixed(v, 3));
+    let goal = d.follower.goal().map_or("--".into(), |g| {
+        format_metres((g - pose.position()).length())
+    });
+    let mut out = vec![
+        Readout::new("v", "Speed v", speed(cmd.v_mps)),
+        Readout::new(
+            "omega",
+            "Turn rate ω",
+            format!("{} rad/s", format_fixed(cmd.omega_radps, 3)),
+        ),
+        Readout::degrees("heading", "Heading θ", pose.theta_rad.to_degrees()),
+        Readout::new("goal", "Goal distance", goal),
+        Readout::new("vl", "Left wheel vL", speed(vl)),
+        Readout::new("vr", "Right wheel vR", speed(vr)),
+        Readout::new(
+            "waypoints",
+            "Waypoints reached",
+            format!("{} of {}", d.reached(), d.waypoints().len()),
+        ),
+    ];
+    let card = shown_card(d);
+    let value = |f: &dyn Fn(&RunStats, bool) -> String| {
+        card.as_ref()
+            .map_or("--".into(), |(_, s, done)| f(s, *done))
+    };
+    out.extend([
+        Readout::new(
+            "card",
+            "Run card",
+            card.as_ref().map_or("--".into(), |(n, _, done)| {
+                format!(
+                    "waypoint {n}{}",
+                    if *done { " (reached)" } else { " (driving)" }
+                )
+            }),
+        ),
+        Readout::new(
+            "path",
+            "Path length",
+            value(&|s, _| format_metres(s.path_length_m)),
+        ),
+        Readout::new(
+            "time",
+            "Time to goal",
+            value(&|s, done| match (done, s.time_to_goal_s) {
+                (true, Some(t)) => format!("{} s", format_fixed(t, 2)),
+                _ => format!("{} s so far", format_fixed(s.elapsed_s, 2)),
+            }),
+        ),
+        Readout::new(
+            "max_error",
+            "Largest heading error",
+            value(&|s, _| format_degrees(s.max_heading_error_rad.to_degrees())),
+        ),
+        Readout::new(
+            "at_limit",
+            "Time at a limit",
+            value(&|s, _| {
+                format!(
+                    "v {}%, ω {}%",
+                    format_fixed(100.0 * s.v_limit_share(), 1),
+                    format_fixed(100.0 * s.omega_limit_share(), 1)
+                )
+            }),
+        ),
+    ]);
+    out
+}
+
+pub(super) fn status(d: &DiffDrive) -> Status {
+    let total = d.waypoints().len();
+    if total == 0 {
+        return Status::new("idle: click to drop a goal", Tone::Neutral);
+    }
+    let reached = d.reached();
+    let Some(goal) = d.follower.goal() else {
+        // Every waypoint of the route reached: the run is over until the
+        // student adds one (or replays it).
+        return Status::ended(
+            if total == 1 {
+                "reached the goal".to_owned()
+            } else {
+                format!("reached all {total} waypoints")
+            },
+            Tone::Good,
+        );
+    };
+    // The command the readouts show, once the robot has been stepped toward
+    // this goal; before that, what the controller commands from here. No
+    // forward speed while the goal is more than 90° off the heading.
+    let cmd = if d.follower.current.elapsed_s > 0.0 {
+        d.command()
+    } else {
+        d.follower.controller.command(d.pose(), goal)
+    };
+    let doing = if cmd.v_mps < 1e-3 && cmd.heading_error_rad.abs() > 0.1 {
+        "turning on the spot"
+    } else {
+        "driving"
+    };
+    Status::new(
+        format!("waypoint {} of {total}: {doing}", reached + 1),
+        Tone::Neutral,
+    )
+}
+
+pub(super) fn hint() -> &'static str {
+    "Click or tap to drop a goal; click again to queue more waypoints. Drag a waypoint to move it, tap it to remove it."
+}
