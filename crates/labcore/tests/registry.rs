@@ -712,3 +712,91 @@ fn plots_hold_finite_data_and_export_every_sample() {
         );
     }
 }
+
+/// Issue 15: the correct option was the longest in 42 of 63 choice questions
+/// (67 %), so a test-wise student could guess it. Across the lab it must stay
+/// near chance: strictly the longest in at most 35 % of choice questions, and
+/// strictly the shortest in at most 35 % too (the reverse tell).
+#[test]
+fn option_lengths_do_not_give_the_answer_away() {
+    let (mut choices, mut longest, mut shortest) = (0usize, Vec::new(), Vec::new());
+    for entry in registry() {
+        let content = entry.content().expect("content parses");
+        for (i, q) in content.quiz.iter().enumerate() {
+            let labcore::content::Question::Choice {
+                options, answer, ..
+            } = q
+            else {
+                continue;
+            };
+            choices += 1;
+            let len = |s: &String| s.chars().count();
+            let correct = len(&options[*answer]);
+            let others = options
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| k != answer)
+                .map(|(_, o)| len(o));
+            if others.clone().all(|l| l < correct) {
+                longest.push(format!("{} q{}", entry.id, i + 1));
+            }
+            if others.clone().all(|l| l > correct) {
+                shortest.push(format!("{} q{}", entry.id, i + 1));
+            }
+        }
+    }
+    assert!(choices >= 50, "{choices} choice questions");
+    let share = |n: usize| 100.0 * n as f64 / choices as f64;
+    println!(
+        "{choices} choice questions; correct option strictly longest in {} ({:.0} %), strictly shortest in {} ({:.0} %)",
+        longest.len(),
+        share(longest.len()),
+        shortest.len(),
+        share(shortest.len())
+    );
+    assert!(share(longest.len()) <= 35.0, "longest: {longest:?}");
+    assert!(share(shortest.len()) <= 35.0, "shortest: {shortest:?}");
+}
+
+/// Issue 15: a generated question must be one a student can set up on the
+/// page: every drawn value whose placeholder is named after a parameter lies
+/// inside that parameter's slider range (fk drew L₁ up to 2.0 m while the
+/// slider stops at 1.2 m). The experiments' own tests check the placeholders
+/// with other names.
+#[test]
+fn generators_draw_inside_the_sliders_ranges() {
+    let mut checked = 0;
+    for entry in registry() {
+        let exp = (entry.make)();
+        let content = entry.content().expect("content parses");
+        for q in &content.quiz {
+            let labcore::content::Question::Generated { generator, .. } = q else {
+                continue;
+            };
+            let draw_fn = (entry.generators)(generator).expect("generator exists");
+            for seed in 0..400 {
+                let draw = draw_fn(&mut labcore::Lcg64::new(seed));
+                for (name, _) in &draw.vars {
+                    let Some(spec) = exp.params().iter().find(|s| s.key == *name) else {
+                        continue;
+                    };
+                    let v = draw.var(name).expect("a drawn parameter reads as a number");
+                    // The shown value is rounded: half its last decimal of slack.
+                    let slack = 1e-6 * (spec.max - spec.min).abs().max(1.0) + 0.005;
+                    assert!(
+                        v >= spec.min - slack && v <= spec.max + slack,
+                        "{} generator {generator} seed {seed}: {name} = {v} outside the slider's {}…{}",
+                        entry.id,
+                        spec.min,
+                        spec.max
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(
+        checked > 1000,
+        "only {checked} drawn values were named after parameters"
+    );
+}
