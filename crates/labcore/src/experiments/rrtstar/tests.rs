@@ -1,0 +1,322 @@
+use super::quiz::*;
+use super::*;
+use crate::route::{apply_params, format, restore, Tab};
+
+const DT: f64 = 1.0 / 60.0;
+
+fn settle(f: &mut RrtStarField) -> usize {
+    let mut n = 0;
+    while f.animating() {
+        f.step(DT);
+        n += 1;
+        assert!(n < 100_000);
+    }
+    n
+}
+
+#[test]
+fn grow_tree_animates_a_fixed_batch_per_step_and_finds_a_short_path() {
+    let mut f = RrtStarField::default();
+    f.action("grow").unwrap();
+    f.step(DT);
+    assert_eq!(f.shown().unwrap().iterations(), 24);
+    let frames = settle(&mut f);
+    assert_eq!(frames + 1, 4000_usize.div_ceil(24));
+    let tree = f.shown().unwrap();
+    assert_eq!(tree.iterations(), 4000);
+    let best = tree.best_cost().expect("a path");
+    // Straight start → goal is 8.4 m; the gap in the wall costs a detour.
+    assert!(best > 8.4 && best < 12.0, "{best}");
+    assert!(f.status().text.starts_with("done: best path"));
+    // Every tree edge and the path are collision-free.
+    let world = f.world().unwrap();
+    for (i, &p) in tree.parents().iter().enumerate() {
+        if p != NO_PARENT {
+            let (a, b) = (tree.nodes()[p as usize], tree.nodes()[i]);
+            assert!(world.segment_free(a, b, CHECK_RESOLUTION_M));
+        }
+    }
+    // The plot is non-increasing.
+    let s = &f.plots()[0].series[0];
+    assert!(s.len() > 10);
+    assert!(s.y.windows(2).all(|w| w[1] <= w[0]));
+    assert_eq!(s.role, SeriesRole::Primary);
+}
+
+#[test]
+fn the_tree_is_one_segments_item_and_rewired_edges_a_second() {
+    let mut f = RrtStarField::default();
+    f.action("grow").unwrap();
+    for _ in 0..60 {
+        f.step(DT);
+    }
+    let mut scene = Scene::default();
+    f.scene(&mut scene);
+    let batches: Vec<(Role, usize)> = scene
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::Segments { segments, role, .. } => Some((*role, segments.len())),
+            _ => None,
+        })
+        .collect();
+    let tree = f.shown().unwrap();
+    assert_eq!(batches[0], (Role::Visited, tree.len() - 1));
+    assert!(batches.len() <= 2);
+    if let Some(&(role, n)) = batches.get(1) {
+        assert_eq!(role, Role::Warning);
+        assert_eq!(n, tree.rewired_in_last_batch().len());
+    }
+    // The radius circle around the newest node, and the amber best path.
+    let newest = tree.nodes()[tree.newest().unwrap()];
+    assert!(scene.items.iter().any(|i| matches!(i,
+        Item::Circle { center, dashed: true, role: Role::Accent, .. } if *center == newest)));
+    if tree.best_cost().is_some() {
+        assert!(scene.items.iter().any(|i| matches!(
+            i,
+            Item::Polyline {
+                role: Role::Path,
+                ..
+            }
+        )));
+    }
+    assert!(scene.is_finite());
+}
+
+#[test]
+fn same_seed_same_tree_and_reset_replays_it() {
+    let grow = |seed: f64| {
+        let mut f = RrtStarField::default();
+        f.set_param("seed", seed).unwrap();
+        f.action("grow").unwrap();
+        for _ in 0..40 {
+            f.step(DT);
+        }
+        f
+    };
+    let (a, b, c) = (grow(7.0), grow(7.0), grow(8.0));
+    assert_eq!(a.shown().unwrap().nodes(), b.shown().unwrap().nodes());
+    assert_eq!(a.shown().unwrap().parents(), b.shown().unwrap().parents());
+    assert_ne!(a.shown().unwrap().nodes(), c.shown().unwrap().nodes());
+    let mut a = a;
+    let nodes = a.shown().unwrap().nodes().to_vec();
+    a.reset();
+    assert_eq!(a.shown().unwrap().len(), 1);
+    for _ in 0..40 {
+        a.step(DT);
+    }
+    assert_eq!(a.shown().unwrap().nodes(), &nodes[..]);
+}
+
+#[test]
+fn compare_grows_three_planners_on_one_seed_with_one_curve_each() {
+    let mut f = RrtStarField::default();
+    f.action("compare").unwrap();
+    settle(&mut f);
+    let plot = &f.plots()[0];
+    let names: Vec<&str> = plot.series.iter().map(|s| s.label.as_str()).collect();
+    assert_eq!(names, ["RRT", "RRT*", "Informed RRT*"]);
+    let roles: Vec<SeriesRole> = plot.series.iter().map(|s| s.role).collect();
+    assert_eq!(
+        roles,
+        [
+            SeriesRole::Secondary,
+            SeriesRole::Primary,
+            SeriesRole::Tertiary
+        ]
+    );
+    assert!(plot.series.iter().all(|s| !s.is_empty()));
+    // Each curve is its planner's own: the same as growing it alone.
+    for (i, planner) in PLANNER_KINDS.iter().enumerate() {
+        let mut alone = RrtStarField::default();
+        alone.set_param("planner", i as f64).unwrap();
+        alone.action("grow").unwrap();
+        settle(&mut alone);
+        assert_eq!(
+            alone.plots()[0].series[0].y,
+            plot.series[i].y,
+            "{planner:?}"
+        );
+    }
+    let t = f.tables().pop().unwrap();
+    assert_eq!(t.key, "compare");
+    assert_eq!(t.rows.len(), 3);
+    assert_eq!(t.highlight, Some(1));
+    let rrt = f.runs[0].tree.best_cost().unwrap();
+    let star = f.runs[1].tree.best_cost().unwrap();
+    assert!(star <= rrt, "RRT* {star} vs RRT {rrt}");
+    assert_eq!(t.rows[1][4], format_metres(star));
+    // Other planners' paths are drawn too.
+    let mut scene = Scene::default();
+    f.scene(&mut scene);
+    let paths = scene
+        .items
+        .iter()
+        .filter(|i| matches!(i, Item::Polyline { .. }))
+        .count();
+    assert_eq!(paths, 3);
+}
+
+#[test]
+fn obstacles_are_added_dragged_and_removed_by_pointer() {
+    let mut f = RrtStarField::default();
+    let n = f.obstacles.len();
+    // A click on free space adds a disc; dragging places it.
+    f.input(Input::PointerDown(DVec2::new(3.5, 5.3)));
+    f.input(Input::PointerMove {
+        pos: DVec2::new(3.6, 5.2),
+        pressed: true,
+    });
+    f.input(Input::PointerUp(DVec2::new(3.6, 5.2)));
+    assert_eq!(f.obstacles.len(), n + 1);
+    assert_eq!(
+        f.obstacles[n],
+        Obstacle::Circle {
+            center: DVec2::new(3.6, 5.2),
+            radius: NEW_OBSTACLE_RADIUS_M
+        }
+    );
+    // Dragging an existing rectangle moves it by the pointer's motion.
+    f.input(Input::PointerDown(DVec2::new(2.2, 1.2)));
+    f.input(Input::PointerMove {
+        pos: DVec2::new(2.5, 1.0),
+        pressed: true,
+    });
+    f.input(Input::PointerUp(DVec2::ZERO));
+    assert_eq!(
+        f.obstacles[1],
+        Obstacle::rect(DVec2::new(2.1, 0.4), DVec2::new(2.9, 1.6))
+    );
+    // Dropped outside the field: removed.
+    f.input(Input::PointerDown(DVec2::new(7.2, 1.9)));
+    f.input(Input::PointerMove {
+        pos: DVec2::new(12.0, 1.9),
+        pressed: true,
+    });
+    f.input(Input::PointerUp(DVec2::new(12.0, 1.9)));
+    assert_eq!(f.obstacles.len(), n);
+    assert!(f.handle_at(f.start, 0.05) && f.handle_at(DVec2::new(2.8, 3.6), 0.05));
+    assert!(!f.handle_at(DVec2::new(9.0, 0.5), 0.05));
+}
+
+#[test]
+fn shift_and_ctrl_click_move_the_ends_and_a_blocked_start_is_explained() {
+    let mut f = RrtStarField::default();
+    let shift = Modifiers {
+        shift: true,
+        ctrl: false,
+    };
+    let ctrl = Modifiers {
+        shift: false,
+        ctrl: true,
+    };
+    f.input_with(Input::PointerDown(DVec2::new(0.5, 0.512)), shift);
+    assert_eq!(f.start, DVec2::new(0.5, 0.51));
+    f.input_with(Input::PointerDown(DVec2::new(20.0, 5.0)), ctrl);
+    assert_eq!(f.goal, DVec2::new(10.0, 5.0));
+    // Into an obstacle: growing is refused with a clear status, no panic.
+    f.input_with(Input::PointerDown(DVec2::new(2.8, 3.6)), shift);
+    f.action("grow").unwrap();
+    assert!(!f.animating());
+    let st = f.status();
+    assert_eq!(st.tone, Tone::Bad);
+    assert!(st.text.contains("start is in an obstacle"), "{}", st.text);
+    f.action("drive").unwrap();
+    settle(&mut f);
+    let mut scene = Scene::default();
+    f.scene(&mut scene);
+    assert!(scene.is_finite());
+}
+
+#[test]
+fn drive_follows_the_best_path_to_the_goal() {
+    let mut f = RrtStarField::default();
+    f.action("drive").unwrap();
+    assert!(f.status().text.contains("no path to drive"));
+    f.action("grow").unwrap();
+    settle(&mut f);
+    let path = f.best_path().unwrap();
+    f.action("drive").unwrap();
+    assert!(f.animating());
+    settle(&mut f);
+    assert_eq!(f.robot(), path.last().copied());
+    assert_eq!(f.status().text, "arrived at the goal");
+}
+
+#[test]
+fn the_link_holds_obstacles_and_ends_exactly() {
+    let mut f = RrtStarField::default();
+    f.input(Input::PointerDown(DVec2::new(3.456, 5.3)));
+    f.input(Input::PointerMove {
+        pos: DVec2::new(3.111, 5.2229),
+        pressed: true,
+    });
+    f.input(Input::Nudge(DVec2::new(0.05, -0.05)));
+    f.set_param("eta", 0.75).unwrap();
+    let link = format(&f, Tab::Simulation);
+    assert!(link.contains("&obs=c280_360_90~"), "{link}");
+    let (mut fresh, notices) = restore(&link, RrtStarField::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(fresh.obstacles, f.obstacles);
+    assert_eq!(format(&fresh, Tab::Simulation), link);
+    let notices = apply_params(&mut fresh, &[("obs".into(), "c1_2~q".into())]);
+    assert_eq!(notices.len(), 1, "{notices:?}");
+    assert_eq!(fresh.obstacles, f.obstacles);
+    assert_eq!(decode_obstacles("none").unwrap(), vec![]);
+    assert!(decode_obstacles("r5_5_1_1").is_err());
+    assert!(decode_obstacles("c1_1_0").is_err());
+    assert!(decode_obstacles("c99999999999999999999_1_1").is_err());
+}
+
+#[test]
+fn quiz_radius_matches_the_planner() {
+    let mut rng = Lcg64::new(4);
+    for _ in 0..20 {
+        let d = quiz_radius(&mut rng);
+        let (gamma, n, eta) = (
+            d.var("gamma").unwrap(),
+            d.var("n").unwrap() as usize,
+            d.var("eta").unwrap(),
+        );
+        let world = World::new(DVec2::ZERO, DVec2::splat(10.0), vec![]).unwrap();
+        let config = RrtConfig {
+            gamma: Some(gamma),
+            step_eta: eta,
+            ..RrtConfig::default()
+        };
+        let tree = RrtStar::new(world, DVec2::ONE, DVec2::splat(9.0), config).unwrap();
+        assert!((tree.radius(n) - d.answer).abs() < 1e-12);
+        let d = quiz_steer_x(&mut rng);
+        assert!(d.answer.is_finite());
+    }
+}
+
+/// A 20,000-iteration tree: one frame's step and scene stay fast
+/// (generous bound for a debug build on a shared machine).
+#[test]
+fn a_large_tree_steps_and_draws_quickly() {
+    let mut f = RrtStarField::default();
+    f.set_param("iters", 20000.0).unwrap();
+    f.set_param("batch", 24.0).unwrap();
+    f.action("grow").unwrap();
+    if let Some(run) = f.runs.first_mut() {
+        run.tree.iterate(19_000);
+    }
+    let mut scene = Scene::default();
+    let mut worst = 0.0f64;
+    for _ in 0..20 {
+        let t = std::time::Instant::now();
+        f.step(DT);
+        scene.clear();
+        f.scene(&mut scene);
+        worst = worst.max(t.elapsed().as_secs_f64());
+    }
+    let edges = f.shown().unwrap().len() - 1;
+    eprintln!(
+        "RRT* with {edges} edges: worst step + scene {:.2} ms",
+        worst * 1e3
+    );
+    assert!(edges > 10_000);
+    let bound = if cfg!(debug_assertions) { 0.25 } else { 0.01 };
+    assert!(worst < bound, "worst frame {worst} s");
+}
