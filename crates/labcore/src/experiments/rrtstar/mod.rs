@@ -191,7 +191,12 @@ pub fn decode_obstacles(text: &str) -> Result<Vec<Obstacle>, String> {
         let numbers: Vec<i64> = chars
             .as_str()
             .split('_')
-            .map(|s| s.parse::<i64>().ok().filter(|v| v.abs() <= LINK_CM_LIMIT))
+            .map(|s| {
+                // A range test, not `abs()`: |i64::MIN| overflows.
+                s.parse::<i64>()
+                    .ok()
+                    .filter(|v| (-LINK_CM_LIMIT..=LINK_CM_LIMIT).contains(v))
+            })
             .collect::<Option<Vec<_>>>()
             .ok_or_else(bad)?;
         let m = |v: i64| v as f64 / 100.0;

@@ -320,3 +320,33 @@ fn a_large_tree_steps_and_draws_quickly() {
     let bound = if cfg!(debug_assertions) { 0.25 } else { 0.01 };
     assert!(worst < bound, "worst frame {worst} s");
 }
+
+/// Issue 14: `obs=c-9223372036854775808_300_60` took `abs()` of `i64::MIN`
+/// (a panic with overflow checks, a wrap past the ±1000 m limit without).
+#[test]
+fn obstacle_codes_with_extreme_integers_are_refused_with_a_notice() {
+    for text in [
+        "c-9223372036854775808_300_60",
+        "c9223372036854775807_300_60",
+        "r-9223372036854775808_0_10_10",
+        "c300_-9223372036854775808_60",
+        "c300_300_-9223372036854775808",
+        "c-100001_300_60",
+    ] {
+        assert!(decode_obstacles(text).is_err(), "{text}");
+        let mut f = RrtStarField::default();
+        let before = format(&f, Tab::Simulation);
+        let notices = apply_params(&mut f, &[("obs".into(), text.into())]);
+        assert_eq!(notices.len(), 1, "{text}: {notices:?}");
+        assert_eq!(f.obstacles, default_obstacles(), "{text}");
+        assert_eq!(format(&f, Tab::Simulation), before, "{text}");
+    }
+    // The limit itself still reads.
+    assert_eq!(
+        decode_obstacles("c-100000_100000_60").unwrap(),
+        vec![Obstacle::Circle {
+            center: DVec2::new(-1000.0, 1000.0),
+            radius: 0.6
+        }]
+    );
+}
