@@ -104,7 +104,7 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
     const errorX = await downloadCsv(page, "error_x");
     assert.equal(errorX.text.split(/\r?\n/)[0], "Time (s),x error (m),+3σx (m),−3σx (m)");
     const trace = await downloadCsv(page, "trace");
-    assert.equal(trace.text.split(/\r?\n/)[0], "Time (s),trace(P) (m² + rad²)");
+    assert.equal(trace.text.split(/\r?\n/)[0], "Time (s),σx² + σy² (m²)");
   }));
 
 test("ekf: the Simulation tab at desktop and phone sizes", async () => {

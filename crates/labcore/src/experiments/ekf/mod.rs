@@ -53,8 +53,8 @@ use crate::estimation::models::{
 use crate::estimation::slam::EkfSlam;
 use crate::estimation::wrap_angle;
 use crate::experiment::{
-    check_param, format_fixed, format_magnitude, ActionSpec, Experiment, Input, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, format_magnitude, ActionSpec, Experiment, Input, Notice, Notices,
+    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{format_number, Draw, Generator};
@@ -139,6 +139,8 @@ pub const SINGLE_RUN_BAND: (f64, f64) = (0.2158, 9.3484);
 /// check to call the filter consistent (95 % expected; a little slack).
 const INSIDE_NEEDED: f64 = 0.9;
 const VIEW_HALF_M: f64 = 4.7;
+/// The notice posted when a setting changes under a consistency check.
+pub const STALE_CHECK_NOTICE: &str = "settings changed: run the consistency check again";
 const VIEW_HEADROOM_M: f64 = 1.2;
 
 /// What the truth and the filter are told: noises, sensor and mode.
@@ -499,8 +501,9 @@ pub struct EkfExperiment {
     /// x error, y error, NEES, trace(P), Monte-Carlo average NEES.
     plots: [Plot; 5],
     check: Option<Check>,
-    /// A parameter changed after a check: its result no longer applies.
-    check_stale: bool,
+    /// Transient messages ("settings changed: run the consistency check
+    /// again"), shown under the status, never in its place.
+    notices: Notices,
 }
 
 /// Indices into `plots` and `trails`.
@@ -555,10 +558,10 @@ fn new_plots() -> [Plot; 5] {
     });
     let mut trace = Plot::new(
         "trace",
-        "Uncertainty trace(P)",
+        "Position uncertainty: trace of P's position block",
         ("Time", "s"),
-        ("trace(P)", "m² + rad²"),
-        vec![Series::new("trace(P)", "m² + rad²", SeriesRole::Primary)],
+        ("σx² + σy²", "m²"),
+        vec![Series::new("σx² + σy²", "m²", SeriesRole::Primary)],
     );
     trace.window = XWindow::Rolling(WINDOW_S);
     let mut anees = Plot::new(
@@ -601,7 +604,7 @@ impl Default for EkfExperiment {
             trails: Default::default(),
             plots: new_plots(),
             check: None,
-            check_stale: false,
+            notices: Notices::default(),
         };
         e.restart();
         e
@@ -661,7 +664,7 @@ impl EkfExperiment {
             self.seed,
             self.runs,
         ));
-        self.check_stale = false;
+        self.notices.clear();
         let p = &mut self.plots[PLOT_ANEES];
         p.clear();
         p.bands.clear();
@@ -669,7 +672,7 @@ impl EkfExperiment {
 
     fn clear_check(&mut self) {
         self.check = None;
-        self.check_stale = false;
+        self.notices.clear();
         let p = &mut self.plots[PLOT_ANEES];
         p.clear();
         p.bands.clear();
@@ -692,7 +695,7 @@ impl EkfExperiment {
         }
         // NaN (singular P) is skipped by `push`.
         self.plots[PLOT_NEES].series[0].push(t, run.nees().unwrap_or(f64::NAN));
-        self.plots[PLOT_TRACE].series[0].push(t, trace3(cov));
+        self.plots[PLOT_TRACE].series[0].push(t, position_trace(cov));
         for p in &mut self.plots[..PLOT_ANEES] {
             for s in &mut p.series {
                 let old = s.x.iter().take_while(|x| **x < t - WINDOW_S).count();
@@ -754,9 +757,10 @@ impl EkfExperiment {
     }
 }
 
-/// `tr(P)` of a pose covariance (m² + m² + rad²).
-fn trace3(p: DMat3) -> f64 {
-    p.x_axis.x + p.y_axis.y + p.z_axis.z
+/// `tr(P_xy) = P_xx + P_yy`, m²: the trace of the position block of a pose
+/// covariance. (The trace of the whole pose block would add m² and rad².)
+fn position_trace(p: DMat3) -> f64 {
+    p.x_axis.x + p.y_axis.y
 }
 
 impl Experiment for EkfExperiment {
@@ -808,7 +812,7 @@ impl Experiment for EkfExperiment {
             }
             if self.check.is_some() {
                 self.clear_check();
-                self.check_stale = true;
+                self.notices.post(STALE_CHECK_NOTICE, Tone::Warning);
             }
         }
         Ok(applied)
@@ -878,6 +882,10 @@ impl Experiment for EkfExperiment {
 
     fn status(&self) -> Status {
         view::status(self)
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
     }
 
     fn hint(&self) -> &'static str {

@@ -76,9 +76,11 @@ fn first_predict_matches_a_hand_computed_step() {
     let (mean, cov) = hand_predict();
     assert!((e.live.estimate() - mean).length() < 1e-15);
     assert!(close_mat(e.live.pose_cov(), cov), "{:?}", e.live.pose_cov());
-    let tr = cov.x_axis.x + cov.y_axis.y + cov.z_axis.z;
-    assert_eq!(readout(&e, "trace"), format_magnitude(tr));
-    assert_eq!(readout(&e, "trace"), "0.006");
+    // Issue 15: the readout is the position block's trace, in m² only (the
+    // whole pose block would add 0.0012 rad² of heading variance to it).
+    let tr = cov.x_axis.x + cov.y_axis.y;
+    assert_eq!(readout(&e, "trace"), format!("{} m²", format_magnitude(tr)));
+    assert_eq!(readout(&e, "trace"), "0.005 m²");
     assert_eq!(
         readout(&e, "error"),
         format_metres((e.live.truth.truncate() - mean.truncate()).length())
@@ -119,9 +121,9 @@ fn first_update_matches_the_information_form() {
             assert!((p.col(j)[i] - post.col(j)[i]).abs() < 1e-12, "P[{i}][{j}]");
         }
     }
-    let tr = trace3(post);
-    assert!(tr < trace3(pbar), "the update shrinks P");
-    assert_eq!(readout(&e, "trace"), format_magnitude(tr));
+    let tr = position_trace(post);
+    assert!(tr < position_trace(pbar), "the update shrinks P");
+    assert_eq!(readout(&e, "trace"), format!("{} m²", format_magnitude(tr)));
     assert_eq!(
         readout(&e, "error"),
         format_metres((e.live.truth.truncate() - mean.truncate()).length())
@@ -143,7 +145,10 @@ fn three_sigma_bounds_are_the_square_roots_of_the_diagonal_of_p() {
         assert_eq!(last(2), -3.0 * var.sqrt());
         assert_eq!(plot.series[1].role, SeriesRole::Bound);
     }
-    assert_eq!(*e.plots[PLOT_TRACE].series[0].y.last().unwrap(), trace3(p));
+    assert_eq!(
+        *e.plots[PLOT_TRACE].series[0].y.last().unwrap(),
+        position_trace(p)
+    );
     assert_eq!(
         *e.plots[PLOT_NEES].series[0].y.last().unwrap(),
         e.live.nees().unwrap()
@@ -251,8 +256,45 @@ fn consistency_check_at_default_noise_is_inside_the_band() {
     assert_eq!(again.check_result(), Some(r));
     again.set_param("sb", 5.0).unwrap();
     assert!(again.check.is_none());
-    assert_eq!(again.status().tone, Tone::Warning);
+    assert_eq!(again.notice().unwrap().text, STALE_CHECK_NOTICE);
     assert!(again.plots[PLOT_ANEES].series[0].is_empty());
+}
+
+/// Issue 13 §4: "settings changed: run the consistency check again" is a
+/// notice beside the status; the status keeps telling the run's state
+/// (running, the mode, the check in progress), and a new check withdraws the
+/// notice.
+#[test]
+fn a_setting_changed_under_a_check_is_a_notice_and_the_status_keeps_the_run() {
+    use crate::experiment::Phase;
+    let mut e = EkfExperiment::default();
+    assert_eq!(e.notice(), None);
+    e.action("check").unwrap();
+    run_for(&mut e, 0.5);
+    e.set_param("sw", 8.0).unwrap();
+    let notice = e.notice().expect("a notice");
+    assert_eq!(notice.text, STALE_CHECK_NOTICE);
+    assert_eq!(notice.tone, Tone::Warning);
+    let status = e.status();
+    assert_eq!(status.text, "EKF localisation running");
+    assert_eq!(status.phase, Phase::Live);
+    run_for(&mut e, 2.0);
+    assert_eq!(e.status().text, "EKF localisation running");
+    // The mode shows through too.
+    e.set_param("mode", 1.0).unwrap();
+    assert!(
+        e.status().text.starts_with("EKF-SLAM: "),
+        "{}",
+        e.status().text
+    );
+    // A second setting change without a check posts nothing new.
+    let serial = e.notice().unwrap().serial;
+    e.set_param("sb", 3.0).unwrap();
+    assert_eq!(e.notice().unwrap().serial, serial);
+    // Running the check again withdraws it; the status counts the runs.
+    e.action("check").unwrap();
+    assert_eq!(e.notice(), None);
+    assert_eq!(e.status().text, "consistency check… 0/50 runs");
 }
 
 #[test]

@@ -152,7 +152,11 @@ pub(super) fn readouts(e: &EkfExperiment) -> Vec<Readout> {
             "Heading error",
             heading_error_rad(truth, est).to_degrees(),
         ),
-        Readout::new("trace", "trace(P), pose", format_magnitude(trace3(cov))),
+        Readout::new(
+            "trace",
+            "Position uncertainty σx² + σy²",
+            format!("{} m²", format_magnitude(position_trace(cov))),
+        ),
         Readout::new(
             "nees",
             "NEES",
@@ -170,12 +174,6 @@ pub(super) fn readouts(e: &EkfExperiment) -> Vec<Readout> {
 }
 
 pub(super) fn status(e: &EkfExperiment) -> Status {
-    if e.check_stale {
-        return Status::new(
-            "settings changed: run the consistency check again",
-            Tone::Warning,
-        );
-    }
     if let Some(check) = &e.check {
         if !check.finished() {
             return Status::new(
