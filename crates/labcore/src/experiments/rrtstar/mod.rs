@@ -26,8 +26,8 @@
 //! and the obstacles as text (key `obs`, see [`encode_obstacles`]).
 
 use crate::experiment::{
-    check_param, format_metres, ActionSpec, Experiment, Input, Modifiers, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
+    check_param, format_metres, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
+    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar, NO_PARENT};
 use crate::planning::world::{Obstacle, World};
@@ -54,6 +54,8 @@ const DRIVE_SPEED: f64 = 1.2;
 const HANDLE_M: f64 = 0.25;
 /// Obstacle coordinates in a link are read within ±this many centimetres.
 const LINK_CM_LIMIT: i64 = 100_000;
+/// The notice posted when a change of the field or of a setting drops the tree.
+pub const CLEARED_NOTICE: &str = "field or settings changed: the tree was cleared, grow it again";
 
 const PLANNERS: &[&str] = &["RRT", "RRT*", "Informed RRT*"];
 const PLANNER_KINDS: [Planner; 3] = [Planner::Rrt, Planner::RrtStar, Planner::InformedRrtStar];
@@ -258,15 +260,15 @@ pub struct RrtStarField {
     growing: bool,
     /// Why the last run could not start.
     error: Option<RrtError>,
-    /// Settings changed after a run: the tree was dropped.
-    stale: bool,
     /// Distance driven along the frozen path, metres.
     driven_m: Option<f64>,
     drive_path: Vec<DVec2>,
     drag: Drag,
     /// Which handle arrow keys move (the one grabbed last).
     nudge: Drag,
-    note: Option<String>,
+    /// Transient messages (the tree was cleared, nothing to drive yet),
+    /// shown under the status, never in its place.
+    notices: Notices,
     plots: [Plot; 1],
 }
 
@@ -314,12 +316,11 @@ impl Default for RrtStarField {
             runs: Vec::new(),
             growing: false,
             error: None,
-            stale: false,
             driven_m: None,
             drive_path: Vec::new(),
             drag: Drag::None,
             nudge: Drag::Start,
-            note: None,
+            notices: Notices::default(),
             plots: [cost_plot(&[Planner::RrtStar])],
         }
     }
@@ -368,16 +369,15 @@ impl RrtStarField {
     fn start_run(&mut self, planners: &[Planner]) {
         self.runs.clear();
         self.growing = false;
-        self.stale = false;
         self.driven_m = None;
         self.drive_path.clear();
         self.error = None;
-        self.note = None;
+        self.notices.clear();
         self.plots = [cost_plot(planners)];
         let world = match self.world() {
             Ok(w) => w,
             Err(e) => {
-                self.note = Some(e);
+                self.notices.post(e, Tone::Bad);
                 return;
             }
         };
@@ -401,8 +401,8 @@ impl RrtStarField {
 
     /// Drops the run after a change of the field or of a planner setting.
     fn invalidate(&mut self) {
-        if !self.runs.is_empty() || self.error.is_some() {
-            self.stale = !self.runs.is_empty();
+        if !self.runs.is_empty() {
+            self.notices.post(CLEARED_NOTICE, Tone::Warning);
         }
         self.runs.clear();
         self.growing = false;
@@ -490,9 +490,11 @@ impl RrtStarField {
                 self.growing = false;
                 self.drive_path = path;
                 self.driven_m = Some(0.0);
-                self.note = None;
+                self.notices.clear();
             }
-            _ => self.note = Some("no path to drive yet: grow the tree first".into()),
+            _ => self
+                .notices
+                .post("no path to drive yet: grow the tree first", Tone::Warning),
         }
     }
 
@@ -660,8 +662,10 @@ impl Experiment for RrtStarField {
                     };
                 } else if Self::in_field(p) {
                     if self.obstacles.len() >= MAX_OBSTACLES {
-                        self.note =
-                            Some(format!("the field holds at most {MAX_OBSTACLES} obstacles"));
+                        self.notices.post(
+                            format!("the field holds at most {MAX_OBSTACLES} obstacles"),
+                            Tone::Warning,
+                        );
                         return;
                     }
                     let center = cm_vec(p);
@@ -817,6 +821,10 @@ impl Experiment for RrtStarField {
 
     fn status(&self) -> Status {
         view::status(self)
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
     }
 
     fn hint(&self) -> &'static str {

@@ -232,7 +232,8 @@ fn shift_and_ctrl_click_move_the_ends_and_a_blocked_start_is_explained() {
 fn drive_follows_the_best_path_to_the_goal() {
     let mut f = RrtStarField::default();
     f.action("drive").unwrap();
-    assert!(f.status().text.contains("no path to drive"));
+    assert!(f.notice().unwrap().text.contains("no path to drive"));
+    assert_eq!(f.status().text, "idle: press Grow tree");
     f.action("grow").unwrap();
     settle(&mut f);
     let path = f.best_path().unwrap();
@@ -241,6 +242,7 @@ fn drive_follows_the_best_path_to_the_goal() {
     settle(&mut f);
     assert_eq!(f.robot(), path.last().copied());
     assert_eq!(f.status().text, "arrived at the goal");
+    assert_eq!(f.status().phase, crate::experiment::Phase::Ended);
 }
 
 #[test]

@@ -217,12 +217,6 @@ pub(super) fn status(f: &RrtStarField) -> Status {
         };
         return Status::new(text, Tone::Bad);
     }
-    if let Some(note) = &f.note {
-        return Status::new(note.clone(), Tone::Warning);
-    }
-    if f.stale {
-        return Status::new("field or settings changed: grow again", Tone::Warning);
-    }
     let Some(tree) = f.shown() else {
         return Status::new("idle: press Grow tree", Tone::Neutral);
     };
@@ -231,7 +225,7 @@ pub(super) fn status(f: &RrtStarField) -> Status {
         return if f.driving() {
             Status::new("driving the best path", Tone::Good)
         } else {
-            Status::new("arrived at the goal", Tone::Good)
+            Status::ended("arrived at the goal", Tone::Good)
         };
     }
     let what = if f.runs.len() > 1 {
@@ -246,9 +240,9 @@ pub(super) fn status(f: &RrtStarField) -> Status {
         ),
         (true, Some(c)) => Status::new(format!("{what}… best {}", format_metres(c)), Tone::Good),
         (false, Some(c)) => {
-            Status::new(format!("done: best path {}", format_metres(c)), Tone::Good)
+            Status::ended(format!("done: best path {}", format_metres(c)), Tone::Good)
         }
-        (false, None) => Status::new(
+        (false, None) => Status::ended(
             format!("no path found in {} iterations", tree.iterations()),
             Tone::Warning,
         ),
