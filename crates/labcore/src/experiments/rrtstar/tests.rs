@@ -352,3 +352,314 @@ fn obstacle_codes_with_extreme_integers_are_refused_with_a_notice() {
         }]
     );
 }
+
+// ---- The Procedure, step by step (assets/rrtstar.json) ----
+
+/// All the scene's items of one kind.
+fn scene_of(f: &RrtStarField) -> Scene {
+    let mut scene = Scene::default();
+    f.scene(&mut scene);
+    scene
+}
+
+fn best_readout(f: &RrtStarField) -> String {
+    crate::experiment::readout_value(f, "best").unwrap()
+}
+
+/// Step 1: the start (green dot) and the goal (red dot with its dashed
+/// goal disc) sit on opposite sides of the obstacle field.
+#[test]
+fn rrtstar_step_1_start_and_goal_sit_on_opposite_sides_of_the_obstacles() {
+    let f = RrtStarField::default();
+    let scene = scene_of(&f);
+    assert!(scene.items.iter().any(|i| matches!(i,
+        Item::Dot { center, role: Role::Sample, .. } if *center == f.start)));
+    assert!(scene.items.iter().any(|i| matches!(i,
+        Item::Dot { center, role: Role::Tip, .. } if *center == f.goal)));
+    assert!(scene.items.iter().any(|i| matches!(i,
+        Item::Circle { center, radius_m, dashed: true, role: Role::Tip, .. }
+            if *center == f.goal && *radius_m == GOAL_RADIUS_M)));
+    for o in &f.obstacles {
+        let (lo, hi) = match *o {
+            Obstacle::Circle { center, radius } => (center.x - radius, center.x + radius),
+            Obstacle::Rect { min, max } => (min.x, max.x),
+        };
+        assert!(f.start.x < lo && hi < f.goal.x, "{o:?}");
+    }
+    assert_eq!(f.status().text, "idle: press Grow tree");
+}
+
+/// Step 2: Grow tree adds *Iterations per frame* iterations each frame; the
+/// dashed circle is the rewiring radius around the newest node; rewired
+/// edges are drawn red (warning) in the frame they were rewired; the amber
+/// best path appears in the frame the tree reaches the goal disc.
+#[test]
+fn rrtstar_step_2_grow_adds_a_batch_per_frame_with_radius_rewires_and_amber_path() {
+    let mut f = RrtStarField::default();
+    f.action("grow").unwrap();
+    let mut saw_rewire = false;
+    let mut first_path_frame = None;
+    // 150 frames of 24: 3600 of the 4000 iterations.
+    for frame in 1..=150 {
+        f.step(DT);
+        let tree = f.shown().unwrap();
+        assert_eq!(tree.iterations(), 24 * frame);
+        let scene = scene_of(&f);
+        let newest = tree.nodes()[tree.newest().unwrap()];
+        assert!(scene.items.iter().any(|i| matches!(i,
+            Item::Circle { center, radius_m, dashed: true, role: Role::Accent, .. }
+                if *center == newest && *radius_m == tree.last_radius())));
+        let red = scene.items.iter().find_map(|i| match i {
+            Item::Segments {
+                segments,
+                role: Role::Warning,
+                ..
+            } => Some(segments.len()),
+            _ => None,
+        });
+        assert_eq!(red.unwrap_or(0), tree.rewired_in_last_batch().len());
+        saw_rewire |= red.is_some();
+        let amber = scene.items.iter().any(|i| {
+            matches!(
+                i,
+                Item::Polyline {
+                    role: Role::Path,
+                    dashed: false,
+                    ..
+                }
+            )
+        });
+        assert_eq!(amber, tree.best_cost().is_some(), "frame {frame}");
+        if amber && first_path_frame.is_none() {
+            first_path_frame = Some(frame);
+            let end = *tree.best_path().unwrap().last().unwrap();
+            assert!((end - f.goal).length() <= GOAL_RADIUS_M);
+        }
+    }
+    assert!(saw_rewire, "rewired edges flashed red");
+    assert!(first_path_frame.is_some(), "a path within 3600 iterations");
+}
+
+/// Step 3: until the budget is used up the best length only shrinks, and the
+/// readout and the plot follow it.
+#[test]
+fn rrtstar_step_3_the_best_length_shrinks_until_the_budget_is_used() {
+    let mut f = RrtStarField::default();
+    f.action("grow").unwrap();
+    while f.shown().unwrap().best_cost().is_none() {
+        f.step(DT);
+    }
+    let first = f.shown().unwrap().best_cost().unwrap();
+    let first_readout = best_readout(&f);
+    settle(&mut f);
+    let tree = f.shown().unwrap();
+    assert_eq!(tree.iterations(), 4000);
+    let last = tree.best_cost().unwrap();
+    assert!(last < 0.9 * first, "shortened from {first} to {last}");
+    assert_ne!(best_readout(&f), first_readout);
+    assert_eq!(best_readout(&f), format_metres(last));
+    let s = &f.plots()[0].series[0];
+    assert!(s.y.windows(2).all(|w| w[1] <= w[0]));
+    assert_eq!(*s.y.last().unwrap(), last);
+    assert_eq!(*s.x.last().unwrap(), 4000.0);
+    let st = f.status();
+    assert!(st.text.starts_with("done: best path"), "{}", st.text);
+    assert_eq!(st.phase, crate::experiment::Phase::Ended);
+}
+
+/// The iteration of the first path and the final best length.
+fn grow_to_the_end(f: &mut RrtStarField) -> (usize, f64) {
+    f.action("grow").unwrap();
+    settle(f);
+    let tree = f.shown().unwrap();
+    (tree.cost_history()[0].iteration, tree.best_cost().unwrap())
+}
+
+/// Step 4: a new η or goal bias clears the tree (a notice says so); grown
+/// again, the first path comes at another iteration and the final length
+/// differs; another seed gives another result.
+#[test]
+fn rrtstar_step_4_step_bias_and_seed_change_the_first_path_and_final_length() {
+    let mut f = RrtStarField::default();
+    let default = grow_to_the_end(&mut f);
+    f.set_param("eta", 1.0).unwrap();
+    assert!(f.shown().is_none(), "the tree is cleared");
+    assert_eq!(f.notice().unwrap().text, CLEARED_NOTICE);
+    assert_eq!(f.status().text, "idle: press Grow tree");
+    f.set_param("bias", 20.0).unwrap();
+    let changed = grow_to_the_end(&mut f);
+    assert_eq!(f.notice(), None, "growing again withdraws the notice");
+    assert_ne!(changed.0, default.0);
+    assert_ne!(changed.1, default.1);
+    f.set_param("seed", 2.0).unwrap();
+    let reseeded = grow_to_the_end(&mut f);
+    assert_ne!(reseeded, changed);
+}
+
+/// Step 5: Compare grows the three planners from one seed; the table has a
+/// row each; RRT* and Informed RRT* keep improving after their first path
+/// much more than RRT; Informed RRT*'s samples gather inside the ellipse.
+#[test]
+fn rrtstar_step_5_compare_shows_who_keeps_improving_and_who_focuses() {
+    let mut f = RrtStarField::default();
+    f.action("compare").unwrap();
+    settle(&mut f);
+    let t = f.tables().pop().unwrap();
+    let planners: Vec<&str> = t.rows.iter().map(|r| r[0].as_str()).collect();
+    assert_eq!(planners, ["RRT", "RRT*", "Informed RRT*"]);
+    let gain = |i: usize| {
+        let h = f.runs[i].tree.cost_history();
+        h[0].cost - h.last().unwrap().cost
+    };
+    assert!(
+        gain(1) > gain(0) + 0.5,
+        "RRT* {} vs RRT {}",
+        gain(1),
+        gain(0)
+    );
+    assert!(
+        gain(2) > gain(0) + 0.5,
+        "Informed {} vs RRT {}",
+        gain(2),
+        gain(0)
+    );
+    // Share of nodes inside the ellipse of Informed RRT*'s final best path.
+    let c = f.runs[2].tree.best_cost().unwrap() + GOAL_RADIUS_M;
+    let share = |i: usize| {
+        let nodes = f.runs[i].tree.nodes();
+        nodes
+            .iter()
+            .filter(|p| (**p - f.start).length() + (**p - f.goal).length() <= c)
+            .count() as f64
+            / nodes.len() as f64
+    };
+    assert!(
+        share(2) > share(1) + 0.15,
+        "Informed {} vs RRT* {}",
+        share(2),
+        share(1)
+    );
+    assert_eq!(f.plots()[0].series.len(), 3);
+}
+
+/// Step 6: drag an obstacle, the start or the goal; a click adds a disc, a
+/// disc dropped outside is removed; Shift-click sets the start, Ctrl-click
+/// the goal; the tree grows again in the changed field.
+#[test]
+fn rrtstar_step_6_the_field_is_edited_by_pointer_and_the_tree_regrows() {
+    let mut f = RrtStarField::default();
+    f.action("compare").unwrap();
+    settle(&mut f);
+    let n = f.obstacles.len();
+    // Drag the disc at (7.2, 1.9) down by 0.5 m.
+    f.input(Input::PointerDown(DVec2::new(7.2, 1.9)));
+    f.input(Input::PointerMove {
+        pos: DVec2::new(7.2, 1.4),
+        pressed: true,
+    });
+    f.input(Input::PointerUp(DVec2::new(7.2, 1.4)));
+    assert_eq!(
+        f.obstacles[4],
+        Obstacle::Circle {
+            center: DVec2::new(7.2, 1.4),
+            radius: 0.8
+        }
+    );
+    assert!(f.runs.is_empty() && f.notice().is_some());
+    // Drag the start and the goal.
+    f.input(Input::PointerDown(f.start));
+    f.input(Input::PointerMove {
+        pos: DVec2::new(0.6, 2.5),
+        pressed: true,
+    });
+    f.input(Input::PointerUp(DVec2::new(0.6, 2.5)));
+    assert_eq!(f.start, DVec2::new(0.6, 2.5));
+    f.input(Input::PointerDown(f.goal));
+    f.input(Input::PointerMove {
+        pos: DVec2::new(9.4, 3.5),
+        pressed: true,
+    });
+    f.input(Input::PointerUp(DVec2::new(9.4, 3.5)));
+    assert_eq!(f.goal, DVec2::new(9.4, 3.5));
+    // A click on free space adds a disc; one dropped outside is removed.
+    f.input(Input::PointerDown(DVec2::new(6.0, 5.5)));
+    f.input(Input::PointerUp(DVec2::new(6.0, 5.5)));
+    assert_eq!(f.obstacles.len(), n + 1);
+    f.input(Input::PointerDown(DVec2::new(6.0, 5.5)));
+    f.input(Input::PointerMove {
+        pos: DVec2::new(6.0, 7.5),
+        pressed: true,
+    });
+    f.input(Input::PointerUp(DVec2::new(6.0, 7.5)));
+    assert_eq!(f.obstacles.len(), n);
+    // Shift-click and Ctrl-click.
+    let shift = Modifiers {
+        shift: true,
+        ctrl: false,
+    };
+    let ctrl = Modifiers {
+        shift: false,
+        ctrl: true,
+    };
+    f.input_with(Input::PointerDown(DVec2::new(0.5, 1.0)), shift);
+    f.input_with(Input::PointerUp(DVec2::new(0.5, 1.0)), shift);
+    f.input_with(Input::PointerDown(DVec2::new(9.5, 5.0)), ctrl);
+    f.input_with(Input::PointerUp(DVec2::new(9.5, 5.0)), ctrl);
+    assert_eq!(
+        (f.start, f.goal),
+        (DVec2::new(0.5, 1.0), DVec2::new(9.5, 5.0))
+    );
+    // Grow again: a path from the new start to the new goal, clear of the moved disc.
+    f.action("grow").unwrap();
+    settle(&mut f);
+    let path = f.best_path().expect("a path in the edited field");
+    assert_eq!(path[0], DVec2::new(0.5, 1.0));
+    assert!((*path.last().unwrap() - DVec2::new(9.5, 5.0)).length() <= GOAL_RADIUS_M);
+    let world = f.world().unwrap();
+    assert!(path
+        .windows(2)
+        .all(|w| world.segment_free(w[0], w[1], CHECK_RESOLUTION_M)));
+}
+
+/// Step 7: Drive path moves the robot along the best path to the goal.
+#[test]
+fn rrtstar_step_7_drive_follows_the_best_path_to_the_goal() {
+    let mut f = RrtStarField::default();
+    f.action("grow").unwrap();
+    settle(&mut f);
+    let path = f.best_path().unwrap();
+    f.action("drive").unwrap();
+    let robot = |f: &RrtStarField| {
+        scene_of(f).items.iter().find_map(|i| match i {
+            Item::Circle {
+                center,
+                role: Role::Robot,
+                fill: true,
+                ..
+            } => Some(*center),
+            _ => None,
+        })
+    };
+    assert_eq!(robot(&f), Some(path[0]));
+    assert_eq!(f.status().text, "driving the best path");
+    let on_path = |p: DVec2| {
+        path.windows(2).any(|w| {
+            let (a, b) = (w[0], w[1]);
+            let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+            (a + (b - a) * t - p).length() < 1e-9
+        })
+    };
+    let mut last = path[0];
+    while f.animating() {
+        f.step(DT);
+        let p = robot(&f).unwrap();
+        assert!(on_path(p), "{p}");
+        assert!((p - last).length() <= 1.2 * DT + 1e-9);
+        last = p;
+    }
+    assert_eq!(robot(&f), path.last().copied());
+    assert!((last - f.goal).length() <= GOAL_RADIUS_M);
+    let st = f.status();
+    assert_eq!(st.text, "arrived at the goal");
+    assert_eq!(st.phase, crate::experiment::Phase::Ended);
+}
