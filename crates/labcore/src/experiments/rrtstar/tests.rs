@@ -663,3 +663,137 @@ fn rrtstar_step_7_drive_follows_the_best_path_to_the_goal() {
     assert_eq!(st.text, "arrived at the goal");
     assert_eq!(st.phase, crate::experiment::Phase::Ended);
 }
+
+// ---- Content: theory constants, quiz generators, option lengths ----
+
+/// Issue 15: the lab's default γ satisfies Karaman & Frazzoli's RRT*
+/// condition (Theorem 38), γ > (2(1 + 1/d))^(1/d) (μ(X_free)/ζ_d)^(1/d) =
+/// √3 √(μ/π) in the plane, and also their larger PRM*/RRG constant
+/// 2 (1 + 1/d)^(1/d) (μ/ζ_d)^(1/d); the theory quotes it as about 11.8 m.
+#[test]
+fn the_default_gamma_satisfies_both_forms_of_the_radius_condition() {
+    let f = RrtStarField::default();
+    let world = f.world().unwrap();
+    let tree = RrtStar::new(world.clone(), f.start, f.goal, f.config(Planner::RrtStar)).unwrap();
+    let gamma = tree.gamma();
+    let unit = (world.area() / std::f64::consts::PI).sqrt(); // μ(X) ≥ μ(X_free)
+    let rrt_star = 3f64.sqrt() * unit;
+    let prm_star = 2.0 * 1.5f64.sqrt() * unit;
+    assert!(
+        gamma > rrt_star && gamma > prm_star,
+        "{gamma} {rrt_star} {prm_star}"
+    );
+    assert_eq!(format_metres(gamma), "11.775 m");
+    let theory =
+        crate::content::Content::parse(include_str!("../../../../../assets/rrtstar.json")).unwrap();
+    let text = format!("{:?}", theory.theory);
+    assert!(text.contains("about 11.8 m") && text.contains("γ ≈ 11.8 m"));
+}
+
+/// Issue 15: the ellipse the quiz and theory describe is the one the planner
+/// samples: every informed sample satisfies ‖x − s‖ + ‖x − g‖ ≤ c_best + r_goal,
+/// and the generator's answer is that ellipse's short diameter.
+#[test]
+fn the_quiz_ellipse_is_the_one_informed_rrt_star_samples() {
+    // The planner's rule (rrt_star.rs tests check its samples against it).
+    let world = World::new(DVec2::ZERO, FIELD_M, vec![]).unwrap();
+    let (s0, g0) = (DVec2::new(1.0, 3.0), DVec2::new(9.0, 3.0));
+    let mut tree = RrtStar::new(
+        world,
+        s0,
+        g0,
+        RrtStarField::default().config(Planner::InformedRrtStar),
+    )
+    .unwrap();
+    tree.iterate(3000);
+    let c = tree.best_cost().unwrap() + GOAL_RADIUS_M;
+    // The nodes gather inside that ellipse far beyond its share of the field.
+    let cmin = (g0 - s0).length();
+    let area_share = std::f64::consts::FRAC_PI_4 * c * (c * c - cmin * cmin).sqrt() / 60.0;
+    let inside = tree
+        .nodes()
+        .iter()
+        .filter(|p| (**p - s0).length() + (**p - g0).length() <= c + 1e-9)
+        .count();
+    let share = inside as f64 / tree.len() as f64;
+    assert!(share > 1.5 * area_share, "{share} vs area {area_share}");
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/rrtstar.json")).unwrap();
+    let quiz = format!("{:?}", content.quiz);
+    assert!(quiz.contains("long diameter c_best + r_goal"));
+    assert!(quiz.contains("√((c_best + r_goal)² − c_min²)"));
+    let mut rng = Lcg64::new(3);
+    for _ in 0..50 {
+        let d = quiz_ellipse(&mut rng);
+        let (cmin, cbest, r) = (
+            d.var("cmin").unwrap(),
+            d.var("cbest").unwrap(),
+            d.var("rgoal").unwrap(),
+        );
+        assert_eq!(r, GOAL_RADIUS_M);
+        assert!((d.answer - ((cbest + r).powi(2) - cmin * cmin).sqrt()).abs() < 1e-12);
+    }
+}
+
+/// Generators draw what a student can set up: η on the slider's range,
+/// points in the field, n within the largest budget, c_min within the
+/// field's diagonal.
+#[test]
+fn quiz_generators_draw_inside_the_sliders_and_the_field() {
+    let spec = |key: &str| *PARAMS.iter().find(|p| p.key == key).unwrap();
+    let (eta, iters) = (spec("eta"), spec("iters"));
+    let eta_ok = |v: f64| v >= eta.min && v <= eta.max;
+    let in_field =
+        |x: f64, y: f64| (0.0..=FIELD_M.x).contains(&x) && (0.0..=FIELD_M.y).contains(&y);
+    let mut rng = Lcg64::new(99);
+    for _ in 0..500 {
+        let d = quiz_radius(&mut rng);
+        assert!(eta_ok(d.var("eta").unwrap()), "{d:?}");
+        assert!(d.var("n").unwrap() <= iters.max + 1.0, "{d:?}");
+        let d = quiz_steer_x(&mut rng);
+        let g = |k: &str| d.var(k).unwrap();
+        assert!(eta_ok(g("eta")), "{d:?}");
+        assert!(
+            in_field(g("nx"), g("ny")) && in_field(g("rx"), g("ry")),
+            "{d:?}"
+        );
+        let dist = DVec2::new(g("rx") - g("nx"), g("ry") - g("ny")).length();
+        assert!(dist > g("eta"), "{d:?}");
+        let x = g("nx") + (g("rx") - g("nx")) * g("eta") / dist;
+        assert!((d.answer - x).abs() < 1e-9, "{d:?}");
+        let d = quiz_ellipse(&mut rng);
+        assert!(d.var("cmin").unwrap() <= FIELD_M.length(), "{d:?}");
+        assert!(d.var("cbest").unwrap() > d.var("cmin").unwrap(), "{d:?}");
+    }
+}
+
+/// Issue 15: the correct option is not given away by its length: it is the
+/// strictly longest (in characters and in bytes) in at most a quarter of
+/// the choice questions.
+#[test]
+fn the_correct_option_is_seldom_the_longest() {
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/rrtstar.json")).unwrap();
+    let (mut choices, mut longest) = (0, 0);
+    for q in &content.quiz {
+        if let crate::content::Question::Choice {
+            options, answer, ..
+        } = q
+        {
+            choices += 1;
+            for len in [|s: &String| s.chars().count(), |s: &String| s.len()] {
+                let a = len(&options[*answer]);
+                if options
+                    .iter()
+                    .enumerate()
+                    .all(|(i, o)| i == *answer || len(o) < a)
+                {
+                    longest += 1;
+                    break;
+                }
+            }
+        }
+    }
+    assert!(choices >= 6);
+    assert!(4 * longest <= choices, "{longest} of {choices}");
+}
