@@ -1,4 +1,5 @@
 use super::quiz::*;
+use super::view::robot_outline;
 use super::*;
 use crate::experiment::format_metres;
 
@@ -532,4 +533,527 @@ fn quiz_generators_match_closed_forms() {
         assert!((d.answer - n).abs() < 1e-9, "{d:?}");
     }
     assert!(quiz_generator("nope").is_none());
+}
+
+// ---- The Procedure, step by step (assets/ekf.json) ----
+
+/// One filter step of frames (three frames of 1/60 s make 0.05 s).
+fn filter_step(e: &mut EkfExperiment) {
+    let n = e.live.steps;
+    while e.live.steps == n {
+        e.step(DT);
+    }
+}
+
+/// Drives one full loop (38 s) and returns, per filter step, the time, the
+/// position trace, the observations taken and the truth.
+fn one_loop(e: &mut EkfExperiment) -> Vec<(f64, f64, usize, DVec3)> {
+    let mut out = Vec::new();
+    while e.live.time_s() < 38.0 - 1e-9 {
+        filter_step(e);
+        let seen = if e.live.reading_step == Some(e.live.steps) {
+            e.live.observations.len()
+        } else {
+            0
+        };
+        out.push((
+            e.live.time_s(),
+            position_trace(e.live.pose_cov()),
+            seen,
+            e.live.truth,
+        ));
+    }
+    out
+}
+
+fn scene_of(e: &EkfExperiment) -> Scene {
+    let mut scene = Scene::default();
+    e.scene(&mut scene);
+    scene
+}
+
+/// Step 1: the blue dart (truth), the pink dart with its 3σ ellipse
+/// (estimate), the grey dashed dart (dead reckoning), the six stars, the
+/// dashed wedge of the sensor, and a line to each landmark seen at a reading.
+#[test]
+fn ekf_step_1_the_scene_shows_truth_estimate_dead_reckoning_landmarks_and_sensor() {
+    let mut e = EkfExperiment::default();
+    let scene = scene_of(&e);
+    let est = e.live.estimate();
+    let polygon = |role: Role, outline: Vec<DVec2>| {
+        scene.items.iter().any(|i| {
+            matches!(i,
+            Item::Polygon { points, role: r } if *r == role && *points == outline)
+        })
+    };
+    assert!(polygon(Role::Robot, robot_outline(e.live.truth)));
+    assert!(polygon(Role::Estimate, robot_outline(est)));
+    assert!(scene.items.iter().any(|i| matches!(i,
+        Item::Polyline { points, role: Role::Ghost, dashed: true, closed: true, .. }
+            if *points == robot_outline(e.live.dead_reckoning))));
+    assert!(scene.items.iter().any(|i| matches!(i,
+        Item::Ellipse { center, role: Role::Estimate, .. } if *center == est.truncate())));
+    let stars = scene
+        .items
+        .iter()
+        .filter(|i| {
+            matches!(
+                i,
+                Item::Polygon {
+                    role: Role::Accent,
+                    ..
+                }
+            )
+        })
+        .count();
+    assert_eq!(stars, LANDMARKS.len());
+    // The wedge: the robot, then an arc at the sensor range.
+    let wedge = scene
+        .items
+        .iter()
+        .find_map(|i| match i {
+            Item::Polyline {
+                points,
+                role: Role::Bound,
+                dashed: true,
+                closed: true,
+                ..
+            } => Some(points.clone()),
+            _ => None,
+        })
+        .unwrap();
+    assert_eq!(wedge[0], e.live.truth.truncate());
+    assert!(wedge[1..]
+        .iter()
+        .all(|p| ((*p - wedge[0]).length() - 3.0).abs() < 1e-9));
+    // The first reading: one line per landmark in range and view.
+    filter_step(&mut e);
+    let seen = LANDMARKS
+        .iter()
+        .filter(|m| {
+            let d = **m - e.live.truth.truncate();
+            let bearing = wrap_angle(crate::math::atan2(d.y, d.x) - e.live.truth.z);
+            d.length() <= 3.0 && bearing.abs() <= 60f64.to_radians()
+        })
+        .count();
+    assert!(seen >= 1);
+    let lines = scene_of(&e)
+        .items
+        .iter()
+        .filter(|i| {
+            matches!(
+                i,
+                Item::Line {
+                    role: Role::Path,
+                    ..
+                }
+            )
+        })
+        .count();
+    assert_eq!(lines, seen);
+    assert_eq!(e.live.observations.len(), seen);
+}
+
+/// Step 2: on the left side of the loop no landmark is in reach: the
+/// ellipse stretches across the direction of travel and σx² + σy² climbs,
+/// then snaps back when the lone landmark at the bottom left comes into
+/// view. After the loop the EKF's error is far below dead reckoning's.
+#[test]
+fn ekf_step_2_the_ellipse_grows_across_the_track_on_the_left_and_snaps_back() {
+    let mut e = EkfExperiment::default();
+    let lap = one_loop(&mut e);
+    // The longest stretch without a sighting.
+    let (mut best, mut from) = ((0, 0), 0);
+    for (k, s) in lap.iter().enumerate() {
+        if s.2 > 0 {
+            from = k + 1;
+        } else if k + 1 - from > best.1 - best.0 {
+            best = (from, k + 1);
+        }
+    }
+    let (a, b) = best;
+    assert!(lap[b - 1].0 - lap[a].0 > 8.0, "a long blind stretch");
+    assert!(lap[a..b].iter().all(|s| s.3.x < 0.0), "on the left side");
+    let peak = lap[b - 1].1;
+    assert!(
+        peak > 10.0 * lap[a].1,
+        "σx² + σy² climbs: {} → {peak}",
+        lap[a].1
+    );
+    // Then the landmark at the bottom left is seen and the trace snaps back.
+    let after = lap[b];
+    assert!(after.2 >= 1);
+    assert!(after.1 < 0.25 * peak, "{} after {peak}", after.1);
+    assert!(after.3.x < 0.0 && after.3.y < 0.0, "bottom left");
+    // Across the track: rerun to the end of the stretch and look at the ellipse.
+    let mut f = EkfExperiment::default();
+    while f.live.time_s() < lap[b - 1].0 - 1e-9 {
+        filter_step(&mut f);
+    }
+    let (major, minor, phi) = covariance_ellipse(position_block(f.live.pose_cov()), 3.0);
+    let heading = f.live.estimate().z;
+    let angle = wrap_angle(phi - heading).abs();
+    let across = angle.min(PI - angle);
+    assert!(major > 2.0 * minor);
+    assert!(across > 45f64.to_radians(), "{}°", across.to_degrees());
+    // Position error against dead reckoning after the loop.
+    let ekf = position_error_m(e.live.truth, e.live.estimate());
+    let dr = position_error_m(e.live.truth, e.live.dead_reckoning);
+    assert!(ekf < 0.5 * dr, "EKF {ekf} m, dead reckoning {dr} m");
+    assert_eq!(readout(&e, "error"), format_metres(ekf));
+    assert_eq!(readout(&e, "dr_error"), format_metres(dr));
+}
+
+/// Step 3: single steps: a filter step takes three frames; the sensor reads
+/// on every fifth filter step; σx² + σy² rises on almost every predict step
+/// and drops at every reading that sees a landmark.
+#[test]
+fn ekf_step_3_single_steps_show_predict_rises_and_reading_drops() {
+    let mut e = EkfExperiment::default();
+    run_for(&mut e, 5.0);
+    let (mut rises, mut predicts, mut drops, mut readings) = (0, 0, 0, 0);
+    for _ in 0..200 {
+        let before = position_trace(e.live.pose_cov());
+        let (steps, shown) = (e.live.steps, readout(&e, "trace"));
+        e.step(DT);
+        e.step(DT);
+        assert_eq!(e.live.steps, steps, "two frames are not a filter step");
+        e.step(DT);
+        assert_eq!(e.live.steps, steps + 1, "the third frame is");
+        let after = position_trace(e.live.pose_cov());
+        let read = (e.live.steps - 1).is_multiple_of(SENSOR_EVERY);
+        assert_eq!(e.live.reading_step == Some(e.live.steps), read);
+        if read && !e.live.observations.is_empty() {
+            readings += 1;
+            drops += usize::from(after < before);
+        } else {
+            predicts += 1;
+            rises += usize::from(after > before);
+        }
+        assert_ne!(readout(&e, "trace"), "", "{shown}");
+    }
+    assert_eq!(readings, drops, "every reading with a landmark lowers it");
+    assert!(readings >= 20);
+    assert!(rises * 10 >= predicts * 9, "{rises} of {predicts} predicts");
+}
+
+/// Step 4: the x and y errors stay inside ±3σ almost all the time, and the
+/// NEES mostly inside the single-run band.
+#[test]
+fn ekf_step_4_errors_stay_inside_3_sigma_and_nees_inside_its_band() {
+    let mut e = EkfExperiment::default();
+    run_for(&mut e, 60.0);
+    for k in [PLOT_X, PLOT_Y] {
+        let s = &e.plots[k].series;
+        let inside = s[0]
+            .y
+            .iter()
+            .zip(&s[1].y)
+            .filter(|(err, bound)| err.abs() <= **bound)
+            .count();
+        assert!(
+            inside as f64 >= 0.97 * s[0].len() as f64,
+            "{}",
+            e.plots[k].key
+        );
+    }
+    let nees = &e.plots[PLOT_NEES].series[0].y;
+    let inside = nees
+        .iter()
+        .filter(|v| (SINGLE_RUN_BAND.0..=SINGLE_RUN_BAND.1).contains(*v))
+        .count();
+    assert!(
+        inside as f64 >= 0.8 * nees.len() as f64,
+        "{inside} of {}",
+        nees.len()
+    );
+}
+
+/// Step 5: a larger σω makes the ellipse balloon faster between readings;
+/// a larger σφ or σr weakens each correction; a short range or a narrow
+/// field of view makes readings rare (Observations per loop).
+#[test]
+fn ekf_step_5_noise_and_sensor_settings_change_growth_corrections_and_readings() {
+    let peak = |lap: &[(f64, f64, usize, DVec3)]| lap.iter().map(|s| s.1).fold(0.0, f64::max);
+    // The first reading updates the same prediction in every run (noise of
+    // the sensor does not enter the predict step): what it leaves shows the
+    // correction's strength; the loop's mean shows it all along.
+    let after_first_reading = |lap: &[(f64, f64, usize, DVec3)]| {
+        assert!(lap[0].2 > 0);
+        lap[0].1
+    };
+    let mean =
+        |lap: &[(f64, f64, usize, DVec3)]| lap.iter().map(|s| s.1).sum::<f64>() / lap.len() as f64;
+    let lap_with = |settings: &[(&str, f64)]| {
+        let mut e = EkfExperiment::default();
+        for (k, v) in settings {
+            e.set_param(k, *v).unwrap();
+        }
+        let lap = one_loop(&mut e);
+        run_for(&mut e, 2.0);
+        (lap, readout(&e, "obs_per_loop"))
+    };
+    let (default, obs_default) = lap_with(&[]);
+    let (sw, _) = lap_with(&[("sw", 15.0)]);
+    assert!(
+        peak(&sw) > 3.0 * peak(&default),
+        "{} vs {}",
+        peak(&sw),
+        peak(&default)
+    );
+    let (sb, _) = lap_with(&[("sb", 10.0)]);
+    let (sr, _) = lap_with(&[("sr", 0.5)]);
+    for weaker in [&sb, &sr] {
+        let (w, d) = (after_first_reading(weaker), after_first_reading(&default));
+        assert!(w > d, "{w} vs {d}");
+        assert!(
+            mean(weaker) > 1.2 * mean(&default),
+            "{} vs {}",
+            mean(weaker),
+            mean(&default)
+        );
+    }
+    let (_, obs_range) = lap_with(&[("range", 1.5)]);
+    let (_, obs_fov) = lap_with(&[("fov", 30.0)]);
+    let n = |s: &str| s.parse::<usize>().unwrap();
+    assert!(
+        n(&obs_range) * 2 < n(&obs_default),
+        "{obs_range} vs {obs_default}"
+    );
+    assert!(
+        n(&obs_fov) * 2 < n(&obs_default),
+        "{obs_fov} vs {obs_default}"
+    );
+}
+
+/// Runs the check to its end.
+fn finish_check(e: &mut EkfExperiment) {
+    while e.check.as_ref().is_some_and(|c| !c.finished()) {
+        e.step(DT);
+    }
+}
+
+/// Step 6: back at the defaults, the check counts its runs in the status,
+/// ends with a verdict and its band; the band narrows from N = 10 to N = 200.
+#[test]
+fn ekf_step_6_the_check_counts_runs_gives_a_verdict_and_its_band_narrows_with_n() {
+    let mut e = EkfExperiment::default();
+    for (k, v) in [("sw", 15.0), ("sb", 10.0), ("range", 1.5)] {
+        e.set_param(k, v).unwrap();
+    }
+    for spec in PARAMS {
+        e.set_param(spec.key, spec.default).unwrap();
+    }
+    e.action("check").unwrap();
+    e.step(DT);
+    assert!(e.status().text.starts_with("consistency check… "));
+    finish_check(&mut e);
+    let verdict = e.status().text;
+    assert!(verdict.starts_with("consistent: "), "{verdict}");
+    let band = |e: &EkfExperiment| {
+        let b = &e.plots[PLOT_ANEES].bands[0];
+        (b.lo, b.hi)
+    };
+    let b50 = band(&e);
+    e.set_param("runs", 10.0).unwrap();
+    e.action("check").unwrap();
+    finish_check(&mut e);
+    let b10 = band(&e);
+    e.set_param("runs", 200.0).unwrap();
+    e.action("check").unwrap();
+    finish_check(&mut e);
+    let b200 = band(&e);
+    let width = |b: (f64, f64)| b.1 - b.0;
+    assert!(width(b10) > width(b50) && width(b50) > width(b200));
+    assert!(b10.0 < 3.0 && 3.0 < b10.1 && b200.0 < 3.0 && 3.0 < b200.1);
+    assert!(
+        e.status().text.contains("over 200 runs"),
+        "{}",
+        e.status().text
+    );
+}
+
+/// Step 7: EKF-SLAM restarts with an empty map; each landmark gets an
+/// estimate and an ellipse when first seen; the map ellipses shrink when the
+/// loop closes; the map's shape (distances between landmarks) is more
+/// accurate than where it sits; the check runs in this mode too.
+#[test]
+fn ekf_step_7_slam_builds_the_map_whose_shape_beats_its_placement() {
+    let mut e = EkfExperiment::default();
+    run_for(&mut e, 3.0);
+    e.set_param("mode", 1.0).unwrap();
+    assert_eq!(e.live.steps, 0, "the run restarts");
+    let slam = |e: &EkfExperiment| match &e.live.filter {
+        Filter::Slam(s) => s.clone(),
+        Filter::Localisation(_) => panic!("not SLAM"),
+    };
+    assert_eq!(slam(&e).landmark_count(), 0);
+    let ellipses = |e: &EkfExperiment| {
+        scene_of(e)
+            .items
+            .iter()
+            .filter(|i| matches!(i, Item::Ellipse { .. }))
+            .count()
+    };
+    assert_eq!(ellipses(&e), 1);
+    let mut first_major = [f64::NAN; 6];
+    while e.live.time_s() < 38.0 {
+        filter_step(&mut e);
+        let s = slam(&e);
+        assert_eq!(ellipses(&e), 1 + s.landmark_count());
+        for &id in s.landmark_ids() {
+            if first_major[id].is_nan() {
+                first_major[id] = covariance_ellipse(s.landmark(id).unwrap().1, 3.0).0;
+            }
+        }
+    }
+    assert!(
+        first_major.iter().all(|a| a.is_finite()),
+        "all mapped in a loop"
+    );
+    run_for(&mut e, 40.0);
+    let s = slam(&e);
+    for (id, first) in first_major.iter().enumerate() {
+        let now = covariance_ellipse(s.landmark(id).unwrap().1, 3.0).0;
+        assert!(now < *first, "landmark {id}: {now} vs {first}");
+    }
+    // Placement error against shape error.
+    let placement: f64 = (0..6)
+        .map(|i| (s.landmark(i).unwrap().0 - LANDMARKS[i]).length())
+        .sum::<f64>()
+        / 6.0;
+    let mut shape = 0.0;
+    let mut pairs = 0.0;
+    for (i, ti) in LANDMARKS.iter().enumerate() {
+        for (j, tj) in LANDMARKS.iter().enumerate().skip(i + 1) {
+            let d = (s.landmark(i).unwrap().0 - s.landmark(j).unwrap().0).length();
+            shape += (d - (*ti - *tj).length()).abs();
+            pairs += 1.0;
+        }
+    }
+    let shape = shape / pairs;
+    assert!(
+        shape < placement,
+        "shape {shape} m vs placement {placement} m"
+    );
+    e.set_param("runs", 10.0).unwrap();
+    e.action("check").unwrap();
+    finish_check(&mut e);
+    assert!(e.check_result().is_some());
+    assert!(
+        e.status().text.contains("over 10 runs"),
+        "{}",
+        e.status().text
+    );
+}
+
+/// Step 8: another seed, another run; the same seed (through the link)
+/// replays exactly the same run.
+#[test]
+fn ekf_step_8_a_seed_replays_its_run_exactly_through_the_link() {
+    use crate::route::{format, restore, Tab};
+    let mut e = EkfExperiment::default();
+    run_for(&mut e, 5.0);
+    let first = e.live.clone();
+    e.set_param("seed", 77.0).unwrap();
+    run_for(&mut e, 5.0);
+    assert_ne!(e.live.truth, first.truth);
+    let link = format(&e, Tab::Simulation);
+    let (mut fresh, notices) = restore(&link, EkfExperiment::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    run_for(&mut fresh, 5.0);
+    assert_eq!(fresh.live, e.live);
+    for (a, b) in fresh.plots.iter().zip(&e.plots) {
+        assert_eq!(a.series, b.series, "{}", a.key);
+    }
+}
+
+// ---- Content: claims of the theory, quiz generators, option lengths ----
+
+/// The theory's note: the lab's straight step and Thrun et al.'s exact arc
+/// (Table 7.2) differ by less than a millimetre per 0.05 s step at any turn
+/// rate the pilot commands.
+#[test]
+fn the_straight_step_and_the_exact_arc_differ_by_under_a_millimetre_per_step() {
+    let pose = DVec3::new(1.0, -2.0, 0.7);
+    for k in 1..=30 {
+        let omega = MAX_OMEGA_RADPS * k as f64 / 30.0;
+        let u = Control::new(SPEED_MPS, omega);
+        let straight = motion_model(pose, u, FILTER_DT_S);
+        let r = SPEED_MPS / omega;
+        let th = pose.z + omega * FILTER_DT_S;
+        let arc = DVec2::new(
+            pose.x - r * pose.z.sin() + r * th.sin(),
+            pose.y + r * pose.z.cos() - r * th.cos(),
+        );
+        let gap = (straight.truncate() - arc).length();
+        assert!(gap < 1e-3, "ω = {omega}: {gap} m");
+        assert!(gap > 0.0);
+    }
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/ekf.json")).unwrap();
+    let theory = format!("{:?}", content.theory);
+    assert!(theory.contains("Table 7.2") && theory.contains("fraction of a millimetre"));
+}
+
+/// Generators draw what the lab can show: a measurement noise on the range
+/// noise slider, poses and landmarks inside the canvas's view.
+#[test]
+fn quiz_generators_draw_inside_the_sliders_and_the_view() {
+    let spec = |key: &str| *PARAMS.iter().find(|p| p.key == key).unwrap();
+    let sr = spec("sr");
+    let view = EkfExperiment::default().view();
+    let in_view = |x: f64, y: f64| {
+        (view.min.x..=view.max.x).contains(&x) && (view.min.y..=view.max.y).contains(&y)
+    };
+    let mut rng = Lcg64::new(5);
+    for _ in 0..500 {
+        let d = quiz_posterior_sigma(&mut rng);
+        let sz = d.var("sz").unwrap();
+        assert!(sz >= sr.min && sz <= sr.max, "{d:?}");
+        let d = quiz_expected_bearing(&mut rng);
+        let g = |k: &str| d.var(k).unwrap();
+        assert!(
+            in_view(g("x"), g("y")) && in_view(g("mx"), g("my")),
+            "{d:?}"
+        );
+        assert!(
+            (-180.0..=180.0).contains(&g("t")),
+            "a heading the lab shows: {d:?}"
+        );
+        let d = quiz_nees_diagonal(&mut rng);
+        assert!(d.answer.is_finite() && d.answer >= 0.0);
+        let d = quiz_predicted_sigma(&mut rng);
+        assert!(d.answer >= d.var("sy").unwrap());
+    }
+}
+
+/// Issue 15: the correct option is the strictly longest (in characters or in
+/// bytes) in at most a quarter of the choice questions.
+#[test]
+fn the_correct_option_is_seldom_the_longest() {
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/ekf.json")).unwrap();
+    let (mut choices, mut longest) = (0, 0);
+    for q in &content.quiz {
+        if let crate::content::Question::Choice {
+            options, answer, ..
+        } = q
+        {
+            choices += 1;
+            for len in [|s: &String| s.chars().count(), |s: &String| s.len()] {
+                let a = len(&options[*answer]);
+                if options
+                    .iter()
+                    .enumerate()
+                    .all(|(i, o)| i == *answer || len(o) < a)
+                {
+                    longest += 1;
+                    break;
+                }
+            }
+        }
+    }
+    assert!(choices >= 6);
+    assert!(4 * longest <= choices, "{longest} of {choices}");
 }

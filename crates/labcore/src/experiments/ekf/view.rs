@@ -16,7 +16,7 @@ fn ellipse(center: DVec2, cov: DMat2) -> Item {
 }
 
 /// A robot outline at `pose`: a dart 0.36 m long.
-fn robot_outline(pose: DVec3) -> Vec<DVec2> {
+pub(super) fn robot_outline(pose: DVec3) -> Vec<DVec2> {
     let (s, c) = crate::math::sin_cos(pose.z);
     let at = |x: f64, y: f64| pose.truncate() + DVec2::new(c * x - s * y, s * x + c * y);
     vec![
