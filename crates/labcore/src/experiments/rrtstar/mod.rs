@@ -831,6 +831,10 @@ impl Experiment for RrtStarField {
         "Press Grow tree. Drag the start, goal or obstacles; click free space to add a disc (drop one outside the field to remove it); Shift-click sets the start, Ctrl-click the goal."
     }
 
+    fn touch_hint(&self) -> &'static str {
+        "Press Grow tree. Drag the start, the goal or an obstacle; tap free space to add a disc, and drop a disc outside the field to remove it."
+    }
+
     fn preview(&mut self) {
         self.start_run(&[self.planner]);
         if let Some(run) = self.runs.first_mut() {

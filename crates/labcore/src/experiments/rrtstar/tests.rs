@@ -797,3 +797,24 @@ fn the_correct_option_is_seldom_the_longest() {
     assert!(choices >= 6);
     assert!(4 * longest <= choices, "{longest} of {choices}");
 }
+
+/// Issue 13 §6: on touch the hint names no Shift- or Ctrl-click, and what it
+/// says works: a drag moves the start, a tap on free space adds a disc.
+#[test]
+fn the_touch_hint_names_only_touch_gestures_that_work() {
+    let mut f = RrtStarField::default();
+    let hint = f.touch_hint();
+    assert!(!hint.contains("Shift") && !hint.contains("Ctrl") && !hint.contains("click"));
+    assert!(f.hint().contains("Shift-click"));
+    f.input(Input::PointerDown(f.start));
+    f.input(Input::PointerMove {
+        pos: DVec2::new(0.5, 2.0),
+        pressed: true,
+    });
+    f.input(Input::PointerUp(DVec2::new(0.5, 2.0)));
+    assert_eq!(f.start, DVec2::new(0.5, 2.0));
+    let n = f.obstacles.len();
+    f.input(Input::PointerDown(DVec2::new(6.0, 5.5)));
+    f.input(Input::PointerUp(DVec2::new(6.0, 5.5)));
+    assert_eq!(f.obstacles.len(), n + 1);
+}
