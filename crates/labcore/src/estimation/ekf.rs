@@ -7,6 +7,11 @@
 //! μ̄ = g(μ, u)        P̄ = F P Fᵀ + Q,     F = ∂g/∂x (μ, u),  Q = V M Vᵀ
 //! ```
 //!
+//! `g` here is the straight step of [`motion_model`] with a fixed
+//! `M = diag(σv², σω²)`; Table 7.2 uses the exact-arc velocity model with
+//! `M` scaled by the speeds (α₁ … α₄), so its `G` and `V` differ. A process
+//! noise given directly in state space goes to [`ekf_predict_with_q`].
+//!
 //! **Update** with one range-bearing observation `z` of landmark `m`
 //! (Table 3.3 lines 4–6, Table 7.2 lines 10–18):
 //!
