@@ -818,3 +818,36 @@ fn the_touch_hint_names_only_touch_gestures_that_work() {
     f.input(Input::PointerUp(DVec2::new(6.0, 5.5)));
     assert_eq!(f.obstacles.len(), n + 1);
 }
+
+/// The theory's numbers: with η = 1.5 m the radius starts capped at η and
+/// shrinks as the tree fills in; the worked example's γ·√(ln 1000 / 1000)
+/// is about 0.98 m, above the default η, so r = η there.
+#[test]
+fn the_radius_numbers_in_the_theory_hold() {
+    let mut f = RrtStarField::default();
+    f.set_param("eta", 1.5).unwrap();
+    f.action("grow").unwrap();
+    f.step(DT);
+    let tree = f.shown().unwrap();
+    assert_eq!(tree.radius(tree.len()), 1.5);
+    settle(&mut f);
+    let tree = f.shown().unwrap();
+    let r = tree.radius(tree.len());
+    assert!(r < 1.0, "{r}");
+    assert_eq!(
+        crate::experiment::readout_value(&f, "radius").unwrap(),
+        format_metres(r)
+    );
+    let example = tree.gamma() * (crate::math::ln(1000.0) / 1000.0).sqrt();
+    assert!((example - 0.98).abs() < 0.005, "{example}");
+    let default = RrtStarField::default();
+    let world = default.world().unwrap();
+    let t = RrtStar::new(
+        world,
+        default.start,
+        default.goal,
+        default.config(Planner::RrtStar),
+    )
+    .unwrap();
+    assert_eq!(t.radius(1000), 0.5);
+}
