@@ -104,7 +104,22 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
     const errorX = await downloadCsv(page, "error_x");
     assert.equal(errorX.text.split(/\r?\n/)[0], "Time (s),x error (m),+3σx (m),−3σx (m)");
     const trace = await downloadCsv(page, "trace");
-    assert.equal(trace.text.split(/\r?\n/)[0], "Time (s),trace(P) (m² + rad²)");
+    assert.equal(trace.text.split(/\r?\n/)[0], "Time (s),σx² + σy² (m²)");
+  }));
+
+test("ekf: a setting changed under a consistency check leaves the status on the run (issue 13 §4)", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/ekf/simulation?runs=10");
+    await waitStatus(page, /^EKF localisation running$/);
+    await page.locator("button[data-action=check]").click();
+    await waitStatus(page, /^consistency check… \d+\/10 runs$/);
+    const sw = page.locator("input[type=text][data-param=sw]");
+    await sw.fill("9");
+    await sw.press("Enter");
+    // The check is dropped and the badge tells the run's state again, for good.
+    await waitStatus(page, /^EKF localisation running$/);
+    await page.waitForTimeout(1500);
+    assert.equal((await page.locator(".sim-status").textContent()).trim(), "EKF localisation running");
   }));
 
 test("ekf: the Simulation tab at desktop and phone sizes", async () => {

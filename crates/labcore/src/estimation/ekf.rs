@@ -7,6 +7,11 @@
 //! μ̄ = g(μ, u)        P̄ = F P Fᵀ + Q,     F = ∂g/∂x (μ, u),  Q = V M Vᵀ
 //! ```
 //!
+//! `g` here is the straight step of [`motion_model`] with a fixed
+//! `M = diag(σv², σω²)`; Table 7.2 uses the exact-arc velocity model with
+//! `M` scaled by the speeds (α₁ … α₄), so its `G` and `V` differ. A process
+//! noise given directly in state space goes to [`ekf_predict_with_q`].
+//!
 //! **Update** with one range-bearing observation `z` of landmark `m`
 //! (Table 3.3 lines 4–6, Table 7.2 lines 10–18):
 //!
@@ -35,7 +40,7 @@ use super::models::{
     check_dt, check_motion, jacob_f, jacob_h, motion_model, observation_model, process_noise,
     sample_motion, Control, MotionNoise, Observation, RangeBearingSensor, SensorNoise,
 };
-use super::{wrap_angle, EstimationError};
+use super::{check_cov3, wrap_angle, EstimationError};
 use crate::rng::Lcg64;
 
 /// A Gaussian belief over the pose: mean `(x, y, θ)` and covariance.
@@ -97,8 +102,54 @@ pub fn ekf_predict(
     if !(mean.is_finite() && cov.is_finite()) {
         return Err(EstimationError::NonFinite);
     }
+    predict_with(mean, cov, u, dt_s, process_noise(mean, dt_s, noise))
+}
+
+/// EKF prediction with a process noise `q` given directly in state space
+/// (the form filterpy's `predict(Q=…)` and most texts use):
+/// `μ̄ = g(μ, u)`, `P̄ = F P Fᵀ + Q`, with `F = ∂g/∂x` at `μ`. [`ekf_predict`]
+/// is this with `Q = V M Vᵀ` ([`process_noise`]).
+///
+/// Refuses a NaN, infinite or negative `dt`, non-finite input, and a `q`
+/// that is not a covariance (symmetric positive semi-definite,
+/// [`EstimationError::NotCovariance`]).
+///
+/// # Example
+/// ```
+/// use labcore::estimation::ekf::ekf_predict_with_q;
+/// use labcore::estimation::models::Control;
+/// use glam::{DMat3, DVec3};
+/// let q = DMat3::from_diagonal(DVec3::new(1e-4, 1e-4, 1e-5));
+/// let b = ekf_predict_with_q(DVec3::ZERO, DMat3::ZERO, Control::new(1.0, 0.0), 0.5, q).unwrap();
+/// assert_eq!(b.mean, DVec3::new(0.5, 0.0, 0.0));
+/// assert_eq!(b.cov, q); // nothing to carry forward: P̄ = Q
+/// let bad = DMat3::from_diagonal(DVec3::new(1e-4, -1e-4, 1e-5));
+/// assert!(ekf_predict_with_q(DVec3::ZERO, DMat3::ZERO, Control::new(1.0, 0.0), 0.5, bad).is_err());
+/// ```
+pub fn ekf_predict_with_q(
+    mean: DVec3,
+    cov: DMat3,
+    u: Control,
+    dt_s: f64,
+    q: DMat3,
+) -> Result<Belief, EstimationError> {
+    check_dt(dt_s)?;
+    if !(u.is_finite() && mean.is_finite() && cov.is_finite()) {
+        return Err(EstimationError::NonFinite);
+    }
+    check_cov3(q)?;
+    predict_with(mean, cov, u, dt_s, q)
+}
+
+/// `μ̄ = g(μ, u)`, `P̄ = sym(F P Fᵀ + Q)`, checked inputs.
+fn predict_with(
+    mean: DVec3,
+    cov: DMat3,
+    u: Control,
+    dt_s: f64,
+    q: DMat3,
+) -> Result<Belief, EstimationError> {
     let f = jacob_f(mean, u, dt_s);
-    let q = process_noise(mean, dt_s, noise);
     let belief = Belief {
         mean: motion_model(mean, u, dt_s),
         cov: symmetrize(f * cov * f.transpose() + q),
@@ -585,5 +636,94 @@ mod tests {
             "{inside}/{STEPS} inside [{lo}, {hi}]"
         );
         assert!((mean - 3.0).abs() < 0.3, "time-averaged ANEES {mean}");
+    }
+
+    /// Issue 15: a state-space `Q`, against one step computed by hand with
+    /// `F = I + a e₀e₂ᵀ + b e₁e₂ᵀ`, `a = −v sin θ Δt`, `b = v cos θ Δt`.
+    #[test]
+    fn predict_with_a_state_space_q_matches_a_hand_computed_step() {
+        let (v, w, dt, th) = (0.8, 0.2, 0.1, 0.3f64);
+        let mean = DVec3::new(1.0, 2.0, th);
+        let p = DMat3::from_cols(
+            DVec3::new(0.04, 0.01, 0.002),
+            DVec3::new(0.01, 0.09, -0.003),
+            DVec3::new(0.002, -0.003, 0.01),
+        );
+        let q = DMat3::from_cols(
+            DVec3::new(4e-4, 1e-4, 0.0),
+            DVec3::new(1e-4, 9e-4, 2e-5),
+            DVec3::new(0.0, 2e-5, 1e-4),
+        );
+        let b = ekf_predict_with_q(mean, p, Control::new(v, w), dt, q).unwrap();
+        let (a, bb) = (-v * th.sin() * dt, v * th.cos() * dt);
+        let m = |i: usize, j: usize| p.col(j)[i];
+        let qq = |i: usize, j: usize| q.col(j)[i];
+        let hand = [
+            [
+                m(0, 0) + 2.0 * a * m(0, 2) + a * a * m(2, 2) + qq(0, 0),
+                m(0, 1) + a * m(1, 2) + bb * m(0, 2) + a * bb * m(2, 2) + qq(0, 1),
+                m(0, 2) + a * m(2, 2) + qq(0, 2),
+            ],
+            [
+                0.0,
+                m(1, 1) + 2.0 * bb * m(1, 2) + bb * bb * m(2, 2) + qq(1, 1),
+                m(1, 2) + bb * m(2, 2) + qq(1, 2),
+            ],
+            [0.0, 0.0, m(2, 2) + qq(2, 2)],
+        ];
+        for (i, row) in hand.iter().enumerate() {
+            for (j, want) in row.iter().enumerate().skip(i) {
+                let got = b.cov.col(j)[i];
+                assert!((got - want).abs() < 1e-15, "P̄[{i}][{j}] {got} vs {want}");
+                assert_eq!(got, b.cov.col(i)[j]);
+            }
+        }
+        let mean_hand = DVec3::new(
+            1.0 + v * th.cos() * dt,
+            2.0 + v * th.sin() * dt,
+            th + w * dt,
+        );
+        assert!((b.mean - mean_hand).length() < 1e-15);
+        // The control-space predict is the same with Q = V M Vᵀ.
+        let noise = MotionNoise::default();
+        assert_eq!(
+            ekf_predict(mean, p, Control::new(v, w), dt, &noise),
+            ekf_predict_with_q(
+                mean,
+                p,
+                Control::new(v, w),
+                dt,
+                process_noise(mean, dt, &noise)
+            )
+        );
+        // A Q that is not a covariance is refused.
+        let u = Control::new(v, w);
+        let skew = DMat3::from_cols(
+            DVec3::new(1e-4, 1e-5, 0.0),
+            DVec3::new(0.0, 1e-4, 0.0),
+            DVec3::Z * 1e-4,
+        );
+        let negative = DMat3::from_diagonal(DVec3::new(1e-4, -1e-6, 1e-4));
+        let indefinite = DMat3::from_cols(
+            DVec3::new(1e-4, 2e-4, 0.0),
+            DVec3::new(2e-4, 1e-4, 0.0),
+            DVec3::Z * 1e-4,
+        );
+        for bad in [skew, negative, indefinite] {
+            assert_eq!(
+                ekf_predict_with_q(mean, p, u, dt, bad),
+                Err(EstimationError::NotCovariance),
+                "{bad:?}"
+            );
+        }
+        assert_eq!(
+            ekf_predict_with_q(mean, p, u, dt, DMat3::from_diagonal(DVec3::splat(f64::NAN))),
+            Err(EstimationError::NonFinite)
+        );
+        assert!(ekf_predict_with_q(mean, p, u, -1.0, q).is_err());
+        assert_eq!(
+            ekf_predict_with_q(mean, p, u, 0.0, DMat3::ZERO).unwrap(),
+            Belief { mean, cov: p }
+        );
     }
 }

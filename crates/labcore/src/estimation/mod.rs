@@ -3,11 +3,14 @@
 //! - [`models`]: the velocity motion model `g`, its Jacobians, noisy motion
 //!   sampling (the "true robot"), and a range-bearing sensor over point
 //!   landmarks with maximum range and field of view.
-//! - [`ekf`]: EKF localisation against known landmarks — [`ekf::ekf_predict`],
-//!   [`ekf::ekf_update`] (Joseph form), sequential updates, and a seeded
-//!   simulation [`ekf::EkfLocalisation`] of truth + filter.
-//! - [`slam`]: EKF-SLAM with landmarks added to the state on first sight and
-//!   `O(N²)` updates per observation.
+//! - [`ekf`]: EKF localisation against known landmarks — [`ekf::ekf_predict`]
+//!   (control-space noise `Q = V M Vᵀ`) or [`ekf::ekf_predict_with_q`] (a
+//!   state-space `Q`), [`ekf::ekf_update`] (Joseph form), sequential updates,
+//!   and a seeded simulation [`ekf::EkfLocalisation`] of truth + filter.
+//! - [`slam`]: EKF-SLAM with landmarks added to the state on first sight
+//!   ([`slam::EkfSlam::with_map`] / [`slam::EkfSlam::insert_landmark`] start
+//!   from a prepared map), `O(N²)` updates per observation, and both forms of
+//!   process noise.
 //! - [`consistency`]: NEES, position/heading errors, χ² bounds and the
 //!   covariance ellipse.
 //!
@@ -20,6 +23,7 @@ pub mod ekf;
 pub mod models;
 pub mod slam;
 
+use glam::{DMat2, DMat3, DVec3};
 use std::f64::consts::PI;
 use std::fmt;
 
@@ -63,6 +67,11 @@ pub enum EstimationError {
     UnknownLandmark { id: usize },
     /// EKF-SLAM already holds its maximum number of landmarks.
     TooManyLandmarks { max: usize },
+    /// A covariance given as input (a state-space process noise `Q`, a
+    /// landmark's prior) is not symmetric positive semi-definite.
+    NotCovariance,
+    /// A landmark with this id is already in the EKF-SLAM state.
+    DuplicateLandmark { id: usize },
 }
 
 impl fmt::Display for EstimationError {
@@ -78,11 +87,48 @@ impl fmt::Display for EstimationError {
             Self::SingularInnovation => write!(f, "innovation covariance is not positive-definite"),
             Self::UnknownLandmark { id } => write!(f, "no landmark with id {id}"),
             Self::TooManyLandmarks { max } => write!(f, "the map is full ({max} landmarks)"),
+            Self::NotCovariance => {
+                write!(f, "a covariance is not symmetric positive semi-definite")
+            }
+            Self::DuplicateLandmark { id } => write!(f, "landmark {id} is already in the map"),
         }
     }
 }
 
 impl std::error::Error for EstimationError {}
+
+/// Checks that `a` is a covariance: finite, symmetric and positive
+/// semi-definite (every principal minor ≥ 0), each within rounding.
+pub(crate) fn check_cov3(a: DMat3) -> Result<(), EstimationError> {
+    if !a.is_finite() {
+        return Err(EstimationError::NonFinite);
+    }
+    let m = |i: usize, j: usize| a.col(j)[i];
+    let scale = (0..3)
+        .flat_map(|i| (0..3).map(move |j| (i, j)))
+        .map(|(i, j)| m(i, j).abs())
+        .fold(0.0, f64::max);
+    let tol = 1e-12 * scale.max(f64::MIN_POSITIVE);
+    let symmetric = (0..3).all(|i| (0..3).all(|j| (m(i, j) - m(j, i)).abs() <= tol));
+    let minors2 = [(0, 1), (0, 2), (1, 2)]
+        .iter()
+        .all(|&(i, j)| m(i, i) * m(j, j) - m(i, j) * m(j, i) >= -tol * scale);
+    let psd = (0..3).all(|i| m(i, i) >= 0.0) && minors2 && a.determinant() >= -tol * scale * scale;
+    if symmetric && psd {
+        Ok(())
+    } else {
+        Err(EstimationError::NotCovariance)
+    }
+}
+
+/// [`check_cov3`] for a 2 × 2 covariance.
+pub(crate) fn check_cov2(a: DMat2) -> Result<(), EstimationError> {
+    check_cov3(DMat3::from_cols(
+        a.x_axis.extend(0.0),
+        a.y_axis.extend(0.0),
+        DVec3::ZERO,
+    ))
+}
 
 #[cfg(test)]
 mod tests {

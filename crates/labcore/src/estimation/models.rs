@@ -48,7 +48,7 @@ impl Control {
         Self { v_mps, omega_radps }
     }
 
-    fn is_finite(&self) -> bool {
+    pub(crate) fn is_finite(&self) -> bool {
         self.v_mps.is_finite() && self.omega_radps.is_finite()
     }
 }

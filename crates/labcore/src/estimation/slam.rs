@@ -61,7 +61,7 @@ use glam::{DMat2, DMat3, DVec2, DVec3};
 use super::models::{
     check_dt, check_motion, jacob_f, motion_model, process_noise, Control, MotionNoise, Observation,
 };
-use super::{wrap_angle, EstimationError};
+use super::{check_cov2, check_cov3, wrap_angle, EstimationError};
 use crate::linalg::Matrix;
 
 /// Default cap on the number of landmarks (keeps the covariance below
@@ -199,9 +199,45 @@ impl EkfSlam {
     ) -> Result<(), EstimationError> {
         check_dt(dt_s)?;
         check_motion(u, noise)?;
+        let q = process_noise(self.pose(), dt_s, noise);
+        self.predict_core(u, dt_s, q)
+    }
+
+    /// Prediction with a process noise `q` of the pose given directly in
+    /// state space (as filterpy and most texts write it): `P_rr ← F P_rr Fᵀ + Q`,
+    /// `P_rm ← F P_rm`; [`EkfSlam::predict`] is this with `Q = V M Vᵀ`.
+    /// Refuses invalid `dt`, non-finite input and a `q` that is not symmetric
+    /// positive semi-definite, leaving the filter unchanged.
+    ///
+    /// # Example
+    /// ```
+    /// use labcore::estimation::models::Control;
+    /// use labcore::estimation::slam::EkfSlam;
+    /// use glam::{DMat3, DVec3};
+    /// let mut slam = EkfSlam::new(DVec3::ZERO, DMat3::ZERO);
+    /// let q = DMat3::from_diagonal(DVec3::new(1e-4, 1e-4, 1e-5));
+    /// slam.predict_with_q(Control::new(1.0, 0.0), 0.5, q).unwrap();
+    /// assert_eq!(slam.pose(), DVec3::new(0.5, 0.0, 0.0));
+    /// assert_eq!(slam.pose_cov(), q);
+    /// ```
+    pub fn predict_with_q(
+        &mut self,
+        u: Control,
+        dt_s: f64,
+        q: DMat3,
+    ) -> Result<(), EstimationError> {
+        check_dt(dt_s)?;
+        if !u.is_finite() {
+            return Err(EstimationError::NonFinite);
+        }
+        check_cov3(q)?;
+        self.predict_core(u, dt_s, q)
+    }
+
+    /// The prediction with checked inputs; unchanged on error.
+    fn predict_core(&mut self, u: Control, dt_s: f64, q: DMat3) -> Result<(), EstimationError> {
         let x = self.pose();
         let f = jacob_f(x, u, dt_s);
-        let q = process_noise(x, dt_s, noise);
         let new_x = motion_model(x, u, dt_s);
         let prr = symmetric3(f * self.pose_cov() * f.transpose() + q);
         if !(new_x.is_finite() && prr.is_finite()) {
@@ -225,6 +261,83 @@ impl EkfSlam {
             }
         }
         self.mean[..3].copy_from_slice(&new_x.to_array());
+        Ok(())
+    }
+
+    /// A filter that starts from a prepared map: pose `pose` with covariance
+    /// `pose_cov`, and each landmark `(id, mean, covariance)` inserted in
+    /// order with [`EkfSlam::insert_landmark`] (independent of the pose and of
+    /// each other). Observations of these landmarks are then updates, never
+    /// first sightings.
+    ///
+    /// # Errors
+    /// As [`EkfSlam::insert_landmark`], for the first landmark refused.
+    ///
+    /// # Example
+    /// ```
+    /// use labcore::estimation::slam::EkfSlam;
+    /// use glam::{DMat2, DMat3, DVec2, DVec3};
+    /// let map = [(7, DVec2::new(2.0, 1.0), DMat2::from_diagonal(DVec2::splat(0.01)))];
+    /// let slam = EkfSlam::with_map(DVec3::ZERO, DMat3::IDENTITY * 1e-3, &map).unwrap();
+    /// assert_eq!(slam.state_len(), 5);
+    /// assert_eq!(slam.landmark(7), Some((map[0].1, map[0].2)));
+    /// ```
+    pub fn with_map(
+        pose: DVec3,
+        pose_cov: DMat3,
+        landmarks: &[(usize, DVec2, DMat2)],
+    ) -> Result<Self, EstimationError> {
+        let mut slam = Self::new(pose, pose_cov);
+        for &(id, mean, cov) in landmarks {
+            slam.insert_landmark(id, mean, cov)?;
+        }
+        Ok(slam)
+    }
+
+    /// Adds landmark `id` at `mean` with covariance `cov` (metres, m²),
+    /// uncorrelated with everything already in the state: a prior from a
+    /// prepared map. A zero `cov` makes it a known landmark, as in
+    /// localisation.
+    ///
+    /// # Errors
+    /// [`EstimationError::DuplicateLandmark`] if `id` is already in the state,
+    /// [`EstimationError::NonFinite`] / [`EstimationError::NotCovariance`] for
+    /// a bad mean or covariance, [`EstimationError::TooManyLandmarks`] when
+    /// the map is full. The filter is then unchanged.
+    pub fn insert_landmark(
+        &mut self,
+        id: usize,
+        mean: DVec2,
+        cov: DMat2,
+    ) -> Result<(), EstimationError> {
+        if self.slot(id).is_some() {
+            return Err(EstimationError::DuplicateLandmark { id });
+        }
+        if !mean.is_finite() {
+            return Err(EstimationError::NonFinite);
+        }
+        check_cov2(cov)?;
+        if self.ids.len() >= self.max_landmarks {
+            return Err(EstimationError::TooManyLandmarks {
+                max: self.max_landmarks,
+            });
+        }
+        let n = self.state_len();
+        let mut grown = Matrix::zeros(n + 2, n + 2);
+        {
+            let src = self.cov.as_slice();
+            let dst = grown.as_mut_slice();
+            for i in 0..n {
+                dst[i * (n + 2)..i * (n + 2) + n].copy_from_slice(&src[i * n..(i + 1) * n]);
+            }
+        }
+        grown[(n, n)] = cov.x_axis.x;
+        grown[(n, n + 1)] = cov.y_axis.x;
+        grown[(n + 1, n)] = cov.x_axis.y;
+        grown[(n + 1, n + 1)] = cov.y_axis.y;
+        self.cov = grown;
+        self.mean.extend_from_slice(&[mean.x, mean.y]);
+        self.ids.push(id);
         Ok(())
     }
 
@@ -701,5 +814,144 @@ mod tests {
             sum_final / 12.0
         );
         assert!(slam.cov().cholesky(0.0).is_ok());
+    }
+
+    /// Issue 15: a prepared map. A landmark inserted with zero covariance is
+    /// a known landmark: an EKF-SLAM update from it equals the localisation
+    /// update, and the landmark stays where it was put.
+    #[test]
+    fn a_known_landmark_from_a_prepared_map_updates_like_localisation() {
+        use crate::estimation::ekf::ekf_update;
+        let pose = DVec3::new(0.5, -0.2, 0.4);
+        let pose_cov = DMat3::from_cols(
+            DVec3::new(0.02, 0.004, 0.001),
+            DVec3::new(0.004, 0.03, -0.002),
+            DVec3::new(0.001, -0.002, 0.01),
+        );
+        let m = DVec2::new(3.0, 1.5);
+        let mut slam = EkfSlam::with_map(pose, pose_cov, &[(4, m, DMat2::ZERO)]).unwrap();
+        assert_eq!(slam.landmark_ids(), &[4]);
+        assert_eq!(slam.landmark(4), Some((m, DMat2::ZERO)));
+        let z = Observation {
+            id: 4,
+            range_m: 2.9,
+            bearing_rad: 0.05,
+        };
+        let r = SensorNoise::default().r();
+        let out = slam.observe(&z, r).unwrap();
+        assert!(matches!(out, SlamObservation::Updated { id: 4, .. }));
+        let loc = ekf_update(pose, pose_cov, &z, m, r).unwrap().belief;
+        assert!((slam.pose() - loc.mean).length() < 1e-12);
+        let pc = slam.pose_cov();
+        for j in 0..3 {
+            for i in 0..3 {
+                assert!(
+                    (pc.col(j)[i] - loc.cov.col(j)[i]).abs() < 1e-12,
+                    "P[{i}][{j}]"
+                );
+            }
+        }
+        let (m_after, m_cov) = slam.landmark(4).unwrap();
+        assert!((m_after - m).length() < 1e-12);
+        assert!(m_cov.x_axis.length() + m_cov.y_axis.length() < 1e-12);
+
+        // An uncertain prior is inserted as given, uncorrelated with the rest.
+        let prior = DMat2::from_cols(DVec2::new(0.05, 0.01), DVec2::new(0.01, 0.04));
+        slam.insert_landmark(9, DVec2::new(-1.0, 2.0), prior)
+            .unwrap();
+        assert_eq!(slam.landmark(9), Some((DVec2::new(-1.0, 2.0), prior)));
+        let n = slam.state_len();
+        assert_eq!(n, 7);
+        for col in 0..5 {
+            assert_eq!(slam.cov()[(5, col)], 0.0);
+            assert_eq!(slam.cov()[(col, 6)], 0.0);
+        }
+        // Refused inserts change nothing.
+        let before = slam.clone();
+        let asym = DMat2::from_cols(DVec2::new(0.05, 0.02), DVec2::new(0.0, 0.04));
+        let neg = DMat2::from_diagonal(DVec2::new(0.05, -0.01));
+        assert_eq!(
+            slam.insert_landmark(4, DVec2::ZERO, prior),
+            Err(EstimationError::DuplicateLandmark { id: 4 })
+        );
+        assert_eq!(
+            slam.insert_landmark(5, DVec2::NAN, prior),
+            Err(EstimationError::NonFinite)
+        );
+        assert_eq!(
+            slam.insert_landmark(5, DVec2::ZERO, asym),
+            Err(EstimationError::NotCovariance)
+        );
+        assert_eq!(
+            slam.insert_landmark(5, DVec2::ZERO, neg),
+            Err(EstimationError::NotCovariance)
+        );
+        slam.max_landmarks = 2;
+        assert_eq!(
+            slam.insert_landmark(5, DVec2::ZERO, prior),
+            Err(EstimationError::TooManyLandmarks { max: 2 })
+        );
+        slam.max_landmarks = before.max_landmarks;
+        assert_eq!(slam, before);
+        assert!(EkfSlam::with_map(pose, pose_cov, &[(1, m, prior), (1, m, prior)]).is_err());
+    }
+
+    /// Issue 15: SLAM prediction with a state-space `Q` moves the pose block
+    /// exactly as localisation does and the pose–landmark block as `F P_rm`.
+    #[test]
+    fn slam_predict_with_a_state_space_q_matches_localisation_and_f_p_rm() {
+        use crate::estimation::ekf::ekf_predict_with_q;
+        let pose = DVec3::new(0.0, 0.0, 0.7);
+        let pose_cov = DMat3::from_diagonal(DVec3::new(0.01, 0.02, 0.003));
+        let prior = DMat2::from_diagonal(DVec2::new(0.04, 0.04));
+        let mut slam =
+            EkfSlam::with_map(pose, pose_cov, &[(0, DVec2::new(2.0, 2.0), prior)]).unwrap();
+        // One update correlates the pose with the landmark.
+        slam.observe(
+            &Observation {
+                id: 0,
+                range_m: 2.8,
+                bearing_rad: 0.1,
+            },
+            SensorNoise::default().r(),
+        )
+        .unwrap();
+        let (p_rr, p_rm) = (
+            slam.pose_cov(),
+            [[0, 3], [0, 4], [1, 3], [1, 4], [2, 3], [2, 4]],
+        );
+        let cross = |s: &EkfSlam, i: usize, j: usize| s.cov()[(i, j)];
+        assert!(cross(&slam, 0, 3).abs() > 1e-6);
+        let before = slam.clone();
+        let (u, dt) = (Control::new(0.6, -0.3), 0.2);
+        let q = DMat3::from_cols(
+            DVec3::new(1e-4, 2e-5, 0.0),
+            DVec3::new(2e-5, 3e-4, 1e-5),
+            DVec3::new(0.0, 1e-5, 5e-5),
+        );
+        slam.predict_with_q(u, dt, q).unwrap();
+        let loc = ekf_predict_with_q(before.pose(), p_rr, u, dt, q).unwrap();
+        assert!((slam.pose() - loc.mean).length() < 1e-15);
+        assert!(slam.pose_cov().abs_diff_eq(loc.cov, 1e-15));
+        let th = before.pose().z;
+        let (a, b) = (-0.6 * th.sin() * dt, 0.6 * th.cos() * dt);
+        for [i, j] in p_rm {
+            let hand = match i {
+                0 => cross(&before, 0, j) + a * cross(&before, 2, j),
+                1 => cross(&before, 1, j) + b * cross(&before, 2, j),
+                _ => cross(&before, 2, j),
+            };
+            assert!((cross(&slam, i, j) - hand).abs() < 1e-15, "P[{i}][{j}]");
+            assert_eq!(cross(&slam, i, j), cross(&slam, j, i));
+        }
+        // The landmark block is untouched; a bad Q changes nothing.
+        assert_eq!(slam.landmark(0), before.landmark(0));
+        let after = slam.clone();
+        let bad = DMat3::from_diagonal(DVec3::new(1e-4, -1e-4, 1e-4));
+        assert_eq!(
+            slam.predict_with_q(u, dt, bad),
+            Err(EstimationError::NotCovariance)
+        );
+        assert_eq!(slam, after);
     }
 }

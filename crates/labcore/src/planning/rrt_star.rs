@@ -23,9 +23,14 @@
 //! ```
 //!
 //! of `x_new` (*ibid.* §3.3.3 and Theorem 38: asymptotically optimal for
-//! `γ > γ* = 2 (1 + 1/d)^(1/d) (μ(X_free) / ζ_d)^(1/d)`, `ζ_2 = π`; the default
-//! here is `1.1 · 2 √(3/2) √(μ(X) / π)` with the bounds' area `μ(X) ≥
-//! μ(X_free)`, and the 1.1 margin OMPL also uses):
+//! `γ > (2 (1 + 1/d))^(1/d) (μ(X_free) / ζ_d)^(1/d)`, `ζ_2 = π`, which is
+//! `√3 √(μ / π)` in the plane and the form OMPL's RRT* uses; the PRM*/RRG
+//! constant `2 (1 + 1/d)^(1/d) (μ / ζ_d)^(1/d)` is larger. The default here is
+//! `1.1 · 2 √(3/2) √(μ(X) / π)` with the bounds' area `μ(X) ≥ μ(X_free)`, so
+//! it satisfies both. Solovey, Janson, Schmerling, Frazzoli & Pavone,
+//! "Revisiting the asymptotic optimality of RRT*", *ICRA* 2020, show that the
+//! original proof needs a larger radius, `∝ (ln n / n)^(1/(d+1))`; this
+//! planner keeps the classic one, as OMPL's RRT* does):
 //!
 //! - *choose parent*: `x_new`'s parent is the node `x` of `X_near ∪ {x_near}`
 //!   minimising `cost(x) + |x − x_new|` whose edge to `x_new` is free
@@ -773,7 +778,9 @@ impl RrtStar {
     }
 }
 
-/// The default `γ = 1.1 · 2 √(1 + 1/2) · √(area / π)` for a world of `area`.
+/// The default `γ = 1.1 · 2 √(1 + 1/2) · √(area / π)` for a world of `area`:
+/// above both Karaman & Frazzoli's RRT* bound `√3 √(μ / π)` (Theorem 38) and
+/// their PRM*/RRG constant `2 √(3/2) √(μ / π)`.
 #[must_use]
 pub fn default_gamma(area: f64) -> f64 {
     1.1 * 2.0 * (1.5f64).sqrt() * (area / std::f64::consts::PI).sqrt()

@@ -26,8 +26,8 @@
 //! and the obstacles as text (key `obs`, see [`encode_obstacles`]).
 
 use crate::experiment::{
-    check_param, format_metres, ActionSpec, Experiment, Input, Modifiers, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
+    check_param, format_metres, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
+    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar, NO_PARENT};
 use crate::planning::world::{Obstacle, World};
@@ -54,6 +54,8 @@ const DRIVE_SPEED: f64 = 1.2;
 const HANDLE_M: f64 = 0.25;
 /// Obstacle coordinates in a link are read within ±this many centimetres.
 const LINK_CM_LIMIT: i64 = 100_000;
+/// The notice posted when a change of the field or of a setting drops the tree.
+pub const CLEARED_NOTICE: &str = "field or settings changed: the tree was cleared, grow it again";
 
 const PLANNERS: &[&str] = &["RRT", "RRT*", "Informed RRT*"];
 const PLANNER_KINDS: [Planner; 3] = [Planner::Rrt, Planner::RrtStar, Planner::InformedRrtStar];
@@ -191,7 +193,12 @@ pub fn decode_obstacles(text: &str) -> Result<Vec<Obstacle>, String> {
         let numbers: Vec<i64> = chars
             .as_str()
             .split('_')
-            .map(|s| s.parse::<i64>().ok().filter(|v| v.abs() <= LINK_CM_LIMIT))
+            .map(|s| {
+                // A range test, not `abs()`: |i64::MIN| overflows.
+                s.parse::<i64>()
+                    .ok()
+                    .filter(|v| (-LINK_CM_LIMIT..=LINK_CM_LIMIT).contains(v))
+            })
             .collect::<Option<Vec<_>>>()
             .ok_or_else(bad)?;
         let m = |v: i64| v as f64 / 100.0;
@@ -253,15 +260,15 @@ pub struct RrtStarField {
     growing: bool,
     /// Why the last run could not start.
     error: Option<RrtError>,
-    /// Settings changed after a run: the tree was dropped.
-    stale: bool,
     /// Distance driven along the frozen path, metres.
     driven_m: Option<f64>,
     drive_path: Vec<DVec2>,
     drag: Drag,
     /// Which handle arrow keys move (the one grabbed last).
     nudge: Drag,
-    note: Option<String>,
+    /// Transient messages (the tree was cleared, nothing to drive yet),
+    /// shown under the status, never in its place.
+    notices: Notices,
     plots: [Plot; 1],
 }
 
@@ -309,12 +316,11 @@ impl Default for RrtStarField {
             runs: Vec::new(),
             growing: false,
             error: None,
-            stale: false,
             driven_m: None,
             drive_path: Vec::new(),
             drag: Drag::None,
             nudge: Drag::Start,
-            note: None,
+            notices: Notices::default(),
             plots: [cost_plot(&[Planner::RrtStar])],
         }
     }
@@ -363,16 +369,15 @@ impl RrtStarField {
     fn start_run(&mut self, planners: &[Planner]) {
         self.runs.clear();
         self.growing = false;
-        self.stale = false;
         self.driven_m = None;
         self.drive_path.clear();
         self.error = None;
-        self.note = None;
+        self.notices.clear();
         self.plots = [cost_plot(planners)];
         let world = match self.world() {
             Ok(w) => w,
             Err(e) => {
-                self.note = Some(e);
+                self.notices.post(e, Tone::Bad);
                 return;
             }
         };
@@ -396,8 +401,8 @@ impl RrtStarField {
 
     /// Drops the run after a change of the field or of a planner setting.
     fn invalidate(&mut self) {
-        if !self.runs.is_empty() || self.error.is_some() {
-            self.stale = !self.runs.is_empty();
+        if !self.runs.is_empty() {
+            self.notices.post(CLEARED_NOTICE, Tone::Warning);
         }
         self.runs.clear();
         self.growing = false;
@@ -485,9 +490,11 @@ impl RrtStarField {
                 self.growing = false;
                 self.drive_path = path;
                 self.driven_m = Some(0.0);
-                self.note = None;
+                self.notices.clear();
             }
-            _ => self.note = Some("no path to drive yet: grow the tree first".into()),
+            _ => self
+                .notices
+                .post("no path to drive yet: grow the tree first", Tone::Warning),
         }
     }
 
@@ -655,8 +662,10 @@ impl Experiment for RrtStarField {
                     };
                 } else if Self::in_field(p) {
                     if self.obstacles.len() >= MAX_OBSTACLES {
-                        self.note =
-                            Some(format!("the field holds at most {MAX_OBSTACLES} obstacles"));
+                        self.notices.post(
+                            format!("the field holds at most {MAX_OBSTACLES} obstacles"),
+                            Tone::Warning,
+                        );
                         return;
                     }
                     let center = cm_vec(p);
@@ -774,36 +783,8 @@ impl Experiment for RrtStarField {
     }
 
     fn tables(&self) -> Vec<Table> {
-        if self.runs.len() < 2 {
-            return Vec::new();
-        }
-        let mut t = Table::new(
-            "compare",
-            "Same seed, same field. The selected planner's path is solid amber; the others are dashed (RRT orange, RRT* amber, Informed RRT* blue).",
-            &[
-                "planner",
-                "iter.",
-                "nodes",
-                "first path",
-                "best",
-            ],
-        );
-        for r in &self.runs {
-            let first = r.tree.cost_history().first();
-            t.push_row(vec![
-                r.planner.name().into(),
-                r.tree.iterations().to_string(),
-                r.tree.len().to_string(),
-                first.map_or("--".into(), |s| s.iteration.to_string()),
-                format_metres(r.tree.best_cost().unwrap_or(f64::NAN)),
-            ]);
-        }
-        if let Some(i) = self.runs.iter().position(|r| r.planner == self.planner) {
-            t.highlight = Some(i);
-        }
-        vec![t]
+        view::tables(self)
     }
-
     fn extra_state(&self) -> Vec<(&'static str, String)> {
         vec![("obs", encode_obstacles(&self.obstacles))]
     }
@@ -831,232 +812,27 @@ impl Experiment for RrtStarField {
     }
 
     fn scene(&self, out: &mut Scene) {
-        out.push(Item::Rect {
-            min: DVec2::ZERO,
-            max: FIELD_M,
-            role: Role::Bound,
-            fill: false,
-        });
-        for o in &self.obstacles {
-            out.push(match *o {
-                Obstacle::Circle { center, radius } => Item::Circle {
-                    center,
-                    radius_m: radius,
-                    role: Role::Obstacle,
-                    fill: true,
-                    dashed: false,
-                },
-                Obstacle::Rect { min, max } => Item::Rect {
-                    min,
-                    max,
-                    role: Role::Obstacle,
-                    fill: true,
-                },
-            });
-        }
-        if let Some(tree) = self.shown() {
-            // The whole tree: one batch.
-            let nodes = tree.nodes();
-            let segments: Vec<(DVec2, DVec2)> = tree
-                .parents()
-                .iter()
-                .zip(nodes)
-                .filter(|(p, _)| **p != NO_PARENT)
-                .map(|(p, n)| (nodes[*p as usize], *n))
-                .collect();
-            out.push(Item::Segments {
-                segments,
-                width_px: 1.0,
-                role: Role::Visited,
-            });
-            if self.growing {
-                let rewired: Vec<(DVec2, DVec2)> = tree
-                    .rewired_in_last_batch()
-                    .iter()
-                    .filter_map(|&i| {
-                        let p = tree.parent(i as usize)?;
-                        Some((nodes[p], nodes[i as usize]))
-                    })
-                    .collect();
-                if !rewired.is_empty() {
-                    out.push(Item::Segments {
-                        segments: rewired,
-                        width_px: 2.5,
-                        role: Role::Warning,
-                    });
-                }
-                if let Some(n) = tree.newest() {
-                    let r = tree.last_radius();
-                    if r > 0.0 {
-                        out.push(Item::Circle {
-                            center: nodes[n],
-                            radius_m: r,
-                            role: Role::Accent,
-                            fill: false,
-                            dashed: true,
-                        });
-                    }
-                }
-            }
-        }
-        // The other planners' best paths (Compare), then the shown one on top.
-        if self.runs.len() > 1 {
-            for r in self.runs.iter().filter(|r| r.planner != self.planner) {
-                if let Some(path) = r.tree.best_path() {
-                    out.push(Item::Polyline {
-                        points: path,
-                        width_px: 2.0,
-                        role: path_role(r.planner),
-                        dashed: true,
-                        closed: false,
-                    });
-                }
-            }
-        }
-        let path = if self.driven_m.is_some() {
-            Some(self.drive_path.clone())
-        } else {
-            self.best_path()
-        };
-        if let Some(path) = path.filter(|p| p.len() >= 2) {
-            out.push(Item::Polyline {
-                points: path,
-                width_px: 3.0,
-                role: Role::Path,
-                dashed: false,
-                closed: false,
-            });
-        }
-        out.push(Item::Circle {
-            center: self.goal,
-            radius_m: GOAL_RADIUS_M,
-            role: Role::Tip,
-            fill: false,
-            dashed: true,
-        });
-        out.push(Item::Dot {
-            center: self.start,
-            radius_px: 8.0,
-            role: Role::Sample,
-        });
-        out.push(Item::Dot {
-            center: self.goal,
-            radius_px: 8.0,
-            role: Role::Tip,
-        });
-        out.push(Item::Label {
-            pos: self.start,
-            text: "start".into(),
-            role: Role::Text,
-            offset_px: DVec2::new(10.0, -10.0),
-        });
-        out.push(Item::Label {
-            pos: self.goal,
-            text: "goal".into(),
-            role: Role::Text,
-            offset_px: DVec2::new(10.0, -10.0),
-        });
-        if let Some(p) = self.robot() {
-            out.push(Item::Circle {
-                center: p,
-                radius_m: 0.18,
-                role: Role::Robot,
-                fill: true,
-                dashed: false,
-            });
-        }
+        view::scene(self, out);
     }
 
     fn readouts(&self) -> Vec<Readout> {
-        let tree = self.shown();
-        let status = self.status().text;
-        vec![
-            Readout::new("nodes", "Nodes", tree.map_or(1, RrtStar::len).to_string()),
-            Readout::new(
-                "iterations",
-                "Iterations",
-                tree.map_or(0, RrtStar::iterations).to_string(),
-            ),
-            Readout::new(
-                "rewires",
-                "Rewires",
-                tree.map_or(0, RrtStar::rewire_count).to_string(),
-            ),
-            Readout::metres(
-                "best",
-                "Best length",
-                tree.and_then(RrtStar::best_cost).unwrap_or(f64::NAN),
-            ),
-            Readout::metres(
-                "radius",
-                "Rewiring radius r",
-                tree.map_or(f64::NAN, |t| {
-                    if self.planner == Planner::Rrt {
-                        f64::NAN
-                    } else {
-                        t.radius(t.len())
-                    }
-                }),
-            ),
-            Readout::new("status", "Status", status),
-        ]
+        view::readouts(self)
     }
 
     fn status(&self) -> Status {
-        if let Some(e) = self.error {
-            let text = match e {
-                RrtError::StartNotFree => {
-                    "the start is in an obstacle: drag it to free space".to_owned()
-                }
-                RrtError::GoalNotFree => {
-                    "the goal is in an obstacle: drag it to free space".to_owned()
-                }
-                e => e.to_string(),
-            };
-            return Status::new(text, Tone::Bad);
-        }
-        if let Some(note) = &self.note {
-            return Status::new(note.clone(), Tone::Warning);
-        }
-        if self.stale {
-            return Status::new("field or settings changed: grow again", Tone::Warning);
-        }
-        let Some(tree) = self.shown() else {
-            return Status::new("idle: press Grow tree", Tone::Neutral);
-        };
-        let best = tree.best_cost();
-        if self.driven_m.is_some() {
-            return if self.driving() {
-                Status::new("driving the best path", Tone::Good)
-            } else {
-                Status::new("arrived at the goal", Tone::Good)
-            };
-        }
-        let what = if self.runs.len() > 1 {
-            "comparing"
-        } else {
-            "growing"
-        };
-        match (self.growing, best) {
-            (true, None) => Status::new(
-                format!("{what}… {} nodes, no path yet", tree.len()),
-                Tone::Neutral,
-            ),
-            (true, Some(c)) => {
-                Status::new(format!("{what}… best {}", format_metres(c)), Tone::Good)
-            }
-            (false, Some(c)) => {
-                Status::new(format!("done: best path {}", format_metres(c)), Tone::Good)
-            }
-            (false, None) => Status::new(
-                format!("no path found in {} iterations", tree.iterations()),
-                Tone::Warning,
-            ),
-        }
+        view::status(self)
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
     }
 
     fn hint(&self) -> &'static str {
         "Press Grow tree. Drag the start, goal or obstacles; click free space to add a disc (drop one outside the field to remove it); Shift-click sets the start, Ctrl-click the goal."
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        "Press Grow tree. Drag the start, the goal or an obstacle; tap free space to add a disc, and drop a disc outside the field to remove it."
     }
 
     fn preview(&mut self) {
@@ -1072,391 +848,9 @@ impl Experiment for RrtStarField {
     }
 }
 
-/// `r = min(γ √(ln n / n), η)`.
-fn quiz_radius(rng: &mut Lcg64) -> Draw {
-    let gamma = rng.int(20, 80) as f64 / 2.0;
-    let n = [100, 200, 500, 1000, 2000, 5000, 10000][rng.int(0, 6) as usize];
-    let eta = rng.int(2, 10) as f64;
-    let r = (gamma * (crate::math::ln(n as f64) / n as f64).sqrt()).min(eta);
-    Draw {
-        vars: vec![
-            ("gamma", format_number(gamma, 1)),
-            ("n", n.to_string()),
-            ("eta", format_number(eta, 0)),
-        ],
-        answer: r,
-    }
-}
-
-/// The x coordinate of `x_new` after steering by `η` from `x_near` to `x_rand`.
-fn quiz_steer_x(rng: &mut Lcg64) -> Draw {
-    let near = DVec2::new(rng.int(0, 20) as f64, rng.int(0, 20) as f64);
-    let rand = loop {
-        let p = DVec2::new(rng.int(0, 40) as f64, rng.int(0, 40) as f64);
-        if (p - near).length() > 6.0 {
-            break p;
-        }
-    };
-    let eta = rng.int(2, 5) as f64;
-    let d = (rand - near).length();
-    let new = near + (rand - near) * (eta.min(d) / d);
-    Draw {
-        vars: vec![
-            ("nx", format_number(near.x, 0)),
-            ("ny", format_number(near.y, 0)),
-            ("rx", format_number(rand.x, 0)),
-            ("ry", format_number(rand.y, 0)),
-            ("eta", format_number(eta, 0)),
-        ],
-        answer: new.x,
-    }
-}
-
-/// The informed ellipse's conjugate (short) diameter `√(c_best² − c_min²)`.
-fn quiz_ellipse(rng: &mut Lcg64) -> Draw {
-    let c_min = rng.int(40, 120) as f64 / 10.0;
-    let c_best = c_min + rng.int(2, 40) as f64 / 10.0;
-    Draw {
-        vars: vec![
-            ("cmin", format_number(c_min, 1)),
-            ("cbest", format_number(c_best, 1)),
-        ],
-        answer: (c_best * c_best - c_min * c_min).sqrt(),
-    }
-}
-
-/// The quiz generators of experiment 10, by name.
-#[must_use]
-pub fn quiz_generator(name: &str) -> Option<Generator> {
-    match name {
-        "radius" => Some(quiz_radius),
-        "steer_x" => Some(quiz_steer_x),
-        "ellipse" => Some(quiz_ellipse),
-        _ => None,
-    }
-}
+mod quiz;
+mod view;
+pub use quiz::quiz_generator;
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::route::{apply_params, format, restore, Tab};
-
-    const DT: f64 = 1.0 / 60.0;
-
-    fn settle(f: &mut RrtStarField) -> usize {
-        let mut n = 0;
-        while f.animating() {
-            f.step(DT);
-            n += 1;
-            assert!(n < 100_000);
-        }
-        n
-    }
-
-    #[test]
-    fn grow_tree_animates_a_fixed_batch_per_step_and_finds_a_short_path() {
-        let mut f = RrtStarField::default();
-        f.action("grow").unwrap();
-        f.step(DT);
-        assert_eq!(f.shown().unwrap().iterations(), 24);
-        let frames = settle(&mut f);
-        assert_eq!(frames + 1, 4000_usize.div_ceil(24));
-        let tree = f.shown().unwrap();
-        assert_eq!(tree.iterations(), 4000);
-        let best = tree.best_cost().expect("a path");
-        // Straight start → goal is 8.4 m; the gap in the wall costs a detour.
-        assert!(best > 8.4 && best < 12.0, "{best}");
-        assert!(f.status().text.starts_with("done: best path"));
-        // Every tree edge and the path are collision-free.
-        let world = f.world().unwrap();
-        for (i, &p) in tree.parents().iter().enumerate() {
-            if p != NO_PARENT {
-                let (a, b) = (tree.nodes()[p as usize], tree.nodes()[i]);
-                assert!(world.segment_free(a, b, CHECK_RESOLUTION_M));
-            }
-        }
-        // The plot is non-increasing.
-        let s = &f.plots()[0].series[0];
-        assert!(s.len() > 10);
-        assert!(s.y.windows(2).all(|w| w[1] <= w[0]));
-        assert_eq!(s.role, SeriesRole::Primary);
-    }
-
-    #[test]
-    fn the_tree_is_one_segments_item_and_rewired_edges_a_second() {
-        let mut f = RrtStarField::default();
-        f.action("grow").unwrap();
-        for _ in 0..60 {
-            f.step(DT);
-        }
-        let mut scene = Scene::default();
-        f.scene(&mut scene);
-        let batches: Vec<(Role, usize)> = scene
-            .items
-            .iter()
-            .filter_map(|i| match i {
-                Item::Segments { segments, role, .. } => Some((*role, segments.len())),
-                _ => None,
-            })
-            .collect();
-        let tree = f.shown().unwrap();
-        assert_eq!(batches[0], (Role::Visited, tree.len() - 1));
-        assert!(batches.len() <= 2);
-        if let Some(&(role, n)) = batches.get(1) {
-            assert_eq!(role, Role::Warning);
-            assert_eq!(n, tree.rewired_in_last_batch().len());
-        }
-        // The radius circle around the newest node, and the amber best path.
-        let newest = tree.nodes()[tree.newest().unwrap()];
-        assert!(scene.items.iter().any(|i| matches!(i,
-            Item::Circle { center, dashed: true, role: Role::Accent, .. } if *center == newest)));
-        if tree.best_cost().is_some() {
-            assert!(scene.items.iter().any(|i| matches!(
-                i,
-                Item::Polyline {
-                    role: Role::Path,
-                    ..
-                }
-            )));
-        }
-        assert!(scene.is_finite());
-    }
-
-    #[test]
-    fn same_seed_same_tree_and_reset_replays_it() {
-        let grow = |seed: f64| {
-            let mut f = RrtStarField::default();
-            f.set_param("seed", seed).unwrap();
-            f.action("grow").unwrap();
-            for _ in 0..40 {
-                f.step(DT);
-            }
-            f
-        };
-        let (a, b, c) = (grow(7.0), grow(7.0), grow(8.0));
-        assert_eq!(a.shown().unwrap().nodes(), b.shown().unwrap().nodes());
-        assert_eq!(a.shown().unwrap().parents(), b.shown().unwrap().parents());
-        assert_ne!(a.shown().unwrap().nodes(), c.shown().unwrap().nodes());
-        let mut a = a;
-        let nodes = a.shown().unwrap().nodes().to_vec();
-        a.reset();
-        assert_eq!(a.shown().unwrap().len(), 1);
-        for _ in 0..40 {
-            a.step(DT);
-        }
-        assert_eq!(a.shown().unwrap().nodes(), &nodes[..]);
-    }
-
-    #[test]
-    fn compare_grows_three_planners_on_one_seed_with_one_curve_each() {
-        let mut f = RrtStarField::default();
-        f.action("compare").unwrap();
-        settle(&mut f);
-        let plot = &f.plots()[0];
-        let names: Vec<&str> = plot.series.iter().map(|s| s.label.as_str()).collect();
-        assert_eq!(names, ["RRT", "RRT*", "Informed RRT*"]);
-        let roles: Vec<SeriesRole> = plot.series.iter().map(|s| s.role).collect();
-        assert_eq!(
-            roles,
-            [
-                SeriesRole::Secondary,
-                SeriesRole::Primary,
-                SeriesRole::Tertiary
-            ]
-        );
-        assert!(plot.series.iter().all(|s| !s.is_empty()));
-        // Each curve is its planner's own: the same as growing it alone.
-        for (i, planner) in PLANNER_KINDS.iter().enumerate() {
-            let mut alone = RrtStarField::default();
-            alone.set_param("planner", i as f64).unwrap();
-            alone.action("grow").unwrap();
-            settle(&mut alone);
-            assert_eq!(
-                alone.plots()[0].series[0].y,
-                plot.series[i].y,
-                "{planner:?}"
-            );
-        }
-        let t = f.tables().pop().unwrap();
-        assert_eq!(t.key, "compare");
-        assert_eq!(t.rows.len(), 3);
-        assert_eq!(t.highlight, Some(1));
-        let rrt = f.runs[0].tree.best_cost().unwrap();
-        let star = f.runs[1].tree.best_cost().unwrap();
-        assert!(star <= rrt, "RRT* {star} vs RRT {rrt}");
-        assert_eq!(t.rows[1][4], format_metres(star));
-        // Other planners' paths are drawn too.
-        let mut scene = Scene::default();
-        f.scene(&mut scene);
-        let paths = scene
-            .items
-            .iter()
-            .filter(|i| matches!(i, Item::Polyline { .. }))
-            .count();
-        assert_eq!(paths, 3);
-    }
-
-    #[test]
-    fn obstacles_are_added_dragged_and_removed_by_pointer() {
-        let mut f = RrtStarField::default();
-        let n = f.obstacles.len();
-        // A click on free space adds a disc; dragging places it.
-        f.input(Input::PointerDown(DVec2::new(3.5, 5.3)));
-        f.input(Input::PointerMove {
-            pos: DVec2::new(3.6, 5.2),
-            pressed: true,
-        });
-        f.input(Input::PointerUp(DVec2::new(3.6, 5.2)));
-        assert_eq!(f.obstacles.len(), n + 1);
-        assert_eq!(
-            f.obstacles[n],
-            Obstacle::Circle {
-                center: DVec2::new(3.6, 5.2),
-                radius: NEW_OBSTACLE_RADIUS_M
-            }
-        );
-        // Dragging an existing rectangle moves it by the pointer's motion.
-        f.input(Input::PointerDown(DVec2::new(2.2, 1.2)));
-        f.input(Input::PointerMove {
-            pos: DVec2::new(2.5, 1.0),
-            pressed: true,
-        });
-        f.input(Input::PointerUp(DVec2::ZERO));
-        assert_eq!(
-            f.obstacles[1],
-            Obstacle::rect(DVec2::new(2.1, 0.4), DVec2::new(2.9, 1.6))
-        );
-        // Dropped outside the field: removed.
-        f.input(Input::PointerDown(DVec2::new(7.2, 1.9)));
-        f.input(Input::PointerMove {
-            pos: DVec2::new(12.0, 1.9),
-            pressed: true,
-        });
-        f.input(Input::PointerUp(DVec2::new(12.0, 1.9)));
-        assert_eq!(f.obstacles.len(), n);
-        assert!(f.handle_at(f.start, 0.05) && f.handle_at(DVec2::new(2.8, 3.6), 0.05));
-        assert!(!f.handle_at(DVec2::new(9.0, 0.5), 0.05));
-    }
-
-    #[test]
-    fn shift_and_ctrl_click_move_the_ends_and_a_blocked_start_is_explained() {
-        let mut f = RrtStarField::default();
-        let shift = Modifiers {
-            shift: true,
-            ctrl: false,
-        };
-        let ctrl = Modifiers {
-            shift: false,
-            ctrl: true,
-        };
-        f.input_with(Input::PointerDown(DVec2::new(0.5, 0.512)), shift);
-        assert_eq!(f.start, DVec2::new(0.5, 0.51));
-        f.input_with(Input::PointerDown(DVec2::new(20.0, 5.0)), ctrl);
-        assert_eq!(f.goal, DVec2::new(10.0, 5.0));
-        // Into an obstacle: growing is refused with a clear status, no panic.
-        f.input_with(Input::PointerDown(DVec2::new(2.8, 3.6)), shift);
-        f.action("grow").unwrap();
-        assert!(!f.animating());
-        let st = f.status();
-        assert_eq!(st.tone, Tone::Bad);
-        assert!(st.text.contains("start is in an obstacle"), "{}", st.text);
-        f.action("drive").unwrap();
-        settle(&mut f);
-        let mut scene = Scene::default();
-        f.scene(&mut scene);
-        assert!(scene.is_finite());
-    }
-
-    #[test]
-    fn drive_follows_the_best_path_to_the_goal() {
-        let mut f = RrtStarField::default();
-        f.action("drive").unwrap();
-        assert!(f.status().text.contains("no path to drive"));
-        f.action("grow").unwrap();
-        settle(&mut f);
-        let path = f.best_path().unwrap();
-        f.action("drive").unwrap();
-        assert!(f.animating());
-        settle(&mut f);
-        assert_eq!(f.robot(), path.last().copied());
-        assert_eq!(f.status().text, "arrived at the goal");
-    }
-
-    #[test]
-    fn the_link_holds_obstacles_and_ends_exactly() {
-        let mut f = RrtStarField::default();
-        f.input(Input::PointerDown(DVec2::new(3.456, 5.3)));
-        f.input(Input::PointerMove {
-            pos: DVec2::new(3.111, 5.2229),
-            pressed: true,
-        });
-        f.input(Input::Nudge(DVec2::new(0.05, -0.05)));
-        f.set_param("eta", 0.75).unwrap();
-        let link = format(&f, Tab::Simulation);
-        assert!(link.contains("&obs=c280_360_90~"), "{link}");
-        let (mut fresh, notices) = restore(&link, RrtStarField::default());
-        assert!(notices.is_empty(), "{notices:?}");
-        assert_eq!(fresh.obstacles, f.obstacles);
-        assert_eq!(format(&fresh, Tab::Simulation), link);
-        let notices = apply_params(&mut fresh, &[("obs".into(), "c1_2~q".into())]);
-        assert_eq!(notices.len(), 1, "{notices:?}");
-        assert_eq!(fresh.obstacles, f.obstacles);
-        assert_eq!(decode_obstacles("none").unwrap(), vec![]);
-        assert!(decode_obstacles("r5_5_1_1").is_err());
-        assert!(decode_obstacles("c1_1_0").is_err());
-        assert!(decode_obstacles("c99999999999999999999_1_1").is_err());
-    }
-
-    #[test]
-    fn quiz_radius_matches_the_planner() {
-        let mut rng = Lcg64::new(4);
-        for _ in 0..20 {
-            let d = quiz_radius(&mut rng);
-            let (gamma, n, eta) = (
-                d.var("gamma").unwrap(),
-                d.var("n").unwrap() as usize,
-                d.var("eta").unwrap(),
-            );
-            let world = World::new(DVec2::ZERO, DVec2::splat(10.0), vec![]).unwrap();
-            let config = RrtConfig {
-                gamma: Some(gamma),
-                step_eta: eta,
-                ..RrtConfig::default()
-            };
-            let tree = RrtStar::new(world, DVec2::ONE, DVec2::splat(9.0), config).unwrap();
-            assert!((tree.radius(n) - d.answer).abs() < 1e-12);
-            let d = quiz_steer_x(&mut rng);
-            assert!(d.answer.is_finite());
-        }
-    }
-
-    /// A 20,000-iteration tree: one frame's step and scene stay fast
-    /// (generous bound for a debug build on a shared machine).
-    #[test]
-    fn a_large_tree_steps_and_draws_quickly() {
-        let mut f = RrtStarField::default();
-        f.set_param("iters", 20000.0).unwrap();
-        f.set_param("batch", 24.0).unwrap();
-        f.action("grow").unwrap();
-        if let Some(run) = f.runs.first_mut() {
-            run.tree.iterate(19_000);
-        }
-        let mut scene = Scene::default();
-        let mut worst = 0.0f64;
-        for _ in 0..20 {
-            let t = std::time::Instant::now();
-            f.step(DT);
-            scene.clear();
-            f.scene(&mut scene);
-            worst = worst.max(t.elapsed().as_secs_f64());
-        }
-        let edges = f.shown().unwrap().len() - 1;
-        eprintln!(
-            "RRT* with {edges} edges: worst step + scene {:.2} ms",
-            worst * 1e3
-        );
-        assert!(edges > 10_000);
-        let bound = if cfg!(debug_assertions) { 0.25 } else { 0.01 };
-        assert!(worst < bound, "worst frame {worst} s");
-    }
-}
+mod tests;
