@@ -26,8 +26,8 @@
 //! ([`Experiment::export_text`], a Moving AI `.map`) instead.
 
 use crate::experiment::{
-    check_param, format_fixed, ActionSpec, Experiment, Input, Modifiers, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
+    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::planning::astar::{Search, SearchConfig, StepOutcome, Strategy};
 use crate::planning::grid::{Cell, Connectivity, OccupancyGrid};
@@ -79,6 +79,11 @@ pub const OPEN_ROWS: usize = 8;
 /// [`MIN_DRIVE_SPEED`] m/s), so a 512 × 512 path does not take minutes.
 const DRIVE_TIME_S: f64 = 6.0;
 const MIN_DRIVE_SPEED: f64 = 4.0; // m/s (cells per second)
+/// The smallest cell a finger can hit, CSS px (issue 13 §6).
+pub const MIN_CELL_PX: f64 = 24.0;
+/// Canvases at most this wide (a phone) zoom to [`MIN_CELL_PX`] cells by
+/// themselves; wider ones only when the student presses *Zoom*.
+pub const PHONE_WIDTH_PX: f64 = 600.0;
 
 const PARAMS: &[ParamSpec] = &[
     ParamSpec::choice("h", "Heuristic", HEURISTICS, 1),
@@ -114,6 +119,10 @@ const ACTIONS: &[ActionSpec] = &[
         key: "arena",
         label: "Arena map",
     },
+    ActionSpec {
+        key: "zoom",
+        label: "Zoom in / out",
+    },
 ];
 
 /// The default grid (32 × 24): two walls between the start and the goal.
@@ -139,13 +148,31 @@ fn unreachable_grid() -> OccupancyGrid {
 }
 
 /// What a pointer drag does.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 enum Drag {
     None,
     /// Painting walls (`true`) or erasing them (`false`), decided by the first cell.
     Paint(bool),
     Start,
     Goal,
+    /// Panning the zoomed view: the world point grabbed, and whether the
+    /// finger has moved (a tap without a move pans by half a window).
+    Pan {
+        grab: DVec2,
+        moved: bool,
+    },
+}
+
+/// What the walls were made from (see [`AStarGrid::extra_state`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Base {
+    /// Painted, loaded or linked walls: the link holds them as a wall code.
+    Plain,
+    /// `recursive_backtracker(width, height, seed)`: the link holds
+    /// `maze=<W>x<H>.<seed>` and the cells edited since.
+    Maze { seed: u64 },
+    /// The bundled Moving AI arena map: `map=arena` and the edits.
+    Arena,
 }
 
 /// Expansions a step of the comparison may make (about a millisecond in the
@@ -225,8 +252,26 @@ pub struct AStarGrid {
     nudge_goal: bool,
     /// Length of the wall code, characters (kept current on every edit).
     code_len: usize,
-    /// A message from the last Plan, Load or maze (e.g. what went wrong).
-    note: Option<String>,
+    /// What the walls were generated from (a maze and its seed, the arena
+    /// map), so the link names the generator and only the cells edited since.
+    base: Base,
+    /// The generated grid of `base` (`None` for [`Base::Plain`]).
+    base_grid: Option<OccupancyGrid>,
+    /// The grid's part of the link, kept current on every edit; `None` when
+    /// even the shortest form is over [`LINK_WALLS_MAX`].
+    grid_link: Option<Vec<(&'static str, String)>>,
+    /// The grid came from a link that could not carry its walls
+    /// (`nowalls=W×H`); cleared by the first edit or a new grid.
+    walls_missing: bool,
+    /// Transient messages (a loaded file, a link that lost its walls).
+    notices: Notices,
+    /// View state, never in the link: see [`view::Window`].
+    viewport_px: Option<DVec2>,
+    /// `Some(on)` once the student pressed *Zoom*; `None`: zoomed when the
+    /// canvas is narrow and whole-grid cells would be under [`MIN_CELL_PX`].
+    zoom_choice: Option<bool>,
+    /// Lower-left corner of the zoomed window, world metres (whole cells).
+    pan: DVec2,
     /// Expanded cells and frontier size against fixed steps.
     plots: [Plot; 1],
 }
@@ -272,7 +317,14 @@ impl Default for AStarGrid {
             last_cell: None,
             nudge_goal: false,
             code_len: 0,
-            note: None,
+            base: Base::Plain,
+            base_grid: None,
+            grid_link: None,
+            walls_missing: false,
+            notices: Notices::default(),
+            viewport_px: None,
+            zoom_choice: None,
+            pan: DVec2::ZERO,
             plots: new_plots(),
             grid,
         };
@@ -364,8 +416,40 @@ impl AStarGrid {
     /// The wall code length and the raster after the grid changed; the run
     /// and the comparison are dropped.
     fn grid_changed(&mut self) {
-        self.code_len = encoded_len(&self.grid);
+        self.measure_link();
         self.invalidate();
+    }
+
+    /// The wall code's length and the grid's part of the link: the
+    /// generator and the cells edited since when `base` is set and that is
+    /// shorter, else the wall code, else nothing (over [`LINK_WALLS_MAX`]).
+    fn measure_link(&mut self) {
+        self.code_len = encoded_len(&self.grid);
+        let (w, h) = (self.grid.width(), self.grid.height());
+        let generated = match (self.base, &self.base_grid) {
+            (Base::Maze { seed }, Some(b)) => Some((("maze", format!("{w}x{h}.{seed}")), b)),
+            (Base::Arena, Some(b)) => Some((("map", "arena".to_owned()), b)),
+            _ => None,
+        };
+        if let Some(((key, value), base)) = generated {
+            if let Some(edits) = edit_runs(base, &self.grid) {
+                if edits.len() <= LINK_WALLS_MAX && edits.len() < self.code_len {
+                    let mut link = vec![(key, value)];
+                    if !edits.is_empty() {
+                        link.push(("edits", edits));
+                    }
+                    self.grid_link = Some(link);
+                    return;
+                }
+            }
+        }
+        self.grid_link = if self.walls_missing {
+            Some(vec![("nowalls", format!("{w}x{h}"))])
+        } else if self.code_len <= LINK_WALLS_MAX {
+            Some(vec![("walls", encode_walls(&self.grid))])
+        } else {
+            None
+        };
     }
 
     /// Drops the search, the path and the comparison (the grid, an end or a
@@ -466,7 +550,8 @@ impl AStarGrid {
 
     /// After walls changed: the code length, and the run is dropped.
     fn end_edit(&mut self) {
-        self.code_len = encoded_len(&self.grid);
+        self.walls_missing = false;
+        self.measure_link();
         if self.phase != Phase::Idle || !self.compare.is_empty() {
             self.invalidate();
         }
@@ -489,16 +574,50 @@ impl AStarGrid {
     /// Replaces the grid, keeping the start and goal where they fit (clamped
     /// onto the grid otherwise).
     fn replace_grid(&mut self, grid: OccupancyGrid) {
+        self.replace_grid_from(grid, Base::Plain, None);
+    }
+
+    /// [`Self::replace_grid`] with what the grid was generated from.
+    fn replace_grid_from(
+        &mut self,
+        grid: OccupancyGrid,
+        base: Base,
+        base_grid: Option<OccupancyGrid>,
+    ) {
         let clamp = |c: Cell| Cell::new(c.x.min(grid.width() - 1), c.y.min(grid.height() - 1));
         self.start = clamp(self.start);
         self.goal = clamp(self.goal);
-        if self.goal == self.start {
-            // A 1-cell-wide grid can leave them on one cell; move the goal.
-            self.goal = Cell::new(grid.width() - 1, grid.height() - 1);
-        }
         self.grid = grid;
+        self.keep_ends_apart();
+        self.base = base;
+        self.base_grid = base_grid;
+        self.walls_missing = false;
         self.size_choice = size_index(&self.grid).unwrap_or(self.size_choice);
         self.grid_changed();
+        self.frame_ends();
+    }
+
+    /// When the start and goal landed on one cell (a smaller grid clamped
+    /// both onto its corner), moves the goal to the nearest other cell, a
+    /// free one if there is any (issue 14: they never share a cell).
+    fn keep_ends_apart(&mut self) {
+        if self.start != self.goal {
+            return;
+        }
+        let (goal, start) = (self.goal, self.start);
+        let grid = &self.grid;
+        let best = (0..grid.width() * grid.height())
+            .filter_map(|i| grid.cell_of(i))
+            .filter(|&c| c != start)
+            .min_by_key(|&c| {
+                (
+                    grid.is_blocked(c),
+                    c.x.abs_diff(goal.x) + c.y.abs_diff(goal.y),
+                )
+            });
+        if let Some(cell) = best {
+            self.goal = cell;
+        }
     }
 
     /// A new grid with free start and goal cells: the free cells nearest the
@@ -512,9 +631,7 @@ impl AStarGrid {
         self.replace_grid(grid);
         if let (Some(s), Some(g)) = (start, goal) {
             if s != g {
-                self.start = s;
-                self.goal = g;
-                self.invalidate();
+                self.set_ends(s, g);
             }
         }
     }
@@ -539,7 +656,6 @@ impl AStarGrid {
     /// Starts the animated search (*Plan & drive*).
     fn plan(&mut self) {
         self.invalidate();
-        self.note = None;
         if self.ends_problem().is_some() {
             self.phase = Phase::Refused;
             return;
@@ -551,7 +667,7 @@ impl AStarGrid {
                 self.search_raster();
             }
             Err(e) => {
-                self.note = Some(e.to_string());
+                self.notices.post(format!("cannot plan: {e}"), Tone::Bad);
                 self.phase = Phase::Refused;
             }
         }
@@ -701,10 +817,16 @@ impl AStarGrid {
             Some(&s) => s,
             None => (self.grid.width(), self.grid.height()),
         };
-        let Ok(maze) = recursive_backtracker(w, h, self.seed) else {
+        self.maze_of(w, h, self.seed);
+    }
+
+    /// A `w × h` maze from `seed`, the start in the first room and the goal
+    /// in the last (what *Random maze* and a `maze=` link make).
+    fn maze_of(&mut self, w: usize, h: usize, seed: u64) {
+        let Ok(maze) = recursive_backtracker(w, h, seed) else {
             return;
         };
-        self.replace_grid(maze);
+        self.replace_grid_from(maze.clone(), Base::Maze { seed }, Some(maze));
         // Rooms have odd coordinates up to n − 2: the first and the last room.
         let last = |n: usize| {
             let m = n - 2;
@@ -714,43 +836,131 @@ impl AStarGrid {
                 m - 1
             }
         };
-        if w >= 4 && h >= 4 {
-            self.start = Cell::new(1, 1);
-            self.goal = Cell::new(last(w), last(h));
-            if self.goal == self.start {
-                self.goal = Cell::new(w - 1, h - 1);
-            }
-            self.invalidate();
+        if w >= 4 && h >= 4 && (last(w), last(h)) != (1, 1) {
+            self.set_ends(Cell::new(1, 1), Cell::new(last(w), last(h)));
         }
-        self.note = Some(format!("maze from seed {}", self.seed));
     }
 
     fn arena(&mut self) {
         let Ok(grid) = parse_map(ARENA_MAP) else {
             return;
         };
-        // The longest scenario of the benchmark's list.
-        let scenario = parse_scen(ARENA_SCEN).ok().and_then(|s| s.last().cloned());
-        self.replace_grid(grid);
-        if let Some(s) = scenario {
+        self.replace_grid_from(grid.clone(), Base::Arena, Some(grid));
+        if let Some(s) = arena_scenario() {
             if self.grid.in_bounds(s.start) && self.grid.in_bounds(s.goal) && s.start != s.goal {
-                self.start = s.start;
-                self.goal = s.goal;
-                self.invalidate();
-                self.note = Some(format!(
-                    "arena map (Moving AI): optimal length {}",
-                    format_fixed(s.optimal_length, 3)
-                ));
-                return;
+                self.set_ends(s.start, s.goal);
             }
         }
-        self.note = Some("arena map (Moving AI)".into());
     }
 
-    /// Whether the walls fit in the link.
+    /// The benchmark's optimal length when the grid is the unedited arena
+    /// map with the ends of its scenario (shown in the status).
+    fn arena_optimum(&self) -> Option<f64> {
+        if self.base != Base::Arena || self.base_grid.as_ref() != Some(&self.grid) {
+            return None;
+        }
+        arena_scenario()
+            .filter(|s| s.start == self.start && s.goal == self.goal)
+            .map(|s| s.optimal_length)
+    }
+
+    /// Moves both ends at once (they must differ), keeping the view on them.
+    fn set_ends(&mut self, start: Cell, goal: Cell) {
+        if start == goal || !self.grid.in_bounds(start) || !self.grid.in_bounds(goal) {
+            return;
+        }
+        self.start = start;
+        self.goal = goal;
+        self.invalidate();
+        self.frame_ends();
+    }
+
+    /// Whether the walls fit in the link (as a generator and its edits, or
+    /// as a wall code).
     #[must_use]
     pub fn walls_in_link(&self) -> bool {
-        self.code_len <= LINK_WALLS_MAX
+        self.grid_link.is_some()
+    }
+
+    // ---- View state (never in the link) ----
+
+    /// Whether the view shows a finger-sized window instead of the grid.
+    #[must_use]
+    pub fn zoomed(&self) -> bool {
+        let auto = self.viewport_px.is_some_and(|v| v.x <= PHONE_WIDTH_PX);
+        self.zoom_choice.unwrap_or(auto) && view::window_cells(self).is_some()
+    }
+
+    /// The pan clamped so the window stays on the grid.
+    fn clamp_pan(&self, pan: DVec2) -> DVec2 {
+        let Some((c, r)) = view::window_cells(self) else {
+            return DVec2::ZERO;
+        };
+        let max = DVec2::new(
+            (self.grid.width() - c) as f64,
+            (self.grid.height() - r) as f64,
+        );
+        let p = if pan.is_finite() { pan } else { DVec2::ZERO };
+        p.round().clamp(DVec2::ZERO, max)
+    }
+
+    /// Centres the zoomed window on the start and goal when both fit,
+    /// otherwise on the start.
+    fn frame_ends(&mut self) {
+        let Some((c, r)) = view::window_cells(self) else {
+            self.pan = DVec2::ZERO;
+            return;
+        };
+        let (s, g) = (self.cell_center(self.start), self.cell_center(self.goal));
+        let inner = DVec2::new(c as f64 - 2.0, r as f64 - 2.0);
+        let d = (s - g).abs();
+        let centre = if d.x < inner.x && d.y < inner.y {
+            (s + g) * 0.5
+        } else {
+            s
+        };
+        self.pan = self.clamp_pan(centre - DVec2::new(c as f64, r as f64) * 0.5);
+    }
+
+    /// Pans the zoomed window the least that brings `p` (world) inside its
+    /// inner part (off the pan band).
+    fn follow(&mut self, p: DVec2) {
+        if !self.zoomed() {
+            return;
+        }
+        let view = self.view();
+        let lo = view.min + 1.0;
+        let hi = view.max - 1.0;
+        let shift = DVec2::new(
+            (p.x - lo.x).min(0.0) + (p.x - hi.x).max(0.0),
+            (p.y - lo.y).min(0.0) + (p.y - hi.y).max(0.0),
+        );
+        self.pan = self.clamp_pan(self.pan + shift.signum() * shift.abs().ceil());
+    }
+
+    /// The pan direction of a press at `p` on the zoomed view's edge band
+    /// (the outer ring of cells on each side with more grid beyond), or
+    /// `None` inside.
+    fn band_side(&self, p: DVec2) -> Option<DVec2> {
+        if !self.zoomed() || !p.is_finite() {
+            return None;
+        }
+        let view = self.view();
+        let (w, h) = (self.grid.width() as f64, self.grid.height() as f64);
+        let side = |v: f64, lo: f64, hi: f64, max: f64| {
+            if v < lo + 1.0 && lo > 0.0 {
+                -1.0
+            } else if v > hi - 1.0 && hi < max {
+                1.0
+            } else {
+                0.0
+            }
+        };
+        let d = DVec2::new(
+            side(p.x, view.min.x, view.max.x, w),
+            side(p.y, view.min.y, view.max.y, h),
+        );
+        (d != DVec2::ZERO).then_some(d)
     }
 
     fn robot(&self) -> Option<DVec2> {
@@ -776,8 +986,9 @@ impl AStarGrid {
         match self.drag {
             Drag::Start => self.set_start(cell),
             Drag::Goal => self.set_goal(cell),
-            _ => {}
+            _ => return,
         }
+        self.follow(self.cell_center(cell));
     }
 }
 
@@ -793,6 +1004,55 @@ fn size_index(grid: &OccupancyGrid) -> Option<usize> {
     SIZES
         .iter()
         .position(|&(w, h)| w == grid.width() && h == grid.height())
+}
+
+/// The benchmark scenario of the arena map: the longest of its list.
+fn arena_scenario() -> Option<crate::planning::movingai::Scenario> {
+    parse_scen(ARENA_SCEN).ok().and_then(|s| s.last().cloned())
+}
+
+/// The cells of `grid` that differ from `base`, as the runs of a wall code
+/// (alternating unchanged / toggled, base 36, `.`-separated; empty when
+/// nothing changed). `None` when the sizes differ.
+fn edit_runs(base: &OccupancyGrid, grid: &OccupancyGrid) -> Option<String> {
+    if (base.width(), base.height()) != (grid.width(), grid.height()) {
+        return None;
+    }
+    let toggled: Vec<bool> = base
+        .cells()
+        .iter()
+        .zip(grid.cells())
+        .map(|(a, b)| a != b)
+        .collect();
+    let diff = OccupancyGrid::from_cells(grid.width(), grid.height(), toggled).ok()?;
+    let code = encode_walls(&diff);
+    Some(
+        code.split_once('.')
+            .map_or(String::new(), |(_, runs)| runs.to_owned()),
+    )
+}
+
+/// `base` with the cells named by [`edit_runs`]'s `runs` toggled.
+fn apply_edits(base: &OccupancyGrid, runs: &str) -> Result<OccupancyGrid, String> {
+    let (w, h) = (base.width(), base.height());
+    let diff = decode_walls(&format!("{w}x{h}.{runs}")).map_err(|e| e.to_string())?;
+    let cells = base
+        .cells()
+        .iter()
+        .zip(diff.cells())
+        .map(|(a, t)| a != t)
+        .collect();
+    OccupancyGrid::from_cells(w, h, cells).map_err(|e| e.to_string())
+}
+
+/// Reads `<W>x<H>` (a grid size within [`MAX_SIDE`]).
+fn parse_size(text: &str) -> Result<(usize, usize), String> {
+    let grid = decode_walls(text).map_err(|e| e.to_string())?;
+    check_side(&grid)?;
+    if text.contains('.') {
+        return Err(format!("`{text}` is not a grid size <width>x<height>"));
+    }
+    Ok((grid.width(), grid.height()))
 }
 
 /// Checks a loaded or linked grid's size.
@@ -932,10 +1192,14 @@ impl Experiment for AStarGrid {
                 if let Some(grid) = self.new_grid_of_choice() {
                     self.replace_grid(grid);
                 }
-                self.note = None;
             }
             "maze" => self.maze(),
             "arena" => self.arena(),
+            "zoom" => {
+                let zoomed = self.zoomed();
+                self.zoom_choice = Some(!zoomed);
+                self.frame_ends();
+            }
             _ => return Err(ParamError::UnknownAction { key: key.into() }),
         }
         Ok(())
@@ -979,6 +1243,14 @@ impl Experiment for AStarGrid {
                     self.nudge_goal = self.drag == Drag::Goal;
                     return;
                 }
+                if self.band_side(p).is_some() {
+                    // The zoomed view's edge band pans instead of painting.
+                    self.drag = Drag::Pan {
+                        grab: p,
+                        moved: false,
+                    };
+                    return;
+                }
                 let paint = !self.grid.is_blocked(cell);
                 self.drag = Drag::Paint(paint);
                 self.last_cell = Some(cell);
@@ -1003,10 +1275,30 @@ impl Experiment for AStarGrid {
                         self.moving_handle(cell);
                     }
                 }
+                Drag::Pan { grab, moved } => {
+                    if !pos.is_finite() {
+                        return;
+                    }
+                    // Keep the grabbed world point under the finger.
+                    let moved = moved || (pos - grab).length() > 0.5;
+                    if moved {
+                        self.pan = self.clamp_pan(self.pan + (grab - pos));
+                    }
+                    self.drag = Drag::Pan { grab, moved };
+                }
                 Drag::None => {}
             },
             Input::PointerMove { pressed: false, .. } => {}
             Input::PointerUp(_) => {
+                if let Drag::Pan { grab, moved: false } = self.drag {
+                    // A tap on the band pans half a window that way.
+                    if let (Some(d), Some((c, r))) =
+                        (self.band_side(grab), view::window_cells(self))
+                    {
+                        let half = DVec2::new((c / 2).max(1) as f64, (r / 2).max(1) as f64);
+                        self.pan = self.clamp_pan(self.pan + d * half);
+                    }
+                }
                 self.drag = Drag::None;
                 self.last_cell = None;
             }
@@ -1031,6 +1323,7 @@ impl Experiment for AStarGrid {
                     } else {
                         self.set_start(to);
                     }
+                    self.follow(self.cell_center(to));
                 }
             }
         }
@@ -1066,6 +1359,9 @@ impl Experiment for AStarGrid {
                 self.driven_m = (self.driven_m + speed * dt_s).min(length);
                 if self.driven_m >= length {
                     self.phase = Phase::Arrived;
+                }
+                if let Some(p) = self.robot() {
+                    self.follow(p);
                 }
             }
             _ => {}
@@ -1105,14 +1401,15 @@ impl Experiment for AStarGrid {
 
     /// Loads a Moving AI `.map`; the start and goal move to the first and
     /// last free cells. A malformed file leaves everything as it was.
+    ///
+    /// Every grid the page can reach can be saved and loaded again: a map
+    /// of at least two cells, whatever its walls (issue 14: Save wrote maps
+    /// that Load refused).
     fn load_file(&mut self, name: &str, text: &str) -> Result<(), String> {
         let grid = parse_map(text).map_err(|e| format!("{name}: {e}"))?;
         check_side(&grid).map_err(|e| format!("{name}: {e}"))?;
-        if grid.blocked_count() + 2 > grid.width() * grid.height() {
-            return Err(format!("{name}: the map has fewer than two free cells"));
-        }
         self.replace_grid_with_free_ends(grid);
-        self.note = Some(format!("loaded {name}"));
+        self.notices.post(format!("loaded {name}"), Tone::Neutral);
         Ok(())
     }
 
@@ -1124,32 +1421,126 @@ impl Experiment for AStarGrid {
         true
     }
 
+    /// The grid (`walls=` a wall code; or `maze=W×H.seed` / `map=arena`
+    /// with `edits=` the cells changed since; or `nowalls=W×H` when no form
+    /// fits in [`LINK_WALLS_MAX`]), then both ends as one value
+    /// `ends=sx.sy.gx.gy`, so a link applies them as whole points after the
+    /// grid (issue 14).
     fn extra_state(&self) -> Vec<(&'static str, String)> {
-        if self.walls_in_link() {
-            vec![("walls", encode_walls(&self.grid))]
-        } else {
-            Vec::new()
-        }
+        let (w, h) = (self.grid.width(), self.grid.height());
+        let mut out = self
+            .grid_link
+            .clone()
+            .unwrap_or_else(|| vec![("nowalls", format!("{w}x{h}"))]);
+        let (s, g) = (self.start, self.goal);
+        out.push(("ends", format!("{}.{}.{}.{}", s.x, s.y, g.x, g.y)));
+        out
     }
 
     fn set_extra_state(&mut self, key: &str, value: &str) -> Result<(), ParamError> {
-        if key != "walls" {
-            return Err(ParamError::UnknownKey { key: key.into() });
-        }
         let bad = |reason: String| ParamError::BadText {
             key: key.into(),
             reason,
         };
-        let grid = decode_walls(value).map_err(|e| bad(e.to_string()))?;
-        check_side(&grid).map_err(bad)?;
-        self.replace_grid(grid);
+        match key {
+            "walls" => {
+                let grid = decode_walls(value).map_err(|e| bad(e.to_string()))?;
+                check_side(&grid).map_err(bad)?;
+                self.replace_grid(grid);
+            }
+            "maze" => {
+                let (size, seed) = value
+                    .rsplit_once('.')
+                    .ok_or_else(|| bad(format!("`{value}` is not <width>x<height>.<seed>")))?;
+                let (w, h) = parse_size(size).map_err(bad)?;
+                let seed: u64 = seed
+                    .parse()
+                    .map_err(|_| bad(format!("`{seed}` is not a maze seed")))?;
+                self.maze_of(w, h, seed);
+            }
+            "map" => {
+                if value != "arena" {
+                    return Err(bad(format!("`{value}` is not a map this page knows")));
+                }
+                self.arena();
+            }
+            "edits" => {
+                let base = match (&self.base_grid, self.base) {
+                    (Some(b), Base::Maze { .. } | Base::Arena) if b == &self.grid => b,
+                    _ => return Err(bad("edits need a maze or map before them".into())),
+                };
+                let grid = apply_edits(base, value).map_err(bad)?;
+                self.grid = grid;
+                // The ends stay free of walls as a brush leaves them.
+                self.end_edit();
+                self.invalidate();
+            }
+            "nowalls" => {
+                let (w, h) = parse_size(value).map_err(bad)?;
+                let grid = OccupancyGrid::new(w, h).map_err(|e| bad(e.to_string()))?;
+                self.replace_grid(grid);
+                self.walls_missing = true;
+                self.measure_link();
+                self.notices.post(
+                    format!(
+                        "This link could not carry the walls of its {w} × {h} grid: \
+                         load the grid's .map file (saved with Save file) to get them."
+                    ),
+                    Tone::Warning,
+                );
+            }
+            "ends" => {
+                let n: Vec<usize> = value
+                    .split('.')
+                    .map(str::parse)
+                    .collect::<Result<_, _>>()
+                    .map_err(|_| bad(format!("`{value}` is not sx.sy.gx.gy")))?;
+                let [sx, sy, gx, gy] = n[..] else {
+                    return Err(bad(format!("`{value}` is not sx.sy.gx.gy")));
+                };
+                let (start, goal) = (Cell::new(sx, sy), Cell::new(gx, gy));
+                if start == goal || !self.grid.in_bounds(start) || !self.grid.in_bounds(goal) {
+                    return Err(bad(format!(
+                        "the start and goal must be two different cells of the {} × {} grid",
+                        self.grid.width(),
+                        self.grid.height()
+                    )));
+                }
+                self.set_ends(start, goal);
+            }
+            _ => return Err(ParamError::UnknownKey { key: key.into() }),
+        }
         Ok(())
     }
 
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        view::touch_hint(self)
+    }
+
+    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
+        let size = DVec2::new(width_px, height_px);
+        if size.is_finite() && size.min_element() > 0.0 {
+            self.viewport_px = Some(size);
+            self.frame_ends();
+        }
+    }
+
+    /// The whole grid, or when [`AStarGrid::zoomed`] a window of
+    /// finger-sized cells at the pan (the page fits it to the canvas).
     fn view(&self) -> ViewBox {
-        ViewBox {
-            min: DVec2::ZERO,
-            max: DVec2::new(self.grid.width() as f64, self.grid.height() as f64),
+        match view::window_cells(self) {
+            Some((c, r)) if self.zoomed() => ViewBox {
+                min: self.pan,
+                max: self.pan + DVec2::new(c as f64, r as f64),
+            },
+            _ => ViewBox {
+                min: DVec2::ZERO,
+                max: DVec2::new(self.grid.width() as f64, self.grid.height() as f64),
+            },
         }
     }
 

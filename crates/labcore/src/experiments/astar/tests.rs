@@ -1,7 +1,7 @@
 use super::quiz::*;
 use super::*;
 use crate::planning::astar::{astar_path, SearchStatus};
-use crate::route::{apply_params, format, parse, Page, Tab};
+use crate::route::{apply_params, format, parse, restore, Page, Tab};
 
 const DT: f64 = 1.0 / 60.0;
 
@@ -298,10 +298,6 @@ fn load_file_reads_a_map_and_refuses_a_malformed_one_unchanged() {
         .load_file("short.map", "type octile\nheight 3\n")
         .unwrap_err();
     assert!(e.contains("line"), "{e}");
-    let e = a
-        .load_file("walls.map", "type octile\nheight 1\nwidth 2\nmap\n@@\n")
-        .unwrap_err();
-    assert!(e.contains("free cells"), "{e}");
     assert_eq!(
         before,
         (
@@ -342,7 +338,7 @@ fn the_link_holds_the_walls_and_ends_and_leaves_out_large_grids() {
     a.set_param("w", 1.7).unwrap();
     let (fresh, link, notices) = round_trip(&a);
     assert!(notices.is_empty(), "{notices:?}");
-    assert!(link.contains("walls=32x24."), "{link}");
+    assert!(link.contains("&maze=32x24.1&ends=5.3."), "{link}");
     assert_eq!(fresh.grid(), a.grid());
     assert_eq!((fresh.start(), fresh.goal()), (a.start(), a.goal()));
     assert_eq!(format(&fresh, Tab::Simulation), link);
@@ -352,13 +348,31 @@ fn the_link_holds_the_walls_and_ends_and_leaves_out_large_grids() {
     assert!(notices.is_empty(), "{notices:?}");
     assert_eq!(fresh.grid(), a.grid());
     assert_eq!(format(&fresh, Tab::Simulation), link);
-    // A 512 × 512 maze is far over the limit: no walls in the link, and the page says so.
+    // A 512 × 512 maze travels as its generator and seed (issue 13 §2).
     a.set_param("size", 5.0).unwrap();
     a.action("maze").unwrap();
     assert!(encoded_len(a.grid()) > LINK_WALLS_MAX);
+    assert!(a.walls_in_link());
+    let (fresh, link, notices) = round_trip(&a);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert!(
+        link.len() < 300 && link.contains("maze=512x512.1"),
+        "{link}"
+    );
+    assert_eq!(fresh.grid(), a.grid());
+    // Random walls on a 256 × 192 grid cannot be carried: the link says so
+    // with `nowalls`, and the page it opens says so and offers the .map.
+    let mut rng = Lcg64::new(9);
+    let noise = crate::planning::maze::random_fill(256, 192, 30.0, &mut rng).unwrap();
+    a.load_file("noise.map", &write_map(&noise)).unwrap();
     assert!(!a.walls_in_link());
     let link = format(&a, Tab::Simulation);
-    assert!(!link.contains("walls="), "{}", &link[..200.min(link.len())]);
+    assert!(
+        !link.contains("&walls="),
+        "{}",
+        &link[..200.min(link.len())]
+    );
+    assert!(link.contains("nowalls=256x192"), "{link}");
     assert!(link.len() < 300);
     assert!(a.hint().contains("Save file"));
     assert!(a.status().text.contains("Save file"));
@@ -367,6 +381,25 @@ fn the_link_holds_the_walls_and_ends_and_leaves_out_large_grids() {
     assert!(r
         .iter()
         .any(|x| x.key == "link" && x.value.contains("Save file")));
+    let (opened, notices) = restore(&link, AStarGrid::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!((opened.grid().width(), opened.grid().height()), (256, 192));
+    assert_eq!((opened.start(), opened.goal()), (a.start(), a.goal()));
+    let notice = opened
+        .notice()
+        .expect("the opened page says the walls are missing");
+    assert!(notice.text.contains(".map"), "{}", notice.text);
+    assert!(
+        opened.status().text.contains(".map file"),
+        "{:?}",
+        opened.status()
+    );
+    assert_eq!(opened.file_types(), &[".map"]);
+    // …and its own link is the same, until the .map is loaded.
+    assert_eq!(format(&opened, Tab::Simulation), link);
+    let mut opened = opened;
+    opened.load_file("noise.map", &write_map(&noise)).unwrap();
+    assert_eq!(opened.grid(), &noise);
     // A malformed wall code is refused with a notice and changes nothing.
     let mut b = AStarGrid::default();
     let before = format(&b, Tab::Simulation);
@@ -503,5 +536,201 @@ fn quiz_answers_match_the_solvers() {
             })
             .count();
         assert_eq!(within as f64, d.answer);
+    }
+}
+
+/// The link's state and its notices after opening it on a fresh experiment.
+fn reopen(a: &AStarGrid) -> (AStarGrid, String, Vec<String>) {
+    let link = format(a, Tab::Simulation);
+    let (fresh, notices) = restore(&link, AStarGrid::default());
+    (fresh, link, notices)
+}
+
+/// Everything a link must reproduce: the walls, the ends and every parameter.
+fn link_state(a: &AStarGrid) -> (OccupancyGrid, Cell, Cell, Vec<Option<f64>>) {
+    let params = PARAMS.iter().map(|p| a.param(p.key)).collect();
+    (a.grid().clone(), a.start(), a.goal(), params)
+}
+
+/// Issue 14: goal (5, 5), then the start dragged onto the default goal's
+/// cell (28, 11). Applied one coordinate at a time the link gave start
+/// (28, 12) and a notice.
+#[test]
+fn issue14_a_link_applies_the_start_and_goal_as_whole_points() {
+    let mut a = AStarGrid::default();
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 5))), ctrl());
+    a.input(Input::PointerUp(DVec2::ZERO));
+    assert_eq!(a.goal(), Cell::new(5, 5));
+    a.input(Input::PointerDown(a.cell_center(a.start())));
+    a.input(Input::PointerMove {
+        pos: a.cell_center(Cell::new(28, 11)),
+        pressed: true,
+    });
+    a.input(Input::PointerUp(a.cell_center(Cell::new(28, 11))));
+    assert_eq!(a.start(), Cell::new(28, 11));
+    let (fresh, link, notices) = reopen(&a);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert!(link.contains("ends=28.11.5.5"), "{link}");
+    assert_eq!(
+        (fresh.start(), fresh.goal()),
+        (Cell::new(28, 11), Cell::new(5, 5))
+    );
+    // The mirror case: the goal dragged onto the default start's cell.
+    let mut b = AStarGrid::default();
+    b.input_with(Input::PointerDown(b.cell_center(Cell::new(9, 2))), shift());
+    b.input_with(Input::PointerDown(b.cell_center(Cell::new(3, 12))), ctrl());
+    assert_eq!((b.start(), b.goal()), (Cell::new(9, 2), Cell::new(3, 12)));
+    let (fresh, _, notices) = reopen(&b);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(link_state(&fresh), link_state(&b));
+    // A link whose ends share a cell or leave the grid is refused whole.
+    let mut c = AStarGrid::default();
+    let before = format(&c, Tab::Simulation);
+    for bad in ["4.4.4.4", "3.12.99.1", "1.2.3", "a.b.c.d"] {
+        let notices = apply_params(&mut c, &[("ends".into(), bad.into())]);
+        assert_eq!(notices.len(), 1, "{bad}");
+        assert_eq!(format(&c, Tab::Simulation), before, "{bad}");
+    }
+}
+
+/// Issue 14: start (31, 23), goal (30, 22), then the smallest size put both
+/// on (19, 14) and Plan "arrived" at cost 0.
+#[test]
+fn issue14_the_smallest_size_keeps_the_start_and_goal_apart() {
+    let mut a = AStarGrid::default();
+    a.set_param("sx", 31.0).unwrap();
+    a.set_param("sy", 23.0).unwrap();
+    a.set_param("gx", 30.0).unwrap();
+    a.set_param("gy", 22.0).unwrap();
+    a.set_param("size", 0.0).unwrap();
+    assert_eq!(a.start(), Cell::new(19, 14));
+    assert_ne!(a.start(), a.goal());
+    assert!(a.grid().in_bounds(a.goal()));
+    a.action("plan").unwrap();
+    settle(&mut a);
+    assert!(a.path_cost > 0.0, "a path of cost {}", a.path_cost);
+    let (fresh, _, notices) = reopen(&a);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(link_state(&fresh), link_state(&a));
+}
+
+/// Issue 14: `walls=1x2.1.1` gave start = goal, and the `.map` saved from
+/// it was refused by Load ("fewer than two free cells").
+#[test]
+fn issue14_a_tiny_linked_grid_keeps_the_ends_apart_and_save_and_load_agree() {
+    let (a, notices) = restore("#/astar/simulation?walls=1x2.1.1", AStarGrid::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!((a.grid().width(), a.grid().height()), (1, 2));
+    assert_ne!(a.start(), a.goal());
+    let (name, text) = a.export_text().unwrap();
+    let mut b = AStarGrid::default();
+    b.load_file(&name, &text).unwrap();
+    assert_eq!(b.grid(), a.grid());
+    assert_ne!(b.start(), b.goal());
+    // An all-wall map saves and loads too; the status names the problem.
+    let mut c = AStarGrid::default();
+    c.load_file("walls.map", "type octile\nheight 1\nwidth 2\nmap\n@@\n")
+        .unwrap();
+    assert_ne!(c.start(), c.goal());
+    assert_eq!(c.status().tone, Tone::Bad);
+    let (again, notices) = restore(&format(&c, Tab::Simulation), AStarGrid::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(link_state(&again), link_state(&c));
+}
+
+/// Issue 13 §2: a 64 × 48 random maze link opened as an empty grid.
+#[test]
+fn issue13_a_64_by_48_maze_link_opens_as_that_maze_with_its_edits() {
+    let mut a = AStarGrid::default();
+    a.set_param("size", 2.0).unwrap();
+    a.set_param("seed", 4242.0).unwrap();
+    a.action("maze").unwrap();
+    let (fresh, link, notices) = reopen(&a);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert!(link.contains("maze=64x48.4242"), "{link}");
+    assert!(!link.contains("&walls="), "{link}");
+    assert_eq!(fresh.grid(), a.grid());
+    assert_eq!(fresh.grid().blocked_count(), a.grid().blocked_count());
+    assert!(fresh.grid().blocked_count() > 1000);
+    // Edits on top travel as a short list of toggled cells.
+    a.input(Input::PointerDown(a.cell_center(Cell::new(2, 1))));
+    a.input(Input::PointerUp(DVec2::ZERO));
+    a.input(Input::PointerDown(a.cell_center(Cell::new(40, 30))));
+    a.input(Input::PointerUp(DVec2::ZERO));
+    let (fresh, link, notices) = reopen(&a);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert!(link.contains("&edits="), "{link}");
+    assert!(link.len() < 200, "{} characters", link.len());
+    assert_eq!(fresh.grid(), a.grid());
+    assert_eq!(format(&fresh, Tab::Simulation), link);
+    // The arena map travels by name.
+    a.action("arena").unwrap();
+    let (fresh, link, notices) = reopen(&a);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert!(link.contains("map=arena"), "{link}");
+    assert_eq!(link_state(&fresh), link_state(&a));
+}
+
+/// Issue 14 / 13 §2 property: random pointer, keyboard, size and generator
+/// sequences, then the link opened fresh gives the same state, no notice.
+#[test]
+fn issue14_property_random_inputs_reload_exactly_from_the_link() {
+    let mut rng = Lcg64::new(20_261_125);
+    for case in 0..60 {
+        let mut a = AStarGrid::default();
+        if rng.int(0, 1) == 1 {
+            a.viewport_px(rng.int(300, 1300) as f64, rng.int(240, 800) as f64);
+        }
+        for _ in 0..rng.int(1, 25) {
+            let (w, h) = (a.grid().width() as f64, a.grid().height() as f64);
+            let p = DVec2::new(
+                rng.next_f64() * (w + 4.0) - 2.0,
+                rng.next_f64() * (h + 4.0) - 2.0,
+            );
+            let m = match rng.int(0, 5) {
+                0 => shift(),
+                1 => ctrl(),
+                _ => Modifiers::default(),
+            };
+            match rng.int(0, 12) {
+                0..=2 => a.input_with(Input::PointerDown(p), m),
+                3..=5 => a.input_with(
+                    Input::PointerMove {
+                        pos: p,
+                        pressed: true,
+                    },
+                    m,
+                ),
+                6 => a.input_with(Input::PointerUp(p), m),
+                7 => {
+                    let d = [DVec2::X, -DVec2::X, DVec2::Y, -DVec2::Y][rng.int(0, 3) as usize];
+                    a.input(Input::Nudge(d * 0.3));
+                }
+                8 => {
+                    a.set_param("size", rng.int(0, 2) as f64).unwrap();
+                }
+                9 => {
+                    a.set_param("seed", rng.int(0, 999_999) as f64).unwrap();
+                    a.action("maze").unwrap();
+                }
+                10 => a
+                    .action(["clear", "arena", "zoom", "plan"][rng.int(0, 3) as usize])
+                    .unwrap(),
+                11 => {
+                    let key = ["h", "conn", "w", "rate"][rng.int(0, 3) as usize];
+                    let spec = PARAMS.iter().find(|s| s.key == key).unwrap();
+                    // Whole tenths, which any link keeps exactly.
+                    let tenths = rng.int((spec.min * 10.0) as i64, (spec.max * 10.0) as i64);
+                    a.set_param(key, tenths as f64 / 10.0).unwrap();
+                }
+                _ => a.viewport_px(rng.int(300, 1300) as f64, rng.int(240, 800) as f64),
+            }
+        }
+        a.input(Input::PointerUp(DVec2::ZERO));
+        let (fresh, link, notices) = reopen(&a);
+        assert!(notices.is_empty(), "case {case}: {notices:?} from {link}");
+        assert_eq!(link_state(&fresh), link_state(&a), "case {case}: {link}");
+        assert_eq!(format(&fresh, Tab::Simulation), link, "case {case}");
+        assert_ne!(a.start(), a.goal(), "case {case}");
     }
 }

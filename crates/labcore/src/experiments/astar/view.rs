@@ -167,7 +167,11 @@ pub(super) fn scene(a: &AStarGrid, out: &mut Scene) {
     }
     let start = a.cell_center(a.start);
     let goal = a.cell_center(a.goal);
-    let marker = ((900.0 / w.max(h) as f64).clamp(3.0, 9.0)).min(9.0);
+    let marker = if a.zoomed() {
+        9.0
+    } else {
+        (900.0 / w.max(h) as f64).clamp(3.0, 9.0)
+    };
     out.push(Item::Dot {
         center: start,
         radius_px: marker,
@@ -198,6 +202,80 @@ pub(super) fn scene(a: &AStarGrid, out: &mut Scene) {
             fill: true,
             dashed: false,
         });
+    }
+    if a.zoomed() {
+        pan_band(a, out);
+    }
+}
+
+/// The zoomed view's pan band: a dashed line one cell inside each edge with
+/// more grid beyond, an arrow on that side, and marks toward the start, the
+/// goal and the robot when they are out of view.
+fn pan_band(a: &AStarGrid, out: &mut Scene) {
+    let view = a.view();
+    let (w, h) = (a.grid.width() as f64, a.grid.height() as f64);
+    let lo = DVec2::new(
+        if view.min.x > 0.0 {
+            view.min.x + 1.0
+        } else {
+            view.min.x
+        },
+        if view.min.y > 0.0 {
+            view.min.y + 1.0
+        } else {
+            view.min.y
+        },
+    );
+    let hi = DVec2::new(
+        if view.max.x < w {
+            view.max.x - 1.0
+        } else {
+            view.max.x
+        },
+        if view.max.y < h {
+            view.max.y - 1.0
+        } else {
+            view.max.y
+        },
+    );
+    out.push(Item::Polyline {
+        points: vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)],
+        width_px: 1.5,
+        role: Role::Accent,
+        dashed: true,
+        closed: true,
+    });
+    let mid = (view.min + view.max) * 0.5;
+    let arrows = [
+        (view.min.x > 0.0, DVec2::new(view.min.x + 0.5, mid.y), "◀"),
+        (view.max.x < w, DVec2::new(view.max.x - 0.5, mid.y), "▶"),
+        (view.min.y > 0.0, DVec2::new(mid.x, view.min.y + 0.5), "▼"),
+        (view.max.y < h, DVec2::new(mid.x, view.max.y - 0.5), "▲"),
+    ];
+    for (shown, pos, text) in arrows {
+        if shown {
+            out.push(Item::Label {
+                pos,
+                text: text.into(),
+                role: Role::Accent,
+                offset_px: DVec2::new(-5.0, 5.0),
+            });
+        }
+    }
+    let inside = |p: DVec2| p.cmpge(view.min).all() && p.cmple(view.max).all();
+    let marks = [
+        (Some(a.cell_center(a.start)), "start", Role::Sample),
+        (Some(a.cell_center(a.goal)), "goal", Role::Tip),
+        (a.robot(), "robot", Role::Robot),
+    ];
+    for (at, label, role) in marks {
+        if let Some(at) = at.filter(|p| !inside(*p)) {
+            out.push(Item::OffView {
+                at,
+                label: label.into(),
+                role,
+            });
+        }
     }
 }
 
@@ -237,7 +315,9 @@ pub(super) fn readouts(a: &AStarGrid) -> Vec<Readout> {
         Readout::new(
             "link",
             "Link",
-            if a.walls_in_link() {
+            if a.walls_missing {
+                "the walls were left out: load the .map file".to_owned()
+            } else if a.walls_in_link() {
                 "holds the walls".to_owned()
             } else {
                 "too large for the walls: use Save file (.map)".to_owned()
@@ -255,6 +335,9 @@ pub(super) fn status(a: &AStarGrid) -> Status {
     } else {
         String::new()
     };
+    let benchmark = a.arena_optimum().map_or(String::new(), |o| {
+        format!("; benchmark optimum {}", format_fixed(o, 3))
+    });
     let good = if inadmissible {
         Tone::Warning
     } else {
@@ -263,24 +346,31 @@ pub(super) fn status(a: &AStarGrid) -> Status {
     match a.phase {
         Phase::Refused => Status::new(
             a.ends_problem()
-                .or_else(|| a.note.clone())
-                .unwrap_or_else(|| "cannot plan".into()),
+                .unwrap_or_else(|| "cannot plan between these cells".into()),
             Tone::Bad,
         ),
         _ if a.ends_problem().is_some() => {
             Status::new(a.ends_problem().unwrap_or_default(), Tone::Bad)
         }
+        Phase::Idle if a.walls_missing => Status::new(
+            format!(
+                "walls not in the link: load this {} × {} grid's .map file",
+                a.grid.width(),
+                a.grid.height()
+            ),
+            Tone::Warning,
+        ),
+        Phase::Idle if !a.walls_in_link() => Status::new(
+            "ready; too large for the link: use Save file",
+            Tone::Warning,
+        ),
         Phase::Idle => Status::new(
-            match (&a.note, a.walls_in_link()) {
-                (_, false) => "ready; too large for the link: use Save file".to_owned(),
-                (Some(note), true) => format!("ready: {note}"),
-                (None, true) => "ready: press Plan & drive".to_owned(),
+            match a.base {
+                Base::Maze { seed } => format!("ready: maze from seed {seed}"),
+                Base::Arena => format!("ready: arena map (Moving AI){benchmark}"),
+                Base::Plain => "ready: press Plan & drive".to_owned(),
             },
-            if a.walls_in_link() {
-                Tone::Neutral
-            } else {
-                Tone::Warning
-            },
+            Tone::Neutral,
         ),
         Phase::Comparing => Status::new(
             format!("comparing… {} of 4 planners done", a.compare.len()),
@@ -300,18 +390,18 @@ pub(super) fn status(a: &AStarGrid) -> Status {
             ),
             good,
         ),
-        Phase::Arrived => Status::new(
+        Phase::Arrived => Status::ended(
             format!(
-                "arrived: path cost {}{caveat}",
+                "arrived: path cost {}{caveat}{benchmark}",
                 format_fixed(a.path_cost, 3)
             ),
             good,
         ),
-        Phase::NoPath => Status::new(
+        Phase::NoPath => Status::ended(
             "no path: the goal cannot be reached from the start",
             Tone::Bad,
         ),
-        Phase::Compared => Status::new(
+        Phase::Compared => Status::ended(
             format!("compared {} planners on this grid", a.compare.len()),
             Tone::Good,
         ),
@@ -319,9 +409,33 @@ pub(super) fn status(a: &AStarGrid) -> Status {
 }
 
 pub(super) fn hint(a: &AStarGrid) -> &'static str {
-    if a.walls_in_link() {
-        "Drag to paint or erase walls; Shift-click sets the start, Ctrl-click the goal (or drag them). Then press Plan & drive."
-    } else {
-        "This grid is too large to keep in the link: use Save file to keep it as a .map file. Drag to paint walls; Shift-click sets the start, Ctrl-click the goal."
+    match (a.walls_in_link(), a.zoomed()) {
+        (true, false) => "Drag to paint or erase walls; Shift-click sets the start, Ctrl-click the goal (or drag them). Then press Plan & drive.",
+        (true, true) => "Drag to paint or erase walls; Shift-click sets the start, Ctrl-click the goal (or drag them). The dashed edge band pans: drag or click it. Zoom in / out shows the whole grid.",
+        (false, _) => "This grid is too large to keep in the link: use Save file to keep it as a .map file. Drag to paint walls; Shift-click sets the start, Ctrl-click the goal.",
     }
+}
+
+/// The hint on a touch screen: no Shift- or Ctrl-click there, so the start
+/// and goal are placed by dragging their dots.
+pub(super) fn touch_hint(a: &AStarGrid) -> &'static str {
+    match (a.walls_in_link(), a.zoomed()) {
+        (true, false) => "Swipe to paint or erase walls. To place the start (green) or the goal (red), touch its dot and drag it to the cell you want. Then press Plan & drive.",
+        (true, true) => "Swipe to paint or erase walls. To place the start (green) or the goal (red), touch its dot and drag it to the cell you want. Drag or tap the dashed edge band to pan; Zoom in / out shows the whole grid.",
+        (false, _) => "This grid is too large to keep in the link: use Save file to keep it as a .map file. Swipe to paint walls; touch the start or goal dot and drag it to move it.",
+    }
+}
+
+/// The zoomed window's size in cells (columns, rows) for the canvas the
+/// page told: as many [`MIN_CELL_PX`] cells as fit, `None` when the whole
+/// grid already shows cells that large (or no canvas size is known yet).
+pub(super) fn window_cells(a: &AStarGrid) -> Option<(usize, usize)> {
+    let vp = a.viewport_px?;
+    let (w, h) = (a.grid.width(), a.grid.height());
+    if (vp.x / w as f64).min(vp.y / h as f64) >= MIN_CELL_PX {
+        return None;
+    }
+    let fit = |px: f64, n: usize| ((px / MIN_CELL_PX).floor() as usize).clamp(1, n);
+    let (c, r) = (fit(vp.x, w), fit(vp.y, h));
+    (c < w || r < h).then_some((c, r))
 }
