@@ -38,9 +38,10 @@ pub(super) fn quiz_weighted_bound(rng: &mut Lcg64) -> Draw {
 }
 
 /// Cells within Manhattan distance `d` of a cell on an open grid (the
-/// diamond Dijkstra expands with 4-connected moves): `2d² + 2d + 1`.
+/// diamond Dijkstra expands with 4-connected moves): `2d² + 2d + 1`. The
+/// diamond (`2d + 1` cells across) fits on the default 32 × 24 grid.
 pub(super) fn quiz_diamond(rng: &mut Lcg64) -> Draw {
-    let d = rng.int(2, 12);
+    let d = rng.int(2, 11);
     Draw {
         vars: vec![("d", d.to_string())],
         answer: (2 * d * d + 2 * d + 1) as f64,

@@ -734,3 +734,576 @@ fn issue14_property_random_inputs_reload_exactly_from_the_link() {
         assert_ne!(a.start(), a.goal(), "case {case}");
     }
 }
+
+// ---- Procedure steps (assets/astar.json), each on the state the previous left ----
+
+fn readout(a: &AStarGrid, key: &str) -> String {
+    crate::experiment::readout_value(a, key).unwrap()
+}
+
+fn count_state(a: &AStarGrid, state: crate::planning::astar::CellState) -> usize {
+    a.raster.iter().filter(|&&v| v == state as u8).count()
+}
+
+/// Step 1: the green start on the left, the red goal on the right, walls
+/// between; a drag paints, a drag from a wall erases; Shift-click moves the
+/// start, Ctrl-click the goal, and either marker can be dragged.
+fn step_1(a: &mut AStarGrid) {
+    let (s, g) = (a.start(), a.goal());
+    assert!(s.x < a.grid().width() / 2 && g.x >= a.grid().width() / 2);
+    let mut scene = Scene::default();
+    a.scene(&mut scene);
+    let dot = |role: Role| {
+        scene.items.iter().find_map(|i| match i {
+            Item::Dot {
+                center, role: r, ..
+            } if *r == role => Some(*center),
+            _ => None,
+        })
+    };
+    assert_eq!(dot(Role::Sample), Some(a.cell_center(s)), "green start");
+    assert_eq!(dot(Role::Tip), Some(a.cell_center(g)), "red goal");
+    let between = (s.x + 1..g.x)
+        .any(|x| (0..a.grid().height()).any(|y| a.grid().is_blocked(Cell::new(x, y))));
+    assert!(between, "walls between the start and the goal");
+    // Paint across empty cells, then erase from a wall.
+    let walls = a.grid().blocked_count();
+    a.input(Input::PointerDown(a.cell_center(Cell::new(25, 16))));
+    a.input(Input::PointerMove {
+        pos: a.cell_center(Cell::new(25, 22)),
+        pressed: true,
+    });
+    a.input(Input::PointerUp(DVec2::ZERO));
+    assert_eq!(a.grid().blocked_count(), walls + 7);
+    a.input(Input::PointerDown(a.cell_center(Cell::new(25, 20))));
+    a.input(Input::PointerMove {
+        pos: a.cell_center(Cell::new(25, 22)),
+        pressed: true,
+    });
+    a.input(Input::PointerUp(DVec2::ZERO));
+    assert_eq!(a.grid().blocked_count(), walls + 4);
+    // Shift-click, Ctrl-click, and drags of the markers.
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(2, 20))), shift());
+    a.input_with(Input::PointerUp(DVec2::ZERO), shift());
+    assert_eq!(a.start(), Cell::new(2, 20));
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(30, 2))), ctrl());
+    a.input_with(Input::PointerUp(DVec2::ZERO), ctrl());
+    assert_eq!(a.goal(), Cell::new(30, 2));
+    a.input(Input::PointerDown(a.cell_center(Cell::new(2, 20))));
+    a.input(Input::PointerMove {
+        pos: a.cell_center(s),
+        pressed: true,
+    });
+    a.input(Input::PointerUp(DVec2::ZERO));
+    a.input(Input::PointerDown(a.cell_center(Cell::new(30, 2))));
+    a.input(Input::PointerMove {
+        pos: a.cell_center(g),
+        pressed: true,
+    });
+    a.input(Input::PointerUp(DVec2::ZERO));
+    assert_eq!((a.start(), a.goal()), (s, g));
+    assert_eq!(
+        a.grid().blocked_count(),
+        walls + 4,
+        "moving markers paints nothing"
+    );
+}
+
+#[test]
+fn astar_step_1_markers_sit_either_side_of_the_walls_and_drags_paint_erase_and_move_them() {
+    step_1(&mut AStarGrid::default());
+}
+
+/// Step 2: Octile, 8-connected, Plan & drive: the frontier and the closed
+/// set grow; the open list shows the expanded cell then cells by f with g
+/// and h; the path is drawn and the robot drives it to the goal.
+fn step_2(a: &mut AStarGrid) {
+    use crate::planning::astar::CellState;
+    assert_eq!((a.param("h"), a.param("conn")), (Some(1.0), Some(1.0)));
+    a.action("plan").unwrap();
+    a.step(DT);
+    let (open1, closed1) = (
+        count_state(a, CellState::Open),
+        count_state(a, CellState::Closed),
+    );
+    for _ in 0..5 {
+        a.step(DT);
+    }
+    assert!(
+        count_state(a, CellState::Closed) > closed1,
+        "the closed set fills in"
+    );
+    assert!(
+        count_state(a, CellState::Open) > open1,
+        "the frontier pushes outwards"
+    );
+    let open = a.tables().into_iter().find(|t| t.key == "open").unwrap();
+    assert_eq!(open.columns, vec!["", "cell", "g", "h", "f"]);
+    assert_eq!(open.rows[0][0], "expanding");
+    let f: Vec<f64> = open.rows[1..]
+        .iter()
+        .map(|r| r[4].parse().unwrap())
+        .collect();
+    assert!(f.len() >= 2 && f.windows(2).all(|w| w[0] <= w[1]), "{f:?}");
+    while a.phase == Phase::Searching {
+        a.step(DT);
+    }
+    assert_eq!(a.phase, Phase::Driving);
+    let first = a.robot().unwrap();
+    a.step(DT);
+    assert!(
+        (a.robot().unwrap() - first).length() > 0.0,
+        "the robot drives"
+    );
+    settle(a);
+    let mut scene = Scene::default();
+    a.scene(&mut scene);
+    assert!(scene
+        .items
+        .iter()
+        .any(|i| matches!(i, Item::Polyline { role: Role::Path, points, .. } if points.len() > 2)));
+    assert!((a.robot().unwrap() - a.cell_center(a.goal())).length() < 1e-9);
+    assert_eq!(a.status().phase, crate::experiment::Phase::Ended);
+}
+
+#[test]
+fn astar_step_2_the_frontier_grows_the_open_list_is_ordered_by_f_and_the_robot_drives_the_path() {
+    let mut a = AStarGrid::default();
+    step_1(&mut a);
+    step_2(&mut a);
+}
+
+/// Step 3: Dijkstra finds the same cost but expands more cells.
+fn step_3(a: &mut AStarGrid) -> f64 {
+    let (cost, expanded) = (readout(a, "path_cost"), readout(a, "expanded"));
+    assert_ne!(readout(a, "path_cells"), "--");
+    a.set_param("h", 3.0).unwrap();
+    a.action("plan").unwrap();
+    settle(a);
+    assert_eq!(readout(a, "path_cost"), cost, "the same optimal cost");
+    let more: usize = readout(a, "expanded").parse().unwrap();
+    assert!(
+        more > expanded.parse::<usize>().unwrap() + 50,
+        "{more} vs {expanded}"
+    );
+    a.path_cost
+}
+
+#[test]
+fn astar_step_3_dijkstra_finds_the_same_cost_with_more_expansions() {
+    let mut a = AStarGrid::default();
+    step_1(&mut a);
+    step_2(&mut a);
+    step_3(&mut a);
+}
+
+/// Step 4: Manhattan with 4-connected moves, then Manhattan with diagonal
+/// moves and the goal at (18, 11) between the walls: the status warns that
+/// Manhattan overestimates, its path costs about 27.3, and octile then
+/// finds 24.4.
+fn step_4(a: &mut AStarGrid) {
+    a.set_param("h", 0.0).unwrap();
+    a.set_param("conn", 0.0).unwrap();
+    a.action("plan").unwrap();
+    settle(a);
+    assert_eq!(a.status().tone, Tone::Good, "{:?}", a.status());
+    a.set_param("conn", 1.0).unwrap();
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(18, 11))), ctrl());
+    a.input_with(Input::PointerUp(DVec2::ZERO), ctrl());
+    assert_eq!(a.goal(), Cell::new(18, 11));
+    a.action("plan").unwrap();
+    settle(a);
+    let status = a.status();
+    assert!(
+        status.text.contains("Manhattan overestimates"),
+        "{status:?}"
+    );
+    assert_eq!(status.tone, Tone::Warning);
+    assert_eq!(readout(a, "path_cost"), "27.314 m");
+    a.set_param("h", 1.0).unwrap();
+    a.action("plan").unwrap();
+    settle(a);
+    assert_eq!(readout(a, "path_cost"), "24.385 m");
+    assert_eq!(a.status().tone, Tone::Good);
+}
+
+#[test]
+fn astar_step_4_manhattan_with_diagonals_warns_and_misses_the_optimum() {
+    let mut a = AStarGrid::default();
+    step_1(&mut a);
+    step_2(&mut a);
+    step_3(&mut a);
+    step_4(&mut a);
+}
+
+/// Step 5: Compare lists four planners, draws each path; with a larger w
+/// the weighted cost stays within w times the optimum.
+fn step_5(a: &mut AStarGrid) {
+    a.set_param("h", 1.0).unwrap();
+    a.action("compare").unwrap();
+    settle(a);
+    let t = a.tables().into_iter().find(|t| t.key == "compare").unwrap();
+    let names: Vec<&str> = t.rows.iter().map(|r| r[0].as_str()).collect();
+    assert!(
+        names[0].starts_with("A*")
+            && names[1] == "Dijkstra"
+            && names[2].starts_with("Greedy")
+            && names[3].starts_with("Weighted"),
+        "{names:?}"
+    );
+    assert_eq!(t.columns[..4], ["planner", "expanded", "cost", "ratio"]);
+    let mut scene = Scene::default();
+    a.scene(&mut scene);
+    let paths = scene
+        .items
+        .iter()
+        .filter(|i| matches!(i, Item::Polyline { .. }))
+        .count();
+    assert_eq!(paths, 4);
+    for w in [2.5, 5.0] {
+        a.set_param("w", w).unwrap();
+        a.action("compare").unwrap();
+        settle(a);
+        let rows = a.comparison();
+        let optimum = rows[1].cost.unwrap();
+        let weighted = rows[3].cost.unwrap();
+        assert!(
+            rows[3].name.contains(&format_number(w, 1)),
+            "{}",
+            rows[3].name
+        );
+        assert!(
+            weighted <= w * optimum + 1e-9,
+            "{weighted} > {w} × {optimum}"
+        );
+    }
+    a.set_param("w", 1.0).unwrap();
+}
+
+#[test]
+fn astar_step_5_compare_tabulates_four_planners_and_weighted_stays_within_w_times_optimum() {
+    let mut a = AStarGrid::default();
+    step_1(&mut a);
+    step_2(&mut a);
+    step_5(&mut a);
+}
+
+/// Step 6: a random maze (another seed gives another), planned through;
+/// then a larger maze with more speed; the link keeps it by its seed.
+fn step_6(a: &mut AStarGrid) {
+    a.action("maze").unwrap();
+    let first = a.grid().clone();
+    a.set_param("seed", 7.0).unwrap();
+    a.action("maze").unwrap();
+    assert_ne!(a.grid(), &first, "another seed, another maze");
+    a.action("plan").unwrap();
+    settle(a);
+    assert_eq!(a.phase, Phase::Arrived);
+    a.set_param("size", 3.0).unwrap();
+    a.action("maze").unwrap();
+    assert_eq!((a.grid().width(), a.grid().height()), (128, 96));
+    let slow = a.expansions_per_step();
+    a.set_param("rate", 20.0).unwrap();
+    assert!(a.expansions_per_step() > slow);
+    a.action("plan").unwrap();
+    settle(a);
+    assert_eq!(a.phase, Phase::Arrived);
+    let (fresh, link, notices) = reopen(a);
+    assert!(
+        notices.is_empty() && link.contains("maze=128x96.7"),
+        "{link} {notices:?}"
+    );
+    assert_eq!(fresh.grid(), a.grid());
+    let (name, text) = a.export_text().unwrap();
+    assert!(name.ends_with(".map") && parse_map(&text).unwrap() == *a.grid());
+}
+
+#[test]
+fn astar_step_6_mazes_differ_by_seed_solve_and_travel_in_the_link_by_seed() {
+    let mut a = AStarGrid::default();
+    step_1(&mut a);
+    step_6(&mut a);
+}
+
+/// Step 7: the arena map with its benchmark scenario; the status shows the
+/// benchmark's optimal length next to the path cost found.
+#[test]
+fn astar_step_7_the_arena_path_cost_matches_the_benchmark_optimum_in_the_status() {
+    let mut a = AStarGrid::default();
+    step_1(&mut a);
+    step_6(&mut a);
+    a.set_param("h", 1.0).unwrap();
+    a.set_param("conn", 1.0).unwrap();
+    a.action("arena").unwrap();
+    let optimum = arena_scenario().unwrap().optimal_length;
+    let shown = format_fixed(optimum, 3);
+    assert!(a.status().text.contains(&shown), "{:?}", a.status());
+    a.action("plan").unwrap();
+    settle(&mut a);
+    let status = a.status();
+    assert!(
+        status.text.contains(&format!("arrived: path cost {shown}")),
+        "{status:?}"
+    );
+    assert!(
+        status.text.contains(&format!("benchmark optimum {shown}")),
+        "{status:?}"
+    );
+    // A .map of one's own loads from the file button the same way.
+    let (_, text) = a.export_text().unwrap();
+    a.load_file("mine.map", &text).unwrap();
+    a.action("plan").unwrap();
+    settle(&mut a);
+    assert_eq!(a.phase, Phase::Arrived);
+}
+
+// ---- Issue 13 §4 and §6: statuses, notices, touch, finger-sized cells ----
+
+#[test]
+fn issue13_a_finished_search_has_status_phase_ended_and_messages_are_notices() {
+    use crate::experiment::Phase as RunPhase;
+    let mut a = AStarGrid::default();
+    assert_eq!(a.status().phase, RunPhase::Live);
+    a.action("plan").unwrap();
+    a.step(DT);
+    assert_eq!(a.status().phase, RunPhase::Live, "searching");
+    settle(&mut a);
+    assert_eq!(a.status().phase, RunPhase::Ended, "arrived");
+    a.action("compare").unwrap();
+    settle(&mut a);
+    assert_eq!(a.status().phase, RunPhase::Ended, "compared");
+    let mut b = empty(20, 15);
+    for y in 0..15 {
+        b.grid.set_blocked(Cell::new(10, y), true);
+    }
+    b.grid_changed();
+    b.action("plan").unwrap();
+    settle(&mut b);
+    assert_eq!(b.status().phase, RunPhase::Ended, "no path");
+    // Loading a file is a notice; the status keeps the run's state.
+    let status = a.status();
+    assert!(a.notice().is_none());
+    a.load_file("arena.map", ARENA_MAP).unwrap();
+    assert!(a.notice().unwrap().text.contains("arena.map"));
+    assert!(
+        a.status().text.starts_with("ready"),
+        "{:?} then {status:?}",
+        a.status()
+    );
+}
+
+#[test]
+fn issue13_the_touch_hint_places_the_ends_by_dragging_not_shift_click() {
+    let mut a = AStarGrid::default();
+    for zoom in [None, Some((370.0, 508.0))] {
+        if let Some((w, h)) = zoom {
+            a.viewport_px(w, h);
+        }
+        let hint = a.touch_hint();
+        assert!(!hint.contains("Shift") && !hint.contains("Ctrl"), "{hint}");
+        assert!(
+            hint.contains("start") && hint.contains("goal") && hint.contains("drag"),
+            "{hint}"
+        );
+    }
+    assert!(a.hint().contains("Shift-click"));
+}
+
+/// The cells a press paints in the current view (inside, off the pan band).
+fn paintable(a: &AStarGrid) -> Vec<Cell> {
+    let v = a.view();
+    let mut out = Vec::new();
+    for i in 0..a.grid().width() * a.grid().height() {
+        let c = a.grid().cell_of(i).unwrap();
+        let p = a.cell_center(c);
+        if p.cmpgt(v.min).all() && p.cmplt(v.max).all() && a.band_side(p).is_none() {
+            out.push(c);
+        }
+    }
+    out
+}
+
+fn tap(a: &mut AStarGrid, p: DVec2) {
+    a.input(Input::PointerDown(p));
+    a.input(Input::PointerUp(p));
+}
+
+#[test]
+fn issue13_a_phone_view_shows_cells_of_at_least_24_px_and_every_cell_is_reachable() {
+    let (w_px, h_px) = (370.0, 508.0);
+    let mut a = AStarGrid::default();
+    let link = format(&a, Tab::Simulation);
+    a.viewport_px(w_px, h_px);
+    assert!(a.zoomed());
+    assert_eq!(
+        format(&a, Tab::Simulation),
+        link,
+        "view state is not in the link"
+    );
+    let v = a.view();
+    let size = v.max - v.min;
+    let cell_px = (w_px / size.x).min(h_px / size.y);
+    assert!(cell_px >= MIN_CELL_PX, "{cell_px} px");
+    let inside = |a: &AStarGrid, c: Cell| paintable(a).contains(&c);
+    assert!(inside(&a, a.start()), "the view frames the start");
+    // Tapping the band pans; a tap inside paints.
+    let mut seen = std::collections::HashSet::new();
+    let go = |a: &mut AStarGrid, d: DVec2| {
+        let v = a.view();
+        let mid = (v.min + v.max) * 0.5;
+        let p = mid + d * ((v.max - v.min) * 0.5 - 0.5);
+        if a.band_side(p).is_none() {
+            return false; // the view touches the grid's edge on that side
+        }
+        let before = a.pan;
+        tap(a, p);
+        assert_ne!(a.pan, before, "a tap on the band pans");
+        true
+    };
+    while go(&mut a, -DVec2::X) {}
+    while go(&mut a, -DVec2::Y) {}
+    loop {
+        loop {
+            seen.extend(paintable(&a));
+            if !go(&mut a, DVec2::X) {
+                break;
+            }
+        }
+        if !go(&mut a, DVec2::Y) {
+            break;
+        }
+        while go(&mut a, -DVec2::X) {}
+    }
+    assert_eq!(
+        seen.len(),
+        32 * 24,
+        "every cell can be painted after panning"
+    );
+    assert_eq!(
+        format(&a, Tab::Simulation),
+        link,
+        "panning is not in the link"
+    );
+    // A drag on the band pans by the drag; a tap inside paints one wall.
+    let v = a.view();
+    let before = a.pan;
+    let grab = DVec2::new(v.min.x + 0.5, (v.min.y + v.max.y) * 0.5);
+    assert!(a.band_side(grab).is_some());
+    a.input(Input::PointerDown(grab));
+    a.input(Input::PointerMove {
+        pos: grab + DVec2::new(3.0, 0.0),
+        pressed: true,
+    });
+    a.input(Input::PointerUp(grab));
+    assert_ne!(a.pan, before);
+    assert_eq!(format(&a, Tab::Simulation), link, "a pan paints nothing");
+    let free = paintable(&a)
+        .into_iter()
+        .find(|&c| a.grid().is_free(c) && c != a.start() && c != a.goal())
+        .unwrap();
+    let p = a.cell_center(free);
+    tap(&mut a, p);
+    assert!(a.grid().is_blocked(free));
+    // Off-view ends are marked at the canvas edge.
+    let mut scene = Scene::default();
+    a.scene(&mut scene);
+    let off: Vec<&str> = scene
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::OffView { label, .. } => Some(label.as_str()),
+            _ => None,
+        })
+        .collect();
+    let vis = |c: Cell| {
+        let p = a.cell_center(c);
+        let v = a.view();
+        p.cmpge(v.min).all() && p.cmple(v.max).all()
+    };
+    assert_eq!(off.contains(&"goal"), !vis(a.goal()));
+    // Zoom out shows the whole grid; a desktop canvas does not zoom.
+    a.action("zoom").unwrap();
+    assert!(!a.zoomed());
+    assert_eq!(a.view().max, DVec2::new(32.0, 24.0));
+    let mut d = AStarGrid::default();
+    d.viewport_px(900.0, 560.0);
+    assert!(!d.zoomed());
+}
+
+/// Issue 15: every generator draws what the page can set up — offsets that
+/// fit on the default 32 × 24 grid, a weight on the w slider (its range and
+/// step), a diamond that fits on the default grid.
+#[test]
+fn issue15_quiz_generators_draw_inside_the_sliders_and_the_default_grid() {
+    let (gw, gh) = SIZES[1];
+    let w_spec = PARAMS.iter().find(|s| s.key == "w").unwrap();
+    let mut rng = Lcg64::new(15);
+    for _ in 0..500 {
+        for name in ["octile", "f_value"] {
+            let d = quiz_generator(name).unwrap()(&mut rng);
+            let (dx, dy) = (d.var("dx").unwrap(), d.var("dy").unwrap());
+            assert!(
+                dx >= 0.0 && dx < gw as f64 && dy >= 0.0 && dy < gh as f64,
+                "{name}"
+            );
+        }
+        let d = quiz_weighted_bound(&mut rng);
+        let w = d.var("w").unwrap();
+        assert!((w_spec.min..=w_spec.max).contains(&w) && w > 1.0, "w = {w}");
+        let steps = (w - w_spec.min) / w_spec.step;
+        assert!(
+            (steps - steps.round()).abs() < 1e-9,
+            "w = {w} is on the slider's steps"
+        );
+        let d = quiz_diamond(&mut rng).var("d").unwrap() as usize;
+        assert!(
+            2 * d < gw.min(gh),
+            "a diamond of radius {d} fits on {gw} × {gh}"
+        );
+    }
+}
+
+/// Issue 15: the theory writes the heuristics with absolute values, the
+/// quiz names the weighted bound, the diamond clause and Pohl's issue are
+/// right, and the correct option is rarely the longest.
+#[test]
+fn issue15_content_heuristics_quiz_wording_and_option_lengths() {
+    let text = include_str!("../../../../../assets/astar.json");
+    let v: serde_json::Value = serde_json::from_str(text).unwrap();
+    let theory = v["theory"].to_string();
+    let abs_dx = r#"<mo stretchy=\"false\">|</mo><mi mathvariant=\"normal\">Δ</mi><mi>x</mi><mo stretchy=\"false\">|</mo>"#;
+    assert!(
+        theory.matches(abs_dx).count() >= 4,
+        "|Δx| in Manhattan and octile"
+    );
+    let quiz = v["quiz"].as_array().unwrap();
+    let prompts: Vec<&str> = quiz.iter().map(|q| q["prompt"].as_str().unwrap()).collect();
+    assert!(prompts[8].contains("guaranteed upper bound w·C*"));
+    assert!(prompts[9].contains("once every cell of cost {d} has been expanded"));
+    let pohl = v["references"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["authors"].as_str().unwrap().starts_with("Pohl"))
+        .unwrap();
+    assert!(pohl["detail"].as_str().unwrap().contains("no. 3–4"));
+    let choice: Vec<_> = quiz.iter().filter(|q| q["kind"] == "choice").collect();
+    let longest = choice
+        .iter()
+        .filter(|q| {
+            let opts: Vec<usize> = q["options"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|o| o.as_str().unwrap().chars().count())
+                .collect();
+            let a = q["answer"].as_u64().unwrap() as usize;
+            opts.iter().enumerate().all(|(i, &l)| i == a || l < opts[a])
+        })
+        .count();
+    assert!(
+        4 * longest <= choice.len(),
+        "{longest} of {} correct options are the longest",
+        choice.len()
+    );
+}
