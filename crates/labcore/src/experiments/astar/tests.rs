@@ -400,6 +400,11 @@ fn the_link_holds_the_walls_and_ends_and_leaves_out_large_grids() {
     let mut opened = opened;
     opened.load_file("noise.map", &write_map(&noise)).unwrap();
     assert_eq!(opened.grid(), &noise);
+    let (_, notices) = restore(
+        "#/astar/simulation?size=6&nowalls=600x400&ends=1.0.599.399",
+        AStarGrid::default(),
+    );
+    assert!(notices.is_empty(), "{notices:?}");
     // A malformed wall code is refused with a notice and changes nothing.
     let mut b = AStarGrid::default();
     let before = format(&b, Tab::Simulation);
@@ -676,23 +681,49 @@ fn issue13_a_64_by_48_maze_link_opens_as_that_maze_with_its_edits() {
 #[test]
 fn issue14_property_random_inputs_reload_exactly_from_the_link() {
     let mut rng = Lcg64::new(20_261_125);
-    for case in 0..60 {
+    for case in 0..150 {
         let mut a = AStarGrid::default();
         if rng.int(0, 1) == 1 {
             a.viewport_px(rng.int(300, 1300) as f64, rng.int(240, 800) as f64);
         }
         for _ in 0..rng.int(1, 25) {
             let (w, h) = (a.grid().width() as f64, a.grid().height() as f64);
-            let p = DVec2::new(
-                rng.next_f64() * (w + 4.0) - 2.0,
-                rng.next_f64() * (h + 4.0) - 2.0,
-            );
+            // Often a cell where an end is or was by default (the issue's
+            // repro drags the start onto the default goal's cell).
+            let near = [Cell::new(3, 12), Cell::new(28, 11), a.start(), a.goal()];
+            let p = if rng.int(0, 1) == 0 {
+                let off = if rng.int(0, 1) == 0 {
+                    DVec2::ZERO
+                } else {
+                    DVec2::new(rng.int(-1, 1) as f64, rng.int(-1, 1) as f64)
+                };
+                a.cell_center(near[rng.int(0, 3) as usize]) + off
+            } else {
+                DVec2::new(
+                    rng.next_f64() * (w + 4.0) - 2.0,
+                    rng.next_f64() * (h + 4.0) - 2.0,
+                )
+            };
             let m = match rng.int(0, 5) {
                 0 => shift(),
                 1 => ctrl(),
                 _ => Modifiers::default(),
             };
-            match rng.int(0, 12) {
+            match rng.int(-3, 12) {
+                -3..=-1 => {
+                    // Drag the start or the goal onto `p`.
+                    let end = if rng.int(0, 1) == 0 {
+                        a.start()
+                    } else {
+                        a.goal()
+                    };
+                    a.input(Input::PointerDown(a.cell_center(end)));
+                    a.input(Input::PointerMove {
+                        pos: p,
+                        pressed: true,
+                    });
+                    a.input(Input::PointerUp(p));
+                }
                 0..=2 => a.input_with(Input::PointerDown(p), m),
                 3..=5 => a.input_with(
                     Input::PointerMove {
