@@ -1,7 +1,8 @@
 //! Experiment 6 — A* and Dijkstra on an editable occupancy grid.
 //!
-//! The student paints walls, places the start (Shift-click) and the goal
-//! (Ctrl-click), picks a heuristic, the connectivity and a weight, and presses
+//! The student paints walls, places the start (Shift-click, or a drag of its
+//! dot on a touch screen) and the goal (Ctrl-click), picks a heuristic, the
+//! connectivity and a weight, and presses
 //! *Plan & drive*: [`Search::step`] expands a fixed number of cells per fixed
 //! time step, so the open list (frontier) and the closed set grow on screen,
 //! then the robot drives the path found. A* orders its open list by
@@ -20,10 +21,19 @@
 //! downwards, as in [`OccupancyGrid`] and `.map` files) covers
 //! `[x, x + 1] × [H − y − 1, H − y]` of the world (y up).
 //!
-//! **The link** holds every parameter and the walls as a wall code
-//! ([`encode_walls`], key `walls`) up to [`LINK_WALLS_MAX`] characters; a
-//! larger grid is left out of the link and the page says to use *Save file*
-//! ([`Experiment::export_text`], a Moving AI `.map`) instead.
+//! **The link** holds every parameter, then the grid: a maze or the arena
+//! map as its generator and seed (`maze=W×H.seed`, `map=arena`) plus the
+//! cells edited since (`edits=`, the runs of a wall code), or the walls as a
+//! wall code ([`encode_walls`], `walls=`), whichever is shorter, up to
+//! [`LINK_WALLS_MAX`] characters. When neither fits, `nowalls=W×H` keeps the
+//! size and the page that opens it says to load the `.map` file
+//! ([`Experiment::export_text`], a Moving AI map). Then both ends as one value,
+//! `ends=sx.sy.gx.gy`, applied after the grid as whole points (issue 14).
+//!
+//! **On a phone** ([`Experiment::viewport_px`] at most [`PHONE_WIDTH_PX`]
+//! wide) the view is a window of cells at least [`MIN_CELL_PX`] across around
+//! the start and goal; its outer ring of cells is a pan band (drag it, or tap
+//! it to move half a window). This is view state, never in the link.
 
 use crate::experiment::{
     check_param, format_fixed, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
@@ -265,7 +275,7 @@ pub struct AStarGrid {
     walls_missing: bool,
     /// Transient messages (a loaded file, a link that lost its walls).
     notices: Notices,
-    /// View state, never in the link: see [`view::Window`].
+    /// The canvas size the page told (CSS px): view state, never in the link.
     viewport_px: Option<DVec2>,
     /// `Some(on)` once the student pressed *Zoom*; `None`: zoomed when the
     /// canvas is narrow and whole-grid cells would be under [`MIN_CELL_PX`].
