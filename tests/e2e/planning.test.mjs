@@ -1,7 +1,7 @@
 // Experiments 6 (A*) and 10 (RRT*) driven like a student would: paint walls,
 // Shift-click the start, plan and drive, read the open list and the
-// comparison, load the arena map and a broken one, grow an RRT* tree and
-// download its cost curve.
+// comparison, load the arena map and a broken one, reopen a maze from its
+// link, grow an RRT* tree and download its cost curve.
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -92,14 +92,23 @@ test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds 
     await screenshot(page, "astar-compare");
   }));
 
+/** The view's world box [minX, minY, maxX, maxY] (a zoomed window on a phone). */
+async function viewBox(page) {
+  return (await page.locator(`${ART} canvas.sim-canvas`).getAttribute("data-view")).split(",").map(Number);
+}
+
 test("astar: a finger paints walls too: the canvas takes the touch and the page does not scroll", () =>
   withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page, context) => {
     await open(lab, page, "#/astar/simulation");
     await page.locator(`${ART} canvas.sim-canvas`).scrollIntoViewIfNeeded();
     const before = await walls(page);
     const scrollY = await page.evaluate(() => scrollY);
-    const a = await cellToPage(page, 25, 16, 24);
-    const b = await cellToPage(page, 25, 22, 24);
+    // Seven free cells of column 6 inside the view (a phone may show a
+    // zoomed window: stay off its one-cell pan band).
+    const [, , , maxY] = await viewBox(page);
+    const top = Math.ceil(24 - maxY) + 2;
+    const a = await cellToPage(page, 6, top, 24);
+    const b = await cellToPage(page, 6, top + 6, 24);
     const cdp = await context.newCDPSession(page);
     const touch = (type, p) =>
       cdp.send("Input.dispatchTouchEvent", { type, touchPoints: p ? [{ x: Math.round(p.x), y: Math.round(p.y), id: 1 }] : [] });
@@ -109,6 +118,17 @@ test("astar: a finger paints walls too: the canvas takes the touch and the page 
     await page.waitForFunction((n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] > n, before);
     assert.equal(await walls(page), before + 7, "a vertical swipe painted seven cells");
     assert.equal(await page.evaluate(() => scrollY), scrollY, "the page did not scroll");
+  }));
+
+test("astar step 1: on a 390 px phone the grid's cells are at least 24 CSS px under a finger", () =>
+  withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page) => {
+    await open(lab, page, "#/astar/simulation");
+    const canvas = page.locator(`${ART} canvas.sim-canvas`);
+    const box = await canvas.boundingBox();
+    const [minX, minY, maxX, maxY] = await viewBox(page);
+    const cellPx = Math.min(box.width / (maxX - minX), box.height / (maxY - minY));
+    assert.ok(cellPx >= 24, `${cellPx.toFixed(1)} px per cell`);
+    assert.doesNotMatch(await page.evaluate(() => location.hash), /pan|zoom/, "the view is not in the link");
   }));
 
 test("astar: the arena map loads from the file input, a malformed map is refused with its line, and the link keeps the walls", () =>
@@ -146,16 +166,28 @@ test("astar: the arena map loads from the file input, a malformed map is refused
     assert.match(text, /^type octile\nheight 49\nwidth 49\nmap\n/);
   }));
 
-test("astar: a 512 × 512 maze is too large for the link and the page says to save a file", () =>
+test("astar step 6: a 512 × 512 maze travels in its link as its seed and reopens as the same maze", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/astar/simulation?size=5&rate=50");
     await page.click(`${ART} button[data-action=maze]`);
-    await waitStatus(page, /too large for the link: use Save file/);
-    assert.match((await readouts(page)).link, /Save file/);
+    await page.waitForFunction(() => /maze=512x512\.1/.test(location.hash) && !/&walls=/.test(location.hash));
+    const grid = (await readouts(page)).grid;
+    assert.match(grid, /^512 × 512, \d+ walls/);
+    assert.match((await readouts(page)).link, /holds the walls/);
     await page.click(`${ART} button[data-action=plan]`);
     await waitStatus(page, /^(path found|arrived)/, 30_000);
-    await page.waitForFunction(() => !/walls=/.test(location.hash) && /size=5/.test(location.hash));
     await screenshot(page, "astar-512-maze");
+    await page.reload();
+    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    assert.equal((await readouts(page)).grid, grid, "the link rebuilt the maze, not an empty grid");
+  }));
+
+test("astar: a link that could not carry its walls says so and asks for the .map file", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/astar/simulation?size=6&nowalls=600x400&ends=1.0.599.399");
+    await waitStatus(page, /walls not in the link: load this 600 × 400 grid's \.map file/);
+    assert.match((await readouts(page)).link, /load the \.map file/);
+    assert.equal(await page.locator(`${ART} input.file-input`).count(), 1, "the page offers to load a .map");
   }));
 
 test("rrtstar: the best length shrinks as the tree grows, Compare overlays three curves, and the cost CSV downloads", () =>

@@ -330,6 +330,8 @@ impl SimState {
             self.canvas.set_width((w * dpr).round() as u32);
             self.canvas.set_height((h * dpr).round() as u32);
             self.needs_paint = true;
+            // The experiment may pick a finger-sized view (A* on a phone).
+            self.exp.viewport_px(w, h);
         }
         let view = self.exp.view();
         if view != self.shown_view {

@@ -1,7 +1,8 @@
 //! Experiment 6 — A* and Dijkstra on an editable occupancy grid.
 //!
-//! The student paints walls, places the start (Shift-click) and the goal
-//! (Ctrl-click), picks a heuristic, the connectivity and a weight, and presses
+//! The student paints walls, places the start (Shift-click, or a drag of its
+//! dot on a touch screen) and the goal (Ctrl-click), picks a heuristic, the
+//! connectivity and a weight, and presses
 //! *Plan & drive*: [`Search::step`] expands a fixed number of cells per fixed
 //! time step, so the open list (frontier) and the closed set grow on screen,
 //! then the robot drives the path found. A* orders its open list by
@@ -20,14 +21,23 @@
 //! downwards, as in [`OccupancyGrid`] and `.map` files) covers
 //! `[x, x + 1] × [H − y − 1, H − y]` of the world (y up).
 //!
-//! **The link** holds every parameter and the walls as a wall code
-//! ([`encode_walls`], key `walls`) up to [`LINK_WALLS_MAX`] characters; a
-//! larger grid is left out of the link and the page says to use *Save file*
-//! ([`Experiment::export_text`], a Moving AI `.map`) instead.
+//! **The link** holds every parameter, then the grid: a maze or the arena
+//! map as its generator and seed (`maze=W×H.seed`, `map=arena`) plus the
+//! cells edited since (`edits=`, the runs of a wall code), or the walls as a
+//! wall code ([`encode_walls`], `walls=`), whichever is shorter, up to
+//! [`LINK_WALLS_MAX`] characters. When neither fits, `nowalls=W×H` keeps the
+//! size and the page that opens it says to load the `.map` file
+//! ([`Experiment::export_text`], a Moving AI map). Then both ends as one value,
+//! `ends=sx.sy.gx.gy`, applied after the grid as whole points (issue 14).
+//!
+//! **On a phone** ([`Experiment::viewport_px`] at most [`PHONE_WIDTH_PX`]
+//! wide) the view is a window of cells at least [`MIN_CELL_PX`] across around
+//! the start and goal; its outer ring of cells is a pan band (drag it, or tap
+//! it to move half a window). This is view state, never in the link.
 
 use crate::experiment::{
-    check_param, format_fixed, ActionSpec, Experiment, Input, Modifiers, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
+    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::planning::astar::{Search, SearchConfig, StepOutcome, Strategy};
 use crate::planning::grid::{Cell, Connectivity, OccupancyGrid};
@@ -79,6 +89,11 @@ pub const OPEN_ROWS: usize = 8;
 /// [`MIN_DRIVE_SPEED`] m/s), so a 512 × 512 path does not take minutes.
 const DRIVE_TIME_S: f64 = 6.0;
 const MIN_DRIVE_SPEED: f64 = 4.0; // m/s (cells per second)
+/// The smallest cell a finger can hit, CSS px (issue 13 §6).
+pub const MIN_CELL_PX: f64 = 24.0;
+/// Canvases at most this wide (a phone) zoom to [`MIN_CELL_PX`] cells by
+/// themselves; wider ones only when the student presses *Zoom*.
+pub const PHONE_WIDTH_PX: f64 = 600.0;
 
 const PARAMS: &[ParamSpec] = &[
     ParamSpec::choice("h", "Heuristic", HEURISTICS, 1),
@@ -114,6 +129,10 @@ const ACTIONS: &[ActionSpec] = &[
         key: "arena",
         label: "Arena map",
     },
+    ActionSpec {
+        key: "zoom",
+        label: "Zoom in / out",
+    },
 ];
 
 /// The default grid (32 × 24): two walls between the start and the goal.
@@ -139,13 +158,31 @@ fn unreachable_grid() -> OccupancyGrid {
 }
 
 /// What a pointer drag does.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 enum Drag {
     None,
     /// Painting walls (`true`) or erasing them (`false`), decided by the first cell.
     Paint(bool),
     Start,
     Goal,
+    /// Panning the zoomed view: the world point grabbed, and whether the
+    /// finger has moved (a tap without a move pans by half a window).
+    Pan {
+        grab: DVec2,
+        moved: bool,
+    },
+}
+
+/// What the walls were made from (see [`AStarGrid::extra_state`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Base {
+    /// Painted, loaded or linked walls: the link holds them as a wall code.
+    Plain,
+    /// `recursive_backtracker(width, height, seed)`: the link holds
+    /// `maze=<W>x<H>.<seed>` and the cells edited since.
+    Maze { seed: u64 },
+    /// The bundled Moving AI arena map: `map=arena` and the edits.
+    Arena,
 }
 
 /// Expansions a step of the comparison may make (about a millisecond in the
@@ -225,8 +262,26 @@ pub struct AStarGrid {
     nudge_goal: bool,
     /// Length of the wall code, characters (kept current on every edit).
     code_len: usize,
-    /// A message from the last Plan, Load or maze (e.g. what went wrong).
-    note: Option<String>,
+    /// What the walls were generated from (a maze and its seed, the arena
+    /// map), so the link names the generator and only the cells edited since.
+    base: Base,
+    /// The generated grid of `base` (`None` for [`Base::Plain`]).
+    base_grid: Option<OccupancyGrid>,
+    /// The grid's part of the link, kept current on every edit; `None` when
+    /// even the shortest form is over [`LINK_WALLS_MAX`].
+    grid_link: Option<Vec<(&'static str, String)>>,
+    /// The grid came from a link that could not carry its walls
+    /// (`nowalls=W×H`); cleared by the first edit or a new grid.
+    walls_missing: bool,
+    /// Transient messages (a loaded file, a link that lost its walls).
+    notices: Notices,
+    /// The canvas size the page told (CSS px): view state, never in the link.
+    viewport_px: Option<DVec2>,
+    /// `Some(on)` once the student pressed *Zoom*; `None`: zoomed when the
+    /// canvas is narrow and whole-grid cells would be under [`MIN_CELL_PX`].
+    zoom_choice: Option<bool>,
+    /// Lower-left corner of the zoomed window, world metres (whole cells).
+    pan: DVec2,
     /// Expanded cells and frontier size against fixed steps.
     plots: [Plot; 1],
 }
@@ -272,7 +327,14 @@ impl Default for AStarGrid {
             last_cell: None,
             nudge_goal: false,
             code_len: 0,
-            note: None,
+            base: Base::Plain,
+            base_grid: None,
+            grid_link: None,
+            walls_missing: false,
+            notices: Notices::default(),
+            viewport_px: None,
+            zoom_choice: None,
+            pan: DVec2::ZERO,
             plots: new_plots(),
             grid,
         };
@@ -364,8 +426,40 @@ impl AStarGrid {
     /// The wall code length and the raster after the grid changed; the run
     /// and the comparison are dropped.
     fn grid_changed(&mut self) {
-        self.code_len = encoded_len(&self.grid);
+        self.measure_link();
         self.invalidate();
+    }
+
+    /// The wall code's length and the grid's part of the link: the
+    /// generator and the cells edited since when `base` is set and that is
+    /// shorter, else the wall code, else nothing (over [`LINK_WALLS_MAX`]).
+    fn measure_link(&mut self) {
+        self.code_len = encoded_len(&self.grid);
+        let (w, h) = (self.grid.width(), self.grid.height());
+        let generated = match (self.base, &self.base_grid) {
+            (Base::Maze { seed }, Some(b)) => Some((("maze", format!("{w}x{h}.{seed}")), b)),
+            (Base::Arena, Some(b)) => Some((("map", "arena".to_owned()), b)),
+            _ => None,
+        };
+        if let Some(((key, value), base)) = generated {
+            if let Some(edits) = edit_runs(base, &self.grid) {
+                if edits.len() <= LINK_WALLS_MAX && edits.len() < self.code_len {
+                    let mut link = vec![(key, value)];
+                    if !edits.is_empty() {
+                        link.push(("edits", edits));
+                    }
+                    self.grid_link = Some(link);
+                    return;
+                }
+            }
+        }
+        self.grid_link = if self.walls_missing {
+            Some(vec![("nowalls", format!("{w}x{h}"))])
+        } else if self.code_len <= LINK_WALLS_MAX {
+            Some(vec![("walls", encode_walls(&self.grid))])
+        } else {
+            None
+        };
     }
 
     /// Drops the search, the path and the comparison (the grid, an end or a
@@ -466,7 +560,8 @@ impl AStarGrid {
 
     /// After walls changed: the code length, and the run is dropped.
     fn end_edit(&mut self) {
-        self.code_len = encoded_len(&self.grid);
+        self.walls_missing = false;
+        self.measure_link();
         if self.phase != Phase::Idle || !self.compare.is_empty() {
             self.invalidate();
         }
@@ -489,16 +584,50 @@ impl AStarGrid {
     /// Replaces the grid, keeping the start and goal where they fit (clamped
     /// onto the grid otherwise).
     fn replace_grid(&mut self, grid: OccupancyGrid) {
+        self.replace_grid_from(grid, Base::Plain, None);
+    }
+
+    /// [`Self::replace_grid`] with what the grid was generated from.
+    fn replace_grid_from(
+        &mut self,
+        grid: OccupancyGrid,
+        base: Base,
+        base_grid: Option<OccupancyGrid>,
+    ) {
         let clamp = |c: Cell| Cell::new(c.x.min(grid.width() - 1), c.y.min(grid.height() - 1));
         self.start = clamp(self.start);
         self.goal = clamp(self.goal);
-        if self.goal == self.start {
-            // A 1-cell-wide grid can leave them on one cell; move the goal.
-            self.goal = Cell::new(grid.width() - 1, grid.height() - 1);
-        }
         self.grid = grid;
+        self.keep_ends_apart();
+        self.base = base;
+        self.base_grid = base_grid;
+        self.walls_missing = false;
         self.size_choice = size_index(&self.grid).unwrap_or(self.size_choice);
         self.grid_changed();
+        self.frame_ends();
+    }
+
+    /// When the start and goal landed on one cell (a smaller grid clamped
+    /// both onto its corner), moves the goal to the nearest other cell, a
+    /// free one if there is any (issue 14: they never share a cell).
+    fn keep_ends_apart(&mut self) {
+        if self.start != self.goal {
+            return;
+        }
+        let (goal, start) = (self.goal, self.start);
+        let grid = &self.grid;
+        let best = (0..grid.width() * grid.height())
+            .filter_map(|i| grid.cell_of(i))
+            .filter(|&c| c != start)
+            .min_by_key(|&c| {
+                (
+                    grid.is_blocked(c),
+                    c.x.abs_diff(goal.x) + c.y.abs_diff(goal.y),
+                )
+            });
+        if let Some(cell) = best {
+            self.goal = cell;
+        }
     }
 
     /// A new grid with free start and goal cells: the free cells nearest the
@@ -512,9 +641,7 @@ impl AStarGrid {
         self.replace_grid(grid);
         if let (Some(s), Some(g)) = (start, goal) {
             if s != g {
-                self.start = s;
-                self.goal = g;
-                self.invalidate();
+                self.set_ends(s, g);
             }
         }
     }
@@ -539,7 +666,6 @@ impl AStarGrid {
     /// Starts the animated search (*Plan & drive*).
     fn plan(&mut self) {
         self.invalidate();
-        self.note = None;
         if self.ends_problem().is_some() {
             self.phase = Phase::Refused;
             return;
@@ -551,7 +677,7 @@ impl AStarGrid {
                 self.search_raster();
             }
             Err(e) => {
-                self.note = Some(e.to_string());
+                self.notices.post(format!("cannot plan: {e}"), Tone::Bad);
                 self.phase = Phase::Refused;
             }
         }
@@ -701,10 +827,16 @@ impl AStarGrid {
             Some(&s) => s,
             None => (self.grid.width(), self.grid.height()),
         };
-        let Ok(maze) = recursive_backtracker(w, h, self.seed) else {
+        self.maze_of(w, h, self.seed);
+    }
+
+    /// A `w × h` maze from `seed`, the start in the first room and the goal
+    /// in the last (what *Random maze* and a `maze=` link make).
+    fn maze_of(&mut self, w: usize, h: usize, seed: u64) {
+        let Ok(maze) = recursive_backtracker(w, h, seed) else {
             return;
         };
-        self.replace_grid(maze);
+        self.replace_grid_from(maze.clone(), Base::Maze { seed }, Some(maze));
         // Rooms have odd coordinates up to n − 2: the first and the last room.
         let last = |n: usize| {
             let m = n - 2;
@@ -714,43 +846,131 @@ impl AStarGrid {
                 m - 1
             }
         };
-        if w >= 4 && h >= 4 {
-            self.start = Cell::new(1, 1);
-            self.goal = Cell::new(last(w), last(h));
-            if self.goal == self.start {
-                self.goal = Cell::new(w - 1, h - 1);
-            }
-            self.invalidate();
+        if w >= 4 && h >= 4 && (last(w), last(h)) != (1, 1) {
+            self.set_ends(Cell::new(1, 1), Cell::new(last(w), last(h)));
         }
-        self.note = Some(format!("maze from seed {}", self.seed));
     }
 
     fn arena(&mut self) {
         let Ok(grid) = parse_map(ARENA_MAP) else {
             return;
         };
-        // The longest scenario of the benchmark's list.
-        let scenario = parse_scen(ARENA_SCEN).ok().and_then(|s| s.last().cloned());
-        self.replace_grid(grid);
-        if let Some(s) = scenario {
+        self.replace_grid_from(grid.clone(), Base::Arena, Some(grid));
+        if let Some(s) = arena_scenario() {
             if self.grid.in_bounds(s.start) && self.grid.in_bounds(s.goal) && s.start != s.goal {
-                self.start = s.start;
-                self.goal = s.goal;
-                self.invalidate();
-                self.note = Some(format!(
-                    "arena map (Moving AI): optimal length {}",
-                    format_fixed(s.optimal_length, 3)
-                ));
-                return;
+                self.set_ends(s.start, s.goal);
             }
         }
-        self.note = Some("arena map (Moving AI)".into());
     }
 
-    /// Whether the walls fit in the link.
+    /// The benchmark's optimal length when the grid is the unedited arena
+    /// map with the ends of its scenario (shown in the status).
+    fn arena_optimum(&self) -> Option<f64> {
+        if self.base != Base::Arena || self.base_grid.as_ref() != Some(&self.grid) {
+            return None;
+        }
+        arena_scenario()
+            .filter(|s| s.start == self.start && s.goal == self.goal)
+            .map(|s| s.optimal_length)
+    }
+
+    /// Moves both ends at once (they must differ), keeping the view on them.
+    fn set_ends(&mut self, start: Cell, goal: Cell) {
+        if start == goal || !self.grid.in_bounds(start) || !self.grid.in_bounds(goal) {
+            return;
+        }
+        self.start = start;
+        self.goal = goal;
+        self.invalidate();
+        self.frame_ends();
+    }
+
+    /// Whether the walls fit in the link (as a generator and its edits, or
+    /// as a wall code).
     #[must_use]
     pub fn walls_in_link(&self) -> bool {
-        self.code_len <= LINK_WALLS_MAX
+        self.grid_link.is_some()
+    }
+
+    // ---- View state (never in the link) ----
+
+    /// Whether the view shows a finger-sized window instead of the grid.
+    #[must_use]
+    pub fn zoomed(&self) -> bool {
+        let auto = self.viewport_px.is_some_and(|v| v.x <= PHONE_WIDTH_PX);
+        self.zoom_choice.unwrap_or(auto) && view::window_cells(self).is_some()
+    }
+
+    /// The pan clamped so the window stays on the grid.
+    fn clamp_pan(&self, pan: DVec2) -> DVec2 {
+        let Some((c, r)) = view::window_cells(self) else {
+            return DVec2::ZERO;
+        };
+        let max = DVec2::new(
+            (self.grid.width() - c) as f64,
+            (self.grid.height() - r) as f64,
+        );
+        let p = if pan.is_finite() { pan } else { DVec2::ZERO };
+        p.round().clamp(DVec2::ZERO, max)
+    }
+
+    /// Centres the zoomed window on the start and goal when both fit,
+    /// otherwise on the start.
+    fn frame_ends(&mut self) {
+        let Some((c, r)) = view::window_cells(self) else {
+            self.pan = DVec2::ZERO;
+            return;
+        };
+        let (s, g) = (self.cell_center(self.start), self.cell_center(self.goal));
+        let inner = DVec2::new(c as f64 - 2.0, r as f64 - 2.0);
+        let d = (s - g).abs();
+        let centre = if d.x < inner.x && d.y < inner.y {
+            (s + g) * 0.5
+        } else {
+            s
+        };
+        self.pan = self.clamp_pan(centre - DVec2::new(c as f64, r as f64) * 0.5);
+    }
+
+    /// Pans the zoomed window the least that brings `p` (world) inside its
+    /// inner part (off the pan band).
+    fn follow(&mut self, p: DVec2) {
+        if !self.zoomed() {
+            return;
+        }
+        let view = self.view();
+        let lo = view.min + 1.0;
+        let hi = view.max - 1.0;
+        let shift = DVec2::new(
+            (p.x - lo.x).min(0.0) + (p.x - hi.x).max(0.0),
+            (p.y - lo.y).min(0.0) + (p.y - hi.y).max(0.0),
+        );
+        self.pan = self.clamp_pan(self.pan + shift.signum() * shift.abs().ceil());
+    }
+
+    /// The pan direction of a press at `p` on the zoomed view's edge band
+    /// (the outer ring of cells on each side with more grid beyond), or
+    /// `None` inside.
+    fn band_side(&self, p: DVec2) -> Option<DVec2> {
+        if !self.zoomed() || !p.is_finite() {
+            return None;
+        }
+        let view = self.view();
+        let (w, h) = (self.grid.width() as f64, self.grid.height() as f64);
+        let side = |v: f64, lo: f64, hi: f64, max: f64| {
+            if v < lo + 1.0 && lo > 0.0 {
+                -1.0
+            } else if v > hi - 1.0 && hi < max {
+                1.0
+            } else {
+                0.0
+            }
+        };
+        let d = DVec2::new(
+            side(p.x, view.min.x, view.max.x, w),
+            side(p.y, view.min.y, view.max.y, h),
+        );
+        (d != DVec2::ZERO).then_some(d)
     }
 
     fn robot(&self) -> Option<DVec2> {
@@ -776,8 +996,9 @@ impl AStarGrid {
         match self.drag {
             Drag::Start => self.set_start(cell),
             Drag::Goal => self.set_goal(cell),
-            _ => {}
+            _ => return,
         }
+        self.follow(self.cell_center(cell));
     }
 }
 
@@ -793,6 +1014,55 @@ fn size_index(grid: &OccupancyGrid) -> Option<usize> {
     SIZES
         .iter()
         .position(|&(w, h)| w == grid.width() && h == grid.height())
+}
+
+/// The benchmark scenario of the arena map: the longest of its list.
+fn arena_scenario() -> Option<crate::planning::movingai::Scenario> {
+    parse_scen(ARENA_SCEN).ok().and_then(|s| s.last().cloned())
+}
+
+/// The cells of `grid` that differ from `base`, as the runs of a wall code
+/// (alternating unchanged / toggled, base 36, `.`-separated; empty when
+/// nothing changed). `None` when the sizes differ.
+fn edit_runs(base: &OccupancyGrid, grid: &OccupancyGrid) -> Option<String> {
+    if (base.width(), base.height()) != (grid.width(), grid.height()) {
+        return None;
+    }
+    let toggled: Vec<bool> = base
+        .cells()
+        .iter()
+        .zip(grid.cells())
+        .map(|(a, b)| a != b)
+        .collect();
+    let diff = OccupancyGrid::from_cells(grid.width(), grid.height(), toggled).ok()?;
+    let code = encode_walls(&diff);
+    Some(
+        code.split_once('.')
+            .map_or(String::new(), |(_, runs)| runs.to_owned()),
+    )
+}
+
+/// `base` with the cells named by [`edit_runs`]'s `runs` toggled.
+fn apply_edits(base: &OccupancyGrid, runs: &str) -> Result<OccupancyGrid, String> {
+    let (w, h) = (base.width(), base.height());
+    let diff = decode_walls(&format!("{w}x{h}.{runs}")).map_err(|e| e.to_string())?;
+    let cells = base
+        .cells()
+        .iter()
+        .zip(diff.cells())
+        .map(|(a, t)| a != t)
+        .collect();
+    OccupancyGrid::from_cells(w, h, cells).map_err(|e| e.to_string())
+}
+
+/// Reads `<W>x<H>` (a grid size within [`MAX_SIDE`]).
+fn parse_size(text: &str) -> Result<(usize, usize), String> {
+    let grid = decode_walls(text).map_err(|e| e.to_string())?;
+    check_side(&grid)?;
+    if text.contains('.') {
+        return Err(format!("`{text}` is not a grid size <width>x<height>"));
+    }
+    Ok((grid.width(), grid.height()))
 }
 
 /// Checks a loaded or linked grid's size.
@@ -932,10 +1202,14 @@ impl Experiment for AStarGrid {
                 if let Some(grid) = self.new_grid_of_choice() {
                     self.replace_grid(grid);
                 }
-                self.note = None;
             }
             "maze" => self.maze(),
             "arena" => self.arena(),
+            "zoom" => {
+                let zoomed = self.zoomed();
+                self.zoom_choice = Some(!zoomed);
+                self.frame_ends();
+            }
             _ => return Err(ParamError::UnknownAction { key: key.into() }),
         }
         Ok(())
@@ -979,6 +1253,14 @@ impl Experiment for AStarGrid {
                     self.nudge_goal = self.drag == Drag::Goal;
                     return;
                 }
+                if self.band_side(p).is_some() {
+                    // The zoomed view's edge band pans instead of painting.
+                    self.drag = Drag::Pan {
+                        grab: p,
+                        moved: false,
+                    };
+                    return;
+                }
                 let paint = !self.grid.is_blocked(cell);
                 self.drag = Drag::Paint(paint);
                 self.last_cell = Some(cell);
@@ -1003,10 +1285,30 @@ impl Experiment for AStarGrid {
                         self.moving_handle(cell);
                     }
                 }
+                Drag::Pan { grab, moved } => {
+                    if !pos.is_finite() {
+                        return;
+                    }
+                    // Keep the grabbed world point under the finger.
+                    let moved = moved || (pos - grab).length() > 0.5;
+                    if moved {
+                        self.pan = self.clamp_pan(self.pan + (grab - pos));
+                    }
+                    self.drag = Drag::Pan { grab, moved };
+                }
                 Drag::None => {}
             },
             Input::PointerMove { pressed: false, .. } => {}
             Input::PointerUp(_) => {
+                if let Drag::Pan { grab, moved: false } = self.drag {
+                    // A tap on the band pans half a window that way.
+                    if let (Some(d), Some((c, r))) =
+                        (self.band_side(grab), view::window_cells(self))
+                    {
+                        let half = DVec2::new((c / 2).max(1) as f64, (r / 2).max(1) as f64);
+                        self.pan = self.clamp_pan(self.pan + d * half);
+                    }
+                }
                 self.drag = Drag::None;
                 self.last_cell = None;
             }
@@ -1031,6 +1333,7 @@ impl Experiment for AStarGrid {
                     } else {
                         self.set_start(to);
                     }
+                    self.follow(self.cell_center(to));
                 }
             }
         }
@@ -1067,6 +1370,9 @@ impl Experiment for AStarGrid {
                 if self.driven_m >= length {
                     self.phase = Phase::Arrived;
                 }
+                if let Some(p) = self.robot() {
+                    self.follow(p);
+                }
             }
             _ => {}
         }
@@ -1096,82 +1402,7 @@ impl Experiment for AStarGrid {
     }
 
     fn tables(&self) -> Vec<Table> {
-        let mut tables = Vec::new();
-        if let Some(search) = &self.search {
-            let mut open = Table::new(
-                "open",
-                "Open list: the cell being expanded, then the next cells by f",
-                &["", "cell", "g", "h", "f"],
-            );
-            let config = search.config();
-            let f_of = |g: f64, h: f64| match config.strategy {
-                Strategy::AStar => g + h,
-                Strategy::Weighted { weight } => g + weight * h,
-                Strategy::Greedy => h,
-            };
-            if let Some(cell) = search.last_expanded() {
-                let g = search.g_of(cell).unwrap_or(0.0);
-                let h = config.heuristic.between(cell, search.goal());
-                open.push_row(vec![
-                    "expanding".into(),
-                    cell.to_string(),
-                    format_number(g, 3),
-                    format_number(h, 3),
-                    format_number(f_of(g, h), 3),
-                ]);
-                open.highlight = Some(0);
-            }
-            for (i, e) in search.open_top(OPEN_ROWS).into_iter().enumerate() {
-                open.push_row(vec![
-                    format!("{}", i + 1),
-                    e.cell.to_string(),
-                    format_number(e.g, 3),
-                    format_number(e.h, 3),
-                    format_number(e.f, 3),
-                ]);
-            }
-            tables.push(open);
-        }
-        if !self.compare.is_empty() {
-            let mut t = Table::new(
-                "compare",
-                "Compare on this grid. Ratio: cost ÷ optimum; time: expansions relative to Dijkstra (a deterministic estimate). Paths: A* solid amber; Dijkstra blue, greedy orange, weighted A* pink dashes.",
-                &[
-                    "planner",
-                    "expanded",
-                    "cost",
-                    "ratio",
-                    "time",
-                ],
-            );
-            let optimum = self.optimum();
-            let dijkstra_expanded = self
-                .compare
-                .iter()
-                .find(|r| r.name == "Dijkstra")
-                .map_or(0, |r| r.expanded);
-            for r in &self.compare {
-                let (cost, ratio) = match (r.cost, optimum) {
-                    (Some(c), Some(o)) if o > 0.0 => (format_fixed(c, 3), format_fixed(c / o, 2)),
-                    (Some(c), _) => (format_fixed(c, 3), "1.00".into()),
-                    (None, _) => ("no path".into(), "--".into()),
-                };
-                let time = if dijkstra_expanded > 0 {
-                    format_fixed(r.expanded as f64 / dijkstra_expanded as f64, 2)
-                } else {
-                    "--".into()
-                };
-                t.push_row(vec![
-                    r.name.clone(),
-                    r.expanded.to_string(),
-                    cost,
-                    ratio,
-                    time,
-                ]);
-            }
-            tables.push(t);
-        }
-        tables
+        view::tables(self)
     }
 
     fn file_types(&self) -> &'static [&'static str] {
@@ -1180,14 +1411,15 @@ impl Experiment for AStarGrid {
 
     /// Loads a Moving AI `.map`; the start and goal move to the first and
     /// last free cells. A malformed file leaves everything as it was.
+    ///
+    /// Every grid the page can reach can be saved and loaded again: a map
+    /// of at least two cells, whatever its walls (issue 14: Save wrote maps
+    /// that Load refused).
     fn load_file(&mut self, name: &str, text: &str) -> Result<(), String> {
         let grid = parse_map(text).map_err(|e| format!("{name}: {e}"))?;
         check_side(&grid).map_err(|e| format!("{name}: {e}"))?;
-        if grid.blocked_count() + 2 > grid.width() * grid.height() {
-            return Err(format!("{name}: the map has fewer than two free cells"));
-        }
         self.replace_grid_with_free_ends(grid);
-        self.note = Some(format!("loaded {name}"));
+        self.notices.post(format!("loaded {name}"), Tone::Neutral);
         Ok(())
     }
 
@@ -1199,277 +1431,143 @@ impl Experiment for AStarGrid {
         true
     }
 
+    /// The grid (`walls=` a wall code; or `maze=W×H.seed` / `map=arena`
+    /// with `edits=` the cells changed since; or `nowalls=W×H` when no form
+    /// fits in [`LINK_WALLS_MAX`]), then both ends as one value
+    /// `ends=sx.sy.gx.gy`, so a link applies them as whole points after the
+    /// grid (issue 14).
     fn extra_state(&self) -> Vec<(&'static str, String)> {
-        if self.walls_in_link() {
-            vec![("walls", encode_walls(&self.grid))]
-        } else {
-            Vec::new()
-        }
+        let (w, h) = (self.grid.width(), self.grid.height());
+        let mut out = self
+            .grid_link
+            .clone()
+            .unwrap_or_else(|| vec![("nowalls", format!("{w}x{h}"))]);
+        let (s, g) = (self.start, self.goal);
+        out.push(("ends", format!("{}.{}.{}.{}", s.x, s.y, g.x, g.y)));
+        out
     }
 
     fn set_extra_state(&mut self, key: &str, value: &str) -> Result<(), ParamError> {
-        if key != "walls" {
-            return Err(ParamError::UnknownKey { key: key.into() });
-        }
         let bad = |reason: String| ParamError::BadText {
             key: key.into(),
             reason,
         };
-        let grid = decode_walls(value).map_err(|e| bad(e.to_string()))?;
-        check_side(&grid).map_err(bad)?;
-        self.replace_grid(grid);
+        match key {
+            "walls" => {
+                let grid = decode_walls(value).map_err(|e| bad(e.to_string()))?;
+                check_side(&grid).map_err(bad)?;
+                self.replace_grid(grid);
+            }
+            "maze" => {
+                let (size, seed) = value
+                    .rsplit_once('.')
+                    .ok_or_else(|| bad(format!("`{value}` is not <width>x<height>.<seed>")))?;
+                let (w, h) = parse_size(size).map_err(bad)?;
+                let seed: u64 = seed
+                    .parse()
+                    .map_err(|_| bad(format!("`{seed}` is not a maze seed")))?;
+                self.maze_of(w, h, seed);
+            }
+            "map" => {
+                if value != "arena" {
+                    return Err(bad(format!("`{value}` is not a map this page knows")));
+                }
+                self.arena();
+            }
+            "edits" => {
+                let base = match (&self.base_grid, self.base) {
+                    (Some(b), Base::Maze { .. } | Base::Arena) if b == &self.grid => b,
+                    _ => return Err(bad("edits need a maze or map before them".into())),
+                };
+                let grid = apply_edits(base, value).map_err(bad)?;
+                self.grid = grid;
+                // The ends stay free of walls as a brush leaves them.
+                self.end_edit();
+                self.invalidate();
+            }
+            "nowalls" => {
+                let (w, h) = parse_size(value).map_err(bad)?;
+                let grid = OccupancyGrid::new(w, h).map_err(|e| bad(e.to_string()))?;
+                self.replace_grid(grid);
+                self.walls_missing = true;
+                self.measure_link();
+                self.notices.post(
+                    format!(
+                        "This link could not carry the walls of its {w} × {h} grid: \
+                         load the grid's .map file (saved with Save file) to get them."
+                    ),
+                    Tone::Warning,
+                );
+            }
+            "ends" => {
+                let n: Vec<usize> = value
+                    .split('.')
+                    .map(str::parse)
+                    .collect::<Result<_, _>>()
+                    .map_err(|_| bad(format!("`{value}` is not sx.sy.gx.gy")))?;
+                let [sx, sy, gx, gy] = n[..] else {
+                    return Err(bad(format!("`{value}` is not sx.sy.gx.gy")));
+                };
+                let (start, goal) = (Cell::new(sx, sy), Cell::new(gx, gy));
+                if start == goal || !self.grid.in_bounds(start) || !self.grid.in_bounds(goal) {
+                    return Err(bad(format!(
+                        "the start and goal must be two different cells of the {} × {} grid",
+                        self.grid.width(),
+                        self.grid.height()
+                    )));
+                }
+                self.set_ends(start, goal);
+            }
+            _ => return Err(ParamError::UnknownKey { key: key.into() }),
+        }
         Ok(())
     }
 
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        view::touch_hint(self)
+    }
+
+    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
+        let size = DVec2::new(width_px, height_px);
+        if size.is_finite() && size.min_element() > 0.0 {
+            self.viewport_px = Some(size);
+            self.frame_ends();
+        }
+    }
+
+    /// The whole grid, or when [`AStarGrid::zoomed`] a window of
+    /// finger-sized cells at the pan (the page fits it to the canvas).
     fn view(&self) -> ViewBox {
-        ViewBox {
-            min: DVec2::ZERO,
-            max: DVec2::new(self.grid.width() as f64, self.grid.height() as f64),
+        match view::window_cells(self) {
+            Some((c, r)) if self.zoomed() => ViewBox {
+                min: self.pan,
+                max: self.pan + DVec2::new(c as f64, r as f64),
+            },
+            _ => ViewBox {
+                min: DVec2::ZERO,
+                max: DVec2::new(self.grid.width() as f64, self.grid.height() as f64),
+            },
         }
     }
 
     fn scene(&self, out: &mut Scene) {
-        let (w, h) = (self.grid.width(), self.grid.height());
-        let size = DVec2::new(w as f64, h as f64);
-        out.push(Item::Raster {
-            min: DVec2::ZERO,
-            cell_m: 1.0,
-            cols: w,
-            rows: h,
-            cells: self.raster.clone(),
-            palette: vec![
-                // CellState 1..4: open, closed, path, wall.
-                RasterColour {
-                    role: Role::Estimate,
-                    alpha: 0.55,
-                },
-                RasterColour {
-                    role: Role::Visited,
-                    alpha: 0.45,
-                },
-                RasterColour {
-                    role: Role::Path,
-                    alpha: 0.35,
-                },
-                RasterColour {
-                    role: Role::Obstacle,
-                    alpha: 1.0,
-                },
-            ],
-        });
-        // Cell lines on small grids only (one batch).
-        if w <= 64 && h <= 64 {
-            let mut lines = Vec::with_capacity(w + h + 2);
-            for x in 0..=w {
-                lines.push((DVec2::new(x as f64, 0.0), DVec2::new(x as f64, size.y)));
-            }
-            for y in 0..=h {
-                lines.push((DVec2::new(0.0, y as f64), DVec2::new(size.x, y as f64)));
-            }
-            out.push(Item::Segments {
-                segments: lines,
-                width_px: 0.5,
-                role: Role::Grid,
-            });
-        }
-        out.push(Item::Rect {
-            min: DVec2::ZERO,
-            max: size,
-            role: Role::Bound,
-            fill: false,
-        });
-        // Each planner's path in its own colour and dash; the Compare table
-        // names them.
-        for (r, role) in self.compare.iter().zip(COMPARE_ROLES) {
-            if r.path.len() >= 2 {
-                out.push(Item::Polyline {
-                    points: r.path.clone(),
-                    width_px: 2.5,
-                    role,
-                    dashed: role != Role::Path,
-                    closed: false,
-                });
-            }
-        }
-        if self.compare.is_empty() && self.path.len() >= 2 {
-            out.push(Item::Polyline {
-                points: self.path.clone(),
-                width_px: 3.0,
-                role: Role::Path,
-                dashed: false,
-                closed: false,
-            });
-        }
-        if self.phase == Phase::Searching {
-            if let Some(c) = self.search.as_ref().and_then(Search::last_expanded) {
-                let p = self.cell_center(c);
-                out.push(Item::Rect {
-                    min: p - 0.5,
-                    max: p + 0.5,
-                    role: Role::Accent,
-                    fill: false,
-                });
-            }
-        }
-        let start = self.cell_center(self.start);
-        let goal = self.cell_center(self.goal);
-        let marker = ((900.0 / w.max(h) as f64).clamp(3.0, 9.0)).min(9.0);
-        out.push(Item::Dot {
-            center: start,
-            radius_px: marker,
-            role: Role::Sample,
-        });
-        out.push(Item::Dot {
-            center: goal,
-            radius_px: marker,
-            role: Role::Tip,
-        });
-        out.push(Item::Label {
-            pos: start,
-            text: "start".into(),
-            role: Role::Text,
-            offset_px: DVec2::new(8.0, -10.0),
-        });
-        out.push(Item::Label {
-            pos: goal,
-            text: "goal".into(),
-            role: Role::Text,
-            offset_px: DVec2::new(8.0, -10.0),
-        });
-        if let Some(p) = self.robot() {
-            out.push(Item::Circle {
-                center: p,
-                radius_m: 0.4,
-                role: Role::Robot,
-                fill: true,
-                dashed: false,
-            });
-        }
+        view::scene(self, out);
     }
 
     fn readouts(&self) -> Vec<Readout> {
-        let (expanded, frontier) = self
-            .search
-            .as_ref()
-            .map_or((0, 0), |s| (s.expanded(), s.frontier_len()));
-        let found = self.path_cells > 0;
-        vec![
-            Readout::new("expanded", "Expanded", expanded.to_string()),
-            Readout::new("frontier", "Frontier", frontier.to_string()),
-            Readout::new(
-                "path_cells",
-                "Path cells",
-                if found {
-                    self.path_cells.to_string()
-                } else {
-                    "--".into()
-                },
-            ),
-            Readout::metres(
-                "path_cost",
-                "Path cost",
-                if found { self.path_cost } else { f64::NAN },
-            ),
-            Readout::new(
-                "grid",
-                "Grid",
-                format!(
-                    "{} × {}, {} walls",
-                    self.grid.width(),
-                    self.grid.height(),
-                    self.grid.blocked_count()
-                ),
-            ),
-            Readout::new(
-                "link",
-                "Link",
-                if self.walls_in_link() {
-                    "holds the walls".to_owned()
-                } else {
-                    "too large for the walls: use Save file (.map)".to_owned()
-                },
-            ),
-        ]
+        view::readouts(self)
     }
 
     fn status(&self) -> Status {
-        let inadmissible = !self.heuristic.is_admissible(self.connectivity) || self.weight > 1.0;
-        let caveat = if self.weight > 1.0 {
-            format!(" (weighted: ≤ {}× optimum)", format_number(self.weight, 1))
-        } else if inadmissible {
-            " (Manhattan overestimates diagonals)".to_owned()
-        } else {
-            String::new()
-        };
-        let good = if inadmissible {
-            Tone::Warning
-        } else {
-            Tone::Good
-        };
-        match self.phase {
-            Phase::Refused => Status::new(
-                self.ends_problem()
-                    .or_else(|| self.note.clone())
-                    .unwrap_or_else(|| "cannot plan".into()),
-                Tone::Bad,
-            ),
-            _ if self.ends_problem().is_some() => {
-                Status::new(self.ends_problem().unwrap_or_default(), Tone::Bad)
-            }
-            Phase::Idle => Status::new(
-                match (&self.note, self.walls_in_link()) {
-                    (_, false) => "ready; too large for the link: use Save file".to_owned(),
-                    (Some(note), true) => format!("ready: {note}"),
-                    (None, true) => "ready: press Plan & drive".to_owned(),
-                },
-                if self.walls_in_link() {
-                    Tone::Neutral
-                } else {
-                    Tone::Warning
-                },
-            ),
-            Phase::Comparing => Status::new(
-                format!("comparing… {} of 4 planners done", self.compare.len()),
-                Tone::Neutral,
-            ),
-            Phase::Searching => Status::new(
-                format!(
-                    "searching… {} expanded",
-                    self.search.as_ref().map_or(0, Search::expanded)
-                ),
-                Tone::Neutral,
-            ),
-            Phase::Driving => Status::new(
-                format!(
-                    "path found, cost {}: driving{caveat}",
-                    format_fixed(self.path_cost, 3)
-                ),
-                good,
-            ),
-            Phase::Arrived => Status::new(
-                format!(
-                    "arrived: path cost {}{caveat}",
-                    format_fixed(self.path_cost, 3)
-                ),
-                good,
-            ),
-            Phase::NoPath => Status::new(
-                "no path: the goal cannot be reached from the start",
-                Tone::Bad,
-            ),
-            Phase::Compared => Status::new(
-                format!("compared {} planners on this grid", self.compare.len()),
-                Tone::Good,
-            ),
-        }
+        view::status(self)
     }
 
     fn hint(&self) -> &'static str {
-        if self.walls_in_link() {
-            "Drag to paint or erase walls; Shift-click sets the start, Ctrl-click the goal (or drag them). Then press Plan & drive."
-        } else {
-            "This grid is too large to keep in the link: use Save file to keep it as a .map file. Drag to paint walls; Shift-click sets the start, Ctrl-click the goal."
-        }
+        view::hint(self)
     }
 
     fn preview(&mut self) {
@@ -1490,569 +1588,9 @@ impl Experiment for AStarGrid {
     }
 }
 
-/// The octile distance `max(dx, dy) + (√2 − 1) · min(dx, dy)` between two cells.
-fn quiz_octile(rng: &mut Lcg64) -> Draw {
-    let dx = rng.int(1, 20);
-    let dy = rng.int(1, 20);
-    Draw {
-        vars: vec![("dx", dx.to_string()), ("dy", dy.to_string())],
-        answer: Heuristic::Octile.of_offsets(dx as f64, dy as f64),
-    }
-}
-
-/// `f = g + h` with the octile `h`.
-fn quiz_f_value(rng: &mut Lcg64) -> Draw {
-    let g = rng.int(20, 300) as f64 / 10.0;
-    let dx = rng.int(0, 15);
-    let dy = rng.int(1, 15);
-    Draw {
-        vars: vec![
-            ("g", format_number(g, 1)),
-            ("dx", dx.to_string()),
-            ("dy", dy.to_string()),
-        ],
-        answer: g + Heuristic::Octile.of_offsets(dx as f64, dy as f64),
-    }
-}
-
-/// Weighted A*'s bound `w · C*`.
-fn quiz_weighted_bound(rng: &mut Lcg64) -> Draw {
-    let c = rng.int(100, 900) as f64 / 10.0;
-    let w = rng.int(11, 30) as f64 / 10.0;
-    Draw {
-        vars: vec![("cost", format_number(c, 1)), ("w", format_number(w, 1))],
-        answer: w * c,
-    }
-}
-
-/// Cells within Manhattan distance `d` of a cell on an open grid (the
-/// diamond Dijkstra expands with 4-connected moves): `2d² + 2d + 1`.
-fn quiz_diamond(rng: &mut Lcg64) -> Draw {
-    let d = rng.int(2, 12);
-    Draw {
-        vars: vec![("d", d.to_string())],
-        answer: (2 * d * d + 2 * d + 1) as f64,
-    }
-}
-
-/// The quiz generators of experiment 6, by name.
-#[must_use]
-pub fn quiz_generator(name: &str) -> Option<Generator> {
-    match name {
-        "octile" => Some(quiz_octile),
-        "f_value" => Some(quiz_f_value),
-        "weighted_bound" => Some(quiz_weighted_bound),
-        "diamond" => Some(quiz_diamond),
-        _ => None,
-    }
-}
+mod quiz;
+mod view;
+pub use quiz::quiz_generator;
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::planning::astar::{astar_path, SearchStatus};
-    use crate::route::{apply_params, format, parse, Page, Tab};
-
-    const DT: f64 = 1.0 / 60.0;
-
-    fn shift() -> Modifiers {
-        Modifiers {
-            shift: true,
-            ctrl: false,
-        }
-    }
-
-    fn ctrl() -> Modifiers {
-        Modifiers {
-            shift: false,
-            ctrl: true,
-        }
-    }
-
-    /// Runs until nothing moves; returns the steps taken.
-    fn settle(a: &mut AStarGrid) -> usize {
-        let mut n = 0;
-        while a.animating() {
-            a.step(DT);
-            n += 1;
-            assert!(n < 100_000, "never settles");
-        }
-        n
-    }
-
-    fn empty(w: usize, h: usize) -> AStarGrid {
-        let mut a = AStarGrid::default();
-        a.replace_grid(OccupancyGrid::new(w, h).unwrap());
-        a
-    }
-
-    #[test]
-    fn dragging_paints_a_gapless_wall_and_the_first_cell_decides_erase() {
-        let mut a = empty(20, 15);
-        let p = |c: Cell| a.cell_center(c);
-        let (from, to) = (p(Cell::new(2, 2)), p(Cell::new(12, 7)));
-        a.input(Input::PointerDown(from));
-        a.input(Input::PointerMove {
-            pos: to,
-            pressed: true,
-        });
-        a.input(Input::PointerUp(to));
-        // A line from (2, 2) to (12, 7): 11 cells, no gaps.
-        assert_eq!(a.grid().blocked_count(), 11);
-        assert!(a.grid().is_blocked(Cell::new(2, 2)) && a.grid().is_blocked(Cell::new(12, 7)));
-        // Starting on a wall erases along the drag.
-        let mid = a.cell_center(Cell::new(7, 4));
-        assert!(a.grid().is_blocked(Cell::new(7, 4)) || a.grid().is_blocked(Cell::new(7, 5)));
-        let start_on = if a.grid().is_blocked(Cell::new(7, 4)) {
-            mid
-        } else {
-            a.cell_center(Cell::new(7, 5))
-        };
-        a.input(Input::PointerDown(start_on));
-        a.input(Input::PointerMove {
-            pos: a.cell_center(Cell::new(12, 7)),
-            pressed: true,
-        });
-        a.input(Input::PointerUp(DVec2::ZERO));
-        assert!(a.grid().blocked_count() < 11);
-        assert!(a.grid().is_free(Cell::new(12, 7)));
-        // The raster shows the walls, row 0 at the bottom.
-        let (w, h) = (a.grid().width(), a.grid().height());
-        for (i, &b) in a.grid().cells().iter().enumerate() {
-            let (x, y) = (i % w, i / w);
-            assert_eq!(a.raster[(h - 1 - y) * w + x] == BLOCKED, b);
-        }
-    }
-
-    #[test]
-    fn walls_are_never_painted_over_the_start_or_goal() {
-        let mut a = empty(20, 15);
-        let (s, g) = (a.start(), a.goal());
-        a.input(Input::PointerDown(a.cell_center(Cell::new(0, s.y))));
-        a.input(Input::PointerMove {
-            pos: a.cell_center(Cell::new(19, s.y)),
-            pressed: true,
-        });
-        assert!(a.grid().is_free(s));
-        a.input(Input::PointerUp(DVec2::ZERO));
-        assert_eq!(a.goal(), g);
-    }
-
-    #[test]
-    fn shift_click_sets_the_start_and_ctrl_click_the_goal_and_drags_move_them() {
-        let mut a = empty(20, 15);
-        a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), shift());
-        a.input_with(Input::PointerUp(DVec2::ZERO), shift());
-        assert_eq!(a.start(), Cell::new(4, 5));
-        assert_eq!(a.param("sx"), Some(4.0));
-        assert_eq!(a.param("sy"), Some(5.0));
-        a.input_with(Input::PointerDown(a.cell_center(Cell::new(15, 9))), ctrl());
-        assert_eq!(a.goal(), Cell::new(15, 9));
-        assert_eq!(a.grid().blocked_count(), 0, "no paint with modifiers");
-        // Plain drag of the goal marker moves it; off the grid it stops at the edge.
-        a.input(Input::PointerDown(a.cell_center(Cell::new(15, 9))));
-        a.input(Input::PointerMove {
-            pos: DVec2::new(100.0, -50.0),
-            pressed: true,
-        });
-        a.input(Input::PointerUp(DVec2::ZERO));
-        assert_eq!(a.goal(), Cell::new(19, 14));
-        assert_eq!(a.grid().blocked_count(), 0);
-        // Arrow keys move the last handle by one cell (world y up = row up).
-        a.input(Input::Nudge(DVec2::new(0.0, 0.3)));
-        assert_eq!(a.goal(), Cell::new(19, 13));
-        // The start and goal never share a cell.
-        a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), ctrl());
-        assert_eq!(a.goal(), Cell::new(19, 13));
-    }
-
-    #[test]
-    fn start_or_goal_inside_a_wall_is_refused_with_a_clear_status() {
-        let mut a = empty(20, 15);
-        a.grid.set_blocked(Cell::new(9, 9), true);
-        a.grid_changed();
-        a.input_with(Input::PointerDown(a.cell_center(Cell::new(9, 9))), shift());
-        assert_eq!(a.start(), Cell::new(9, 9));
-        let st = a.status();
-        assert_eq!(st.tone, Tone::Bad);
-        assert!(st.text.contains("start (9, 9) is in a wall"), "{}", st.text);
-        a.action("plan").unwrap();
-        assert!(!a.animating());
-        assert_eq!(a.status().tone, Tone::Bad);
-        a.action("compare").unwrap();
-        assert!(a.comparison().is_empty());
-        settle(&mut a);
-        let mut scene = Scene::default();
-        a.scene(&mut scene);
-        assert!(scene.is_finite());
-        // The goal likewise, via the link.
-        let mut b = empty(20, 15);
-        b.grid.set_blocked(Cell::new(1, 1), true);
-        b.grid_changed();
-        b.set_param("gx", 1.0).unwrap();
-        b.set_param("gy", 1.0).unwrap();
-        b.action("plan").unwrap();
-        assert!(b.status().text.contains("goal (1, 1) is in a wall"));
-    }
-
-    #[test]
-    fn plan_animates_expansions_then_drives_to_the_goal() {
-        let mut a = AStarGrid::default();
-        a.action("plan").unwrap();
-        assert!(a.animating());
-        a.step(DT);
-        let per_step = a.expansions_per_step();
-        assert_eq!(a.search.as_ref().unwrap().expanded(), per_step);
-        // The open list panel: the expanded cell highlighted, then cells by f.
-        let tables = a.tables();
-        let open = tables.iter().find(|t| t.key == "open").unwrap();
-        assert_eq!(open.highlight, Some(0));
-        assert_eq!(open.rows[0][0], "expanding");
-        let f: Vec<f64> = open.rows[1..]
-            .iter()
-            .map(|r| r[4].parse().unwrap())
-            .collect();
-        assert!(f.windows(2).all(|w| w[0] <= w[1]), "{f:?}");
-        for r in &open.rows[1..] {
-            let (g, h, f): (f64, f64, f64) = (
-                r[2].parse().unwrap(),
-                r[3].parse().unwrap(),
-                r[4].parse().unwrap(),
-            );
-            assert!((g + h - f).abs() < 2e-3);
-        }
-        settle(&mut a);
-        assert_eq!(a.phase, Phase::Arrived);
-        let expected = astar_path(&a.grid, a.start, a.goal, a.config())
-            .unwrap()
-            .unwrap();
-        assert_eq!(a.path_cost, expected.cost);
-        let r = a.readouts();
-        let get = |k: &str| r.iter().find(|x| x.key == k).unwrap().value.clone();
-        assert_eq!(
-            get("path_cost"),
-            crate::experiment::format_metres(expected.cost)
-        );
-        assert_eq!(get("path_cells"), expected.path.len().to_string());
-        assert_eq!(get("expanded"), expected.expanded.to_string());
-        assert!((a.robot().unwrap() - a.cell_center(a.goal)).length() < 1e-9);
-        assert_eq!(a.status().tone, Tone::Good);
-        // The plot followed the search.
-        assert!(a.plots()[0].series[0].len() > 2);
-    }
-
-    #[test]
-    fn no_path_is_reported_without_hanging() {
-        let mut a = empty(20, 15);
-        for y in 0..15 {
-            a.grid.set_blocked(Cell::new(10, y), true);
-        }
-        a.grid_changed();
-        a.action("plan").unwrap();
-        settle(&mut a);
-        assert_eq!(a.phase, Phase::NoPath);
-        assert_eq!(a.status().tone, Tone::Bad);
-        assert!(a.status().text.starts_with("no path"));
-        a.action("compare").unwrap();
-        settle(&mut a);
-        let t = a.tables().into_iter().find(|t| t.key == "compare").unwrap();
-        assert!(t.rows.iter().all(|r| r[2] == "no path"));
-    }
-
-    #[test]
-    fn a_512_comparison_spreads_over_steps_of_bounded_work() {
-        let mut a = AStarGrid::default();
-        a.set_param("size", 4.0).unwrap();
-        a.action("maze").unwrap();
-        a.action("compare").unwrap();
-        let steps = settle(&mut a);
-        assert_eq!(a.comparison().len(), 4);
-        // Four searches plus the main one over a 512 × 512 grid cannot fit in
-        // a few steps of 20,000 expansions.
-        assert!(steps >= 5, "{steps} steps");
-    }
-
-    #[test]
-    fn compare_table_equals_the_solvers_results() {
-        let mut a = AStarGrid::default();
-        a.set_param("w", 1.5).unwrap();
-        a.action("compare").unwrap();
-        assert!(
-            a.comparison().is_empty(),
-            "the comparison runs over the next steps"
-        );
-        let steps = settle(&mut a);
-        assert!(steps >= 1);
-        let rows = a.comparison().to_vec();
-        assert_eq!(rows.len(), 4);
-        let table = a.tables().into_iter().find(|t| t.key == "compare").unwrap();
-        let optimum = astar_path(
-            &a.grid,
-            a.start,
-            a.goal,
-            SearchConfig::dijkstra(Connectivity::Eight),
-        )
-        .unwrap()
-        .unwrap()
-        .cost;
-        for (row, cells) in rows.iter().zip(&table.rows) {
-            let r = astar_path(&a.grid, a.start, a.goal, row.config)
-                .unwrap()
-                .unwrap();
-            assert_eq!(row.expanded, r.expanded, "{}", row.name);
-            assert_eq!(row.cost, Some(r.cost), "{}", row.name);
-            assert_eq!(cells[1], r.expanded.to_string());
-            assert_eq!(cells[2], format_fixed(r.cost, 3));
-            assert_eq!(cells[3], format_fixed(r.cost / optimum, 2));
-            assert!(r.cost >= optimum - 1e-9);
-        }
-        assert_eq!(rows[0].cost, Some(optimum), "octile A* is optimal");
-        assert_eq!(rows[1].name, "Dijkstra");
-        assert_eq!(table.rows[1][3], "1.00");
-        assert_eq!(table.rows[1][4], "1.00");
-        assert_eq!(table.rows[1].len(), 5);
-        assert!(table.caption.contains("Dijkstra blue"));
-        assert!(rows[0].expanded <= rows[1].expanded);
-        assert!(rows[3].cost.unwrap() <= 1.5 * optimum + 1e-9);
-        // Every path is drawn.
-        let mut scene = Scene::default();
-        a.scene(&mut scene);
-        let polylines = scene
-            .items
-            .iter()
-            .filter(|i| matches!(i, Item::Polyline { .. }))
-            .count();
-        assert_eq!(polylines, 4);
-        // An edit drops the comparison.
-        a.input(Input::PointerDown(DVec2::new(0.5, 0.5)));
-        assert!(a.comparison().is_empty());
-    }
-
-    #[test]
-    fn load_file_reads_a_map_and_refuses_a_malformed_one_unchanged() {
-        let mut a = AStarGrid::default();
-        a.load_file("arena.map", ARENA_MAP).unwrap();
-        assert_eq!((a.grid().width(), a.grid().height()), (49, 49));
-        assert!(a.grid().is_free(a.start()) && a.grid().is_free(a.goal()));
-        assert_eq!(a.param("size"), Some(OTHER_SIZE as f64));
-        let before = (
-            a.grid().clone(),
-            a.start(),
-            a.goal(),
-            format(&a, Tab::Simulation),
-        );
-        let bad = "type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n";
-        let e = a.load_file("bad.map", bad).unwrap_err();
-        assert!(e.starts_with("bad.map: line 6"), "{e}");
-        let e = a
-            .load_file("short.map", "type octile\nheight 3\n")
-            .unwrap_err();
-        assert!(e.contains("line"), "{e}");
-        let e = a
-            .load_file("walls.map", "type octile\nheight 1\nwidth 2\nmap\n@@\n")
-            .unwrap_err();
-        assert!(e.contains("free cells"), "{e}");
-        assert_eq!(
-            before,
-            (
-                a.grid().clone(),
-                a.start(),
-                a.goal(),
-                format(&a, Tab::Simulation)
-            )
-        );
-        // Saving writes the same map back.
-        let (name, text) = a.export_text().unwrap();
-        assert_eq!(name, "grid.map");
-        assert_eq!(parse_map(&text).unwrap(), *a.grid());
-        // The bundled arena map comes with the benchmark's longest scenario.
-        a.action("arena").unwrap();
-        a.action("plan").unwrap();
-        settle(&mut a);
-        let s = parse_scen(ARENA_SCEN).unwrap().pop().unwrap();
-        assert!((a.path_cost - s.optimal_length).abs() < 1e-6);
-    }
-
-    fn round_trip(a: &AStarGrid) -> (AStarGrid, String, Vec<String>) {
-        let link = format(a, Tab::Simulation);
-        let Page::Experiment { params, .. } = parse(&link, &["astar"]).page else {
-            panic!("{link}");
-        };
-        let mut fresh = AStarGrid::default();
-        let notices = apply_params(&mut fresh, &params);
-        (fresh, link, notices)
-    }
-
-    #[test]
-    fn the_link_holds_the_walls_and_ends_and_leaves_out_large_grids() {
-        let mut a = AStarGrid::default();
-        a.action("maze").unwrap();
-        a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 3))), shift());
-        a.set_param("h", 2.0).unwrap();
-        a.set_param("w", 1.7).unwrap();
-        let (fresh, link, notices) = round_trip(&a);
-        assert!(notices.is_empty(), "{notices:?}");
-        assert!(link.contains("walls=32x24."), "{link}");
-        assert_eq!(fresh.grid(), a.grid());
-        assert_eq!((fresh.start(), fresh.goal()), (a.start(), a.goal()));
-        assert_eq!(format(&fresh, Tab::Simulation), link);
-        // A loaded 49 × 49 map round-trips with size "other".
-        a.action("arena").unwrap();
-        let (fresh, link, notices) = round_trip(&a);
-        assert!(notices.is_empty(), "{notices:?}");
-        assert_eq!(fresh.grid(), a.grid());
-        assert_eq!(format(&fresh, Tab::Simulation), link);
-        // A 512 × 512 maze is far over the limit: no walls in the link, and the page says so.
-        a.set_param("size", 5.0).unwrap();
-        a.action("maze").unwrap();
-        assert!(encoded_len(a.grid()) > LINK_WALLS_MAX);
-        assert!(!a.walls_in_link());
-        let link = format(&a, Tab::Simulation);
-        assert!(!link.contains("walls="), "{}", &link[..200.min(link.len())]);
-        assert!(link.len() < 300);
-        assert!(a.hint().contains("Save file"));
-        assert!(a.status().text.contains("Save file"));
-        assert_eq!(a.status().tone, Tone::Warning);
-        let r = a.readouts();
-        assert!(r
-            .iter()
-            .any(|x| x.key == "link" && x.value.contains("Save file")));
-        // A malformed wall code is refused with a notice and changes nothing.
-        let mut b = AStarGrid::default();
-        let before = format(&b, Tab::Simulation);
-        let notices = apply_params(&mut b, &[("walls".into(), "32x24.zz!".into())]);
-        assert_eq!(notices.len(), 1);
-        assert!(notices[0].starts_with("walls:"), "{notices:?}");
-        assert_eq!(format(&b, Tab::Simulation), before);
-    }
-
-    #[test]
-    fn a_start_out_of_the_linked_grid_is_clamped_with_a_notice() {
-        let mut b = AStarGrid::default();
-        let notices = apply_params(
-            &mut b,
-            &[
-                ("sx".into(), "100".into()),
-                ("walls".into(), "20x15".into()),
-            ],
-        );
-        assert_eq!(b.start().x, 19);
-        assert_eq!(notices.len(), 1, "{notices:?}");
-    }
-
-    #[test]
-    fn reset_replays_the_search_and_size_choice_makes_new_grids() {
-        let mut a = AStarGrid::default();
-        a.action("plan").unwrap();
-        for _ in 0..5 {
-            a.step(DT);
-        }
-        let expanded = a.search.as_ref().unwrap().expanded();
-        a.reset();
-        assert_eq!(a.search.as_ref().unwrap().expanded(), 0);
-        for _ in 0..5 {
-            a.step(DT);
-        }
-        assert_eq!(a.search.as_ref().unwrap().expanded(), expanded);
-        a.set_param("size", 0.0).unwrap();
-        assert_eq!((a.grid().width(), a.grid().height()), (20, 15));
-        assert!(a.grid().in_bounds(a.start()) && a.grid().in_bounds(a.goal()));
-        // "other" cannot be chosen for a preset grid.
-        assert_eq!(a.set_param("size", 6.0), Ok(Sanitized::Clamped(0.0)));
-        assert_eq!(a.param("size"), Some(0.0));
-    }
-
-    #[test]
-    fn same_seed_same_maze_and_it_is_solvable() {
-        let mut a = AStarGrid::default();
-        let mut b = AStarGrid::default();
-        a.action("maze").unwrap();
-        b.action("maze").unwrap();
-        assert_eq!(a.grid(), b.grid());
-        b.set_param("seed", 2.0).unwrap();
-        b.action("maze").unwrap();
-        assert_ne!(a.grid(), b.grid());
-        a.action("plan").unwrap();
-        settle(&mut a);
-        assert_eq!(a.phase, Phase::Arrived);
-        assert_eq!(
-            a.search.as_ref().map(Search::status),
-            Some(SearchStatus::Found)
-        );
-    }
-
-    /// A 512 × 512 grid: step() + scene() + tables() stay fast (generous
-    /// bound for a debug build on a shared machine).
-    #[test]
-    fn a_512_grid_steps_and_draws_quickly() {
-        let mut a = AStarGrid::default();
-        a.set_param("size", 5.0).unwrap();
-        let mut rng = Lcg64::new(3);
-        let grid = crate::planning::maze::random_fill(512, 512, 25.0, &mut rng).unwrap();
-        a.replace_grid(grid);
-        a.set_param("sx", 0.0).unwrap();
-        a.set_param("sy", 0.0).unwrap();
-        a.set_param("gx", 511.0).unwrap();
-        a.set_param("gy", 511.0).unwrap();
-        a.grid.set_blocked(Cell::new(0, 0), false);
-        a.grid.set_blocked(Cell::new(511, 511), false);
-        a.grid_changed();
-        a.action("plan").unwrap();
-        let mut scene = Scene::default();
-        let mut worst = 0.0f64;
-        let mut frames = 0;
-        while a.animating() && frames < 60 {
-            let t = std::time::Instant::now();
-            a.step(DT);
-            scene.clear();
-            a.scene(&mut scene);
-            let _ = a.tables();
-            worst = worst.max(t.elapsed().as_secs_f64());
-            frames += 1;
-        }
-        let rasters = scene
-            .items
-            .iter()
-            .filter(|i| matches!(i, Item::Raster { .. }))
-            .count();
-        assert_eq!(rasters, 1, "the grid is one raster");
-        eprintln!(
-            "512 × 512 grid: worst step + scene + tables {:.2} ms over {frames} frames",
-            worst * 1e3
-        );
-        // Release builds take well under 2 ms; a debug build on a busy machine is slower.
-        let bound = if cfg!(debug_assertions) { 0.25 } else { 0.01 };
-        assert!(worst < bound, "worst frame {worst} s");
-    }
-
-    #[test]
-    fn quiz_answers_match_the_solvers() {
-        let mut rng = Lcg64::new(5);
-        for _ in 0..20 {
-            let d = quiz_octile(&mut rng);
-            let (dx, dy) = (d.var("dx").unwrap(), d.var("dy").unwrap());
-            let g = OccupancyGrid::new(dx as usize + 1, dy as usize + 1).unwrap();
-            let r = astar_path(
-                &g,
-                Cell::new(0, 0),
-                Cell::new(dx as usize, dy as usize),
-                SearchConfig::dijkstra(Connectivity::Eight),
-            )
-            .unwrap()
-            .unwrap();
-            assert!((r.cost - d.answer).abs() < 1e-9);
-            let d = quiz_diamond(&mut rng);
-            let n = d.var("d").unwrap() as usize;
-            // Cells Dijkstra closes with g ≤ d on an open 4-connected grid.
-            let side = 2 * n + 1;
-            let g = OccupancyGrid::new(side, side).unwrap();
-            let within = (0..side * side)
-                .filter(|&i| {
-                    let c = g.cell_of(i).unwrap();
-                    c.x.abs_diff(n) + c.y.abs_diff(n) <= n
-                })
-                .count();
-            assert_eq!(within as f64, d.answer);
-        }
-    }
-}
+mod tests;

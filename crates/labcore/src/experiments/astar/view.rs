@@ -1,0 +1,441 @@
+//! What experiment 6 shows: the grid scene, readouts, status, tables and hint.
+//! Only reads the state.
+
+use super::*;
+
+pub(super) fn tables(a: &AStarGrid) -> Vec<Table> {
+    let mut tables = Vec::new();
+    if let Some(search) = &a.search {
+        let mut open = Table::new(
+            "open",
+            "Open list: the cell being expanded, then the next cells by f",
+            &["", "cell", "g", "h", "f"],
+        );
+        let config = search.config();
+        let f_of = |g: f64, h: f64| match config.strategy {
+            Strategy::AStar => g + h,
+            Strategy::Weighted { weight } => g + weight * h,
+            Strategy::Greedy => h,
+        };
+        if let Some(cell) = search.last_expanded() {
+            let g = search.g_of(cell).unwrap_or(0.0);
+            let h = config.heuristic.between(cell, search.goal());
+            open.push_row(vec![
+                "expanding".into(),
+                cell.to_string(),
+                format_number(g, 3),
+                format_number(h, 3),
+                format_number(f_of(g, h), 3),
+            ]);
+            open.highlight = Some(0);
+        }
+        for (i, e) in search.open_top(OPEN_ROWS).into_iter().enumerate() {
+            open.push_row(vec![
+                format!("{}", i + 1),
+                e.cell.to_string(),
+                format_number(e.g, 3),
+                format_number(e.h, 3),
+                format_number(e.f, 3),
+            ]);
+        }
+        tables.push(open);
+    }
+    if !a.compare.is_empty() {
+        let mut t = Table::new(
+            "compare",
+            "Compare on this grid. Ratio: cost ÷ optimum; time: expansions relative to Dijkstra (a deterministic estimate). Paths: A* solid amber; Dijkstra blue, greedy orange, weighted A* pink dashes.",
+            &[
+                "planner",
+                "expanded",
+                "cost",
+                "ratio",
+                "time",
+            ],
+        );
+        let optimum = a.optimum();
+        let dijkstra_expanded = a
+            .compare
+            .iter()
+            .find(|r| r.name == "Dijkstra")
+            .map_or(0, |r| r.expanded);
+        for r in &a.compare {
+            let (cost, ratio) = match (r.cost, optimum) {
+                (Some(c), Some(o)) if o > 0.0 => (format_fixed(c, 3), format_fixed(c / o, 2)),
+                (Some(c), _) => (format_fixed(c, 3), "1.00".into()),
+                (None, _) => ("no path".into(), "--".into()),
+            };
+            let time = if dijkstra_expanded > 0 {
+                format_fixed(r.expanded as f64 / dijkstra_expanded as f64, 2)
+            } else {
+                "--".into()
+            };
+            t.push_row(vec![
+                r.name.clone(),
+                r.expanded.to_string(),
+                cost,
+                ratio,
+                time,
+            ]);
+        }
+        tables.push(t);
+    }
+    tables
+}
+
+pub(super) fn scene(a: &AStarGrid, out: &mut Scene) {
+    let (w, h) = (a.grid.width(), a.grid.height());
+    let size = DVec2::new(w as f64, h as f64);
+    out.push(Item::Raster {
+        min: DVec2::ZERO,
+        cell_m: 1.0,
+        cols: w,
+        rows: h,
+        cells: a.raster.clone(),
+        palette: vec![
+            // CellState 1..4: open, closed, path, wall.
+            RasterColour {
+                role: Role::Estimate,
+                alpha: 0.55,
+            },
+            RasterColour {
+                role: Role::Visited,
+                alpha: 0.45,
+            },
+            RasterColour {
+                role: Role::Path,
+                alpha: 0.35,
+            },
+            RasterColour {
+                role: Role::Obstacle,
+                alpha: 1.0,
+            },
+        ],
+    });
+    // Cell lines on small grids only (one batch).
+    if w <= 64 && h <= 64 {
+        let mut lines = Vec::with_capacity(w + h + 2);
+        for x in 0..=w {
+            lines.push((DVec2::new(x as f64, 0.0), DVec2::new(x as f64, size.y)));
+        }
+        for y in 0..=h {
+            lines.push((DVec2::new(0.0, y as f64), DVec2::new(size.x, y as f64)));
+        }
+        out.push(Item::Segments {
+            segments: lines,
+            width_px: 0.5,
+            role: Role::Grid,
+        });
+    }
+    out.push(Item::Rect {
+        min: DVec2::ZERO,
+        max: size,
+        role: Role::Bound,
+        fill: false,
+    });
+    // Each planner's path in its own colour and dash; the Compare table
+    // names them.
+    for (r, role) in a.compare.iter().zip(COMPARE_ROLES) {
+        if r.path.len() >= 2 {
+            out.push(Item::Polyline {
+                points: r.path.clone(),
+                width_px: 2.5,
+                role,
+                dashed: role != Role::Path,
+                closed: false,
+            });
+        }
+    }
+    if a.compare.is_empty() && a.path.len() >= 2 {
+        out.push(Item::Polyline {
+            points: a.path.clone(),
+            width_px: 3.0,
+            role: Role::Path,
+            dashed: false,
+            closed: false,
+        });
+    }
+    if a.phase == Phase::Searching {
+        if let Some(c) = a.search.as_ref().and_then(Search::last_expanded) {
+            let p = a.cell_center(c);
+            out.push(Item::Rect {
+                min: p - 0.5,
+                max: p + 0.5,
+                role: Role::Accent,
+                fill: false,
+            });
+        }
+    }
+    let start = a.cell_center(a.start);
+    let goal = a.cell_center(a.goal);
+    let marker = if a.zoomed() {
+        9.0
+    } else {
+        (900.0 / w.max(h) as f64).clamp(3.0, 9.0)
+    };
+    out.push(Item::Dot {
+        center: start,
+        radius_px: marker,
+        role: Role::Sample,
+    });
+    out.push(Item::Dot {
+        center: goal,
+        radius_px: marker,
+        role: Role::Tip,
+    });
+    out.push(Item::Label {
+        pos: start,
+        text: "start".into(),
+        role: Role::Text,
+        offset_px: DVec2::new(8.0, -10.0),
+    });
+    out.push(Item::Label {
+        pos: goal,
+        text: "goal".into(),
+        role: Role::Text,
+        offset_px: DVec2::new(8.0, -10.0),
+    });
+    if let Some(p) = a.robot() {
+        out.push(Item::Circle {
+            center: p,
+            radius_m: 0.4,
+            role: Role::Robot,
+            fill: true,
+            dashed: false,
+        });
+    }
+    if a.zoomed() {
+        pan_band(a, out);
+    }
+}
+
+/// The zoomed view's pan band: a dashed line one cell inside each edge with
+/// more grid beyond, an arrow on that side, and marks toward the start, the
+/// goal and the robot when they are out of view.
+fn pan_band(a: &AStarGrid, out: &mut Scene) {
+    let view = a.view();
+    let (w, h) = (a.grid.width() as f64, a.grid.height() as f64);
+    let lo = DVec2::new(
+        if view.min.x > 0.0 {
+            view.min.x + 1.0
+        } else {
+            view.min.x
+        },
+        if view.min.y > 0.0 {
+            view.min.y + 1.0
+        } else {
+            view.min.y
+        },
+    );
+    let hi = DVec2::new(
+        if view.max.x < w {
+            view.max.x - 1.0
+        } else {
+            view.max.x
+        },
+        if view.max.y < h {
+            view.max.y - 1.0
+        } else {
+            view.max.y
+        },
+    );
+    out.push(Item::Polyline {
+        points: vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)],
+        width_px: 1.5,
+        role: Role::Accent,
+        dashed: true,
+        closed: true,
+    });
+    let mid = (view.min + view.max) * 0.5;
+    let arrows = [
+        (view.min.x > 0.0, DVec2::new(view.min.x + 0.5, mid.y), "◀"),
+        (view.max.x < w, DVec2::new(view.max.x - 0.5, mid.y), "▶"),
+        (view.min.y > 0.0, DVec2::new(mid.x, view.min.y + 0.5), "▼"),
+        (view.max.y < h, DVec2::new(mid.x, view.max.y - 0.5), "▲"),
+    ];
+    for (shown, pos, text) in arrows {
+        if shown {
+            out.push(Item::Label {
+                pos,
+                text: text.into(),
+                role: Role::Accent,
+                offset_px: DVec2::new(-5.0, 5.0),
+            });
+        }
+    }
+    let inside = |p: DVec2| p.cmpge(view.min).all() && p.cmple(view.max).all();
+    let marks = [
+        (Some(a.cell_center(a.start)), "start", Role::Sample),
+        (Some(a.cell_center(a.goal)), "goal", Role::Tip),
+        (a.robot(), "robot", Role::Robot),
+    ];
+    for (at, label, role) in marks {
+        if let Some(at) = at.filter(|p| !inside(*p)) {
+            out.push(Item::OffView {
+                at,
+                label: label.into(),
+                role,
+            });
+        }
+    }
+}
+
+pub(super) fn readouts(a: &AStarGrid) -> Vec<Readout> {
+    let (expanded, frontier) = a
+        .search
+        .as_ref()
+        .map_or((0, 0), |s| (s.expanded(), s.frontier_len()));
+    let found = a.path_cells > 0;
+    vec![
+        Readout::new("expanded", "Expanded", expanded.to_string()),
+        Readout::new("frontier", "Frontier", frontier.to_string()),
+        Readout::new(
+            "path_cells",
+            "Path cells",
+            if found {
+                a.path_cells.to_string()
+            } else {
+                "--".into()
+            },
+        ),
+        Readout::metres(
+            "path_cost",
+            "Path cost",
+            if found { a.path_cost } else { f64::NAN },
+        ),
+        Readout::new(
+            "grid",
+            "Grid",
+            format!(
+                "{} × {}, {} walls",
+                a.grid.width(),
+                a.grid.height(),
+                a.grid.blocked_count()
+            ),
+        ),
+        Readout::new(
+            "link",
+            "Link",
+            if a.walls_missing {
+                "the walls were left out: load the .map file".to_owned()
+            } else if a.walls_in_link() {
+                "holds the walls".to_owned()
+            } else {
+                "too large for the walls: use Save file (.map)".to_owned()
+            },
+        ),
+    ]
+}
+
+pub(super) fn status(a: &AStarGrid) -> Status {
+    let inadmissible = !a.heuristic.is_admissible(a.connectivity) || a.weight > 1.0;
+    let caveat = if a.weight > 1.0 {
+        format!(" (weighted: ≤ {}× optimum)", format_number(a.weight, 1))
+    } else if inadmissible {
+        " (Manhattan overestimates diagonals)".to_owned()
+    } else {
+        String::new()
+    };
+    let benchmark = a.arena_optimum().map_or(String::new(), |o| {
+        format!("; benchmark optimum {}", format_fixed(o, 3))
+    });
+    let good = if inadmissible {
+        Tone::Warning
+    } else {
+        Tone::Good
+    };
+    match a.phase {
+        Phase::Refused => Status::new(
+            a.ends_problem()
+                .unwrap_or_else(|| "cannot plan between these cells".into()),
+            Tone::Bad,
+        ),
+        _ if a.ends_problem().is_some() => {
+            Status::new(a.ends_problem().unwrap_or_default(), Tone::Bad)
+        }
+        Phase::Idle if a.walls_missing => Status::new(
+            format!(
+                "walls not in the link: load this {} × {} grid's .map file",
+                a.grid.width(),
+                a.grid.height()
+            ),
+            Tone::Warning,
+        ),
+        Phase::Idle if !a.walls_in_link() => Status::new(
+            "ready; too large for the link: use Save file",
+            Tone::Warning,
+        ),
+        Phase::Idle => Status::new(
+            match a.base {
+                Base::Maze { seed } => format!("ready: maze from seed {seed}"),
+                Base::Arena => format!("ready: arena map (Moving AI){benchmark}"),
+                Base::Plain => "ready: press Plan & drive".to_owned(),
+            },
+            Tone::Neutral,
+        ),
+        Phase::Comparing => Status::new(
+            format!("comparing… {} of 4 planners done", a.compare.len()),
+            Tone::Neutral,
+        ),
+        Phase::Searching => Status::new(
+            format!(
+                "searching… {} expanded",
+                a.search.as_ref().map_or(0, Search::expanded)
+            ),
+            Tone::Neutral,
+        ),
+        Phase::Driving => Status::new(
+            format!(
+                "path found, cost {}: driving{caveat}",
+                format_fixed(a.path_cost, 3)
+            ),
+            good,
+        ),
+        Phase::Arrived => Status::ended(
+            format!(
+                "arrived: path cost {}{caveat}{benchmark}",
+                format_fixed(a.path_cost, 3)
+            ),
+            good,
+        ),
+        Phase::NoPath => Status::ended(
+            "no path: the goal cannot be reached from the start",
+            Tone::Bad,
+        ),
+        Phase::Compared => Status::ended(
+            format!("compared {} planners on this grid", a.compare.len()),
+            Tone::Good,
+        ),
+    }
+}
+
+pub(super) fn hint(a: &AStarGrid) -> &'static str {
+    match (a.walls_in_link(), a.zoomed()) {
+        (true, false) => "Drag to paint or erase walls; Shift-click sets the start, Ctrl-click the goal (or drag them). Then press Plan & drive.",
+        (true, true) => "Drag to paint or erase walls; Shift-click sets the start, Ctrl-click the goal (or drag them). The dashed edge band pans: drag or click it. Zoom in / out shows the whole grid.",
+        (false, _) => "This grid is too large to keep in the link: use Save file to keep it as a .map file. Drag to paint walls; Shift-click sets the start, Ctrl-click the goal.",
+    }
+}
+
+/// The hint on a touch screen: no Shift- or Ctrl-click there, so the start
+/// and goal are placed by dragging their dots.
+pub(super) fn touch_hint(a: &AStarGrid) -> &'static str {
+    match (a.walls_in_link(), a.zoomed()) {
+        (true, false) => "Swipe to paint or erase walls. To place the start (green) or the goal (red), touch its dot and drag it to the cell you want. Then press Plan & drive.",
+        (true, true) => "Swipe to paint or erase walls. To place the start (green) or the goal (red), touch its dot and drag it to the cell you want. Drag or tap the dashed edge band to pan; Zoom in / out shows the whole grid.",
+        (false, _) => "This grid is too large to keep in the link: use Save file to keep it as a .map file. Swipe to paint walls; touch the start or goal dot and drag it to move it.",
+    }
+}
+
+/// The zoomed window's size in cells (columns, rows) for the canvas the
+/// page told: as many [`MIN_CELL_PX`] cells as fit, `None` when the whole
+/// grid already shows cells that large (or no canvas size is known yet).
+pub(super) fn window_cells(a: &AStarGrid) -> Option<(usize, usize)> {
+    let vp = a.viewport_px?;
+    let (w, h) = (a.grid.width(), a.grid.height());
+    if (vp.x / w as f64).min(vp.y / h as f64) >= MIN_CELL_PX {
+        return None;
+    }
+    let fit = |px: f64, n: usize| ((px / MIN_CELL_PX).floor() as usize).clamp(1, n);
+    let (c, r) = (fit(vp.x, w), fit(vp.y, h));
+    (c < w || r < h).then_some((c, r))
+}
