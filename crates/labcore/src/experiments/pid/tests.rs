@@ -1,0 +1,428 @@
+//! Tests of experiment 7, among them one per Procedure step.
+
+use super::quiz::*;
+use super::view::{percent, seconds};
+use super::*;
+use crate::route::{format, restore, Tab};
+
+fn run_to_end(e: &mut PidControl) -> usize {
+    let mut frames = 0;
+    while e.animating() && frames < 10_000 {
+        e.step(1.0 / 60.0);
+        frames += 1;
+    }
+    frames
+}
+
+fn readout(e: &PidControl, key: &str) -> String {
+    crate::experiment::readout_value(e, key).unwrap_or_else(|| panic!("no readout {key}"))
+}
+
+/// `Kp = 25, Kd = 5, c = 1, m = 1, Ki = 0`: `s² + 6 s + 25`, poles
+/// `−3 ± 4i`, `ωn = 5`, `ζ = 0.6`.
+fn underdamped() -> PidControl {
+    let mut e = PidControl::default();
+    e.set_param("kp", 25.0).unwrap();
+    e.set_param("ki", 0.0).unwrap();
+    e.set_param("kd", 5.0).unwrap();
+    e
+}
+
+#[test]
+fn readouts_by_hand_at_the_start() {
+    let e = underdamped();
+    assert_eq!(readout(&e, "x"), "0.000 m");
+    assert_eq!(readout(&e, "error"), "1.000 m");
+    assert_eq!(readout(&e, "poles"), "-3.000 ± 4.000i");
+    assert_eq!(readout(&e, "stability"), "stable");
+    assert_eq!(readout(&e, "second_order"), "ωn 5.000 rad/s · ζ 0.600");
+    assert_eq!(readout(&e, "sse"), "0.000 m");
+    // Default gains: m s³ + (c + Kd) s² + Kp s + Ki = s³ + 7 s² + 12 s + 2,
+    // three real poles, the slowest near −0.187.
+    let d = PidControl::default();
+    let poles = readout(&d, "poles");
+    assert!(poles.starts_with("-0.18"), "{poles}");
+    assert_eq!(poles.split(", ").count(), 3, "{poles}");
+    assert_eq!(readout(&d, "second_order"), "--");
+}
+
+/// With `Ki = 0` and the derivative on the measurement the loop is the
+/// textbook second-order system `ωn²/(s² + 2ζωn s + ωn²)`: its metrics
+/// match the analytic formulas and `step_info` of the exact response.
+#[test]
+fn second_order_metrics_and_markers_match_the_analytic_response() {
+    let mut e = underdamped();
+    run_to_end(&mut e);
+    let info = e.metrics().expect("metrics");
+    let (wn, zeta) = (5.0_f64, 0.6_f64);
+    let wd = wn * (1.0 - zeta * zeta).sqrt();
+    let overshoot = 100.0 * (-zeta * std::f64::consts::PI / (1.0 - zeta * zeta).sqrt()).exp();
+    assert!((info.overshoot_pct - overshoot).abs() < 0.1, "{info:?}");
+    assert!(
+        (info.peak_time_s - std::f64::consts::PI / wd).abs() <= 0.011,
+        "{info:?}"
+    );
+    // The exact response sampled at the record period.
+    let t: Vec<f64> = (0..=3000).map(|k| k as f64 * RECORD_PERIOD_S).collect();
+    let y: Vec<f64> = t
+        .iter()
+        .map(|t| {
+            1.0 - (-zeta * wn * t).exp()
+                * ((wd * t).cos() + zeta / (1.0 - zeta * zeta).sqrt() * (wd * t).sin())
+        })
+        .collect();
+    let exact = step_info(&t, &y, 0.0, 1.0, Some(1.0)).unwrap();
+    let close = |a: Option<f64>, b: Option<f64>| (a.unwrap() - b.unwrap()).abs() <= 0.021;
+    assert!(
+        close(info.rise_time_s, exact.rise_time_s),
+        "{info:?} vs {exact:?}"
+    );
+    assert!(
+        close(info.settling_time_s, exact.settling_time_s),
+        "{info:?} vs {exact:?}"
+    );
+    // Markers sit on the curve at the rise, peak and settling times.
+    let markers = &e.plots()[0].markers;
+    assert_eq!(markers.len(), 3, "{markers:?}");
+    let series = &e.plots()[0].series[0];
+    for m in markers {
+        let k = series.nearest(m.x).unwrap();
+        assert!((series.x[k] - m.x).abs() < 1e-12 && (series.y[k] - m.y).abs() < 1e-12);
+    }
+    let first_90 = series.y.iter().position(|y| *y >= 0.9).unwrap();
+    assert_eq!(markers[0].x, series.x[first_90]);
+    assert!(markers[0].label.starts_with("rise "));
+    assert_eq!((markers[1].x, markers[1].y), (info.peak_time_s, info.peak));
+    assert_eq!(
+        markers[1].label,
+        format!("peak {}%", format_fixed(info.overshoot_pct, 1))
+    );
+    assert!((markers[2].x - info.settling_time_s.unwrap()).abs() < 1e-9);
+    assert_eq!(
+        readout(&e, "overshoot"),
+        format!("{}%", format_fixed(info.overshoot_pct, 1))
+    );
+    assert_eq!(e.status().tone, Tone::Good);
+    assert!(e.status().text.starts_with("settled within 2 % after"));
+}
+
+#[test]
+fn the_cart_reaches_the_setpoint_and_the_run_goes_quiet() {
+    let mut e = PidControl::default();
+    let frames = run_to_end(&mut e);
+    assert!(!e.animating());
+    assert!(frames < 10_000);
+    assert!((e.position_m() - 1.0).abs() < 2e-3, "{}", e.position_m());
+    // Bounded records: at most RECORD_S of samples.
+    let n = e.plots()[0].series[0].len();
+    assert!(n <= (RECORD_S / RECORD_PERIOD_S) as usize + 1, "{n}");
+    // Finished runs ignore further steps.
+    let before = e.position_m();
+    e.step(1.0 / 60.0);
+    assert_eq!(e.position_m(), before);
+}
+
+#[test]
+fn integral_action_removes_the_offset_of_a_constant_push() {
+    let mut p_only = PidControl::default();
+    p_only.set_param("ki", 0.0).unwrap();
+    p_only.set_param("d", -3.0).unwrap();
+    run_to_end(&mut p_only);
+    // Kp·e = 3 N → e = 3/12 = 0.25 m.
+    assert!(
+        (p_only.position_m() - 0.75).abs() < 1e-3,
+        "{}",
+        p_only.position_m()
+    );
+    assert_eq!(readout(&p_only, "sse"), "0.250 m");
+    let mut pid = PidControl::default();
+    pid.set_param("d", -3.0).unwrap();
+    run_to_end(&mut pid);
+    assert!(
+        (pid.position_m() - 1.0).abs() < 2e-3,
+        "{}",
+        pid.position_m()
+    );
+    assert_eq!(readout(&pid, "sse"), "0.000 m");
+}
+
+/// With `Ki = 0.5` a 5 N push needs `∫e = 10 m·s`, but the clamp stops the
+/// integral at 5: the last 2.5 N are left to `Kp`, `e = 2.5/12`.
+#[test]
+fn the_integral_clamp_bounds_the_integral_and_leaves_the_predicted_offset() {
+    let mut e = PidControl::default();
+    e.set_param("ki", 0.5).unwrap();
+    e.set_param("d", -5.0).unwrap();
+    let predicted = 1.0 - 2.5 / 12.0;
+    assert!((e.final_value_m().unwrap() - predicted).abs() < 1e-12);
+    run_to_end(&mut e);
+    assert!(e.run.controller.integral_m_s().abs() <= 5.0 + 1e-12);
+    assert!(
+        (e.position_m() - predicted).abs() < 2e-3,
+        "{}",
+        e.position_m()
+    );
+}
+
+#[test]
+fn saturation_is_shaded_and_limits_the_force() {
+    let mut e = PidControl::default();
+    e.set_param("sat", 1.0).unwrap();
+    e.set_param("umax", 5.0).unwrap();
+    run_to_end(&mut e);
+    let effort = &e.plots()[1];
+    assert!(effort.series[0].y.iter().all(|u| u.abs() <= 5.0 + 1e-9));
+    assert!(!effort.bands.is_empty());
+    let band = &effort.bands[0];
+    assert_eq!(band.axis, Axis::X);
+    // Saturated from the start: a 1 m error asks Kp·e = 12 N > 5 N.
+    assert!(band.lo.abs() < 1e-9 && band.hi > 0.1, "{band:?}");
+    assert_eq!(effort.ref_lines.len(), 2);
+    // The applied force is the sum of the terms wherever it is not cut.
+    let s = &effort.series;
+    let inside = |t: f64| {
+        effort
+            .bands
+            .iter()
+            .any(|b| t >= b.lo - 1e-9 && t <= b.hi + 1e-9)
+    };
+    for k in 0..s[0].len() {
+        if !inside(s[0].x[k]) {
+            let sum = s[1].y[k] + s[2].y[k] + s[3].y[k];
+            assert!((s[0].y[k] - sum).abs() < 1e-9, "t = {}", s[0].x[k]);
+        }
+    }
+}
+
+#[test]
+fn derivative_on_the_error_kicks_and_on_the_measurement_does_not() {
+    let mut on_error = PidControl::default();
+    on_error.set_param("dmeas", 0.0).unwrap();
+    on_error.step(1.0 / 60.0);
+    // The first record period holds the impulse Kd·r = 6 N·s, a mean of
+    // 6 N·s / 0.01 s = 600 N, less the damping −Kd·ẋ of the five updates
+    // after the kick (ẋ ≈ 6 m/s: about −30 N on average).
+    let d0 = on_error.plots()[1].series[3].y[0];
+    assert!(d0 > 550.0 && d0 < 600.0, "{d0}");
+    let mut on_measurement = PidControl::default();
+    on_measurement.step(1.0 / 60.0);
+    let d0 = on_measurement.plots()[1].series[3].y[0];
+    assert!(d0.abs() < 1.0, "{d0}");
+}
+
+#[test]
+fn unstable_gains_diverge_and_say_so() {
+    let mut e = PidControl::default();
+    // m s³ + 0·s² + s + 5: no damping at all, poles in the right half-plane.
+    for (k, v) in [("c", 0.0), ("kd", 0.0), ("kp", 1.0), ("ki", 5.0)] {
+        e.set_param(k, v).unwrap();
+    }
+    assert_eq!(readout(&e, "stability"), "unstable");
+    run_to_end(&mut e);
+    assert_eq!(e.status().tone, Tone::Bad);
+    assert!(e.position_m().abs() > DIVERGED_M);
+    assert_eq!(readout(&e, "overshoot"), "--");
+    let mut scene = Scene::default();
+    e.scene(&mut scene);
+    assert!(scene.is_finite());
+}
+
+#[test]
+fn pinned_runs_keep_their_gains_and_metrics() {
+    let mut e = underdamped();
+    // The slot series exist from the start (the page's legend is fixed).
+    let labels: Vec<&str> = e.plots()[0]
+        .series
+        .iter()
+        .map(|s| s.label.as_str())
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            "position x",
+            "pinned run A",
+            "pinned run B",
+            "pinned run C",
+            "pinned run D"
+        ]
+    );
+    assert!(e.plots()[0].series[1..].iter().all(Series::is_empty));
+    run_to_end(&mut e);
+    let first = e.metrics().unwrap();
+    let curve = e.plots()[0].series[0].clone();
+    e.action("pin").unwrap();
+    e.set_param("kd", 10.0).unwrap();
+    run_to_end(&mut e);
+    e.action("pin").unwrap();
+    let response = &e.plots()[0];
+    assert_eq!(
+        (&response.series[1].x, &response.series[1].y),
+        (&curve.x, &curve.y)
+    );
+    assert_eq!(response.series[2].len(), response.series[0].len());
+    assert_eq!(response.series[1].role, SeriesRole::Secondary);
+    assert_eq!(response.series[2].role, SeriesRole::Tertiary);
+    assert_eq!(e.pins()[0].info, Some(first));
+    assert_eq!(
+        readout(&e, "pinA"),
+        format!(
+            "Kp 25 · Ki 0 · Kd 5, overshoot {}, rise {}, settling {}",
+            percent(first.overshoot_pct),
+            seconds(first.rise_time_s),
+            seconds(first.settling_time_s)
+        )
+    );
+    assert!(readout(&e, "pinB").starts_with("Kp 25 · Ki 0 · Kd 10, overshoot "));
+    // More damping, less overshoot.
+    assert!(e.pins()[1].info.unwrap().overshoot_pct < first.overshoot_pct);
+    // A replayed step keeps the pins; the fifth pin replaces the oldest (slot A).
+    e.action("step").unwrap();
+    assert_eq!(e.plots()[0].series[1].x, curve.x);
+    e.set_param("kd", 1.0).unwrap();
+    for _ in 0..3 {
+        e.action("pin").unwrap();
+    }
+    assert_eq!(e.pins().len(), MAX_PINS);
+    let numbers: Vec<(usize, usize)> = e.pins().iter().map(|p| (p.number, p.slot)).collect();
+    assert_eq!(numbers, [(2, 1), (3, 2), (4, 3), (5, 0)]);
+    assert!(readout(&e, "pinA").starts_with("Kp 25 · Ki 0 · Kd 1, "));
+    // Pinned mid-run: the metrics are marked as those so far.
+    assert!(
+        readout(&e, "pinA").ends_with(", so far (pinned at 0.00 s)"),
+        "{}",
+        readout(&e, "pinA")
+    );
+    assert!(!readout(&e, "pinB").contains("so far"));
+    let keys: Vec<&str> = e
+        .readouts()
+        .iter()
+        .map(|r| r.key)
+        .filter(|k| k.starts_with("pin"))
+        .collect();
+    assert_eq!(keys, ["pinA", "pinB", "pinC", "pinD"]);
+    e.action("clear_pins").unwrap();
+    assert_eq!(e.plots()[0].series.len(), 1 + MAX_PINS);
+    assert!(e.plots()[0].series[1..].iter().all(Series::is_empty));
+    assert!(e.readouts().iter().all(|r| !r.key.starts_with("pin")));
+}
+
+#[test]
+fn dragging_the_marker_sets_the_setpoint_to_the_centimetre() {
+    let mut e = PidControl::default();
+    assert!(e.handle_at(DVec2::new(1.0, 0.5), 0.1));
+    assert!(!e.handle_at(DVec2::new(0.0, 0.5), 0.1));
+    e.step(0.05);
+    e.input(Input::PointerDown(DVec2::new(-1.234, 0.4)));
+    assert_eq!(e.param("r"), Some(-1.23));
+    assert_eq!(e.time_s(), 0.0, "the step restarts");
+    e.input(Input::Nudge(DVec2::new(0.05, 0.0)));
+    assert!((e.param("r").unwrap() + 1.18).abs() < 1e-12);
+    e.input(Input::PointerMove {
+        pos: DVec2::new(9.0, 0.0),
+        pressed: true,
+    });
+    assert_eq!(e.param("r"), Some(2.0), "kept in the slider's range");
+    e.input(Input::PointerMove {
+        pos: DVec2::new(f64::NAN, 0.0),
+        pressed: true,
+    });
+    assert_eq!(e.param("r"), Some(2.0));
+}
+
+#[test]
+fn every_parameter_round_trips_through_the_link() {
+    let mut e = PidControl::default();
+    for (k, v) in [
+        ("kp", 30.5),
+        ("ki", 0.3),
+        ("kd", 2.2),
+        ("r", -0.75),
+        ("c", 0.4),
+        ("m", 2.5),
+        ("d", 1.5),
+        ("dmeas", 0.0),
+        ("sat", 1.0),
+        ("umax", 40.0),
+        ("ilim", 2.5),
+        ("noise", 0.004),
+        ("tf", 0.05),
+        ("seed", 42.0),
+    ] {
+        e.set_param(k, v).unwrap();
+    }
+    let link = format(&e, Tab::Simulation);
+    let (mut fresh, notices) = restore(&link, PidControl::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(format(&fresh, Tab::Simulation), link);
+    for spec in PARAMS {
+        assert_eq!(fresh.param(spec.key), e.param(spec.key), "{}", spec.key);
+    }
+    // The same settings replay the same (noisy) run.
+    for _ in 0..120 {
+        e.step(1.0 / 60.0);
+        fresh.step(1.0 / 60.0);
+    }
+    assert_eq!(e.position_m(), fresh.position_m());
+}
+
+#[test]
+fn noise_is_seeded_and_the_filter_calms_the_derivative() {
+    let spread = |tf: f64, seed: f64| {
+        let mut e = PidControl::default();
+        e.set_param("noise", 0.005).unwrap();
+        e.set_param("seed", seed).unwrap();
+        e.set_param("tf", tf).unwrap();
+        for _ in 0..600 {
+            e.step(1.0 / 60.0);
+        }
+        let d = &e.plots()[1].series[3].y;
+        let tail = &d[d.len() - 300..];
+        let mean = tail.iter().sum::<f64>() / tail.len() as f64;
+        (tail.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / tail.len() as f64).sqrt()
+    };
+    let raw = spread(0.0, 1.0);
+    let filtered = spread(0.05, 1.0);
+    assert!(filtered < raw / 3.0, "raw {raw}, filtered {filtered}");
+    assert_eq!(spread(0.0, 1.0), raw, "same seed, same noise");
+    assert_ne!(spread(0.0, 2.0), raw);
+}
+
+#[test]
+fn bad_steps_and_inputs_change_nothing() {
+    let mut e = PidControl::default();
+    e.step(0.1);
+    let before = (e.position_m(), e.time_s(), e.plots()[0].clone());
+    for dt in [f64::NAN, -1.0, 0.0, 0.2, f64::INFINITY] {
+        e.step(dt);
+    }
+    assert_eq!((e.position_m(), e.time_s(), e.plots()[0].clone()), before);
+    assert!(e.set_param("kp", f64::NAN).is_err());
+    assert!(e.set_param("nope", 1.0).is_err());
+    assert!(e.action("nope").is_err());
+    assert_eq!(e.time_s(), before.1);
+}
+
+#[test]
+fn quiz_generators_agree_with_the_formulas() {
+    let mut rng = Lcg64::new(5);
+    for _ in 0..200 {
+        let d = quiz_offset(&mut rng);
+        let (kp, push) = (d.var("kp").unwrap(), d.var("d").unwrap());
+        assert!((d.answer - push / kp).abs() < 1e-12);
+        let d = quiz_damping_ratio(&mut rng);
+        let (m, c, kp, kd) = (
+            d.var("m").unwrap(),
+            d.var("c").unwrap(),
+            d.var("kp").unwrap(),
+            d.var("kd").unwrap(),
+        );
+        assert!((d.answer - (c + kd) / (2.0 * (m * kp).sqrt())).abs() < 1e-12);
+        assert!(d.answer > 0.0 && d.answer < 1.0, "{}", d.answer);
+        let d = quiz_natural_frequency(&mut rng);
+        assert!((d.answer - (d.var("kp").unwrap() / d.var("m").unwrap()).sqrt()).abs() < 1e-12);
+        let d = quiz_overshoot(&mut rng);
+        let z = d.var("zeta").unwrap();
+        let expected = 100.0 * (-z * std::f64::consts::PI / (1.0 - z * z).sqrt()).exp();
+        assert!((d.answer - expected).abs() < 1e-9);
+    }
+}
