@@ -44,8 +44,8 @@ use crate::control::pid::{
 use crate::control::step_info::{step_info, StepInfo, SETTLING_THRESHOLD};
 use crate::control::{Complex, Stability};
 use crate::experiment::{
-    check_param, format_fixed, format_metres, ActionSpec, Experiment, Input, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, format_magnitude, format_metres, ActionSpec, Experiment, Input,
+    Notice, Notices, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::plot::{Axis, Band, Marker, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{format_number, Draw, Generator};
@@ -92,8 +92,11 @@ const ACTIONS: &[ActionSpec] = &[
 pub const CONTROL_PERIOD_S: f64 = 1.0 / 600.0;
 /// Control updates per recorded sample.
 const UPDATES_PER_RECORD: u64 = 6;
+/// Recorded samples per second: sample `k` is at `k / 100` s, computed as a
+/// division so the times read 0.07, not 0.07000000000000001.
+const RECORDS_PER_S: f64 = 100.0;
 /// Recorded sample period, seconds (100 Hz).
-pub const RECORD_PERIOD_S: f64 = CONTROL_PERIOD_S * UPDATES_PER_RECORD as f64;
+pub const RECORD_PERIOD_S: f64 = 1.0 / RECORDS_PER_S;
 /// Longest recorded response, seconds; the run ends there.
 pub const RECORD_S: f64 = 30.0;
 /// The run ends early once the cart has been this close to its final value
@@ -102,8 +105,14 @@ pub const RECORD_S: f64 = 30.0;
 const QUIET_FRACTION: f64 = 1e-3;
 const QUIET_MIN_M: f64 = 1e-4;
 const QUIET_S: f64 = 1.0;
-/// The run is stopped as diverged when the cart is this far out, metres.
-pub const DIVERGED_M: f64 = 20.0;
+/// The track runs from `−TRACK_END_M` to `+TRACK_END_M` (metres); the run
+/// stops when the cart's centre passes an end.
+pub const TRACK_END_M: f64 = 2.5;
+/// Below this final value (metres) the step is too small to measure: the
+/// overshoot, rise and settling are fractions of the step, so a step of a
+/// nanometre (or of `5·10⁻³²⁴` m) would turn sensor noise into
+/// percentages of 10⁹ or infinity. One millimetre is the readouts' resolution.
+pub const MIN_STEP_M: f64 = 1e-3;
 /// At most this many pinned runs.
 pub const MAX_PINS: usize = 4;
 /// The roles pinned runs are drawn with, in order of use.
@@ -114,17 +123,21 @@ const PIN_ROLES: [SeriesRole; MAX_PINS] = [
     SeriesRole::Reference,
 ];
 
-/// The series names of the four pin slots.
+/// The series names of the four pin slots while empty; a pinned run is named
+/// after its slot and gains instead ("A: Kp 25, Kd 5").
 const PIN_NAMES: [&str; MAX_PINS] = [
     "pinned run A",
     "pinned run B",
     "pinned run C",
     "pinned run D",
 ];
+/// The slot letters.
+const PIN_LETTERS: [&str; MAX_PINS] = ["A", "B", "C", "D"];
 
-/// World rectangle of the canvas (metres): the track from −2.6 m to 2.6 m.
-const VIEW_MIN: DVec2 = DVec2::new(-2.6, -0.7);
-const VIEW_MAX: DVec2 = DVec2::new(2.6, 1.3);
+/// World rectangle of the canvas (metres): the whole track, its end stops
+/// and a cart standing at either end.
+const VIEW_MIN: DVec2 = DVec2::new(-2.8, -0.7);
+const VIEW_MAX: DVec2 = DVec2::new(2.8, 1.3);
 /// Cart body half-width and height, metres.
 const CART_HALF_W_M: f64 = 0.22;
 const CART_BOTTOM_M: f64 = 0.08;
@@ -143,8 +156,22 @@ enum RunState {
     Quiet,
     /// The full [`RECORD_S`] recorded.
     Complete,
-    /// Ran off the track or produced non-finite numbers.
+    /// The cart's centre passed an end of the track.
+    OffTrack,
+    /// The numbers stopped being finite.
     Diverged,
+}
+
+/// Why there are no step-response metrics.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NoMetrics {
+    /// The linear loop has no final value (unstable, marginal, nothing to
+    /// hold the cart, or a push the force limit cannot balance).
+    NoFinalValue,
+    /// The step to the final value is under [`MIN_STEP_M`].
+    StepTooSmall,
+    /// Not enough samples yet.
+    NotYet,
 }
 
 /// Sums over one record period of the controller's terms.
@@ -166,8 +193,8 @@ pub struct Pin {
     /// 1, 2, 3, … in the order pinned.
     pub number: usize,
     pub gains: PidGains,
-    /// The metrics when it was pinned (`None` when undefined, e.g. unstable).
-    pub info: Option<StepInfo>,
+    /// The metrics when it was pinned, or why there were none.
+    pub info: Result<StepInfo, NoMetrics>,
     /// Time since the step when it was pinned (s).
     pub time_s: f64,
     /// Whether the run had ended (settled, complete or diverged) when pinned;
@@ -179,17 +206,37 @@ impl Pin {
     /// `Kp 12 · Ki 2 · Kd 6`.
     #[must_use]
     pub fn gains_text(&self) -> String {
-        gains_text(&self.gains)
+        format!(
+            "Kp {} · Ki {} · Kd {}",
+            gain_text(self.gains.kp),
+            gain_text(self.gains.ki),
+            gain_text(self.gains.kd)
+        )
+    }
+
+    /// The legend name of the pinned curve: its slot and the gains, the zero
+    /// Ki and Kd left out, `A: Kp 25, Kd 5`.
+    #[must_use]
+    pub fn legend(&self) -> String {
+        let g = self.gains;
+        let mut parts = vec![format!("Kp {}", gain_text(g.kp))];
+        for (name, v) in [("Ki", g.ki), ("Kd", g.kd)] {
+            if v != 0.0 {
+                parts.push(format!("{name} {}", gain_text(v)));
+            }
+        }
+        format!("{}: {}", PIN_LETTERS[self.slot], parts.join(", "))
     }
 }
 
-fn gains_text(g: &PidGains) -> String {
-    format!(
-        "Kp {} · Ki {} · Kd {}",
-        format_number(g.kp, 2),
-        format_number(g.ki, 2),
-        format_number(g.kd, 2)
-    )
+/// A gain as the legend and the readouts name it: `12.5`, or a power of ten
+/// for a value a link can carry but two decimals cannot show (`1.0 × 10⁻⁵`).
+fn gain_text(v: f64) -> String {
+    if v != 0.0 && v.abs() < 0.01 {
+        format_magnitude(v)
+    } else {
+        format_number(v, 2)
+    }
 }
 
 /// State of the PID experiment.
@@ -211,10 +258,13 @@ pub struct PidControl {
     pending_s: f64,
     /// Control updates since the step.
     updates: u64,
+    /// Samples recorded since the step (the first, at t = 0, not counted).
+    records: u64,
     sums: TermSums,
     state: RunState,
     quiet_samples: u32,
-    info: Option<StepInfo>,
+    info: Result<StepInfo, NoMetrics>,
+    notices: Notices,
     pins: Vec<Pin>,
     pins_made: usize,
     /// Response (position and pinned runs) and control effort.
@@ -234,7 +284,7 @@ fn new_plots() -> [Plot; 2] {
                     PIN_NAMES
                         .iter()
                         .zip(PIN_ROLES)
-                        .map(|(name, role)| Series::new(*name, "m", role)),
+                        .map(|(name, role)| Series::new(*name, "m", role).for_comparison()),
                 )
                 .collect(),
         )
@@ -281,10 +331,12 @@ impl Default for PidControl {
             run: PidLoop::new(MassDragPlant::default(), Pid::default(), 0.0, 0),
             pending_s: 0.0,
             updates: 0,
+            records: 0,
             sums: TermSums::default(),
             state: RunState::Running,
             quiet_samples: 0,
-            info: None,
+            info: Err(NoMetrics::NotYet),
+            notices: Notices::default(),
             pins: Vec::new(),
             pins_made: 0,
             plots: new_plots(),
@@ -326,7 +378,17 @@ impl PidControl {
     /// The step-response metrics so far (`None` while undefined).
     #[must_use]
     pub fn metrics(&self) -> Option<StepInfo> {
-        self.info
+        self.info.ok()
+    }
+
+    /// The final value if the step to it is large enough to measure
+    /// ([`MIN_STEP_M`]), or why not.
+    fn measurable_final_value(&self) -> Result<f64, NoMetrics> {
+        match self.final_value_m() {
+            None => Err(NoMetrics::NoFinalValue),
+            Some(y) if y.abs() < MIN_STEP_M => Err(NoMetrics::StepTooSmall),
+            Some(y) => Ok(y),
+        }
     }
 
     /// The pinned runs, oldest first.
@@ -388,11 +450,12 @@ impl PidControl {
         self.run = run;
         self.pending_s = 0.0;
         self.updates = 0;
+        self.records = 0;
         self.sums = TermSums::default();
         self.state = RunState::Running;
         self.quiet_samples = 0;
-        self.info = None;
-        let y_final = self.final_value_m();
+        self.info = Err(NoMetrics::NotYet);
+        let y_final = self.measurable_final_value().ok();
         let [response, effort] = &mut self.plots;
         let position = &mut response.series[0];
         position.x.clear();
@@ -453,8 +516,8 @@ impl PidControl {
         if u64::from(s.count) == UPDATES_PER_RECORD {
             self.record();
         }
-        if self.run.state.x_m.abs() > DIVERGED_M {
-            self.state = RunState::Diverged;
+        if self.run.state.x_m.abs() > TRACK_END_M {
+            self.state = RunState::OffTrack;
         } else if self.time_s() >= RECORD_S - 1e-9 {
             self.state = RunState::Complete;
         }
@@ -463,7 +526,8 @@ impl PidControl {
     /// Appends the position and the period's mean force terms (a mean keeps
     /// the impulse of a derivative kick visible however short it is).
     fn record(&mut self) {
-        let t = self.time_s();
+        self.records += 1;
+        let t = self.records as f64 / RECORDS_PER_S;
         let x = self.run.state.x_m;
         let sums = std::mem::take(&mut self.sums);
         let n = f64::from(sums.count.max(1));
@@ -477,7 +541,7 @@ impl PidControl {
             series.push(t, v / n);
         }
         if sums.saturated {
-            let from = t - RECORD_PERIOD_S;
+            let from = (self.records - 1) as f64 / RECORDS_PER_S;
             match effort.bands.last_mut() {
                 Some(band) if (band.hi - from).abs() < 1e-9 => band.hi = t,
                 _ => effort.bands.push(Band {
@@ -502,13 +566,14 @@ impl PidControl {
 
     /// Recomputes the metrics and the markers on the response curve.
     fn update_metrics(&mut self) {
-        let y_final = self.final_value_m();
+        let y_final = self.measurable_final_value();
         let response = &mut self.plots[0];
         let series = &response.series[0];
-        self.info =
-            y_final.and_then(|y| step_info(&series.x, &series.y, 0.0, self.setpoint_m, Some(y)));
+        self.info = y_final.and_then(|y| {
+            step_info(&series.x, &series.y, 0.0, self.setpoint_m, Some(y)).ok_or(NoMetrics::NotYet)
+        });
         response.markers.clear();
-        let (Some(info), Some(y_inf)) = (self.info, y_final) else {
+        let (Ok(info), Ok(y_inf)) = (self.info, y_final) else {
             return;
         };
         // Rise: where the curve first reaches 90 % of the step.
@@ -525,7 +590,7 @@ impl PidControl {
             response.markers.push(Marker {
                 x: info.peak_time_s,
                 y: info.peak,
-                label: format!("peak {}%", format_fixed(info.overshoot_pct, 1)),
+                label: format!("peak {}", view::percent(info.overshoot_pct)),
             });
         }
         if let Some(ts) = info.settling_time_s {
@@ -542,33 +607,58 @@ impl PidControl {
     /// Keeps the current response as a pinned run in the first free slot,
     /// or in the oldest pin's slot when all [`MAX_PINS`] are taken.
     fn pin(&mut self) {
-        let slot = (0..MAX_PINS)
-            .find(|k| self.pins.iter().all(|p| p.slot != *k))
-            .unwrap_or_else(|| self.pins.remove(0).slot);
+        let free = (0..MAX_PINS).find(|k| self.pins.iter().all(|p| p.slot != *k));
+        let (slot, replaced) = match free {
+            Some(k) => (k, false),
+            None => (self.pins.remove(0).slot, true),
+        };
         self.pins_made += 1;
-        self.pins.push(Pin {
+        let pin = Pin {
             slot,
             number: self.pins_made,
             gains: self.gains,
             info: self.info,
             time_s: self.time_s(),
             finished: self.state != RunState::Running,
-        });
+        };
         let response = &mut self.plots[0];
         let (x, y) = (response.series[0].x.clone(), response.series[0].y.clone());
         let series = &mut response.series[1 + slot];
         series.x = x;
         series.y = y;
+        series.label = pin.legend();
         response.touch();
+        if replaced {
+            self.notices.post(
+                format!(
+                    "pinned as run {}: it replaces the oldest pin, in slot {}",
+                    PIN_LETTERS[slot], PIN_LETTERS[slot]
+                ),
+                Tone::Neutral,
+            );
+        } else if !pin.finished {
+            self.notices.post(
+                format!(
+                    "pinned at {}: its metrics are those of the response so far",
+                    view::seconds(Some(pin.time_s))
+                ),
+                Tone::Neutral,
+            );
+        } else {
+            self.notices.clear();
+        }
+        self.pins.push(pin);
     }
 
     fn clear_pins(&mut self) {
         self.pins.clear();
-        for series in &mut self.plots[0].series[1..] {
+        for (series, name) in self.plots[0].series[1..].iter_mut().zip(PIN_NAMES) {
             series.x.clear();
             series.y.clear();
+            series.label = name.into();
         }
         self.plots[0].touch();
+        self.notices.clear();
     }
 
     /// Sets the setpoint from a pointer or key, rounded to 1 cm and kept in
@@ -724,6 +814,10 @@ impl Experiment for PidControl {
 
     fn status(&self) -> Status {
         view::status(self)
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
     }
 
     fn hint(&self) -> &'static str {

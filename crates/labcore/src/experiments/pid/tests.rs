@@ -3,6 +3,7 @@
 use super::quiz::*;
 use super::view::{percent, seconds};
 use super::*;
+use crate::experiment::Phase;
 use crate::route::{format, restore, Tab};
 
 fn run_to_end(e: &mut PidControl) -> usize {
@@ -220,7 +221,7 @@ fn unstable_gains_diverge_and_say_so() {
     assert_eq!(readout(&e, "stability"), "unstable");
     run_to_end(&mut e);
     assert_eq!(e.status().tone, Tone::Bad);
-    assert!(e.position_m().abs() > DIVERGED_M);
+    assert!(e.position_m().abs() > TRACK_END_M);
     assert_eq!(readout(&e, "overshoot"), "--");
     let mut scene = Scene::default();
     e.scene(&mut scene);
@@ -262,7 +263,7 @@ fn pinned_runs_keep_their_gains_and_metrics() {
     assert_eq!(response.series[2].len(), response.series[0].len());
     assert_eq!(response.series[1].role, SeriesRole::Secondary);
     assert_eq!(response.series[2].role, SeriesRole::Tertiary);
-    assert_eq!(e.pins()[0].info, Some(first));
+    assert_eq!(e.pins()[0].info, Ok(first));
     assert_eq!(
         readout(&e, "pinA"),
         format!(
@@ -425,4 +426,312 @@ fn quiz_generators_agree_with_the_formulas() {
         let expected = 100.0 * (-z * std::f64::consts::PI / (1.0 - z * z).sqrt()).exp();
         assert!((d.answer - expected).abs() < 1e-9);
     }
+}
+
+/// Every text a student can read: readouts, status, notice, marker labels,
+/// legend names and scene labels.
+fn all_texts(e: &PidControl) -> Vec<String> {
+    let mut texts: Vec<String> = e.readouts().into_iter().map(|r| r.value).collect();
+    texts.push(e.status().text);
+    texts.extend(e.notice().map(|n| n.text));
+    for plot in e.plots() {
+        texts.extend(plot.markers.iter().map(|m| m.label.clone()));
+        texts.extend(plot.series.iter().map(|s| s.label.clone()));
+    }
+    let mut scene = Scene::default();
+    e.scene(&mut scene);
+    for item in &scene.items {
+        if let Item::Label { text, .. } | Item::OffView { label: text, .. } = item {
+            texts.push(text.clone());
+        }
+    }
+    texts
+}
+
+/// Issue 14: with sensor noise, a setpoint of `−5·10⁻³²⁴` m made the
+/// overshoot "inf%" and `10⁻⁹` m made it "776555891.3%" (readout, peak
+/// marker, pinned runs). A step under 1 mm has no overshoot to speak of.
+#[test]
+fn the_overshoot_of_a_step_near_zero_reads_step_under_1_mm() {
+    for r in [-5e-324, 1e-9, -4e-4] {
+        let mut e = PidControl::default();
+        e.set_param("noise", 0.05).unwrap();
+        e.set_param("r", r).unwrap();
+        for _ in 0..120 {
+            e.step(1.0 / 60.0);
+        }
+        e.action("pin").unwrap();
+        run_to_end(&mut e);
+        e.action("pin").unwrap();
+        assert_eq!(readout(&e, "overshoot"), view::STEP_TOO_SMALL, "r = {r}");
+        assert_eq!(e.metrics(), None);
+        assert!(
+            e.plots()[0].markers.is_empty(),
+            "{:?}",
+            e.plots()[0].markers
+        );
+        assert!(e.plots()[0].bands.is_empty(), "no ±2 % band around 0");
+        for pin in ["pinA", "pinB"] {
+            assert!(
+                readout(&e, pin).contains(view::STEP_TOO_SMALL),
+                "{}",
+                readout(&e, pin)
+            );
+        }
+        for text in all_texts(&e) {
+            assert!(!text.contains("inf") && text.len() < 120, "r = {r}: {text}");
+        }
+    }
+    // A millimetre step is measured as before.
+    let mut e = PidControl::default();
+    e.set_param("r", 0.01).unwrap();
+    run_to_end(&mut e);
+    assert!(readout(&e, "overshoot").ends_with('%'));
+}
+
+/// Issue 14: ζ was printed with 150 digits at `kp = 1e-300`. Every computed
+/// quantity uses the shared magnitude form beyond the everyday range.
+#[test]
+fn extreme_gains_print_every_quantity_in_a_few_characters() {
+    let mut e = PidControl::default();
+    for (k, v) in [("kp", 1e-300), ("ki", 0.0), ("d", -3.0)] {
+        e.set_param(k, v).unwrap();
+    }
+    assert_eq!(
+        readout(&e, "second_order"),
+        "ωn 1.0 × 10⁻¹⁵⁰ rad/s · ζ 3.5 × 10¹⁵⁰"
+    );
+    assert!(readout(&e, "sse").chars().count() < 20);
+    e.action("pin").unwrap();
+    assert!(e.plots()[0].series[1]
+        .label
+        .starts_with("A: Kp 1.0 × 10⁻³⁰⁰, Kd 6"));
+    run_to_end(&mut e);
+    for (k, v) in [("kp", 1e-300), ("ki", 1e-300), ("kd", 40.0), ("m", 10.0)] {
+        e.set_param(k, v).unwrap();
+        for _ in 0..60 {
+            e.step(1.0 / 60.0);
+        }
+        for text in all_texts(&e) {
+            assert!(text.chars().count() < 120, "{k}: {text}");
+        }
+    }
+    assert_eq!(view::quantity(0.6, 3), "0.600");
+    assert_eq!(view::quantity(-3.0, 3), "-3.000");
+    assert_eq!(view::quantity(0.0, 3), "0.000");
+    assert_eq!(view::quantity(3.5e150, 3), "3.5 × 10¹⁵⁰");
+    assert_eq!(view::percent(776_555_891.3), "7.8 × 10⁸%");
+}
+
+/// Issue 13 §1 (step 8) and §4: the run stops where the drawn track ends,
+/// the cart stays in view, and the status says the run is over.
+#[test]
+fn the_track_the_view_and_the_stop_agree() {
+    let mut e = PidControl::default();
+    for (k, v) in [("c", 0.0), ("kd", 0.0), ("kp", 1.0), ("ki", 5.0)] {
+        e.set_param(k, v).unwrap();
+    }
+    assert_eq!(e.status().phase, Phase::Live);
+    run_to_end(&mut e);
+    let x = e.position_m();
+    assert!(x.abs() > TRACK_END_M && x.abs() < TRACK_END_M + 0.05, "{x}");
+    let view = e.view();
+    assert!(x - CART_HALF_W_M > view.min.x && x + CART_HALF_W_M < view.max.x);
+    let status = e.status();
+    assert_eq!(status.phase, Phase::Ended);
+    assert_eq!(status.tone, Tone::Bad);
+    assert_eq!(
+        status.text,
+        format!(
+            "off the track at {}: the loop is unstable",
+            format_metres(TRACK_END_M.copysign(x))
+        )
+    );
+    // The track drawn ends at ±TRACK_END_M.
+    let mut scene = Scene::default();
+    e.scene(&mut scene);
+    let track_ends: Vec<f64> = scene
+        .items
+        .iter()
+        .filter_map(|i| match i {
+            Item::Line {
+                from,
+                to,
+                role: Role::Bound,
+                ..
+            } if from.y == 0.0 && to.y == 0.0 => Some(to.x),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(track_ends, [TRACK_END_M]);
+    assert!(view.min.x < -TRACK_END_M && view.max.x > TRACK_END_M);
+}
+
+/// Issue 13 §3: a cart beyond the view is marked at the canvas edge. A run
+/// stops at the track's end, inside the view, so only a cart launched at
+/// more than 180 m/s could get there; the view is checked on such a state.
+#[test]
+fn a_cart_beyond_the_view_is_marked_at_the_edge() {
+    let off_view = |e: &PidControl| {
+        let mut scene = Scene::default();
+        e.scene(&mut scene);
+        scene.items.iter().find_map(|i| match i {
+            Item::OffView { at, label, .. } => Some((*at, label.clone())),
+            _ => None,
+        })
+    };
+    let mut e = PidControl::default();
+    assert_eq!(off_view(&e), None);
+    e.run.state.x_m = 3.25;
+    let (at, label) = off_view(&e).expect("an edge mark");
+    assert_eq!(at.x, 3.25);
+    assert_eq!(label, "cart at 3.250 m");
+    e.run.state.x_m = -4e6;
+    assert_eq!(off_view(&e).unwrap().1, "cart at -4.0 × 10⁶ m");
+    // Extreme runs: at every frame the cart is in view or marked.
+    for (kd, tf, m) in [(40.0, 0.1, 0.2), (40.0, 0.0, 0.2), (0.0, 0.0, 0.2)] {
+        let mut e = PidControl::default();
+        for (k, v) in [
+            ("m", m),
+            ("kd", kd),
+            ("dmeas", 0.0),
+            ("r", 2.0),
+            ("kp", 100.0),
+            ("ki", 50.0),
+            ("c", 0.0),
+            ("tf", tf),
+        ] {
+            e.set_param(k, v).unwrap();
+        }
+        while e.animating() {
+            e.step(1.0 / 60.0);
+            let x = e.position_m();
+            let view = e.view();
+            assert!((view.min.x..=view.max.x).contains(&x) || off_view(&e).is_some());
+        }
+        assert_eq!(e.status().phase, Phase::Ended);
+    }
+}
+
+/// Issue 13 §4: a run that has settled, recorded in full, or left the
+/// track has ended; a running one is live.
+#[test]
+fn a_finished_run_has_ended_and_a_running_one_is_live() {
+    let mut e = PidControl::default();
+    e.step(1.0 / 60.0);
+    assert_eq!(e.status().phase, Phase::Live);
+    assert!(e.status().text.starts_with("stepping to 1.000 m"));
+    run_to_end(&mut e);
+    assert_eq!(e.status().phase, Phase::Ended);
+    assert_eq!(e.status().tone, Tone::Good);
+    // A noisy run records its full 30 s, then ends.
+    e.set_param("noise", 0.01).unwrap();
+    assert_eq!(e.status().phase, Phase::Live);
+    run_to_end(&mut e);
+    assert!((e.time_s() - RECORD_S).abs() < 1e-9);
+    assert_eq!(e.status().phase, Phase::Ended);
+    // Nothing holds the cart (Kp = Ki = 0): it ends at rest.
+    let mut e = PidControl::default();
+    e.set_param("kp", 0.0).unwrap();
+    e.set_param("ki", 0.0).unwrap();
+    run_to_end(&mut e);
+    assert_eq!(e.status(), Status::ended("at rest", Tone::Neutral));
+}
+
+/// Issue 13 §4: messages about a pin are notices, not the status.
+#[test]
+fn pin_messages_are_notices_beside_the_status() {
+    let mut e = PidControl::default();
+    assert_eq!(e.notice(), None);
+    e.step(0.1);
+    let status = e.status();
+    e.action("pin").unwrap();
+    assert_eq!(e.status(), status, "the status stays the run's state");
+    let notice = e.notice().expect("a notice");
+    assert_eq!(
+        notice.text,
+        "pinned at 0.10 s: its metrics are those of the response so far"
+    );
+    run_to_end(&mut e);
+    for _ in 0..3 {
+        e.action("pin").unwrap();
+    }
+    // Finished runs pinned into free slots: nothing to warn about.
+    assert_eq!(e.notice(), None);
+    e.action("pin").unwrap();
+    let replaced = e.notice().expect("a notice");
+    assert_eq!(
+        replaced.text,
+        "pinned as run A: it replaces the oldest pin, in slot A"
+    );
+    assert!(replaced.serial > notice.serial);
+    e.action("clear_pins").unwrap();
+    assert_eq!(e.notice(), None);
+}
+
+/// Issue 13 §5: pinned runs are comparison series named after their gains.
+#[test]
+fn pinned_runs_name_their_gains_in_the_legend() {
+    let mut e = underdamped();
+    assert!(e.plots()[0].series[1..].iter().all(|s| s.comparison));
+    assert!(!e.plots()[0].series[0].comparison);
+    run_to_end(&mut e);
+    e.action("pin").unwrap();
+    e.set_param("ki", 1.5).unwrap();
+    e.action("pin").unwrap();
+    e.set_param("ki", 0.0).unwrap();
+    e.set_param("kd", 0.0).unwrap();
+    e.action("pin").unwrap();
+    let labels: Vec<&str> = e.plots()[0]
+        .series
+        .iter()
+        .map(|s| s.label.as_str())
+        .collect();
+    assert_eq!(
+        labels,
+        [
+            "position x",
+            "A: Kp 25, Kd 5",
+            "B: Kp 25, Ki 1.5, Kd 5",
+            "C: Kp 25",
+            "pinned run D"
+        ]
+    );
+    let csv = e.plots()[0].to_csv();
+    assert!(
+        csv.starts_with(
+            "position x Time since step (s),position x (m),\"A: Kp 25, Kd 5 Time since step (s)\""
+        ),
+        "{}",
+        &csv[..200]
+    );
+    e.action("clear_pins").unwrap();
+    assert_eq!(e.plots()[0].series[1].label, "pinned run A");
+}
+
+/// Issue 13 §5: the time column is the sample number over 100 Hz, so the
+/// CSV reads 0.07, never 0.07000000000000001.
+#[test]
+fn the_time_column_reads_in_hundredths() {
+    let mut e = PidControl::default();
+    e.set_param("sat", 1.0).unwrap();
+    run_to_end(&mut e);
+    for plot in e.plots() {
+        for s in &plot.series {
+            for x in &s.x {
+                assert_eq!(*x, (x * 100.0).round() / 100.0);
+                let text = format!("{x}");
+                assert!(
+                    text.split('.').nth(1).is_none_or(|d| d.len() <= 2),
+                    "{text}"
+                );
+            }
+        }
+        for band in &plot.bands {
+            assert_eq!(band.lo, (band.lo * 100.0).round() / 100.0);
+            assert_eq!(band.hi, (band.hi * 100.0).round() / 100.0);
+        }
+    }
+    let csv = e.plots()[1].to_csv();
+    assert!(csv.contains("\r\n0.07,"), "{}", &csv[..300]);
 }

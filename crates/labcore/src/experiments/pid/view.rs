@@ -2,6 +2,29 @@
 
 use super::*;
 
+/// What the overshoot readout and a pin say when the step is under [`MIN_STEP_M`].
+pub(super) const STEP_TOO_SMALL: &str = "— (step under 1 mm)";
+
+/// A computed quantity: `decimals` places in the everyday range, else the
+/// shared magnitude form (`3.5 × 10¹⁵⁰`), so an extreme link never prints
+/// 150 digits.
+pub(super) fn quantity(v: f64, decimals: usize) -> String {
+    if v == 0.0 || (1e-3..1e3).contains(&v.abs()) {
+        format_fixed(v, decimals)
+    } else {
+        format_magnitude(v)
+    }
+}
+
+/// A length: [`format_metres`] in the everyday range, the magnitude form beyond.
+fn metres(v: f64) -> String {
+    if v.abs() < 1e3 || !v.is_finite() {
+        format_metres(v)
+    } else {
+        format!("{} m", format_magnitude(v))
+    }
+}
+
 /// `-0.187` or `-1.000 ± 2.000i` (one entry per conjugate pair).
 pub(super) fn format_poles(poles: &[Complex]) -> String {
     let mut parts = Vec::new();
@@ -11,13 +34,9 @@ pub(super) fn format_poles(poles: &[Complex]) -> String {
             continue;
         }
         if p.im == 0.0 {
-            parts.push(format_fixed(p.re, 3));
+            parts.push(quantity(p.re, 3));
         } else {
-            parts.push(format!(
-                "{} ± {}i",
-                format_fixed(p.re, 3),
-                format_fixed(p.im, 3)
-            ));
+            parts.push(format!("{} ± {}i", quantity(p.re, 3), quantity(p.im, 3)));
         }
     }
     parts.join(", ")
@@ -27,20 +46,31 @@ pub(super) fn seconds(v: Option<f64>) -> String {
     v.map_or("--".into(), |t| format!("{} s", format_fixed(t, 2)))
 }
 
+/// An overshoot, `9.5%`.
 pub(super) fn percent(v: f64) -> String {
-    format!("{}%", format_fixed(v, 1))
+    format!("{}%", quantity(v, 1))
 }
 
 /// The track, the setpoint marker, the cart and its force arrow.
 pub(super) fn scene(e: &PidControl, out: &mut Scene) {
-    // Track with a tick every 0.5 m and labels at whole metres.
+    // Track with a tick every 0.5 m, labels at whole metres and an end stop
+    // at each end (the run stops when the cart passes one).
     out.push(Item::Line {
-        from: DVec2::new(VIEW_MIN.x, 0.0),
-        to: DVec2::new(VIEW_MAX.x, 0.0),
+        from: DVec2::new(-TRACK_END_M, 0.0),
+        to: DVec2::new(TRACK_END_M, 0.0),
         width_px: 2.0,
         role: Role::Bound,
         dashed: false,
     });
+    for end in [-TRACK_END_M, TRACK_END_M] {
+        out.push(Item::Line {
+            from: DVec2::new(end, -0.1),
+            to: DVec2::new(end, 0.2),
+            width_px: 4.0,
+            role: Role::Bound,
+            dashed: false,
+        });
+    }
     for k in -5..=5 {
         let x = f64::from(k) * 0.5;
         out.push(Item::Line {
@@ -91,8 +121,16 @@ pub(super) fn scene(e: &PidControl, out: &mut Scene) {
         role: Role::Target,
         offset_px: DVec2::new(10.0, -12.0),
     });
-    // The cart, its wheels and the control force.
+    // The cart, its wheels and the control force; the canvas edge is marked
+    // when the cart is beyond the view.
     let x = e.run.state.x_m.clamp(-1e3, 1e3);
+    if x.is_finite() && !(VIEW_MIN.x..=VIEW_MAX.x).contains(&x) {
+        out.push(Item::OffView {
+            at: DVec2::new(x, 0.5 * (CART_BOTTOM_M + CART_TOP_M)),
+            label: format!("cart at {}", metres(e.run.state.x_m)),
+            role: Role::Robot,
+        });
+    }
     out.push(Item::Rect {
         min: DVec2::new(x - CART_HALF_W_M, CART_BOTTOM_M),
         max: DVec2::new(x + CART_HALF_W_M, CART_TOP_M),
@@ -122,7 +160,7 @@ pub(super) fn scene(e: &PidControl, out: &mut Scene) {
     }
     out.push(Item::Label {
         pos: DVec2::new(x, CART_TOP_M),
-        text: format!("u = {} N", format_fixed(u, 1)),
+        text: format!("u = {} N", quantity(u, 1)),
         role: Role::Text,
         offset_px: DVec2::new(-24.0, -14.0),
     });
@@ -131,7 +169,7 @@ pub(super) fn scene(e: &PidControl, out: &mut Scene) {
 /// The live numbers beside the canvas.
 pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
     let x = e.run.state.x_m;
-    let info = e.info;
+    let info = e.info.ok();
     let y_final = e.final_value_m();
     let (poles, stability) = match e.poles() {
         Some((p, s)) => (
@@ -147,8 +185,8 @@ pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
     let second = SecondOrder::of(&e.plant, &e.gains).map_or("--".into(), |s| {
         format!(
             "ωn {} rad/s · ζ {}",
-            format_fixed(s.natural_frequency_rad_s, 3),
-            format_fixed(s.damping_ratio, 3)
+            quantity(s.natural_frequency_rad_s, 3),
+            quantity(s.damping_ratio, 3)
         )
     });
     let mut out = vec![
@@ -157,12 +195,16 @@ pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
         Readout::new(
             "force",
             "Force u",
-            format!("{} N", format_fixed(e.run.last_terms().output, 2)),
+            format!("{} N", quantity(e.run.last_terms().output, 2)),
         ),
         Readout::new(
             "overshoot",
             "Overshoot",
-            info.map_or("--".into(), |i| percent(i.overshoot_pct)),
+            match e.info {
+                Ok(i) => percent(i.overshoot_pct),
+                Err(NoMetrics::StepTooSmall) => STEP_TOO_SMALL.into(),
+                Err(_) => "--".into(),
+            },
         ),
         Readout::new(
             "rise",
@@ -188,7 +230,7 @@ pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
         Readout::new(
             "sse",
             "Steady-state error",
-            y_final.map_or("--".into(), |y| format_metres(e.setpoint_m - y)),
+            y_final.map_or("--".into(), |y| metres(e.setpoint_m - y)),
         ),
         Readout::new("poles", "Closed-loop poles (1/s)", poles),
         Readout::new("stability", "Linear loop", stability),
@@ -204,19 +246,17 @@ pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
     let mut pins: Vec<&Pin> = e.pins.iter().collect();
     pins.sort_by_key(|p| p.slot);
     for pin in pins {
-        let none = if pin.finished {
-            "no metrics (no final value)"
-        } else {
-            "no metrics yet"
-        };
-        let metrics = pin.info.map_or(none.into(), |i| {
-            format!(
+        let metrics = match pin.info {
+            Ok(i) => format!(
                 "overshoot {}, rise {}, settling {}",
                 percent(i.overshoot_pct),
                 seconds(i.rise_time_s),
                 seconds(i.settling_time_s)
-            )
-        });
+            ),
+            Err(NoMetrics::NoFinalValue) => "no metrics (no final value)".into(),
+            Err(NoMetrics::StepTooSmall) => format!("overshoot {STEP_TOO_SMALL}"),
+            Err(NoMetrics::NotYet) => "no metrics yet".into(),
+        };
         let partial = if pin.finished {
             String::new()
         } else {
@@ -231,25 +271,48 @@ pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
     out
 }
 
-/// The run's state from the model's evidence.
+/// The run's state from the model's evidence: running while the state is
+/// [`RunState::Running`], otherwise ended (settled, recorded in full, off the
+/// track or diverged), so the page offers Replay.
 pub(super) fn status(e: &PidControl) -> Status {
-    let settled = e.info.and_then(|i| i.settling_time_s);
+    let why_unstable = || match e.poles().map(|(_, s)| s) {
+        Some(Stability::Unstable) => "the loop is unstable",
+        Some(Stability::MarginallyStable) => "the loop is only marginally stable",
+        _ => "the overshoot carried it past the end",
+    };
     match e.state {
         RunState::Running => Status::new(
             format!("stepping to {}", format_metres(e.setpoint_m)),
             Tone::Neutral,
         ),
-        RunState::Diverged => Status::new("diverged: the loop is unstable", Tone::Bad),
-        RunState::Quiet | RunState::Complete => match (settled, e.final_value_m()) {
-            (Some(ts), Some(_)) => Status::new(
+        RunState::OffTrack => Status::ended(
+            format!(
+                "off the track at {}: {}",
+                format_metres(TRACK_END_M.copysign(e.position_m())),
+                why_unstable()
+            ),
+            Tone::Bad,
+        ),
+        RunState::Diverged => Status::ended(format!("diverged: {}", why_unstable()), Tone::Bad),
+        RunState::Quiet | RunState::Complete => match (e.info, e.final_value_m()) {
+            (
+                Ok(StepInfo {
+                    settling_time_s: Some(ts),
+                    ..
+                }),
+                Some(_),
+            ) => Status::ended(
                 format!("settled within 2 % after {}", seconds(Some(ts))),
                 Tone::Good,
             ),
-            (None, Some(_)) => Status::new(
+            (Err(NoMetrics::StepTooSmall), Some(_)) => {
+                Status::ended("at rest: the step is under 1 mm", Tone::Neutral)
+            }
+            (_, Some(_)) => Status::ended(
                 format!("not settled after {} s", format_fixed(e.time_s(), 0)),
                 Tone::Warning,
             ),
-            (_, None) => Status::new("at rest", Tone::Neutral),
+            (_, None) => Status::ended("at rest", Tone::Neutral),
         },
     }
 }
