@@ -735,3 +735,422 @@ fn the_time_column_reads_in_hundredths() {
     let csv = e.plots()[1].to_csv();
     assert!(csv.contains("\r\n0.07,"), "{}", &csv[..300]);
 }
+
+// ---------------------------------------------------------------------------
+// The Procedure (assets/pid.json), one test per numbered step. Each step
+// starts from the state the previous steps left: `after_step(k)` replays
+// steps 1..=k with the student's actions.
+
+/// The time at which the response first reaches `level` (m).
+fn time_to_reach(e: &PidControl, level: f64) -> Option<f64> {
+    let s = &e.plots()[0].series[0];
+    s.y.iter().position(|y| *y >= level).map(|k| s.x[k])
+}
+
+/// Local maxima above the setpoint: the swings before the cart settles.
+fn swings_above(e: &PidControl, level: f64) -> usize {
+    let y = &e.plots()[0].series[0].y;
+    (1..y.len().saturating_sub(1))
+        .filter(|&k| y[k] > level && y[k] > y[k - 1] && y[k] >= y[k + 1])
+        .count()
+}
+
+/// The spread (standard deviation) of the last `n` samples of effort series `k`.
+fn tail_spread(e: &PidControl, k: usize, n: usize) -> f64 {
+    let y = &e.plots()[1].series[k].y;
+    let tail = &y[y.len().saturating_sub(n)..];
+    let mean = tail.iter().sum::<f64>() / tail.len() as f64;
+    (tail.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / tail.len() as f64).sqrt()
+}
+
+fn set(e: &mut PidControl, pairs: &[(&str, f64)]) {
+    for (k, v) in pairs {
+        e.set_param(k, *v).unwrap();
+    }
+}
+
+/// The state the student has after doing steps 1..=k.
+fn after_step(k: usize) -> PidControl {
+    let mut e = PidControl::default();
+    run_to_end(&mut e);
+    e.action("pin").unwrap();
+    if k >= 2 {
+        set(&mut e, &[("ki", 0.0), ("kd", 0.0)]);
+        for kp in [5.0, 20.0, 60.0] {
+            e.set_param("kp", kp).unwrap();
+            run_to_end(&mut e);
+        }
+    }
+    if k >= 3 {
+        set(&mut e, &[("kp", 25.0), ("ki", 0.0)]);
+        for kd in [2.0, 5.0, 10.0] {
+            e.set_param("kd", kd).unwrap();
+            run_to_end(&mut e);
+            e.action("pin").unwrap();
+        }
+        e.action("clear_pins").unwrap();
+    }
+    if k >= 4 {
+        set(&mut e, &[("d", -3.0), ("ki", 0.0)]);
+        run_to_end(&mut e);
+        e.set_param("ki", 2.0).unwrap();
+        run_to_end(&mut e);
+    }
+    if k >= 5 {
+        e.set_param("dmeas", 0.0).unwrap();
+        e.action("step").unwrap();
+        run_to_end(&mut e);
+        e.set_param("dmeas", 1.0).unwrap();
+        run_to_end(&mut e);
+    }
+    if k >= 6 {
+        set(&mut e, &[("sat", 1.0), ("umax", 5.0)]);
+        run_to_end(&mut e);
+        set(&mut e, &[("ki", 20.0), ("ilim", 0.5)]);
+        run_to_end(&mut e);
+    }
+    if k >= 7 {
+        set(&mut e, &[("noise", 0.005), ("tf", 0.05), ("seed", 1.0)]);
+        run_to_end(&mut e);
+    }
+    e
+}
+
+#[test]
+fn pid_step_1_the_cart_chases_the_setpoint_and_the_markers_appear() {
+    let mut e = PidControl::default();
+    assert_eq!(
+        (e.param("kp"), e.param("ki"), e.param("kd"), e.param("r")),
+        (Some(12.0), Some(2.0), Some(6.0), Some(1.0))
+    );
+    assert_eq!(e.position_m(), 0.0);
+    let response = &e.plots()[0];
+    assert_eq!(response.ref_lines[0].value, 1.0, "the setpoint line");
+    assert_eq!(response.bands[0].label, "±2 % band");
+    assert!(
+        (response.bands[0].lo - 0.98).abs() < 1e-12 && (response.bands[0].hi - 1.02).abs() < 1e-12
+    );
+    // Early on, no marker yet: they appear as the step unfolds.
+    for _ in 0..6 {
+        e.step(1.0 / 60.0);
+    }
+    assert!(e.position_m() > 0.0 && e.position_m() < 1.0);
+    assert!(e.plots()[0].markers.is_empty());
+    run_to_end(&mut e);
+    let labels: Vec<&str> = e.plots()[0]
+        .markers
+        .iter()
+        .map(|m| m.label.split(' ').next().unwrap())
+        .collect();
+    assert_eq!(labels, ["rise", "peak", "settled"]);
+    for key in ["overshoot", "rise", "settling"] {
+        assert_ne!(readout(&e, key), "--", "{key}");
+    }
+    // Marker texts stay short (the page places them on the curve).
+    assert!(e.plots()[0]
+        .markers
+        .iter()
+        .all(|m| m.label.chars().count() <= 16));
+    e.action("pin").unwrap();
+    assert!(readout(&e, "pinA").starts_with("Kp 12 · Ki 2 · Kd 6, overshoot "));
+    assert_eq!(e.plots()[0].series[1].y, e.plots()[0].series[0].y);
+    assert_eq!(e.plots()[0].series[1].label, "A: Kp 12, Ki 2, Kd 6");
+}
+
+#[test]
+fn pid_step_2_more_kp_rises_faster_overshoots_more_and_swings_more() {
+    let mut e = after_step(1);
+    set(&mut e, &[("ki", 0.0), ("kd", 0.0)]);
+    let mut runs = Vec::new();
+    for kp in [5.0, 20.0, 60.0] {
+        run_to_end(&mut e);
+        e.set_param("kp", kp).unwrap();
+        assert_eq!(e.time_s(), 0.0, "each change replays the step");
+        run_to_end(&mut e);
+        let info = e.metrics().unwrap();
+        let (_, poles, _) = closed_loop_poles(&e.plant, &e.gains)
+            .map(|p| ((), p.poles, ()))
+            .unwrap();
+        let im = poles.iter().map(|p| p.im).fold(0.0, f64::max);
+        let re = poles[0].re;
+        runs.push((info, swings_above(&e, 1.0), im, re));
+        // The readout shows the pair −c/(2m) ± ωd·i.
+        assert!(
+            readout(&e, "poles").starts_with("-0.500 ± "),
+            "{}",
+            readout(&e, "poles")
+        );
+    }
+    for w in runs.windows(2) {
+        let ((a, sa, ima, _), (b, sb, imb, _)) = (w[0], w[1]);
+        assert!(b.rise_time_s.unwrap() < a.rise_time_s.unwrap());
+        assert!(b.overshoot_pct > a.overshoot_pct);
+        assert!(sb > sa, "more swings: {sa} → {sb}");
+        assert!(imb > ima, "the imaginary parts grow");
+    }
+    // The decay rate c/(2m) does not depend on Kp: the settling times stay close.
+    let ts: Vec<f64> = runs.iter().map(|r| r.0.settling_time_s.unwrap()).collect();
+    assert!(ts.iter().all(|t| (t / ts[0] - 1.0).abs() < 0.15), "{ts:?}");
+    assert!(runs.iter().all(|r| (r.3 + 0.5).abs() < 1e-9));
+}
+
+#[test]
+fn pid_step_3_damping_shrinks_the_overshoot_as_zeta_rises() {
+    let mut e = after_step(2);
+    set(&mut e, &[("kp", 25.0), ("ki", 0.0)]);
+    let mut last = (f64::INFINITY, 0.0);
+    for (k, kd) in [2.0, 5.0, 10.0].into_iter().enumerate() {
+        e.set_param("kd", kd).unwrap();
+        run_to_end(&mut e);
+        e.action("pin").unwrap();
+        let so = SecondOrder::of(&e.plant, &e.gains).unwrap();
+        let zeta = so.damping_ratio;
+        assert!(readout(&e, "second_order").ends_with(&format!("ζ {}", format_fixed(zeta, 3))));
+        let overshoot = e.metrics().unwrap().overshoot_pct;
+        assert!(overshoot < last.0 && zeta > last.1);
+        // 100·exp(−ζπ/√(1 − ζ²)), and none at all once ζ ≥ 1.
+        assert!(
+            (overshoot - so.overshoot_pct()).abs() < 0.3,
+            "{overshoot} vs {}",
+            so.overshoot_pct()
+        );
+        last = (overshoot, zeta);
+        // Step 1's pin is the first.
+        assert_eq!(e.pins()[k + 1].gains.kd, kd);
+    }
+    assert_eq!(e.pins().len(), 4);
+    e.action("clear_pins").unwrap();
+    assert!(e.pins().is_empty());
+    assert!(e.plots()[0].series[1..].iter().all(Series::is_empty));
+}
+
+#[test]
+fn pid_step_4_a_push_leaves_an_offset_that_integral_action_removes() {
+    let mut e = after_step(3);
+    set(&mut e, &[("d", -3.0), ("ki", 0.0)]);
+    run_to_end(&mut e);
+    let kp = e.param("kp").unwrap();
+    // d/Kp = 3/25 = 0.12 m short.
+    assert_eq!(readout(&e, "sse"), format_metres(3.0 / kp));
+    assert!(
+        (e.position_m() - (1.0 - 3.0 / kp)).abs() < 2e-3,
+        "{}",
+        e.position_m()
+    );
+    e.set_param("ki", 2.0).unwrap();
+    run_to_end(&mut e);
+    let integral = &e.plots()[1].series[2].y;
+    let quarter = integral.len() / 4;
+    assert!(
+        integral[quarter] < integral[2 * quarter]
+            && integral[2 * quarter] < integral[integral.len() - 1]
+    );
+    assert!(
+        (integral[integral.len() - 1] - 3.0).abs() < 0.3,
+        "I → −d = 3 N"
+    );
+    assert_eq!(readout(&e, "sse"), "0.000 m");
+    assert!((e.position_m() - 1.0).abs() < 0.02, "{}", e.position_m());
+}
+
+#[test]
+fn pid_step_5_the_derivative_on_the_error_kicks_and_on_the_measurement_does_not() {
+    let mut e = after_step(4);
+    e.set_param("dmeas", 0.0).unwrap();
+    e.action("step").unwrap();
+    for _ in 0..3 {
+        e.step(1.0 / 60.0);
+    }
+    let spike = e.plots()[1].series[3].y[0];
+    let lurch = e.position_m();
+    // Kd·r = 10 N·s in the first 0.01 s.
+    assert!(spike > 500.0, "{spike}");
+    run_to_end(&mut e);
+    e.set_param("dmeas", 1.0).unwrap();
+    for _ in 0..3 {
+        e.step(1.0 / 60.0);
+    }
+    let d = &e.plots()[1].series[3].y;
+    assert!(d[0].abs() < 5.0, "no kick: {}", d[0]);
+    assert!(
+        e.position_m() < lurch / 5.0,
+        "{} vs {lurch}",
+        e.position_m()
+    );
+    // The damping stays: the D term opposes the motion.
+    assert!(
+        d.iter().skip(1).all(|v| *v <= 0.0) && d[d.len() - 1] < -0.1,
+        "{d:?}"
+    );
+}
+
+#[test]
+fn pid_step_6_the_limit_is_shaded_and_slows_the_cart_and_the_clamp_cuts_the_overshoot() {
+    let mut e = after_step(5);
+    run_to_end(&mut e);
+    let free = (
+        time_to_reach(&e, 0.5).unwrap(),
+        time_to_reach(&e, 0.9).unwrap(),
+    );
+    set(&mut e, &[("sat", 1.0), ("umax", 5.0)]);
+    run_to_end(&mut e);
+    let effort = &e.plots()[1];
+    assert!(!effort.bands.is_empty() && effort.bands[0].label == "saturated");
+    assert!(effort.series[0].y.iter().all(|u| u.abs() <= 5.0 + 1e-9));
+    let limited = (
+        time_to_reach(&e, 0.5).unwrap(),
+        time_to_reach(&e, 0.9).unwrap(),
+    );
+    assert!(
+        limited.0 > free.0 && limited.1 > free.1,
+        "{free:?} vs {limited:?}"
+    );
+    let small_ki = e.metrics().unwrap().overshoot_pct;
+    e.set_param("ki", 20.0).unwrap();
+    run_to_end(&mut e);
+    let wide_clamp = e.metrics().unwrap().overshoot_pct;
+    assert!(wide_clamp > small_ki + 10.0, "{small_ki} → {wide_clamp}");
+    e.set_param("ilim", 0.5).unwrap();
+    run_to_end(&mut e);
+    let tight_clamp = e.metrics().unwrap().overshoot_pct;
+    assert!(
+        tight_clamp < wide_clamp - 10.0,
+        "{wide_clamp} → {tight_clamp}"
+    );
+}
+
+#[test]
+fn pid_step_7_noise_roughens_the_d_term_the_filter_calms_it_and_the_seed_repeats_it() {
+    let e = after_step(6);
+    let quiet_d = tail_spread(&e, 3, 300);
+    let quiet_u = tail_spread(&e, 0, 300);
+    let mut noisy = e.clone();
+    noisy.set_param("noise", 0.005).unwrap();
+    run_to_end(&mut noisy);
+    let (raw_d, raw_u) = (tail_spread(&noisy, 3, 300), tail_spread(&noisy, 0, 300));
+    assert!(raw_d > 20.0 * quiet_d.max(1e-3), "{quiet_d} → {raw_d}");
+    assert!(raw_u > 10.0 * quiet_u.max(1e-3), "{quiet_u} → {raw_u}");
+    // With the 5 N limit still on, the jitter keeps the cart from settling,
+    // whatever the seed.
+    for seed in 0..6 {
+        let mut other = noisy.clone();
+        other.set_param("seed", f64::from(seed)).unwrap();
+        run_to_end(&mut other);
+        assert_eq!(
+            other.metrics().and_then(|i| i.settling_time_s),
+            None,
+            "seed {seed}"
+        );
+        assert!(other.status().text.starts_with("not settled after 30 s"));
+    }
+    let mut filtered = noisy.clone();
+    filtered.set_param("tf", 0.05).unwrap();
+    run_to_end(&mut filtered);
+    assert!(tail_spread(&filtered, 3, 300) < raw_d / 3.0);
+    let x = filtered.position_m();
+    let mut again = filtered.clone();
+    again.action("step").unwrap();
+    run_to_end(&mut again);
+    assert_eq!(again.position_m(), x, "the same seed, the same run");
+    again.set_param("seed", 7.0).unwrap();
+    run_to_end(&mut again);
+    assert_ne!(again.position_m(), x, "another seed, another run");
+}
+
+#[test]
+fn pid_step_8_an_unstable_tuning_runs_off_the_track_and_the_run_ends() {
+    let mut e = after_step(7);
+    set(&mut e, &[("c", 0.0), ("kd", 0.0), ("kp", 1.0), ("ki", 5.0)]);
+    assert_eq!(readout(&e, "stability"), "unstable");
+    let (poles, _) = e.poles().unwrap();
+    assert!(poles.iter().any(|p| p.re > 0.0));
+    assert!(
+        readout(&e, "poles").starts_with("0.758 ± 1.650i"),
+        "{}",
+        readout(&e, "poles")
+    );
+    // (c + Kd)·Kp = 0 is not greater than m·Ki = 5.
+    let (c, kd, kp, m, ki) = (0.0, 0.0, 1.0, 1.0, 5.0);
+    assert!((c + kd) * kp <= m * ki);
+    run_to_end(&mut e);
+    assert!(e.time_s() < RECORD_S);
+    let x = e.position_m();
+    assert!(x.abs() > TRACK_END_M && x.abs() < TRACK_END_M + 0.05, "{x}");
+    let status = e.status();
+    assert_eq!(status.phase, Phase::Ended);
+    assert!(
+        status.text.starts_with("off the track at "),
+        "{}",
+        status.text
+    );
+    assert!(status.text.ends_with("the loop is unstable"));
+    assert!(!e.animating());
+}
+
+// ---------------------------------------------------------------------------
+// Content and quiz (issue 15).
+
+/// The generators draw only what the sliders can set, so a student can set
+/// up every generated question in the simulation.
+#[test]
+fn quiz_generators_draw_inside_the_sliders_ranges() {
+    let spec = |key: &str| crate::experiment::find_spec(PARAMS, key).unwrap();
+    let mut rng = Lcg64::new(11);
+    for name in ["natural_frequency", "damping_ratio", "overshoot", "offset"] {
+        let generate = quiz_generator(name).unwrap();
+        for _ in 0..2000 {
+            let d = generate(&mut rng);
+            assert!(d.answer.is_finite(), "{name}");
+            for (key, _) in &d.vars {
+                let v = d.var(key).unwrap();
+                // The offset question names the push backwards as a positive
+                // number: the slider's d is its negative.
+                let (slider, value) = match (name, *key) {
+                    ("offset", "d") => ("d", -v),
+                    (_, "zeta") => continue,
+                    _ => (*key, v),
+                };
+                let s = spec(slider);
+                assert!(
+                    (s.min..=s.max).contains(&value),
+                    "{name}: {key} = {v} outside [{}, {}]",
+                    s.min,
+                    s.max
+                );
+            }
+        }
+    }
+    assert!(quiz_generator("nope").is_none());
+}
+
+/// The correct option must not give itself away by its length: it is the
+/// strictly longest option in at most a quarter of the choice questions.
+#[test]
+fn the_correct_option_is_seldom_the_longest() {
+    use crate::content::Question;
+    let content = crate::experiments::find("pid").unwrap().content().unwrap();
+    let (mut choices, mut longest) = (0, 0);
+    for q in &content.quiz {
+        if let Question::Choice {
+            options, answer, ..
+        } = q
+        {
+            choices += 1;
+            let len = |s: &String| s.chars().count();
+            let right = len(&options[*answer]);
+            if options
+                .iter()
+                .enumerate()
+                .all(|(k, o)| k == *answer || len(o) < right)
+            {
+                longest += 1;
+            }
+        }
+    }
+    assert!(choices >= 6);
+    assert!(4 * longest <= choices, "{longest} of {choices}");
+    assert!(content
+        .references
+        .iter()
+        .all(|r| !r.authors.contains("Virtual Labs")));
+}
