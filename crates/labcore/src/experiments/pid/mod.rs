@@ -31,12 +31,25 @@
 //! `ωn = √(Kp/m)` and `ζ = (c + Kd)/(2√(m·Kp))` ([`SecondOrder`]; Åström &
 //! Murray, *Feedback Systems*, 2nd ed., 2021, §7.3).
 //!
+//! **The track** runs from −[`TRACK_END_M`] to +[`TRACK_END_M`], drawn with
+//! an end stop at each end inside the view; the run stops when the cart's
+//! centre passes an end ("off the track", [`crate::experiment::Phase::Ended`]). Every run that
+//! stops (settled, recorded in full, off the track) has ended.
+//!
+//! **Metrics of a tiny step.** Overshoot, rise and settling are fractions
+//! of the step, so below [`MIN_STEP_M`] they are not shown ("— (step under
+//! 1 mm)"): a nanometre step with sensor noise would read 10⁸ %.
+//!
 //! **Pinned runs.** "Pin run" keeps the current response, its gains and
 //! its metrics; up to [`MAX_PINS`] pinned responses are overlaid on the
-//! response plot (the oldest is replaced by a fifth) and listed as readouts,
-//! one per slot A–D. The plot always holds the four slot series (empty
-//! until used): the page draws a plot's legend once, from the series it
-//! starts with, so the series set of a plot never changes.
+//! response plot (the oldest is replaced by a fifth, with a notice) and
+//! listed as readouts, one per slot A–D. The plot always holds the four
+//! slot series (empty until used, marked [`Series::for_comparison`]); a
+//! pinned series is named after its slot and gains, `A: Kp 25, Kd 5`.
+//!
+//! **Layout.** This file holds the model; `view.rs` the scene, readouts and
+//! status; `quiz.rs` the generated questions; `tests.rs` the tests, one per
+//! Procedure step among them.
 
 use crate::control::pid::{
     closed_loop_poles, MassDragPlant, Pid, PidConfig, PidGains, PidLoop, SecondOrder,
