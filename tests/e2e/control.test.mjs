@@ -94,11 +94,22 @@ test("pid: the cart chases the setpoint, runs can be pinned, the time bar steps 
 
     const csv = await downloadCsv(page, "response");
     const header = csv.split("\r\n")[0];
-    const columns = ["position x", "pinned run A", "pinned run B", "pinned run C", "pinned run D"]
-      .map((s) => `${s} Time since step (s),${s} (m)`)
+    // A pinned run is named after its gains; the empty slots keep their names.
+    const quote = (s) => (s.includes(",") ? `"${s}"` : s);
+    const columns = ["position x", "A: Kp 12, Ki 2, Kd 6", "pinned run B", "pinned run C", "pinned run D"]
+      .map((s) => `${quote(`${s} Time since step (s)`)},${quote(`${s} (m)`)}`)
       .join(",");
     assert.equal(header, columns);
     assert.ok(csv.split("\r\n").length > 20, "every sample is exported");
+    // Sample times are k/100 s, written as such (0.07, not 0.07000000000000001).
+    // Every series has its own time column (even columns); shorter ones end in empty cells.
+    const times = csv
+      .split("\r\n")
+      .slice(1, -1)
+      .flatMap((row) => row.split(",").filter((_, k) => k % 2 === 0))
+      .filter((t) => t !== "");
+    assert.ok(times.length > 20);
+    assert.ok(times.every((t) => /^\d+(\.\d{1,2})?$/.test(t)), `time columns: ${times.slice(0, 12)}`);
     const effort = await downloadCsv(page, "effort");
     assert.equal(
       effort.split("\r\n")[0],

@@ -50,7 +50,10 @@ pub struct StepInfo {
 /// python-control does for data).
 ///
 /// Returns `None` when the slices are unusable (different lengths, fewer than two
-/// samples, a non-finite value) or when the step size `y∞ − y₀` is zero.
+/// samples, a non-finite value), when the step size `y∞ − y₀` is zero, or when it is
+/// so small that the normalised response `z` overflows (a step of `5·10⁻³²⁴` would
+/// otherwise give an infinite overshoot). A caller that shows the metrics should also
+/// refuse steps below its display resolution, where `z` is finite but meaningless.
 ///
 /// # Example
 /// ```
@@ -115,6 +118,9 @@ pub fn step_info_with(
     }
     let t0 = times_s[0];
     let z = |k: usize| (values[k] - y_start) / span;
+    if !(0..n).all(|k| z(k).is_finite()) {
+        return None;
+    }
 
     let lo = (0..n).find(|&k| z(k) >= rise_limits.0);
     let hi = (0..n).find(|&k| z(k) >= rise_limits.1);
@@ -196,5 +202,16 @@ mod tests {
         assert!(step_info(&t, &[0.0, 1.0], 0.0, 1.0, None).is_none());
         assert!(step_info(&t, &[0.0, f64::NAN, 1.0], 0.0, 1.0, None).is_none());
         assert!(step_info(&t, &[1.0, 1.0, 1.0], 1.0, 1.0, None).is_none());
+    }
+
+    /// Issue 14: a subnormal step made the overshoot infinite.
+    #[test]
+    fn a_step_too_small_to_divide_by_has_no_metrics() {
+        let t = [0.0, 1.0, 2.0];
+        let y = [0.0, 1e-3, -5e-324];
+        assert!(step_info(&t, &y, 0.0, -5e-324, Some(-5e-324)).is_none());
+        // Small but representable: finite metrics.
+        let info = step_info(&t, &[0.0, 2e-9, 1e-9], 0.0, 1e-9, Some(1e-9)).unwrap();
+        assert!((info.overshoot_pct - 100.0).abs() < 1e-9);
     }
 }

@@ -1,0 +1,318 @@
+//! What experiment 7 shows: the scene, the readouts and the status. It only reads the state.
+
+use super::*;
+
+/// What the overshoot readout and a pin say when the step is under [`MIN_STEP_M`].
+pub(super) const STEP_TOO_SMALL: &str = "— (step under 1 mm)";
+
+/// A computed quantity: `decimals` places in the everyday range, else the
+/// shared magnitude form (`3.5 × 10¹⁵⁰`), so an extreme link never prints
+/// 150 digits.
+pub(super) fn quantity(v: f64, decimals: usize) -> String {
+    if v == 0.0 || (1e-3..1e3).contains(&v.abs()) {
+        format_fixed(v, decimals)
+    } else {
+        format_magnitude(v)
+    }
+}
+
+/// A length: [`format_metres`] in the everyday range, the magnitude form beyond.
+fn metres(v: f64) -> String {
+    if v.abs() < 1e3 || !v.is_finite() {
+        format_metres(v)
+    } else {
+        format!("{} m", format_magnitude(v))
+    }
+}
+
+/// `-0.187` or `-1.000 ± 2.000i` (one entry per conjugate pair).
+pub(super) fn format_poles(poles: &[Complex]) -> String {
+    let mut parts = Vec::new();
+    // Dominant (slowest) pole first.
+    for p in poles.iter().rev() {
+        if p.im < 0.0 {
+            continue;
+        }
+        if p.im == 0.0 {
+            parts.push(quantity(p.re, 3));
+        } else {
+            parts.push(format!("{} ± {}i", quantity(p.re, 3), quantity(p.im, 3)));
+        }
+    }
+    parts.join(", ")
+}
+
+pub(super) fn seconds(v: Option<f64>) -> String {
+    v.map_or("--".into(), |t| format!("{} s", format_fixed(t, 2)))
+}
+
+/// An overshoot, `9.5%`.
+pub(super) fn percent(v: f64) -> String {
+    format!("{}%", quantity(v, 1))
+}
+
+/// The track, the setpoint marker, the cart and its force arrow.
+pub(super) fn scene(e: &PidControl, out: &mut Scene) {
+    // Track with a tick every 0.5 m, labels at whole metres and an end stop
+    // at each end (the run stops when the cart passes one).
+    out.push(Item::Line {
+        from: DVec2::new(-TRACK_END_M, 0.0),
+        to: DVec2::new(TRACK_END_M, 0.0),
+        width_px: 2.0,
+        role: Role::Bound,
+        dashed: false,
+    });
+    for end in [-TRACK_END_M, TRACK_END_M] {
+        out.push(Item::Line {
+            from: DVec2::new(end, -0.1),
+            to: DVec2::new(end, 0.2),
+            width_px: 4.0,
+            role: Role::Bound,
+            dashed: false,
+        });
+    }
+    for k in -5..=5 {
+        let x = f64::from(k) * 0.5;
+        out.push(Item::Line {
+            from: DVec2::new(x, 0.0),
+            to: DVec2::new(x, -0.08),
+            width_px: 1.0,
+            role: Role::Grid,
+            dashed: false,
+        });
+        if k % 2 == 0 {
+            out.push(Item::Label {
+                pos: DVec2::new(x, -0.08),
+                text: format!("{} m", k / 2),
+                role: Role::Text,
+                offset_px: DVec2::new(-8.0, 12.0),
+            });
+        }
+    }
+    // The ±2 % band around the final value, on the track.
+    if let Some(band) = e.plots[0].bands.first() {
+        out.push(Item::Rect {
+            min: DVec2::new(band.lo, -0.02),
+            max: DVec2::new(band.hi, 0.02),
+            role: Role::Accent,
+            fill: true,
+        });
+    }
+    // Setpoint marker (the draggable handle).
+    let r = e.setpoint_m;
+    out.push(Item::Line {
+        from: DVec2::new(r, 0.0),
+        to: DVec2::new(r, MARKER_TOP_M),
+        width_px: 2.0,
+        role: Role::Target,
+        dashed: true,
+    });
+    out.push(Item::Polygon {
+        points: vec![
+            DVec2::new(r, MARKER_TOP_M - 0.12),
+            DVec2::new(r - 0.08, MARKER_TOP_M),
+            DVec2::new(r + 0.08, MARKER_TOP_M),
+        ],
+        role: Role::Target,
+    });
+    out.push(Item::Label {
+        pos: DVec2::new(r, MARKER_TOP_M),
+        text: format!("r = {}", format_metres(r)),
+        role: Role::Target,
+        offset_px: DVec2::new(10.0, -12.0),
+    });
+    // The cart, its wheels and the control force; the canvas edge is marked
+    // when the cart is beyond the view.
+    let x = e.run.state.x_m.clamp(-1e3, 1e3);
+    if x.is_finite() && !(VIEW_MIN.x..=VIEW_MAX.x).contains(&x) {
+        out.push(Item::OffView {
+            at: DVec2::new(x, 0.5 * (CART_BOTTOM_M + CART_TOP_M)),
+            label: format!("cart at {}", metres(e.run.state.x_m)),
+            role: Role::Robot,
+        });
+    }
+    out.push(Item::Rect {
+        min: DVec2::new(x - CART_HALF_W_M, CART_BOTTOM_M),
+        max: DVec2::new(x + CART_HALF_W_M, CART_TOP_M),
+        role: Role::Robot,
+        fill: true,
+    });
+    for dx in [-0.13, 0.13] {
+        out.push(Item::Circle {
+            center: DVec2::new(x + dx, 0.045),
+            radius_m: 0.045,
+            role: Role::Joint,
+            fill: true,
+            dashed: false,
+        });
+    }
+    let u = e.run.last_terms().output;
+    let len = (u * ARROW_M_PER_N).clamp(-ARROW_MAX_M, ARROW_MAX_M);
+    if len.abs() > 0.01 {
+        let y = 0.5 * (CART_BOTTOM_M + CART_TOP_M);
+        let start = x + CART_HALF_W_M.copysign(len);
+        out.push(Item::Arrow {
+            from: DVec2::new(start, y),
+            to: DVec2::new(start + len, y),
+            width_px: 3.0,
+            role: Role::Accent,
+        });
+    }
+    out.push(Item::Label {
+        pos: DVec2::new(x, CART_TOP_M),
+        text: format!("u = {} N", quantity(u, 1)),
+        role: Role::Text,
+        offset_px: DVec2::new(-24.0, -14.0),
+    });
+}
+
+/// The live numbers beside the canvas.
+pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
+    let x = e.run.state.x_m;
+    let info = e.info.ok();
+    let y_final = e.final_value_m();
+    let (poles, stability) = match e.poles() {
+        Some((p, s)) => (
+            format_poles(&p),
+            match s {
+                Stability::Stable => "stable",
+                Stability::MarginallyStable => "marginally stable",
+                Stability::Unstable => "unstable",
+            },
+        ),
+        None => ("--".into(), "--"),
+    };
+    let second = SecondOrder::of(&e.plant, &e.gains).map_or("--".into(), |s| {
+        format!(
+            "ωn {} rad/s · ζ {}",
+            quantity(s.natural_frequency_rad_s, 3),
+            quantity(s.damping_ratio, 3)
+        )
+    });
+    let mut out = vec![
+        Readout::metres("x", "Position x", x),
+        Readout::metres("error", "Error e = r − x", e.setpoint_m - x),
+        Readout::new(
+            "force",
+            "Force u",
+            format!("{} N", quantity(e.run.last_terms().output, 2)),
+        ),
+        Readout::new(
+            "overshoot",
+            "Overshoot",
+            match e.info {
+                Ok(i) => percent(i.overshoot_pct),
+                Err(NoMetrics::StepTooSmall) => STEP_TOO_SMALL.into(),
+                Err(_) => "--".into(),
+            },
+        ),
+        Readout::new(
+            "rise",
+            "Rise time (10–90 %)",
+            seconds(info.and_then(|i| i.rise_time_s)),
+        ),
+        Readout::new(
+            "settling",
+            "Settling time (±2 %)",
+            seconds(info.and_then(|i| i.settling_time_s)),
+        ),
+        Readout::new(
+            "peak",
+            "Peak",
+            info.map_or("--".into(), |i| {
+                format!(
+                    "{} at {} s",
+                    format_metres(i.peak),
+                    format_fixed(i.peak_time_s, 2)
+                )
+            }),
+        ),
+        Readout::new(
+            "sse",
+            "Steady-state error",
+            y_final.map_or("--".into(), |y| metres(e.setpoint_m - y)),
+        ),
+        Readout::new("poles", "Closed-loop poles (1/s)", poles),
+        Readout::new("stability", "Linear loop", stability),
+        Readout::new("second_order", "Second order (Ki = 0)", second),
+    ];
+    const PIN_KEYS: [&str; MAX_PINS] = ["pinA", "pinB", "pinC", "pinD"];
+    const PIN_LABELS: [&str; MAX_PINS] = [
+        "Pinned run A",
+        "Pinned run B",
+        "Pinned run C",
+        "Pinned run D",
+    ];
+    let mut pins: Vec<&Pin> = e.pins.iter().collect();
+    pins.sort_by_key(|p| p.slot);
+    for pin in pins {
+        let metrics = match pin.info {
+            Ok(i) => format!(
+                "overshoot {}, rise {}, settling {}",
+                percent(i.overshoot_pct),
+                seconds(i.rise_time_s),
+                seconds(i.settling_time_s)
+            ),
+            Err(NoMetrics::NoFinalValue) => "no metrics (no final value)".into(),
+            Err(NoMetrics::StepTooSmall) => format!("overshoot {STEP_TOO_SMALL}"),
+            Err(NoMetrics::NotYet) => "no metrics yet".into(),
+        };
+        let partial = if pin.finished {
+            String::new()
+        } else {
+            format!(", so far (pinned at {})", seconds(Some(pin.time_s)))
+        };
+        out.push(Readout::new(
+            PIN_KEYS[pin.slot],
+            PIN_LABELS[pin.slot],
+            format!("{}, {metrics}{partial}", pin.gains_text()),
+        ));
+    }
+    out
+}
+
+/// The run's state from the model's evidence: running while the state is
+/// [`RunState::Running`], otherwise ended (settled, recorded in full, off the
+/// track or diverged), so the page offers Replay.
+pub(super) fn status(e: &PidControl) -> Status {
+    let why_unstable = || match e.poles().map(|(_, s)| s) {
+        Some(Stability::Unstable) => "the loop is unstable",
+        Some(Stability::MarginallyStable) => "the loop is only marginally stable",
+        _ => "the overshoot carried it past the end",
+    };
+    match e.state {
+        RunState::Running => Status::new(
+            format!("stepping to {}", format_metres(e.setpoint_m)),
+            Tone::Neutral,
+        ),
+        RunState::OffTrack => Status::ended(
+            format!(
+                "off the track at {}: {}",
+                format_metres(TRACK_END_M.copysign(e.position_m())),
+                why_unstable()
+            ),
+            Tone::Bad,
+        ),
+        RunState::Diverged => Status::ended(format!("diverged: {}", why_unstable()), Tone::Bad),
+        RunState::Quiet | RunState::Complete => match (e.info, e.final_value_m()) {
+            (
+                Ok(StepInfo {
+                    settling_time_s: Some(ts),
+                    ..
+                }),
+                Some(_),
+            ) => Status::ended(
+                format!("settled within 2 % after {}", seconds(Some(ts))),
+                Tone::Good,
+            ),
+            (Err(NoMetrics::StepTooSmall), Some(_)) => {
+                Status::ended("at rest: the step is under 1 mm", Tone::Neutral)
+            }
+            (_, Some(_)) => Status::ended(
+                format!("not settled after {} s", format_fixed(e.time_s(), 0)),
+                Tone::Warning,
+            ),
+            (_, None) => Status::ended("at rest", Tone::Neutral),
+        },
+    }
+}
