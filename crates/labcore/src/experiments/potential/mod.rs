@@ -28,7 +28,7 @@
 
 use crate::experiment::{
     check_param, format_fixed, format_metres, with_coordinate, ActionSpec, Experiment, Input,
-    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    Notice, Notices, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::experiments::diffdrive::{draw_field, draw_robot, push_bounded, push_trail, snap_into};
 use crate::mobile::go_to_goal::GoToGoal;
@@ -86,6 +86,9 @@ const DEFAULT_OBSTACLES: [DVec2; MAX_OBSTACLES] = [
     DVec2::new(4.0, 1.0),
 ];
 const DEFAULT_GOAL: DVec2 = DVec2::new(7.2, 3.0);
+/// Most steps [`Experiment::preview`] takes: one live run's hard limit
+/// (120 s at 60 steps per second) and a little more.
+pub const MAX_PREVIEW_STEPS: usize = 7300;
 
 const VIEWS: &[&str] = &["Off", "Arrows", "Heat map"];
 
@@ -190,7 +193,8 @@ pub struct PotentialFieldLab {
     /// obstacle) is placed where it was pressed if it is released without moving.
     tap: Option<Tap>,
     selected: Handle,
-    notice: Option<&'static str>,
+    /// Transient messages (a mode's prompt, a refused click).
+    notices: Notices,
     /// Goal distance and |F_rep| against time.
     plots: [Plot; 1],
 }
@@ -218,6 +222,7 @@ fn live_config() -> FieldRunConfig {
         integrator: Integrator::Euler,
         substeps: 2,
         dt_s: crate::clock::Clock::DT_S,
+        bounds: Some((DVec2::ZERO, DVec2::new(FIELD_W_M, FIELD_H_M))),
     }
 }
 
@@ -254,7 +259,7 @@ impl Default for PotentialFieldLab {
             dragging: None,
             tap: None,
             selected: Handle::Goal,
-            notice: None,
+            notices: Notices::default(),
             plots: new_plots(),
         };
         s.field.params.k_att = PARAMS[0].default;
@@ -382,7 +387,10 @@ impl PotentialFieldLab {
             return None;
         }
         if self.count >= MAX_OBSTACLES {
-            self.notice = Some("all 6 obstacles are placed: remove one first");
+            self.notices.post(
+                "all 6 obstacles are placed: remove one first",
+                Tone::Warning,
+            );
             return None;
         }
         let slot = self.count;
@@ -530,31 +538,44 @@ impl Experiment for PotentialFieldLab {
     }
 
     fn action(&mut self, key: &str) -> Result<(), ParamError> {
-        self.notice = None;
+        // A refused action changes nothing: check the key before anything else.
+        if !ACTIONS.iter().any(|a| a.key == key) {
+            return Err(ParamError::UnknownAction { key: key.into() });
+        }
+        self.notices.clear();
+        self.mode = None;
         match key {
             "basin" => {
                 if self.goal.is_none() {
-                    self.notice = Some("set a goal first: the basin map needs one");
+                    self.notices
+                        .post("set a goal first: the basin map needs one", Tone::Warning);
                 } else {
                     self.start_basin();
                 }
             }
             "add" => {
                 if self.count >= MAX_OBSTACLES {
-                    self.notice = Some("all 6 obstacles are placed: remove one first");
-                    self.mode = None;
+                    self.notices.post(
+                        "all 6 obstacles are placed: remove one first",
+                        Tone::Warning,
+                    );
                 } else {
                     self.mode = Some(Mode::Add);
+                    self.notices
+                        .post("click where the new obstacle goes", Tone::Neutral);
                 }
             }
             "remove" => {
-                self.mode = (self.count > 0).then_some(Mode::Remove);
                 if self.count == 0 {
-                    self.notice = Some("there is no obstacle to remove");
+                    self.notices
+                        .post("there is no obstacle to remove", Tone::Warning);
+                } else {
+                    self.mode = Some(Mode::Remove);
+                    self.notices
+                        .post("click the obstacle to remove", Tone::Neutral);
                 }
             }
-            "clear" => self.basin = None,
-            _ => return Err(ParamError::UnknownAction { key: key.into() }),
+            _ => self.basin = None, // "clear"
         }
         Ok(())
     }
@@ -565,7 +586,7 @@ impl Experiment for PotentialFieldLab {
                 if !p.is_finite() {
                     return;
                 }
-                self.notice = None;
+                self.notices.clear();
                 self.tap = None;
                 match self.mode {
                     Some(Mode::Add) => {
@@ -579,7 +600,8 @@ impl Experiment for PotentialFieldLab {
                         if let Some(i) = self.obstacle_at(p, 0.1) {
                             self.remove_obstacle(i);
                         } else {
-                            self.notice = Some("no obstacle there: nothing removed");
+                            self.notices
+                                .post("no obstacle there: nothing removed", Tone::Warning);
                         }
                     }
                     None => match self.handle_under(p, GRAB_M) {
@@ -666,6 +688,7 @@ impl Experiment for PotentialFieldLab {
                         RunStatus::Reached => "reached",
                         RunStatus::Trapped => "trapped",
                         RunStatus::Collided => "collided",
+                        RunStatus::LeftField => "left the field",
                         _ => "stopped",
                     };
                     let y = self.plots[0].series[0].y.last().copied().unwrap_or(0.0);
@@ -693,7 +716,7 @@ impl Experiment for PotentialFieldLab {
     fn reset(&mut self) {
         self.restart_run();
         self.mode = None;
-        self.notice = None;
+        self.notices.clear();
         self.tap = None;
         if self.basin.is_some() {
             self.start_basin();
@@ -732,11 +755,47 @@ impl Experiment for PotentialFieldLab {
         "Click or tap to set the goal; drag obstacles, the goal or the start. Add obstacle, then click to place it."
     }
 
+    /// The default field with the default goal, run to its end. Bounded:
+    /// at most [`MAX_PREVIEW_STEPS`] steps, since a run that cannot move (a
+    /// goal inside an obstacle) never ends by itself.
     fn preview(&mut self) {
         self.set_goal(DEFAULT_GOAL);
-        while self.run.is_some_and(|r| !r.status.is_final()) {
+        for _ in 0..MAX_PREVIEW_STEPS {
+            if !self.animating() {
+                break;
+            }
             self.step(crate::clock::Clock::DT_S);
         }
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
+    }
+
+    fn extra_state(&self) -> Vec<(&'static str, String)> {
+        if self.basin.is_some() {
+            vec![("map", "1".into())]
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// `map=1`: the basin map is shown (it is computed once there is a goal).
+    fn set_extra_state(&mut self, key: &str, value: &str) -> Result<(), ParamError> {
+        if key != "map" {
+            return Err(ParamError::UnknownKey { key: key.into() });
+        }
+        match value.trim() {
+            "1" => self.start_basin(),
+            "0" => self.basin = None,
+            _ => {
+                return Err(ParamError::BadText {
+                    key: key.into(),
+                    reason: format!("“{value}” is not 0 or 1"),
+                })
+            }
+        }
+        Ok(())
     }
 
     fn animating(&self) -> bool {

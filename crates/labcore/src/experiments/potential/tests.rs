@@ -2,6 +2,7 @@
 
 use super::quiz::{quiz_net_force, quiz_potential, quiz_repulsion};
 use super::*;
+use crate::experiment::{Notice, Phase};
 use crate::mobile::potential_field::run_to_end;
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};
@@ -19,6 +20,10 @@ fn run(e: &mut PotentialFieldLab, max_s: f64) -> f64 {
 
 fn readout(e: &PotentialFieldLab, key: &str) -> String {
     crate::experiment::readout_value(e, key).unwrap_or_else(|| panic!("no readout {key}"))
+}
+
+fn notice(e: &PotentialFieldLab) -> String {
+    e.notice().map(|n| n.text).unwrap_or_default()
 }
 
 fn click(e: &mut PotentialFieldLab, p: DVec2) {
@@ -156,7 +161,12 @@ fn an_obstacle_on_the_robot_start_says_so() {
 fn add_drag_and_remove_obstacles() {
     let mut e = PotentialFieldLab::default();
     e.action("add").unwrap();
-    assert_eq!(e.status().text, "click where the new obstacle goes");
+    assert_eq!(notice(&e), "click where the new obstacle goes");
+    assert_eq!(
+        e.status().text,
+        "click to set a goal",
+        "the prompt is a notice"
+    );
     // A swipe places nothing and keeps the mode; a tap places the obstacle.
     e.input(Input::PointerDown(DVec2::new(6.0, 1.0)));
     e.input(Input::PointerMove {
@@ -165,7 +175,7 @@ fn add_drag_and_remove_obstacles() {
     });
     e.input(Input::PointerUp(DVec2::new(6.0, 2.0)));
     assert_eq!(e.obstacles().len(), 2);
-    assert_eq!(e.status().text, "click where the new obstacle goes");
+    assert_eq!(e.mode, Some(Mode::Add), "a swipe keeps the mode");
     click(&mut e, DVec2::new(6.5, 1.25));
     assert_eq!(e.obstacles().len(), 3);
     assert_eq!(e.param("o3x"), Some(6.5));
@@ -202,7 +212,8 @@ fn add_drag_and_remove_obstacles() {
     e.action("remove").unwrap();
     click(&mut e, DVec2::new(7.5, 5.5));
     assert_eq!(e.obstacles().len(), 2);
-    assert!(e.status().text.contains("nothing removed"));
+    assert!(notice(&e).contains("nothing removed"));
+    assert_eq!(e.status().text, "click to set a goal");
     assert!(e.goal.is_none());
 }
 
@@ -410,5 +421,215 @@ fn generators_agree_with_hand_formulas() {
         let v = |k: &str| u.var(k).unwrap();
         let expected = v("ka") * v("g") + v("kr") * (v("d0") - v("d")).powi(2) / (2.0 * v("d0"));
         assert!((u.answer - expected).abs() < 1e-9, "{u:?}");
+    }
+}
+
+/// Everything observable: the link, the status, the notice, the readouts
+/// and the display list.
+fn observe(e: &PotentialFieldLab) -> (String, Status, Option<Notice>, Vec<Readout>, Scene) {
+    let mut scene = Scene::default();
+    e.scene(&mut scene);
+    (
+        format(e, Tab::Simulation),
+        e.status(),
+        e.notice(),
+        e.readouts(),
+        scene,
+    )
+}
+
+/// Issue 13 §1: the repro link (`ka=0.1&kr=5&d0=3&rad=1.2…`) drives the
+/// robot away from the goal at full speed and off the field's left edge. It
+/// was reported "trapped in a local minimum 7.947 m from the goal" at
+/// 1.1 m/s after 5 s without progress; now leaving the field is its own
+/// ended state, and "trapped" needs the trap's evidence.
+#[test]
+fn extreme_gains_push_the_robot_off_the_field_and_that_is_not_a_trap() {
+    let link = "#/potential/simulation?ka=0.1&kr=5&d0=3&rad=1.2&view=2&nobs=2&sx=0.6&sy=3&o1x=3&o1y=3.4&o2x=5.2&o2y=2.2&gx=7.5&gy=3";
+    let (mut e, notices) = restore(link, PotentialFieldLab::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    run(&mut e, 200.0);
+    let r = *e.run().unwrap();
+    assert_eq!(r.status, RunStatus::LeftField, "{r:?}");
+    assert!(r.pose.x_m < 0.0, "off the left edge: {r:?}");
+    let status = e.status();
+    assert!(
+        status
+            .text
+            .starts_with("pushed off the left edge of the field"),
+        "{status:?}"
+    );
+    assert!(!status.text.contains("trapped"));
+    assert_eq!(status.phase, Phase::Ended);
+    assert_eq!(readout(&e, "status"), "left the field");
+    assert_eq!(
+        readout(&e, "speed"),
+        "0.000 m/s",
+        "an ended run has stopped"
+    );
+    assert!(!e.animating());
+}
+
+/// Issue 13 §4: a status is `ended` exactly when the goal is reached, a trap
+/// is confirmed (or the run collided, left the field or timed out); running,
+/// waiting for a goal and a blocked goal are live.
+#[test]
+fn status_ends_when_the_goal_is_reached_or_a_trap_is_confirmed() {
+    let mut e = PotentialFieldLab::default();
+    assert_eq!(e.status().phase, Phase::Live);
+    click(&mut e, DVec2::new(7.2, 1.0));
+    assert_eq!(e.status().phase, Phase::Live);
+    run(&mut e, 60.0);
+    assert_eq!(e.run().unwrap().status, RunStatus::Reached);
+    assert_eq!(e.status().phase, Phase::Ended);
+    let mut t = trap();
+    for _ in 0..60 {
+        t.step(DT);
+    }
+    assert_eq!(t.status().phase, Phase::Live, "{:?}", t.status());
+    run(&mut t, 60.0);
+    assert_eq!(t.run().unwrap().status, RunStatus::Trapped);
+    let r = *t.run().unwrap();
+    assert!(r.time_s - r.anchor_s >= TrapDetection::default().window_s);
+    assert_eq!(t.status().phase, Phase::Ended);
+    assert_eq!(t.status().tone, Tone::Bad);
+    // A goal inside an obstacle is waiting for the student, not over.
+    t.set_param("gx", 4.0).unwrap();
+    t.set_param("gy", 3.6).unwrap();
+    assert!(t.status().text.contains("goal is inside an obstacle"));
+    assert_eq!(t.status().phase, Phase::Live);
+}
+
+/// Issue 13 §3: the field's grid carries no numbers, so the scene asks for a
+/// metre scale bar.
+#[test]
+fn the_scene_has_a_scale_bar() {
+    let e = PotentialFieldLab::default();
+    let mut scene = Scene::default();
+    e.scene(&mut scene);
+    assert_eq!(
+        scene
+            .items
+            .iter()
+            .filter(|i| matches!(i, Item::ScaleBar))
+            .count(),
+        1
+    );
+}
+
+/// Issue 14: `preview()` with the goal inside an obstacle never returned
+/// (its loop waited for a run that cannot move to end).
+#[test]
+fn preview_returns_when_the_goal_is_inside_an_obstacle() {
+    let mut e = PotentialFieldLab::default();
+    e.set_param("o1x", 7.2).unwrap();
+    e.set_param("o1y", 3.0).unwrap();
+    e.preview();
+    assert!(e.status().text.contains("goal is inside an obstacle"));
+    assert_eq!(e.run().unwrap().time_s, 0.0);
+    // The ordinary preview still runs its run to the end.
+    let mut e = PotentialFieldLab::default();
+    e.preview();
+    assert!(e.run().unwrap().status.is_final());
+}
+
+/// Issue 14: `action("basin")` with no goal, then `action("nope")`: the
+/// second is refused and nothing observable changes (it used to replace
+/// "set a goal first…" with "click to set a goal"). Also from the Add and
+/// Remove modes.
+#[test]
+fn a_refused_action_changes_nothing_observable() {
+    let mut e = PotentialFieldLab::default();
+    e.action("basin").unwrap();
+    assert!(notice(&e).starts_with("set a goal first"));
+    let before = observe(&e);
+    assert!(e.action("nope").is_err());
+    assert_eq!(observe(&e), before);
+    for armed in ["add", "remove"] {
+        let mut e = PotentialFieldLab::default();
+        e.action(armed).unwrap();
+        let mode = e.mode;
+        let before = observe(&e);
+        assert!(matches!(
+            e.action(""),
+            Err(ParamError::UnknownAction { .. })
+        ));
+        assert_eq!(observe(&e), before);
+        assert_eq!(e.mode, mode, "the {armed} mode is kept");
+    }
+}
+
+/// Issue 13 §2: a link that leaves the goal out opens with no goal, and the
+/// page rebuilds from the defaults, so what the link leaves out is the
+/// default.
+#[test]
+fn a_link_without_a_goal_opens_with_no_goal() {
+    let (e, notices) = restore(
+        "#/potential/simulation?kr=2&o1x=2&o1y=2",
+        PotentialFieldLab::default(),
+    );
+    assert!(notices.is_empty(), "{notices:?}");
+    assert_eq!(e.param("gx"), None);
+    assert_eq!(e.status().text, "click to set a goal");
+    assert_eq!(e.param("o2x"), Some(DEFAULT_OBSTACLES[1].x));
+}
+
+/// Issue 13 §2: whatever a student does — clicks, drags, nudges, actions,
+/// typed values, the basin map — the state's link, opened fresh, gives the
+/// same state (link, status, readouts, display list after a run) with no
+/// notice.
+#[test]
+fn every_reachable_state_round_trips_through_its_link() {
+    let mut rng = Lcg64::new(2024);
+    let keys: Vec<&ParamSpec> = PARAMS.iter().collect();
+    for case in 0..60 {
+        let mut e = PotentialFieldLab::default();
+        for _ in 0..rng.int(1, 12) {
+            let p = DVec2::new(rng.range(-0.5, 8.5), rng.range(-0.5, 6.5));
+            match rng.int(0, 5) {
+                0 => click(&mut e, p),
+                1 => {
+                    let from = match rng.int(0, 2) {
+                        0 => e.goal.unwrap_or(e.start),
+                        1 => e.start,
+                        _ => e.slots[0],
+                    };
+                    e.input(Input::PointerDown(from));
+                    e.input(Input::PointerMove {
+                        pos: p,
+                        pressed: true,
+                    });
+                    e.input(Input::PointerUp(p));
+                }
+                2 => {
+                    let a = ACTIONS[rng.int(0, ACTIONS.len() as i64 - 1) as usize];
+                    e.action(a.key).unwrap();
+                }
+                3 => e.input(Input::Nudge(DVec2::new(
+                    rng.int(-3, 3) as f64 * 0.1,
+                    rng.int(-3, 3) as f64 * 0.1,
+                ))),
+                _ => {
+                    let spec = keys[rng.int(0, keys.len() as i64 - 1) as usize];
+                    // Values a number box accepts, to the link's precision.
+                    let v = (rng.range(spec.min, spec.max) * 100.0).round() / 100.0;
+                    e.set_param(spec.key, v).unwrap();
+                }
+            }
+        }
+        let link = format(&e, Tab::Simulation);
+        let (mut fresh, notices) = restore(&link, PotentialFieldLab::default());
+        assert!(notices.is_empty(), "case {case}: {link}: {notices:?}");
+        assert_eq!(format(&fresh, Tab::Simulation), link, "case {case}");
+        assert_eq!(fresh.obstacles(), e.obstacles(), "case {case}");
+        assert_eq!(fresh.basin().is_some(), e.basin().is_some(), "case {case}");
+        // The same link drives the same run.
+        e.reset();
+        fresh.reset();
+        for _ in 0..120 {
+            e.step(DT);
+            fresh.step(DT);
+        }
+        assert_eq!(observe(&fresh), observe(&e), "case {case}: {link}");
     }
 }

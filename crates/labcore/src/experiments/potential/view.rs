@@ -14,25 +14,33 @@ impl PotentialFieldLab {
                 Tone::Bad,
             );
         }
+        let p = run.pose.position();
+        let to_goal = format_metres((self.field.goal - p).length());
         match run.status {
             RunStatus::Running => Status::new("running", Tone::Neutral),
-            RunStatus::Reached => Status::new(
+            RunStatus::Reached => Status::ended(
                 format!("reached the goal in {} s", format_fixed(run.time_s, 1)),
                 Tone::Good,
             ),
-            RunStatus::Trapped => Status::new(
+            // The run's own evidence: no progress and held near one spot
+            // for the whole detection window (see `TrapDetection`).
+            RunStatus::Trapped => Status::ended(
+                format!("trapped in a local minimum {to_goal} from the goal"),
+                Tone::Bad,
+            ),
+            RunStatus::LeftField => Status::ended(
                 format!(
-                    "trapped in a local minimum {} from the goal",
-                    format_metres((self.field.goal - run.pose.position()).length())
+                    "pushed off the {} edge of the field, {to_goal} from the goal: the pushes outweigh the pull",
+                    edge_name(p)
                 ),
                 Tone::Bad,
             ),
-            RunStatus::Collided => Status::new("collided with an obstacle", Tone::Bad),
+            RunStatus::Collided => Status::ended("collided with an obstacle", Tone::Bad),
             RunStatus::StartInsideObstacle => Status::new(
                 "the start is inside an obstacle: drag the start or the obstacle away",
                 Tone::Bad,
             ),
-            RunStatus::TimedOut => Status::new(
+            RunStatus::TimedOut => Status::ended(
                 format!(
                     "stopped after {} s without arriving",
                     format_fixed(run.time_s, 0)
@@ -121,6 +129,7 @@ impl PotentialFieldLab {
             });
         }
         draw_field(out, FIELD_W_M, FIELD_H_M);
+        out.push(Item::ScaleBar);
         if self.view == 1 {
             out.push(Item::Arrows {
                 arrows: self.field_arrows(),
@@ -206,10 +215,15 @@ impl PotentialFieldLab {
                     role: Role::Warning,
                 });
             }
-            if run.status == RunStatus::Trapped {
+            let label = match run.status {
+                RunStatus::Trapped => Some("trapped"),
+                RunStatus::LeftField => Some("off the field"),
+                _ => None,
+            };
+            if let Some(text) = label {
                 out.push(Item::Label {
                     pos: p,
-                    text: "trapped".into(),
+                    text: text.into(),
                     role: Role::Warning,
                     offset_px: DVec2::new(12.0, 16.0),
                 });
@@ -222,7 +236,14 @@ impl PotentialFieldLab {
         let run = self.run;
         let p = run.map_or(self.start, |r| r.pose.position());
         let rep = self.field.repulsive_force(p).length();
-        let speed = run.map_or(0.0, |r| r.last_command.v_mps);
+        // A run that has ended has stopped the robot.
+        let speed = run.map_or(0.0, |r| {
+            if r.status.is_final() {
+                0.0
+            } else {
+                r.last_command.v_mps
+            }
+        });
         let reach = match &self.basin {
             Some(map) if self.goal.is_some() => {
                 let share = format!("{}%", format_fixed(100.0 * map.reach_share(), 1));
@@ -264,6 +285,7 @@ impl PotentialFieldLab {
                     Some(RunStatus::Collided) => "collided",
                     Some(RunStatus::StartInsideObstacle) => "start blocked",
                     Some(RunStatus::TimedOut) => "timed out",
+                    Some(RunStatus::LeftField) => "left the field",
                 },
             ),
             Readout::new(
@@ -287,21 +309,23 @@ impl PotentialFieldLab {
         ]
     }
 
-    /// The status badge.
+    /// The status badge: the run's state only (prompts and refusals are
+    /// notices).
     pub(super) fn current_status(&self) -> Status {
-        if let Some(notice) = self.notice {
-            return Status::new(notice, Tone::Warning);
-        }
-        match self.mode {
-            Some(Mode::Add) => {
-                return Status::new("click where the new obstacle goes", Tone::Neutral)
-            }
-            Some(Mode::Remove) => {
-                return Status::new("click the obstacle to remove", Tone::Neutral)
-            }
-            None => {}
-        }
         self.status_of_run()
+    }
+}
+
+/// Which edge of the field a point beyond it lies past.
+fn edge_name(p: DVec2) -> &'static str {
+    if p.x < 0.0 {
+        "left"
+    } else if p.x > FIELD_W_M {
+        "right"
+    } else if p.y < 0.0 {
+        "bottom"
+    } else {
+        "top"
     }
 }
 
@@ -313,10 +337,11 @@ fn basin_state(c: BasinClass) -> u8 {
         BasinClass::Trapped => 2,
         BasinClass::Collided => 3,
         BasinClass::TimedOut => 4,
+        BasinClass::LeftField => 5,
     }
 }
 
-const BASIN_PALETTE: [RasterColour; 4] = [
+const BASIN_PALETTE: [RasterColour; 5] = [
     RasterColour {
         role: Role::Sample,
         alpha: 0.35,
@@ -332,5 +357,9 @@ const BASIN_PALETTE: [RasterColour; 4] = [
     RasterColour {
         role: Role::Estimate,
         alpha: 0.4,
+    },
+    RasterColour {
+        role: Role::Visited,
+        alpha: 0.45,
     },
 ];
