@@ -633,3 +633,307 @@ fn every_reachable_state_round_trips_through_its_link() {
         assert_eq!(observe(&fresh), observe(&e), "case {case}: {link}");
     }
 }
+
+/// Issue 15: every generator draws its gains, distances and radii inside
+/// the sliders' ranges, so a question can be set up on the page.
+#[test]
+fn generators_draw_inside_the_slider_ranges() {
+    let spec = |key: &str| *PARAMS.iter().find(|s| s.key == key).unwrap();
+    let inside = |key: &str, v: f64| {
+        let s = spec(key);
+        assert!(
+            v >= s.min && v <= s.max,
+            "{key} = {v} outside [{}, {}]",
+            s.min,
+            s.max
+        );
+    };
+    let mut rng = Lcg64::new(11);
+    for _ in 0..500 {
+        for draw in [
+            quiz_repulsion(&mut rng),
+            quiz_net_force(&mut rng),
+            quiz_potential(&mut rng),
+        ] {
+            for (name, key) in [("ka", "ka"), ("kr", "kr"), ("d0", "d0"), ("r", "rad")] {
+                if let Some(v) = draw.var(name) {
+                    inside(key, v);
+                }
+            }
+            // Distances fit in the 8 m × 6 m field.
+            for name in ["d", "s", "g"] {
+                if let Some(v) = draw.var(name) {
+                    assert!(v > 0.0 && v < FIELD_W_M, "{name} = {v}");
+                }
+            }
+        }
+    }
+}
+
+// ---- The Procedure (assets/potential.json), one test per numbered step,
+// each on the state the previous steps left. ----
+
+fn drag(e: &mut PotentialFieldLab, from: DVec2, to: DVec2) {
+    e.input(Input::PointerDown(from));
+    e.input(Input::PointerMove {
+        pos: (from + to) * 0.5,
+        pressed: true,
+    });
+    e.input(Input::PointerMove {
+        pos: to,
+        pressed: true,
+    });
+    e.input(Input::PointerUp(to));
+}
+
+fn scene_of(e: &PotentialFieldLab) -> Scene {
+    let mut scene = Scene::default();
+    e.scene(&mut scene);
+    scene
+}
+
+fn set(e: &mut PotentialFieldLab, pairs: &[(&str, f64)]) {
+    for (k, v) in pairs {
+        e.set_param(k, *v).unwrap();
+    }
+}
+
+/// The state after Procedure steps 1…k, as a student leaves it.
+fn after_step(k: usize) -> PotentialFieldLab {
+    let mut e = PotentialFieldLab::default();
+    if k >= 2 {
+        click(&mut e, DVec2::new(7.2, 3.0));
+        run(&mut e, 60.0);
+    }
+    if k >= 3 {
+        e.action("add").unwrap();
+        click(&mut e, DVec2::new(2.0, 5.0));
+        drag(&mut e, DVec2::new(2.0, 5.0), DVec2::new(1.8, 3.0));
+        e.action("remove").unwrap();
+        click(&mut e, DVec2::new(1.8, 3.0));
+        run(&mut e, 60.0);
+    }
+    if k >= 4 {
+        set(&mut e, &[("kr", 3.0), ("d0", 2.0), ("view", 2.0)]);
+        run(&mut e, 60.0);
+    }
+    if k >= 5 {
+        set(&mut e, &[("ka", 2.0), ("kr", 0.8), ("d0", 1.0)]);
+        drag(&mut e, DVec2::new(3.0, 3.4), DVec2::new(3.0, 3.0));
+        run(&mut e, 60.0);
+    }
+    if k >= 6 {
+        set(&mut e, &[("ka", 1.0), ("kr", 1.6), ("rad", 0.4)]);
+        drag(&mut e, DVec2::new(3.0, 3.0), DVec2::new(4.0, 3.6));
+        drag(&mut e, DVec2::new(5.2, 2.2), DVec2::new(4.0, 2.4));
+        drag(&mut e, DVec2::new(7.2, 3.0), DVec2::new(7.4, 3.0));
+        run(&mut e, 60.0);
+    }
+    if k >= 7 {
+        e.action("basin").unwrap();
+        run(&mut e, 60.0);
+        e.set_param("kr", 0.45).unwrap();
+        run(&mut e, 60.0);
+    }
+    e
+}
+
+#[test]
+fn potential_step_1_two_obstacles_with_influence_circles_and_field_arrows() {
+    let e = after_step(1);
+    assert_eq!(e.obstacles().len(), 2);
+    let scene = scene_of(&e);
+    let d0 = e.field().params.influence_m;
+    let dashed = scene
+        .items
+        .iter()
+        .filter(|i| {
+            matches!(i, Item::Circle { radius_m, dashed: true, .. }
+                if (*radius_m - (e.radius_m + d0)).abs() < 1e-12)
+        })
+        .count();
+    assert_eq!(dashed, 2, "one influence circle per obstacle");
+    let arrows = |scene: &Scene| -> Vec<(DVec2, DVec2)> {
+        scene
+            .items
+            .iter()
+            .find_map(|i| match i {
+                Item::Arrows { arrows, .. } => Some(arrows.clone()),
+                _ => None,
+            })
+            .unwrap_or_default()
+    };
+    let pushes = arrows(&scene);
+    assert!(!pushes.is_empty());
+    for (a, b) in &pushes {
+        let mid = (*a + *b) * 0.5;
+        assert!(
+            e.field().clearance_m(mid) < d0,
+            "only inside the circles: {mid}"
+        );
+    }
+    assert!(scene.items.iter().any(|i| matches!(i, Item::ScaleBar)));
+    // Step 2's goal turns on the whole field.
+    let mut e = e;
+    click(&mut e, DVec2::new(7.2, 3.0));
+    assert!(arrows(&scene_of(&e)).len() > 3 * pushes.len());
+}
+
+#[test]
+fn potential_step_2_the_path_bows_around_the_obstacles_to_the_goal() {
+    let mut e = after_step(1);
+    click(&mut e, DVec2::new(7.2, 3.0));
+    // The robot first turns toward the force direction, then drives.
+    let heading0 = e.run().unwrap().pose.theta_rad;
+    let mut max_rep: f64 = 0.0;
+    let mut turned = false;
+    while e.animating() {
+        e.step(DT);
+        let r = *e.run().unwrap();
+        max_rep = max_rep.max(readout(&e, "rep").parse::<f64>().unwrap());
+        turned |= (r.pose.theta_rad - heading0).abs() > 0.1;
+        assert!(r.time_s < 60.0);
+    }
+    let r = *e.run().unwrap();
+    assert_eq!(r.status, RunStatus::Reached, "{r:?}");
+    assert!(turned);
+    assert!(max_rep > 0.3, "Repulsive force rose to {max_rep}");
+    let widest = e
+        .trail
+        .iter()
+        .map(|p| (p.y - 3.0).abs())
+        .fold(0.0, f64::max);
+    assert!(widest > 0.3, "the path bows: {widest}");
+    assert!(r.min_clearance_m > 0.0);
+    let plot = &e.plots()[0];
+    assert_eq!(plot.series[0].label, "goal distance");
+    assert_eq!(plot.series[1].label, "|F_rep|");
+    assert!(plot.series[1].y.iter().any(|f| *f > 0.3));
+    assert!(plot.series[0].y.last().unwrap() < &0.1);
+}
+
+#[test]
+fn potential_step_3_adding_dragging_and_removing_restart_the_run() {
+    let mut e = after_step(2);
+    e.action("add").unwrap();
+    click(&mut e, DVec2::new(2.0, 5.0));
+    assert_eq!(e.obstacles().len(), 3);
+    assert_eq!(e.run().unwrap().time_s, 0.0, "adding restarts the run");
+    for _ in 0..30 {
+        e.step(DT);
+    }
+    drag(&mut e, DVec2::new(2.0, 5.0), DVec2::new(1.8, 3.0));
+    assert_eq!(e.obstacles()[2].centre, DVec2::new(1.8, 3.0));
+    assert_eq!(e.run().unwrap().time_s, 0.0, "dragging restarts the run");
+    assert_eq!(e.trail, vec![e.start], "the trail starts again");
+    run(&mut e, 60.0);
+    // In the robot's way: the run differs from step 2's.
+    assert_ne!(e.run(), after_step(2).run());
+    e.action("remove").unwrap();
+    click(&mut e, DVec2::new(1.8, 3.0));
+    assert_eq!(e.obstacles().len(), 2);
+    assert_eq!(e.run().unwrap().time_s, 0.0);
+    run(&mut e, 60.0);
+    assert_eq!(
+        e.run(),
+        after_step(2).run(),
+        "back to step 2's field and run"
+    );
+}
+
+#[test]
+fn potential_step_4_a_stronger_wider_push_gives_a_wider_berth() {
+    let e = after_step(3);
+    let before = e.run().unwrap().min_clearance_m;
+    let mut e = e;
+    set(&mut e, &[("kr", 3.0), ("d0", 2.0)]);
+    run(&mut e, 60.0);
+    let after = *e.run().unwrap();
+    assert_eq!(after.status, RunStatus::Reached);
+    assert!(
+        after.min_clearance_m > before + 0.5,
+        "closest approach {before} → {}",
+        after.min_clearance_m
+    );
+    assert_eq!(
+        readout(&e, "clearance"),
+        format_metres(after.min_clearance_m)
+    );
+    e.set_param("view", 2.0).unwrap();
+    assert!(scene_of(&e)
+        .items
+        .iter()
+        .any(|i| matches!(i, Item::Heatmap { .. })));
+}
+
+#[test]
+fn potential_step_5_when_the_pull_beats_both_pushes_the_robot_hits_the_obstacle() {
+    let mut e = after_step(4);
+    set(&mut e, &[("ka", 2.0), ("kr", 0.8), ("d0", 1.0)]);
+    assert!(e.field().params.trap_free(e.obstacles().len()));
+    drag(&mut e, DVec2::new(3.0, 3.4), DVec2::new(3.0, 3.0));
+    assert_eq!(e.obstacles()[0].centre, DVec2::new(3.0, 3.0));
+    run(&mut e, 60.0);
+    assert_eq!(e.run().unwrap().status, RunStatus::Collided);
+    assert_eq!(e.status().text, "collided with an obstacle");
+    assert_eq!(readout(&e, "status"), "collided");
+    // With the default gains the same line-up is no collision.
+    set(&mut e, &[("ka", 1.0), ("kr", 1.6)]);
+    run(&mut e, 60.0);
+    assert_ne!(e.run().unwrap().status, RunStatus::Collided);
+}
+
+#[test]
+fn potential_step_6_two_close_obstacles_trap_the_robot() {
+    let mut e = after_step(5);
+    set(&mut e, &[("ka", 1.0), ("kr", 1.6), ("rad", 0.4)]);
+    drag(&mut e, DVec2::new(3.0, 3.0), DVec2::new(4.0, 3.6));
+    drag(&mut e, DVec2::new(5.2, 2.2), DVec2::new(4.0, 2.4));
+    drag(&mut e, DVec2::new(7.2, 3.0), DVec2::new(7.4, 3.0));
+    assert_eq!(e.param("gx"), Some(7.4));
+    let t = run(&mut e, 60.0);
+    let r = *e.run().unwrap();
+    assert_eq!(r.status, RunStatus::Trapped, "{r:?}");
+    assert!(t < 15.0, "within a few seconds: {t}");
+    assert!(r.pose.x_m < 4.0, "in front of the gap: {r:?}");
+    assert!(e.status().text.starts_with("trapped in a local minimum"));
+    assert_eq!(e.status().phase, Phase::Ended);
+}
+
+#[test]
+fn potential_step_7_the_basin_map_loses_its_trapped_cells_below_ka_over_n() {
+    let mut e = after_step(6);
+    e.action("basin").unwrap();
+    assert!(readout(&e, "reach").starts_with("0.0% so far") || e.animating());
+    run(&mut e, 60.0);
+    let c = e.basin().unwrap().counts();
+    assert_eq!(c.pending, 0);
+    assert!(c.trapped > 20 && c.reaches_goal > 0, "{c:?}");
+    assert!(readout(&e, "reach").ends_with('%'));
+    e.set_param("kr", 0.45).unwrap();
+    assert!(e.field().params.trap_free(2));
+    assert_eq!(e.basin().unwrap().counts().pending, BASIN_COLS * BASIN_ROWS);
+    run(&mut e, 60.0);
+    let c = e.basin().unwrap().counts();
+    assert_eq!(c.pending, 0);
+    assert_eq!(c.trapped, 0, "{c:?}");
+    assert!(c.collided > 0, "{c:?}");
+}
+
+#[test]
+fn potential_step_8_the_link_reproduces_the_arrangement_and_its_run() {
+    let mut e = after_step(7);
+    let link = format(&e, Tab::Simulation);
+    assert!(link.contains("map=1"), "{link}");
+    let (mut fresh, notices) = restore(&link, PotentialFieldLab::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    run(&mut fresh, 60.0);
+    assert_eq!(observe(&fresh), observe(&e));
+    e.action("clear").unwrap();
+    assert!(e.basin().is_none());
+    assert!(!format(&e, Tab::Simulation).contains("map="));
+    assert!(!scene_of(&e)
+        .items
+        .iter()
+        .any(|i| matches!(i, Item::Raster { .. })));
+}
