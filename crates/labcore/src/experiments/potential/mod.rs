@@ -11,9 +11,12 @@
 //! and the direction of `F = F_att + Σ F_rep` is the desired heading of the
 //! same proportional unicycle controller as experiment 4 (Khatib, IJRR 5(1),
 //! 1986; Choset et al., *Principles of Robot Motion*, 2005, §4.1–4.2). A run
-//! ([`FieldRun`]) stops as *trapped* when its best distance to the goal has
-//! not improved by 5 cm in 5 s (Koren & Borenstein, ICRA 1991, §III), and
-//! always by 120 s.
+//! ([`FieldRun`]) stops as *trapped* only on the trap's evidence: for 5 s its
+//! best distance to the goal has not improved by 5 cm and it has stayed
+//! within 0.3 m of one spot (Koren & Borenstein, ICRA 1991, §III). A run also
+//! ends when the robot touches an obstacle, is pushed off the field, or at
+//! 120 s. With `N·k_r < k_a` no trap exists, and no obstacle stops a robot
+//! aimed at it ([`crate::mobile::potential_field::FieldParams::trap_free`]).
 //!
 //! **Basin map** (the "Basin map" action): every start cell of a
 //! [`BASIN_COLS`] × [`BASIN_ROWS`] grid over the field is classified by a
@@ -24,7 +27,9 @@
 //!
 //! Everything a student places is a parameter: the goal (`gx`, `gy`), the
 //! start (`sx`, `sy`), the obstacle count (`nobs`) and the obstacle centres
-//! (`o1x` … `o6y`), so a link reproduces the field and the run.
+//! (`o1x` … `o6y`); a shown basin map is `map=1`. So a link reproduces the
+//! field, the map and the run. Prompts and refusals are notices; the status
+//! is the run's state.
 
 use crate::experiment::{
     check_param, format_fixed, format_metres, with_coordinate, ActionSpec, Experiment, Input,

@@ -299,7 +299,8 @@ impl PotentialFieldLab {
                 "Closest approach to an obstacle",
                 run.map_or("--".into(), |r| {
                     if r.min_clearance_m.is_finite() {
-                        format_metres(r.min_clearance_m)
+                        // A collision ends the step just inside: touched is 0.
+                        format_metres(r.min_clearance_m.max(0.0))
                     } else {
                         "--".into()
                     }
