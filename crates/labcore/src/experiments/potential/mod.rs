@@ -21,7 +21,8 @@
 //! **Basin map** (the "Basin map" action): every start cell of a
 //! [`BASIN_COLS`] × [`BASIN_ROWS`] grid over the field is classified by a
 //! whole run from its centre ([`BasinMap`]) — reaches the goal, trapped,
-//! collided, timed out — [`BASIN_CELLS_PER_STEP`] cells per fixed step, so
+//! collided, pushed off the field, timed out — [`BASIN_CELLS_PER_STEP`]
+//! cells per fixed step, so
 //! the map fills in over about two seconds without a long frame. The share of
 //! free starts that reach the goal is a readout.
 //!
