@@ -131,7 +131,7 @@ test("potential: a goal behind two close obstacles is trapped in bounded time; t
     const early = await readouts(page);
     await page.waitForTimeout(400);
     assert.notEqual((await readouts(page)).goal, early.goal, "the robot approaches");
-    const status = await waitStatus(page, /trapped|reached|collided|stopped/, 30_000);
+    const status = await waitStatus(page, /trapped|reached|collided|stopped|pushed off/, 30_000);
     assert.match(status, /^trapped in a local minimum \d+\.\d{3} m from the goal$/);
     assert.equal((await readouts(page)).status, "trapped");
     assert.equal(await page.getAttribute(`${SIM} .sim-status`, "data-tone"), "bad");
@@ -142,6 +142,8 @@ test("potential: a goal behind two close obstacles is trapped in bounded time; t
 
     await page.click(`${SIM} button[data-action=basin]`);
     await page.waitForFunction(() => /so far/.test(document.querySelector("[data-readout=reach]").textContent));
+    // The shown map is part of the link.
+    await page.waitForFunction(() => /[?&]map=1(&|$)/.test(location.hash));
     await page.waitForFunction(() => /^\d+\.\d%$/.test(document.querySelector("[data-readout=reach]").textContent), null, {
       timeout: 20_000,
     });
@@ -158,15 +160,31 @@ test("potential: a goal behind two close obstacles is trapped in bounded time; t
     console.log(`potential frames while mapping (ms): p95 ${frames.p95}, max ${frames.max}`);
     assert.ok(frames.p95 < 12, `basin-map frames p95 ${frames.p95} ms`);
 
-    // Add an obstacle by clicking where it goes: it joins the link.
+    // Add an obstacle by clicking where it goes: it joins the link. (The
+    // prompt is a notice; the status keeps the run's state.)
     await page.click(`${SIM} button[data-action=add]`);
-    await waitStatus(page, /click where the new obstacle goes/);
     await clickWorld(page, 6, 1.2);
     await page.waitForFunction(() => document.querySelector("[data-readout=obstacles]").textContent === "3");
     await page.waitForFunction(() => /nobs=3/.test(location.hash) && /o3y=/.test(location.hash));
     const link = await linkParams(page);
     near(link.o3x, 6, "o3x");
     near(link.o3y, 1.2, "o3y");
+  }));
+
+test("potential: gains that push harder than the pull drive the robot off the field, and that is not called a trap", () =>
+  withPage(lab, {}, async (page) => {
+    // Issue 13's repro: it used to read "trapped in a local minimum 7.947 m
+    // from the goal" while the speed read 1.1 m/s.
+    await open(
+      lab,
+      page,
+      "#/potential/simulation?ka=0.1&kr=5&d0=3&rad=1.2&view=2&nobs=2&sx=0.6&sy=3&o1x=3&o1y=3.4&o2x=5.2&o2y=2.2&gx=7.5&gy=3",
+    );
+    const status = await waitStatus(page, /pushed off|trapped|reached|collided|stopped/, 30_000);
+    assert.match(status, /^pushed off the left edge of the field, \d+\.\d{3} m from the goal/);
+    const done = await readouts(page);
+    assert.equal(done.status, "left the field");
+    assert.equal(done.speed, "0.000 m/s");
   }));
 
 test("diffdrive on a touch screen: a tap drops a waypoint, a drag from it moves it, a swipe elsewhere scrolls", () =>

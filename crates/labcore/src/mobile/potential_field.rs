@@ -35,10 +35,20 @@
 //! methods and their inherent limitations for mobile robot navigation",
 //! *IEEE ICRA* 1991, pp. 1398–1404, §III: trap situations due to local
 //! minima, oscillations in narrow passages). [`TrapDetection`] declares a run
-//! [`RunStatus::Trapped`] when its best distance to the goal has not improved
-//! by `min_progress_m` for `window_s` seconds while still outside the arrival
-//! tolerance; every run also ends by `max_time_s`, so a run stops in bounded
-//! time whatever the field.
+//! [`RunStatus::Trapped`] only on the trap's own evidence, held over a window
+//! of `window_s` seconds: the best distance to the goal has not improved by
+//! `min_progress_m`, *and* the robot has stayed within `hold_radius_m` of one
+//! spot (it stalls, or rocks in place, where the forces balance). A robot
+//! that keeps driving without getting closer is not trapped; it runs on
+//! until it arrives, collides, leaves the field ([`FieldRunConfig::bounds`])
+//! or reaches `max_time_s`, so a run stops in bounded time whatever the field.
+//!
+//! **Bounded repulsion.** With the linear law each obstacle pushes with at
+//! most `k_r`, so `N` obstacles push with at most `N·k_r` in total, while the
+//! conic pull is `k_a` everywhere. When `N·k_r < k_a` the net force never
+//! vanishes away from the goal: no trap can exist, but neither is a robot
+//! heading straight at an obstacle stopped before the surface (that needs
+//! `k_r > k_a`). See `no_trap_when_the_pull_beats_every_push` below.
 //!
 //! **Basins.** [`BasinMap`] classifies the start cells of a grid — reaches the
 //! goal, trapped, inside an obstacle, … — a few cells per call, so a page can
@@ -97,7 +107,8 @@ impl CircleObstacle {
 /// Defaults: `k_a = 1`, `k_r = 1.6` (the spec's avoid gain), `d₀ = 1 m`, the
 /// spec's laws. With the linear law a robot cannot be pushed into an obstacle
 /// head-on as long as `k_r > k_a` (the largest repulsion, `k_r`, beats the
-/// conic pull `k_a`).
+/// conic pull `k_a`); with `N` obstacles and `N·k_r < k_a` the net force never
+/// vanishes away from the goal, so no trap exists ([`FieldParams::trap_free`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FieldParams {
     /// Attractive gain `k_a` (force units; per metre for the quadratic law).
@@ -108,6 +119,19 @@ pub struct FieldParams {
     pub influence_m: f64,
     pub attraction: Attraction,
     pub repulsion: Repulsion,
+}
+
+impl FieldParams {
+    /// With the conic attraction and the linear repulsion, `n` obstacles can
+    /// never cancel the pull: `n·k_r < k_a`, so `|F| ≥ k_a − n·k_r > 0` away
+    /// from the goal and no local minimum (no trap) exists. The price: no
+    /// obstacle can then stop a robot heading straight at it.
+    #[must_use]
+    pub fn trap_free(&self, n: usize) -> bool {
+        self.attraction == Attraction::Conic
+            && self.repulsion == Repulsion::Linear
+            && (n as f64) * self.k_rep.max(0.0) < self.k_att
+    }
 }
 
 impl Default for FieldParams {
@@ -310,6 +334,9 @@ pub struct TrapDetection {
     pub min_progress_m: f64,
     /// Hard limit on a run's duration, seconds.
     pub max_time_s: f64,
+    /// A trapped robot stays within this distance of one spot for the whole
+    /// window, metres (a robot that keeps driving is not trapped).
+    pub hold_radius_m: f64,
 }
 
 impl Default for TrapDetection {
@@ -318,6 +345,7 @@ impl Default for TrapDetection {
             window_s: 5.0,
             min_progress_m: 0.05,
             max_time_s: 120.0,
+            hold_radius_m: 0.3,
         }
     }
 }
@@ -332,6 +360,10 @@ pub struct FieldRunConfig {
     pub substeps: usize,
     /// Step used by [`run_to_end`] and [`BasinMap`], seconds.
     pub dt_s: f64,
+    /// The field's rectangle `(min, max)`, metres: a robot that ends a step
+    /// outside it has been pushed off the field ([`RunStatus::LeftField`]).
+    /// `None`: the plane is unbounded.
+    pub bounds: Option<(DVec2, DVec2)>,
 }
 
 impl Default for FieldRunConfig {
@@ -342,6 +374,7 @@ impl Default for FieldRunConfig {
             integrator: Integrator::Euler,
             substeps: 1,
             dt_s: 0.02,
+            bounds: None,
         }
     }
 }
@@ -353,8 +386,12 @@ pub enum RunStatus {
     Running,
     /// Within the controller's tolerance of the goal.
     Reached,
-    /// No progress over the detection window, away from the goal.
+    /// No progress over the detection window while staying within
+    /// [`TrapDetection::hold_radius_m`] of one spot, away from the goal.
     Trapped,
+    /// The robot ended a step outside [`FieldRunConfig::bounds`]: the
+    /// repulsion pushed it off the field.
+    LeftField,
     /// The robot ended a step inside an obstacle.
     Collided,
     /// The start pose lies inside an obstacle.
@@ -384,6 +421,11 @@ pub struct FieldRun {
     pub best_distance_m: f64,
     /// When `best_distance_m` last improved by at least `min_progress_m`, seconds.
     pub last_progress_s: f64,
+    /// The spot the robot has stayed near (within
+    /// [`TrapDetection::hold_radius_m`]) since `anchor_s`.
+    pub anchor: DVec2,
+    /// Since when the robot has stayed near `anchor`, seconds.
+    pub anchor_s: f64,
     /// Smallest clearance to an obstacle so far, metres.
     pub min_clearance_m: f64,
     /// Net force at the pose of the last step.
@@ -414,6 +456,8 @@ impl FieldRun {
             path_length_m: 0.0,
             best_distance_m: d,
             last_progress_s: 0.0,
+            anchor: p,
+            anchor_s: 0.0,
             min_clearance_m: clearance,
             last_force: DVec2::ZERO,
             last_repulsion: DVec2::ZERO,
@@ -474,11 +518,23 @@ impl FieldRun {
             self.best_distance_m = d;
             self.last_progress_s = self.time_s;
         }
+        let held = (q - self.anchor).length() <= trap.hold_radius_m; // false for NaN
+        if !held {
+            self.anchor = q;
+            self.anchor_s = self.time_s;
+        }
+        let outside = config
+            .bounds
+            .is_some_and(|(lo, hi)| !(q.x >= lo.x && q.x <= hi.x && q.y >= lo.y && q.y <= hi.y));
         self.status = if clearance <= 0.0 {
             RunStatus::Collided
         } else if d <= config.controller.tolerance_m {
             RunStatus::Reached
-        } else if self.time_s - self.last_progress_s >= trap.window_s {
+        } else if outside {
+            RunStatus::LeftField
+        } else if self.time_s - self.last_progress_s >= trap.window_s
+            && self.time_s - self.anchor_s >= trap.window_s
+        {
             RunStatus::Trapped
         } else if self.time_s >= trap.max_time_s {
             RunStatus::TimedOut
@@ -543,6 +599,8 @@ pub enum BasinClass {
     InsideObstacle,
     Collided,
     TimedOut,
+    /// Pushed off the field ([`RunStatus::LeftField`]).
+    LeftField,
 }
 
 impl From<RunStatus> for BasinClass {
@@ -554,6 +612,7 @@ impl From<RunStatus> for BasinClass {
             RunStatus::Collided => BasinClass::Collided,
             RunStatus::StartInsideObstacle => BasinClass::InsideObstacle,
             RunStatus::TimedOut => BasinClass::TimedOut,
+            RunStatus::LeftField => BasinClass::LeftField,
         }
     }
 }
@@ -570,6 +629,7 @@ pub struct BasinCounts {
     pub inside_obstacle: usize,
     pub collided: usize,
     pub timed_out: usize,
+    pub left_field: usize,
 }
 
 /// Basin-of-attraction map: for each cell centre of a grid over
@@ -684,6 +744,7 @@ impl BasinMap {
                 BasinClass::InsideObstacle => c.inside_obstacle += 1,
                 BasinClass::Collided => c.collided += 1,
                 BasinClass::TimedOut => c.timed_out += 1,
+                BasinClass::LeftField => c.left_field += 1,
             }
         }
         c
@@ -694,7 +755,7 @@ impl BasinMap {
     #[must_use]
     pub fn reach_share(&self) -> f64 {
         let c = self.counts();
-        let free = c.reaches_goal + c.trapped + c.collided + c.timed_out;
+        let free = c.reaches_goal + c.trapped + c.collided + c.timed_out + c.left_field;
         if free == 0 {
             0.0
         } else {
@@ -918,6 +979,94 @@ mod tests {
         map.restart();
         assert_eq!(map.counts().pending, 14 * 12);
         assert_eq!(map.reach_share(), 0.0);
+    }
+
+    /// Issue 15: with `N·k_r < k_a` the pull beats every combination of
+    /// pushes, so the force never vanishes away from the goal and no start
+    /// ends trapped; but a robot heading at an obstacle is not stopped
+    /// before its surface either.
+    #[test]
+    fn no_trap_when_the_pull_beats_every_push() {
+        let mut field = two_obstacle_trap();
+        field.params.k_att = 2.0;
+        field.params.k_rep = 0.9;
+        assert!(field.params.trap_free(2));
+        let floor = 2.0 - 2.0 * 0.9;
+        let mut rng = Lcg64::new(3);
+        for _ in 0..2000 {
+            let p = DVec2::new(rng.range(-4.0, 5.0), rng.range(-3.0, 3.0));
+            if field.inside_obstacle(p) || (p - field.goal).length() < 1e-9 {
+                continue;
+            }
+            assert!(field.force(p).length() >= floor - 1e-12, "{p}");
+        }
+        let config = FieldRunConfig {
+            dt_s: 0.05,
+            ..FieldRunConfig::default()
+        };
+        let mut map = BasinMap::new(DVec2::new(-4.0, -3.0), DVec2::new(3.0, 3.0), 14, 12).unwrap();
+        map.advance(&field, &config, usize::MAX);
+        let c = map.counts();
+        assert_eq!(c.trapped, 0, "{c:?}");
+        assert!(c.collided > 0, "{c:?}");
+        // Head-on at the gap's line through obstacle 1's centre: it touches.
+        let run = run_to_end(&field, &config, Pose::new(-3.0, 0.6, 0.0));
+        assert_eq!(run.status, RunStatus::Collided, "{run:?}");
+        // The default gains (k_r > k_a) stop the same robot short of the surface.
+        let mut strong = field.clone();
+        strong.params = FieldParams::default();
+        assert!(!strong.params.trap_free(2));
+        let run = run_to_end(&strong, &config, Pose::new(-3.0, 0.6, 0.0));
+        assert_ne!(run.status, RunStatus::Collided, "{run:?}");
+        assert!(run.min_clearance_m > 0.0);
+    }
+
+    /// Issue 13: a robot that keeps driving without getting closer to the
+    /// goal is not trapped (it was, after 5 s, at 1.1 m/s); leaving the
+    /// field's rectangle is its own outcome.
+    #[test]
+    fn driving_away_is_not_a_trap_and_leaving_the_field_is_its_own_end() {
+        let mut field = PotentialField::new(
+            DVec2::new(7.5, 3.0),
+            vec![
+                CircleObstacle::new(DVec2::new(3.0, 3.4), 1.2),
+                CircleObstacle::new(DVec2::new(5.2, 2.2), 1.2),
+            ],
+        );
+        field.params.k_att = 0.1;
+        field.params.k_rep = 5.0;
+        field.params.influence_m = 3.0;
+        let start = Pose::new(0.6, 3.0, 0.0);
+        let unbounded = FieldRunConfig::default();
+        let mut run = FieldRun::new(start, &field);
+        let mut moving_after_window = false;
+        while run.time_s < 8.0 && !run.step(&field, &unbounded, 0.02).is_final() {
+            if run.time_s > unbounded.trap.window_s && run.last_command.v_mps > 0.5 {
+                moving_after_window = true;
+            }
+        }
+        assert!(moving_after_window, "{run:?}");
+        assert_ne!(run.status, RunStatus::Trapped, "{run:?}");
+        let bounded = FieldRunConfig {
+            bounds: Some((DVec2::ZERO, DVec2::new(8.0, 6.0))),
+            ..unbounded
+        };
+        let run = run_to_end(&field, &bounded, start);
+        assert_eq!(run.status, RunStatus::LeftField, "{run:?}");
+        let q = run.pose.position();
+        assert!(q.x < 0.0 || q.y < 0.0 || q.x > 8.0 || q.y > 6.0, "{q}");
+        assert_eq!(BasinClass::from(run.status), BasinClass::LeftField);
+    }
+
+    /// A trapped run stayed near one spot for the whole window.
+    #[test]
+    fn a_trap_holds_the_robot_near_one_spot() {
+        let field = two_obstacle_trap();
+        let config = FieldRunConfig::default();
+        let run = run_to_end(&field, &config, Pose::new(-4.0, 0.0, 0.0));
+        assert_eq!(run.status, RunStatus::Trapped);
+        assert!(run.time_s - run.anchor_s >= config.trap.window_s);
+        assert!((run.pose.position() - run.anchor).length() <= config.trap.hold_radius_m);
     }
 
     #[test]

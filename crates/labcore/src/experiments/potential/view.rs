@@ -1,0 +1,366 @@
+//! What the potential-field lab shows: the scene, the readouts and the
+//! status badge. Everything here only reads the state.
+
+use super::*;
+
+impl PotentialFieldLab {
+    pub(super) fn status_of_run(&self) -> Status {
+        let Some(run) = self.run else {
+            return Status::new("click to set a goal", Tone::Neutral);
+        };
+        if self.goal_inside_obstacle() {
+            return Status::new(
+                "the goal is inside an obstacle: move the goal or the obstacle",
+                Tone::Bad,
+            );
+        }
+        let p = run.pose.position();
+        let to_goal = format_metres((self.field.goal - p).length());
+        match run.status {
+            RunStatus::Running => Status::new("running", Tone::Neutral),
+            RunStatus::Reached => Status::ended(
+                format!("reached the goal in {} s", format_fixed(run.time_s, 1)),
+                Tone::Good,
+            ),
+            // The run's own evidence: no progress and held near one spot
+            // for the whole detection window (see `TrapDetection`).
+            RunStatus::Trapped => Status::ended(
+                format!("trapped in a local minimum {to_goal} from the goal"),
+                Tone::Bad,
+            ),
+            RunStatus::LeftField => Status::ended(
+                format!(
+                    "pushed off the {} edge of the field, {to_goal} from the goal: the pushes outweigh the pull",
+                    edge_name(p)
+                ),
+                Tone::Bad,
+            ),
+            RunStatus::Collided => Status::ended("collided with an obstacle", Tone::Bad),
+            RunStatus::StartInsideObstacle => Status::new(
+                "the start is inside an obstacle: drag the start or the obstacle away",
+                Tone::Bad,
+            ),
+            RunStatus::TimedOut => Status::ended(
+                format!(
+                    "stopped after {} s without arriving",
+                    format_fixed(run.time_s, 0)
+                ),
+                Tone::Warning,
+            ),
+        }
+    }
+
+    /// Potential over the field, scaled into `(0, 1]` for the heat map:
+    /// darker is higher, and alternate bands of [`HEAT_BANDS`] equal steps of
+    /// `U` are shaded a little darker, so the level sets (which bend around
+    /// the obstacles' small hills) show even where the goal's cone dominates.
+    pub(super) fn heat_values(&self) -> Vec<f32> {
+        let mut field = self.field.clone();
+        if self.goal.is_none() {
+            field.params.k_att = 0.0;
+        }
+        let u = field.potential_map(
+            DVec2::ZERO,
+            DVec2::new(FIELD_W_M, FIELD_H_M),
+            HEAT_COLS,
+            HEAT_ROWS,
+        );
+        let lo = u.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = u.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let span = (hi - lo).max(1e-12);
+        u.iter()
+            .map(|v| {
+                let t = ((v - lo) / span).clamp(0.0, 1.0);
+                let band = (t * HEAT_BANDS as f64).floor() as u64 % 2;
+                (0.02 + 0.5 * t + 0.18 * band as f64) as f32
+            })
+            .collect()
+    }
+
+    pub(super) fn field_arrows(&self) -> Vec<(DVec2, DVec2)> {
+        let mut field = self.field.clone();
+        if self.goal.is_none() {
+            field.params.k_att = 0.0;
+        }
+        let reference = (field.params.k_att + field.params.k_rep).max(1e-9);
+        let mut arrows = Vec::new();
+        let cols = (FIELD_W_M / ARROW_SPACING_M) as usize;
+        let rows = (FIELD_H_M / ARROW_SPACING_M) as usize;
+        for r in 0..rows {
+            for c in 0..cols {
+                let p = DVec2::new(
+                    (c as f64 + 0.5) * ARROW_SPACING_M,
+                    (r as f64 + 0.5) * ARROW_SPACING_M,
+                );
+                if field.inside_obstacle(p) {
+                    continue;
+                }
+                let f = field.force(p);
+                let len = 0.8 * ARROW_SPACING_M * (f.length() / reference).min(1.0);
+                if len < 0.02 {
+                    continue;
+                }
+                let half = f.normalize_or_zero() * 0.5 * len;
+                arrows.push((p - half, p + half));
+            }
+        }
+        arrows
+    }
+
+    /// The display list (the trait's `scene` delegates here).
+    pub(super) fn draw_scene(&self, out: &mut Scene) {
+        if let (Some(map), true) = (&self.basin, self.goal.is_some()) {
+            out.push(Item::Raster {
+                min: map.min,
+                cell_m: (map.max.x - map.min.x) / map.cols as f64,
+                cols: map.cols,
+                rows: map.rows,
+                cells: map.cells.iter().map(|c| basin_state(*c)).collect(),
+                palette: BASIN_PALETTE.to_vec(),
+            });
+        } else if self.view == 2 {
+            out.push(Item::Heatmap {
+                min: DVec2::ZERO,
+                cell_m: FIELD_W_M / HEAT_COLS as f64,
+                cols: HEAT_COLS,
+                rows: HEAT_ROWS,
+                values: self.heat_values(),
+                role: Role::Sample,
+            });
+        }
+        draw_field(out, FIELD_W_M, FIELD_H_M);
+        out.push(Item::ScaleBar);
+        if self.view == 1 {
+            out.push(Item::Arrows {
+                arrows: self.field_arrows(),
+                width_px: 1.2,
+                role: Role::Bound,
+            });
+        }
+        for o in &self.field.obstacles {
+            out.push(Item::Circle {
+                center: o.centre,
+                radius_m: o.radius_m + self.field.params.influence_m,
+                role: Role::Bound,
+                fill: false,
+                dashed: true,
+            });
+            out.push(Item::Circle {
+                center: o.centre,
+                radius_m: o.radius_m,
+                role: Role::Obstacle,
+                fill: true,
+                dashed: false,
+            });
+        }
+        out.push(Item::Circle {
+            center: self.start,
+            radius_m: 0.12,
+            role: Role::Ghost,
+            fill: false,
+            dashed: true,
+        });
+        out.push(Item::Label {
+            pos: self.start,
+            text: "start".into(),
+            role: Role::Text,
+            offset_px: DVec2::new(-14.0, 22.0),
+        });
+        if let Some(g) = self.goal {
+            let role = if self.goal_inside_obstacle() {
+                Role::Warning
+            } else {
+                Role::Target
+            };
+            out.push(Item::Dot {
+                center: g,
+                radius_px: 7.0,
+                role,
+            });
+            out.push(Item::Label {
+                pos: g,
+                text: "goal".into(),
+                role: Role::Text,
+                offset_px: DVec2::new(-14.0, -20.0),
+            });
+        }
+        if self.trail.len() > 1 {
+            out.push(Item::Polyline {
+                points: self.trail.clone(),
+                width_px: 2.5,
+                role: Role::Path,
+                dashed: false,
+                closed: false,
+            });
+        }
+        let pose = self.run.map_or(self.start_pose(), |r| r.pose);
+        draw_robot(out, pose, 0.3);
+        if let Some(run) = self.run {
+            let p = pose.position();
+            let force = self.field.force(p);
+            let rep = self.field.repulsive_force(p);
+            if force.length() > 1e-6 {
+                out.push(Item::Arrow {
+                    from: p,
+                    to: p + force * FORCE_SCALE_M,
+                    width_px: 2.5,
+                    role: Role::Accent,
+                });
+            }
+            if rep.length() > 1e-6 {
+                out.push(Item::Arrow {
+                    from: p,
+                    to: p + rep * FORCE_SCALE_M,
+                    width_px: 1.5,
+                    role: Role::Warning,
+                });
+            }
+            let label = match run.status {
+                RunStatus::Trapped => Some("trapped"),
+                RunStatus::LeftField => Some("off the field"),
+                _ => None,
+            };
+            if let Some(text) = label {
+                out.push(Item::Label {
+                    pos: p,
+                    text: text.into(),
+                    role: Role::Warning,
+                    offset_px: DVec2::new(12.0, 16.0),
+                });
+            }
+        }
+    }
+
+    /// The live numbers beside the canvas.
+    pub(super) fn readout_list(&self) -> Vec<Readout> {
+        let run = self.run;
+        let p = run.map_or(self.start, |r| r.pose.position());
+        let rep = self.field.repulsive_force(p).length();
+        // A run that has ended has stopped the robot.
+        let speed = run.map_or(0.0, |r| {
+            if r.status.is_final() {
+                0.0
+            } else {
+                r.last_command.v_mps
+            }
+        });
+        let reach = match &self.basin {
+            Some(map) if self.goal.is_some() => {
+                let share = format!("{}%", format_fixed(100.0 * map.reach_share(), 1));
+                if map.is_complete() {
+                    share
+                } else {
+                    format!(
+                        "{share} so far ({} of {} starts)",
+                        map.cells.len() - map.counts().pending,
+                        map.cells.len()
+                    )
+                }
+            }
+            _ => "--".into(),
+        };
+        vec![
+            Readout::new(
+                "speed",
+                "Speed v",
+                format!("{} m/s", format_fixed(speed, 3)),
+            ),
+            Readout::new("rep", "Repulsive force |F_rep|", format_fixed(rep, 3)),
+            Readout::new("obstacles", "Obstacles", self.count.to_string()),
+            Readout::new(
+                "goal",
+                "Goal distance",
+                self.goal
+                    .map_or("--".into(), |g| format_metres((g - p).length())),
+            ),
+            Readout::new(
+                "status",
+                "Status",
+                match run.map(|r| r.status) {
+                    None => "no goal",
+                    Some(_) if self.goal_inside_obstacle() => "goal blocked",
+                    Some(RunStatus::Running) => "running",
+                    Some(RunStatus::Reached) => "reached",
+                    Some(RunStatus::Trapped) => "trapped",
+                    Some(RunStatus::Collided) => "collided",
+                    Some(RunStatus::StartInsideObstacle) => "start blocked",
+                    Some(RunStatus::TimedOut) => "timed out",
+                    Some(RunStatus::LeftField) => "left the field",
+                },
+            ),
+            Readout::new(
+                "time",
+                "Time",
+                format!("{} s", format_fixed(run.map_or(0.0, |r| r.time_s), 2)),
+            ),
+            Readout::metres("path", "Path length", run.map_or(0.0, |r| r.path_length_m)),
+            Readout::new(
+                "clearance",
+                "Closest approach to an obstacle",
+                run.map_or("--".into(), |r| {
+                    if r.min_clearance_m.is_finite() {
+                        // A collision ends the step just inside: touched is 0.
+                        format_metres(r.min_clearance_m.max(0.0))
+                    } else {
+                        "--".into()
+                    }
+                }),
+            ),
+            Readout::new("reach", "Starts that reach the goal", reach),
+        ]
+    }
+
+    /// The status badge: the run's state only (prompts and refusals are
+    /// notices).
+    pub(super) fn current_status(&self) -> Status {
+        self.status_of_run()
+    }
+}
+
+/// Which edge of the field a point beyond it lies past.
+fn edge_name(p: DVec2) -> &'static str {
+    if p.x < 0.0 {
+        "left"
+    } else if p.x > FIELD_W_M {
+        "right"
+    } else if p.y < 0.0 {
+        "bottom"
+    } else {
+        "top"
+    }
+}
+
+/// Raster state of a basin class (0 = transparent).
+fn basin_state(c: BasinClass) -> u8 {
+    match c {
+        BasinClass::Pending | BasinClass::InsideObstacle => 0,
+        BasinClass::ReachesGoal => 1,
+        BasinClass::Trapped => 2,
+        BasinClass::Collided => 3,
+        BasinClass::TimedOut => 4,
+        BasinClass::LeftField => 5,
+    }
+}
+
+const BASIN_PALETTE: [RasterColour; 5] = [
+    RasterColour {
+        role: Role::Sample,
+        alpha: 0.35,
+    },
+    RasterColour {
+        role: Role::Warning,
+        alpha: 0.5,
+    },
+    RasterColour {
+        role: Role::Obstacle,
+        alpha: 0.45,
+    },
+    RasterColour {
+        role: Role::Estimate,
+        alpha: 0.4,
+    },
+    RasterColour {
+        role: Role::Visited,
+        alpha: 0.45,
+    },
+];
