@@ -318,11 +318,9 @@ fn basin_map_progresses_completes_and_agrees_with_runs() {
 }
 
 /// One step of the basin map costs at most `BASIN_CELLS_PER_STEP` runs
-/// of at most `BASIN_MAX_TIME_S / BASIN_DT_S` = 1200 field steps each.
-/// Timed natively on the trap field, step + scene per frame: the median
-/// (robust to other processes on a shared machine) stays far under a
-/// frame. Measured natively on an idle core: about 0.1 ms median and
-/// 0.2 ms worst in release, ~8× that in a debug build.
+/// of at most `BASIN_MAX_TIME_S / BASIN_DT_S` = 1200 field steps each: a
+/// bound on the work per frame that holds on any machine. (Milliseconds are
+/// printed, never asserted: `cargo xtask bench --browser` reports frames.)
 #[test]
 fn basin_step_cost_is_bounded() {
     let mut e = trap();
@@ -336,11 +334,10 @@ fn basin_step_cost_is_bounded() {
         e.scene(&mut scene);
         times.push(t0.elapsed().as_secs_f64() * 1e3);
     }
+    assert!(!times.is_empty());
     times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
     let worst = times[times.len() - 1];
-    let bound = if cfg!(debug_assertions) { 40.0 } else { 3.0 };
-    assert!(median < bound, "median {median:.3} ms, worst {worst:.3} ms");
     // Structural bound, independent of the machine: every basin run ends by its hard limit.
     assert!(BASIN_CELLS_PER_STEP as f64 * BASIN_MAX_TIME_S / BASIN_DT_S <= 12_000.0);
     eprintln!("basin step + scene: median {median:.3} ms, worst {worst:.3} ms");
