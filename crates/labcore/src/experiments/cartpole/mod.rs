@@ -13,7 +13,9 @@
 //! pushes the cart toward `+x`, under a pole leaning that way). The force is
 //! computed once per control period and held (zero-order hold), clipped to
 //! the force limit, while the equations are integrated in [`SUBSTEPS`]
-//! sub-steps of explicit Euler (the CartPole-v1 update) or RK4.
+//! sub-steps of explicit Euler (the CartPole-v1 update rule, here with four
+//! sub-steps per period and end stops, so not the benchmark step for step)
+//! or RK4.
 //!
 //! **Linear against nonlinear.** Beside the real pole, the linearised model
 //! `ṡ = A s + B F` ([`LinearModel`]) runs from the same start under the same
@@ -29,8 +31,14 @@
 //! is applied.
 //!
 //! **Energy** `E = ½(M + m)ẋ² + m l ẋ θ̇ cos θ + ⅔ m l² θ̇² + m g l cos θ`
-//! is plotted; with control off it stays flat under RK4 and creeps under
-//! Euler.
+//! is plotted as its relative change `(E − E₀)/E₀` in percent; with control
+//! off (and the "never" fall rule, so the pole swings through) it stays flat
+//! under RK4 and climbs under Euler.
+//!
+//! **Rest.** A run is at rest when stepping cannot change it visibly: control
+//! on, the linear closed loop stable and every state variable within
+//! [`QUIET`] of zero, or control off with the pole exactly upright and still.
+//! A step at rest changes nothing, so the Step button and Play agree.
 
 use crate::control::cartpole::{
     closed_loop_eigenvalues, lqr_feedback, open_loop_eigenvalues, CartPole, CartPoleParams,
@@ -39,8 +47,8 @@ use crate::control::cartpole::{
 };
 use crate::control::{Complex, Stability};
 use crate::experiment::{
-    check_param, format_fixed, ActionSpec, Experiment, Input, ParamError, ParamSpec, Readout,
-    Sanitized, Status, Tone,
+    check_param, format_fixed, ActionSpec, Experiment, Input, Notice, Notices, ParamError,
+    ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{format_number, Draw, Generator};
@@ -48,8 +56,12 @@ use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
 use glam::DVec2;
 
-const INTEGRATORS: &[&str] = &["Euler (CartPole-v1)", "RK4"];
-const CRITERIA: &[&str] = &["|θ| > 90°", "|θ| > 12° or |x| > 2.4 m (CartPole-v1)"];
+const INTEGRATORS: &[&str] = &["Euler (4 sub-steps)", "RK4 (4 sub-steps)"];
+const CRITERIA: &[&str] = &[
+    "|θ| > 90°",
+    "|θ| > 12° or |x| > 2.4 m (CartPole-v1)",
+    "never (the pole swings through)",
+];
 
 const PARAMS: &[ParamSpec] = &[
     ParamSpec::slider("kth", "kθ", "N/rad", 0.0, 600.0, 0.1, 120.0),
@@ -61,11 +73,13 @@ const PARAMS: &[ParamSpec] = &[
     ParamSpec::choice("integ", "Integrator", INTEGRATORS, 0),
     ParamSpec::choice("fall", "Fallen when", CRITERIA, 0),
     ParamSpec::slider("flim", "Force limit", "N", 1.0, 100.0, 1.0, 30.0),
-    ParamSpec::slider("qx", "LQR weight q_x", "", 0.0, 100.0, 0.1, 1.0),
-    ParamSpec::slider("qv", "LQR weight q_ẋ", "", 0.0, 100.0, 0.1, 1.0),
-    ParamSpec::slider("qth", "LQR weight q_θ", "", 0.0, 100.0, 0.1, 10.0),
-    ParamSpec::slider("qom", "LQR weight q_θ̇", "", 0.0, 100.0, 0.1, 1.0),
-    ParamSpec::slider("r", "LQR weight R", "", 0.01, 10.0, 0.01, 0.1),
+    // q_x > 0: with the cart position unweighted, (A, Q^½) is not detectable
+    // and the Riccati equation has no stabilising solution.
+    ParamSpec::slider("qx", "LQR weight q_x", "", 0.1, 100.0, 0.1, 1.0).in_group("LQR weights"),
+    ParamSpec::slider("qv", "LQR weight q_ẋ", "", 0.0, 100.0, 0.1, 1.0).in_group("LQR weights"),
+    ParamSpec::slider("qth", "LQR weight q_θ", "", 0.0, 100.0, 0.1, 10.0).in_group("LQR weights"),
+    ParamSpec::slider("qom", "LQR weight q_θ̇", "", 0.0, 100.0, 0.1, 1.0).in_group("LQR weights"),
+    ParamSpec::slider("r", "LQR weight R", "", 0.01, 10.0, 0.01, 0.1).in_group("LQR weights"),
 ];
 
 const ACTIONS: &[ActionSpec] = &[
@@ -97,12 +111,21 @@ const WINDOW_S: f64 = 20.0;
 pub const KEEP_S: f64 = 60.0;
 /// Balanced: everything this close to zero (rad, rad/s, m, m/s) with control on.
 const QUIET: f64 = 1e-4;
+/// The status judges the last this many seconds of the run.
+const STATUS_WINDOW_S: f64 = 3.0;
+/// "Balancing" needs |θ| within this over [`STATUS_WINDOW_S`] (°)…
+const SWING_DEG: f64 = 8.0;
+/// …and |x| within this (m).
+const DRIFT_M: f64 = 1.0;
+/// The energy plot spans at least ± this (%), so round-off never fills it.
+const ENERGY_MIN_SPAN_PCT: f64 = 0.1;
 
 /// Drawing: cart body, pivot height and track.
 const CART_HALF_W_M: f64 = 0.25;
 const CART_BOTTOM_M: f64 = 0.06;
 const PIVOT_Y_M: f64 = 0.3;
-const VIEW_MIN: DVec2 = DVec2::new(-3.0, -0.5);
+/// Low enough for a pole hanging below the rail (the "never" fall rule).
+const VIEW_MIN: DVec2 = DVec2::new(-3.0, -0.8);
 const VIEW_MAX: DVec2 = DVec2::new(3.0, 1.5);
 /// Force arrow length per newton (m).
 const ARROW_M_PER_N: f64 = 0.02;
@@ -138,7 +161,8 @@ pub struct CartPoleBalance {
     /// Energy at the start of the run (J).
     start_energy_j: f64,
     dragging: bool,
-    /// θ (nonlinear and linear), x (both), force, energy.
+    notices: Notices,
+    /// θ (nonlinear and linear), x (both), force, energy change.
     plots: [Plot; 4],
 }
 
@@ -178,10 +202,10 @@ fn new_plots() -> [Plot; 4] {
         )),
         live(Plot::new(
             "energy",
-            "Total mechanical energy",
+            "Energy change (E − E₀)/E₀",
             time,
-            ("E", "J"),
-            vec![Series::new("E", "J", SeriesRole::Quaternary)],
+            ("ΔE/E₀", "%"),
+            vec![Series::new("(E − E₀)/E₀", "%", SeriesRole::Quaternary)],
         )),
     ]
 }
@@ -211,6 +235,7 @@ impl Default for CartPoleBalance {
             max_gap_rad: 0.0,
             start_energy_j: 0.0,
             dragging: false,
+            notices: Notices::default(),
             plots: new_plots(),
         };
         exp.sim.gains = StateFeedback {
@@ -284,10 +309,13 @@ impl CartPoleBalance {
     }
 
     fn criterion(&self) -> FallCriterion {
-        if self.fall_choice == 1 {
-            FallCriterion::benchmark()
-        } else {
-            FallCriterion::horizontal()
+        match self.fall_choice {
+            1 => FallCriterion::benchmark(),
+            2 => FallCriterion {
+                angle_limit_rad: f64::INFINITY,
+                x_limit_m: f64::INFINITY,
+            },
+            _ => FallCriterion::horizontal(),
         }
     }
 
@@ -321,9 +349,16 @@ impl CartPoleBalance {
         ];
         self.plots[3].ref_lines = vec![RefLine {
             axis: Axis::Y,
-            value: self.start_energy_j,
-            label: "E at start".into(),
+            value: 0.0,
+            label: "E = E₀".into(),
         }];
+        self.plots[3].bands = vec![Band {
+            axis: Axis::Y,
+            lo: -ENERGY_MIN_SPAN_PCT,
+            hi: ENERGY_MIN_SPAN_PCT,
+            label: format!("within ±{ENERGY_MIN_SPAN_PCT} % of E₀"),
+        }];
+        self.notices.clear();
         self.record(false);
         self.check_status();
     }
@@ -332,13 +367,14 @@ impl CartPoleBalance {
     fn record(&mut self, saturated: bool) {
         let t = self.sim.time_s;
         let s = self.sim.state;
+        let energy_pct = self.energy_change_pct();
         let [angle, position, force, energy] = &mut self.plots;
         angle.series[0].push(t, s.theta_rad.to_degrees());
         angle.series[1].push(t, self.linear.theta_rad.to_degrees());
         position.series[0].push(t, s.x_m);
         position.series[1].push(t, self.linear.x_m);
         force.series[0].push(t, self.sim.last_force_n());
-        energy.series[0].push(t, self.sim.energy_j());
+        energy.series[0].push(t, energy_pct);
         if saturated {
             let from = t - CONTROL_PERIOD_S;
             match force.bands.last_mut() {
@@ -364,7 +400,7 @@ impl CartPoleBalance {
                     series.x.drain(..cut);
                     series.y.drain(..cut);
                 }
-                plot.bands.retain(|b| b.hi >= oldest);
+                plot.bands.retain(|b| b.axis == Axis::Y || b.hi >= oldest);
             }
             plot.touch();
         }
@@ -421,7 +457,14 @@ impl CartPoleBalance {
 
     /// A push on the pole: `±`[`NUDGE_RAD_S`] added to θ̇ of both models.
     fn nudge(&mut self, direction: f64) {
-        if self.run != Run::Going || direction == 0.0 || !direction.is_finite() {
+        if direction == 0.0 || !direction.is_finite() {
+            return;
+        }
+        if self.run != Run::Going {
+            self.notices.post(
+                "the run has ended: press Reset to start again",
+                Tone::Warning,
+            );
             return;
         }
         let dw = NUDGE_RAD_S.copysign(direction);
@@ -451,9 +494,53 @@ impl CartPoleBalance {
         let _ = self.set_param("th0", deg);
     }
 
-    fn quiet(&self) -> bool {
+    /// `(E − E₀)/E₀` in percent (E₀ = m g l cos θ₀ > 0 for |θ₀| ≤ 60°).
+    fn energy_change_pct(&self) -> f64 {
+        let e0 = self.start_energy_j;
+        if e0.abs() < 1e-12 {
+            return 0.0;
+        }
+        100.0 * (self.sim.energy_j() - e0) / e0
+    }
+
+    /// Nothing can change visibly: control on, a stable linear closed loop and
+    /// both models within [`QUIET`] of upright at the centre; or control off
+    /// with the pole exactly upright and everything still (an unstable
+    /// equilibrium that only a nudge disturbs).
+    fn at_rest(&self) -> bool {
         let s = self.sim.state;
-        self.sim.control_enabled && s.to_array().iter().all(|v| v.abs() < QUIET)
+        if !self.sim.control_enabled {
+            let l = self.linear;
+            return s.theta_rad == 0.0
+                && s.omega_rad_s == 0.0
+                && s.v_m_s == 0.0
+                && l.theta_rad == 0.0
+                && l.omega_rad_s == 0.0
+                && l.v_m_s == 0.0;
+        }
+        let small = |c: &CartPoleState| c.to_array().iter().all(|v| v.abs() < QUIET);
+        small(&s)
+            && small(&self.linear)
+            && closed_loop_eigenvalues(&self.sim.params, &self.sim.gains)
+                .is_ok_and(|z| z.iter().all(|p| p.re < 0.0))
+    }
+
+    /// Largest `|θ|` (°) and `|x|` (m) over the last [`STATUS_WINDOW_S`].
+    fn recent_peaks(&self) -> (f64, f64) {
+        let from = self.sim.time_s - STATUS_WINDOW_S;
+        let peak = |series: &Series, angle: bool| {
+            let wrap = |v: f64| if angle { view::wrap_deg(v) } else { v };
+            series
+                .x
+                .iter()
+                .zip(&series.y)
+                .rev()
+                .take_while(|(t, _)| **t >= from - 1e-9)
+                .fold(0.0_f64, |m, (_, v)| m.max(wrap(*v).abs()))
+        };
+        let (angle, position) = (&self.plots[0].series[0], &self.plots[1].series[0]);
+        // Angles are judged within (−180°, 180°]; positions as they are.
+        (peak(angle, true), peak(position, false))
     }
 }
 
@@ -552,11 +639,19 @@ impl Experiment for CartPoleBalance {
             "nudge" => self.nudge(1.0),
             "drop" => self.sim.control_enabled = false,
             "catch" => self.sim.control_enabled = true,
-            "lqr" => {
-                if let Some(k) = self.lqr_proposal() {
+            "lqr" => match self.lqr_proposal() {
+                Some(k) => {
                     self.sim.gains = k;
+                    self.notices.post(
+                        format!("LQR gains applied: {}", view::gains_text(&k)),
+                        Tone::Good,
+                    );
                 }
-            }
+                None => self.notices.post(
+                    "no stabilising LQR solution for these weights: weight the cart position",
+                    Tone::Warning,
+                ),
+            },
             _ => return Err(ParamError::UnknownAction { key: key.into() }),
         }
         Ok(())
@@ -584,8 +679,10 @@ impl Experiment for CartPoleBalance {
         }
     }
 
+    /// A step at rest changes nothing (see [`CartPoleBalance::animating`]), so
+    /// single steps and a running clock agree.
     fn step(&mut self, dt_s: f64) {
-        if !crate::clock::valid_dt(dt_s) || self.run != Run::Going {
+        if !crate::clock::valid_dt(dt_s) || self.run != Run::Going || self.at_rest() {
             return;
         }
         self.pending_s += dt_s;
@@ -648,6 +745,10 @@ impl Experiment for CartPoleBalance {
     }
 
     fn animating(&self) -> bool {
-        self.run == Run::Going && !self.quiet()
+        self.run == Run::Going && !self.at_rest()
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
     }
 }

@@ -1,6 +1,7 @@
 //! What experiment 8 shows: the scene, the readouts, the status badge.
 
 use super::*;
+use crate::experiment::{format_degrees, format_metres};
 
 /// `3.972, -3.972, 0, 0` or `-1.234 ± 5.678i`, slowest first.
 pub(super) fn format_eigenvalues(z: &[Complex]) -> String {
@@ -82,6 +83,19 @@ pub(super) fn scene(e: &CartPoleBalance, out: &mut Scene) {
         role: Role::Ghost,
         dashed: true,
     });
+    // A cart whose centre is outside the view gets a mark at the canvas edge.
+    for (x, what, role) in [
+        (lin.x_m, "linear model", Role::Ghost),
+        (e.sim.state.x_m, "cart", Role::Robot),
+    ] {
+        if x.is_finite() && !(VIEW_MIN.x..=VIEW_MAX.x).contains(&x) {
+            out.push(Item::OffView {
+                at: DVec2::new(x.clamp(-1e6, 1e6), PIVOT_Y_M),
+                label: format!("{what} at x = {}", format_metres(x)),
+                role,
+            });
+        }
+    }
     // Where the chosen criterion calls the pole fallen (12°).
     let limit = e.criterion().angle_limit_rad;
     let pivot = e.pivot();
@@ -162,8 +176,7 @@ pub(super) fn readouts(e: &CartPoleBalance) -> Vec<Readout> {
     let closed = closed_loop_eigenvalues(&e.sim.params, &e.sim.gains).ok();
     let open = open_loop_eigenvalues(&e.sim.params).ok();
     let status = match e.run {
-        Run::Going if !e.sim.control_enabled => "up, control off".to_owned(),
-        Run::Going => "up".to_owned(),
+        Run::Going => status(e).text,
         Run::Ended { status, time_s } => format!(
             "{} at {} s",
             if status == PoleStatus::OutOfBounds {
@@ -211,8 +224,10 @@ pub(super) fn readouts(e: &CartPoleBalance) -> Vec<Readout> {
         Readout::new(
             "lqr",
             "LQR proposal for Q, R",
-            e.lqr_proposal()
-                .map_or("no solution".into(), |k| gains_text(&k)),
+            e.lqr_proposal().map_or(
+                "no stabilising solution: weight the cart position (q_x > 0)".into(),
+                |k| gains_text(&k),
+            ),
         ),
         Readout::degrees(
             "gap",
@@ -222,9 +237,22 @@ pub(super) fn readouts(e: &CartPoleBalance) -> Vec<Readout> {
     ]
 }
 
+/// `(−180°, 180°]`.
+pub(super) fn wrap_deg(deg: f64) -> f64 {
+    let w = deg.rem_euclid(360.0);
+    if w > 180.0 {
+        w - 360.0
+    } else {
+        w
+    }
+}
+
+/// The run's state from what the pole and cart have done over the last
+/// [`STATUS_WINDOW_S`]: "balancing" only while |θ| and |x| stay small.
 pub(super) fn status(e: &CartPoleBalance) -> Status {
+    let s = e.sim.state;
     match e.run {
-        Run::Ended { status, time_s } => Status::new(
+        Run::Ended { status, time_s } => Status::ended(
             format!(
                 "{} at t = {} s: press Reset",
                 if status == PoleStatus::OutOfBounds {
@@ -237,9 +265,34 @@ pub(super) fn status(e: &CartPoleBalance) -> Status {
             Tone::Bad,
         ),
         Run::Going if !e.sim.control_enabled => {
-            Status::new("control off: the pole is falling", Tone::Warning)
+            let lean = wrap_deg(s.theta_rad.to_degrees());
+            let text = if e.at_rest() {
+                "control off: upright and still, an unstable equilibrium (nudge it)"
+            } else if lean.abs() > 90.0 {
+                "control off: the pole swings below the rail"
+            } else if lean * s.omega_rad_s >= 0.0 {
+                "control off: the pole is falling"
+            } else {
+                "control off: the pole swings back up"
+            };
+            Status::new(text, Tone::Warning)
         }
-        Run::Going if e.quiet() => Status::new("balanced", Tone::Good),
-        Run::Going => Status::new("up: balancing", Tone::Neutral),
+        Run::Going if e.at_rest() => Status::new("balanced", Tone::Good),
+        Run::Going => {
+            let (theta_deg, x_m) = e.recent_peaks();
+            if theta_deg > SWING_DEG {
+                Status::new(
+                    format!("swinging: |θ| up to {}", format_degrees(theta_deg)),
+                    Tone::Warning,
+                )
+            } else if x_m > DRIFT_M {
+                Status::new(
+                    format!("drifting: |x| up to {}", format_metres(x_m)),
+                    Tone::Warning,
+                )
+            } else {
+                Status::new("balancing", Tone::Neutral)
+            }
+        }
     }
 }
