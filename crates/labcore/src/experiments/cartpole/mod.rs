@@ -525,22 +525,40 @@ impl CartPoleBalance {
                 .is_ok_and(|z| z.iter().all(|p| p.re < 0.0))
     }
 
-    /// Largest `|θ|` (°) and `|x|` (m) over the last [`STATUS_WINDOW_S`].
-    fn recent_peaks(&self) -> (f64, f64) {
-        let from = self.sim.time_s - STATUS_WINDOW_S;
-        let peak = |series: &Series, angle: bool| {
-            let wrap = |v: f64| if angle { view::wrap_deg(v) } else { v };
+    /// Largest `|θ|` (°, judged within (−180°, 180°]) and `|x|` (m) over the
+    /// last [`STATUS_WINDOW_S`], and whether the pole is still being caught
+    /// from its start angle. The catch lasts from the start of the run until
+    /// `|θ|` first comes within [`SWING_DEG`], as long as the pole leans no
+    /// further than it started; the leaning of the catch does not count as
+    /// swinging afterwards.
+    fn recent_peaks(&self) -> (f64, f64, bool) {
+        let (angle, position) = (&self.plots[0].series[0], &self.plots[1].series[0]);
+        let lean = |v: &f64| view::wrap_deg(*v).abs();
+        let mut from = self.sim.time_s - STATUS_WINDOW_S - 1e-9;
+        let mut catching = false;
+        if angle.x.first() == Some(&0.0) {
+            match angle.y.iter().position(|v| lean(v) <= SWING_DEG) {
+                Some(i) => from = from.max(angle.x[i]),
+                None => {
+                    let start = self.start_deg.abs() + 1e-6;
+                    catching = angle.y.iter().all(|v| lean(v) <= start);
+                }
+            }
+        }
+        let peak = |series: &Series, f: &dyn Fn(&f64) -> f64| {
             series
                 .x
                 .iter()
                 .zip(&series.y)
                 .rev()
-                .take_while(|(t, _)| **t >= from - 1e-9)
-                .fold(0.0_f64, |m, (_, v)| m.max(wrap(*v).abs()))
+                .take_while(|(t, _)| **t >= from)
+                .fold(0.0_f64, |m, (_, v)| m.max(f(v)))
         };
-        let (angle, position) = (&self.plots[0].series[0], &self.plots[1].series[0]);
-        // Angles are judged within (−180°, 180°]; positions as they are.
-        (peak(angle, true), peak(position, false))
+        (
+            peak(angle, &lean),
+            peak(position, &|v: &f64| v.abs()),
+            catching,
+        )
     }
 }
 

@@ -986,3 +986,22 @@ fn quiz_option_lengths_do_not_give_the_answer_away() {
     assert!(choices >= 4);
     assert!(4 * longest <= choices, "{longest} of {choices}");
 }
+
+/// From a large start angle the first seconds are a catch, not a swing: the
+/// status says so while the start is still the largest lean, then balancing.
+#[test]
+fn a_pole_caught_from_20_degrees_is_caught_not_swinging() {
+    let mut e = CartPoleBalance::default();
+    e.set_param("th0", 20.0).unwrap();
+    assert_eq!(e.status().text, "catching the pole from θ₀ = 20.0°");
+    let (peak, seen) = watch(&mut e, 8.0);
+    assert!(peak <= 20.0 + 1e-9, "{peak}");
+    assert_eq!(seen, ["catching the pole from θ₀ = 20.0°", "balancing"]);
+    // A pole that leans further than it started is not being caught.
+    let mut e = CartPoleBalance::default();
+    e.set_param("th0", 20.0).unwrap();
+    e.set_param("flim", 2.0).unwrap();
+    let (peak, seen) = watch(&mut e, 3.0);
+    assert!(peak > 20.0, "{peak}");
+    assert!(seen.iter().any(|t| t.starts_with("swinging")), "{seen:?}");
+}

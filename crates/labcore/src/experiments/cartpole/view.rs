@@ -279,8 +279,16 @@ pub(super) fn status(e: &CartPoleBalance) -> Status {
         }
         Run::Going if e.at_rest() => Status::new("balanced", Tone::Good),
         Run::Going => {
-            let (theta_deg, x_m) = e.recent_peaks();
-            if theta_deg > SWING_DEG {
+            let (theta_deg, x_m, catching) = e.recent_peaks();
+            if catching && x_m <= DRIFT_M {
+                Status::new(
+                    format!(
+                        "catching the pole from θ₀ = {}",
+                        format_degrees(e.start_deg)
+                    ),
+                    Tone::Neutral,
+                )
+            } else if theta_deg > SWING_DEG {
                 Status::new(
                     format!("swinging: |θ| up to {}", format_degrees(theta_deg)),
                     Tone::Warning,
