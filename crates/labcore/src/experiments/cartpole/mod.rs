@@ -21,7 +21,8 @@
 //! `ṡ = A s + B F` ([`LinearModel`]) runs from the same start under the same
 //! feedback, the same force limit, the same integrator and the same nudges,
 //! so the only difference between the two is the plant's nonlinearity
-//! (`sin θ ≈ θ`, `cos θ ≈ 1`, no `θ̇²` term, no end stops). Its θ and x are
+//! (`sin θ ≈ θ`, `cos θ ≈ 1`, no `θ̇²` term, no end stops). Once it leans
+//! past 90° it is held where it fell (and the gap no longer grows). Its θ and x are
 //! overlaid on the plots; they agree for small start angles and part as
 //! the start angle grows.
 //!
@@ -250,6 +251,11 @@ impl Default for CartPoleBalance {
     }
 }
 
+/// The linear model is still up (|θ| ≤ 90°); past that it is held.
+fn linear_up(s: &CartPoleState) -> bool {
+    s.theta_rad.abs() <= std::f64::consts::FRAC_PI_2
+}
+
 /// Rounds a gain to the sliders' 0.01 and keeps it in its range.
 fn slider_value(key: &str, v: f64) -> f64 {
     let rounded = (v * 100.0).round() / 100.0;
@@ -436,20 +442,24 @@ impl CartPoleBalance {
         } else {
             0.0
         };
-        let mut linear = self.linear;
-        if self.model.integrate(
-            &mut linear,
-            force,
-            CONTROL_PERIOD_S,
-            self.sim.integrator,
-            SUBSTEPS,
-        ) {
-            self.linear = linear;
-            self.linear_force_n = force;
-        }
-        let gap = (self.linear.theta_rad - self.sim.state.theta_rad).abs();
-        if gap.is_finite() {
-            self.max_gap_rad = self.max_gap_rad.max(gap);
+        // The linear model stops where it has fallen: past 90° its
+        // small-angle picture means nothing (and it would grow without bound).
+        if linear_up(&self.linear) {
+            let mut linear = self.linear;
+            if self.model.integrate(
+                &mut linear,
+                force,
+                CONTROL_PERIOD_S,
+                self.sim.integrator,
+                SUBSTEPS,
+            ) {
+                self.linear = linear;
+                self.linear_force_n = force;
+            }
+            let gap = (self.linear.theta_rad - self.sim.state.theta_rad).abs();
+            if gap.is_finite() {
+                self.max_gap_rad = self.max_gap_rad.max(gap);
+            }
         }
         self.record(self.sim.last_saturated());
         self.check_status();
@@ -519,8 +529,9 @@ impl CartPoleBalance {
                 && l.v_m_s == 0.0;
         }
         let small = |c: &CartPoleState| c.to_array().iter().all(|v| v.abs() < QUIET);
+        // A linear model held where it fell does not move either.
         small(&s)
-            && small(&self.linear)
+            && (small(&self.linear) || !linear_up(&self.linear))
             && closed_loop_eigenvalues(&self.sim.params, &self.sim.gains)
                 .is_ok_and(|z| z.iter().all(|p| p.re < 0.0))
     }

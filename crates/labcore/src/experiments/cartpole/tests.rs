@@ -4,6 +4,7 @@ use super::*;
 use crate::control::count_right_half_plane;
 use crate::experiment::format_degrees;
 use crate::route::{format, restore, Tab};
+use std::f64::consts::FRAC_PI_2;
 
 fn run(e: &mut CartPoleBalance, seconds: f64) {
     for _ in 0..(seconds * 60.0).round() as usize {
@@ -641,6 +642,18 @@ fn cartpole_step_6_energy_stays_flat_under_rk4_and_climbs_under_euler() {
         .iter()
         .fold(0.0_f64, |m, v| m.max(v.abs()));
     assert!((300.0..360.0).contains(&max_lean), "{max_lean}");
+    // The linear model fell at once and is held where it fell, so the
+    // angle plot and the gap keep a readable scale.
+    let held = e.linear_state();
+    assert!(
+        held.theta_rad.abs() > FRAC_PI_2 && held.theta_rad.abs() < 2.0,
+        "{held:?}"
+    );
+    assert!(
+        e.max_gap_rad() < std::f64::consts::PI,
+        "{}",
+        e.max_gap_rad()
+    );
     e.set_param("integ", 0.0).unwrap();
     assert_eq!(e.time_s(), 0.0, "the integrator restarts the run");
     run(&mut e, 5.0);
