@@ -138,7 +138,7 @@ test("cartpole: the pole is caught, nudged, dropped and caught again; LQR gains 
     await waitReadout(page, "theta", (v) => Math.abs(v) > 3);
     await page.locator("button[data-action=catch]").click();
     await waitReadout(page, "theta", (v) => Math.abs(v) < 1);
-    assert.equal((await readouts(page)).status, "up");
+    assert.match((await readouts(page)).status, /^balanc/);
 
     await page.locator("button[data-action=lqr]").click();
     const proposal = (await readouts(page)).lqr;
@@ -149,7 +149,7 @@ test("cartpole: the pole is caught, nudged, dropped and caught again; LQR gains 
     const csv = await downloadCsv(page, "angle");
     assert.equal(csv.split("\r\n")[0], "Time (s),θ (nonlinear) (°),θ (linear model) (°)");
     const energy = await downloadCsv(page, "energy");
-    assert.equal(energy.split("\r\n")[0], "Time (s),E (J)");
+    assert.equal(energy.split("\r\n")[0], "Time (s),(E − E₀)/E₀ (%)");
   }));
 
 test("cartpole: with control off and RK4 the pole falls and the run ends", () =>
@@ -159,6 +159,27 @@ test("cartpole: with control off and RK4 the pole falls and the run ends", () =>
     const r = await readouts(page);
     assert.match(r.status, /^fallen at \d+\.\d\d s$/);
     assert.ok(Math.abs(num(r.theta)) > 12);
+  }));
+
+test("cartpole: with θ₀ = 0 the pole rests, and neither Play nor Step adds samples (issue 14)", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/cartpole/simulation?th0=0");
+    await page.waitForFunction(() => /balanced/.test(document.querySelector(".sim-status").textContent));
+    const rows = async () => (await downloadCsv(page, "angle")).trim().split("\r\n").length;
+    const before = await rows();
+    await settle(page);
+    assert.equal(await rows(), before, "Play: the resting pole adds no samples");
+    const play = page.locator("button[data-time=play]");
+    await play.click();
+    await page.waitForFunction(
+      () => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "false",
+    );
+    for (let i = 0; i < 20; i += 1) {
+      await page.locator("button[data-time=step]").click();
+    }
+    await settle(page);
+    assert.equal(await rows(), before, "Step: the resting pole adds no samples either");
+    assert.equal((await readouts(page)).theta, "0.0°");
   }));
 
 for (const [name, viewport] of [

@@ -2,7 +2,8 @@
 //!
 //! **Equations** (Barto, Sutton & Anderson, "Neuronlike adaptive elements that can solve
 //! difficult learning control problems", *IEEE Trans. SMC* 13(5), 1983, p. 841, with its
-//! friction terms; the same as the lab description): a cart of mass `M` on a level track,
+//! friction terms; with both set to zero this is the CartPole benchmark's (Gym's) form,
+//! as in the lab description): a cart of mass `M` on a level track,
 //! a uniform pole of mass `m` and half-length `l` hinged on it, horizontal force `F`,
 //! cart friction `μc` (N) and pivot friction `μp` (N·m·s):
 //!
@@ -27,7 +28,9 @@
 //! - [`Integrator::Euler`] — the explicit Euler step of the CartPole-v1 benchmark
 //!   (Gymnasium `cartpole.py`, `kinematics_integrator = "euler"`): with accelerations
 //!   from the old state, `x ← x + τẋ; ẋ ← ẋ + τẍ; θ ← θ + τθ̇; θ̇ ← θ̇ + τθ̈`
-//!   (positions use the old velocities). First order.
+//!   (positions use the old velocities). First order. One such step of 0.02 s with
+//!   an endless track (`track_limit_m = ∞`) is the benchmark's step; sub-steps or end
+//!   stops make it a different (if close) simulation.
 //! - [`Integrator::Rk4`] — classical fourth-order Runge–Kutta.
 //!
 //! **Energy** `E = ½(M + m)ẋ² + m l ẋ θ̇ cos θ + ⅔ m l² θ̇² + m g l cos θ` (the pole's
@@ -507,6 +510,11 @@ impl Default for LqrWeights {
 /// LQR gains for the upright linearisation, converted to the lab's `F = k·s` sign
 /// (`k = −K`), with the Riccati solution for inspection.
 ///
+/// A stabilising solution needs `(A, Q^½)` detectable: every mode that must be
+/// stabilised is weighted. With `q[0] = 0` (cart position unweighted) the
+/// eigenvalue 0 of the cart's position is unobservable in the cost and this
+/// returns an error; any `q[0] > 0` with `r > 0` gives a stable closed loop.
+///
 /// # Example
 /// ```
 /// use labcore::control::cartpole::{lqr_feedback, CartPoleParams, LqrWeights};
@@ -763,6 +771,54 @@ mod tests {
         assert_eq!(s.omega_rad_s, 0.2 + 0.02 * a.theta_rad_s2);
     }
 
+    /// One CartPole-v1 step, worked by hand with Gymnasium's `cartpole.py`
+    /// formulas (τ = 0.02 s, force ±10 N, `x ← x + τẋ; ẋ ← ẋ + τẍ; θ ← θ + τθ̇;
+    /// θ̇ ← θ̇ + τθ̈`, double precision): one Euler step without end stops is
+    /// that step; the lab's setting (four sub-steps, end stops) is not, which
+    /// is why the lab's option is called "Euler (4 sub-steps)".
+    #[test]
+    fn one_euler_step_without_end_stops_is_the_gymnasium_step() {
+        let p = free();
+        let cases = [
+            (
+                [0.01, -0.2, 0.03, 0.4],
+                10.0,
+                [0.006, -0.005316169155413664, 0.038, 0.11692433252290102],
+            ),
+            (
+                [-1.3, 0.7, -0.15, -1.1],
+                -10.0,
+                [-1.286, 0.5071358809308707, -0.172, -0.857887116586486],
+            ),
+        ];
+        for (start, force, gym) in cases {
+            let mut s = CartPoleState::from_array(start);
+            assert!(integrate(&p, &mut s, force, 0.02, Integrator::Euler, 1));
+            for (ours, theirs) in s.to_array().iter().zip(gym) {
+                assert!((ours - theirs).abs() < 1e-15, "{ours} vs {theirs}");
+            }
+            let mut lab = CartPoleState::from_array(start);
+            let lab_params = CartPoleParams {
+                force_limit_n: f64::INFINITY,
+                ..CartPoleParams::default()
+            };
+            assert!(integrate(
+                &lab_params,
+                &mut lab,
+                force,
+                0.02,
+                Integrator::Euler,
+                4
+            ));
+            let apart = lab
+                .to_array()
+                .iter()
+                .zip(gym)
+                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(apart > 1e-3, "four sub-steps differ: {apart}");
+        }
+    }
+
     #[test]
     fn bad_input_leaves_state_unchanged() {
         let p = CartPoleParams::default();
@@ -897,6 +953,23 @@ mod tests {
             ..StateFeedback::default()
         };
         assert!(count_right_half_plane(&closed_loop_eigenvalues(&p, &weak).unwrap()) > 0);
+    }
+
+    /// Detectability: the cart position must be weighted.
+    #[test]
+    fn lqr_needs_a_weight_on_the_cart_position() {
+        let p = CartPoleParams::default();
+        for q in [[0.0, 1.0, 10.0, 1.0], [0.0, 100.0, 100.0, 100.0]] {
+            assert!(
+                lqr_feedback(&p, &LqrWeights { q, r: 0.1 }).is_err(),
+                "{q:?}"
+            );
+        }
+        for q in [[1e-3, 0.0, 0.0, 0.0], [0.1, 0.0, 100.0, 0.0]] {
+            let (k, _) = lqr_feedback(&p, &LqrWeights { q, r: 10.0 }).unwrap();
+            let cl = closed_loop_eigenvalues(&p, &k).unwrap();
+            assert!(cl.iter().all(|z| z.re < 0.0), "{q:?}: {cl:?}");
+        }
     }
 
     #[test]
