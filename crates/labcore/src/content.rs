@@ -447,6 +447,56 @@ impl Content {
     }
 }
 
+/// How option lengths could give answers away (issue 15: test-wise students
+/// pick the longest option), counted over a quiz's choice questions.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LengthTells {
+    /// Choice questions counted.
+    pub choices: usize,
+    /// Questions whose correct option is strictly the longest (in characters).
+    pub longest: usize,
+    /// Questions whose correct option is strictly the shortest.
+    pub shortest: usize,
+}
+
+impl LengthTells {
+    /// Whether at most `1/n` of the questions have either tell.
+    #[must_use]
+    pub fn at_most_one_in(self, n: usize) -> bool {
+        n * self.longest <= self.choices && n * self.shortest <= self.choices
+    }
+}
+
+impl Content {
+    /// Counts the choice questions whose correct option stands out by length.
+    #[must_use]
+    pub fn length_tells(&self) -> LengthTells {
+        let mut tells = LengthTells::default();
+        for q in &self.quiz {
+            let Question::Choice {
+                options, answer, ..
+            } = q
+            else {
+                continue;
+            };
+            let Some(right) = options.get(*answer).map(|o| o.chars().count()) else {
+                continue;
+            };
+            let others = || {
+                options
+                    .iter()
+                    .enumerate()
+                    .filter(|(k, _)| k != answer)
+                    .map(|(_, o)| o.chars().count())
+            };
+            tells.choices += 1;
+            tells.longest += usize::from(others().all(|l| l < right));
+            tells.shortest += usize::from(others().all(|l| l > right));
+        }
+        tells
+    }
+}
+
 /// Refuses a tolerance finer than the precision the answer is shown with.
 fn check_precision(question: usize, tolerance: f64) -> Result<(), ContentError> {
     if tolerance < MIN_TOLERANCE {

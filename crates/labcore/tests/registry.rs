@@ -719,43 +719,18 @@ fn plots_hold_finite_data_and_export_every_sample() {
 /// strictly the shortest in at most 35 % too (the reverse tell).
 #[test]
 fn option_lengths_do_not_give_the_answer_away() {
-    let (mut choices, mut longest, mut shortest) = (0usize, Vec::new(), Vec::new());
+    let mut lab = labcore::content::LengthTells::default();
     for entry in registry() {
-        let content = entry.content().expect("content parses");
-        for (i, q) in content.quiz.iter().enumerate() {
-            let labcore::content::Question::Choice {
-                options, answer, ..
-            } = q
-            else {
-                continue;
-            };
-            choices += 1;
-            let len = |s: &String| s.chars().count();
-            let correct = len(&options[*answer]);
-            let others = options
-                .iter()
-                .enumerate()
-                .filter(|(k, _)| k != answer)
-                .map(|(_, o)| len(o));
-            if others.clone().all(|l| l < correct) {
-                longest.push(format!("{} q{}", entry.id, i + 1));
-            }
-            if others.clone().all(|l| l > correct) {
-                shortest.push(format!("{} q{}", entry.id, i + 1));
-            }
-        }
+        let tells = entry.content().expect("content parses").length_tells();
+        lab.choices += tells.choices;
+        lab.longest += tells.longest;
+        lab.shortest += tells.shortest;
     }
-    assert!(choices >= 50, "{choices} choice questions");
-    let share = |n: usize| 100.0 * n as f64 / choices as f64;
-    println!(
-        "{choices} choice questions; correct option strictly longest in {} ({:.0} %), strictly shortest in {} ({:.0} %)",
-        longest.len(),
-        share(longest.len()),
-        shortest.len(),
-        share(shortest.len())
-    );
-    assert!(share(longest.len()) <= 35.0, "longest: {longest:?}");
-    assert!(share(shortest.len()) <= 35.0, "shortest: {shortest:?}");
+    assert!(lab.choices >= 50, "{lab:?}");
+    println!("{lab:?}");
+    // At most 35 %: 20 × count ≤ 7 × choices.
+    assert!(20 * lab.longest <= 7 * lab.choices, "{lab:?}");
+    assert!(20 * lab.shortest <= 7 * lab.choices, "{lab:?}");
 }
 
 /// Issue 15: a generated question must be one a student can set up on the

@@ -610,39 +610,14 @@ mod tests {
     /// longest nor the strictly shortest in more than a quarter of them.
     #[test]
     fn arm_quiz_option_lengths_do_not_give_the_answer_away() {
-        use crate::content::{Content, Question};
-        let files = [
-            include_str!("../../../../assets/fk.json"),
-            include_str!("../../../../assets/ik.json"),
-            include_str!("../../../../assets/workspace.json"),
-            include_str!("../../../../assets/dls.json"),
-        ];
-        let (mut choices, mut longest, mut shortest) = (0, 0, 0);
-        for json in files {
-            for q in Content::parse(json).unwrap().quiz {
-                if let Question::Choice {
-                    options, answer, ..
-                } = q
-                {
-                    let len = |o: &String| o.chars().count();
-                    let right = len(&options[answer]);
-                    let others: Vec<usize> = options
-                        .iter()
-                        .enumerate()
-                        .filter(|(i, _)| *i != answer)
-                        .map(|(_, o)| len(o))
-                        .collect();
-                    choices += 1;
-                    longest += usize::from(others.iter().all(|&l| right > l));
-                    shortest += usize::from(others.iter().all(|&l| right < l));
-                }
-            }
+        for id in ["fk", "ik", "workspace", "dls"] {
+            let tells = crate::experiments::find(id)
+                .unwrap()
+                .content()
+                .unwrap()
+                .length_tells();
+            assert!(tells.choices >= 4, "{id}: {tells:?}");
+            assert!(tells.at_most_one_in(4), "{id}: {tells:?}");
         }
-        assert!(choices >= 20);
-        assert!(4 * longest <= choices, "longest in {longest} of {choices}");
-        assert!(
-            4 * shortest <= choices,
-            "shortest in {shortest} of {choices}"
-        );
     }
 }

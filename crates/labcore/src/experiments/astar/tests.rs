@@ -1318,23 +1318,10 @@ fn issue15_content_heuristics_quiz_wording_and_option_lengths() {
         .find(|r| r["authors"].as_str().unwrap().starts_with("Pohl"))
         .unwrap();
     assert!(pohl["detail"].as_str().unwrap().contains("no. 3–4"));
-    let choice: Vec<_> = quiz.iter().filter(|q| q["kind"] == "choice").collect();
-    let longest = choice
-        .iter()
-        .filter(|q| {
-            let opts: Vec<usize> = q["options"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|o| o.as_str().unwrap().chars().count())
-                .collect();
-            let a = q["answer"].as_u64().unwrap() as usize;
-            opts.iter().enumerate().all(|(i, &l)| i == a || l < opts[a])
-        })
-        .count();
-    assert!(
-        4 * longest <= choice.len(),
-        "{longest} of {} correct options are the longest",
-        choice.len()
-    );
+    let tells = crate::experiments::find("astar")
+        .unwrap()
+        .content()
+        .unwrap()
+        .length_tells();
+    assert!(4 * tells.longest <= tells.choices, "{tells:?}");
 }

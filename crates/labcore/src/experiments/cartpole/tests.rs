@@ -974,30 +974,13 @@ fn quiz_generators_draw_inside_the_slider_ranges() {
 /// choice questions (issue 15), so length gives nothing away.
 #[test]
 fn quiz_option_lengths_do_not_give_the_answer_away() {
-    let content =
-        crate::content::Content::parse(include_str!("../../../../../assets/cartpole.json"))
-            .unwrap();
-    let mut choices = 0;
-    let mut longest = 0;
-    for q in &content.quiz {
-        if let crate::content::Question::Choice {
-            options, answer, ..
-        } = q
-        {
-            choices += 1;
-            let len = |s: &String| s.chars().count();
-            let right = len(&options[*answer]);
-            if options
-                .iter()
-                .enumerate()
-                .all(|(i, o)| i == *answer || len(o) < right)
-            {
-                longest += 1;
-            }
-        }
-    }
-    assert!(choices >= 4);
-    assert!(4 * longest <= choices, "{longest} of {choices}");
+    let tells = crate::experiments::find("cartpole")
+        .unwrap()
+        .content()
+        .unwrap()
+        .length_tells();
+    assert!(tells.choices >= 4, "{tells:?}");
+    assert!(4 * tells.longest <= tells.choices, "{tells:?}");
 }
 
 /// From a large start angle the first seconds are a catch, not a swing: the

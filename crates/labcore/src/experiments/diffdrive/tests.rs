@@ -882,33 +882,13 @@ fn generators_draw_inside_the_slider_ranges() {
 /// quarter of the choice questions, so its length gives nothing away.
 #[test]
 fn quiz_option_lengths_do_not_give_the_answer_away() {
-    let content =
-        crate::content::Content::parse(include_str!("../../../../../assets/diffdrive.json"))
-            .unwrap();
-    let (mut choices, mut longest) = (0, 0);
-    for q in &content.quiz {
-        if let crate::content::Question::Choice {
-            options, answer, ..
-        } = q
-        {
-            choices += 1;
-            let len = |s: &String| s.chars().count();
-            let correct = len(&options[*answer]);
-            if options
-                .iter()
-                .enumerate()
-                .all(|(i, o)| i == *answer || len(o) < correct)
-            {
-                longest += 1;
-            }
-        }
-    }
-    assert!(choices >= 4);
-    assert!(4 * longest <= choices, "{longest} of {choices}");
-    assert!(content
-        .references
-        .iter()
-        .all(|r| !r.authors.contains("Virtual Labs")));
+    let tells = crate::experiments::find("diffdrive")
+        .unwrap()
+        .content()
+        .unwrap()
+        .length_tells();
+    assert!(tells.choices >= 6, "{tells:?}");
+    assert!(4 * tells.longest <= tells.choices, "{tells:?}");
 }
 
 /// A student's session that touches every way of making waypoints: clicks

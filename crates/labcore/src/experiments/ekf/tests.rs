@@ -1028,32 +1028,15 @@ fn quiz_generators_draw_inside_the_sliders_and_the_view() {
     }
 }
 
-/// Issue 15: the correct option is the strictly longest (in characters or in
-/// bytes) in at most a quarter of the choice questions.
+/// Issue 15: the correct option is the strictly longest in at most a quarter
+/// of the choice questions.
 #[test]
 fn the_correct_option_is_seldom_the_longest() {
-    let content =
-        crate::content::Content::parse(include_str!("../../../../../assets/ekf.json")).unwrap();
-    let (mut choices, mut longest) = (0, 0);
-    for q in &content.quiz {
-        if let crate::content::Question::Choice {
-            options, answer, ..
-        } = q
-        {
-            choices += 1;
-            for len in [|s: &String| s.chars().count(), |s: &String| s.len()] {
-                let a = len(&options[*answer]);
-                if options
-                    .iter()
-                    .enumerate()
-                    .all(|(i, o)| i == *answer || len(o) < a)
-                {
-                    longest += 1;
-                    break;
-                }
-            }
-        }
-    }
-    assert!(choices >= 6);
-    assert!(4 * longest <= choices, "{longest} of {choices}");
+    let tells = crate::experiments::find("ekf")
+        .unwrap()
+        .content()
+        .unwrap()
+        .length_tells();
+    assert!(tells.choices >= 6, "{tells:?}");
+    assert!(4 * tells.longest <= tells.choices, "{tells:?}");
 }

@@ -939,32 +939,11 @@ fn potential_step_8_the_link_reproduces_the_arrangement_and_its_run() {
 /// (strictly) longest, so option length does not give the answer away.
 #[test]
 fn the_correct_option_is_seldom_the_longest() {
-    use crate::content::Question;
-    let content = crate::experiments::find("potential")
+    let tells = crate::experiments::find("potential")
         .unwrap()
-        .parse_content()
-        .unwrap();
-    let (mut choice, mut longest) = (0, 0);
-    for q in &content.quiz {
-        if let Question::Choice {
-            options, answer, ..
-        } = q
-        {
-            choice += 1;
-            let len = |s: &String| s.chars().count();
-            let correct = len(&options[*answer]);
-            if options
-                .iter()
-                .enumerate()
-                .all(|(i, o)| i == *answer || len(o) < correct)
-            {
-                longest += 1;
-            }
-        }
-    }
-    assert!(choice >= 6);
-    assert!(
-        4 * longest <= choice,
-        "correct option longest in {longest} of {choice}"
-    );
+        .content()
+        .unwrap()
+        .length_tells();
+    assert!(tells.choices >= 6, "{tells:?}");
+    assert!(4 * tells.longest <= tells.choices, "{tells:?}");
 }
