@@ -35,6 +35,7 @@ pub(super) fn listen(
                 return;
             }
             let mut st = s.borrow_mut();
+            st.student_acted();
             let w = st.to_world(e);
             let captured = st.exp.captures_touch() && st.touch_draws;
             if e.pointer_type() == "touch" && !captured {
@@ -164,8 +165,8 @@ pub(super) fn listen(
                 e.prevent_default();
                 let mut st = s.borrow_mut();
                 if st.exp.animated() {
-                    let running = !st.clock.running();
-                    st.set_running(running);
+                    st.student_acted();
+                    st.play_pressed();
                 }
                 return;
             }
@@ -173,6 +174,7 @@ pub(super) fn listen(
                 e.prevent_default();
                 let mut st = s.borrow_mut();
                 if st.exp.animated() {
+                    st.student_acted();
                     st.single_step();
                 }
                 return;
@@ -188,6 +190,7 @@ pub(super) fn listen(
         };
         e.prevent_default();
         let mut st = s.borrow_mut();
+        st.student_acted();
         let view = st.exp.view();
         let fraction = if e.shift_key() { 0.002 } else { 0.02 };
         let delta = dir * (view.max.x - view.min.x) * fraction;

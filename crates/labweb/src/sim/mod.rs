@@ -17,7 +17,7 @@ use crate::plot_view::{self, PlotView};
 use glam::DVec2;
 use labcore::clock::Clock;
 use labcore::route::{self, Tab};
-use labcore::{Experiment, Scene};
+use labcore::{Experiment, Phase, Scene};
 use std::cell::{Cell, RefCell};
 use std::rc::{Rc, Weak};
 use wasm_bindgen::prelude::*;
@@ -31,8 +31,8 @@ mod panel;
 mod status;
 mod timebar;
 
-use panel::{control_html, readouts_html, tables_html};
-use status::tone_name;
+use panel::{readouts_html, tables_html};
+use status::{statusbar_html, NoticeShelf};
 use timebar::timebar_html;
 
 /// Shortest time between two redraws of the plots, milliseconds.
@@ -45,11 +45,15 @@ const HASH_INTERVAL_MS: f64 = 250.0;
 pub struct SimError(pub String);
 
 /// The HTML of the Simulation tab for an experiment.
+///
+/// The stage holds the canvas, the status strip under it, the time bar and
+/// the actions; the side panel the experiment's main plot (its first), the
+/// readouts, tables and controls; further plots follow below. On a wide
+/// screen the main plot is thus beside the canvas; on a phone the two
+/// columns dissolve into one ordered list with the main plot right under
+/// the canvas and its time bar (see `style.css`).
 pub fn render(exp: &dyn Experiment, caption: &str) -> String {
-    let mut controls = String::new();
-    for spec in exp.params() {
-        controls.push_str(&control_html(spec));
-    }
+    let controls = panel::controls_html(exp.params());
     let actions: String = exp
         .actions()
         .iter()
@@ -62,13 +66,20 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
         })
         .collect();
     let readouts = readouts_html(&exp.readouts());
-    let status = exp.status();
+    let statusbar = statusbar_html(&exp.status());
     let timebar = if exp.animated() {
         timebar_html()
     } else {
         String::new()
     };
-    let plots: String = exp.plots().iter().map(plot_view::render).collect();
+    let all_plots = exp.plots();
+    let main_plot = all_plots.first().map_or(String::new(), |p| {
+        format!(
+            "<section class=\"sim-mainplot\" aria-label=\"Main plot\">{}</section>",
+            plot_view::render(p)
+        )
+    });
+    let plots: String = all_plots.iter().skip(1).map(plot_view::render).collect();
     let plots = if plots.is_empty() {
         String::new()
     } else {
@@ -98,18 +109,17 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
         ""
     };
     format!(
-        "<div class=\"sim\">\
+        "<div class=\"sim{has_plot}\">\
            <div class=\"sim-stage\">\
              <p class=\"sim-caption\">{caption}</p>\
              <div class=\"sim-frame\">\
                <canvas class=\"sim-canvas\" data-touch=\"{touch}\" tabindex=\"0\" role=\"application\" aria-roledescription=\"simulation\" \
                  aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps){keys}.\"></canvas>\
-               <p class=\"sim-status\" data-tone=\"{tone}\">{text}</p>\
-             </div>{touch_note}\
+             </div>{statusbar}{touch_note}\
              {timebar}\
              <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button></div>\
            </div>\
-           <div class=\"sim-side\">\
+           <div class=\"sim-side\">{main_plot}\
              <dl class=\"readouts\">{readouts}</dl>\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
              <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
@@ -118,11 +128,17 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
            </div>\
            {plots}\
          </div>",
-        tone = tone_name(status.tone),
-        text = escape(&status.text),
+        has_plot = if all_plots.is_empty() { "" } else { " has-mainplot" },
         touch = if exp.captures_touch() { "all" } else { "handles" },
         keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
     )
+}
+
+/// Whether the device's main pointer is a finger (the touch hint shows first).
+fn coarse_pointer() -> bool {
+    web_sys::window()
+        .and_then(|w| w.match_media("(pointer: coarse)").ok().flatten())
+        .is_some_and(|m| m.matches())
 }
 
 /// State shared by the frame loop and the event handlers.
@@ -148,12 +164,24 @@ struct SimState {
     plots: PlotView,
     plots_force: bool,
     last_plot_ms: f64,
-    shown_time: (bool, f64, u64),
+    /// Running, speed, steps and whether the play button offers Replay, as shown.
+    shown_time: (bool, f64, u64, bool),
+    /// The run's phase at the last frame (the time bar offers Replay when ended).
+    phase: Phase,
+    /// The clock was stopped because the run ended (not by the student): it
+    /// resumes by itself when the run is live again (a new goal, a reset).
+    ended_hold: bool,
     needs_paint: bool,
     /// What each control shows; `None` = unknown (refresh it), `Some(None)` = empty.
     shown_values: Vec<Option<Option<f64>>>,
     shown_readouts: Vec<String>,
-    shown_status: String,
+    shown_status: Option<labcore::Status>,
+    notices: NoticeShelf,
+    /// Serial of the notice on screen.
+    shown_notice: Option<u64>,
+    /// Whether the last pointer was a finger (the caption shows the touch hint).
+    touch_input: bool,
+    shown_hint: &'static str,
     shown_tables: Vec<labcore::Table>,
     shown_view: labcore::ViewBox,
     hash_dirty: bool,
@@ -208,6 +236,8 @@ impl SimState {
             self.canvas.set_width((w * dpr).round() as u32);
             self.canvas.set_height((h * dpr).round() as u32);
             self.needs_paint = true;
+            // The experiment may pick a view that keeps cells finger-sized.
+            self.exp.viewport_px(w, h);
         }
         let view = self.exp.view();
         if view != self.shown_view {
@@ -249,6 +279,7 @@ impl SimState {
         for _ in 0..steps {
             self.exp.step(Clock::DT_S);
         }
+        self.follow_phase();
         let stopped = was_animating && !self.exp.animating();
         if stopped {
             // The state the motion ended in belongs in the link and is worth announcing.
@@ -274,6 +305,7 @@ impl SimState {
             self.plots_force = false;
             self.last_plot_ms = time_ms;
         }
+        self.sync_notice(time_ms);
         self.sync_timebar();
         if self.hash_dirty && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS {
             self.write_hash();
@@ -289,7 +321,7 @@ impl SimState {
     fn link(&self) -> String {
         let mut hash = route::format(self.exp.as_ref(), Tab::Simulation);
         let mut extra = Vec::new();
-        if self.exp.animated() && !self.clock.running() {
+        if self.exp.animated() && !self.clock.running() && !self.ended_hold {
             extra.push("run=0".to_owned());
         }
         if self.clock.speed() != 1.0 {
@@ -445,11 +477,17 @@ impl SimView {
             plots: PlotView::mount(panel),
             plots_force: true,
             last_plot_ms: f64::NEG_INFINITY,
-            shown_time: (true, 0.0, u64::MAX),
+            shown_time: (true, 0.0, u64::MAX, false),
+            phase: Phase::Live,
+            ended_hold: false,
             needs_paint: true,
             shown_values: vec![None; n_params],
             shown_readouts: Vec::new(),
-            shown_status: String::new(),
+            shown_status: None,
+            notices: NoticeShelf::default(),
+            shown_notice: None,
+            touch_input: coarse_pointer(),
+            shown_hint: "",
             shown_tables: Vec::new(),
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,

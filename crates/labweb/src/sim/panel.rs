@@ -41,6 +41,7 @@ pub(super) fn listen(
                 value
             };
             let mut st = s.borrow_mut();
+            st.student_acted();
             st.set_param(&key, value);
             // Mirror slider → number box now (the number box is not focused).
             if let Some(i) = st.exp.params().iter().position(|p| p.key == key) {
@@ -51,6 +52,7 @@ pub(super) fn listen(
         listeners.push(Listener::new(form.as_ref(), "change", move |e: Event| {
             let target = e.target();
             let mut st = s.borrow_mut();
+            st.student_acted();
             if let Some(select) = target
                 .clone()
                 .and_then(|t| t.dyn_into::<HtmlSelectElement>().ok())
@@ -132,10 +134,7 @@ pub(super) fn listen(
                 st.hash_dirty = true;
             } else if let Some(what) = attr("data-time") {
                 match what.as_str() {
-                    "play" => {
-                        let running = !st.clock.running();
-                        st.set_running(running);
-                    }
+                    "play" => st.play_pressed(),
                     "step" => st.single_step(),
                     "reset" => st.reset_run(),
                     _ => {}
@@ -165,6 +164,9 @@ pub(super) fn listen(
                     let name = format!("{}-{}.csv", st.file_stem(), plot.key);
                     plot_view::download(&name, "text/csv", &plot.to_csv());
                 }
+            } else if let Some(key) = attr("data-plot-fit") {
+                st.plots.toggle_fit(&key);
+                st.plots_force = true;
             } else if let Some(key) = attr("data-plot-table") {
                 let st = &*st;
                 st.plots.toggle_table(&key, st.exp.plots());
@@ -201,6 +203,16 @@ pub(super) fn listen(
                 let Some(e) = e.dyn_ref::<PointerEvent>() else {
                     return;
                 };
+                if kind == "pointerdown" {
+                    // The caption follows the input in use (a touch hint on a phone).
+                    if let Ok(mut st) = s.try_borrow_mut() {
+                        let touch = e.pointer_type() == "touch";
+                        if st.touch_input != touch {
+                            st.touch_input = touch;
+                            st.sync_hint();
+                        }
+                    }
+                }
                 let Some(canvas) = e
                     .target()
                     .and_then(|t| t.dyn_into::<Element>().ok())
@@ -239,7 +251,34 @@ fn decimals(step: f64) -> usize {
     d
 }
 
-pub(super) fn control_html(spec: &ParamSpec) -> String {
+/// The controls: ungrouped ones first, then each [`ParamSpec::group`] under a
+/// collapsed heading (in the order the groups first appear).
+pub(super) fn controls_html(specs: &[ParamSpec]) -> String {
+    let mut html: String = specs
+        .iter()
+        .filter(|s| s.group.is_none())
+        .map(control_html)
+        .collect();
+    let mut groups: Vec<&str> = Vec::new();
+    for g in specs.iter().filter_map(|s| s.group) {
+        if !groups.contains(&g) {
+            groups.push(g);
+        }
+    }
+    for g in groups {
+        let members: Vec<&ParamSpec> = specs.iter().filter(|s| s.group == Some(g)).collect();
+        let body: String = members.iter().map(|s| control_html(s)).collect();
+        html.push_str(&format!(
+            "<details class=\"ctl-group\"><summary>{} <span class=\"ctl-count\">({})</span></summary>\
+             <div class=\"ctl-group-body\">{body}</div></details>",
+            escape(g),
+            members.len()
+        ));
+    }
+    html
+}
+
+fn control_html(spec: &ParamSpec) -> String {
     let key = spec.key;
     let label = escape(spec.label);
     let unit = escape(spec.unit);
@@ -391,6 +430,7 @@ impl SimState {
             }
         }
         self.sync_status();
+        self.sync_hint();
         let tables = self.exp.tables();
         if tables != self.shown_tables {
             if let Some(section) = query(&self.panel, ".tables") {
@@ -421,5 +461,34 @@ impl SimState {
         }
         self.needs_paint = true;
         self.hash_dirty = true;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grouped_controls_go_under_one_collapsed_heading_after_the_others() {
+        const SPECS: [ParamSpec; 4] = [
+            ParamSpec::slider("a", "A", "m", 0.0, 1.0, 0.1, 0.5),
+            ParamSpec::optional_number("w1x", "Waypoint 1 x", "m", 0.0, 9.0).in_group("Waypoints"),
+            ParamSpec::slider("b", "B", "m", 0.0, 1.0, 0.1, 0.5),
+            ParamSpec::optional_number("w1y", "Waypoint 1 y", "m", 0.0, 9.0).in_group("Waypoints"),
+        ];
+        let html = controls_html(&SPECS);
+        assert_eq!(html.matches("<details class=\"ctl-group\">").count(), 1);
+        assert!(
+            !html.contains("<details class=\"ctl-group\" open"),
+            "collapsed"
+        );
+        let details = html.find("<details").unwrap();
+        assert!(
+            html.find("id=\"p-b\"").unwrap() < details,
+            "ungrouped controls first"
+        );
+        assert!(html.find("id=\"p-w1x\"").unwrap() > details);
+        assert!(html.find("id=\"p-w1y\"").unwrap() > details);
+        assert!(html.contains("Waypoints <span class=\"ctl-count\">(2)</span>"));
     }
 }

@@ -4,6 +4,7 @@
 use super::SimState;
 use crate::dom::query;
 use labcore::clock::{Clock, SPEEDS};
+use labcore::Phase;
 use wasm_bindgen::JsCast;
 use web_sys::HtmlSelectElement;
 
@@ -11,6 +12,7 @@ use web_sys::HtmlSelectElement;
 const ICON_PAUSE: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M3 2h3.5v12H3zM9.5 2H13v12H9.5z\"/></svg>";
 const ICON_PLAY: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M3 1.5v13l11-6.5z\"/></svg>";
 const ICON_STEP: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M2 2v12l8-6zM11 2h3v12h-3z\"/></svg>";
+const ICON_REPLAY: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"none\" stroke=\"currentColor\" stroke-width=\"2\" d=\"M12.5 6A5 5 0 1 0 13 9.5\"/><path fill=\"currentColor\" d=\"M15 2.5l-5 .5 3 4zM6 5.5v5l4-2.5z\"/></svg>";
 const ICON_RESET: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"none\" stroke=\"currentColor\" stroke-width=\"2\" d=\"M3.5 6A5 5 0 1 1 3 9.5\"/><path fill=\"currentColor\" d=\"M1 2.5l5 .5-3 4z\"/></svg>";
 
 /// The shell's time controls: the same widget, place and keys in every
@@ -25,7 +27,7 @@ pub(super) fn timebar_html() -> String {
         .collect();
     format!(
         "<div class=\"timebar\" role=\"group\" aria-label=\"Time controls\">\
-         <button type=\"button\" class=\"tb-play\" data-time=\"play\" aria-pressed=\"true\" aria-keyshortcuts=\"Space\">\
+         <button type=\"button\" class=\"tb-play\" data-time=\"play\" data-offer=\"pause\" aria-pressed=\"true\" aria-keyshortcuts=\"Space\">\
          <span class=\"tb-icon\">{ICON_PAUSE}</span> <span class=\"tb-label\">Pause</span></button>\
          <button type=\"button\" data-time=\"step\" aria-keyshortcuts=\".\" title=\"One step (key .)\">{ICON_STEP} Step</button>\
          <label class=\"tb-speed\">Playback <select data-time=\"speed\">{speeds}</select></label>\
@@ -47,7 +49,65 @@ fn speed_label(v: f64) -> &'static str {
         "1"
     }
 }
+/// What the play button offers: (label, icon, aria-pressed). A run that has
+/// ended offers Replay (reset, then play), never Pause.
+pub(super) fn play_button(running: bool, ended: bool) -> (&'static str, &'static str, bool) {
+    if ended {
+        ("Replay", ICON_REPLAY, false)
+    } else if running {
+        ("Pause", ICON_PAUSE, true)
+    } else {
+        ("Play", ICON_PLAY, false)
+    }
+}
+
+/// What the clock does when the run's phase is `ended` (a pure rule, tested
+/// below): `Some(false)` stops it (the run just ended while playing),
+/// `Some(true)` resumes it (a run the end had stopped is live again, e.g.
+/// after a new goal or a reset), `None` leaves it. `hold` is whether the end
+/// stopped the clock; the new `hold` is returned with the action.
+pub(super) fn clock_rule(running: bool, hold: bool, ended: bool) -> (Option<bool>, bool) {
+    match (ended, running, hold) {
+        (true, true, _) => (Some(false), true),
+        (false, false, true) => (Some(true), false),
+        (false, true, _) => (None, false),
+        _ => (None, hold),
+    }
+}
+
 impl SimState {
+    /// Reads the run's phase after stepping: an ended run stops the clock
+    /// (t stops too), a live one the end had stopped plays again.
+    pub(super) fn follow_phase(&mut self) {
+        self.phase = self.exp.status().phase;
+        let (action, hold) = clock_rule(
+            self.clock.running(),
+            self.ended_hold,
+            self.phase == Phase::Ended,
+        );
+        self.ended_hold = hold;
+        if let Some(run) = action {
+            self.clock.set_running(run);
+            self.last_time_ms = None;
+            self.hash_dirty = true;
+        }
+    }
+
+    /// The play button (and Space): Pause/Play, or Replay once the run ended.
+    pub(super) fn play_pressed(&mut self) {
+        self.phase = self.exp.status().phase;
+        if self.phase == Phase::Ended {
+            self.reset_run();
+            self.phase = self.exp.status().phase;
+            self.ended_hold = false;
+            self.set_running(true);
+        } else {
+            let running = !self.clock.running();
+            self.ended_hold = false;
+            self.set_running(running);
+        }
+    }
+
     /// One fixed step from a pause (the Step button and the `.` key).
     pub(super) fn single_step(&mut self) {
         let was_animating = self.exp.animating();
@@ -74,6 +134,7 @@ impl SimState {
     pub(super) fn reset_run(&mut self) {
         self.exp.reset();
         self.clock.reset();
+        self.phase = self.exp.status().phase;
         self.needs_paint = true;
         self.hash_dirty = true;
         self.plots_force = true;
@@ -81,21 +142,28 @@ impl SimState {
 
     /// Brings the play button, the speed and the time read-out up to date.
     pub(super) fn sync_timebar(&mut self) {
-        let now = (self.clock.running(), self.clock.speed(), self.clock.steps());
+        let now = (
+            self.clock.running(),
+            self.clock.speed(),
+            self.clock.steps(),
+            self.phase == Phase::Ended,
+        );
         if now == self.shown_time {
             return;
         }
         let _ = self.canvas.set_attribute("data-steps", &now.2.to_string());
         if let Some(bar) = query(&self.panel, ".timebar") {
-            if now.0 != self.shown_time.0 {
+            if (now.0, now.3) != (self.shown_time.0, self.shown_time.3) {
                 if let Some(play) = query(&bar, ".tb-play") {
+                    let (label, icon, pressed) = play_button(now.0, now.3);
                     let _ =
-                        play.set_attribute("aria-pressed", if now.0 { "true" } else { "false" });
-                    if let Some(icon) = query(&play, ".tb-icon") {
-                        icon.set_inner_html(if now.0 { ICON_PAUSE } else { ICON_PLAY });
+                        play.set_attribute("aria-pressed", if pressed { "true" } else { "false" });
+                    let _ = play.set_attribute("data-offer", &label.to_lowercase());
+                    if let Some(el) = query(&play, ".tb-icon") {
+                        el.set_inner_html(icon);
                     }
-                    if let Some(label) = query(&play, ".tb-label") {
-                        label.set_text_content(Some(if now.0 { "Pause" } else { "Play" }));
+                    if let Some(el) = query(&play, ".tb-label") {
+                        el.set_text_content(Some(label));
                     }
                 }
             }
@@ -111,5 +179,32 @@ impl SimState {
             }
         }
         self.shown_time = now;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_ended_run_offers_replay_never_pause() {
+        assert_eq!(play_button(true, true).0, "Replay");
+        assert_eq!(play_button(false, true).0, "Replay");
+        assert_eq!(play_button(true, false).0, "Pause");
+        assert_eq!(play_button(false, false).0, "Play");
+        assert!(!play_button(true, true).2, "Replay is not a pressed toggle");
+    }
+
+    #[test]
+    fn the_clock_stops_when_the_run_ends_and_resumes_only_if_the_end_stopped_it() {
+        // Playing, the run ends: stop, and remember why.
+        assert_eq!(clock_rule(true, false, true), (Some(false), true));
+        // Stopped by the end, still ended: nothing.
+        assert_eq!(clock_rule(false, true, true), (None, true));
+        // Stopped by the end, live again (new goal, reset): play on.
+        assert_eq!(clock_rule(false, true, false), (Some(true), false));
+        // Paused by the student: stays paused whatever the phase.
+        assert_eq!(clock_rule(false, false, false), (None, false));
+        assert_eq!(clock_rule(false, false, true), (None, false));
     }
 }
