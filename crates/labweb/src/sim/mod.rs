@@ -181,7 +181,7 @@ struct SimState {
     shown_notice: Option<u64>,
     /// Whether the last pointer was a finger (the caption shows the touch hint).
     touch_input: bool,
-    shown_hint: &'static str,
+    shown_hint: Option<(&'static str, bool)>,
     shown_tables: Vec<labcore::Table>,
     shown_view: labcore::ViewBox,
     hash_dirty: bool,
@@ -487,7 +487,7 @@ impl SimView {
             notices: NoticeShelf::default(),
             shown_notice: None,
             touch_input: coarse_pointer(),
-            shown_hint: "",
+            shown_hint: None,
             shown_tables: Vec::new(),
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,

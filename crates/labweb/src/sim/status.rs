@@ -104,7 +104,7 @@ impl SimState {
         } else {
             self.exp.hint()
         };
-        if hint != self.shown_hint {
+        if Some((hint, self.touch_input)) != self.shown_hint {
             if let Some(caption) = query(&self.panel, ".sim-caption") {
                 caption.set_text_content(Some(hint));
                 let _ = caption.set_attribute(
@@ -112,7 +112,7 @@ impl SimState {
                     if self.touch_input { "touch" } else { "mouse" },
                 );
             }
-            self.shown_hint = hint;
+            self.shown_hint = Some((hint, self.touch_input));
         }
     }
 
