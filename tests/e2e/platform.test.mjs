@@ -106,11 +106,13 @@ test("at 1280×800 the Simulation tab shows the whole canvas, the time controls 
     await screenshot(page, "dls-simulation-1280");
   }));
 
-test("at 390×844 the canvas, the primary action and the main readouts are on the first screen", () =>
+// On a phone the main plot comes right under the canvas (issue 13 §3), so the
+// readouts follow the primary action, below the first screen.
+test("at 390×844 the canvas, the time bar, the main plot and the primary action are on the first screen", () =>
   withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page) => {
     await open(lab, page, "#/workspace/simulation");
     await settle(page);
-    for (const sel of ["canvas.sim-canvas", "button[data-action=sweep]", ".readouts .readout"]) {
+    for (const sel of ["canvas.sim-canvas", ".timebar", ".sim-mainplot canvas", "button[data-action=sweep]"]) {
       const b = await bottom(page, `${ART} ${sel}`);
       assert.ok(b <= PHONE_390.height, `${sel} ends at ${b} px`);
     }

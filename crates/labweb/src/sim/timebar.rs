@@ -29,9 +29,9 @@ pub(super) fn timebar_html() -> String {
         "<div class=\"timebar\" role=\"group\" aria-label=\"Time controls\">\
          <button type=\"button\" class=\"tb-play\" data-time=\"play\" data-offer=\"pause\" aria-pressed=\"true\" aria-keyshortcuts=\"Space\">\
          <span class=\"tb-icon\">{ICON_PAUSE}</span> <span class=\"tb-label\">Pause</span></button>\
-         <button type=\"button\" data-time=\"step\" aria-keyshortcuts=\".\" title=\"One step (key .)\">{ICON_STEP} Step</button>\
+         <button type=\"button\" data-time=\"step\" aria-keyshortcuts=\".\" title=\"One step (key .)\">{ICON_STEP} <span class=\"tb-text\">Step</span></button>\
          <label class=\"tb-speed\"><span class=\"tb-speed-text\">Playback</span> <select data-time=\"speed\">{speeds}</select></label>\
-         <button type=\"button\" data-time=\"reset\">{ICON_RESET} Reset</button>\
+         <button type=\"button\" data-time=\"reset\">{ICON_RESET} <span class=\"tb-text\">Reset</span></button>\
          <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output></div>"
     )
 }
