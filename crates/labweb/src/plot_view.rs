@@ -927,7 +927,9 @@ pub(crate) fn paint_plot_layout(
         to_draw.push((line.label.clone(), r, None));
     }
     // Marker labels: beside their diamond if free, else in free space with a
-    // leader line; never on each other or on a curve.
+    // leader line; never on each other, on a curve or on a reference line.
+    let mut marker_obstacles = curves.clone();
+    marker_obstacles.extend(ref_px.iter().map(|(_, a, b)| vec![*a, *b]));
     for (m, (px, py)) in plot.markers.iter().zip(&diamonds) {
         if m.label.is_empty() {
             continue;
@@ -939,7 +941,14 @@ pub(crate) fn paint_plot_layout(
             (px + 8.0, py + 4.0),
             (px - size.0 - 8.0, py + 4.0),
         ];
-        let r = place_label((*px, *py), size, &preferred, &plot_rect, &curves, &taken);
+        let r = place_label(
+            (*px, *py),
+            size,
+            &preferred,
+            &plot_rect,
+            &marker_obstacles,
+            &taken,
+        );
         taken.push(r);
         let far = r.distance_to((*px, *py)) > 12.0;
         to_draw.push((m.label.clone(), r, far.then_some((*px, *py))));

@@ -109,7 +109,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
         ""
     };
     format!(
-        "<div class=\"sim{has_plot}\">\
+        "<div class=\"sim\">\
            <div class=\"sim-stage\">\
              <p class=\"sim-caption\">{caption}</p>\
              <div class=\"sim-frame\">\
@@ -128,7 +128,6 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
            </div>\
            {plots}\
          </div>",
-        has_plot = if all_plots.is_empty() { "" } else { " has-mainplot" },
         touch = if exp.captures_touch() { "all" } else { "handles" },
         keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
     )
