@@ -600,6 +600,13 @@ impl SimView {
         }
     }
 
+    /// Runs one animation frame at `time_ms` (browser tests drive the clock
+    /// with it instead of waiting for real frames).
+    #[doc(hidden)]
+    pub fn frame_at(&self, time_ms: f64) {
+        self.state.borrow_mut().frame(time_ms);
+    }
+
     /// Paints once now (used by tests and right after mounting).
     pub fn paint_now(&self) {
         let mut st = self.state.borrow_mut();
