@@ -434,3 +434,46 @@ fn a_notice_shows_under_the_badge_then_goes_after_six_seconds_or_at_the_next_inp
     let _ = frames(&view, t, 2);
     assert!(hidden(".sim-notice"), "the next input hides the notice");
 }
+
+#[wasm_bindgen_test]
+fn a_scale_bar_is_drawn_in_the_lower_left_and_an_off_view_mark_on_the_edge_toward_the_point() {
+    let canvas: HtmlCanvasElement = document()
+        .create_element("canvas")
+        .unwrap()
+        .dyn_into()
+        .unwrap();
+    canvas.set_width(300);
+    canvas.set_height(200);
+    let ctx: CanvasRenderingContext2d = canvas
+        .get_context("2d")
+        .unwrap()
+        .unwrap()
+        .dyn_into()
+        .unwrap();
+    let palette = labweb::draw::Palette::from_css(&canvas);
+    let view = labcore::ViewBox {
+        min: glam::DVec2::ZERO,
+        max: glam::DVec2::new(6.0, 4.0),
+    };
+    let viewport = labweb::draw::Viewport::fit(view, 300.0, 200.0);
+    let mut scene = labcore::Scene::default();
+    scene.push(labcore::Item::ScaleBar);
+    // Far to the right of the view, level with its centre.
+    scene.push(labcore::Item::OffView {
+        at: glam::DVec2::new(40.0, 2.0),
+        label: String::new(),
+        role: labcore::Role::Robot,
+    });
+    labweb::draw::paint(&ctx, &scene, &viewport, 300.0, 200.0, 1.0, &palette);
+    let px = |x: f64, y: f64| {
+        let d = ctx.get_image_data(x, y, 1.0, 1.0).unwrap().data();
+        [d[0], d[1], d[2]]
+    };
+    let background = px(150.0, 60.0);
+    // 50 px per metre: a 2 m bar (100 px) from x = 14 along y = 186.
+    assert_ne!(px(60.0, 186.0), background, "the scale bar's line");
+    assert_eq!(px(150.0, 186.0), background, "and no longer than 2 m");
+    // The edge mark: an arrowhead at the right edge, at mid-height.
+    assert_ne!(px(282.0, 100.0), background, "the mark on the right edge");
+    assert_eq!(px(20.0, 100.0), background, "nothing on the left edge");
+}
