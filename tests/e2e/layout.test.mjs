@@ -172,13 +172,15 @@ test("controls: number boxes line up in one column, grouped controls sit under c
   withPage(lab, { viewport: { width: 1280, height: 800 } }, async (page) => {
     for (const id of ["pid", "diffdrive", "ekf"]) {
       await open(lab, page, `#/${id}/simulation`);
+      const groups = await page.$$eval(`${ART} details.ctl-group`, (ds) => ds.map((d) => d.open));
+      assert.ok(groups.every((open) => !open), `${id}: groups start collapsed`);
+      // Open every group: its rows keep the same columns.
+      await page.$$eval(`${ART} details.ctl-group`, (ds) => ds.forEach((d) => { d.open = true; }));
       const lefts = await page.$$eval(`${ART} .sim-controls .ctl-num input[type=text]`, (els) =>
         els.filter((e) => e.getBoundingClientRect().width > 0).map((e) => Math.round(e.getBoundingClientRect().left)),
       );
       assert.ok(lefts.length > 0, `${id}: number boxes`);
       assert.equal(new Set(lefts).size, 1, `${id}: every number box starts at the same x (${[...new Set(lefts)]})`);
-      const groups = await page.$$eval(`${ART} details.ctl-group`, (ds) => ds.map((d) => d.open));
-      assert.ok(groups.every((open) => !open), `${id}: groups start collapsed`);
     }
   }));
 
