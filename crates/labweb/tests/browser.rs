@@ -225,6 +225,8 @@ fn a_panic_is_reported_visibly_on_the_page() {
 struct Runner {
     t_s: f64,
     notices: labcore::Notices,
+    /// The canvas size the page last told ([`labcore::Experiment::viewport_px`]).
+    viewport_px: (f64, f64),
 }
 
 impl labcore::Experiment for Runner {
@@ -260,11 +262,17 @@ impl labcore::Experiment for Runner {
     }
     fn scene(&self, _out: &mut labcore::Scene) {}
     fn readouts(&self) -> Vec<labcore::Readout> {
-        vec![labcore::Readout::new(
-            "t",
-            "Time",
-            format!("{:.2}", self.t_s),
-        )]
+        vec![
+            labcore::Readout::new("t", "Time", format!("{:.2}", self.t_s)),
+            labcore::Readout::new(
+                "vp",
+                "Canvas",
+                format!("{}×{}", self.viewport_px.0, self.viewport_px.1),
+            ),
+        ]
+    }
+    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
+        self.viewport_px = (width_px, height_px);
     }
     fn status(&self) -> labcore::Status {
         if self.t_s >= 0.5 {
@@ -293,6 +301,7 @@ fn mount_runner() -> labweb::sim::SimView {
     let exp = Runner {
         t_s: 0.0,
         notices: labcore::Notices::default(),
+        viewport_px: (0.0, 0.0),
     };
     panel.set_inner_html(&format!(
         "<style>.sim-canvas{{display:block;width:300px;height:200px}}</style>{}",
@@ -476,4 +485,20 @@ fn a_scale_bar_is_drawn_in_the_lower_left_and_an_off_view_mark_on_the_edge_towar
     // The edge mark: an arrowhead at the right edge, at mid-height.
     assert_ne!(px(282.0, 100.0), background, "the mark on the right edge");
     assert_eq!(px(20.0, 100.0), background, "nothing on the left edge");
+}
+
+#[wasm_bindgen_test]
+fn the_experiment_is_told_the_canvas_size_on_mount_and_on_resize() {
+    let view = mount_runner();
+    assert_eq!(text_of("[data-readout=vp]"), "300×200");
+    let canvas: HtmlElement = document()
+        .query_selector("canvas.sim-canvas")
+        .unwrap()
+        .unwrap()
+        .dyn_into()
+        .unwrap();
+    canvas.style().set_property("width", "240px").unwrap();
+    canvas.style().set_property("height", "180px").unwrap();
+    view.paint_now();
+    assert_eq!(text_of("[data-readout=vp]"), "240×180");
 }
