@@ -157,3 +157,16 @@ test("a number field says what it read: '1,5' is refused with a reason, '0.5 rad
     await page.waitForFunction(() => /Read “0\.5 rad” as 28\.6/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
     await page.waitForFunction(() => /t1=28\.648/.test(location.hash));
   }));
+
+test("the caption follows the input in use: a touch on the canvas shows the touch hint", () =>
+  withPage(lab, { hasTouch: true, viewport: { width: 390, height: 844 } }, async (page) => {
+    await open(lab, page, "#/astar/simulation");
+    const caption = page.locator("article.exp:not([hidden]) .sim-caption");
+    const canvas = page.locator("article.exp:not([hidden]) canvas.sim-canvas");
+    const box = await canvas.boundingBox();
+    await page.touchscreen.tap(box.x + box.width * 0.5, box.y + box.height * 0.5);
+    await page.waitForFunction(() => document.querySelector("article.exp:not([hidden]) .sim-caption").dataset.input === "touch");
+    assert.ok((await caption.innerText()).trim().length > 0);
+    await page.mouse.click(box.x + box.width * 0.5, box.y + box.height * 0.5);
+    await page.waitForFunction(() => document.querySelector("article.exp:not([hidden]) .sim-caption").dataset.input === "mouse");
+  }));

@@ -73,3 +73,140 @@ test("dark colour scheme gives a dark page, light gives a light one", async () =
     assert.ok(luminance(bg) > 0.7, `light body background ${bg}`);
   });
 });
+
+// Issue 13 §3: the scene, its time bar, its primary actions and its main plot in one view.
+
+const ART = "article.exp:not([hidden])";
+
+/** Client rectangles of the Simulation tab's key parts. */
+const simBoxes = (page) =>
+  page.evaluate((art) => {
+    const box = (sel) => document.querySelector(`${art} ${sel}`)?.getBoundingClientRect().toJSON() ?? null;
+    return {
+      canvas: box("canvas.sim-canvas"),
+      status: box(".sim-status"),
+      timebar: box(".timebar"),
+      actions: box(".sim-actions button"),
+      plot: box(".sim-mainplot canvas.plot-canvas"),
+      side: box(".sim-side"),
+    };
+  }, ART);
+
+const inView = (r, vp) => r.top >= 0 && r.left >= 0 && r.bottom <= vp.height + 0.5 && r.right <= vp.width + 0.5;
+const overlap = (a, b) => a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom;
+
+for (const viewport of [{ width: 1280, height: 800 }, { width: 1440, height: 900 }]) {
+  test(`at ${viewport.width}×${viewport.height} every experiment shows its canvas, time bar, primary actions and main plot together without scrolling`, async (t) => {
+    const ids = await experimentIds(lab);
+    assert.equal(ids.length, 11, `eleven experiments (${ids.join(", ")})`);
+    await withPage(lab, { viewport }, async (page) => {
+      for (const id of ids) {
+        await t.test(id, async () => {
+          await open(lab, page, `#/${id}/simulation`);
+          await settle(page);
+          const b = await simBoxes(page);
+          const hasPlots = (await page.locator(`${ART} figure.plot`).count()) > 0;
+          const parts = ["canvas", "status", "actions", ...(hasPlots ? ["plot"] : [])];
+          for (const part of parts) {
+            assert.ok(b[part], `${id}: has its ${part}`);
+            assert.ok(inView(b[part], viewport), `${id}: ${part} in view (${JSON.stringify(b[part])})`);
+          }
+          if (b.timebar) assert.ok(inView(b.timebar, viewport), `${id}: time bar in view`);
+          if (hasPlots) assert.ok(b.plot.left >= b.canvas.right, `${id}: the main plot is beside the canvas`);
+          assert.ok(b.canvas.height >= 300, `${id}: a large canvas (${b.canvas.height} px)`);
+          if (viewport.width === 1280) await screenshot(page, `${id}-simulation-1280`);
+        });
+      }
+    });
+  });
+}
+
+test("on a phone (390×844) the main plot comes right under the canvas, its status strip and time bar", async (t) => {
+  const ids = await experimentIds(lab);
+  await withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true }, async (page) => {
+    for (const id of ids) {
+      await t.test(id, async () => {
+        await open(lab, page, `#/${id}/simulation`);
+        await settle(page);
+        const b = await simBoxes(page);
+        if (!b.plot) return; // an experiment without plots (fk, ik)
+        const under = b.timebar ?? b.status;
+        assert.ok(b.plot.top >= under.bottom, `${id}: plot below the time bar`);
+        // Nothing but the plot's own caption and legend between them.
+        const between = await page.evaluate((art) => {
+          const plot = document.querySelector(`${art} .sim-mainplot`).getBoundingClientRect();
+          const bar = (document.querySelector(`${art} .timebar`) ?? document.querySelector(`${art} .sim-statusbar`)).getBoundingClientRect();
+          const others = [".sim-actions", ".readouts", ".sim-controls", ".tables:not(:empty)"]
+            .map((s) => document.querySelector(`${art} ${s}`))
+            .filter((el) => el && el.getBoundingClientRect().height > 0)
+            .filter((el) => {
+              const r = el.getBoundingClientRect();
+              return r.top >= bar.bottom - 1 && r.bottom <= plot.top + 1;
+            });
+          return others.map((el) => el.className);
+        }, ART);
+        assert.deepEqual(between, [], `${id}: nothing between the time bar and the main plot`);
+        if (["pid", "diffdrive", "astar", "ekf"].includes(id)) await screenshot(page, `${id}-simulation-390`);
+      });
+    }
+  });
+});
+
+test("the status badge sits outside the canvas (it never covers a handle), at 1280 px and on a phone", async () => {
+  const ids = await experimentIds(lab);
+  for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 }]) {
+    await withPage(lab, { viewport }, async (page) => {
+      for (const id of ids) {
+        await open(lab, page, `#/${id}/simulation`);
+        await settle(page);
+        const b = await simBoxes(page);
+        assert.ok(!overlap(b.status, b.canvas), `${id} at ${viewport.width}: badge ${JSON.stringify(b.status)} off the canvas ${JSON.stringify(b.canvas)}`);
+        const notice = page.locator(`${ART} .sim-notice`);
+        assert.equal(await notice.getAttribute("aria-live"), "polite", `${id}: notices are announced politely`);
+      }
+    });
+  }
+});
+
+test("controls: number boxes line up in one column, grouped controls sit under collapsed headings", () =>
+  withPage(lab, { viewport: { width: 1280, height: 800 } }, async (page) => {
+    for (const id of ["pid", "diffdrive", "ekf"]) {
+      await open(lab, page, `#/${id}/simulation`);
+      const groups = await page.$$eval(`${ART} details.ctl-group`, (ds) => ds.map((d) => d.open));
+      assert.ok(groups.every((open) => !open), `${id}: groups start collapsed`);
+      // Open every group: its rows keep the same columns.
+      await page.$$eval(`${ART} details.ctl-group`, (ds) => ds.forEach((d) => { d.open = true; }));
+      const lefts = await page.$$eval(`${ART} .sim-controls .ctl-num input[type=text]`, (els) =>
+        els.filter((e) => e.getBoundingClientRect().width > 0).map((e) => Math.round(e.getBoundingClientRect().left)),
+      );
+      assert.ok(lefts.length > 0, `${id}: number boxes`);
+      assert.equal(new Set(lefts).size, 1, `${id}: every number box starts at the same x (${[...new Set(lefts)]})`);
+    }
+  }));
+
+test("astar on a phone: open-list numbers never wrap mid-number", () =>
+  withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true }, async (page) => {
+    await open(lab, page, "#/astar/simulation");
+    await page.click(`${ART} button[data-action=plan]`);
+    await page.waitForFunction((art) => document.querySelectorAll(`${art} .live-table td`).length > 4, ART);
+    await settle(page);
+    // One synchronous look (the table is rebuilt while the search runs).
+    const { cells, wrapped, style } = await page.evaluate((art) => {
+      const tds = [...document.querySelectorAll(`${art} .live-table td`)].filter((td) => td.textContent.trim().length > 0);
+      const lines = (td) => {
+        const range = document.createRange();
+        range.selectNodeContents(td);
+        return new Set([...range.getClientRects()].map((r) => Math.round(r.top))).size;
+      };
+      const cs = getComputedStyle(tds[0]);
+      return {
+        cells: tds.length,
+        wrapped: tds.filter((td) => lines(td) !== 1).map((td) => td.textContent),
+        style: [cs.whiteSpace, cs.fontVariantNumeric],
+      };
+    }, ART);
+    assert.ok(cells > 4, `${cells} cells looked at`);
+    assert.deepEqual(wrapped, [], "cells on more than one line");
+    assert.deepEqual(style, ["nowrap", "tabular-nums"]);
+    await screenshot(page, "astar-table-390");
+  }));

@@ -83,3 +83,80 @@ test("malformed links show a notice and leave the lab usable", async (t) => {
     );
   }
 });
+
+// Issue 13 §2: a link with parameters opened in a tab that already shows the
+// experiment rebuilds it from its defaults, exactly as a fresh page does.
+
+/** Clicks the canvas at the world point (x, y) (from the canvas's `data-view`). */
+async function clickWorld(page, x, y) {
+  const c = page.locator("article.exp:not([hidden]) canvas.sim-canvas");
+  const box = await c.boundingBox();
+  const [x0, y0, x1, y1] = (await c.getAttribute("data-view")).split(",").map(Number);
+  const s = Math.min(box.width / (x1 - x0), box.height / (y1 - y0));
+  await page.mouse.click(box.x + box.width / 2 + (x - (x0 + x1) / 2) * s, box.y + box.height / 2 - (y - (y0 + y1) / 2) * s);
+}
+
+/** The link's parameters without the shell's own (run, speed). */
+const linkParams = (hash) => {
+  const q = new URLSearchParams(hash.split("?")[1] ?? "");
+  q.delete("run");
+  q.delete("speed");
+  return q.toString();
+};
+
+test("diffdrive: pasting the default link again after three waypoints gives what a fresh page gives (no waypoints)", () =>
+  withPage(lab, {}, async (page, context) => {
+    await open(lab, page, "#/diffdrive/simulation");
+    await page.waitForFunction(() => location.hash.includes("?"));
+    const defaultLink = await page.evaluate(() => location.hash);
+    const fresh = await context.newPage();
+    await open(lab, fresh, defaultLink);
+    await settle(fresh);
+    const freshWaypoints = (await readouts(fresh)).waypoints;
+
+    const view = (await page.locator("article.exp:not([hidden]) canvas.sim-canvas").getAttribute("data-view")).split(",").map(Number);
+    const at = (fx, fy) => [view[0] + fx * (view[2] - view[0]), view[1] + fy * (view[3] - view[1])];
+    for (const [fx, fy] of [[0.3, 0.8], [0.6, 0.25], [0.8, 0.7]]) await clickWorld(page, ...at(fx, fy));
+    await settle(page);
+    assert.notEqual((await readouts(page)).waypoints, freshWaypoints, "the clicks added waypoints");
+    await page.waitForFunction((d) => location.hash !== d, defaultLink);
+
+    // Paste the default link into the same tab.
+    await page.evaluate((h) => { location.hash = h; }, defaultLink);
+    await page.waitForFunction((fw) => document.querySelector('[data-readout="waypoints"]').textContent.trim() === fw, freshWaypoints);
+    await settle(page);
+    assert.equal((await readouts(page)).waypoints, freshWaypoints);
+    assert.equal(linkParams(await page.evaluate(() => location.hash)), linkParams(defaultLink), "the link is the default one again");
+  }));
+
+test("a link changes only what it names relative to the defaults, not relative to the tab's state", () =>
+  withPage(lab, {}, async (page, context) => {
+    await open(lab, page, "#/fk/simulation?t1=10&t2=20");
+    await page.evaluate(() => { location.hash = "#/fk/simulation?t1=40"; });
+    await page.waitForFunction(() => Number(document.querySelector('input[type=range][data-param="t1"]').value) === 40);
+    const second = await context.newPage();
+    await open(lab, second, "#/fk/simulation?t1=40");
+    assert.equal(await rangeValue(page, "t2"), await rangeValue(second, "t2"), "t2 took its default, as in a fresh page");
+    assert.deepEqual(await readouts(page), await readouts(second));
+  }));
+
+test("a tab link without parameters keeps the state", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/simulation?t1=10&t2=20");
+    await page.click('article.exp:not([hidden]) [role=tab][data-tab="theory"]');
+    await page.click('article.exp:not([hidden]) [role=tab][data-tab="simulation"]');
+    await settle(page);
+    assert.equal(await rangeValue(page, "t2"), 20);
+  }));
+
+test("the shell's own state comes from the link too: a link without speed or pause opened in the tab plays at 1×", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/pid/simulation?kp=12&speed=2&run=0");
+    const art = "article.exp:not([hidden])";
+    assert.equal(await page.locator(`${art} select[data-time=speed]`).inputValue(), "2");
+    assert.equal(await page.locator(`${art} button[data-time=play]`).getAttribute("aria-pressed"), "false");
+    const plain = "#/pid/simulation?kp=12";
+    await page.evaluate((h) => { location.hash = h; }, plain);
+    await page.waitForFunction((a) => document.querySelector(`${a} select[data-time=speed]`).value === "1", art);
+    assert.equal(await page.locator(`${art} button[data-time=play]`).getAttribute("aria-pressed"), "true", "playing, as a fresh page");
+  }));

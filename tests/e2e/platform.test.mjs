@@ -106,11 +106,13 @@ test("at 1280×800 the Simulation tab shows the whole canvas, the time controls 
     await screenshot(page, "dls-simulation-1280");
   }));
 
-test("at 390×844 the canvas, the primary action and the main readouts are on the first screen", () =>
+// On a phone the main plot comes right under the canvas (issue 13 §3), so the
+// readouts follow the primary action, below the first screen.
+test("at 390×844 the canvas, the time bar, the main plot and the primary action are on the first screen", () =>
   withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page) => {
     await open(lab, page, "#/workspace/simulation");
     await settle(page);
-    for (const sel of ["canvas.sim-canvas", "button[data-action=sweep]", ".readouts .readout"]) {
+    for (const sel of ["canvas.sim-canvas", ".timebar", ".sim-mainplot canvas", "button[data-action=sweep]"]) {
       const b = await bottom(page, `${ART} ${sel}`);
       assert.ok(b <= PHONE_390.height, `${sel} ends at ${b} px`);
     }
@@ -317,4 +319,46 @@ test("dark mode: the simulation and its plots are drawn dark", () =>
       assert.ok(r + g + b < 150, `${sel} background is dark: ${r},${g},${b}`);
     }
     await screenshot(page, "dls-dark");
+  }));
+
+// Issue 13 §5: plots whose labels never collide.
+
+const intersects = (a, b) => a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3];
+
+test("pid plots: marker and reference labels never overlap, tick labels are distinct and clear of the axis titles, bands and lines are in the legend", () =>
+  withPage(lab, { viewport: DESKTOP }, async (page) => {
+    await open(lab, page, "#/pid/simulation");
+    const response = page.locator(`${ART} figure.plot[data-plot=response]`);
+    // Wait until the step response carries its markers (rise, settling).
+    await page.waitForFunction(
+      (art) => {
+        const c = document.querySelector(`${art} figure.plot[data-plot=response] canvas`);
+        return c && c.dataset.layout && JSON.parse(c.dataset.layout).labels.length >= 3;
+      },
+      ART,
+      { timeout: 20_000 },
+    );
+    await settle(page);
+    for (const figure of await page.locator(`${ART} figure.plot`).all()) {
+      const key = await figure.getAttribute("data-plot");
+      const layout = JSON.parse(await figure.locator("canvas").getAttribute("data-layout"));
+      for (let i = 0; i < layout.labels.length; i++) {
+        for (let j = i + 1; j < layout.labels.length; j++) {
+          assert.ok(!intersects(layout.labels[i], layout.labels[j]), `${key}: labels ${i} and ${j} overlap`);
+        }
+      }
+      for (const axis of ["xticks", "yticks"]) {
+        const texts = layout[axis].map((t) => t[0]);
+        assert.equal(new Set(texts).size, texts.length, `${key} ${axis} repeat a value: ${texts}`);
+      }
+      for (const [text, rect] of layout.yticks) assert.ok(!intersects(rect, layout.ytitle), `${key}: y tick ${text} on the y title`);
+      for (const [text, rect] of layout.xticks) assert.ok(!intersects(rect, layout.xtitle), `${key}: x tick ${text} on the x title`);
+      for (let i = 1; i < layout.xticks.length; i++) {
+        assert.ok(!intersects(layout.xticks[i - 1][1], layout.xticks[i][1]), `${key}: x ticks ${i - 1} and ${i} overlap`);
+      }
+    }
+    const legend = await response.locator(".legend-extra .legend-item").allInnerTexts();
+    assert.ok(legend.length >= 1, `the response plot names its bands and reference lines: ${legend}`);
+    await response.scrollIntoViewIfNeeded();
+    await screenshot(page, "pid-plots-labels");
   }));

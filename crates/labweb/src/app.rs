@@ -96,6 +96,13 @@ impl App {
                     )));
                 }
                 if let Some(Mounted::Experiment(page)) = &mut self.page {
+                    // A link with parameters describes a whole state: in a tab
+                    // that already shows this experiment, start again from the
+                    // constructor so nothing the link leaves out is kept (unless
+                    // the link is exactly the state shown, e.g. Back to it).
+                    if same && !params.is_empty() && !page.shows(&hash) {
+                        page.rebuild_sim();
+                    }
                     if !params.is_empty() {
                         notices.extend(page.apply_params(&params));
                     }
@@ -228,6 +235,28 @@ fn show_home(root: &Element) {
     dom::next_frame(|| dom::window().scroll_to_with_x_and_y(0.0, 0.0));
 }
 
+/// Builds the experiment fresh from its registry constructor and mounts its
+/// Simulation tab into the article (its failure must not take the reading
+/// tabs down).
+fn mount_sim(root: &Element, entry: &'static Entry) -> Option<SimView> {
+    let panel = query(root, "[data-panel=simulation]")?;
+    let exp = (entry.make)();
+    let caption = escape(exp.hint());
+    let title = query(&panel, ".panel-title").map_or(String::new(), |h| h.outer_html());
+    panel.set_inner_html(&format!("{title}{}", sim::render(exp.as_ref(), &caption)));
+    match SimView::mount(&panel, exp) {
+        Ok(view) => Some(view),
+        Err(e) => {
+            panel.set_inner_html(&format!(
+                "{title}<p class=\"sim-error\" role=\"alert\">The simulation cannot start: {}. \
+                 The other tabs still work.</p>",
+                escape(&e.0)
+            ));
+            None
+        }
+    }
+}
+
 /// State of a mounted experiment page shared with its listeners.
 struct PageInner {
     id: &'static str,
@@ -274,24 +303,7 @@ impl ExperimentPage {
         let title = content.as_ref().map_or(entry.id, |c| c.title.as_str());
         dom::document().set_title(&format!("{title} — Robotics virtual lab"));
 
-        // The simulation: its failure must not take the reading tabs down.
-        let sim = query(&root, "[data-panel=simulation]").and_then(|panel| {
-            let exp = (entry.make)();
-            let caption = escape(exp.hint());
-            let title = query(&panel, ".panel-title").map_or(String::new(), |h| h.outer_html());
-            panel.set_inner_html(&format!("{title}{}", sim::render(exp.as_ref(), &caption)));
-            match SimView::mount(&panel, exp) {
-                Ok(view) => Some(view),
-                Err(e) => {
-                    panel.set_inner_html(&format!(
-                        "{title}<p class=\"sim-error\" role=\"alert\">The simulation cannot start: {}. \
-                         The other tabs still work.</p>",
-                        escape(&e.0)
-                    ));
-                    None
-                }
-            }
-        });
+        let sim = mount_sim(&root, entry);
 
         let inner = Rc::new(RefCell::new(PageInner {
             id: entry.id,
@@ -408,6 +420,28 @@ impl ExperimentPage {
             Some(sim) => sim.apply_params(params),
             None => vec!["The simulation is not running, so its settings were ignored.".into()],
         }
+    }
+
+    /// Whether `hash` is the link of the state the simulation shows now.
+    fn shows(&self, hash: &str) -> bool {
+        let p = self.inner.borrow();
+        p.sim.as_ref().is_some_and(|sim| {
+            let now = sim.hash(Tab::Simulation);
+            now == hash
+                || now.split_once('?').map(|(_, q)| q) == hash.split_once('?').map(|(_, q)| q)
+        })
+    }
+
+    /// Drops the simulation and builds it again from the experiment's
+    /// constructor (fresh clock and speed too); the link is applied after.
+    fn rebuild_sim(&mut self) {
+        let mut p = self.inner.borrow_mut();
+        p.sim = None;
+        let sim = mount_sim(&p.root, p.entry);
+        p.sim = sim;
+        // `select` starts the frame loop again for the shown tab.
+        let tab = p.tab;
+        p.select(tab, false);
     }
 
     fn select(&mut self, tab: Tab, scroll_top: bool) {

@@ -391,8 +391,18 @@ pub fn paint(
                 set_dash(ctx, false);
                 ctx.stroke();
             }
-            // Drawn by the platform work on issue 13 (scale bar, off-view marks).
-            Item::ScaleBar | Item::OffView { .. } => {}
+            Item::ScaleBar => paint_scale_bar(ctx, viewport, palette, height_px),
+            Item::OffView { at, label, role } => {
+                paint_off_view(
+                    ctx,
+                    viewport,
+                    palette,
+                    (width_px, height_px),
+                    *at,
+                    label,
+                    *role,
+                );
+            }
             Item::Raster {
                 min,
                 cell_m,
@@ -413,6 +423,139 @@ pub fn paint(
         }
     }
     ctx.set_global_alpha(1.0);
+}
+
+/// Longest a scale bar may be, CSS pixels.
+const SCALE_BAR_MAX_PX: f64 = 120.0;
+/// Distance of edge marks and the scale bar from the canvas edge, CSS pixels.
+const EDGE_INSET_PX: f64 = 14.0;
+
+/// The scale bar's length: the largest round length (1, 2 or 5 × 10ᵏ m)
+/// that is at most `max_px` long at `scale_px_per_m`.
+#[must_use]
+pub fn scale_bar_m(scale_px_per_m: f64, max_px: f64) -> f64 {
+    let limit_m = max_px / scale_px_per_m.max(1e-12);
+    let decade = 10f64.powf(limit_m.log10().floor());
+    [5.0, 2.0, 1.0]
+        .iter()
+        .map(|f| f * decade)
+        .find(|len| *len <= limit_m * (1.0 + 1e-9))
+        .unwrap_or(decade)
+}
+
+/// The scale bar's label: "1 m", "0.5 m", "20 m".
+#[must_use]
+pub fn scale_bar_label(length_m: f64) -> String {
+    format!("{} m", labcore::quiz::format_number(length_m, 3))
+}
+
+/// A metre scale bar in the lower-left corner, on a plate of the background.
+fn paint_scale_bar(
+    ctx: &CanvasRenderingContext2d,
+    viewport: &Viewport,
+    palette: &Palette,
+    height_px: f64,
+) {
+    let len_m = scale_bar_m(viewport.scale_px_per_m, SCALE_BAR_MAX_PX);
+    let len_px = len_m * viewport.scale_px_per_m;
+    let label = scale_bar_label(len_m);
+    let x0 = EDGE_INSET_PX;
+    let y = height_px - EDGE_INSET_PX;
+    ctx.set_font("600 12px system-ui, sans-serif");
+    let text_w = ctx.measure_text(&label).map_or(0.0, |m| m.width());
+    ctx.set_fill_style_str(&palette.background);
+    ctx.set_global_alpha(0.85);
+    ctx.fill_rect(x0 - 6.0, y - 22.0, len_px.max(text_w) + 12.0, 28.0);
+    ctx.set_global_alpha(1.0);
+    let ink = palette.colour(Role::Text).to_owned();
+    ctx.set_stroke_style_str(&ink);
+    ctx.set_line_width(2.0);
+    set_dash(ctx, false);
+    ctx.begin_path();
+    ctx.move_to(x0, y - 5.0);
+    ctx.line_to(x0, y);
+    ctx.line_to(x0 + len_px, y);
+    ctx.line_to(x0 + len_px, y - 5.0);
+    ctx.stroke();
+    ctx.set_fill_style_str(&ink);
+    ctx.set_text_align("left");
+    ctx.set_text_baseline("bottom");
+    let _ = ctx.fill_text(&label, x0, y - 6.0);
+}
+
+/// Where the edge mark for an off-view point at `p` (CSS px) goes: the point
+/// where the ray from the canvas centre toward `p` meets the canvas rectangle
+/// inset by `inset`, and the ray's direction (radians, screen y down).
+/// `None` while `p` is in view.
+#[must_use]
+pub fn off_view_mark(p: DVec2, size: (f64, f64), inset: f64) -> Option<(DVec2, f64)> {
+    let (w, h) = size;
+    if !p.is_finite() || (p.x >= 0.0 && p.x <= w && p.y >= 0.0 && p.y <= h) {
+        return None;
+    }
+    let c = DVec2::new(w, h) * 0.5;
+    let d = p - c;
+    let half = (c - DVec2::splat(inset)).max(DVec2::splat(1.0));
+    let tx = if d.x.abs() > 1e-12 {
+        half.x / d.x.abs()
+    } else {
+        f64::INFINITY
+    };
+    let ty = if d.y.abs() > 1e-12 {
+        half.y / d.y.abs()
+    } else {
+        f64::INFINITY
+    };
+    let t = tx.min(ty);
+    Some((c + d * t, d.y.atan2(d.x)))
+}
+
+/// An arrowhead on the canvas edge pointing at a point outside the view, with
+/// its label beside it (kept inside the canvas).
+#[allow(clippy::too_many_arguments)]
+fn paint_off_view(
+    ctx: &CanvasRenderingContext2d,
+    viewport: &Viewport,
+    palette: &Palette,
+    (w, h): (f64, f64),
+    at: DVec2,
+    label: &str,
+    role: Role,
+) {
+    let Some((tip, angle)) = off_view_mark(viewport.to_px(at), (w, h), EDGE_INSET_PX) else {
+        return;
+    };
+    let colour = palette.colour(role).to_owned();
+    let u = DVec2::new(angle.cos(), angle.sin());
+    let n = DVec2::new(-u.y, u.x);
+    let back = tip - u * 14.0;
+    ctx.begin_path();
+    ctx.move_to(tip.x, tip.y);
+    ctx.line_to(back.x + n.x * 8.0, back.y + n.y * 8.0);
+    ctx.line_to(back.x - n.x * 8.0, back.y - n.y * 8.0);
+    ctx.close_path();
+    ctx.set_fill_style_str(&colour);
+    ctx.fill();
+    ctx.set_stroke_style_str(&palette.background);
+    ctx.set_line_width(1.5);
+    set_dash(ctx, false);
+    ctx.stroke();
+    if label.is_empty() {
+        return;
+    }
+    ctx.set_font("600 12px system-ui, sans-serif");
+    let text_w = ctx.measure_text(label).map_or(0.0, |m| m.width());
+    // Beside the arrow, toward the inside, kept on the canvas.
+    let at_text = back - u * 6.0;
+    let x = (at_text.x - text_w / 2.0).clamp(4.0, (w - text_w - 4.0).max(4.0));
+    let y = at_text.y.clamp(14.0, h - 6.0);
+    ctx.set_text_align("left");
+    ctx.set_text_baseline("middle");
+    ctx.set_line_width(4.0);
+    ctx.set_stroke_style_str(&palette.background);
+    let _ = ctx.stroke_text(label, x, y);
+    ctx.set_fill_style_str(&colour);
+    let _ = ctx.fill_text(label, x, y);
 }
 
 fn trace_polyline(
@@ -762,6 +905,38 @@ fn blit_to(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_scale_bar_takes_the_longest_round_length_that_fits() {
+        // 100 px per metre, at most 120 px: 1 m.
+        assert_eq!(scale_bar_m(100.0, 120.0), 1.0);
+        // 50 px/m: 2 m (100 px); 20 px/m: 5 m (100 px); 400 px/m: 0.2 m (80 px).
+        assert_eq!(scale_bar_m(50.0, 120.0), 2.0);
+        assert_eq!(scale_bar_m(20.0, 120.0), 5.0);
+        assert!((scale_bar_m(400.0, 120.0) - 0.2).abs() < 1e-12);
+        for scale in [0.7, 3.0, 13.0, 77.0, 640.0] {
+            let len = scale_bar_m(scale, 120.0);
+            assert!(
+                len * scale <= 120.0 + 1e-9 && len * scale > 120.0 / 5.0,
+                "{scale}"
+            );
+        }
+        assert_eq!(scale_bar_label(0.5), "0.5 m");
+        assert_eq!(scale_bar_label(2.0), "2 m");
+    }
+
+    #[test]
+    fn an_off_view_mark_sits_on_the_edge_toward_the_point() {
+        let size = (400.0, 300.0);
+        assert_eq!(off_view_mark(DVec2::new(200.0, 150.0), size, 10.0), None);
+        // Far to the right, level with the centre: right edge, pointing right.
+        let (p, a) = off_view_mark(DVec2::new(1000.0, 150.0), size, 10.0).unwrap();
+        assert!((p.x - 390.0).abs() < 1e-9 && (p.y - 150.0).abs() < 1e-9);
+        assert!(a.abs() < 1e-12);
+        // Below and left: on the inset rectangle, inside the canvas.
+        let (p, _) = off_view_mark(DVec2::new(-50.0, 900.0), size, 10.0).unwrap();
+        assert!((p.y - 290.0).abs() < 1e-9 && p.x > 10.0 && p.x < 200.0);
+    }
 
     #[test]
     fn clipping_keeps_inside_parts_only() {

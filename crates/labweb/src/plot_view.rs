@@ -14,7 +14,7 @@ use web_sys::{CanvasRenderingContext2d, Element, HtmlCanvasElement};
 /// Most rows shown in a plot's data table (the CSV always has every row).
 const TABLE_ROWS_MAX: usize = 500;
 /// Plot margins, CSS pixels: left (y tick labels), right, top, bottom (x ticks and label).
-const MARGIN: (f64, f64, f64, f64) = (58.0, 12.0, 10.0, 34.0);
+const MARGIN: (f64, f64, f64, f64) = (58.0, 12.0, 10.0, 37.0);
 
 /// CSS custom property and dash pattern of each series role: every pair of
 /// roles differs in dash as well as colour.
@@ -55,18 +55,326 @@ pub fn render(plot: &Plot) -> String {
         })
         .collect();
     let key = plot.key;
+    let fit = if plot.series.iter().any(|s| s.comparison) {
+        format!(
+            "<button type=\"button\" class=\"mini\" data-plot-fit=\"{key}\" aria-pressed=\"false\" \
+             title=\"Fit the time axis to the latest run, not the longest kept one\">Fit latest run</button>"
+        )
+    } else {
+        String::new()
+    };
+    let extra = legend_extra_html(plot);
     format!(
         "<figure class=\"plot\" data-plot=\"{key}\">\
          <figcaption><span class=\"plot-title\">{title}</span>\
-         <span class=\"plot-tools\"><button type=\"button\" class=\"mini\" data-plot-csv=\"{key}\">CSV</button>\
+         <span class=\"plot-tools\">{fit}<button type=\"button\" class=\"mini\" data-plot-csv=\"{key}\">CSV</button>\
          <button type=\"button\" class=\"mini\" data-plot-table=\"{key}\" aria-expanded=\"false\">Table</button></span></figcaption>\
-         <div class=\"plot-legend\">{legend}</div>\
+         <div class=\"plot-legend\">{legend}<span class=\"legend-extra\">{extra}</span></div>\
          <div class=\"plot-box\"><canvas class=\"plot-canvas\" role=\"img\" aria-label=\"{title}\"></canvas>\
          <output class=\"plot-tip\" hidden></output></div>\
          <p class=\"sr-only plot-summary\"></p>\
          <div class=\"plot-table\" hidden></div></figure>",
         title = escape(plot.title),
     )
+}
+
+/// Legend entries for the shaded bands and the reference lines (one per
+/// distinct label), so every mark on the plot is named.
+#[must_use]
+pub fn legend_extra_html(plot: &Plot) -> String {
+    let mut seen: Vec<&str> = Vec::new();
+    let mut html = String::new();
+    for band in &plot.bands {
+        if band.label.is_empty() || seen.contains(&band.label.as_str()) {
+            continue;
+        }
+        seen.push(&band.label);
+        html.push_str(&format!(
+            "<span class=\"legend-item\" data-legend=\"band\"><svg width=\"26\" height=\"12\" aria-hidden=\"true\">\
+             <rect x=\"1\" y=\"1\" width=\"24\" height=\"10\" style=\"fill:var(--p-band)\" fill-opacity=\"0.3\"/></svg>{}</span>",
+            escape(&band.label)
+        ));
+    }
+    for line in &plot.ref_lines {
+        if line.label.is_empty() || seen.contains(&line.label.as_str()) {
+            continue;
+        }
+        seen.push(&line.label);
+        html.push_str(&format!(
+            "<span class=\"legend-item\" data-legend=\"line\"><svg width=\"26\" height=\"10\" aria-hidden=\"true\">\
+             <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" style=\"stroke:var(--p-5)\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/></svg>{}</span>",
+            escape(&line.label)
+        ));
+    }
+    html
+}
+
+/// The x range to show: with `fit_latest`, only the series that are not kept
+/// for comparison count (the latest run), when they have samples.
+#[must_use]
+pub fn x_range_for(plot: &Plot, fit_latest: bool) -> Option<(f64, f64)> {
+    let all = plot.x_range()?;
+    if !fit_latest || !matches!(plot.window, labcore::plot::XWindow::All) {
+        return Some(all);
+    }
+    let (lo, hi) = plot
+        .series
+        .iter()
+        .filter(|s| !s.comparison)
+        .flat_map(|s| s.x.iter().copied())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+    Some(if lo <= hi { (lo, hi) } else { all })
+}
+
+/// A rectangle in CSS pixels: top-left corner and size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect {
+    pub x: f64,
+    pub y: f64,
+    pub w: f64,
+    pub h: f64,
+}
+
+impl Rect {
+    #[must_use]
+    pub fn intersects(&self, o: &Rect) -> bool {
+        self.x < o.x + o.w && o.x < self.x + self.w && self.y < o.y + o.h && o.y < self.y + self.h
+    }
+
+    #[must_use]
+    pub fn inside(&self, outer: &Rect) -> bool {
+        self.x >= outer.x
+            && self.y >= outer.y
+            && self.x + self.w <= outer.x + outer.w
+            && self.y + self.h <= outer.y + outer.h
+    }
+
+    fn grown(&self, by: f64) -> Rect {
+        Rect {
+            x: self.x - by,
+            y: self.y - by,
+            w: self.w + 2.0 * by,
+            h: self.h + 2.0 * by,
+        }
+    }
+
+    /// Distance from `p` to the nearest point of the rectangle.
+    fn distance_to(&self, p: (f64, f64)) -> f64 {
+        let dx = (self.x - p.0).max(p.0 - (self.x + self.w)).max(0.0);
+        let dy = (self.y - p.1).max(p.1 - (self.y + self.h)).max(0.0);
+        dx.hypot(dy)
+    }
+}
+
+/// Whether the segment `a`–`b` passes through `r` (Liang–Barsky clipping).
+#[must_use]
+pub fn segment_hits_rect(a: (f64, f64), b: (f64, f64), r: &Rect) -> bool {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let mut t0: f64 = 0.0;
+    let mut t1: f64 = 1.0;
+    for (p, q) in [
+        (-dx, a.0 - r.x),
+        (dx, r.x + r.w - a.0),
+        (-dy, a.1 - r.y),
+        (dy, r.y + r.h - a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+            if t0 > t1 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// How many things `r` would cover: curve segments and labels already placed.
+fn collisions(r: &Rect, curves: &[Vec<(f64, f64)>], taken: &[Rect]) -> usize {
+    let pad = r.grown(2.0);
+    let labels = taken.iter().filter(|t| t.intersects(&pad)).count();
+    let segments: usize = curves
+        .iter()
+        .map(|c| {
+            if c.len() == 1 {
+                usize::from(pad.distance_to(c[0]) <= 0.0)
+            } else {
+                c.windows(2)
+                    .filter(|w| segment_hits_rect(w[0], w[1], &pad))
+                    .count()
+            }
+        })
+        .sum();
+    labels * 1000 + segments
+}
+
+/// Places a `size` label near `anchor` inside `bounds`, off the `curves` and
+/// the labels already `taken`: the first of `preferred` that is free, else
+/// the free spot nearest the anchor, else the spot covering least.
+#[must_use]
+pub fn place_label(
+    anchor: (f64, f64),
+    size: (f64, f64),
+    preferred: &[(f64, f64)],
+    bounds: &Rect,
+    curves: &[Vec<(f64, f64)>],
+    taken: &[Rect],
+) -> Rect {
+    let (w, h) = size;
+    let at = |x: f64, y: f64| Rect { x, y, w, h };
+    let clamp = |r: Rect| Rect {
+        x: r.x.clamp(bounds.x, (bounds.x + bounds.w - w).max(bounds.x)),
+        y: r.y.clamp(bounds.y, (bounds.y + bounds.h - h).max(bounds.y)),
+        w,
+        h,
+    };
+    let score = |r: &Rect| collisions(r, curves, taken);
+    let mut best: Option<(usize, f64, Rect)> = None;
+    let keep = |best: &mut Option<(usize, f64, Rect)>, r: Rect, rank: f64| -> usize {
+        let r = clamp(r);
+        let hits = score(&r);
+        if best.is_none_or(|(bh, br, _)| (hits, rank) < (bh, br)) {
+            *best = Some((hits, rank, r));
+        }
+        hits
+    };
+    for (i, (x, y)) in preferred.iter().enumerate() {
+        if keep(&mut best, at(*x, *y), -1.0 + i as f64 * 1e-3) == 0 {
+            return best.map_or(at(anchor.0, anchor.1), |b| b.2);
+        }
+    }
+    // A ring search: spots around the anchor, nearest first.
+    let mut spots = Vec::new();
+    let (step_x, step_y) = (8.0, (h * 0.5).max(6.0));
+    for i in -24..=24 {
+        for j in -16..=16 {
+            let r = at(
+                anchor.0 + f64::from(i) * step_x - w / 2.0,
+                anchor.1 + f64::from(j) * step_y - h / 2.0,
+            );
+            spots.push((r.distance_to(anchor), r));
+        }
+    }
+    spots.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (d, r) in spots {
+        if d < 4.0 {
+            continue; // never on the anchor itself
+        }
+        if keep(&mut best, r, d) == 0 {
+            break;
+        }
+    }
+    best.map_or(clamp(at(anchor.0, anchor.1)), |b| b.2)
+}
+
+/// The number of decimals that shows every multiple of `step` exactly
+/// (0.05 → 2, 5 → 0, 2.5e-5 → 6).
+#[must_use]
+pub fn tick_decimals(step: f64) -> usize {
+    if !(step.is_finite() && step > 0.0) {
+        return 0;
+    }
+    let mut d = 0;
+    let mut s = step;
+    while d < 12 && (s - s.round()).abs() > 1e-6 * s.max(1.0) {
+        s *= 10.0;
+        d += 1;
+    }
+    d
+}
+
+/// Tick labels for `ticks`: decimals chosen from the tick step, scientific
+/// notation for very large or very small values, and never two alike.
+#[must_use]
+pub fn tick_labels(ticks: &[f64], log: bool) -> Vec<String> {
+    if log {
+        return ticks.iter().map(|v| tick_label(*v, true)).collect();
+    }
+    let step = ticks
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs())
+        .fold(f64::INFINITY, f64::min);
+    let biggest = ticks.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scientific = biggest >= 1e5 || (biggest > 0.0 && biggest < 1e-3);
+    let exp = if scientific {
+        biggest.log10().floor() as i32
+    } else {
+        0
+    };
+    let scale = 10f64.powi(exp);
+    let base = if step.is_finite() {
+        tick_decimals(step / scale)
+    } else {
+        1
+    };
+    for extra in 0..8 {
+        let d = base + extra;
+        let labels: Vec<String> = ticks
+            .iter()
+            .map(|v| {
+                let mut t = format!("{:.d$}", v / scale);
+                if t.starts_with('-') && t[1..].chars().all(|c| c == '0' || c == '.') {
+                    t.remove(0);
+                }
+                if scientific {
+                    format!("{t}e{exp}")
+                } else {
+                    t
+                }
+            })
+            .collect();
+        let distinct = labels
+            .iter()
+            .enumerate()
+            .all(|(i, a)| labels[i + 1..].iter().all(|b| a != b));
+        if distinct {
+            return labels;
+        }
+    }
+    ticks.iter().map(|v| format!("{v:e}")).collect()
+}
+
+/// Where the labels, ticks and titles of a drawn plot went (published on the
+/// canvas as `data-layout` for tests).
+#[derive(Clone, Debug, Default)]
+pub struct Layout {
+    pub labels: Vec<Rect>,
+    pub x_ticks: Vec<(String, Rect)>,
+    pub y_ticks: Vec<(String, Rect)>,
+    pub x_title: Option<Rect>,
+    pub y_title: Option<Rect>,
+}
+
+impl Layout {
+    fn json(&self) -> String {
+        let r = |r: &Rect| format!("[{:.1},{:.1},{:.1},{:.1}]", r.x, r.y, r.w, r.h);
+        let list = |v: &[Rect]| v.iter().map(r).collect::<Vec<_>>().join(",");
+        let ticks = |v: &[(String, Rect)]| {
+            v.iter()
+                .map(|(t, rect)| format!("[\"{}\",{}]", t.replace('"', ""), r(rect)))
+                .collect::<Vec<_>>()
+                .join(",")
+        };
+        let opt = |o: &Option<Rect>| o.as_ref().map_or("null".to_owned(), r);
+        format!(
+            "{{\"labels\":[{}],\"xticks\":[{}],\"yticks\":[{}],\"xtitle\":{},\"ytitle\":{}}}",
+            list(&self.labels),
+            ticks(&self.x_ticks),
+            ticks(&self.y_ticks),
+            opt(&self.x_title),
+            opt(&self.y_title)
+        )
+    }
 }
 
 /// The pixel mapping of the last drawing, for the hover read-out.
@@ -114,6 +422,9 @@ struct Drawn {
     size: (f64, f64, f64),
     frame: Frame,
     hover_x: Option<f64>,
+    /// Whether the x axis fits the latest run (the comparison runs ignored).
+    fit_latest: bool,
+    legend_extra: String,
 }
 
 /// Every plot of the mounted simulation.
@@ -144,6 +455,8 @@ impl PlotView {
                     size: (0.0, 0.0, 0.0),
                     frame: Frame::default(),
                     hover_x: None,
+                    fit_latest: false,
+                    legend_extra: String::new(),
                 })
             })
             .collect();
@@ -171,7 +484,17 @@ impl PlotView {
                 drawn.size = size;
             }
             drawn.revision = Some(plot.revision);
-            drawn.frame = paint_plot(&drawn.ctx, plot, palette, size);
+            let (frame, layout) =
+                paint_plot_layout(&drawn.ctx, plot, palette, size, drawn.fit_latest);
+            drawn.frame = frame;
+            let _ = drawn.canvas.set_attribute("data-layout", &layout.json());
+            let extra = legend_extra_html(plot);
+            if extra != drawn.legend_extra {
+                if let Some(span) = query(&drawn.figure, ".legend-extra") {
+                    span.set_inner_html(&extra);
+                }
+                drawn.legend_extra = extra;
+            }
             if let Some(x) = drawn.hover_x {
                 show_nearest(drawn, plot, palette, x);
             }
@@ -218,7 +541,7 @@ impl PlotView {
             let left = drawn.canvas.get_bounding_client_rect().left();
             drawn.frame.world_x(cx - left)
         });
-        drawn.frame = paint_plot(&drawn.ctx, plot, palette, drawn.size);
+        drawn.frame = paint_plot_layout(&drawn.ctx, plot, palette, drawn.size, drawn.fit_latest).0;
         match drawn.hover_x {
             Some(x) => show_nearest(drawn, plot, palette, x),
             None => {
@@ -227,6 +550,23 @@ impl PlotView {
                 }
             }
         }
+    }
+
+    /// Switches a plot between fitting the latest run and every run (the
+    /// "Fit latest run" button); returns whether it now fits the latest.
+    pub fn toggle_fit(&mut self, key: &str) -> bool {
+        let Some(drawn) = self.plots.iter_mut().find(|d| d.key == key) else {
+            return false;
+        };
+        drawn.fit_latest = !drawn.fit_latest;
+        drawn.revision = None;
+        if let Some(button) = query(&drawn.figure, "[data-plot-fit]") {
+            let _ = button.set_attribute(
+                "aria-pressed",
+                if drawn.fit_latest { "true" } else { "false" },
+            );
+        }
+        drawn.fit_latest
     }
 
     /// Shows or hides a plot's data table; returns whether it is now shown.
@@ -291,22 +631,40 @@ pub(crate) fn paint_plot(
     ctx: &CanvasRenderingContext2d,
     plot: &Plot,
     palette: &Palette,
-    (w, h, dpr): (f64, f64, f64),
+    size: (f64, f64, f64),
 ) -> Frame {
+    paint_plot_layout(ctx, plot, palette, size, false).0
+}
+
+/// Width of the band at the left edge that holds the rotated y-axis title.
+const Y_TITLE_BAND: f64 = 20.0;
+/// Height of one tick label line, CSS pixels (12 px font).
+const TICK_H: f64 = 14.0;
+
+/// Paints one plot (x axis fitted to the latest run with `fit_latest`);
+/// returns the mapping used and where every label went.
+#[allow(clippy::too_many_lines)]
+pub(crate) fn paint_plot_layout(
+    ctx: &CanvasRenderingContext2d,
+    plot: &Plot,
+    palette: &Palette,
+    (w, h, dpr): (f64, f64, f64),
+    fit_latest: bool,
+) -> (Frame, Layout) {
+    let mut layout = Layout::default();
     let _ = ctx.set_transform(dpr, 0.0, 0.0, dpr, 0.0, 0.0);
     ctx.set_fill_style_str(&palette.background);
     ctx.fill_rect(0.0, 0.0, w, h);
-    let (ml, mr, mt, mb) = MARGIN;
-    let rect = (ml, mt, (w - ml - mr).max(10.0), (h - mt - mb).max(10.0));
+    let (_, mr, mt, mb) = MARGIN;
     let text = css(palette, "--c-text");
     let grid = css(palette, "--c-grid");
     ctx.set_font("12px system-ui, sans-serif");
     ctx.set_fill_style_str(&text);
-    let Some(x_range) = plot.x_range() else {
+    let Some(x_range) = x_range_for(plot, fit_latest) else {
         ctx.set_text_align("center");
         ctx.set_text_baseline("middle");
         let _ = ctx.fill_text("No data yet", w / 2.0, h / 2.0);
-        return Frame::default();
+        return (Frame::default(), layout);
     };
     let (mut y0, mut y1) = plot.y_range(x_range).unwrap_or((0.0, 1.0));
     let log = plot.log_y && y0 > 0.0;
@@ -327,6 +685,23 @@ pub(crate) fn paint_plot(
     } else {
         (x_range.0 - 1.0, x_range.1 + 1.0)
     };
+    // The y ticks first: their widest label sets the left margin, so no
+    // label reaches into the band of the y-axis title.
+    let ph = (h - mt - mb).max(10.0);
+    let max_y_ticks = ((ph / 34.0) as usize).clamp(2, 8);
+    let y_ticks = if log {
+        log_ticks(y0, y1, max_y_ticks)
+    } else {
+        nice_ticks(y0, y1, max_y_ticks)
+    };
+    let y_labels = tick_labels(&y_ticks, log);
+    let measure = |t: &str| {
+        ctx.measure_text(t)
+            .map_or(7.0 * t.len() as f64, |m| m.width())
+    };
+    let widest_y = y_labels.iter().map(|t| measure(t)).fold(0.0, f64::max);
+    let ml = left_margin(widest_y);
+    let rect = (ml, mt, (w - ml - mr).max(10.0), ph);
     let frame = Frame {
         x: (x0, x1),
         y: (y0, y1),
@@ -354,54 +729,91 @@ pub(crate) fn paint_plot(
     set_dash(ctx, &[]);
     ctx.set_stroke_style_str(&grid);
     ctx.set_fill_style_str(&text);
-    let max_x_ticks = ((pw / 70.0) as usize).clamp(2, 10);
-    let max_y_ticks = ((ph / 34.0) as usize).clamp(2, 8);
+    // As many x ticks as fit side by side with a gap between their labels.
+    let mut max_x_ticks = ((pw / 70.0) as usize).clamp(2, 10);
+    let (x_ticks, x_labels) = loop {
+        let ticks = nice_ticks(x0, x1, max_x_ticks);
+        let labels = tick_labels(&ticks, false);
+        let widest = labels.iter().map(|t| measure(t)).fold(0.0, f64::max);
+        if max_x_ticks <= 2 || (widest + 12.0) * labels.len() as f64 <= pw {
+            break (ticks, labels);
+        }
+        max_x_ticks -= 1;
+    };
     ctx.set_text_align("center");
     ctx.set_text_baseline("top");
-    for x in nice_ticks(x0, x1, max_x_ticks) {
-        let px = frame.px_x(x);
+    for (x, label) in x_ticks.iter().zip(&x_labels) {
+        let px = frame.px_x(*x);
         ctx.begin_path();
         ctx.move_to(px, t);
         ctx.line_to(px, t + ph);
         ctx.stroke();
-        let _ = ctx.fill_text(&tick_label(x, false), px, t + ph + 4.0);
+        let _ = ctx.fill_text(label, px, t + ph + 4.0);
+        let lw = measure(label);
+        layout.x_ticks.push((
+            label.clone(),
+            Rect {
+                x: px - lw / 2.0,
+                y: t + ph + 4.0,
+                w: lw,
+                h: TICK_H,
+            },
+        ));
     }
     ctx.set_text_align("right");
     ctx.set_text_baseline("middle");
-    let y_ticks = if log {
-        log_ticks(y0, y1, max_y_ticks)
-    } else {
-        nice_ticks(y0, y1, max_y_ticks)
-    };
-    for y in y_ticks {
-        let py = frame.px_y(y);
+    for (y, label) in y_ticks.iter().zip(&y_labels) {
+        let py = frame.px_y(*y);
         ctx.begin_path();
         ctx.move_to(l, py);
         ctx.line_to(l + pw, py);
         ctx.stroke();
-        let _ = ctx.fill_text(&tick_label(y, log), l - 6.0, py);
+        let _ = ctx.fill_text(label, l - 6.0, py);
+        let lw = measure(label);
+        layout.y_ticks.push((
+            label.clone(),
+            Rect {
+                x: l - 6.0 - lw,
+                y: py - TICK_H / 2.0,
+                w: lw,
+                h: TICK_H,
+            },
+        ));
     }
     ctx.set_stroke_style_str(&css(palette, "--muted"));
     ctx.stroke_rect(l, t, pw, ph);
     ctx.set_text_align("center");
     ctx.set_text_baseline("bottom");
-    let _ = ctx.fill_text(
-        &axis_title(plot.x_label, plot.x_unit),
-        l + pw / 2.0,
-        h - 1.0,
-    );
+    let x_title = axis_title(plot.x_label, plot.x_unit);
+    let _ = ctx.fill_text(&x_title, l + pw / 2.0, h - 1.0);
+    let xw = measure(&x_title);
+    layout.x_title = Some(Rect {
+        x: l + pw / 2.0 - xw / 2.0,
+        y: h - 1.0 - TICK_H,
+        w: xw,
+        h: TICK_H,
+    });
+    let y_title = axis_title(plot.y_label, plot.y_unit);
     ctx.save();
-    let _ = ctx.translate(12.0, t + ph / 2.0);
+    let _ = ctx.translate(Y_TITLE_BAND / 2.0 + 1.0, t + ph / 2.0);
     let _ = ctx.rotate(-std::f64::consts::FRAC_PI_2);
     ctx.set_text_baseline("middle");
-    let _ = ctx.fill_text(&axis_title(plot.y_label, plot.y_unit), 0.0, 0.0);
+    let _ = ctx.fill_text(&y_title, 0.0, 0.0);
     ctx.restore();
+    let yw = measure(&y_title);
+    layout.y_title = Some(Rect {
+        x: Y_TITLE_BAND / 2.0 + 1.0 - TICK_H / 2.0,
+        y: t + ph / 2.0 - yw / 2.0,
+        w: TICK_H,
+        h: yw,
+    });
 
     // Clip the data to the plot rectangle.
     ctx.save();
     ctx.begin_path();
     ctx.rect(l, t, pw, ph);
     ctx.clip();
+    let mut ref_px = Vec::new();
     for line in &plot.ref_lines {
         ctx.set_stroke_style_str(&css(palette, "--p-5"));
         set_dash(ctx, &[6.0, 4.0]);
@@ -420,13 +832,11 @@ pub(crate) fn paint_plot(
         ctx.move_to(a.0, a.1);
         ctx.line_to(b.0, b.1);
         ctx.stroke();
-        ctx.set_fill_style_str(&text);
-        ctx.set_text_align("right");
-        ctx.set_text_baseline("bottom");
-        let _ = ctx.fill_text(&line.label, b.0 - 4.0, a.1.max(b.1.min(a.1)) - 2.0);
+        ref_px.push((line, a, b));
     }
     let buckets = (pw as usize).max(1);
     let keep = move |y: f64| !log || y > 0.0;
+    let mut curves: Vec<Vec<(f64, f64)>> = Vec::new();
     for s in &plot.series {
         let (var, dash) = role_style(s.role);
         let pts = decimate_min_max(&s.x, &s.y, (x0, x1), buckets, keep);
@@ -434,41 +844,148 @@ pub(crate) fn paint_plot(
         set_dash(ctx, dash);
         ctx.set_line_width(2.0);
         ctx.begin_path();
-        for (i, (x, y)) in pts.iter().enumerate() {
-            let (px, py) = (frame.px_x(*x), frame.px_y(*y));
+        let px: Vec<(f64, f64)> = pts
+            .iter()
+            .map(|(x, y)| (frame.px_x(*x), frame.px_y(*y)))
+            .collect();
+        for (i, (x, y)) in px.iter().enumerate() {
             if i == 0 {
-                ctx.move_to(px, py);
+                ctx.move_to(*x, *y);
             } else {
-                ctx.line_to(px, py);
+                ctx.line_to(*x, *y);
             }
         }
-        if pts.len() == 1 {
-            let (px, py) = (frame.px_x(pts[0].0), frame.px_y(pts[0].1));
-            let _ = ctx.arc(px, py, 2.0, 0.0, std::f64::consts::TAU);
+        if px.len() == 1 {
+            let _ = ctx.arc(px[0].0, px[0].1, 2.0, 0.0, std::f64::consts::TAU);
         }
         ctx.stroke();
+        if !px.is_empty() {
+            curves.push(px);
+        }
     }
     set_dash(ctx, &[]);
-    for m in &plot.markers {
-        let (px, py) = (frame.px_x(m.x), frame.px_y(m.y));
+    let plot_rect = Rect {
+        x: l,
+        y: t,
+        w: pw,
+        h: ph,
+    };
+    // Marker diamonds are obstacles for every label.
+    let mut taken: Vec<Rect> = Vec::new();
+    let diamonds: Vec<(f64, f64)> = plot
+        .markers
+        .iter()
+        .map(|m| (frame.px_x(m.x), frame.px_y(m.y)))
+        .collect();
+    for (px, py) in &diamonds {
         ctx.set_fill_style_str(&css(palette, "--p-6"));
         ctx.set_stroke_style_str(&palette.background);
         ctx.begin_path();
         // A diamond: its shape tells it from the lines.
-        ctx.move_to(px, py - 6.0);
-        ctx.line_to(px + 6.0, py);
-        ctx.line_to(px, py + 6.0);
-        ctx.line_to(px - 6.0, py);
+        ctx.move_to(*px, py - 6.0);
+        ctx.line_to(px + 6.0, *py);
+        ctx.line_to(*px, py + 6.0);
+        ctx.line_to(px - 6.0, *py);
         ctx.close_path();
         ctx.fill();
         ctx.stroke();
+        taken.push(Rect {
+            x: px - 7.0,
+            y: py - 7.0,
+            w: 14.0,
+            h: 14.0,
+        });
+    }
+    let diamond_count = taken.len();
+    ctx.set_font("12px system-ui, sans-serif");
+    // Reference-line labels: at an end of their line, where no series is.
+    let mut to_draw: Vec<PlacedLabel> = Vec::new();
+    for (line, a, b) in &ref_px {
+        if line.label.is_empty() {
+            continue;
+        }
+        let size = (measure(&line.label) + 6.0, TICK_H + 2.0);
+        let preferred = match line.axis {
+            Axis::Y => vec![
+                (b.0 - size.0 - 4.0, a.1 - size.1 - 1.0),
+                (b.0 - size.0 - 4.0, a.1 + 2.0),
+                (a.0 + 4.0, a.1 - size.1 - 1.0),
+                (a.0 + 4.0, a.1 + 2.0),
+                (a.0 + (pw - size.0) / 2.0, a.1 - size.1 - 1.0),
+                (a.0 + (pw - size.0) / 2.0, a.1 + 2.0),
+            ],
+            Axis::X => vec![
+                (a.0 + 3.0, t + 2.0),
+                (a.0 - size.0 - 3.0, t + 2.0),
+                (a.0 + 3.0, t + ph - size.1 - 2.0),
+                (a.0 - size.0 - 3.0, t + ph - size.1 - 2.0),
+            ],
+        };
+        let anchor = (b.0, b.1);
+        let r = place_label(anchor, size, &preferred, &plot_rect, &curves, &taken);
+        taken.push(r);
+        to_draw.push((line.label.clone(), r, None));
+    }
+    // Marker labels: beside their diamond if free, else in free space with a
+    // leader line; never on each other, on a curve or on a reference line.
+    let mut marker_obstacles = curves.clone();
+    marker_obstacles.extend(ref_px.iter().map(|(_, a, b)| vec![*a, *b]));
+    for (m, (px, py)) in plot.markers.iter().zip(&diamonds) {
+        if m.label.is_empty() {
+            continue;
+        }
+        let size = (measure(&m.label) + 6.0, TICK_H + 2.0);
+        let preferred = [
+            (px + 8.0, py - size.1 - 4.0),
+            (px - size.0 - 8.0, py - size.1 - 4.0),
+            (px + 8.0, py + 4.0),
+            (px - size.0 - 8.0, py + 4.0),
+        ];
+        let r = place_label(
+            (*px, *py),
+            size,
+            &preferred,
+            &plot_rect,
+            &marker_obstacles,
+            &taken,
+        );
+        taken.push(r);
+        let far = r.distance_to((*px, *py)) > 12.0;
+        to_draw.push((m.label.clone(), r, far.then_some((*px, *py))));
+    }
+    ctx.set_text_align("left");
+    ctx.set_text_baseline("middle");
+    for (label, r, leader) in &to_draw {
+        if let Some((ax, ay)) = leader {
+            let cx = ax.clamp(r.x, r.x + r.w);
+            let cy = ay.clamp(r.y, r.y + r.h);
+            ctx.set_stroke_style_str(&css(palette, "--muted"));
+            ctx.set_line_width(1.0);
+            ctx.begin_path();
+            ctx.move_to(*ax, *ay);
+            ctx.line_to(cx, cy);
+            ctx.stroke();
+        }
+        ctx.set_fill_style_str(&palette.background);
+        ctx.set_global_alpha(0.85);
+        ctx.fill_rect(r.x, r.y, r.w, r.h);
+        ctx.set_global_alpha(1.0);
         ctx.set_fill_style_str(&text);
-        ctx.set_text_align("left");
-        ctx.set_text_baseline("bottom");
-        let _ = ctx.fill_text(&m.label, (px + 7.0).min(l + pw - 40.0), py - 4.0);
+        let _ = ctx.fill_text(label, r.x + 3.0, r.y + r.h / 2.0);
     }
     ctx.restore();
-    frame
+    layout.labels = taken[diamond_count..].to_vec();
+    (frame, layout)
+}
+
+/// A label to draw: its text, its box and the anchor of its leader line.
+type PlacedLabel = (String, Rect, Option<(f64, f64)>);
+
+/// The left margin that keeps the widest y tick label (`widest_px`) clear of
+/// the y-axis title band.
+#[must_use]
+pub fn left_margin(widest_px: f64) -> f64 {
+    (Y_TITLE_BAND + 4.0 + widest_px + 6.0).max(MARGIN.0)
 }
 
 /// Draws a cursor at the sample nearest `x` and fills the tooltip.
@@ -621,6 +1138,184 @@ mod tests {
             split_csv("a,\"b, c\",\"d\"\"e\""),
             vec!["a", "b, c", "d\"e"]
         );
+    }
+
+    use labcore::plot::{Band, Marker, RefLine, Series};
+
+    /// Regression (issue 13 §5): a 0.0002 J energy span showed four "0.4826".
+    #[test]
+    fn tick_labels_never_repeat_a_value() {
+        let ticks = nice_ticks(0.48250, 0.48270, 6);
+        let labels = tick_labels(&ticks, false);
+        for (i, a) in labels.iter().enumerate() {
+            assert!(!labels[i + 1..].contains(a), "{a} repeats in {labels:?}");
+        }
+        assert_eq!(
+            tick_labels(&[0.0, 0.05, 0.1], false),
+            ["0.00", "0.05", "0.10"]
+        );
+        assert_eq!(tick_labels(&[0.0, 5.0, 10.0], false), ["0", "5", "10"]);
+        assert_eq!(tick_labels(&[-0.0, 1.0], false)[0], "0");
+        let big = tick_labels(&[0.0, 2e5, 4e5], false);
+        assert_eq!(big, ["0e5", "2e5", "4e5"]);
+        for span in [1e-9, 3e-7, 1e-4, 0.02, 7.0, 3e3, 1e8] {
+            for centre in [0.0, 0.4826, -12.5, 1e6] {
+                let ticks = nice_ticks(centre - span, centre + span, 7);
+                let labels = tick_labels(&ticks, false);
+                let mut sorted = labels.clone();
+                sorted.sort();
+                sorted.dedup();
+                assert_eq!(sorted.len(), labels.len(), "{centre} ± {span}: {labels:?}");
+            }
+        }
+        assert_eq!(tick_decimals(0.05), 2);
+        assert_eq!(tick_decimals(2.5e-5), 6);
+        assert_eq!(tick_decimals(20.0), 0);
+    }
+
+    #[test]
+    fn y_tick_labels_stay_clear_of_the_axis_title() {
+        for widest in [10.0, 34.0, 60.0, 120.0] {
+            let l = left_margin(widest);
+            let label_left = l - 6.0 - widest;
+            assert!(
+                label_left >= Y_TITLE_BAND,
+                "{widest}: label from {label_left}"
+            );
+        }
+    }
+
+    fn rising_curve() -> Vec<(f64, f64)> {
+        // A step response in pixels: rises from (0, 200) to (100, 40), then flat.
+        let mut c: Vec<(f64, f64)> = (0..=100)
+            .map(|i| (f64::from(i), 200.0 - 1.6 * f64::from(i)))
+            .collect();
+        c.extend((101..=400).map(|i| (f64::from(i), 40.0)));
+        c
+    }
+
+    /// Regression (issue 13 §5): "rise" and "settled" labels drawn on each
+    /// other and on the curve.
+    #[test]
+    fn marker_labels_avoid_each_other_and_the_curves() {
+        let bounds = Rect {
+            x: 0.0,
+            y: 0.0,
+            w: 400.0,
+            h: 220.0,
+        };
+        let curves = vec![rising_curve()];
+        let mut taken: Vec<Rect> = Vec::new();
+        // Two markers close together on the curve, as rise and settling are.
+        for anchor in [(90.0, 56.0), (100.0, 40.0), (104.0, 40.0)] {
+            let size = (70.0, 16.0);
+            let preferred = [
+                (anchor.0 + 8.0, anchor.1 - 20.0),
+                (anchor.0 - 78.0, anchor.1 - 20.0),
+            ];
+            let r = place_label(anchor, size, &preferred, &bounds, &curves, &taken);
+            assert!(r.inside(&bounds), "{r:?}");
+            for t in &taken {
+                assert!(!t.intersects(&r), "{r:?} overlaps {t:?}");
+            }
+            for w in curves[0].windows(2) {
+                assert!(!segment_hits_rect(w[0], w[1], &r), "{r:?} covers the curve");
+            }
+            taken.push(r);
+        }
+    }
+
+    #[test]
+    fn a_reference_label_moves_off_a_series_that_runs_along_its_line() {
+        let bounds = Rect {
+            x: 0.0,
+            y: 0.0,
+            w: 300.0,
+            h: 200.0,
+        };
+        // The series lies just above the line at y = 100 on the right half.
+        let curve: Vec<(f64, f64)> = (150..=300).map(|x| (f64::from(x), 92.0)).collect();
+        let size = (60.0, 16.0);
+        let preferred = [(236.0, 83.0), (236.0, 102.0), (4.0, 83.0)];
+        let r = place_label(
+            (300.0, 100.0),
+            size,
+            &preferred,
+            &bounds,
+            std::slice::from_ref(&curve),
+            &[],
+        );
+        for w in curve.windows(2) {
+            assert!(!segment_hits_rect(w[0], w[1], &r));
+        }
+        assert_eq!(
+            (r.x, r.y),
+            (236.0, 102.0),
+            "the second choice: below the line"
+        );
+    }
+
+    fn comparison_plot() -> Plot {
+        let mut plot = Plot::new(
+            "r",
+            "Response",
+            ("Time", "s"),
+            ("Position", "m"),
+            vec![
+                Series::new("now", "m", SeriesRole::Primary),
+                Series::new("Kp 25, Kd 5", "m", SeriesRole::Reference).for_comparison(),
+            ],
+        );
+        for i in 0..=20 {
+            plot.series[0].push(f64::from(i) * 0.1, 1.0);
+        }
+        for i in 0..=80 {
+            plot.series[1].push(f64::from(i) * 0.1, 1.0);
+        }
+        plot
+    }
+
+    #[test]
+    fn fit_latest_run_takes_the_x_range_from_the_runs_not_kept_for_comparison() {
+        let plot = comparison_plot();
+        assert_eq!(x_range_for(&plot, false), Some((0.0, 8.0)));
+        assert_eq!(x_range_for(&plot, true), Some((0.0, 2.0)));
+        assert!(render(&plot).contains("data-plot-fit=\"r\""));
+        let mut plain = plot.clone();
+        plain.series[1].comparison = false;
+        assert!(!render(&plain).contains("data-plot-fit"));
+    }
+
+    #[test]
+    fn every_band_and_reference_line_has_a_legend_entry() {
+        let mut plot = comparison_plot();
+        plot.bands.push(Band {
+            axis: Axis::Y,
+            lo: 0.98,
+            hi: 1.02,
+            label: "±2 % band".into(),
+        });
+        plot.ref_lines.push(RefLine {
+            axis: Axis::Y,
+            value: 1.0,
+            label: "set-point".into(),
+        });
+        plot.ref_lines.push(RefLine {
+            axis: Axis::Y,
+            value: 3.0,
+            label: "expected 3".into(),
+        });
+        plot.markers.push(Marker {
+            x: 0.5,
+            y: 1.0,
+            label: "rise 0.5 s".into(),
+        });
+        let html = render(&plot);
+        assert_eq!(html.matches("data-legend=\"band\"").count(), 1);
+        assert_eq!(html.matches("data-legend=\"line\"").count(), 2);
+        for name in ["±2 % band", "set-point", "expected 3"] {
+            assert!(html.contains(name), "{name}");
+        }
     }
 
     #[test]

@@ -1,0 +1,684 @@
+//! The Simulation tab: canvas, controls, readouts and the animation loop.
+//!
+//! Logic first, then paint: each animation frame steps the experiment with a
+//! fixed `dt`, rebuilds the display list from state and paints it. Every
+//! listener, the resize observer and the animation-frame closure are owned by
+//! [`SimView`] and removed when it is dropped.
+//!
+//! The rooms: this file holds the state, the frame loop, painting and the
+//! link; [`timebar`] the time controls; [`canvas_input`] pointer, touch and
+//! keyboard input on the canvas; [`panel`] the controls, readouts, tables
+//! and buttons beside it; [`status`] the status badge, notices and the
+//! screen-reader announcements.
+
+use crate::dom::{self, escape, query, Listener};
+use crate::draw::{paint, Palette, Viewport};
+use crate::plot_view::{self, PlotView};
+use glam::DVec2;
+use labcore::clock::Clock;
+use labcore::route::{self, Tab};
+use labcore::{Experiment, Phase, Scene};
+use std::cell::{Cell, RefCell};
+use std::rc::{Rc, Weak};
+use wasm_bindgen::prelude::*;
+use wasm_bindgen::JsCast;
+use web_sys::{
+    CanvasRenderingContext2d, Element, HtmlCanvasElement, HtmlElement, PointerEvent, ResizeObserver,
+};
+
+mod canvas_input;
+mod panel;
+mod status;
+mod timebar;
+
+use panel::{readouts_html, tables_html};
+use status::{statusbar_html, NoticeShelf};
+use timebar::timebar_html;
+
+/// Shortest time between two redraws of the plots, milliseconds.
+const PLOT_INTERVAL_MS: f64 = 66.0;
+/// Minimum time between URL updates while a control moves, milliseconds.
+const HASH_INTERVAL_MS: f64 = 250.0;
+
+/// Why the simulation could not start (the reading tabs still work).
+#[derive(Debug)]
+pub struct SimError(pub String);
+
+/// The HTML of the Simulation tab for an experiment.
+///
+/// The stage holds the canvas, the status strip under it, the time bar and
+/// the actions; the side panel the experiment's main plot (its first), the
+/// readouts, tables and controls; further plots follow below. On a wide
+/// screen the main plot is thus beside the canvas; on a phone the two
+/// columns dissolve into one ordered list with the main plot right under
+/// the canvas and its time bar (see `style.css`).
+pub fn render(exp: &dyn Experiment, caption: &str) -> String {
+    let controls = panel::controls_html(exp.params());
+    let actions: String = exp
+        .actions()
+        .iter()
+        .map(|a| {
+            format!(
+                "<button type=\"button\" data-action=\"{}\">{}</button>",
+                a.key,
+                escape(a.label)
+            )
+        })
+        .collect();
+    let readouts = readouts_html(&exp.readouts());
+    let statusbar = statusbar_html(&exp.status());
+    let timebar = if exp.animated() {
+        timebar_html()
+    } else {
+        String::new()
+    };
+    let all_plots = exp.plots();
+    let main_plot = all_plots.first().map_or(String::new(), |p| {
+        format!(
+            "<section class=\"sim-mainplot\" aria-label=\"Main plot\">{}</section>",
+            plot_view::render(p)
+        )
+    });
+    let plots: String = all_plots.iter().skip(1).map(plot_view::render).collect();
+    let plots = if plots.is_empty() {
+        String::new()
+    } else {
+        format!("<section class=\"plots\" aria-label=\"Plots\">{plots}</section>")
+    };
+    let files = if exp.file_types().is_empty() {
+        String::new()
+    } else {
+        let accept = exp.file_types().join(",");
+        format!(
+            "<button type=\"button\" class=\"mini\" data-file=\"pick\">Load file…</button>\
+             <input type=\"file\" class=\"file-input\" accept=\"{}\" hidden>",
+            escape(&accept)
+        )
+    };
+    let save = if exp.export_text().is_some() {
+        "<button type=\"button\" class=\"mini\" data-export=\"text\">Save file</button>"
+    } else {
+        ""
+    };
+    let tables = tables_html(&exp.tables());
+    let touch_note = if exp.captures_touch() {
+        "<p class=\"touch-note\">On a touch screen this canvas takes every touch (you draw on it). \
+         <button type=\"button\" class=\"mini\" data-touch-mode aria-pressed=\"true\">Touch draws</button> \
+         Switch it off to scroll the page with a swipe over the canvas.</p>"
+    } else {
+        ""
+    };
+    format!(
+        "<div class=\"sim\">\
+           <div class=\"sim-stage\">\
+             <p class=\"sim-caption\">{caption}</p>\
+             <div class=\"sim-frame\">\
+               <canvas class=\"sim-canvas\" data-touch=\"{touch}\" tabindex=\"0\" role=\"application\" aria-roledescription=\"simulation\" \
+                 aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps){keys}.\"></canvas>\
+             </div>{statusbar}{touch_note}\
+             {timebar}\
+             <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button></div>\
+           </div>\
+           <div class=\"sim-side\">{main_plot}\
+             <dl class=\"readouts\">{readouts}</dl>\
+             <p class=\"sim-message\" role=\"alert\" hidden></p>\
+             <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
+             <form class=\"sim-controls\" aria-label=\"Parameters\" onsubmit=\"return false\">{controls}</form>\
+             <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
+           </div>\
+           {plots}\
+         </div>",
+        touch = if exp.captures_touch() { "all" } else { "handles" },
+        keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
+    )
+}
+
+/// Whether the device's main pointer is a finger (the touch hint shows first).
+fn coarse_pointer() -> bool {
+    web_sys::window()
+        .and_then(|w| w.match_media("(pointer: coarse)").ok().flatten())
+        .is_some_and(|m| m.matches())
+}
+
+/// State shared by the frame loop and the event handlers.
+struct SimState {
+    exp: Box<dyn Experiment>,
+    canvas: HtmlCanvasElement,
+    ctx: CanvasRenderingContext2d,
+    panel: Element,
+    scene: Scene,
+    palette: Palette,
+    viewport: Viewport,
+    css_size: (f64, f64),
+    dpr: f64,
+    pressed_pointer: Option<i32>,
+    /// A touch that started off every handle: a tap if it lifts in place, a
+    /// scroll if the browser takes it, a drag if it moves sideways.
+    pending_touch: Option<(i32, DVec2, DVec2)>,
+    /// For an experiment that captures touch: whether touches draw (true)
+    /// or, switched off by the student, scroll like elsewhere.
+    touch_draws: bool,
+    last_time_ms: Option<f64>,
+    clock: Clock,
+    plots: PlotView,
+    plots_force: bool,
+    last_plot_ms: f64,
+    /// Running, speed, steps and whether the play button offers Replay, as shown.
+    shown_time: (bool, f64, u64, bool),
+    /// The run's phase at the last frame (the time bar offers Replay when ended).
+    phase: Phase,
+    /// The clock was stopped because the run ended (not by the student): it
+    /// resumes by itself when the run is live again (a new goal, a reset).
+    ended_hold: bool,
+    needs_paint: bool,
+    /// What each control shows; `None` = unknown (refresh it), `Some(None)` = empty.
+    shown_values: Vec<Option<Option<f64>>>,
+    shown_readouts: Vec<String>,
+    shown_status: Option<labcore::Status>,
+    notices: NoticeShelf,
+    /// Serial of the notice on screen.
+    shown_notice: Option<u64>,
+    /// Whether the last pointer was a finger (the caption shows the touch hint).
+    touch_input: bool,
+    shown_hint: Option<(&'static str, bool)>,
+    shown_tables: Vec<labcore::Table>,
+    shown_view: labcore::ViewBox,
+    hash_dirty: bool,
+    last_hash_ms: f64,
+    frame_times: FrameTimes,
+}
+
+/// Recent busy-frame times (step + paint), published on the canvas as
+/// `data-frame-p95-ms` and `data-frame-max-ms` for tests and curious users.
+#[derive(Default)]
+struct FrameTimes {
+    recent_ms: Vec<f64>,
+    next: usize,
+    max_ms: f64,
+    since_publish: usize,
+}
+
+impl FrameTimes {
+    const WINDOW: usize = 300;
+
+    fn record(&mut self, ms: f64, canvas: &HtmlCanvasElement) {
+        if self.recent_ms.len() < Self::WINDOW {
+            self.recent_ms.push(ms);
+        } else {
+            self.recent_ms[self.next] = ms;
+        }
+        self.next = (self.next + 1) % Self::WINDOW;
+        self.max_ms = self.max_ms.max(ms);
+        self.since_publish += 1;
+        if self.since_publish >= 15 || ms > 16.0 {
+            self.since_publish = 0;
+            let mut sorted = self.recent_ms.clone();
+            sorted.sort_by(f64::total_cmp);
+            let p95 = sorted[(sorted.len() * 95 / 100).min(sorted.len() - 1)];
+            let _ = canvas.set_attribute("data-frame-p95-ms", &format!("{p95:.2}"));
+            let _ = canvas.set_attribute("data-frame-max-ms", &format!("{:.2}", self.max_ms));
+        }
+    }
+}
+
+impl SimState {
+    fn resize(&mut self) {
+        let rect = self.canvas.get_bounding_client_rect();
+        let (w, h) = (rect.width(), rect.height());
+        let dpr = dom::window().device_pixel_ratio().max(1.0);
+        if w < 1.0 || h < 1.0 {
+            return;
+        }
+        if (w, h) != self.css_size || dpr != self.dpr {
+            self.css_size = (w, h);
+            self.dpr = dpr;
+            self.canvas.set_width((w * dpr).round() as u32);
+            self.canvas.set_height((h * dpr).round() as u32);
+            self.needs_paint = true;
+            // The experiment may pick a view that keeps cells finger-sized.
+            self.exp.viewport_px(w, h);
+        }
+        let view = self.exp.view();
+        if view != self.shown_view {
+            // The world rectangle shown, for tests and tools that click world points.
+            let _ = self.canvas.set_attribute(
+                "data-view",
+                &format!(
+                    "{},{},{},{}",
+                    view.min.x, view.min.y, view.max.x, view.max.y
+                ),
+            );
+            self.shown_view = view;
+        }
+        self.viewport = Viewport::fit(view, w, h);
+    }
+
+    fn to_world(&self, event: &PointerEvent) -> DVec2 {
+        let rect = self.canvas.get_bounding_client_rect();
+        let px = DVec2::new(
+            f64::from(event.client_x()) - rect.left(),
+            f64::from(event.client_y()) - rect.top(),
+        );
+        self.viewport.to_world(px)
+    }
+
+    fn frame(&mut self, time_ms: f64) {
+        let start = dom::now_ms();
+        let elapsed_s = self
+            .last_time_ms
+            .map_or(0.0, |last| (time_ms - last) / 1000.0);
+        self.last_time_ms = Some(time_ms);
+        let was_animating = self.exp.animating();
+        // An idle experiment's clock does not tick (t counts motion only).
+        let steps = if was_animating || !self.exp.animated() {
+            self.clock.advance(elapsed_s)
+        } else {
+            0
+        };
+        for _ in 0..steps {
+            self.exp.step(Clock::DT_S);
+        }
+        self.follow_phase();
+        let stopped = was_animating && !self.exp.animating();
+        if stopped {
+            // The state the motion ended in belongs in the link and is worth announcing.
+            self.hash_dirty = true;
+            self.announce();
+        }
+        // Paint while moving, and once more for the frame on which it stopped.
+        if steps > 0 && (was_animating || self.exp.animating()) {
+            self.needs_paint = true;
+        }
+        let busy = self.needs_paint || steps > 0;
+        if self.needs_paint {
+            self.resize();
+            self.paint();
+            self.sync_dom();
+            self.needs_paint = false;
+        }
+        // Plots follow the data at most every PLOT_INTERVAL_MS: a curve
+        // needs no 60 Hz, and the frame keeps its budget for the simulation.
+        if self.plots_force || time_ms - self.last_plot_ms >= PLOT_INTERVAL_MS {
+            self.plots
+                .draw(self.exp.plots(), &self.palette, self.plots_force);
+            self.plots_force = false;
+            self.last_plot_ms = time_ms;
+        }
+        self.sync_notice(time_ms);
+        self.sync_timebar();
+        if self.hash_dirty && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS {
+            self.write_hash();
+            self.last_hash_ms = time_ms;
+        }
+        if busy {
+            self.frame_times.record(dom::now_ms() - start, &self.canvas);
+        }
+    }
+
+    /// The link of the current state: the experiment's parameters, then the
+    /// shell's own (`run=0` when paused, `speed` when not 1×).
+    fn link(&self) -> String {
+        let mut hash = route::format(self.exp.as_ref(), Tab::Simulation);
+        let mut extra = Vec::new();
+        if self.exp.animated() && !self.clock.running() && !self.ended_hold {
+            extra.push("run=0".to_owned());
+        }
+        if self.clock.speed() != 1.0 {
+            extra.push(format!("speed={}", self.clock.speed()));
+        }
+        if !extra.is_empty() {
+            hash.push(if hash.contains('?') { '&' } else { '?' });
+            hash.push_str(&extra.join("&"));
+        }
+        hash
+    }
+
+    /// File names of exports: the experiment, the seed where there is one.
+    fn file_stem(&self) -> String {
+        match self.exp.param("seed") {
+            Some(seed) => format!("{}-seed{}", self.exp.id(), seed as u64),
+            None => self.exp.id().to_owned(),
+        }
+    }
+
+    fn paint(&mut self) {
+        let (w, h) = self.css_size;
+        if w < 1.0 {
+            return;
+        }
+        self.scene.clear();
+        self.exp.scene(&mut self.scene);
+        paint(
+            &self.ctx,
+            &self.scene,
+            &self.viewport,
+            w,
+            h,
+            self.dpr,
+            &self.palette,
+        );
+    }
+
+    fn write_hash(&mut self) {
+        self.hash_dirty = false;
+        let hash = self.link();
+        if let Ok(history) = dom::window().history() {
+            let _ = history.replace_state_with_url(&JsValue::NULL, "", Some(&hash));
+        }
+    }
+}
+
+/// A `requestAnimationFrame` loop, cancelled when dropped.
+struct AnimationLoop {
+    inner: Rc<FrameRequest>,
+}
+
+/// The closure `requestAnimationFrame` calls with the frame time in milliseconds.
+type FrameCallback = Closure<dyn FnMut(f64)>;
+
+struct FrameRequest {
+    id: Cell<Option<i32>>,
+    closure: RefCell<Option<FrameCallback>>,
+}
+
+impl FrameRequest {
+    fn request(&self) {
+        if let Some(c) = self.closure.borrow().as_ref() {
+            self.id.set(
+                dom::window()
+                    .request_animation_frame(c.as_ref().unchecked_ref())
+                    .ok(),
+            );
+        }
+    }
+}
+
+impl AnimationLoop {
+    fn start(mut tick: impl FnMut(f64) + 'static) -> Self {
+        let inner = Rc::new(FrameRequest {
+            id: Cell::new(None),
+            closure: RefCell::new(None),
+        });
+        let weak: Weak<FrameRequest> = Rc::downgrade(&inner);
+        let closure = Closure::<dyn FnMut(f64)>::new(move |t: f64| {
+            tick(t);
+            if let Some(inner) = weak.upgrade() {
+                inner.request();
+            }
+        });
+        *inner.closure.borrow_mut() = Some(closure);
+        inner.request();
+        Self { inner }
+    }
+}
+
+impl Drop for AnimationLoop {
+    fn drop(&mut self) {
+        if let Some(id) = self.inner.id.take() {
+            let _ = dom::window().cancel_animation_frame(id);
+        }
+        self.inner.closure.borrow_mut().take();
+    }
+}
+
+/// A resize observer disconnected when dropped.
+struct ResizeWatch {
+    observer: ResizeObserver,
+    _closure: Closure<dyn FnMut(js_sys::Array)>,
+}
+
+impl Drop for ResizeWatch {
+    fn drop(&mut self) {
+        self.observer.disconnect();
+    }
+}
+
+/// The mounted Simulation tab of one experiment.
+pub struct SimView {
+    state: Rc<RefCell<SimState>>,
+    running: Option<AnimationLoop>,
+    _listeners: Vec<Listener>,
+    _resize: Option<ResizeWatch>,
+}
+
+impl SimView {
+    /// Wires the Simulation panel rendered by [`render`] to `exp`.
+    pub fn mount(panel: &Element, exp: Box<dyn Experiment>) -> Result<Self, SimError> {
+        let canvas: HtmlCanvasElement = query(panel, "canvas.sim-canvas")
+            .and_then(|c| c.dyn_into().ok())
+            .ok_or_else(|| SimError("the page has no canvas".into()))?;
+        let ctx: CanvasRenderingContext2d = canvas
+            .get_context("2d")
+            .ok()
+            .flatten()
+            .and_then(|c| c.dyn_into().ok())
+            .ok_or_else(|| {
+                SimError("this browser could not give the simulation a 2D canvas".into())
+            })?;
+        let palette = Palette::from_css(&canvas);
+        let view = exp.view();
+        let n_params = exp.params().len();
+        let state = Rc::new(RefCell::new(SimState {
+            exp,
+            canvas: canvas.clone(),
+            ctx,
+            panel: panel.clone(),
+            scene: Scene::default(),
+            palette,
+            viewport: Viewport::fit(view, 1.0, 1.0),
+            css_size: (0.0, 0.0),
+            dpr: 1.0,
+            pressed_pointer: None,
+            pending_touch: None,
+            touch_draws: true,
+            last_time_ms: None,
+            clock: Clock::default(),
+            plots: PlotView::mount(panel),
+            plots_force: true,
+            last_plot_ms: f64::NEG_INFINITY,
+            shown_time: (true, 0.0, u64::MAX, false),
+            phase: Phase::Live,
+            ended_hold: false,
+            needs_paint: true,
+            shown_values: vec![None; n_params],
+            shown_readouts: Vec::new(),
+            shown_status: None,
+            notices: NoticeShelf::default(),
+            shown_notice: None,
+            touch_input: coarse_pointer(),
+            shown_hint: None,
+            shown_tables: Vec::new(),
+            shown_view: labcore::ViewBox::centered(0.0),
+            hash_dirty: false,
+            last_hash_ms: 0.0,
+            frame_times: FrameTimes::default(),
+        }));
+        let mut listeners = Vec::new();
+        canvas_input::listen(&state, &canvas, &mut listeners);
+        panel::listen(&state, panel, &mut listeners);
+        // Theme changes (light/dark) repaint with the new palette.
+        if let Ok(Some(mql)) = dom::window().match_media("(prefers-color-scheme: dark)") {
+            let s = state.clone();
+            listeners.push(Listener::new(mql.as_ref(), "change", move |_| {
+                let mut st = s.borrow_mut();
+                st.palette = Palette::from_css(&st.canvas);
+                st.needs_paint = true;
+                st.plots_force = true;
+            }));
+        }
+        let s = state.clone();
+        listeners.push(Listener::new(
+            dom::document().as_ref(),
+            "visibilitychange",
+            move |_| {
+                // Resume without a catch-up burst after the page was hidden.
+                s.borrow_mut().last_time_ms = None;
+            },
+        ));
+
+        let s = state.clone();
+        let closure = Closure::<dyn FnMut(js_sys::Array)>::new(move |_entries: js_sys::Array| {
+            if let Ok(mut st) = s.try_borrow_mut() {
+                st.resize();
+                st.needs_paint = true;
+            }
+        });
+        let resize = ResizeObserver::new(closure.as_ref().unchecked_ref())
+            .ok()
+            .map(|observer| {
+                observer.observe(&canvas);
+                ResizeWatch {
+                    observer,
+                    _closure: closure,
+                }
+            });
+        Ok(Self {
+            state,
+            running: None,
+            _listeners: listeners,
+            _resize: resize,
+        })
+    }
+
+    /// Starts the frame loop when the Simulation tab shows, stops it otherwise.
+    pub fn set_active(&mut self, active: bool) {
+        if active && self.running.is_none() {
+            let s = self.state.clone();
+            {
+                let mut st = s.borrow_mut();
+                st.last_time_ms = None;
+                st.needs_paint = true;
+            }
+            self.running = Some(AnimationLoop::start(move |t| {
+                // Browsers stop animation frames for hidden pages; this guards the rest.
+                if dom::document().hidden() {
+                    return;
+                }
+                if let Ok(mut st) = s.try_borrow_mut() {
+                    st.frame(t);
+                }
+            }));
+        } else if !active {
+            self.running = None;
+        }
+    }
+
+    /// Applies raw URL parameters; returns notices about what was wrong.
+    pub fn apply_params(&self, params: &[(String, String)]) -> Vec<String> {
+        let mut st = self.state.borrow_mut();
+        let (shell, own): (Vec<_>, Vec<_>) = params
+            .iter()
+            .cloned()
+            .partition(|(k, _)| k == "run" || k == "speed");
+        let mut notices = route::apply_params(st.exp.as_mut(), &own);
+        for (key, raw) in shell {
+            match (key.as_str(), raw.trim().parse::<f64>()) {
+                ("run", Ok(v)) if v == 0.0 || v == 1.0 => st.clock.set_running(v == 1.0),
+                ("speed", Ok(v)) if v.is_finite() && v > 0.0 => {
+                    let applied = st.clock.set_speed(v);
+                    if applied != v {
+                        notices.push(format!("Speed “{raw}” is not offered; using {applied}×."));
+                    }
+                }
+                _ => notices.push(format!(
+                    "“{key}={}” in the link is not understood; ignored.",
+                    raw.chars().take(20).collect::<String>()
+                )),
+            }
+        }
+        st.needs_paint = true;
+        st.shown_values.iter_mut().for_each(|v| *v = None);
+        notices
+    }
+
+    /// The URL hash of the current state on `tab`.
+    pub fn hash(&self, tab: Tab) -> String {
+        let st = self.state.borrow();
+        match tab {
+            Tab::Simulation => st.link(),
+            _ => format!("#/{}/{}", st.exp.id(), tab.slug()),
+        }
+    }
+
+    /// Runs one animation frame at `time_ms` (browser tests drive the clock
+    /// with it instead of waiting for real frames).
+    #[doc(hidden)]
+    pub fn frame_at(&self, time_ms: f64) {
+        self.state.borrow_mut().frame(time_ms);
+    }
+
+    /// Paints once now (used by tests and right after mounting).
+    pub fn paint_now(&self) {
+        let mut st = self.state.borrow_mut();
+        st.resize();
+        st.paint();
+        st.sync_dom();
+        let st = &mut *st;
+        st.plots.draw(st.exp.plots(), &st.palette, true);
+        st.sync_timebar();
+    }
+}
+
+/// Reads a dropped or picked file as text and hands it to the experiment.
+fn read_file(state: &Rc<RefCell<SimState>>, file: web_sys::File) {
+    let Ok(reader) = web_sys::FileReader::new() else {
+        return;
+    };
+    let name = file.name();
+    let s = state.clone();
+    let r = reader.clone();
+    let onload = Closure::once_into_js(move || {
+        let text = r
+            .result()
+            .ok()
+            .and_then(|v| v.as_string())
+            .unwrap_or_default();
+        let mut st = s.borrow_mut();
+        match st.exp.load_file(&name, &text) {
+            Ok(()) => {
+                st.show_message(Some(&format!("Loaded “{name}”.")));
+                st.clock.reset();
+            }
+            Err(e) => st.show_message(Some(&format!("Could not load “{name}”: {e}"))),
+        }
+        st.needs_paint = true;
+        st.hash_dirty = true;
+        st.plots_force = true;
+    });
+    reader.set_onload(Some(onload.unchecked_ref()));
+    let _ = reader.read_as_text(&file);
+}
+
+/// Saves the canvas as a PNG through a Blob URL.
+fn export_png(canvas: &HtmlCanvasElement, file_name: &str) {
+    let name = file_name.to_owned();
+    let callback = Closure::once_into_js(move |blob: JsValue| {
+        if let Ok(blob) = blob.dyn_into::<web_sys::Blob>() {
+            plot_view::download_blob(&name, &blob);
+        }
+    });
+    let _ = canvas.to_blob(callback.unchecked_ref());
+}
+
+/// Paints an experiment's default scene on a small canvas (home-page cards).
+pub fn paint_thumbnail(canvas: &HtmlCanvasElement, exp: &dyn Experiment) {
+    let Some(ctx) = canvas
+        .get_context("2d")
+        .ok()
+        .flatten()
+        .and_then(|c| c.dyn_into::<CanvasRenderingContext2d>().ok())
+    else {
+        return;
+    };
+    let el: &HtmlElement = canvas.unchecked_ref();
+    let (w, h) = (f64::from(el.client_width()), f64::from(el.client_height()));
+    let (w, h) = if w < 1.0 { (240.0, 160.0) } else { (w, h) };
+    let dpr = dom::window().device_pixel_ratio().max(1.0);
+    canvas.set_width((w * dpr) as u32);
+    canvas.set_height((h * dpr) as u32);
+    let mut scene = Scene::default();
+    exp.scene(&mut scene);
+    let palette = Palette::from_css(canvas);
+    let viewport = Viewport::fit(exp.view(), w, h);
+    paint(&ctx, &scene, &viewport, w, h, dpr, &palette);
+}

@@ -1,0 +1,494 @@
+//! The side panel: parameter controls (grouped under collapsed headings),
+//! readouts, live tables, the action buttons and the plot tools.
+
+use super::{export_png, read_file, SimState};
+use crate::dom::{self, escape, query, query_all, Listener};
+use crate::plot_view;
+use labcore::quiz::format_number;
+use labcore::{ParamKind, ParamSpec, Sanitized};
+use std::cell::RefCell;
+use std::rc::Rc;
+use wasm_bindgen::JsCast;
+use web_sys::{Element, Event, HtmlInputElement, HtmlSelectElement, PointerEvent};
+
+/// Wires the controls form and the buttons of the Simulation panel to `state`.
+pub(super) fn listen(
+    state: &Rc<RefCell<SimState>>,
+    panel: &Element,
+    listeners: &mut Vec<Listener>,
+) {
+    if let Some(form) = query(panel, ".sim-controls") {
+        let s = state.clone();
+        listeners.push(Listener::new(form.as_ref(), "input", move |e: Event| {
+            let Some(input) = e
+                .target()
+                .and_then(|t| t.dyn_into::<HtmlInputElement>().ok())
+            else {
+                return;
+            };
+            let Some(key) = input.get_attribute("data-param") else {
+                return;
+            };
+            // Number boxes apply on change (Enter or leaving the box), never
+            // mid-typing: "1e9" on the way to "1e99", "0" on the way to "0.5".
+            if input.type_() == "text" {
+                return;
+            }
+            let value = input.value_as_number();
+            let value = if input.type_() == "radio" {
+                input.value().parse().unwrap_or(0.0)
+            } else {
+                value
+            };
+            let mut st = s.borrow_mut();
+            st.student_acted();
+            st.set_param(&key, value);
+            // Mirror slider → number box now (the number box is not focused).
+            if let Some(i) = st.exp.params().iter().position(|p| p.key == key) {
+                st.shown_values[i] = None;
+            }
+        }));
+        let s = state.clone();
+        listeners.push(Listener::new(form.as_ref(), "change", move |e: Event| {
+            let target = e.target();
+            let mut st = s.borrow_mut();
+            st.student_acted();
+            if let Some(select) = target
+                .clone()
+                .and_then(|t| t.dyn_into::<HtmlSelectElement>().ok())
+            {
+                if let Some(key) = select.get_attribute("data-param") {
+                    st.set_param(&key, select.value().parse().unwrap_or(f64::NAN));
+                }
+            } else if let Some(input) = target.and_then(|t| t.dyn_into::<HtmlInputElement>().ok()) {
+                if let Some(key) = input.get_attribute("data-param") {
+                    if input.type_() == "text" {
+                        let raw = input.value();
+                        let unit = st
+                            .exp
+                            .params()
+                            .iter()
+                            .find(|p| p.key == key)
+                            .map_or("", |p| p.unit);
+                        // One rule for commas and units everywhere (see
+                        // `labcore::quiz::read_answer`); say what was read.
+                        let reading = if raw.trim().is_empty() {
+                            Err(None)
+                        } else {
+                            labcore::quiz::read_answer(&raw, unit).map_err(Some)
+                        };
+                        match reading {
+                            Ok(r) => {
+                                st.set_param(&key, r.value);
+                                let plain = raw.trim().parse::<f64>().is_ok();
+                                if !plain {
+                                    st.show_message(Some(&format!(
+                                        "Read “{}” as {}.",
+                                        raw.trim(),
+                                        r.read_as
+                                    )));
+                                }
+                            }
+                            Err(e) => {
+                                let why = e.map_or_else(
+                                    || "nothing was typed".to_owned(),
+                                    |e| e.to_string(),
+                                );
+                                st.show_message(Some(&format!(
+                                    "Could not read that: {why}. Kept the previous value."
+                                )));
+                                // Show the kept value again.
+                                st.shown_values.iter_mut().for_each(|v| *v = None);
+                            }
+                        }
+                        if let Some(i) = st.exp.params().iter().position(|p| p.key == key) {
+                            st.shown_values[i] = None;
+                        }
+                        // Show the applied value even though the box has focus.
+                        if let Some(spec) = st.exp.params().iter().find(|p| p.key == key).copied() {
+                            set_control_value(&st.panel, &spec, st.exp.param(&key), None);
+                        }
+                    }
+                }
+            }
+            st.announce_when_settled();
+        }));
+    }
+    if let Some(sim) = query(panel, ".sim") {
+        let s = state.clone();
+        listeners.push(Listener::new(sim.as_ref(), "click", move |e: Event| {
+            let Some(button) = e
+                .target()
+                .and_then(|t| t.dyn_into::<Element>().ok())
+                .and_then(|el| el.closest("button").ok().flatten())
+            else {
+                return;
+            };
+            let attr = |name: &str| button.get_attribute(name);
+            let mut st = s.borrow_mut();
+            if let Some(key) = attr("data-action") {
+                if let Err(err) = st.exp.action(&key) {
+                    st.show_message(Some(&err.to_string()));
+                }
+                st.needs_paint = true;
+                st.hash_dirty = true;
+            } else if let Some(what) = attr("data-time") {
+                match what.as_str() {
+                    "play" => st.play_pressed(),
+                    "step" => st.single_step(),
+                    "reset" => st.reset_run(),
+                    _ => {}
+                }
+            } else if button.has_attribute("data-touch-mode") {
+                st.touch_draws = !st.touch_draws;
+                let on = st.touch_draws;
+                let _ = button.set_attribute("aria-pressed", if on { "true" } else { "false" });
+                let _ = st
+                    .canvas
+                    .set_attribute("data-touch", if on { "all" } else { "handles" });
+            } else if attr("data-file").as_deref() == Some("pick") {
+                if let Some(input) = query(&st.panel, "input.file-input")
+                    .and_then(|i| i.dyn_into::<HtmlInputElement>().ok())
+                {
+                    input.click();
+                }
+            } else if attr("data-export").as_deref() == Some("text") {
+                if let Some((name, text)) = st.exp.export_text() {
+                    plot_view::download(&name, "text/plain", &text);
+                }
+            } else if attr("data-export").as_deref() == Some("png") {
+                st.paint();
+                export_png(&st.canvas, &format!("{}.png", st.file_stem()));
+            } else if let Some(key) = attr("data-plot-csv") {
+                if let Some(plot) = st.exp.plots().iter().find(|p| p.key == key) {
+                    let name = format!("{}-{}.csv", st.file_stem(), plot.key);
+                    plot_view::download(&name, "text/csv", &plot.to_csv());
+                }
+            } else if let Some(key) = attr("data-plot-fit") {
+                st.plots.toggle_fit(&key);
+                st.plots_force = true;
+            } else if let Some(key) = attr("data-plot-table") {
+                let st = &*st;
+                st.plots.toggle_table(&key, st.exp.plots());
+            }
+        }));
+        let s = state.clone();
+        listeners.push(Listener::new(sim.as_ref(), "change", move |e: Event| {
+            if let Some(input) = e
+                .target()
+                .and_then(|t| t.dyn_into::<HtmlInputElement>().ok())
+                .filter(|i| i.type_() == "file")
+            {
+                if let Some(file) = input.files().and_then(|f| f.get(0)) {
+                    read_file(&s, file);
+                }
+                input.set_value("");
+                return;
+            }
+            let Some(select) = e
+                .target()
+                .and_then(|t| t.dyn_into::<HtmlSelectElement>().ok())
+                .filter(|el| el.get_attribute("data-time").as_deref() == Some("speed"))
+            else {
+                return;
+            };
+            let mut st = s.borrow_mut();
+            let v = select.value().parse().unwrap_or(1.0);
+            st.clock.set_speed(v);
+            st.hash_dirty = true;
+        }));
+        for kind in ["pointermove", "pointerdown", "pointerleave"] {
+            let s = state.clone();
+            listeners.push(Listener::new(sim.as_ref(), kind, move |e: Event| {
+                let Some(e) = e.dyn_ref::<PointerEvent>() else {
+                    return;
+                };
+                if kind == "pointerdown" {
+                    // The caption follows the input in use (a touch hint on a phone).
+                    if let Ok(mut st) = s.try_borrow_mut() {
+                        let touch = e.pointer_type() == "touch";
+                        if st.touch_input != touch {
+                            st.touch_input = touch;
+                            st.sync_hint();
+                        }
+                    }
+                }
+                let Some(canvas) = e
+                    .target()
+                    .and_then(|t| t.dyn_into::<Element>().ok())
+                    .filter(|el| el.class_list().contains("plot-canvas"))
+                else {
+                    return;
+                };
+                let mut st = s.borrow_mut();
+                let st = &mut *st;
+                let x = (kind != "pointerleave").then(|| f64::from(e.client_x()));
+                st.plots.hover(&canvas, x, st.exp.plots(), &st.palette);
+            }));
+        }
+    }
+}
+pub(super) fn readouts_html(readouts: &[labcore::Readout]) -> String {
+    readouts
+        .iter()
+        .map(|r| {
+            format!(
+                "<div class=\"readout\"><dt>{}</dt><dd data-readout=\"{}\">{}</dd></div>",
+                escape(r.label),
+                r.key,
+                escape(&r.value)
+            )
+        })
+        .collect()
+}
+fn decimals(step: f64) -> usize {
+    let mut d = 0;
+    let mut s = step;
+    while d < 4 && (s - s.round()).abs() > 1e-9 {
+        s *= 10.0;
+        d += 1;
+    }
+    d
+}
+
+/// The controls: ungrouped ones first, then each [`ParamSpec::group`] under a
+/// collapsed heading (in the order the groups first appear).
+pub(super) fn controls_html(specs: &[ParamSpec]) -> String {
+    let mut html: String = specs
+        .iter()
+        .filter(|s| s.group.is_none())
+        .map(control_html)
+        .collect();
+    let mut groups: Vec<&str> = Vec::new();
+    for g in specs.iter().filter_map(|s| s.group) {
+        if !groups.contains(&g) {
+            groups.push(g);
+        }
+    }
+    for g in groups {
+        let members: Vec<&ParamSpec> = specs.iter().filter(|s| s.group == Some(g)).collect();
+        let body: String = members.iter().map(|s| control_html(s)).collect();
+        html.push_str(&format!(
+            "<details class=\"ctl-group\"><summary>{} <span class=\"ctl-count\">({})</span></summary>\
+             <div class=\"ctl-group-body\">{body}</div></details>",
+            escape(g),
+            members.len()
+        ));
+    }
+    html
+}
+
+fn control_html(spec: &ParamSpec) -> String {
+    let key = spec.key;
+    let label = escape(spec.label);
+    let unit = escape(spec.unit);
+    let v = format_number(spec.default, 4);
+    match spec.kind {
+        ParamKind::Slider => format!(
+            "<div class=\"ctl ctl-slider\"><label for=\"p-{key}\">{label}</label>\
+             <input type=\"range\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"{step}\" value=\"{v}\">\
+             <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" value=\"{v}\" aria-label=\"{label} value{unit_aria}\">\
+             <span class=\"unit\" aria-hidden=\"true\">{unit}</span></span></div>",
+            min = spec.min,
+            max = spec.max,
+            step = spec.step,
+            unit_aria = if spec.unit.is_empty() { String::new() } else { format!(" in {unit}") },
+        ),
+        ParamKind::OptionalNumber => format!(
+            "<div class=\"ctl ctl-number\"><label for=\"p-{key}\">{label}</label>\
+             <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" \
+             placeholder=\"—\" aria-label=\"{label}{unit_aria}\"><span class=\"unit\" aria-hidden=\"true\">{unit}</span></span></div>",
+            min = spec.min,
+            max = spec.max,
+            unit_aria = if spec.unit.is_empty() { String::new() } else { format!(" in {unit}") },
+        ),
+        ParamKind::Number => format!(
+            "<div class=\"ctl ctl-number\"><label for=\"p-{key}\">{label}</label>\
+             <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"1\" value=\"{v}\"></span></div>",
+            min = spec.min,
+            max = spec.max,
+        ),
+        ParamKind::Toggle { off, on } => format!(
+            "<fieldset class=\"ctl ctl-toggle\"><legend>{label}</legend><div class=\"seg\">\
+             <label><input type=\"radio\" name=\"p-{key}\" data-param=\"{key}\" value=\"1\"{c1}><span>{on}</span></label>\
+             <label><input type=\"radio\" name=\"p-{key}\" data-param=\"{key}\" value=\"0\"{c0}><span>{off}</span></label>\
+             </div></fieldset>",
+            on = escape(on),
+            off = escape(off),
+            c1 = if spec.default >= 0.5 { " checked" } else { "" },
+            c0 = if spec.default < 0.5 { " checked" } else { "" },
+        ),
+        ParamKind::Choice(options) => {
+            let opts: String = options
+                .iter()
+                .enumerate()
+                .map(|(i, o)| {
+                    let sel = if (i as f64 - spec.default).abs() < 0.5 { " selected" } else { "" };
+                    format!("<option value=\"{i}\"{sel}>{}</option>", escape(o))
+                })
+                .collect();
+            format!(
+                "<div class=\"ctl ctl-choice\"><label for=\"p-{key}\">{label}</label>\
+                 <select id=\"p-{key}\" data-param=\"{key}\">{opts}</select></div>"
+            )
+        }
+    }
+}
+/// Shows `value` in every control of `spec` (`None`: an empty optional field).
+pub(super) fn set_control_value(
+    panel: &Element,
+    spec: &ParamSpec,
+    value: Option<f64>,
+    active: Option<&Element>,
+) {
+    for el in query_all(panel, &format!("[data-param=\"{}\"]", spec.key)) {
+        let Some(v) = value else {
+            if let Some(input) = el.dyn_ref::<HtmlInputElement>() {
+                if active != Some(&el) {
+                    input.set_value("");
+                }
+            }
+            continue;
+        };
+        if let Some(input) = el.dyn_ref::<HtmlInputElement>() {
+            match input.type_().as_str() {
+                "radio" => input.set_checked((input.value() == "1") == (v >= 0.5)),
+                "text" => {
+                    if active != Some(&el) {
+                        input.set_value(&format_number(v, (decimals(spec.step) + 1).min(3)));
+                    }
+                }
+                _ => input.set_value(&format_number(v, 4)),
+            }
+        } else if let Some(select) = el.dyn_ref::<HtmlSelectElement>() {
+            select.set_value(&format!("{}", v.round() as i64));
+        }
+    }
+}
+/// The HTML of the experiment's tables.
+pub(super) fn tables_html(tables: &[labcore::Table]) -> String {
+    tables
+        .iter()
+        .map(|t| {
+            let head: String = t
+                .columns
+                .iter()
+                .map(|c| format!("<th scope=\"col\">{}</th>", escape(c)))
+                .collect();
+            let body: String = t
+                .rows
+                .iter()
+                .enumerate()
+                .map(|(i, r)| {
+                    let cells: String = r.iter().map(|c| format!("<td>{}</td>", escape(c))).collect();
+                    let mark = if t.highlight == Some(i) {
+                        " class=\"current\" aria-current=\"true\""
+                    } else {
+                        ""
+                    };
+                    format!("<tr{mark}>{cells}</tr>")
+                })
+                .collect();
+            format!(
+                "<div class=\"table-scroll live-table\" data-table=\"{}\" tabindex=\"0\"><table><caption>{}</caption>\
+                 <thead><tr>{head}</tr></thead><tbody>{body}</tbody></table></div>",
+                t.key,
+                escape(&t.caption)
+            )
+        })
+        .collect()
+}
+
+impl SimState {
+    /// Brings controls, readouts and the status badge up to date with the state.
+    pub(super) fn sync_dom(&mut self) {
+        let active = dom::document().active_element();
+        for (i, spec) in self.exp.params().iter().enumerate() {
+            let value = self.exp.param(spec.key);
+            if self.shown_values.get(i) == Some(&Some(value)) {
+                continue;
+            }
+            set_control_value(&self.panel, spec, value, active.as_ref());
+            if let Some(slot) = self.shown_values.get_mut(i) {
+                *slot = Some(value);
+            }
+        }
+        let readouts = self.exp.readouts();
+        if self.shown_readouts.len() != readouts.len() {
+            // The set of readouts changed: rebuild the list.
+            if let Some(list) = query(&self.panel, "dl.readouts") {
+                list.set_inner_html(&readouts_html(&readouts));
+            }
+            self.shown_readouts = vec![String::new(); readouts.len()];
+        }
+        for (r, shown) in readouts.iter().zip(self.shown_readouts.iter_mut()) {
+            if *shown != r.value {
+                if let Some(dd) = query(&self.panel, &format!("[data-readout=\"{}\"]", r.key)) {
+                    dd.set_text_content(Some(&r.value));
+                }
+                shown.clone_from(&r.value);
+            }
+        }
+        self.sync_status();
+        self.sync_hint();
+        let tables = self.exp.tables();
+        if tables != self.shown_tables {
+            if let Some(section) = query(&self.panel, ".tables") {
+                section.set_inner_html(&tables_html(&tables));
+            }
+            self.shown_tables = tables;
+        }
+    }
+
+    pub(super) fn set_param(&mut self, key: &str, value: f64) {
+        let label = self
+            .exp
+            .params()
+            .iter()
+            .find(|s| s.key == key)
+            .map_or(key, |s| s.label);
+        match self.exp.set_param(key, value) {
+            Ok(Sanitized::InRange(_)) => self.show_message(None),
+            Ok(Sanitized::Clamped(v)) => self.show_message(Some(&format!(
+                "{label} is limited to its range; using {}.",
+                format_number(v, 3)
+            ))),
+            Err(e) => {
+                self.show_message(Some(&format!("{label}: {e}. Kept the previous value.")));
+                // Force the control back to the kept value.
+                self.shown_values.iter_mut().for_each(|v| *v = None);
+            }
+        }
+        self.needs_paint = true;
+        self.hash_dirty = true;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grouped_controls_go_under_one_collapsed_heading_after_the_others() {
+        const SPECS: [ParamSpec; 4] = [
+            ParamSpec::slider("a", "A", "m", 0.0, 1.0, 0.1, 0.5),
+            ParamSpec::optional_number("w1x", "Waypoint 1 x", "m", 0.0, 9.0).in_group("Waypoints"),
+            ParamSpec::slider("b", "B", "m", 0.0, 1.0, 0.1, 0.5),
+            ParamSpec::optional_number("w1y", "Waypoint 1 y", "m", 0.0, 9.0).in_group("Waypoints"),
+        ];
+        let html = controls_html(&SPECS);
+        assert_eq!(html.matches("<details class=\"ctl-group\">").count(), 1);
+        assert!(
+            !html.contains("<details class=\"ctl-group\" open"),
+            "collapsed"
+        );
+        let details = html.find("<details").unwrap();
+        assert!(
+            html.find("id=\"p-b\"").unwrap() < details,
+            "ungrouped controls first"
+        );
+        assert!(html.find("id=\"p-w1x\"").unwrap() > details);
+        assert!(html.find("id=\"p-w1y\"").unwrap() > details);
+        assert!(html.contains("Waypoints <span class=\"ctl-count\">(2)</span>"));
+    }
+}

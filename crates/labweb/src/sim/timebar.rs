@@ -1,0 +1,210 @@
+//! The shell's time bar: play/pause (or Replay once a run has ended), one
+//! step, playback speed, reset and the simulated time.
+
+use super::SimState;
+use crate::dom::query;
+use labcore::clock::{Clock, SPEEDS};
+use labcore::Phase;
+use wasm_bindgen::JsCast;
+use web_sys::HtmlSelectElement;
+
+/// Time-control icons (inline SVG: no icon font, no emoji fallback boxes).
+const ICON_PAUSE: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M3 2h3.5v12H3zM9.5 2H13v12H9.5z\"/></svg>";
+const ICON_PLAY: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M3 1.5v13l11-6.5z\"/></svg>";
+const ICON_STEP: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M2 2v12l8-6zM11 2h3v12h-3z\"/></svg>";
+const ICON_REPLAY: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"none\" stroke=\"currentColor\" stroke-width=\"2\" d=\"M12.5 6A5 5 0 1 0 13 9.5\"/><path fill=\"currentColor\" d=\"M15 2.5l-5 .5 3 4zM6 5.5v5l4-2.5z\"/></svg>";
+const ICON_RESET: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"none\" stroke=\"currentColor\" stroke-width=\"2\" d=\"M3.5 6A5 5 0 1 1 3 9.5\"/><path fill=\"currentColor\" d=\"M1 2.5l5 .5-3 4z\"/></svg>";
+
+/// The shell's time controls: the same widget, place and keys in every
+/// animated experiment.
+pub(super) fn timebar_html() -> String {
+    let speeds: String = SPEEDS
+        .iter()
+        .map(|v| {
+            let sel = if *v == 1.0 { " selected" } else { "" };
+            format!("<option value=\"{v}\"{sel}>{}×</option>", speed_label(*v))
+        })
+        .collect();
+    format!(
+        "<div class=\"timebar\" role=\"group\" aria-label=\"Time controls\">\
+         <button type=\"button\" class=\"tb-play\" data-time=\"play\" data-offer=\"pause\" aria-pressed=\"true\" aria-keyshortcuts=\"Space\">\
+         <span class=\"tb-icon\">{ICON_PAUSE}</span> <span class=\"tb-label\">Pause</span></button>\
+         <button type=\"button\" data-time=\"step\" aria-keyshortcuts=\".\" title=\"One step (key .)\">{ICON_STEP} <span class=\"tb-text\">Step</span></button>\
+         <label class=\"tb-speed\"><span class=\"tb-speed-text\">Playback</span> <select data-time=\"speed\">{speeds}</select></label>\
+         <button type=\"button\" data-time=\"reset\">{ICON_RESET} <span class=\"tb-text\">Reset</span></button>\
+         <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output></div>"
+    )
+}
+
+fn speed_label(v: f64) -> &'static str {
+    if v == 0.25 {
+        "¼"
+    } else if v == 0.5 {
+        "½"
+    } else if v == 2.0 {
+        "2"
+    } else if v == 4.0 {
+        "4"
+    } else {
+        "1"
+    }
+}
+/// What the play button offers: (label, icon, aria-pressed). A run that has
+/// ended offers Replay (reset, then play), never Pause.
+pub(super) fn play_button(running: bool, ended: bool) -> (&'static str, &'static str, bool) {
+    if ended {
+        ("Replay", ICON_REPLAY, false)
+    } else if running {
+        ("Pause", ICON_PAUSE, true)
+    } else {
+        ("Play", ICON_PLAY, false)
+    }
+}
+
+/// What the clock does when the run's phase is `ended` (a pure rule, tested
+/// below): `Some(false)` stops it (the run just ended while playing),
+/// `Some(true)` resumes it (a run the end had stopped is live again, e.g.
+/// after a new goal or a reset), `None` leaves it. `hold` is whether the end
+/// stopped the clock; the new `hold` is returned with the action.
+pub(super) fn clock_rule(running: bool, hold: bool, ended: bool) -> (Option<bool>, bool) {
+    match (ended, running, hold) {
+        (true, true, _) => (Some(false), true),
+        (false, false, true) => (Some(true), false),
+        (false, true, _) => (None, false),
+        _ => (None, hold),
+    }
+}
+
+impl SimState {
+    /// Reads the run's phase after stepping: an ended run stops the clock
+    /// (t stops too), a live one the end had stopped plays again.
+    pub(super) fn follow_phase(&mut self) {
+        self.phase = self.exp.status().phase;
+        let (action, hold) = clock_rule(
+            self.clock.running(),
+            self.ended_hold,
+            self.phase == Phase::Ended,
+        );
+        self.ended_hold = hold;
+        if let Some(run) = action {
+            self.clock.set_running(run);
+            self.last_time_ms = None;
+            self.hash_dirty = true;
+        }
+    }
+
+    /// The play button (and Space): Pause/Play, or Replay once the run ended.
+    pub(super) fn play_pressed(&mut self) {
+        self.phase = self.exp.status().phase;
+        if self.phase == Phase::Ended {
+            self.reset_run();
+            self.phase = self.exp.status().phase;
+            self.ended_hold = false;
+            self.set_running(true);
+        } else {
+            let running = !self.clock.running();
+            self.ended_hold = false;
+            self.set_running(running);
+        }
+    }
+
+    /// One fixed step from a pause (the Step button and the `.` key).
+    pub(super) fn single_step(&mut self) {
+        let was_animating = self.exp.animating();
+        for _ in 0..self.clock.single_step() {
+            self.exp.step(Clock::DT_S);
+        }
+        self.needs_paint = true;
+        self.hash_dirty = true;
+        self.plots_force = true;
+        self.sync_timebar();
+        if was_animating && !self.exp.animating() {
+            self.announce();
+        }
+    }
+
+    pub(super) fn set_running(&mut self, running: bool) {
+        self.clock.set_running(running);
+        self.last_time_ms = None;
+        self.hash_dirty = true;
+        // The button says so at once, not at the next frame.
+        self.sync_timebar();
+    }
+
+    pub(super) fn reset_run(&mut self) {
+        self.exp.reset();
+        self.clock.reset();
+        self.phase = self.exp.status().phase;
+        self.needs_paint = true;
+        self.hash_dirty = true;
+        self.plots_force = true;
+    }
+
+    /// Brings the play button, the speed and the time read-out up to date.
+    pub(super) fn sync_timebar(&mut self) {
+        let now = (
+            self.clock.running(),
+            self.clock.speed(),
+            self.clock.steps(),
+            self.phase == Phase::Ended,
+        );
+        if now == self.shown_time {
+            return;
+        }
+        let _ = self.canvas.set_attribute("data-steps", &now.2.to_string());
+        if let Some(bar) = query(&self.panel, ".timebar") {
+            if (now.0, now.3) != (self.shown_time.0, self.shown_time.3) {
+                if let Some(play) = query(&bar, ".tb-play") {
+                    let (label, icon, pressed) = play_button(now.0, now.3);
+                    let _ =
+                        play.set_attribute("aria-pressed", if pressed { "true" } else { "false" });
+                    let _ = play.set_attribute("data-offer", &label.to_lowercase());
+                    if let Some(el) = query(&play, ".tb-icon") {
+                        el.set_inner_html(icon);
+                    }
+                    if let Some(el) = query(&play, ".tb-label") {
+                        el.set_text_content(Some(label));
+                    }
+                }
+            }
+            if now.1 != self.shown_time.1 {
+                if let Some(select) = query(&bar, "select[data-time=speed]")
+                    .and_then(|e| e.dyn_into::<HtmlSelectElement>().ok())
+                {
+                    select.set_value(&format!("{}", now.1));
+                }
+            }
+            if let Some(out) = query(&bar, ".tb-time") {
+                out.set_text_content(Some(&format!("t = {:.2} s", self.clock.time_s())));
+            }
+        }
+        self.shown_time = now;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_ended_run_offers_replay_never_pause() {
+        assert_eq!(play_button(true, true).0, "Replay");
+        assert_eq!(play_button(false, true).0, "Replay");
+        assert_eq!(play_button(true, false).0, "Pause");
+        assert_eq!(play_button(false, false).0, "Play");
+        assert!(!play_button(true, true).2, "Replay is not a pressed toggle");
+    }
+
+    #[test]
+    fn the_clock_stops_when_the_run_ends_and_resumes_only_if_the_end_stopped_it() {
+        // Playing, the run ends: stop, and remember why.
+        assert_eq!(clock_rule(true, false, true), (Some(false), true));
+        // Stopped by the end, still ended: nothing.
+        assert_eq!(clock_rule(false, true, true), (None, true));
+        // Stopped by the end, live again (new goal, reset): play on.
+        assert_eq!(clock_rule(false, true, false), (Some(true), false));
+        // Paused by the student: stays paused whatever the phase.
+        assert_eq!(clock_rule(false, false, false), (None, false));
+        assert_eq!(clock_rule(false, false, true), (None, false));
+    }
+}
