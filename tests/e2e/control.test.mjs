@@ -91,6 +91,9 @@ test("pid: the cart chases the setpoint, runs can be pinned, the time bar steps 
     await waitReadout(page, "x", (v) => v < 0.5);
     await waitReadout(page, "x", (v) => v > 0.5);
     assert.ok((await readouts(page)).pinA, "pins survive a new step");
+    // Issue 13 §5: the legend names the pinned run's gains, as the CSV does.
+    const legend = await page.$$eval("figure.plot .legend-item[data-series]:not([hidden])", (items) => items.map((i) => i.textContent));
+    assert.ok(legend.includes("A: Kp 12, Ki 2, Kd 6"), `legend: ${legend.join(" | ")}`);
 
     const csv = await downloadCsv(page, "response");
     const header = csv.split("\r\n")[0];

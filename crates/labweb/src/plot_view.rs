@@ -36,6 +36,18 @@ fn dash_attr(dash: &[f64]) -> String {
         .join(" ")
 }
 
+/// A series' legend entry: its line style and its label (a pinned run's
+/// label names its gains, so it changes with the run).
+fn legend_entry_html(s: &labcore::Series) -> String {
+    let (var, dash) = role_style(s.role);
+    format!(
+        "<svg width=\"26\" height=\"10\" aria-hidden=\"true\">\
+         <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" style=\"stroke:var({var})\" stroke-width=\"2.5\" stroke-dasharray=\"{}\"/></svg>{}",
+        dash_attr(dash),
+        escape(&s.label),
+    )
+}
+
 /// The HTML of one plot (empty canvas; [`PlotView::draw`] fills it).
 #[must_use]
 pub fn render(plot: &Plot) -> String {
@@ -44,12 +56,9 @@ pub fn render(plot: &Plot) -> String {
         .iter()
         .enumerate()
         .map(|(i, s)| {
-            let (var, dash) = role_style(s.role);
             format!(
-                "<span class=\"legend-item\" data-series=\"{i}\"{hidden}><svg width=\"26\" height=\"10\" aria-hidden=\"true\">\
-                 <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" style=\"stroke:var({var})\" stroke-width=\"2.5\" stroke-dasharray=\"{}\"/></svg>{}</span>",
-                dash_attr(dash),
-                escape(&s.label),
+                "<span class=\"legend-item\" data-series=\"{i}\"{hidden}>{}</span>",
+                legend_entry_html(s),
                 hidden = if s.is_empty() { " hidden" } else { "" },
             )
         })
@@ -504,12 +513,17 @@ impl PlotView {
             // A series with no samples yet (an empty slot for a pinned run)
             // has no legend entry.
             for item in query_all(&drawn.figure, ".legend-item[data-series]") {
-                let empty = item
+                let series = item
                     .get_attribute("data-series")
                     .and_then(|i| i.parse::<usize>().ok())
-                    .and_then(|i| plot.series.get(i))
-                    .is_none_or(|s| s.is_empty());
-                dom::set_hidden(&item, empty);
+                    .and_then(|i| plot.series.get(i));
+                dom::set_hidden(&item, series.is_none_or(|s| s.is_empty()));
+                // A label that changed (a pin named after its gains) is rewritten.
+                if let Some(s) = series {
+                    if item.text_content().as_deref() != Some(s.label.as_str()) {
+                        item.set_inner_html(&legend_entry_html(s));
+                    }
+                }
             }
             if let Some(table) = query(&drawn.figure, ".plot-table") {
                 if !table.has_attribute("hidden") {
