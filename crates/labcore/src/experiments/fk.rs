@@ -438,9 +438,73 @@ mod tests {
         }
     }
 
+    /// The θ₁ values step 2 turns the arm through.
+    const STEP_2_THETA1: [f64; 4] = [-150.0, -20.0, 80.0, 175.0];
+    /// The path step 5 drags the tip along.
+    const STEP_5_PATH: [DVec2; 3] = [
+        DVec2::new(0.6, 1.3),
+        DVec2::new(-0.4, 1.1),
+        DVec2::new(-1.2, 0.2),
+    ];
+    /// The nudge of step 5 (one arrow key press).
+    const STEP_5_NUDGE: DVec2 = DVec2::new(0.0, 0.05);
+    /// Step 6: a pointer beyond the outer circle of the equal 1.2 m links
+    /// step 4 left, then (with L₂ = 0.7 m) one inside the 0.5 m hole.
+    const STEP_6_OUTSIDE: DVec2 = DVec2::new(2.0, 1.6);
+    const STEP_6_L2: f64 = 0.7;
+    const STEP_6_HOLE: DVec2 = DVec2::new(0.1, 0.05);
+
+    /// The arm as Procedure steps 1..=k leave it: the step-k test starts
+    /// from `after_step(k - 1)` and performs its own action on it.
+    fn after_step(k: usize) -> ForwardKinematics {
+        let mut fk = ForwardKinematics::default();
+        if k >= 2 {
+            for t1 in STEP_2_THETA1 {
+                fk.set_param("t1", t1).unwrap();
+            }
+        }
+        if k >= 3 {
+            for t2 in -180i32..=180 {
+                fk.set_param("t2", f64::from(t2)).unwrap();
+            }
+        }
+        if k >= 4 {
+            fk.set_param("l1", 1.2).unwrap();
+            fk.set_param("l2", 0.4).unwrap();
+            fk.set_param("l2", 1.2).unwrap();
+        }
+        if k >= 5 {
+            fk.input(Input::PointerDown(fk.tip()));
+            for p in STEP_5_PATH {
+                fk.input(Input::PointerMove {
+                    pos: p,
+                    pressed: true,
+                });
+            }
+            fk.input(Input::PointerUp(STEP_5_PATH[2]));
+            fk.input(Input::Nudge(STEP_5_NUDGE));
+        }
+        if k >= 6 {
+            fk.input(Input::PointerDown(fk.tip()));
+            fk.input(Input::PointerMove {
+                pos: STEP_6_OUTSIDE,
+                pressed: true,
+            });
+            fk.input(Input::PointerUp(STEP_6_OUTSIDE));
+            fk.set_param("l2", STEP_6_L2).unwrap();
+            fk.input(Input::PointerDown(fk.tip()));
+            fk.input(Input::PointerMove {
+                pos: STEP_6_HOLE,
+                pressed: true,
+            });
+            fk.input(Input::PointerUp(STEP_6_HOLE));
+        }
+        fk
+    }
+
     #[test]
     fn fk_step_1_the_start_pose_reads_as_the_worked_example() {
-        let fk = ForwardKinematics::default();
+        let fk = after_step(0);
         assert_eq!(
             [
                 fk.param("t1"),
@@ -463,13 +527,14 @@ mod tests {
 
     #[test]
     fn fk_step_2_theta1_turns_the_arm_rigidly_and_keeps_reach_used() {
-        let mut fk = ForwardKinematics::default();
+        let mut fk = after_step(1);
+        let start_t1 = fk.param("t1").unwrap();
         let before = forward(&fk.lengths(), &fk.angles_rad());
-        let reach = readout(&fk, "reach").unwrap();
-        for t1 in [-150.0, -20.0, 80.0, 175.0] {
+        let (x, reach) = (readout(&fk, "x").unwrap(), readout(&fk, "reach").unwrap());
+        for t1 in STEP_2_THETA1 {
             fk.set_param("t1", t1).unwrap();
             let after = forward(&fk.lengths(), &fk.angles_rad());
-            let turn = (t1 - 35.0f64).to_radians();
+            let turn = (t1 - start_t1).to_radians();
             let rotate = |p: DVec2| DVec2::from_angle(turn).rotate(p);
             for (a, b) in before.points.iter().zip(&after.points) {
                 assert!(
@@ -478,13 +543,13 @@ mod tests {
                 );
             }
             assert_eq!(readout(&fk, "reach").unwrap(), reach);
-            assert_ne!(readout(&fk, "x"), Some("0.758 m".into()));
+            assert_ne!(readout(&fk, "x").unwrap(), x);
         }
     }
 
     #[test]
     fn fk_step_3_theta2_swings_the_outer_link_from_straight_to_folded() {
-        let mut fk = ForwardKinematics::default();
+        let mut fk = after_step(2);
         let elbow = forward(&fk.lengths(), &fk.angles_rad()).points[1];
         let mut reach = Vec::new();
         for t2 in -180i32..=180 {
@@ -504,7 +569,8 @@ mod tests {
 
     #[test]
     fn fk_step_4_the_dashed_circles_follow_the_lengths_and_equal_links_close_the_hole() {
-        let mut fk = ForwardKinematics::default();
+        let mut fk = after_step(3);
+        assert_eq!(circles(&fk).len(), 2);
         fk.set_param("l1", 1.2).unwrap();
         fk.set_param("l2", 0.4).unwrap();
         let c = circles(&fk);
@@ -521,14 +587,10 @@ mod tests {
 
     #[test]
     fn fk_step_5_dragging_the_tip_moves_the_angle_sliders_and_keeps_the_elbow() {
-        let mut fk = ForwardKinematics::default();
-        let path = [
-            DVec2::new(0.6, 1.3),
-            DVec2::new(-0.4, 1.1),
-            DVec2::new(-1.2, 0.2),
-        ];
+        let mut fk = after_step(4);
         fk.input(Input::PointerDown(fk.tip()));
-        for p in path {
+        let bend = fk.param("t2").unwrap().signum();
+        for p in STEP_5_PATH {
             let before = (fk.param("t1"), fk.param("t2"));
             fk.input(Input::PointerMove {
                 pos: p,
@@ -539,70 +601,83 @@ mod tests {
                 "the tip is under the pointer"
             );
             assert_ne!((fk.param("t1"), fk.param("t2")), before);
-            assert!(
-                fk.param("t2").unwrap() > 0.0,
+            assert_eq!(
+                fk.param("t2").unwrap().signum(),
+                bend,
                 "the elbow stays bent the same way"
             );
         }
-        fk.input(Input::PointerUp(path[2]));
+        fk.input(Input::PointerUp(STEP_5_PATH[2]));
         // Arrow keys nudge the tip.
         let tip = fk.tip();
-        fk.input(Input::Nudge(DVec2::new(0.0, 0.05)));
-        assert!((fk.tip() - (tip + DVec2::new(0.0, 0.05))).length() < 1e-9);
+        fk.input(Input::Nudge(STEP_5_NUDGE));
+        assert!((fk.tip() - (tip + STEP_5_NUDGE)).length() < 1e-9);
     }
 
     #[test]
     fn fk_step_6_beyond_reach_the_badge_warns_and_target_dist_shows_the_gap() {
-        let mut fk = ForwardKinematics::default();
-        fk.input(Input::PointerDown(DVec2::new(1.0, 1.0)));
-        let outside = DVec2::new(1.8, 1.5);
+        let mut fk = after_step(5);
+        assert_eq!((fk.l1_m, fk.l2_m), (1.2, 1.2), "step 4 left equal links");
+        fk.input(Input::PointerDown(fk.tip()));
+        assert_eq!(fk.status().text, "in reach");
         fk.input(Input::PointerMove {
-            pos: outside,
+            pos: STEP_6_OUTSIDE,
             pressed: true,
         });
         assert_eq!(fk.status().text, "out of reach");
-        let nearest = outside.normalize() * 1.7;
+        let nearest = STEP_6_OUTSIDE.normalize() * 2.4;
         assert!((fk.tip() - nearest).length() < 1e-9);
         assert_eq!(
             readout(&fk, "target").unwrap(),
-            format_metres(outside.length() - 1.7)
+            format_metres(STEP_6_OUTSIDE.length() - 2.4)
         );
-        // Into the hole of unequal links (0.3 m here).
-        let hole = DVec2::new(0.1, 0.05);
+        // Equal links have no hole: the base is in reach.
         fk.input(Input::PointerMove {
-            pos: hole,
+            pos: STEP_6_HOLE,
+            pressed: true,
+        });
+        assert_eq!(fk.status().text, "in reach");
+        fk.input(Input::PointerUp(STEP_6_HOLE));
+        // Unequal links (1.2 m and 0.7 m): a 0.5 m hole.
+        fk.set_param("l2", STEP_6_L2).unwrap();
+        fk.input(Input::PointerDown(fk.tip()));
+        fk.input(Input::PointerMove {
+            pos: STEP_6_HOLE,
             pressed: true,
         });
         assert_eq!(fk.status().text, "out of reach");
-        assert!((fk.tip().length() - 0.3).abs() < 1e-9);
+        assert!((fk.tip().length() - 0.5).abs() < 1e-9);
         assert_eq!(
             readout(&fk, "target").unwrap(),
-            format_metres(0.3 - hole.length())
+            format_metres(0.5 - STEP_6_HOLE.length())
         );
     }
 
     #[test]
     fn fk_step_7_the_link_restores_the_same_arm() {
-        let mut fk = ForwardKinematics::default();
+        let restored = |fk: &ForwardKinematics| {
+            let link = crate::route::format(fk, crate::route::Tab::Simulation);
+            let (fresh, notices) = crate::route::restore(&link, ForwardKinematics::default());
+            assert!(notices.is_empty(), "{notices:?}");
+            assert_eq!(fresh.readouts(), fk.readouts());
+            for key in ["t1", "t2", "l1", "l2"] {
+                assert_eq!(fresh.param(key), fk.param(key), "{key}");
+            }
+            assert_eq!(fresh.tip(), fk.tip());
+        };
+        // The pose steps 1–6 left (dragged, so angles off the slider steps).
+        let mut fk = after_step(6);
+        assert_ne!(fk.param("t1").unwrap().fract(), 0.0);
+        restored(&fk);
         fk.set_param("l1", 0.85).unwrap();
         fk.set_param("l2", 1.15).unwrap();
         fk.set_param("t1", -42.0).unwrap();
         fk.set_param("t2", 127.0).unwrap();
-        let link = crate::route::format(&fk, crate::route::Tab::Simulation);
-        let (fresh, notices) = crate::route::restore(&link, ForwardKinematics::default());
-        assert!(notices.is_empty(), "{notices:?}");
-        assert_eq!(fresh.readouts(), fk.readouts());
-        for key in ["t1", "t2", "l1", "l2"] {
-            assert_eq!(fresh.param(key), fk.param(key), "{key}");
-        }
-        // A dragged pose too (to the link's precision until links carry
-        // the shortest round-trip form).
+        restored(&fk);
+        // A dragged pose too, exactly.
         fk.input(Input::PointerDown(DVec2::new(0.3, -1.4)));
         fk.input(Input::PointerUp(DVec2::new(0.3, -1.4)));
-        let link = crate::route::format(&fk, crate::route::Tab::Simulation);
-        let (fresh, notices) = crate::route::restore(&link, ForwardKinematics::default());
-        assert!(notices.is_empty(), "{notices:?}");
-        assert!((fresh.tip() - fk.tip()).length() < 1e-4);
+        restored(&fk);
     }
 
     /// Issue 15: the correct option was the longest in most choice
