@@ -802,31 +802,119 @@ mod tests {
         }
     }
 
+    /// Step 1 poses the arm with the sliders.
+    const STEP_1_POSE: (f64, f64) = (-120.0, 45.0);
+    /// The target clicked in step 2 (and checked by hand in step 3).
+    const STEP_2_TARGET: DVec2 = DVec2::new(-0.6, 1.1);
+    /// Step 5: outside the outer circle and inside the hole with the default
+    /// links, then inside the hole once L₂ is 0.3 m.
+    const STEP_5_TARGETS: [DVec2; 2] = [DVec2::new(1.5, 1.2), DVec2::new(0.1, -0.15)];
+    const STEP_5_L2: f64 = 0.3;
+    const STEP_5_HOLE: DVec2 = DVec2::new(0.3, 0.4);
+    /// Step 6 starts just inside the outer circle of the default links.
+    const STEP_6_START: DVec2 = DVec2::new(1.5, 0.0);
+
+    /// One position of the target as step 6 creeps it outwards.
+    struct Creep {
+        status: String,
+        /// How far the target is inside the outer circle, metres.
+        inside_m: f64,
+        /// Distance between the arm's elbow and the ghost's, when drawn.
+        ghost_gap_m: Option<f64>,
+    }
+
+    /// Step 6's creep: the target at [`STEP_6_START`], then Shift+→ nudges
+    /// (0.2 % of the view's width, as the page sends them) until the badge
+    /// reads out of reach; the arm arrives after each.
+    fn creep_outwards(ik: &mut InverseKinematics) -> Vec<Creep> {
+        ik.input(Input::PointerDown(STEP_6_START));
+        let view = ik.view();
+        let nudge = DVec2::X * (view.max.x - view.min.x) * 0.002;
+        let mut seen = Vec::new();
+        for _ in 0..200 {
+            settle(ik);
+            let elbow = ik.points(ik.theta1_deg, ik.theta2_deg)[1];
+            let status = ik.status().text;
+            let out = status.starts_with("out of reach");
+            seen.push(Creep {
+                status,
+                inside_m: ik.l1_m + ik.l2_m - ik.target.unwrap().length(),
+                ghost_gap_m: ghost_elbow(ik).map(|g| (g - elbow).length()),
+            });
+            if out {
+                break;
+            }
+            ik.input(Input::Nudge(nudge));
+        }
+        seen
+    }
+
+    /// The arm as Procedure steps 1..=k leave it: the step-k test starts
+    /// from `after_step(k - 1)` and performs its own action on it.
+    fn after_step(k: usize) -> InverseKinematics {
+        let mut ik = InverseKinematics::default();
+        if k >= 1 {
+            ik.set_param("t1", STEP_1_POSE.0).unwrap();
+            ik.set_param("t2", STEP_1_POSE.1).unwrap();
+        }
+        if k >= 2 {
+            ik.input(Input::PointerDown(STEP_2_TARGET));
+            settle(&mut ik);
+        }
+        // Step 3 is worked by hand: nothing on the page changes.
+        if k >= 4 {
+            ik.set_param("elbow", 0.0).unwrap();
+            settle(&mut ik);
+        }
+        if k >= 5 {
+            for target in STEP_5_TARGETS {
+                ik.input(Input::PointerDown(target));
+                settle(&mut ik);
+            }
+            ik.set_param("l2", STEP_5_L2).unwrap();
+            ik.input(Input::PointerDown(STEP_5_HOLE));
+            settle(&mut ik);
+        }
+        if k >= 6 {
+            ik.set_param("l1", 1.0).unwrap();
+            ik.set_param("l2", 0.7).unwrap();
+            creep_outwards(&mut ik);
+            ik.set_param("tx", 1.7).unwrap();
+            ik.set_param("ty", 0.0).unwrap();
+            settle(&mut ik);
+        }
+        ik
+    }
+
     #[test]
     fn ik_step_1_the_dashed_circles_mark_the_annulus_and_the_sliders_pose_the_arm() {
-        let mut ik = InverseKinematics::default();
+        let mut ik = after_step(0);
         let circles = dashed_circles(&ik);
         assert_eq!(circles.len(), 2);
         assert!((circles[0].1 - 1.7).abs() < 1e-12 && (circles[1].1 - 0.3).abs() < 1e-12);
-        ik.set_param("t1", -120.0).unwrap();
-        ik.set_param("t2", 45.0).unwrap();
-        let fk = forward(&[1.0, 0.7], &[(-120f64).to_radians(), 45f64.to_radians()]).tip();
+        ik.set_param("t1", STEP_1_POSE.0).unwrap();
+        ik.set_param("t2", STEP_1_POSE.1).unwrap();
+        let fk = forward(
+            &[1.0, 0.7],
+            &[STEP_1_POSE.0.to_radians(), STEP_1_POSE.1.to_radians()],
+        )
+        .tip();
         assert!((ik.tip() - fk).length() < 1e-12);
         assert_eq!(readout(&ik, "x"), crate::experiment::format_metres(fk.x));
+        assert_eq!(readout(&ik, "y"), crate::experiment::format_metres(fk.y));
     }
 
     #[test]
     fn ik_step_2_the_arm_turns_smoothly_along_a_curve_to_the_target() {
-        let mut ik = InverseKinematics::default();
+        let mut ik = after_step(1);
         let start = ik.tip();
-        let target = DVec2::new(-0.6, 1.1);
-        ik.input(Input::PointerDown(target));
+        ik.input(Input::PointerDown(STEP_2_TARGET));
+        let along = (STEP_2_TARGET - start).normalize();
         let mut off_line: f64 = 0.0;
         let mut frames = 0;
         while ik.animating() {
             ik.step(1.0 / 60.0);
             frames += 1;
-            let along = (target - start).normalize();
             let rel = ik.tip() - start;
             off_line = off_line.max((rel - along * rel.dot(along)).length());
         }
@@ -843,9 +931,7 @@ mod tests {
 
     #[test]
     fn ik_step_3_the_solved_angles_match_the_theory_formulas() {
-        let mut ik = InverseKinematics::default();
-        ik.input(Input::PointerDown(DVec2::new(-0.6, 1.1)));
-        settle(&mut ik);
+        let ik = after_step(2);
         let x: f64 = readout(&ik, "x").trim_end_matches(" m").parse().unwrap();
         let y: f64 = readout(&ik, "y").trim_end_matches(" m").parse().unwrap();
         let (l1, l2) = (1.0, 0.7);
@@ -859,16 +945,14 @@ mod tests {
 
     #[test]
     fn ik_step_4_the_elbow_toggle_mirrors_the_arm_and_leaves_a_ghost() {
-        let mut ik = InverseKinematics::default();
-        let target = DVec2::new(-0.6, 1.1);
-        ik.input(Input::PointerDown(target));
-        settle(&mut ik);
+        let mut ik = after_step(3);
+        assert_eq!(ik.param("elbow"), Some(1.0), "elbow up so far");
         let up = (ik.theta1_deg, ik.theta2_deg);
         let up_elbow = ik.points(up.0, up.1)[1];
         ik.set_param("elbow", 0.0).unwrap();
         settle(&mut ik);
         let down = (ik.theta1_deg, ik.theta2_deg);
-        assert!((ik.tip() - target).length() < 1e-9);
+        assert!((ik.tip() - STEP_2_TARGET).length() < 1e-9);
         assert!(
             up.1 < 0.0 && down.1 > 0.0 && (up.1 + down.1).abs() < 1e-9,
             "θ₂ flips sign"
@@ -876,14 +960,14 @@ mod tests {
         // The ghost is the branch left behind.
         assert!((ghost_elbow(&ik).unwrap() - up_elbow).length() < 1e-9);
         // θ₁ = β ± ψ: the two θ₁ sit symmetrically about the target's direction β.
-        let beta = target.y.atan2(target.x).to_degrees();
+        let beta = STEP_2_TARGET.y.atan2(STEP_2_TARGET.x).to_degrees();
         assert!(((up.0 + down.0) / 2.0 - beta).abs() < 1e-9);
     }
 
     #[test]
     fn ik_step_5_outside_the_circle_and_inside_the_hole_are_out_of_reach() {
-        let mut ik = InverseKinematics::default();
-        for target in [DVec2::new(1.5, 1.2), DVec2::new(0.1, -0.15)] {
+        let mut ik = after_step(4);
+        for target in STEP_5_TARGETS {
             ik.input(Input::PointerDown(target));
             settle(&mut ik);
             assert!(
@@ -894,40 +978,45 @@ mod tests {
             assert_eq!(readout(&ik, "theta1"), "--");
             assert_eq!(ghost_elbow(&ik), None);
         }
-        ik.set_param("l2", 0.3).unwrap();
-        ik.input(Input::PointerDown(DVec2::new(0.3, 0.4)));
+        ik.set_param("l2", STEP_5_L2).unwrap();
+        ik.input(Input::PointerDown(STEP_5_HOLE));
         settle(&mut ik);
         assert_eq!(
             ik.status().text,
             "out of reach: target 0.50 m away < |L₁ − L₂| = 0.70 m"
         );
+        assert_eq!(readout(&ik, "theta1"), "--");
+        assert_eq!(ghost_elbow(&ik), None);
     }
 
+    /// Review item 3: a Shift+arrow nudge is 0.2 % of the 3.91 m view
+    /// (7.8 mm) and the near-singular band is 2 cm, so the badge reads near
+    /// singular for two or three positions before the target leaves reach.
     #[test]
     fn ik_step_6_creeping_outwards_the_branches_merge_and_on_the_circle_it_is_singular() {
-        let mut ik = InverseKinematics::default();
-        ik.input(Input::PointerDown(DVec2::new(1.5, 0.0)));
-        let view = ik.view();
-        let nudge = DVec2::X * (view.max.x - view.min.x) * 0.002; // Shift+arrow
-        let mut statuses = Vec::new();
-        let mut gaps = Vec::new();
-        for _ in 0..200 {
-            settle(&mut ik);
-            if let Some(ghost) = ghost_elbow(&ik) {
-                gaps.push((ghost - ik.points(ik.theta1_deg, ik.theta2_deg)[1]).length());
-            }
-            let text = ik.status().text;
-            if statuses.last() != Some(&text) {
-                statuses.push(text.clone());
-            }
-            if text.starts_with("out of reach") {
-                break;
-            }
-            ik.input(Input::Nudge(nudge));
-        }
-        assert_eq!(statuses[0], "in reach");
-        assert_eq!(statuses[1], "near singular: the branches almost merge");
-        assert!(statuses[2].starts_with("out of reach"), "{statuses:?}");
+        let mut ik = after_step(5);
+        ik.set_param("l1", 1.0).unwrap();
+        ik.set_param("l2", 0.7).unwrap();
+        let seen = creep_outwards(&mut ik);
+        let near = "near singular: the branches almost merge";
+        let first_near = seen.iter().position(|c| c.status == near).unwrap();
+        let out = seen.len() - 1;
+        assert!(seen[..first_near].iter().all(|c| c.status == "in reach"));
+        assert!(seen[first_near..out].iter().all(|c| c.status == near));
+        assert!(seen[out].status.starts_with("out of reach"));
+        assert!(
+            seen[first_near].inside_m <= NEAR_SINGULAR_M,
+            "near singular first at {} m inside",
+            seen[first_near].inside_m
+        );
+        assert!(seen[first_near - 1].inside_m > NEAR_SINGULAR_M - 1e-12);
+        let steps = out - first_near;
+        assert!(
+            (2..=3).contains(&steps),
+            "{steps} steps from near singular to out of reach"
+        );
+        // Arm and ghost close up while the target is in reach.
+        let gaps: Vec<f64> = seen[..out].iter().map(|c| c.ghost_gap_m.unwrap()).collect();
         assert!(
             gaps.windows(2).all(|w| w[1] < w[0]),
             "arm and ghost close up"
@@ -940,11 +1029,15 @@ mod tests {
         assert_eq!(ik.status().text, "singular: arm straight, branches merge");
         assert_eq!(ghost_elbow(&ik), None, "one straight arm");
         assert!(ik.theta2_deg.abs() < 1e-6);
+        let content =
+            crate::content::Content::parse(include_str!("../../../../assets/ik.json")).unwrap();
+        assert!(content.procedure[5].contains("two or three more steps"));
     }
 
     #[test]
     fn ik_step_7_the_wrist_keeps_phi_and_the_reachable_region_shifts_with_it() {
-        let mut ik = InverseKinematics::default();
+        let mut ik = after_step(6);
+        assert!(ik.status().text.starts_with("singular"));
         ik.set_param("l3", 0.4).unwrap();
         ik.set_param("phi", 30.0).unwrap();
         for target in [DVec2::new(1.2, 0.9), DVec2::new(-0.5, 1.3)] {
