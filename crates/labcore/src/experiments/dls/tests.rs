@@ -306,13 +306,14 @@ fn every_reachable_state_round_trips_through_the_link() {
         assert!(notices.is_empty(), "seed {seed}: {notices:?}");
         let link = |e: &DampedLeastSquares| crate::route::format(e, crate::route::Tab::Simulation);
         assert_eq!(link(&fresh), link(&d));
-        // Numbers keep the link's precision (exact once links carry the
-        // shortest round-trip form); the start pose is always exact.
+        // Links carry numbers in their shortest round-trip form: exact.
         for spec in PARAMS {
-            match (fresh.param(spec.key), d.param(spec.key)) {
-                (Some(a), Some(b)) => assert!((a - b).abs() <= 5e-4, "{}: {a} vs {b}", spec.key),
-                (a, b) => assert_eq!(a, b, "{}", spec.key),
-            }
+            assert_eq!(
+                fresh.param(spec.key),
+                d.param(spec.key),
+                "seed {seed}: {}",
+                spec.key
+            );
         }
         assert_eq!(fresh.run_start_rad, d.run_start_rad, "seed {seed}");
     }
@@ -407,13 +408,96 @@ fn generators_draw_inside_the_sliders_ranges() {
     }
 }
 
+/// Step 2's target, well inside the reach circle.
+const STEP_2_TARGET: DVec2 = DVec2::new(1.0, 1.2);
+/// Step 3's (and step 4's) target close to the outer circle.
+const NEAR_BOUNDARY: DVec2 = DVec2::new(0.0, 2.38);
+/// Step 4's target just outside the circle.
+const JUST_OUTSIDE: DVec2 = DVec2::new(0.0, 2.5);
+/// Step 5: a moderate λ and a target well outside.
+const STEP_5_LAMBDA: f64 = 0.3;
+const STEP_5_TARGET: DVec2 = DVec2::new(2.0, 2.0);
+/// Step 6's typed target, 5 cm outside the reach circle.
+const STEP_6_TARGET: (f64, f64) = (0.0, 2.45);
+
+/// Types a target into the x and y fields.
+fn type_target(d: &mut DampedLeastSquares, (x, y): (f64, f64)) {
+    d.set_param("tx", x).unwrap();
+    d.set_param("ty", y).unwrap();
+}
+
+/// Runs at the page's frame rate until the run ends; returns the largest
+/// λ used on the way.
+fn run_noting_lambda(d: &mut DampedLeastSquares) -> f64 {
+    let mut largest: f64 = d.lambda_used_m;
+    for _ in 0..60 * 120 {
+        d.step(crate::clock::Clock::DT_S);
+        largest = largest.max(d.lambda_used_m);
+        if !d.animating() {
+            break;
+        }
+    }
+    largest
+}
+
+/// The lab as Procedure steps 1..=k leave it: the step-k test starts from
+/// `after_step(k - 1)` and performs its own action on it.
+fn after_step(k: usize) -> DampedLeastSquares {
+    let mut d = DampedLeastSquares::default();
+    if k >= 1 {
+        d.input(Input::PointerDown(STEP_2_TARGET));
+        run(&mut d);
+        d.action("reset").unwrap();
+    }
+    if k >= 2 {
+        d.input(Input::PointerDown(STEP_2_TARGET));
+        run(&mut d);
+    }
+    if k >= 3 {
+        d.input(Input::PointerDown(NEAR_BOUNDARY));
+        run(&mut d);
+    }
+    if k >= 4 {
+        d.set_param("guard", 0.0).unwrap();
+        d.set_param("lambda", 0.0).unwrap();
+        for target in [NEAR_BOUNDARY, JUST_OUTSIDE] {
+            d.input(Input::PointerDown(target));
+            run(&mut d);
+        }
+        d.set_param("guard", 1.0).unwrap();
+        d.set_param("lambda", 0.5).unwrap();
+        d.input(Input::PointerDown(NEAR_BOUNDARY));
+        run(&mut d);
+        d.action("reset").unwrap();
+        d.set_param("lambda", 1.0).unwrap();
+        d.input(Input::PointerDown(NEAR_BOUNDARY));
+        run(&mut d);
+    }
+    if k >= 5 {
+        d.set_param("lambda", STEP_5_LAMBDA).unwrap();
+        d.input(Input::PointerDown(STEP_5_TARGET));
+        run(&mut d);
+    }
+    if k >= 6 {
+        d.set_param("guard", 0.0).unwrap();
+        d.set_param("lambda", 0.01).unwrap();
+        type_target(&mut d, STEP_6_TARGET);
+        run(&mut d);
+        d.set_param("adaptive", 1.0).unwrap();
+        type_target(&mut d, STEP_6_TARGET);
+        run(&mut d);
+        d.set_param("guard", 1.0).unwrap();
+    }
+    d
+}
+
 #[test]
 fn dls_step_1_starts_with_four_links_and_reset_pose_returns_to_the_start() {
-    let mut d = DampedLeastSquares::default();
+    let mut d = after_step(0);
     assert_eq!(d.param("n"), Some(4.0));
     assert_eq!(d.param("lambda"), Some(0.1));
     let start = shown(&d);
-    d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
+    d.input(Input::PointerDown(STEP_2_TARGET));
     run(&mut d);
     assert_ne!(shown(&d), start);
     d.action("reset").unwrap();
@@ -423,8 +507,8 @@ fn dls_step_1_starts_with_four_links_and_reset_pose_returns_to_the_start() {
 
 #[test]
 fn dls_step_2_iterations_count_up_every_few_frames_while_the_error_falls() {
-    let mut d = DampedLeastSquares::default();
-    d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
+    let mut d = after_step(1);
+    d.input(Input::PointerDown(STEP_2_TARGET));
     let mut errors = vec![d.error_m.unwrap()];
     let mut frames_per_iteration = Vec::new();
     let mut frames = 0;
@@ -450,11 +534,10 @@ fn dls_step_2_iterations_count_up_every_few_frames_while_the_error_falls() {
 
 #[test]
 fn dls_step_3_near_the_outer_circle_the_ellipse_flattens_and_the_condition_grows() {
-    let mut d = DampedLeastSquares::default();
-    d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
-    run(&mut d);
+    let mut d = after_step(2);
     let inside = d.manipulability();
-    d.input(Input::PointerDown(DVec2::new(0.0, 2.38)));
+    let (w_inside, cond_inside) = (readout(&d, "w"), readout(&d, "cond"));
+    d.input(Input::PointerDown(NEAR_BOUNDARY));
     run(&mut d);
     assert_eq!(d.run, Run::Converged);
     let near = d.manipulability();
@@ -465,6 +548,8 @@ fn dls_step_3_near_the_outer_circle_the_ellipse_flattens_and_the_condition_grows
         inside.condition,
         near.condition
     );
+    assert_ne!(readout(&d, "w"), w_inside);
+    assert_ne!(readout(&d, "cond"), cond_inside);
     // The ellipse: the ratio of its axes is 1/κ.
     let flat = near.sigma_min / near.sigma_max;
     assert!(flat < 0.05, "axis ratio {flat}");
@@ -472,82 +557,89 @@ fn dls_step_3_near_the_outer_circle_the_ellipse_flattens_and_the_condition_grows
 
 #[test]
 fn dls_step_4_the_bare_update_jumps_and_stops_and_large_damping_is_slow() {
+    let mut d = after_step(3);
+    // What step 3 took with λ = 0.1 and the safeguards on.
+    let step_3_iterations = d.iterations;
+    assert_eq!(d.run, Run::Converged);
     // Safeguards off, λ = 0: the near-boundary target, then one just outside.
-    let mut d = DampedLeastSquares::default();
     d.set_param("guard", 0.0).unwrap();
     d.set_param("lambda", 0.0).unwrap();
-    d.input(Input::PointerDown(DVec2::new(0.0, 2.38)));
+    d.input(Input::PointerDown(NEAR_BOUNDARY));
     run_measuring_jumps(&mut d);
-    d.input(Input::PointerDown(DVec2::new(0.0, 2.5)));
+    d.input(Input::PointerDown(JUST_OUTSIDE));
     let jump = run_measuring_jumps(&mut d);
     assert!(jump > 1.0, "largest joint jump {jump} rad");
     assert_eq!(
         d.status().text,
         "not converging: oscillating near a singularity (no progress in 20 iterations)"
     );
-    // Safeguards back on: the near-boundary target with λ = 0.1, then 0.5 and 1.
-    let iterations = |lambda: f64| {
-        let mut d = DampedLeastSquares::default();
-        d.set_param("lambda", lambda).unwrap();
-        d.input(Input::PointerDown(DVec2::new(0.0, 2.38)));
-        run(&mut d);
-        (d.iterations, d.run)
-    };
-    let (small, run_small) = iterations(0.1);
-    let (large, run_large) = iterations(0.5);
-    assert_eq!((run_small, run_large), (Run::Converged, Run::Converged));
-    assert!(large > 5 * small, "{small} → {large} iterations");
-    assert_eq!(iterations(1.0), (500, Run::GaveUp), "capped by the limit");
+    assert_eq!(d.param("maxit"), Some(500.0), "the Iteration limit");
+    // Safeguards back on: the near-boundary target with λ = 0.5, then 1.
+    d.set_param("guard", 1.0).unwrap();
+    d.set_param("lambda", 0.5).unwrap();
+    d.input(Input::PointerDown(NEAR_BOUNDARY));
+    run(&mut d);
+    assert_eq!(d.run, Run::Converged);
+    assert!(
+        d.iterations > 4 * step_3_iterations,
+        "{step_3_iterations} → {} iterations",
+        d.iterations
+    );
+    // Reset pose, λ = 1: the run reaches the Iteration limit.
+    d.action("reset").unwrap();
+    d.set_param("lambda", 1.0).unwrap();
+    d.input(Input::PointerDown(NEAR_BOUNDARY));
+    run(&mut d);
+    assert_eq!(
+        (d.iterations, d.status().text),
+        (500, "stopped: iteration limit (500)".to_string()),
+        "capped by the limit"
+    );
 }
 
 #[test]
 fn dls_step_5_far_outside_the_arm_settles_stretched_with_the_gap_as_error() {
-    let mut d = DampedLeastSquares::default();
-    d.set_param("lambda", 0.3).unwrap();
-    let target = DVec2::new(2.0, 2.0);
-    d.input(Input::PointerDown(target));
+    let mut d = after_step(4);
+    d.set_param("lambda", STEP_5_LAMBDA).unwrap();
+    d.input(Input::PointerDown(STEP_5_TARGET));
     run(&mut d);
     assert_eq!(d.status().text, "closest reachable pose");
-    let gap = target.length() - TOTAL_REACH_M;
+    let gap = STEP_5_TARGET.length() - TOTAL_REACH_M;
     assert_eq!(readout(&d, "error"), format_metres(gap));
-    let stretched = target.normalize() * TOTAL_REACH_M;
+    let stretched = STEP_5_TARGET.normalize() * TOTAL_REACH_M;
     assert!((d.tip() - stretched).length() < 1e-3);
 }
 
 #[test]
 fn dls_step_6_adaptive_damping_settles_where_fixed_damping_oscillates() {
-    let solve = |adaptive: f64| {
-        let mut d = DampedLeastSquares::default();
-        d.set_param("guard", 0.0).unwrap();
-        d.set_param("lambda", 0.01).unwrap();
-        d.set_param("adaptive", adaptive).unwrap();
-        d.set_param("tx", 0.0).unwrap();
-        d.set_param("ty", 2.45).unwrap();
-        let mut largest_lambda: f64 = 0.0;
-        while d.animating() {
-            d.step(crate::clock::Clock::DT_S);
-            largest_lambda = largest_lambda.max(d.lambda_used_m);
-        }
-        (d, largest_lambda)
-    };
-    let (fixed, fixed_lambda) = solve(0.0);
+    let mut d = after_step(5);
+    d.set_param("guard", 0.0).unwrap();
+    d.set_param("lambda", 0.01).unwrap();
+    type_target(&mut d, STEP_6_TARGET);
+    let fixed_lambda = run_noting_lambda(&mut d);
     assert!(
-        fixed.status().text.starts_with("not converging"),
+        d.status().text.starts_with("not converging"),
         "{}",
-        fixed.status().text
+        d.status().text
     );
     assert_eq!(fixed_lambda, 0.01);
-    let (adaptive, adaptive_lambda) = solve(1.0);
-    assert_eq!(adaptive.status().text, "closest reachable pose");
-    assert_eq!(readout(&adaptive, "error"), "0.050 m");
+    d.set_param("adaptive", 1.0).unwrap();
+    type_target(&mut d, STEP_6_TARGET);
+    let adaptive_lambda = run_noting_lambda(&mut d);
+    assert_eq!(d.status().text, "closest reachable pose");
+    assert_eq!(readout(&d, "error"), "0.050 m");
     assert!(adaptive_lambda > 0.3, "λ used rose to {adaptive_lambda}");
+    let stretched = DVec2::new(STEP_6_TARGET.0, STEP_6_TARGET.1).normalize() * TOTAL_REACH_M;
+    assert!((d.tip() - stretched).length() < 1e-3, "tip {}", d.tip());
+    d.set_param("guard", 1.0).unwrap();
+    assert_eq!(d.param("guard"), Some(1.0));
 }
 
 #[test]
 fn dls_step_7_two_links_find_a_closed_form_branch_and_more_links_depend_on_the_start() {
     use crate::kinematics::two_link_ik::{solve, wrap_pi};
     let target = DVec2::new(0.9, 1.3);
-    let mut d = DampedLeastSquares::default();
+    let mut d = after_step(6);
     d.set_param("n", 2.0).unwrap();
     d.input(Input::PointerDown(target));
     run(&mut d);
@@ -572,9 +664,8 @@ fn dls_step_7_two_links_find_a_closed_form_branch_and_more_links_depend_on_the_s
         )
     );
     // Five links: straight after Reset pose, and after another target first.
-    let shape = |detour: Option<DVec2>| {
-        let mut d = DampedLeastSquares::default();
-        d.set_param("n", 5.0).unwrap();
+    d.set_param("n", 5.0).unwrap();
+    let mut shape = |detour: Option<DVec2>| {
         d.action("reset").unwrap();
         if let Some(p) = detour {
             d.input(Input::PointerDown(p));
