@@ -469,8 +469,8 @@ fn same_seed_same_maze_and_it_is_solvable() {
     );
 }
 
-/// A 512 × 512 grid: step() + scene() + tables() stay fast (generous
-/// bound for a debug build on a shared machine).
+/// A 512 × 512 grid is one raster while it is searched (its step + scene +
+/// tables times are printed, never asserted).
 #[test]
 fn a_512_grid_is_one_raster_while_it_is_searched() {
     let mut a = AStarGrid::default();
@@ -1089,6 +1089,32 @@ fn astar_step_7_the_arena_path_cost_matches_the_benchmark_optimum_in_the_status(
 }
 
 // ---- Issue 13 §4 and §6: statuses, notices, touch, finger-sized cells ----
+
+/// Review item 8: a refused Plan said "cannot plan: …" twice, in a notice
+/// and in the status. The status alone says it, from the model's state.
+#[test]
+fn a_refused_plan_is_said_once_by_the_status_and_never_by_a_notice() {
+    let mut a = AStarGrid::default();
+    // An invalid weight is the one refusal `ends_problem` does not foresee.
+    a.weight = f64::INFINITY;
+    a.action("plan").unwrap();
+    assert_eq!(a.phase, Phase::Refused);
+    assert_eq!(a.notice(), None);
+    let status = a.status();
+    assert_eq!(
+        (status.text.as_str(), status.tone),
+        ("cannot plan between these cells", Tone::Bad)
+    );
+    // A start in a wall: the status names it, no notice either.
+    let mut b = AStarGrid::default();
+    let s = b.start();
+    b.grid.set_blocked(s, true);
+    b.grid_changed();
+    b.action("plan").unwrap();
+    assert_eq!(b.notice(), None);
+    assert!(b.status().text.contains("is in a wall"), "{:?}", b.status());
+    assert_eq!(b.status().tone, Tone::Bad);
+}
 
 #[test]
 fn issue13_a_finished_search_has_status_phase_ended_and_messages_are_notices() {
