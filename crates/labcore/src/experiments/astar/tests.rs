@@ -1132,9 +1132,11 @@ fn astar_step_7_the_arena_path_cost_matches_the_benchmark_optimum_in_the_status(
 /// and in the status. The status alone says it, from the model's state.
 #[test]
 fn a_refused_plan_is_said_once_by_the_status_and_never_by_a_notice() {
-    let mut a = AStarGrid::default();
     // An invalid weight is the one refusal `ends_problem` does not foresee.
-    a.weight = f64::INFINITY;
+    let mut a = AStarGrid {
+        weight: f64::INFINITY,
+        ..AStarGrid::default()
+    };
     a.action("plan").unwrap();
     assert_eq!(a.phase, Phase::Refused);
     assert_eq!(a.notice(), None);
