@@ -1010,7 +1010,6 @@ fn step_5(a: &mut AStarGrid) {
             "{weighted} > {w} × {optimum}"
         );
     }
-    a.set_param("w", 1.0).unwrap();
 }
 
 #[test]
@@ -1101,8 +1100,9 @@ fn astar_step_6_mazes_differ_by_seed_solve_and_travel_in_the_link_by_seed() {
 #[test]
 fn astar_step_7_the_arena_path_cost_matches_the_benchmark_optimum_in_the_status() {
     let mut a = after_step(6);
-    a.set_param("h", 1.0).unwrap();
-    a.set_param("conn", 1.0).unwrap();
+    // Steps 4 and 5 left Octile, 8-connected moves and the raised weight.
+    assert_eq!((a.param("h"), a.param("conn")), (Some(1.0), Some(1.0)));
+    assert_eq!(a.param("w"), Some(5.0));
     a.action("arena").unwrap();
     let optimum = arena_scenario().unwrap().optimal_length;
     let shown = format_fixed(optimum, 3);
