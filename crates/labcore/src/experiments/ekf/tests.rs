@@ -779,8 +779,10 @@ fn step_4(e: &mut EkfExperiment) {
 /// Step 5: a larger σω makes the ellipse balloon faster between readings;
 /// a larger σφ or σr weakens each correction; a short range or a narrow
 /// field of view makes readings rare (Observations per loop). Each slider
-/// is moved on the running filter the previous steps left; what it changes
-/// is read against a copy of that filter that keeps the settings it had.
+/// is moved on the running filter the previous steps left and set back
+/// before the next (the narrowed field of view stays, for step 6 to undo);
+/// what it changes is read against a copy of that filter that keeps the
+/// settings it had.
 fn step_5(e: &mut EkfExperiment) {
     type Lap = [(f64, f64, usize, DVec3)];
     let peak = |lap: &Lap| lap.iter().map(|s| s.1).fold(0.0, f64::max);
