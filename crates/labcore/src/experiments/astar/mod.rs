@@ -676,10 +676,9 @@ impl AStarGrid {
                 self.phase = Phase::Searching;
                 self.search_raster();
             }
-            Err(e) => {
-                self.notices.post(format!("cannot plan: {e}"), Tone::Bad);
-                self.phase = Phase::Refused;
-            }
+            // The status says why (from `ends_problem`, or that no plan can
+            // be made between these cells); a notice would say it twice.
+            Err(_) => self.phase = Phase::Refused,
         }
     }
 

@@ -469,8 +469,8 @@ fn same_seed_same_maze_and_it_is_solvable() {
     );
 }
 
-/// A 512 × 512 grid: step() + scene() + tables() stay fast (generous
-/// bound for a debug build on a shared machine).
+/// A 512 × 512 grid is one raster while it is searched (its step + scene +
+/// tables times are printed, never asserted).
 #[test]
 fn a_512_grid_is_one_raster_while_it_is_searched() {
     let mut a = AStarGrid::default();
@@ -776,6 +776,18 @@ fn count_state(a: &AStarGrid, state: crate::planning::astar::CellState) -> usize
     a.raster.iter().filter(|&&v| v == state as u8).count()
 }
 
+/// The state after Procedure steps 1..=k: each step's action (with its
+/// checks) replayed on the state the previous steps left, so the test of
+/// step k starts from `after_step(k - 1)`.
+fn after_step(k: usize) -> AStarGrid {
+    let steps: [fn(&mut AStarGrid); 6] = [step_1, step_2, step_3, step_4, step_5, step_6];
+    let mut a = AStarGrid::default();
+    for step in &steps[..k] {
+        step(&mut a);
+    }
+    a
+}
+
 /// Step 1: the green start on the left, the red goal on the right, walls
 /// between; a drag paints, a drag from a wall erases; Shift-click moves the
 /// start, Ctrl-click the goal, and either marker can be dragged.
@@ -842,7 +854,7 @@ fn step_1(a: &mut AStarGrid) {
 
 #[test]
 fn astar_step_1_markers_sit_either_side_of_the_walls_and_drags_paint_erase_and_move_them() {
-    step_1(&mut AStarGrid::default());
+    step_1(&mut after_step(0));
 }
 
 /// Step 2: Octile, 8-connected, Plan & drive: the frontier and the closed
@@ -899,13 +911,11 @@ fn step_2(a: &mut AStarGrid) {
 
 #[test]
 fn astar_step_2_the_frontier_grows_the_open_list_is_ordered_by_f_and_the_robot_drives_the_path() {
-    let mut a = AStarGrid::default();
-    step_1(&mut a);
-    step_2(&mut a);
+    step_2(&mut after_step(1));
 }
 
 /// Step 3: Dijkstra finds the same cost but expands more cells.
-fn step_3(a: &mut AStarGrid) -> f64 {
+fn step_3(a: &mut AStarGrid) {
     let (cost, expanded) = (readout(a, "path_cost"), readout(a, "expanded"));
     assert_ne!(readout(a, "path_cells"), "--");
     a.set_param("h", 3.0).unwrap();
@@ -917,15 +927,11 @@ fn step_3(a: &mut AStarGrid) -> f64 {
         more > expanded.parse::<usize>().unwrap() + 50,
         "{more} vs {expanded}"
     );
-    a.path_cost
 }
 
 #[test]
 fn astar_step_3_dijkstra_finds_the_same_cost_with_more_expansions() {
-    let mut a = AStarGrid::default();
-    step_1(&mut a);
-    step_2(&mut a);
-    step_3(&mut a);
+    step_3(&mut after_step(2));
 }
 
 /// Step 4: Manhattan with 4-connected moves, then Manhattan with diagonal
@@ -960,11 +966,7 @@ fn step_4(a: &mut AStarGrid) {
 
 #[test]
 fn astar_step_4_manhattan_with_diagonals_warns_and_misses_the_optimum() {
-    let mut a = AStarGrid::default();
-    step_1(&mut a);
-    step_2(&mut a);
-    step_3(&mut a);
-    step_4(&mut a);
+    step_4(&mut after_step(3));
 }
 
 /// Step 5: Compare lists four planners, draws each path; with a larger w
@@ -1008,19 +1010,18 @@ fn step_5(a: &mut AStarGrid) {
             "{weighted} > {w} × {optimum}"
         );
     }
-    a.set_param("w", 1.0).unwrap();
 }
 
 #[test]
 fn astar_step_5_compare_tabulates_four_planners_and_weighted_stays_within_w_times_optimum() {
-    let mut a = AStarGrid::default();
-    step_1(&mut a);
-    step_2(&mut a);
-    step_5(&mut a);
+    step_5(&mut after_step(4));
 }
 
 /// Step 6: a random maze (another seed gives another), planned through;
-/// then a larger maze with more speed; the link keeps it by its seed.
+/// then a larger maze with more speed; the link keeps it by its seed and
+/// painted walls as a short list of changed cells, even at 512 × 512; a
+/// loaded map with too many walls for a link is left out and the page says
+/// so, offering Save file.
 fn step_6(a: &mut AStarGrid) {
     a.action("maze").unwrap();
     let first = a.grid().clone();
@@ -1045,26 +1046,63 @@ fn step_6(a: &mut AStarGrid) {
         "{link} {notices:?}"
     );
     assert_eq!(fresh.grid(), a.grid());
+    // Walls painted on the maze travel as a short list of changed cells.
+    let maze = a.grid().clone();
+    a.input(Input::PointerDown(a.cell_center(Cell::new(2, 1))));
+    a.input(Input::PointerUp(DVec2::ZERO));
+    a.input(Input::PointerDown(a.cell_center(Cell::new(60, 41))));
+    a.input(Input::PointerUp(DVec2::ZERO));
+    assert_ne!(a.grid(), &maze, "the clicks changed cells");
+    let (fresh, link, notices) = reopen(a);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert!(
+        link.contains("maze=128x96.7") && link.contains("&edits=") && link.len() < 300,
+        "{link}"
+    );
+    assert!(!link.contains("&walls="), "{link}");
+    assert_eq!(fresh.grid(), a.grid());
+    // Even a 512 × 512 maze reopens from its short link.
+    a.set_param("size", 5.0).unwrap();
+    a.action("maze").unwrap();
+    assert_eq!((a.grid().width(), a.grid().height()), (512, 512));
+    assert!(encoded_len(a.grid()) > LINK_WALLS_MAX);
+    let (fresh, link, notices) = reopen(a);
+    assert!(notices.is_empty(), "{notices:?}");
+    assert!(
+        link.contains("maze=512x512.7") && link.len() < 300,
+        "{link}"
+    );
+    assert_eq!(fresh.grid(), a.grid());
+    // Save file keeps the grid as a .map.
     let (name, text) = a.export_text().unwrap();
     assert!(name.ends_with(".map") && parse_map(&text).unwrap() == *a.grid());
+    // A loaded map with too many walls for a link: left out, and said so.
+    let mut rng = Lcg64::new(9);
+    let noise = crate::planning::maze::random_fill(256, 192, 30.0, &mut rng).unwrap();
+    a.load_file("noise.map", &write_map(&noise)).unwrap();
+    assert!(!a.walls_in_link());
+    assert!(a.status().text.contains("Save file"), "{:?}", a.status());
+    let link = format(a, Tab::Simulation);
+    assert!(!link.contains("&walls=") && link.contains("nowalls=256x192"));
+    let (opened, notices) = restore(&link, AStarGrid::default());
+    assert!(notices.is_empty(), "{notices:?}");
+    let notice = opened.notice().expect("the opened page says so");
+    assert!(notice.text.contains(".map"), "{}", notice.text);
 }
 
 #[test]
 fn astar_step_6_mazes_differ_by_seed_solve_and_travel_in_the_link_by_seed() {
-    let mut a = AStarGrid::default();
-    step_1(&mut a);
-    step_6(&mut a);
+    step_6(&mut after_step(5));
 }
 
 /// Step 7: the arena map with its benchmark scenario; the status shows the
 /// benchmark's optimal length next to the path cost found.
 #[test]
 fn astar_step_7_the_arena_path_cost_matches_the_benchmark_optimum_in_the_status() {
-    let mut a = AStarGrid::default();
-    step_1(&mut a);
-    step_6(&mut a);
-    a.set_param("h", 1.0).unwrap();
-    a.set_param("conn", 1.0).unwrap();
+    let mut a = after_step(6);
+    // Steps 4 and 5 left Octile, 8-connected moves and the raised weight.
+    assert_eq!((a.param("h"), a.param("conn")), (Some(1.0), Some(1.0)));
+    assert_eq!(a.param("w"), Some(5.0));
     a.action("arena").unwrap();
     let optimum = arena_scenario().unwrap().optimal_length;
     let shown = format_fixed(optimum, 3);
@@ -1089,6 +1127,34 @@ fn astar_step_7_the_arena_path_cost_matches_the_benchmark_optimum_in_the_status(
 }
 
 // ---- Issue 13 §4 and §6: statuses, notices, touch, finger-sized cells ----
+
+/// Review item 8: a refused Plan said "cannot plan: …" twice, in a notice
+/// and in the status. The status alone says it, from the model's state.
+#[test]
+fn a_refused_plan_is_said_once_by_the_status_and_never_by_a_notice() {
+    // An invalid weight is the one refusal `ends_problem` does not foresee.
+    let mut a = AStarGrid {
+        weight: f64::INFINITY,
+        ..AStarGrid::default()
+    };
+    a.action("plan").unwrap();
+    assert_eq!(a.phase, Phase::Refused);
+    assert_eq!(a.notice(), None);
+    let status = a.status();
+    assert_eq!(
+        (status.text.as_str(), status.tone),
+        ("cannot plan between these cells", Tone::Bad)
+    );
+    // A start in a wall: the status names it, no notice either.
+    let mut b = AStarGrid::default();
+    let s = b.start();
+    b.grid.set_blocked(s, true);
+    b.grid_changed();
+    b.action("plan").unwrap();
+    assert_eq!(b.notice(), None);
+    assert!(b.status().text.contains("is in a wall"), "{:?}", b.status());
+    assert_eq!(b.status().tone, Tone::Bad);
+}
 
 #[test]
 fn issue13_a_finished_search_has_status_phase_ended_and_messages_are_notices() {

@@ -545,11 +545,12 @@ fn filter_step(e: &mut EkfExperiment) {
     }
 }
 
-/// Drives one full loop (38 s) and returns, per filter step, the time, the
-/// position trace, the observations taken and the truth.
+/// Drives one full loop (38 s from now) and returns, per filter step, the
+/// time, the position trace, the observations taken and the truth.
 fn one_loop(e: &mut EkfExperiment) -> Vec<(f64, f64, usize, DVec3)> {
     let mut out = Vec::new();
-    while e.live.time_s() < 38.0 - 1e-9 {
+    let end = e.live.time_s() + 38.0;
+    while e.live.time_s() < end - 1e-9 {
         filter_step(e);
         let seen = if e.live.reading_step == Some(e.live.steps) {
             e.live.observations.len()
@@ -575,10 +576,8 @@ fn scene_of(e: &EkfExperiment) -> Scene {
 /// Step 1: the blue dart (truth), the pink dart with its 3σ ellipse
 /// (estimate), the grey dashed dart (dead reckoning), the six stars, the
 /// dashed wedge of the sensor, and a line to each landmark seen at a reading.
-#[test]
-fn ekf_step_1_the_scene_shows_truth_estimate_dead_reckoning_landmarks_and_sensor() {
-    let mut e = EkfExperiment::default();
-    let scene = scene_of(&e);
+fn step_1(e: &mut EkfExperiment) {
+    let scene = scene_of(e);
     let est = e.live.estimate();
     let polygon = |role: Role, outline: Vec<DVec2>| {
         scene.items.iter().any(|i| {
@@ -627,7 +626,7 @@ fn ekf_step_1_the_scene_shows_truth_estimate_dead_reckoning_landmarks_and_sensor
         .iter()
         .all(|p| ((*p - wedge[0]).length() - 3.0).abs() < 1e-9));
     // The first reading: one line per landmark in range and view.
-    filter_step(&mut e);
+    filter_step(e);
     let seen = LANDMARKS
         .iter()
         .filter(|m| {
@@ -637,7 +636,7 @@ fn ekf_step_1_the_scene_shows_truth_estimate_dead_reckoning_landmarks_and_sensor
         })
         .count();
     assert!(seen >= 1);
-    let lines = scene_of(&e)
+    let lines = scene_of(e)
         .items
         .iter()
         .filter(|i| {
@@ -658,10 +657,9 @@ fn ekf_step_1_the_scene_shows_truth_estimate_dead_reckoning_landmarks_and_sensor
 /// ellipse stretches across the direction of travel and σx² + σy² climbs,
 /// then snaps back when the lone landmark at the bottom left comes into
 /// view. After the loop the EKF's error is far below dead reckoning's.
-#[test]
-fn ekf_step_2_the_ellipse_grows_across_the_track_on_the_left_and_snaps_back() {
-    let mut e = EkfExperiment::default();
-    let lap = one_loop(&mut e);
+fn step_2(e: &mut EkfExperiment) {
+    let start = e.clone();
+    let lap = one_loop(e);
     // The longest stretch without a sighting.
     let (mut best, mut from) = ((0, 0), 0);
     for (k, s) in lap.iter().enumerate() {
@@ -686,7 +684,7 @@ fn ekf_step_2_the_ellipse_grows_across_the_track_on_the_left_and_snaps_back() {
     assert!(after.1 < 0.25 * peak, "{} after {peak}", after.1);
     assert!(after.3.x < 0.0 && after.3.y < 0.0, "bottom left");
     // Across the track: rerun to the end of the stretch and look at the ellipse.
-    let mut f = EkfExperiment::default();
+    let mut f = start;
     while f.live.time_s() < lap[b - 1].0 - 1e-9 {
         filter_step(&mut f);
     }
@@ -700,27 +698,33 @@ fn ekf_step_2_the_ellipse_grows_across_the_track_on_the_left_and_snaps_back() {
     let ekf = position_error_m(e.live.truth, e.live.estimate());
     let dr = position_error_m(e.live.truth, e.live.dead_reckoning);
     assert!(ekf < 0.5 * dr, "EKF {ekf} m, dead reckoning {dr} m");
-    assert_eq!(readout(&e, "error"), format_metres(ekf));
-    assert_eq!(readout(&e, "dr_error"), format_metres(dr));
+    assert_eq!(readout(e, "error"), format_metres(ekf));
+    assert_eq!(readout(e, "dr_error"), format_metres(dr));
 }
 
 /// Step 3: single steps: a filter step takes three frames; the sensor reads
-/// on every fifth filter step; σx² + σy² rises on almost every predict step
-/// and drops at every reading that sees a landmark.
-#[test]
-fn ekf_step_3_single_steps_show_predict_rises_and_reading_drops() {
-    let mut e = EkfExperiment::default();
-    run_for(&mut e, 5.0);
+/// on every fifth filter step; the shown σx² + σy² (readout and the last
+/// sample of its plot) rises on almost every predict step and drops at
+/// every reading that sees a landmark.
+fn step_3(e: &mut EkfExperiment) {
+    let shown = |e: &EkfExperiment| *e.plots[PLOT_TRACE].series[0].y.last().unwrap();
     let (mut rises, mut predicts, mut drops, mut readings) = (0, 0, 0, 0);
+    let mut shown_rises = 0;
     for _ in 0..200 {
         let before = position_trace(e.live.pose_cov());
-        let (steps, shown) = (e.live.steps, readout(&e, "trace"));
+        let (steps, shown_before) = (e.live.steps, shown(e));
+        assert_eq!(shown_before, before);
         e.step(DT);
         e.step(DT);
         assert_eq!(e.live.steps, steps, "two frames are not a filter step");
         e.step(DT);
         assert_eq!(e.live.steps, steps + 1, "the third frame is");
         let after = position_trace(e.live.pose_cov());
+        assert_eq!(shown(e), after, "the plot's last sample is the new trace");
+        assert_eq!(
+            readout(e, "trace"),
+            format!("{} m²", format_magnitude(after))
+        );
         let read = (e.live.steps - 1).is_multiple_of(SENSOR_EVERY);
         assert_eq!(e.live.reading_step == Some(e.live.steps), read);
         if read && !e.live.observations.is_empty() {
@@ -729,20 +733,23 @@ fn ekf_step_3_single_steps_show_predict_rises_and_reading_drops() {
         } else {
             predicts += 1;
             rises += usize::from(after > before);
+            shown_rises += usize::from(shown(e) > shown_before);
         }
-        assert_ne!(readout(&e, "trace"), "", "{shown}");
     }
     assert_eq!(readings, drops, "every reading with a landmark lowers it");
     assert!(readings >= 20);
     assert!(rises * 10 >= predicts * 9, "{rises} of {predicts} predicts");
+    assert!(
+        shown_rises * 10 >= predicts * 9,
+        "the plot rose on {shown_rises} of {predicts} predicts"
+    );
 }
 
 /// Step 4: the x and y errors stay inside ±3σ almost all the time, and the
 /// NEES mostly inside the single-run band.
-#[test]
-fn ekf_step_4_errors_stay_inside_3_sigma_and_nees_inside_its_band() {
-    let mut e = EkfExperiment::default();
-    run_for(&mut e, 60.0);
+fn step_4(e: &mut EkfExperiment) {
+    // Steps 2 and 3 left 48 s of plots.
+    assert!(e.live.time_s() > 45.0);
     for k in [PLOT_X, PLOT_Y] {
         let s = &e.plots[k].series;
         let inside = s[0]
@@ -771,59 +778,64 @@ fn ekf_step_4_errors_stay_inside_3_sigma_and_nees_inside_its_band() {
 
 /// Step 5: a larger σω makes the ellipse balloon faster between readings;
 /// a larger σφ or σr weakens each correction; a short range or a narrow
-/// field of view makes readings rare (Observations per loop).
-#[test]
-fn ekf_step_5_noise_and_sensor_settings_change_growth_corrections_and_readings() {
-    let peak = |lap: &[(f64, f64, usize, DVec3)]| lap.iter().map(|s| s.1).fold(0.0, f64::max);
-    // The first reading updates the same prediction in every run (noise of
-    // the sensor does not enter the predict step): what it leaves shows the
-    // correction's strength; the loop's mean shows it all along.
-    let after_first_reading = |lap: &[(f64, f64, usize, DVec3)]| {
-        assert!(lap[0].2 > 0);
-        lap[0].1
+/// field of view makes readings rare (Observations per loop). Each slider
+/// is moved on the running filter the previous steps left and set back
+/// before the next (the narrowed field of view stays, for step 6 to undo);
+/// what it changes is read against a copy of that filter that keeps the
+/// settings it had.
+fn step_5(e: &mut EkfExperiment) {
+    type Lap = [(f64, f64, usize, DVec3)];
+    let peak = |lap: &Lap| lap.iter().map(|s| s.1).fold(0.0, f64::max);
+    // The first reading after the change updates the same prediction in
+    // both (noise of the sensor does not enter the predict step): what it
+    // leaves shows the correction's strength; the loop's mean shows it all
+    // along.
+    let after_first_reading = |lap: &Lap| lap.iter().find(|s| s.2 > 0).unwrap().1;
+    let mean = |lap: &Lap| lap.iter().map(|s| s.1).sum::<f64>() / lap.len() as f64;
+    // One loop with `key` moved to `value`, and the same loop without.
+    let versus = |e: &mut EkfExperiment, key: &str, value: f64| {
+        let mut kept = e.clone();
+        e.set_param(key, value).unwrap();
+        (one_loop(e), one_loop(&mut kept))
     };
-    let mean =
-        |lap: &[(f64, f64, usize, DVec3)]| lap.iter().map(|s| s.1).sum::<f64>() / lap.len() as f64;
-    let lap_with = |settings: &[(&str, f64)]| {
-        let mut e = EkfExperiment::default();
-        for (k, v) in settings {
-            e.set_param(k, *v).unwrap();
+    // *Observations per loop* once a whole loop has passed since now.
+    let per_loop = |e: &mut EkfExperiment| {
+        let laps = e.live.laps;
+        while e.live.laps < laps + 2 {
+            filter_step(e);
         }
-        let lap = one_loop(&mut e);
-        run_for(&mut e, 2.0);
-        (lap, readout(&e, "obs_per_loop"))
+        readout(e, "obs_per_loop").parse::<usize>().unwrap()
     };
-    let (default, obs_default) = lap_with(&[]);
-    let (sw, _) = lap_with(&[("sw", 15.0)]);
+    let default = |key: &str| PARAMS.iter().find(|p| p.key == key).unwrap().default;
+    let (sw, kept) = versus(e, "sw", 15.0);
     assert!(
-        peak(&sw) > 3.0 * peak(&default),
+        peak(&sw) > 3.0 * peak(&kept),
         "{} vs {}",
         peak(&sw),
-        peak(&default)
+        peak(&kept)
     );
-    let (sb, _) = lap_with(&[("sb", 10.0)]);
-    let (sr, _) = lap_with(&[("sr", 0.5)]);
-    for weaker in [&sb, &sr] {
-        let (w, d) = (after_first_reading(weaker), after_first_reading(&default));
-        assert!(w > d, "{w} vs {d}");
+    e.set_param("sw", default("sw")).unwrap();
+    for (key, value) in [("sb", 10.0), ("sr", 0.5)] {
+        let (weaker, kept) = versus(e, key, value);
+        let (w, d) = (after_first_reading(&weaker), after_first_reading(&kept));
+        assert!(w > d, "{key}: {w} vs {d}");
         assert!(
-            mean(weaker) > 1.2 * mean(&default),
-            "{} vs {}",
-            mean(weaker),
-            mean(&default)
+            mean(&weaker) > 1.2 * mean(&kept),
+            "{key}: {} vs {}",
+            mean(&weaker),
+            mean(&kept)
         );
+        e.set_param(key, default(key)).unwrap();
     }
-    let (_, obs_range) = lap_with(&[("range", 1.5)]);
-    let (_, obs_fov) = lap_with(&[("fov", 30.0)]);
-    let n = |s: &str| s.parse::<usize>().unwrap();
-    assert!(
-        n(&obs_range) * 2 < n(&obs_default),
-        "{obs_range} vs {obs_default}"
-    );
-    assert!(
-        n(&obs_fov) * 2 < n(&obs_default),
-        "{obs_fov} vs {obs_default}"
-    );
+    for (key, value) in [("range", 1.5), ("fov", 30.0)] {
+        let mut kept = e.clone();
+        e.set_param(key, value).unwrap();
+        let (rare, usual) = (per_loop(e), per_loop(&mut kept));
+        assert!(rare * 2 < usual, "{key}: {rare} vs {usual}");
+        if key == "range" {
+            e.set_param(key, default(key)).unwrap();
+        }
+    }
 }
 
 /// Runs the check to its end.
@@ -835,34 +847,31 @@ fn finish_check(e: &mut EkfExperiment) {
 
 /// Step 6: back at the defaults, the check counts its runs in the status,
 /// ends with a verdict and its band; the band narrows from N = 10 to N = 200.
-#[test]
-fn ekf_step_6_the_check_counts_runs_gives_a_verdict_and_its_band_narrows_with_n() {
-    let mut e = EkfExperiment::default();
-    for (k, v) in [("sw", 15.0), ("sb", 10.0), ("range", 1.5)] {
-        e.set_param(k, v).unwrap();
-    }
+fn step_6(e: &mut EkfExperiment) {
+    // Step 5 left the field of view narrowed.
+    assert_ne!(e.param("fov"), Some(120.0));
     for spec in PARAMS {
         e.set_param(spec.key, spec.default).unwrap();
     }
     e.action("check").unwrap();
     e.step(DT);
     assert!(e.status().text.starts_with("consistency check… "));
-    finish_check(&mut e);
+    finish_check(e);
     let verdict = e.status().text;
     assert!(verdict.starts_with("consistent: "), "{verdict}");
     let band = |e: &EkfExperiment| {
         let b = &e.plots[PLOT_ANEES].bands[0];
         (b.lo, b.hi)
     };
-    let b50 = band(&e);
+    let b50 = band(e);
     e.set_param("runs", 10.0).unwrap();
     e.action("check").unwrap();
-    finish_check(&mut e);
-    let b10 = band(&e);
+    finish_check(e);
+    let b10 = band(e);
     e.set_param("runs", 200.0).unwrap();
     e.action("check").unwrap();
-    finish_check(&mut e);
-    let b200 = band(&e);
+    finish_check(e);
+    let b200 = band(e);
     let width = |b: (f64, f64)| b.1 - b.0;
     assert!(width(b10) > width(b50) && width(b50) > width(b200));
     assert!(b10.0 < 3.0 && 3.0 < b10.1 && b200.0 < 3.0 && 3.0 < b200.1);
@@ -877,17 +886,27 @@ fn ekf_step_6_the_check_counts_runs_gives_a_verdict_and_its_band_narrows_with_n(
 /// estimate and an ellipse when first seen; the map ellipses shrink when the
 /// loop closes; the map's shape (distances between landmarks) is more
 /// accurate than where it sits; the check runs in this mode too.
-#[test]
-fn ekf_step_7_slam_builds_the_map_whose_shape_beats_its_placement() {
-    let mut e = EkfExperiment::default();
-    run_for(&mut e, 3.0);
+fn step_7(e: &mut EkfExperiment) {
+    // Step 6's finished check is on screen: its verdict and average NEES.
+    assert!(
+        e.status().text.starts_with("consistent: "),
+        "{:?}",
+        e.status()
+    );
+    assert!(!e.plots[PLOT_ANEES].series[0].is_empty());
     e.set_param("mode", 1.0).unwrap();
     assert_eq!(e.live.steps, 0, "the run restarts");
+    // The localisation verdict is not shown as if it were SLAM's: the check
+    // is withdrawn with a notice, and the status is the SLAM run's.
+    assert!(e.check_result().is_none());
+    assert!(e.plots[PLOT_ANEES].series.iter().all(|s| s.is_empty()));
+    assert_eq!(e.notice().unwrap().text, STALE_CHECK_NOTICE);
+    assert_eq!(e.status().text, "EKF-SLAM: 0 of 6 landmarks mapped");
     let slam = |e: &EkfExperiment| match &e.live.filter {
         Filter::Slam(s) => s.clone(),
         Filter::Localisation(_) => panic!("not SLAM"),
     };
-    assert_eq!(slam(&e).landmark_count(), 0);
+    assert_eq!(slam(e).landmark_count(), 0);
     let ellipses = |e: &EkfExperiment| {
         scene_of(e)
             .items
@@ -895,12 +914,12 @@ fn ekf_step_7_slam_builds_the_map_whose_shape_beats_its_placement() {
             .filter(|i| matches!(i, Item::Ellipse { .. }))
             .count()
     };
-    assert_eq!(ellipses(&e), 1);
+    assert_eq!(ellipses(e), 1);
     let mut first_major = [f64::NAN; 6];
     while e.live.time_s() < 38.0 {
-        filter_step(&mut e);
-        let s = slam(&e);
-        assert_eq!(ellipses(&e), 1 + s.landmark_count());
+        filter_step(e);
+        let s = slam(e);
+        assert_eq!(ellipses(e), 1 + s.landmark_count());
         for &id in s.landmark_ids() {
             if first_major[id].is_nan() {
                 first_major[id] = covariance_ellipse(s.landmark(id).unwrap().1, 3.0).0;
@@ -911,8 +930,8 @@ fn ekf_step_7_slam_builds_the_map_whose_shape_beats_its_placement() {
         first_major.iter().all(|a| a.is_finite()),
         "all mapped in a loop"
     );
-    run_for(&mut e, 40.0);
-    let s = slam(&e);
+    run_for(e, 40.0);
+    let s = slam(e);
     for (id, first) in first_major.iter().enumerate() {
         let now = covariance_ellipse(s.landmark(id).unwrap().1, 3.0).0;
         assert!(now < *first, "landmark {id}: {now} vs {first}");
@@ -938,7 +957,7 @@ fn ekf_step_7_slam_builds_the_map_whose_shape_beats_its_placement() {
     );
     e.set_param("runs", 10.0).unwrap();
     e.action("check").unwrap();
-    finish_check(&mut e);
+    finish_check(e);
     assert!(e.check_result().is_some());
     assert!(
         e.status().text.contains("over 10 runs"),
@@ -949,16 +968,19 @@ fn ekf_step_7_slam_builds_the_map_whose_shape_beats_its_placement() {
 
 /// Step 8: another seed, another run; the same seed (through the link)
 /// replays exactly the same run.
-#[test]
-fn ekf_step_8_a_seed_replays_its_run_exactly_through_the_link() {
+fn step_8(e: &mut EkfExperiment) {
     use crate::route::{format, restore, Tab};
-    let mut e = EkfExperiment::default();
-    run_for(&mut e, 5.0);
-    let first = e.live.clone();
+    // Step 7 left a SLAM run going: its seed's run, restarted, against seed 77.
+    let mut same_seed = e.clone();
+    same_seed.restart();
+    run_for(&mut same_seed, 5.0);
     e.set_param("seed", 77.0).unwrap();
-    run_for(&mut e, 5.0);
-    assert_ne!(e.live.truth, first.truth);
-    let link = format(&e, Tab::Simulation);
+    assert_eq!(e.live.steps, 0, "another seed restarts the run");
+    run_for(e, 5.0);
+    assert_eq!(e.live.time_s(), same_seed.live.time_s());
+    assert_ne!(e.live.truth, same_seed.live.truth);
+    let link = format(e, Tab::Simulation);
+    assert!(link.contains("mode=1"), "{link}");
     let (mut fresh, notices) = restore(&link, EkfExperiment::default());
     assert!(notices.is_empty(), "{notices:?}");
     run_for(&mut fresh, 5.0);
@@ -966,6 +988,60 @@ fn ekf_step_8_a_seed_replays_its_run_exactly_through_the_link() {
     for (a, b) in fresh.plots.iter().zip(&e.plots) {
         assert_eq!(a.series, b.series, "{}", a.key);
     }
+}
+
+/// The state after Procedure steps 1..=k: each step's action (with its
+/// checks) replayed on the state the previous steps left, so the test of
+/// step k starts from `after_step(k - 1)`.
+fn after_step(k: usize) -> EkfExperiment {
+    let steps: [fn(&mut EkfExperiment); 8] = [
+        step_1, step_2, step_3, step_4, step_5, step_6, step_7, step_8,
+    ];
+    let mut e = EkfExperiment::default();
+    for step in &steps[..k] {
+        step(&mut e);
+    }
+    e
+}
+
+#[test]
+fn ekf_step_1_the_scene_shows_truth_estimate_dead_reckoning_landmarks_and_sensor() {
+    step_1(&mut after_step(0));
+}
+
+#[test]
+fn ekf_step_2_the_ellipse_grows_across_the_track_on_the_left_and_snaps_back() {
+    step_2(&mut after_step(1));
+}
+
+#[test]
+fn ekf_step_3_single_steps_show_predict_rises_and_reading_drops() {
+    step_3(&mut after_step(2));
+}
+
+#[test]
+fn ekf_step_4_errors_stay_inside_3_sigma_and_nees_inside_its_band() {
+    step_4(&mut after_step(3));
+}
+
+#[test]
+fn ekf_step_5_noise_and_sensor_settings_change_growth_corrections_and_readings() {
+    step_5(&mut after_step(4));
+}
+
+#[test]
+fn ekf_step_6_the_check_counts_runs_gives_a_verdict_and_its_band_narrows_with_n() {
+    step_6(&mut after_step(5));
+}
+
+#[test]
+fn ekf_step_7_slam_builds_the_map_whose_shape_beats_its_placement() {
+    step_7(&mut after_step(6));
+}
+
+#[test]
+fn ekf_step_8_a_seed_replays_its_run_exactly_through_the_link() {
+    step_8(&mut after_step(7));
 }
 
 // ---- Content: claims of the theory, quiz generators, option lengths ----

@@ -371,12 +371,23 @@ fn best_readout(f: &RrtStarField) -> String {
     crate::experiment::readout_value(f, "best").unwrap()
 }
 
+/// The state after Procedure steps 1..=k: each step's action (with its
+/// checks) replayed on the state the previous steps left, so the test of
+/// step k starts from `after_step(k - 1)`.
+fn after_step(k: usize) -> RrtStarField {
+    let steps: [fn(&mut RrtStarField); 7] =
+        [step_1, step_2, step_3, step_4, step_5, step_6, step_7];
+    let mut f = RrtStarField::default();
+    for step in &steps[..k] {
+        step(&mut f);
+    }
+    f
+}
+
 /// Step 1: the start (green dot) and the goal (red dot with its dashed
 /// goal disc) sit on opposite sides of the obstacle field.
-#[test]
-fn rrtstar_step_1_start_and_goal_sit_on_opposite_sides_of_the_obstacles() {
-    let f = RrtStarField::default();
-    let scene = scene_of(&f);
+fn step_1(f: &mut RrtStarField) {
+    let scene = scene_of(f);
     assert!(scene.items.iter().any(|i| matches!(i,
         Item::Dot { center, role: Role::Sample, .. } if *center == f.start)));
     assert!(scene.items.iter().any(|i| matches!(i,
@@ -398,9 +409,7 @@ fn rrtstar_step_1_start_and_goal_sit_on_opposite_sides_of_the_obstacles() {
 /// dashed circle is the rewiring radius around the newest node; rewired
 /// edges are drawn red (warning) in the frame they were rewired; the amber
 /// best path appears in the frame the tree reaches the goal disc.
-#[test]
-fn rrtstar_step_2_grow_adds_a_batch_per_frame_with_radius_rewires_and_amber_path() {
-    let mut f = RrtStarField::default();
+fn step_2(f: &mut RrtStarField) {
     f.action("grow").unwrap();
     let mut saw_rewire = false;
     let mut first_path_frame = None;
@@ -409,7 +418,7 @@ fn rrtstar_step_2_grow_adds_a_batch_per_frame_with_radius_rewires_and_amber_path
         f.step(DT);
         let tree = f.shown().unwrap();
         assert_eq!(tree.iterations(), 24 * frame);
-        let scene = scene_of(&f);
+        let scene = scene_of(f);
         let newest = tree.nodes()[tree.newest().unwrap()];
         assert!(scene.items.iter().any(|i| matches!(i,
             Item::Circle { center, radius_m, dashed: true, role: Role::Accent, .. }
@@ -447,23 +456,22 @@ fn rrtstar_step_2_grow_adds_a_batch_per_frame_with_radius_rewires_and_amber_path
 
 /// Step 3: until the budget is used up the best length only shrinks, and the
 /// readout and the plot follow it.
-#[test]
-fn rrtstar_step_3_the_best_length_shrinks_until_the_budget_is_used() {
-    let mut f = RrtStarField::default();
-    f.action("grow").unwrap();
-    while f.shown().unwrap().best_cost().is_none() {
-        f.step(DT);
-    }
-    let first = f.shown().unwrap().best_cost().unwrap();
-    let first_readout = best_readout(&f);
-    settle(&mut f);
+fn step_3(f: &mut RrtStarField) {
+    // Step 2 left the tree growing, its first path already drawn.
+    assert!(f.animating());
+    let shown = best_readout(f);
+    let now = f.shown().unwrap().best_cost().unwrap();
+    assert_eq!(shown, format_metres(now));
+    let first = f.shown().unwrap().cost_history()[0].cost;
+    settle(f);
     let tree = f.shown().unwrap();
     assert_eq!(tree.iterations(), 4000);
     let last = tree.best_cost().unwrap();
+    assert!(last <= now);
     assert!(last < 0.9 * first, "shortened from {first} to {last}");
-    assert_ne!(best_readout(&f), first_readout);
-    assert_eq!(best_readout(&f), format_metres(last));
+    assert_eq!(best_readout(f), format_metres(last));
     let s = &f.plots()[0].series[0];
+    assert_eq!(s.y[0], first);
     assert!(s.y.windows(2).all(|w| w[1] <= w[0]));
     assert_eq!(*s.y.last().unwrap(), last);
     assert_eq!(*s.x.last().unwrap(), 4000.0);
@@ -483,32 +491,33 @@ fn grow_to_the_end(f: &mut RrtStarField) -> (usize, f64) {
 /// Step 4: a new η or goal bias clears the tree (a notice says so); grown
 /// again, the first path comes at another iteration and the final length
 /// differs; another seed gives another result.
-#[test]
-fn rrtstar_step_4_step_bias_and_seed_change_the_first_path_and_final_length() {
-    let mut f = RrtStarField::default();
-    let default = grow_to_the_end(&mut f);
-    f.set_param("eta", 1.0).unwrap();
+fn step_4(f: &mut RrtStarField) {
+    // Step 3 left the default tree grown to its budget.
+    let default = {
+        let tree = f.shown().unwrap();
+        assert_eq!(tree.iterations(), 4000);
+        (tree.cost_history()[0].iteration, tree.best_cost().unwrap())
+    };
+    f.set_param("eta", 0.75).unwrap();
     assert!(f.shown().is_none(), "the tree is cleared");
     assert_eq!(f.notice().unwrap().text, CLEARED_NOTICE);
     assert_eq!(f.status().text, "idle: press Grow tree");
-    f.set_param("bias", 20.0).unwrap();
-    let changed = grow_to_the_end(&mut f);
+    f.set_param("bias", 15.0).unwrap();
+    let changed = grow_to_the_end(f);
     assert_eq!(f.notice(), None, "growing again withdraws the notice");
     assert_ne!(changed.0, default.0);
     assert_ne!(changed.1, default.1);
-    f.set_param("seed", 2.0).unwrap();
-    let reseeded = grow_to_the_end(&mut f);
+    f.set_param("seed", 3.0).unwrap();
+    let reseeded = grow_to_the_end(f);
     assert_ne!(reseeded, changed);
 }
 
 /// Step 5: Compare grows the three planners from one seed; the table has a
 /// row each; RRT* and Informed RRT* keep improving after their first path
 /// much more than RRT; Informed RRT*'s samples gather inside the ellipse.
-#[test]
-fn rrtstar_step_5_compare_shows_who_keeps_improving_and_who_focuses() {
-    let mut f = RrtStarField::default();
+fn step_5(f: &mut RrtStarField) {
     f.action("compare").unwrap();
-    settle(&mut f);
+    settle(f);
     let t = f.tables().pop().unwrap();
     let planners: Vec<&str> = t.rows.iter().map(|r| r[0].as_str()).collect();
     assert_eq!(planners, ["RRT", "RRT*", "Informed RRT*"]);
@@ -550,11 +559,9 @@ fn rrtstar_step_5_compare_shows_who_keeps_improving_and_who_focuses() {
 /// Step 6: drag an obstacle, the start or the goal; a click adds a disc, a
 /// disc dropped outside is removed; Shift-click sets the start, Ctrl-click
 /// the goal; the tree grows again in the changed field.
-#[test]
-fn rrtstar_step_6_the_field_is_edited_by_pointer_and_the_tree_regrows() {
-    let mut f = RrtStarField::default();
-    f.action("compare").unwrap();
-    settle(&mut f);
+fn step_6(f: &mut RrtStarField) {
+    // Step 5 left the comparison of the three planners on screen.
+    assert_eq!(f.runs.len(), 3);
     let n = f.obstacles.len();
     // Drag the disc at (7.2, 1.9) down by 0.5 m.
     f.input(Input::PointerDown(DVec2::new(7.2, 1.9)));
@@ -616,7 +623,7 @@ fn rrtstar_step_6_the_field_is_edited_by_pointer_and_the_tree_regrows() {
     );
     // Grow again: a path from the new start to the new goal, clear of the moved disc.
     f.action("grow").unwrap();
-    settle(&mut f);
+    settle(f);
     let path = f.best_path().expect("a path in the edited field");
     assert_eq!(path[0], DVec2::new(0.5, 1.0));
     assert!((*path.last().unwrap() - DVec2::new(9.5, 5.0)).length() <= GOAL_RADIUS_M);
@@ -627,11 +634,15 @@ fn rrtstar_step_6_the_field_is_edited_by_pointer_and_the_tree_regrows() {
 }
 
 /// Step 7: Drive path moves the robot along the best path to the goal.
-#[test]
-fn rrtstar_step_7_drive_follows_the_best_path_to_the_goal() {
-    let mut f = RrtStarField::default();
-    f.action("grow").unwrap();
-    settle(&mut f);
+fn step_7(f: &mut RrtStarField) {
+    // Step 6 left a tree grown in the edited field: the moved disc, the new
+    // start and goal.
+    assert_eq!(
+        (f.start, f.goal),
+        (DVec2::new(0.5, 1.0), DVec2::new(9.5, 5.0))
+    );
+    assert_ne!(f.obstacles, default_obstacles());
+    assert!(!f.animating());
     let path = f.best_path().unwrap();
     f.action("drive").unwrap();
     let robot = |f: &RrtStarField| {
@@ -645,7 +656,7 @@ fn rrtstar_step_7_drive_follows_the_best_path_to_the_goal() {
             _ => None,
         })
     };
-    assert_eq!(robot(&f), Some(path[0]));
+    assert_eq!(robot(f), Some(path[0]));
     assert_eq!(f.status().text, "driving the best path");
     let on_path = |p: DVec2| {
         path.windows(2).any(|w| {
@@ -657,16 +668,51 @@ fn rrtstar_step_7_drive_follows_the_best_path_to_the_goal() {
     let mut last = path[0];
     while f.animating() {
         f.step(DT);
-        let p = robot(&f).unwrap();
+        let p = robot(f).unwrap();
         assert!(on_path(p), "{p}");
         assert!((p - last).length() <= 1.2 * DT + 1e-9);
         last = p;
     }
-    assert_eq!(robot(&f), path.last().copied());
+    assert_eq!(robot(f), path.last().copied());
     assert!((last - f.goal).length() <= GOAL_RADIUS_M);
     let st = f.status();
     assert_eq!(st.text, "arrived at the goal");
     assert_eq!(st.phase, crate::experiment::Phase::Ended);
+}
+
+#[test]
+fn rrtstar_step_1_start_and_goal_sit_on_opposite_sides_of_the_obstacles() {
+    step_1(&mut after_step(0));
+}
+
+#[test]
+fn rrtstar_step_2_grow_adds_a_batch_per_frame_with_radius_rewires_and_amber_path() {
+    step_2(&mut after_step(1));
+}
+
+#[test]
+fn rrtstar_step_3_the_best_length_shrinks_until_the_budget_is_used() {
+    step_3(&mut after_step(2));
+}
+
+#[test]
+fn rrtstar_step_4_step_bias_and_seed_change_the_first_path_and_final_length() {
+    step_4(&mut after_step(3));
+}
+
+#[test]
+fn rrtstar_step_5_compare_shows_who_keeps_improving_and_who_focuses() {
+    step_5(&mut after_step(4));
+}
+
+#[test]
+fn rrtstar_step_6_the_field_is_edited_by_pointer_and_the_tree_regrows() {
+    step_6(&mut after_step(5));
+}
+
+#[test]
+fn rrtstar_step_7_drive_follows_the_best_path_to_the_goal() {
+    step_7(&mut after_step(6));
 }
 
 // ---- Content: theory constants, quiz generators, option lengths ----
