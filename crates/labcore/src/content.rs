@@ -457,6 +457,10 @@ pub struct LengthTells {
     pub longest: usize,
     /// Questions whose correct option is strictly the shortest.
     pub shortest: usize,
+    /// `by_rank[r]`: questions where exactly `r` other options are strictly
+    /// longer than the correct one (0: longest or tied for it; 3: the
+    /// shortest of four). Ranks past 3 count in `by_rank[3]`.
+    pub by_rank: [usize; 4],
 }
 
 impl LengthTells {
@@ -492,6 +496,8 @@ impl Content {
             tells.choices += 1;
             tells.longest += usize::from(others().all(|l| l < right));
             tells.shortest += usize::from(others().all(|l| l > right));
+            let longer = others().filter(|&l| l > right).count();
+            tells.by_rank[longer.min(3)] += 1;
         }
         tells
     }

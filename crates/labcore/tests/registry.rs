@@ -714,9 +714,13 @@ fn plots_hold_finite_data_and_export_every_sample() {
 }
 
 /// Issue 15: the correct option was the longest in 42 of 63 choice questions
-/// (67 %), so a test-wise student could guess it. Across the lab it must stay
-/// near chance: strictly the longest in at most 35 % of choice questions, and
-/// strictly the shortest in at most 35 % too (the reverse tell).
+/// (67 %), so a test-wise student could guess it. The first fix overshot: it
+/// was then strictly the longest in 1 of 63 and the third longest in 26, so
+/// "never pick the longest" and "pick the third longest" became tells. Across
+/// the lab the correct option must be strictly the longest in 10–25 % of the
+/// choice questions (chance with four options is 25 %), strictly the shortest
+/// in at most 35 %, and each length rank (how many options are strictly
+/// longer than the correct one) must hold 12.5–37.5 % of them.
 #[test]
 fn option_lengths_do_not_give_the_answer_away() {
     let mut lab = labcore::content::LengthTells::default();
@@ -725,12 +729,29 @@ fn option_lengths_do_not_give_the_answer_away() {
         lab.choices += tells.choices;
         lab.longest += tells.longest;
         lab.shortest += tells.shortest;
+        for (sum, n) in lab.by_rank.iter_mut().zip(tells.by_rank) {
+            *sum += n;
+        }
     }
+    println!(
+        "{} choice questions; correct option strictly longest in {}, strictly shortest in {}; \
+         by rank (0 = longest or tied, 3 = shortest): {:?}",
+        lab.choices, lab.longest, lab.shortest, lab.by_rank
+    );
     assert!(lab.choices >= 50, "{lab:?}");
-    println!("{lab:?}");
+    assert_eq!(lab.by_rank.iter().sum::<usize>(), lab.choices, "{lab:?}");
+    // 10 % ≤ longest ≤ 25 %: 10 × longest ≥ choices, 4 × longest ≤ choices.
+    assert!(10 * lab.longest >= lab.choices, "{lab:?}");
+    assert!(4 * lab.longest <= lab.choices, "{lab:?}");
     // At most 35 %: 20 × count ≤ 7 × choices.
-    assert!(20 * lab.longest <= 7 * lab.choices, "{lab:?}");
     assert!(20 * lab.shortest <= 7 * lab.choices, "{lab:?}");
+    // Every rank within 12.5 points of chance (25 %): 1/8 … 3/8.
+    for (rank, &n) in lab.by_rank.iter().enumerate() {
+        assert!(
+            8 * n >= lab.choices && 8 * n <= 3 * lab.choices,
+            "rank {rank}: {lab:?}"
+        );
+    }
 }
 
 /// Issue 15: a generated question must be one a student can set up on the

@@ -563,6 +563,16 @@ pub const MAX_RUN_STEPS: u64 = 1_000_000;
 /// ```
 #[must_use]
 pub fn run_to_end(field: &PotentialField, config: &FieldRunConfig, start: Pose) -> FieldRun {
+    run_to_end_counted(field, config, start).0
+}
+
+/// [`run_to_end`], and how many steps of `config.dt_s` the run took.
+#[must_use]
+pub fn run_to_end_counted(
+    field: &PotentialField,
+    config: &FieldRunConfig,
+    start: Pose,
+) -> (FieldRun, u64) {
     let mut run = FieldRun::new(start, field);
     let dt = if config.dt_s.is_finite() && config.dt_s > 0.0 {
         config.dt_s
@@ -577,7 +587,9 @@ pub fn run_to_end(field: &PotentialField, config: &FieldRunConfig, start: Pose) 
     let steps = ((max_time / dt).ceil() as u64)
         .saturating_add(2)
         .min(MAX_RUN_STEPS);
+    let mut taken = 0;
     for _ in 0..steps {
+        taken += 1;
         if run.step(field, config, dt).is_final() {
             break;
         }
@@ -585,7 +597,7 @@ pub fn run_to_end(field: &PotentialField, config: &FieldRunConfig, start: Pose) 
     if run.status == RunStatus::Running {
         run.status = RunStatus::TimedOut;
     }
-    run
+    (run, taken)
 }
 
 /// Class of a start cell in a [`BasinMap`].
@@ -697,15 +709,29 @@ impl BasinMap {
         config: &FieldRunConfig,
         cell_budget: usize,
     ) -> usize {
+        self.advance_counted(field, config, cell_budget).0
+    }
+
+    /// [`BasinMap::advance`], also counting the field steps its runs took
+    /// (the work done): `(cells classified, steps)`.
+    pub fn advance_counted(
+        &mut self,
+        field: &PotentialField,
+        config: &FieldRunConfig,
+        cell_budget: usize,
+    ) -> (usize, u64) {
         let mut done = 0;
+        let mut steps = 0;
         while done < cell_budget && self.next < self.cells.len() {
             let (col, row) = (self.next % self.cols, self.next / self.cols);
             let start = self.start_pose(field, col, row);
-            self.cells[self.next] = Self::classify(field, config, start);
+            let (run, taken) = run_to_end_counted(field, config, start);
+            self.cells[self.next] = run.status.into();
+            steps += taken;
             self.next += 1;
             done += 1;
         }
-        done
+        (done, steps)
     }
 
     /// Forgets every classification.

@@ -191,6 +191,9 @@ pub struct PotentialFieldLab {
     view: usize,
     run: Option<FieldRun>,
     basin: Option<BasinMap>,
+    /// Field steps the basin map's runs took in the last `step` (0 when it
+    /// computed nothing): the work of one frame.
+    basin_steps: u64,
     trail: Vec<DVec2>,
     steps: u64,
     mode: Option<Mode>,
@@ -259,6 +262,7 @@ impl Default for PotentialFieldLab {
             view: PARAMS[4].default as usize,
             run: None,
             basin: None,
+            basin_steps: 0,
             trail: Vec::new(),
             steps: 0,
             mode: None,
@@ -293,6 +297,13 @@ impl PotentialFieldLab {
     #[must_use]
     pub fn run(&self) -> Option<&FieldRun> {
         self.run.as_ref()
+    }
+
+    /// Field steps the basin map's runs took in the last step (0 when it
+    /// computed nothing): the basin map's work in one frame.
+    #[must_use]
+    pub fn basin_steps_last_step(&self) -> u64 {
+        self.basin_steps
     }
 
     /// The basin map, once requested.
@@ -706,9 +717,12 @@ impl Experiment for PotentialFieldLab {
                 }
             }
         }
+        self.basin_steps = 0;
         if self.basin_computing() {
             if let Some(map) = self.basin.as_mut() {
-                map.advance(&self.field, &basin_config(), BASIN_CELLS_PER_STEP);
+                let (_, steps) =
+                    map.advance_counted(&self.field, &basin_config(), BASIN_CELLS_PER_STEP);
+                self.basin_steps = steps;
             }
         }
     }
