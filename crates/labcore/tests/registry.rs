@@ -796,3 +796,54 @@ fn generators_draw_inside_the_sliders_ranges() {
         "only {checked} drawn values were named after parameters"
     );
 }
+
+/// The page stops time when a run has ended (`Phase::Ended`) and offers
+/// Replay. So an ended run must have nothing left to show: stepping it
+/// changes nothing a student sees. Work started after the end (a basin map, a
+/// comparison, a sweep) must report its run as live until it is done.
+#[test]
+fn an_ended_run_has_nothing_left_to_show() {
+    // A session that ends, then (for `action`) one button pressed after the end.
+    let ended_session = |entry: &labcore::Entry, seed: u64, action: Option<&str>| {
+        let mut exp = (entry.make)();
+        random_session(exp.as_mut(), 7000 + seed);
+        for _ in 0..600 {
+            if exp.status().phase == labcore::Phase::Ended {
+                break;
+            }
+            exp.step(1.0 / 60.0);
+        }
+        let ended = exp.status().phase == labcore::Phase::Ended;
+        if let Some(key) = action {
+            let _ = exp.action(key);
+        }
+        (exp, ended)
+    };
+    let mut checked = 0;
+    for entry in registry() {
+        let actions: Vec<Option<&str>> = std::iter::once(None)
+            .chain((entry.make)().actions().iter().map(|a| Some(a.key)))
+            .collect();
+        for seed in 0..12 {
+            for &action in &actions {
+                let (mut exp, ended) = ended_session(entry, seed, action);
+                if !ended || exp.status().phase != labcore::Phase::Ended {
+                    continue;
+                }
+                let before = snapshot(exp.as_ref());
+                for _ in 0..30 {
+                    exp.step(1.0 / 60.0);
+                }
+                assert_eq!(
+                    snapshot(exp.as_ref()),
+                    before,
+                    "{} seed {seed}, {action:?} after the end: stepping an ended run changed what is shown ({:?})",
+                    entry.id,
+                    exp.status()
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 50, "only {checked} ended runs were checked");
+}

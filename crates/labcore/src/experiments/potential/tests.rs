@@ -969,3 +969,26 @@ fn the_correct_option_is_seldom_the_longest() {
     assert!(tells.choices >= 6, "{tells:?}");
     assert!(4 * tells.longest <= tells.choices, "{tells:?}");
 }
+
+/// The page stops time once a run has ended; a basin map started after a
+/// trap must still fill in, so the status stays live while it computes.
+#[test]
+fn a_basin_map_after_an_ended_run_keeps_time_running_until_it_is_complete() {
+    let mut e = trap();
+    let mut guard = 0;
+    while e.status().phase != crate::experiment::Phase::Ended && guard < 20_000 {
+        e.step(DT);
+        guard += 1;
+    }
+    assert_eq!(e.status().phase, crate::experiment::Phase::Ended);
+    e.action("basin").unwrap();
+    assert!(e.basin_computing());
+    assert_eq!(e.status().phase, crate::experiment::Phase::Live);
+    let mut guard = 0;
+    while e.basin_computing() && guard < 100_000 {
+        e.step(DT);
+        guard += 1;
+    }
+    assert!(!e.basin_computing());
+    assert_eq!(e.status().phase, crate::experiment::Phase::Ended);
+}

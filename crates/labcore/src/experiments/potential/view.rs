@@ -313,7 +313,13 @@ impl PotentialFieldLab {
     /// The status badge: the run's state only (prompts and refusals are
     /// notices).
     pub(super) fn current_status(&self) -> Status {
-        self.status_of_run()
+        let mut status = self.status_of_run();
+        // A basin map still filling in is work in progress: the page keeps
+        // time running for it even when the run itself has ended.
+        if self.basin_computing() {
+            status.phase = crate::experiment::Phase::Live;
+        }
+        status
     }
 }
 
