@@ -78,8 +78,12 @@ test("pid: the cart chases the setpoint, runs can be pinned, the time bar steps 
     assert.match(r.rise, /^\d+\.\d\d s$/);
     await pauseAndStep(page);
 
+    // "Fit latest run" appears once a run is kept to compare with.
+    const fit = page.locator("article.exp:not([hidden]) figure.plot [data-plot-fit]").first();
+    assert.equal(await fit.isVisible(), false, "no pin yet: nothing to fit past");
     await page.locator("button[data-action=pin]").click();
     await page.waitForSelector("[data-readout=pinA]");
+    await fit.waitFor({ state: "visible" });
     assert.match((await readouts(page)).pinA, /^Kp 12 · Ki 2 · Kd 6, overshoot \d+\.\d%, rise /);
 
     // A gain change replays the step from x = 0 with the pin kept.

@@ -507,6 +507,11 @@ impl PlotView {
             if let Some(x) = drawn.hover_x {
                 show_nearest(drawn, plot, palette, x);
             }
+            // "Fit latest run" only means something once a run is kept.
+            if let Some(button) = query(&drawn.figure, "[data-plot-fit]") {
+                let kept = plot.series.iter().any(|s| s.comparison && !s.is_empty());
+                dom::set_hidden(&button, !kept);
+            }
             if let Some(summary) = query(&drawn.figure, ".plot-summary") {
                 summary.set_text_content(Some(&plot.summary()));
             }
