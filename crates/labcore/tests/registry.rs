@@ -886,3 +886,85 @@ fn every_procedure_step_has_a_test_named_after_it() {
         );
     }
 }
+
+/// Issue 14's A* sequences join the permalink property: the goal set to
+/// (5, 5) and the start dragged onto the default goal's cell (28, 11); the
+/// ends (31, 23) and (30, 22) and then the smallest size; a two-cell linked
+/// grid. Each is followed by random student input, then the state must reload
+/// exactly from its link with no notice, and the ends never share a cell.
+#[test]
+fn permalinks_reproduce_the_issue_14_astar_sequences() {
+    use labcore::experiments::astar::AStarGrid;
+    use labcore::planning::grid::Cell;
+    use labcore::route::{format, restore, Tab};
+    use labcore::{Experiment, Modifiers};
+    let ctrl = Modifiers {
+        shift: false,
+        ctrl: true,
+    };
+    let shift = Modifiers {
+        shift: true,
+        ctrl: false,
+    };
+    let drag = |a: &mut AStarGrid, from: Cell, to: Cell| {
+        a.input(Input::PointerDown(a.cell_center(from)));
+        a.input(Input::PointerMove {
+            pos: a.cell_center(to),
+            pressed: true,
+        });
+        a.input(Input::PointerUp(a.cell_center(to)));
+    };
+    type Sequence = fn(&mut AStarGrid, &dyn Fn(&mut AStarGrid, Cell, Cell), Modifiers, Modifiers);
+    let sequences: [(&str, Sequence); 3] = [
+        (
+            "goal (5,5), start dragged onto (28,11)",
+            |a, drag, ctrl, _| {
+                a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 5))), ctrl);
+                a.input(Input::PointerUp(a.cell_center(Cell::new(5, 5))));
+                drag(a, a.start(), Cell::new(28, 11));
+            },
+        ),
+        (
+            "ends (31,23), (30,22), then the smallest size",
+            |a, _, ctrl, shift| {
+                a.input_with(Input::PointerDown(a.cell_center(Cell::new(31, 23))), shift);
+                a.input_with(Input::PointerDown(a.cell_center(Cell::new(30, 22))), ctrl);
+                let min = a
+                    .params()
+                    .iter()
+                    .find(|s| s.key == "size")
+                    .map_or(0.0, |s| s.min);
+                let _ = a.set_param("size", min);
+            },
+        ),
+        ("a two-cell grid from a link", |a, _, _, _| {
+            let _ = labcore::route::apply_params(a, &[("walls".into(), "1x2.1.1".into())]);
+        }),
+    ];
+    for (what, sequence) in sequences {
+        for seed in 0..40 {
+            let mut a = AStarGrid::default();
+            sequence(&mut a, &drag, ctrl, shift);
+            if seed > 0 {
+                random_session(&mut a, 9000 + seed);
+            }
+            assert_ne!(
+                a.start(),
+                a.goal(),
+                "{what}, seed {seed}: the ends share a cell"
+            );
+            let link = format(&a, Tab::Simulation);
+            let (fresh, notices) = restore(&link, AStarGrid::default());
+            assert!(
+                notices.is_empty(),
+                "{what}, seed {seed}: {link}: {notices:?}"
+            );
+            assert_eq!(format(&fresh, Tab::Simulation), link, "{what}, seed {seed}");
+            assert_eq!(
+                (fresh.start(), fresh.goal()),
+                (a.start(), a.goal()),
+                "{what}"
+            );
+        }
+    }
+}
