@@ -115,6 +115,13 @@ document.addEventListener("click", (e) => {
   const open = nav?.querySelector("details[open]");
   if (open && (!open.contains(e.target) || e.target.closest("a"))) open.removeAttribute("open");
 });
+// The skip link moves focus to the page without touching the hash (which
+// names the page shown); a listener here, not an inline handler, which the
+// Content-Security-Policy forbids.
+document.querySelector("a.skip")?.addEventListener("click", (e) => {
+  e.preventDefault();
+  app.focus();
+});
 document.querySelector("#notice .notice-close").addEventListener("click", () => {
   document.getElementById("notice").hidden = true;
 });

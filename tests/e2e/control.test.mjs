@@ -13,14 +13,21 @@ const PHONE_TALL = { width: 390, height: 844 };
 
 const num = (text) => Number.parseFloat(text);
 
-/** Waits until `[data-readout=key]` satisfies `predicate(number)`. */
-async function waitReadout(page, key, predicate) {
+/**
+ * Waits until `[data-readout=key]`'s number (its magnitude with `abs`) is
+ * `op` (">" or "<") `bound`. The test is data, not a function turned into a
+ * string: the page's Content-Security-Policy forbids `new Function` in it.
+ */
+async function waitReadout(page, key, op, bound, { abs = false } = {}) {
   await page.waitForFunction(
-    ([k, source]) => {
+    ([k, o, b, a]) => {
       const el = document.querySelector(`[data-readout="${k}"]`);
-      return el && new Function("v", `return (${source})(v)`)(Number.parseFloat(el.textContent));
+      if (!el) return false;
+      const raw = Number.parseFloat(el.textContent);
+      const v = a ? Math.abs(raw) : raw;
+      return o === ">" ? v > b : v < b;
     },
-    [key, predicate.toString()],
+    [key, op, bound, abs],
   );
   return (await readouts(page))[key];
 }
@@ -71,8 +78,8 @@ test("pid: the cart chases the setpoint, runs can be pinned, the time bar steps 
     assert.match(r.poles, /^-0\.18\d, /);
     assert.equal(r.stability, "stable");
     // The readouts follow the cart toward the 1 m setpoint.
-    await waitReadout(page, "x", (v) => v > 0.9);
-    await waitReadout(page, "rise", (v) => v > 0);
+    await waitReadout(page, "x", ">", 0.9);
+    await waitReadout(page, "rise", ">", 0);
     r = await readouts(page);
     assert.match(r.overshoot, /^\d+\.\d%$/);
     assert.match(r.rise, /^\d+\.\d\d s$/);
@@ -90,10 +97,10 @@ test("pid: the cart chases the setpoint, runs can be pinned, the time bar steps 
     await page.locator("input[type=text][data-param=kd]").fill("2");
     await page.locator("input[type=text][data-param=kd]").press("Enter");
     await page.waitForFunction(() => /kd=2(&|$)/.test(location.hash));
-    await waitReadout(page, "x", (v) => v > 0.9);
+    await waitReadout(page, "x", ">", 0.9);
     await page.locator("button[data-action=step]").click();
-    await waitReadout(page, "x", (v) => v < 0.5);
-    await waitReadout(page, "x", (v) => v > 0.5);
+    await waitReadout(page, "x", "<", 0.5);
+    await waitReadout(page, "x", ">", 0.5);
     assert.ok((await readouts(page)).pinA, "pins survive a new step");
     // Issue 13 §5: the legend names the pinned run's gains, as the CSV does.
     const legend = await page.$$eval("figure.plot .legend-item[data-series]:not([hidden])", (items) => items.map((i) => i.textContent));
@@ -133,18 +140,18 @@ test("cartpole: the pole is caught, nudged, dropped and caught again; LQR gains 
     assert.match(r.open_eig, /^3\.972, /);
     assert.equal(r.closed_verdict, "stable");
     // Caught from 6°: the angle readout falls toward zero.
-    await waitReadout(page, "theta", (v) => Math.abs(v) < 1);
+    await waitReadout(page, "theta", "<", 1, { abs: true });
     await pauseAndStep(page);
 
     await page.locator("button[data-action=nudge]").click();
-    await waitReadout(page, "omega", (v) => Math.abs(v) > 5);
-    await waitReadout(page, "theta", (v) => Math.abs(v) < 0.5);
+    await waitReadout(page, "omega", ">", 5, { abs: true });
+    await waitReadout(page, "theta", "<", 0.5, { abs: true });
 
     await page.locator("button[data-action=drop]").click();
     await page.waitForFunction(() => /control off/.test(document.querySelector(".sim-status").textContent));
-    await waitReadout(page, "theta", (v) => Math.abs(v) > 3);
+    await waitReadout(page, "theta", ">", 3, { abs: true });
     await page.locator("button[data-action=catch]").click();
-    await waitReadout(page, "theta", (v) => Math.abs(v) < 1);
+    await waitReadout(page, "theta", "<", 1, { abs: true });
     assert.match((await readouts(page)).status, /^balanc/);
 
     await page.locator("button[data-action=lqr]").click();
@@ -196,11 +203,11 @@ for (const [name, viewport] of [
   test(`screenshots of both simulation tabs (${name})`, () =>
     withPage(lab, { viewport }, async (page) => {
       await open(lab, page, "#/pid/simulation");
-      await waitReadout(page, "x", (v) => v > 0.95);
+      await waitReadout(page, "x", ">", 0.95);
       await page.locator("button[data-action=pin]").click();
       await page.locator("input[type=text][data-param=kd]").fill("2");
       await page.locator("input[type=text][data-param=kd]").press("Enter");
-      await waitReadout(page, "settling", (v) => v > 0);
+      await waitReadout(page, "settling", ">", 0);
       await settle(page);
       await page.evaluate(() => window.scrollTo(0, 0));
       await screenshot(page, `pid-simulation-${name}`);

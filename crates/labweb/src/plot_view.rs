@@ -40,9 +40,12 @@ fn dash_attr(dash: &[f64]) -> String {
 /// label names its gains, so it changes with the run).
 fn legend_entry_html(s: &labcore::Series) -> String {
     let (var, dash) = role_style(s.role);
+    // `.p-1 { color: var(--p-1) }` in web/style.css: a class, not a `style`
+    // attribute, which the Content-Security-Policy forbids.
+    let class = var.trim_start_matches('-');
     format!(
         "<svg width=\"26\" height=\"10\" aria-hidden=\"true\">\
-         <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" style=\"stroke:var({var})\" stroke-width=\"2.5\" stroke-dasharray=\"{}\"/></svg>{}",
+         <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" class=\"{class}\" stroke=\"currentColor\" stroke-width=\"2.5\" stroke-dasharray=\"{}\"/></svg>{}",
         dash_attr(dash),
         escape(&s.label),
     )
@@ -100,7 +103,7 @@ pub fn legend_extra_html(plot: &Plot) -> String {
         seen.push(&band.label);
         html.push_str(&format!(
             "<span class=\"legend-item\" data-legend=\"band\"><svg width=\"26\" height=\"12\" aria-hidden=\"true\">\
-             <rect x=\"1\" y=\"1\" width=\"24\" height=\"10\" style=\"fill:var(--p-band)\" fill-opacity=\"0.3\"/></svg>{}</span>",
+             <rect x=\"1\" y=\"1\" width=\"24\" height=\"10\" class=\"p-band\" fill=\"currentColor\" fill-opacity=\"0.3\"/></svg>{}</span>",
             escape(&band.label)
         ));
     }
@@ -111,7 +114,7 @@ pub fn legend_extra_html(plot: &Plot) -> String {
         seen.push(&line.label);
         html.push_str(&format!(
             "<span class=\"legend-item\" data-legend=\"line\"><svg width=\"26\" height=\"10\" aria-hidden=\"true\">\
-             <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" style=\"stroke:var(--p-5)\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/></svg>{}</span>",
+             <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" class=\"p-5\" stroke=\"currentColor\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/></svg>{}</span>",
             escape(&line.label)
         ));
     }

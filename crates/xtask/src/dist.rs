@@ -9,7 +9,9 @@
 //!    writes the navigation, home page and reading tabs into `index.html`
 //!    (after validating every content file);
 //! 7. checks that the site only uses relative URLs and stamps a content hash
-//!    (`?v=…`) on the references in `dist/index.html`.
+//!    (`?v=…`) on the references in `dist/index.html` and on the scripts'
+//!    import of the wasm glue (no inline script: see
+//!    [`crate::pages::CONTENT_SECURITY_POLICY`]).
 
 use crate::util::{self, files_below, slash_path};
 use std::fs;
@@ -422,14 +424,12 @@ fn check_relative_urls(dist: &Path) -> Result<(), String> {
 }
 
 /// Appends `?v=<hash of the whole site>` to every reference in
-/// `dist/index.html` that names a file of dist/, and maps the wasm glue
-/// (`./pkg/labweb.js`, imported by other modules) to the same versioned URL
-/// with an import map, so a redeployed site is not served stale.
+/// `dist/index.html` that names a file of dist/, and to the scripts' imports
+/// of the wasm glue (`./pkg/labweb.js`), so a redeployed site is not served
+/// stale.
 ///
 /// The glue fetches `labweb_bg.wasm` relative to its own URL without the
-/// query; a bootstrap that wants the wasm versioned too can pass
-/// `new URL("./pkg/labweb_bg.wasm" + new URL(import.meta.url).search, import.meta.url)`
-/// to `init`, since its own URL carries the `?v=`.
+/// query; `main.js` fetches it itself with its own `?v=`.
 fn stamp_version(dist: &Path) -> Result<(), String> {
     let index = dist.join("index.html");
     let Ok(html) = fs::read_to_string(&index) else {
@@ -470,23 +470,60 @@ fn stamp_version(dist: &Path) -> Result<(), String> {
     }
     out.push_str(&html[last..]);
 
-    let glue = "pkg/labweb.js";
-    if files.iter().any(|f| f == glue) && !out.contains("type=\"importmap\"") {
-        let map = format!(
-            "<script type=\"importmap\">{{\"imports\":{{\"./{glue}\":\"./{glue}?v={version}\"}}}}</script>\n"
-        );
-        // Before any module script or modulepreload: right after <head>'s charset, else <head>.
-        let at = ["<meta charset=\"utf-8\">", "<head>"]
-            .iter()
-            .find_map(|m| out.find(m).map(|i| i + m.len()));
-        if let Some(at) = at {
-            let nl = if out[at..].starts_with('\n') { 1 } else { 0 };
-            out.insert_str(at + nl, &map);
+    fs::write(&index, out).map_err(|e| format!("cannot write {}: {e}", index.display()))?;
+    let stamped = stamp_glue_imports(dist, &files, &version)?;
+    println!(
+        "dist/index.html: references stamped with ?v={version}; the glue import too in {}",
+        if stamped.is_empty() {
+            "no module".to_owned()
+        } else {
+            stamped.join(", ")
+        }
+    );
+    Ok(())
+}
+
+/// The wasm glue's module specifier, as the site's scripts import it.
+const GLUE_IMPORT: &str = "./pkg/labweb.js";
+
+/// Rewrites `"./pkg/labweb.js"` to `"./pkg/labweb.js?v=<version>"` in every
+/// script of dist/ outside `pkg/`, so the glue is versioned like everything
+/// else. (An inline `<script type="importmap">` would do the same without
+/// touching the scripts, but the Content-Security-Policy forbids inline
+/// scripts.) Returns the files changed.
+fn stamp_glue_imports(dist: &Path, files: &[String], version: &str) -> Result<Vec<String>, String> {
+    if !files
+        .iter()
+        .any(|f| f == GLUE_IMPORT.trim_start_matches("./"))
+    {
+        return Ok(Vec::new());
+    }
+    let mut changed = Vec::new();
+    for f in files {
+        if f.starts_with("pkg/") || !(f.ends_with(".js") || f.ends_with(".mjs")) {
+            continue;
+        }
+        let path = dist.join(f);
+        let text = fs::read_to_string(&path).map_err(|e| format!("cannot read dist/{f}: {e}"))?;
+        let stamped = stamp_specifier(&text, GLUE_IMPORT, version);
+        if stamped != text {
+            fs::write(&path, stamped).map_err(|e| format!("cannot write dist/{f}: {e}"))?;
+            changed.push(f.clone());
         }
     }
-    fs::write(&index, out).map_err(|e| format!("cannot write {}: {e}", index.display()))?;
-    println!("dist/index.html: references stamped with ?v={version}");
-    Ok(())
+    Ok(changed)
+}
+
+/// `text` with every quoted `specifier` (`"…"` or `'…'`) given `?v=version`.
+fn stamp_specifier(text: &str, specifier: &str, version: &str) -> String {
+    let mut out = text.to_owned();
+    for q in ['"', '\''] {
+        out = out.replace(
+            &format!("{q}{specifier}{q}"),
+            &format!("{q}{specifier}?v={version}{q}"),
+        );
+    }
+    out
 }
 
 #[cfg(test)]
@@ -535,5 +572,14 @@ mod tests {
         assert!(url_problem("style.css", &r("link", "href")).is_none());
         assert!(url_problem("#/fk/aim", &r("a", "href")).is_none());
         assert!(url_problem("data:image/png;base64,AA", &r("img", "src")).is_none());
+    }
+
+    #[test]
+    fn stamps_the_glue_import_in_scripts() {
+        let js = r#"const g = await import("./pkg/labweb.js"); import x from './pkg/labweb.js'; "./pkg/labweb.jsx""#;
+        assert_eq!(
+            stamp_specifier(js, GLUE_IMPORT, "0badf00d"),
+            r#"const g = await import("./pkg/labweb.js?v=0badf00d"); import x from './pkg/labweb.js?v=0badf00d'; "./pkg/labweb.jsx""#
+        );
     }
 }

@@ -9,6 +9,17 @@ use std::path::Path;
 const NAV_SLOT: &str = "<!--NAV-->";
 const PAGES_SLOT: &str = "<!--PAGES-->";
 const WASM_BYTES_SLOT: &str = "<!--WASM-BYTES-->";
+const CSP_SLOT: &str = "<!--CSP-->";
+
+/// The site's Content-Security-Policy: nothing inline (no `<script>` body, no
+/// `on…=` handler, no `style="…"` attribute), nothing from another origin;
+/// `'wasm-unsafe-eval'` lets the page compile its own wasm module, and
+/// `data:`/`blob:` images are the canvas exports. `dist/index.html` carries
+/// it as a `<meta http-equiv>` (for hosts that cannot set headers) and
+/// `cargo xtask serve` sends it as a header. `frame-ancestors` is left out:
+/// a meta policy cannot carry it.
+pub const CONTENT_SECURITY_POLICY: &str = "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; \
+     style-src 'self'; img-src 'self' data: blob:; worker-src 'self'; object-src 'none'; base-uri 'self'";
 
 /// Every registered experiment's content file, read from `assets/` as it is
 /// on disk now, parsed and validated; the error names the file and what is
@@ -59,7 +70,7 @@ pub fn render_index(dist: &Path, wasm_bytes: Option<u64>) -> Result<(), String> 
     let index = dist.join("index.html");
     let template =
         fs::read_to_string(&index).map_err(|e| format!("cannot read {}: {e}", index.display()))?;
-    for slot in [NAV_SLOT, PAGES_SLOT] {
+    for slot in [NAV_SLOT, PAGES_SLOT, CSP_SLOT] {
         if !template.contains(slot) {
             return Err(format!("web/index.html has no {slot} slot"));
         }
@@ -70,8 +81,16 @@ pub fn render_index(dist: &Path, wasm_bytes: Option<u64>) -> Result<(), String> 
     let html = template
         .replace(NAV_SLOT, &labcore::content_html::nav())
         .replace(PAGES_SLOT, &pages_html())
-        .replace(WASM_BYTES_SLOT, &meta);
+        .replace(WASM_BYTES_SLOT, &meta)
+        .replace(CSP_SLOT, &csp_meta());
     fs::write(&index, html).map_err(|e| format!("cannot write {}: {e}", index.display()))
+}
+
+/// The policy as a `<meta http-equiv>` (first in `<head>`, so it covers
+/// everything the page loads).
+#[must_use]
+pub fn csp_meta() -> String {
+    format!("<meta http-equiv=\"Content-Security-Policy\" content=\"{CONTENT_SECURITY_POLICY}\">")
 }
 
 #[cfg(test)]
@@ -114,5 +133,17 @@ mod tests {
                 entry.id
             )));
         }
+    }
+
+    #[test]
+    fn the_policy_allows_nothing_inline_and_nothing_foreign() {
+        let p = CONTENT_SECURITY_POLICY;
+        assert!(!p.contains("unsafe-inline") && !p.contains("'unsafe-eval'"));
+        assert!(
+            !p.contains("frame-ancestors"),
+            "a meta policy cannot carry it"
+        );
+        assert!(!p.contains('"') && !p.contains("  "));
+        assert!(csp_meta().contains(&format!("content=\"{p}\"")));
     }
 }

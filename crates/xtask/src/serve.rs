@@ -311,7 +311,9 @@ fn accepts(value: &str, coding: &str) -> bool {
 /// Sends a file: its precompressed `.br` or `.gz` sibling (written by
 /// `cargo xtask dist`) when the client accepts that coding, as nginx's
 /// `brotli_static`/`gzip_static` would; text compressed on the fly when there
-/// is no sibling; the file as it is otherwise.
+/// is no sibling; the file as it is otherwise. Every file goes with the
+/// site's Content-Security-Policy header (the same policy as the `<meta>` in
+/// `index.html`; a header can also be set by hosts, and covers every file).
 fn send_file(
     out: &mut TcpStream,
     path: &Path,
@@ -358,9 +360,11 @@ fn send_file(
     write!(
         out,
         "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {}\r\n{encoding}Vary: Accept-Encoding\r\n\
-         Cache-Control: no-cache\r\nX-Content-Type-Options: nosniff\r\nConnection: {}\r\n\r\n",
+         Cache-Control: no-cache\r\nX-Content-Type-Options: nosniff\r\n\
+         Content-Security-Policy: {}\r\nConnection: {}\r\n\r\n",
         mime(path),
         body.len(),
+        crate::pages::CONTENT_SECURITY_POLICY,
         if keep_alive { "keep-alive" } else { "close" }
     )?;
     if !head {
@@ -489,5 +493,37 @@ mod tests {
         assert_eq!(mime(Path::new("a.js")), "text/javascript; charset=utf-8");
         assert_eq!(mime(Path::new("a.svg")), "image/svg+xml; charset=utf-8");
         assert_eq!(mime(Path::new("a.HTML")), "text/html; charset=utf-8");
+    }
+
+    #[test]
+    fn serves_files_with_the_content_security_policy_header() {
+        let tmp = std::env::temp_dir().join(format!("xtask-serve-csp-{}", std::process::id()));
+        std::fs::create_dir_all(&tmp).unwrap();
+        std::fs::write(tmp.join("index.html"), "<!doctype html><title>x</title>").unwrap();
+        let root = tmp.canonicalize().unwrap();
+        let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr = listener.local_addr().unwrap();
+        let server = std::thread::spawn(move || {
+            let (stream, _) = listener.accept().unwrap();
+            handle(stream, &root, "/sub/").unwrap();
+        });
+        let mut client = TcpStream::connect(addr).unwrap();
+        client
+            .write_all(b"GET /sub/ HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
+            .unwrap();
+        let mut response = String::new();
+        client.read_to_string(&mut response).unwrap();
+        server.join().unwrap();
+        std::fs::remove_dir_all(&tmp).unwrap();
+
+        let (head, body) = response.split_once("\r\n\r\n").expect("headers end");
+        assert!(head.starts_with("HTTP/1.1 200 OK\r\n"), "{head}");
+        let csp: Vec<&str> = head
+            .lines()
+            .filter_map(|l| l.strip_prefix("Content-Security-Policy: "))
+            .collect();
+        assert_eq!(csp, [crate::pages::CONTENT_SECURITY_POLICY], "{head}");
+        assert!(csp[0].contains("script-src 'self' 'wasm-unsafe-eval'"));
+        assert_eq!(body, "<!doctype html><title>x</title>");
     }
 }

@@ -1,7 +1,11 @@
 //! Build-time pictures for the home page's cards: an experiment's preview
 //! display list written as a small inline SVG, so the home page shows every
 //! experiment without downloading the simulation engine. Colours are the
-//! page's theme variables, so the pictures follow light and dark mode.
+//! page's theme variables, so the pictures follow light and dark mode: each
+//! shape has a role class (`class="c-link"`, whose rule in `web/style.css`
+//! sets `color: var(--c-link)`) and paints with `currentColor`. No `style="…"`
+//! attribute: the Content-Security-Policy (`style-src 'self'`) forbids them,
+//! and presentation attributes cannot hold `var(…)`.
 
 use labcore::glam::DVec2;
 use labcore::{Item, Role, Scene, ViewBox};
@@ -15,27 +19,51 @@ const POINTS_MAX: usize = 500;
 /// Most segments of a batch drawn.
 const SEGMENTS_MAX: usize = 1500;
 
-fn var(role: Role) -> &'static str {
+/// The role's class; `web/style.css` gives `.c-<role>` the colour
+/// `var(--c-<role>)`.
+fn class(role: Role) -> &'static str {
     match role {
-        Role::Grid => "--c-grid",
-        Role::Bound => "--c-bound",
-        Role::Link => "--c-link",
-        Role::Joint => "--c-joint",
-        Role::Base => "--c-base",
-        Role::Tip => "--c-tip",
-        Role::Target => "--c-target",
-        Role::Ghost => "--c-ghost",
-        Role::Sample => "--c-sample",
-        Role::Accent => "--c-accent",
-        Role::Warning => "--c-warning",
-        Role::Text => "--c-text",
-        Role::Robot => "--c-robot",
-        Role::Obstacle => "--c-obstacle",
-        Role::Path => "--c-path",
-        Role::Estimate => "--c-estimate",
-        Role::Visited => "--c-visited",
+        Role::Grid => "c-grid",
+        Role::Bound => "c-bound",
+        Role::Link => "c-link",
+        Role::Joint => "c-joint",
+        Role::Base => "c-base",
+        Role::Tip => "c-tip",
+        Role::Target => "c-target",
+        Role::Ghost => "c-ghost",
+        Role::Sample => "c-sample",
+        Role::Accent => "c-accent",
+        Role::Warning => "c-warning",
+        Role::Text => "c-text",
+        Role::Robot => "c-robot",
+        Role::Obstacle => "c-obstacle",
+        Role::Path => "c-path",
+        Role::Estimate => "c-estimate",
+        Role::Visited => "c-visited",
     }
 }
+
+/// Every role's class, for the test that `web/style.css` styles them all.
+#[cfg(test)]
+const ROLES: [Role; 17] = [
+    Role::Grid,
+    Role::Bound,
+    Role::Link,
+    Role::Joint,
+    Role::Base,
+    Role::Tip,
+    Role::Target,
+    Role::Ghost,
+    Role::Sample,
+    Role::Accent,
+    Role::Warning,
+    Role::Text,
+    Role::Robot,
+    Role::Obstacle,
+    Role::Path,
+    Role::Estimate,
+    Role::Visited,
+];
 
 /// World → thumbnail pixels (uniform fit, y up), as the canvas does it.
 struct Map {
@@ -75,7 +103,7 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
     let map = Map::new(view);
     let mut out = format!(
         "<svg viewBox=\"0 0 {W} {H}\" width=\"100%\" height=\"100%\" role=\"img\" aria-hidden=\"true\" \
-         style=\"background:var(--c-canvas)\" stroke-linecap=\"round\" stroke-linejoin=\"round\">"
+         class=\"thumb\" stroke-linecap=\"round\" stroke-linejoin=\"round\">"
     );
     for item in &scene.items {
         let _ = match item {
@@ -89,8 +117,8 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
                 let ((x1, y1), (x2, y2)) = (map.px(*from), map.px(*to));
                 write!(
                     out,
-                    "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" style=\"stroke:var({})\" stroke-width=\"{:.1}\"{}/>",
-                    var(*role),
+                    "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\"{:.1}\"{}/>",
+                    class(*role),
                     (width_px * 0.6).max(0.8),
                     if *dashed { " stroke-dasharray=\"4 3\"" } else { "" }
                 )
@@ -103,15 +131,16 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
                 dashed,
             } => {
                 let (x, y) = map.px(*center);
-                let style = if *fill {
-                    format!("fill:var({});fill-opacity:.18", var(*role))
+                let paint = if *fill {
+                    "fill=\"currentColor\" fill-opacity=\".18\""
                 } else {
-                    format!("fill:none;stroke:var({})", var(*role))
+                    "fill=\"none\" stroke=\"currentColor\""
                 };
                 write!(
                     out,
-                    "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" style=\"{style}\"{}/>",
+                    "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" class=\"{}\" {paint}{}/>",
                     radius_m * map.scale,
+                    class(*role),
                     if *dashed {
                         " stroke-dasharray=\"4 3\""
                     } else {
@@ -127,9 +156,9 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
                 let (x, y) = map.px(*center);
                 write!(
                     out,
-                    "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" style=\"fill:var({})\"/>",
+                    "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" class=\"{}\" fill=\"currentColor\"/>",
                     radius_px * 0.6,
-                    var(*role)
+                    class(*role)
                 )
             }
             Item::Points { points, role, .. } => {
@@ -141,8 +170,8 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
                 }
                 write!(
                     out,
-                    "<path d=\"{d}\" style=\"stroke:var({})\" stroke-opacity=\".6\" stroke-width=\"1.5\"/>",
-                    var(*role)
+                    "<path d=\"{d}\" class=\"{}\" stroke=\"currentColor\" stroke-opacity=\".6\" stroke-width=\"1.5\"/>",
+                    class(*role)
                 )
             }
             Item::Ellipse {
@@ -156,10 +185,10 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
                 write!(
                     out,
                     "<ellipse cx=\"{x:.1}\" cy=\"{y:.1}\" rx=\"{:.1}\" ry=\"{:.1}\" transform=\"rotate({angle:.1} {x:.1} {y:.1})\" \
-                     style=\"fill:var({v});fill-opacity:.18;stroke:var({v})\"/>",
+                     class=\"{c}\" fill=\"currentColor\" fill-opacity=\".18\" stroke=\"currentColor\"/>",
                     semi_axis_a.length() * map.scale,
                     semi_axis_b.length() * map.scale,
-                    v = var(*role)
+                    c = class(*role)
                 )
             }
             Item::Polyline {
@@ -170,9 +199,9 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
                 ..
             } => write!(
                 out,
-                "<{tag} points=\"{}\" style=\"fill:none;stroke:var({})\"{}/>",
+                "<{tag} points=\"{}\" class=\"{}\" fill=\"none\" stroke=\"currentColor\"{}/>",
                 points_attr(&map, points),
-                var(*role),
+                class(*role),
                 if *dashed {
                     " stroke-dasharray=\"4 3\""
                 } else {
@@ -182,9 +211,9 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
             ),
             Item::Polygon { points, role } => write!(
                 out,
-                "<polygon points=\"{}\" style=\"fill:var({v});fill-opacity:.35;stroke:var({v})\"/>",
+                "<polygon points=\"{}\" class=\"{}\" fill=\"currentColor\" fill-opacity=\".35\" stroke=\"currentColor\"/>",
                 points_attr(&map, points),
-                v = var(*role)
+                class(*role)
             ),
             Item::Rect {
                 min,
@@ -195,21 +224,21 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
                 let ((x1, y1), (x2, y2)) = (map.px(*min), map.px(*max));
                 write!(
                     out,
-                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" style=\"fill:{};stroke:var({})\"/>",
+                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" class=\"{}\" fill=\"{}\" stroke=\"currentColor\"/>",
                     x1.min(x2),
                     y1.min(y2),
                     (x2 - x1).abs(),
                     (y2 - y1).abs(),
-                    if *fill { format!("var({})", var(*role)) } else { "none".into() },
-                    var(*role)
+                    class(*role),
+                    if *fill { "currentColor" } else { "none" }
                 )
             }
             Item::Arrow { from, to, role, .. } => {
                 let ((x1, y1), (x2, y2)) = (map.px(*from), map.px(*to));
                 write!(
                     out,
-                    "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" style=\"stroke:var({})\" stroke-width=\"1.5\"/>",
-                    var(*role)
+                    "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\"1.5\"/>",
+                    class(*role)
                 )
             }
             Item::Arrows {
@@ -230,8 +259,8 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
                 }
                 write!(
                     out,
-                    "<path d=\"{d}\" style=\"stroke:var({})\" stroke-width=\".7\"/>",
-                    var(*role)
+                    "<path d=\"{d}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\".7\"/>",
+                    class(*role)
                 )
             }
             // Cell images and text are left to the live canvas.
@@ -274,6 +303,21 @@ mod tests {
             );
             assert!(!s.contains("NaN") && !s.contains("inf"), "{}", entry.id);
             assert!(s.len() < 40_000, "{}: {} bytes", entry.id, s.len());
+            assert!(!s.contains("style="), "{}: no style attribute", entry.id);
+        }
+    }
+
+    #[test]
+    fn every_role_class_has_its_colour_rule_in_the_stylesheet() {
+        let css = std::fs::read_to_string(crate::util::root().join("web/style.css")).unwrap();
+        assert!(
+            css.contains(".thumb {") || css.contains(".thumb{"),
+            "svg.thumb background"
+        );
+        for role in ROLES {
+            let c = class(role);
+            let rule = format!(".{c} {{ color: var(--{c}); }}");
+            assert!(css.contains(&rule), "web/style.css lacks `{rule}`");
         }
     }
 

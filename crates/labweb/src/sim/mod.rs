@@ -123,7 +123,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
              <dl class=\"readouts\">{readouts}</dl>\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
              <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
-             <form class=\"sim-controls\" aria-label=\"Parameters\" onsubmit=\"return false\">{controls}</form>\
+             <form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>\
              <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
            </div>\
            {plots}\

@@ -18,6 +18,12 @@ pub(super) fn listen(
     listeners: &mut Vec<Listener>,
 ) {
     if let Some(form) = query(panel, ".sim-controls") {
+        // Enter in a number box applies it (on change) and never submits the
+        // form (which would reload the page); a listener, not an inline
+        // `onsubmit`, which the Content-Security-Policy forbids.
+        listeners.push(Listener::new(form.as_ref(), "submit", |e: Event| {
+            e.prevent_default();
+        }));
         let s = state.clone();
         listeners.push(Listener::new(form.as_ref(), "input", move |e: Event| {
             let Some(input) = e
