@@ -643,6 +643,25 @@ pub trait Experiment {
     }
 }
 
+/// The slot (0-based) and axis of a numbered point's link key: with prefix
+/// `'w'`, `w3x` → `(2, true)` and `w1y` → `(0, false)`; `None` for another
+/// key or a number outside `1..=count`. Used by experiments that keep
+/// numbered points (waypoints, obstacles) as `x`/`y` parameter pairs.
+#[must_use]
+pub fn point_slot(key: &str, prefix: char, count: usize) -> Option<(usize, bool)> {
+    let rest = key.strip_prefix(prefix)?;
+    let (digits, is_x) = match rest.strip_suffix('x') {
+        Some(d) => (d, true),
+        None => (rest.strip_suffix('y')?, false),
+    };
+    // Digits only: `parse` would also take a sign (`w+1x`).
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    let n: usize = digits.parse().ok()?;
+    n.checked_sub(1).filter(|i| *i < count).map(|i| (i, is_x))
+}
+
 /// The formatted value of the readout `key`, or `None` when the experiment
 /// shows no such readout now.
 #[must_use]

@@ -100,15 +100,7 @@ const ACTIONS: &[ActionSpec] = &[
 
 /// The slot (0-based) of a waypoint key `w3x` → 2, and whether it is x.
 fn slot_of(key: &str) -> Option<(usize, bool)> {
-    let rest = key.strip_prefix('w')?;
-    let (digits, is_x) = match rest.strip_suffix('x') {
-        Some(d) => (d, true),
-        None => (rest.strip_suffix('y')?, false),
-    };
-    let n: usize = digits.parse().ok()?;
-    n.checked_sub(1)
-        .filter(|i| *i < MAX_WAYPOINTS)
-        .map(|i| (i, is_x))
+    crate::experiment::point_slot(key, 'w', MAX_WAYPOINTS)
 }
 
 /// Rounds a clicked coordinate to whole centimetres, so the link shows

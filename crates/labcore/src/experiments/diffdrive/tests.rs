@@ -342,7 +342,9 @@ fn plots_and_trail_stay_bounded() {
 fn waypoint_keys_parse_and_odd_keys_are_refused() {
     assert_eq!(slot_of("w1x"), Some((0, true)));
     assert_eq!(slot_of("w6y"), Some((5, false)));
-    for bad in ["w7x", "w0y", "w1z", "wé", "w", "wx", "x1w", "w1xx", "w-1x"] {
+    for bad in [
+        "w7x", "w0y", "w1z", "wé", "w", "wx", "x1w", "w1xx", "w-1x", "w+1x",
+    ] {
         assert_eq!(slot_of(bad), None, "{bad}");
     }
     let d = DiffDrive::default();

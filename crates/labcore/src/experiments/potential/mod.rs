@@ -144,15 +144,7 @@ const ACTIONS: &[ActionSpec] = &[
 
 /// The slot (0-based) of an obstacle key `o3x` → 2, and whether it is x.
 fn slot_of(key: &str) -> Option<(usize, bool)> {
-    let rest = key.strip_prefix('o')?;
-    let (digits, is_x) = match rest.strip_suffix('x') {
-        Some(d) => (d, true),
-        None => (rest.strip_suffix('y')?, false),
-    };
-    let n: usize = digits.parse().ok()?;
-    n.checked_sub(1)
-        .filter(|i| *i < MAX_OBSTACLES)
-        .map(|i| (i, is_x))
+    crate::experiment::point_slot(key, 'o', MAX_OBSTACLES)
 }
 
 /// What the next click does after an action button.
