@@ -61,6 +61,7 @@ pub mod control;
 pub mod estimation;
 pub mod experiment;
 pub mod experiments;
+pub mod json;
 pub mod kinematics;
 pub mod linalg;
 pub mod math;
