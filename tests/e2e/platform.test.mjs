@@ -286,11 +286,11 @@ test("a plot of two 10,000-point series draws (its time is printed; the budget i
   }));
 
 test("while the engine downloads, the Simulation tab shows its progress", async () => {
-  const context = await lab.browser.newContext();
+  const context = await lab.browser.newContext({ serviceWorkers: "block" });
   try {
     const page = await context.newPage();
     // Hold the wasm back a moment, as a slow network would.
-    await page.route(/labweb_bg\.wasm/, async (route) => {
+    await page.route(/\.wasm(\?|$)/, async (route) => {
       await new Promise((ok) => setTimeout(ok, 1200));
       await route.continue();
     });

@@ -5,6 +5,9 @@
 //! and `flate2` are used: no other build tool has to be installed by hand.
 
 mod dist;
+mod minify;
+mod modules;
+mod offline;
 mod pages;
 mod precompress;
 mod serve;
