@@ -63,6 +63,7 @@ pub mod experiment;
 pub mod experiments;
 pub mod kinematics;
 pub mod linalg;
+pub mod lms;
 pub mod math;
 pub mod mobile;
 pub mod planning;

@@ -3,13 +3,13 @@
 //! `dist-scorm.zip` beside it, the file an instructor uploads to an LMS.
 //!
 //! **One SCO per experiment.** Each experiment is its own `<item>` with its
-//! own launch URL (`index.html#/<id>/aim`), so an instructor can place each
-//! experiment in the course as a separate activity with its own gradebook
-//! column, mastery score and attempts (Moodle, Canvas, Blackboard and SCORM
-//! Cloud all make one grade item per SCO). A single SCO for the whole lab
-//! would give one grade for eleven quizzes and no way to assign one
-//! experiment. Every SCO launches the same `index.html`; the files are
-//! listed once, in a shared `asset` resource that each SCO depends on.
+//! own launch URL (`index.html#/<id>/aim`). An LMS keeps the SCORM data
+//! model per SCO, so each experiment gets its own `lesson_status`, score and
+//! `suspend_data`: eleven quizzes are recorded side by side and a relaunch
+//! resumes the right attempt. One SCO for the whole lab would have one score
+//! and one 4,096-character `suspend_data` for all eleven. Every SCO launches
+//! the same `index.html`; the files are listed once, in a shared `asset`
+//! resource that each SCO depends on.
 //!
 //! The package holds no precompressed `.gz`/`.br` siblings: an LMS serves
 //! the plain files, so they would only make the upload bigger.
