@@ -282,6 +282,40 @@ test("SCORM: a submitted quiz sets score and status and commits; a relaunch with
   }
 });
 
+test("SCORM: an attempt in progress resumes unsubmitted, with its answers, on another computer", async () => {
+  const lms = await startLms();
+  const browser = await launchBrowser();
+  try {
+    const first = await launch(browser, lms, "?sco=ik");
+    await openQuiz(first.frame);
+    const seed = await first.frame.locator("form.quiz .quiz-seed").innerText();
+    const field = first.frame.locator("form.quiz .quiz-numeric input").first();
+    await field.fill("0.5");
+    await first.page.evaluate(() => {
+      document.getElementById("sco").src = "about:blank";
+    });
+    await first.page.waitForFunction(() => window.lmsLog.some((e) => e[0] === "LMSFinish"));
+    const saved = await first.page.evaluate(() => JSON.parse(JSON.stringify(window.API.cmi)));
+    assert.equal(saved.core.lesson_status, "incomplete");
+    assert.deepEqual(first.problems, []);
+    await first.context.close();
+
+    // A fresh context: no local storage, only what the LMS kept.
+    const second = await launch(browser, lms, "?sco=ik", saved);
+    await openQuiz(second.frame);
+    assert.equal(await second.frame.locator("form.quiz .quiz-seed").innerText(), seed);
+    const again = second.frame.locator("form.quiz .quiz-numeric input").first();
+    assert.equal(await again.inputValue(), "0.5");
+    assert.ok(await again.isEnabled(), "not submitted: still open");
+    assert.ok(await second.frame.locator("form.quiz .quiz-score").isHidden());
+    assert.deepEqual(second.problems, []);
+    await second.context.close();
+  } finally {
+    await browser.close();
+    await lms.close();
+  }
+});
+
 test("SCORM: a SCO on another origin than the LMS cannot reach its API and runs as a plain page", async () => {
   const lms = await startLms();
   const browser = await launchBrowser();
