@@ -88,6 +88,68 @@ test("scorm.js: CMITimespan, mastery and status", async () => {
   assert.equal(launchedExperiment(""), null);
 });
 
+test("scorm.js: an LMS that refuses LMSInitialize or throws never breaks the page", async () => {
+  const { startSession } = await scormModule();
+  const page = () => Object.assign(new EventTarget(), { location: { hash: "#/pid/aim" } });
+  const refused = page();
+  const calls = [];
+  const refusing = { LMSInitialize: () => "false", LMSSetValue: (...a) => calls.push(a) };
+  assert.equal(startSession(refused, refusing), null);
+  assert.equal(refused.labLms, undefined, "no bridge when the LMS refuses");
+  assert.deepEqual(calls, []);
+
+  // An API whose every other call throws: the session still runs, quietly.
+  const win = page();
+  const throwing = {
+    LMSInitialize: () => "true",
+    LMSGetValue: () => {
+      throw new Error("LMS down");
+    },
+    LMSSetValue: () => {
+      throw new Error("LMS down");
+    },
+    LMSCommit: () => {
+      throw new Error("LMS down");
+    },
+    LMSFinish: () => {
+      throw new Error("LMS down");
+    },
+  };
+  const state = startSession(win, throwing, () => 0);
+  assert.equal(state.experiment, "pid");
+  assert.equal(state.mastery, 70);
+  win.dispatchEvent(Object.assign(new Event("lab-quiz-submitted"), { detail: { id: "pid", percent: 80, suspendData: "{}" } }));
+  win.dispatchEvent(new Event("pagehide"));
+  assert.equal(state.finished, true);
+  // Another experiment's quiz, or an over-long suspend_data, is not kept.
+  const ok = page();
+  const log = [];
+  const api = {
+    LMSInitialize: () => "true",
+    LMSGetValue: (k) => (k === "cmi.core.lesson_status" ? "not attempted" : ""),
+    LMSSetValue: (k, v) => log.push([k, v]),
+    LMSCommit: () => "true",
+    LMSFinish: () => "true",
+  };
+  const s = startSession(ok, api, () => 0);
+  const send = (type, detail) => ok.dispatchEvent(Object.assign(new Event(type), { detail }));
+  send("lab-quiz-submitted", { id: "astar", percent: 100, suspendData: "{}" });
+  send("lab-quiz-progress", { id: "pid", suspendData: "x".repeat(4097) });
+  assert.deepEqual(log, [["cmi.core.lesson_status", "incomplete"]]);
+  assert.equal(ok.labLms.suspendData("pid"), null);
+  send("lab-quiz-progress", { id: "pid", suspendData: '{"id":"pid"}' });
+  assert.equal(ok.labLms.suspendData("pid"), '{"id":"pid"}');
+  assert.equal(ok.labLms.suspendData("astar"), null, "only the launched experiment");
+  send("lab-quiz-submitted", { id: "pid", percent: 69, suspendData: '{"id":"pid","submitted":true}' });
+  assert.deepEqual(log.slice(2, 6), [
+    ["cmi.core.score.min", "0"],
+    ["cmi.core.score.max", "100"],
+    ["cmi.core.score.raw", "69"],
+    ["cmi.core.lesson_status", "failed"],
+  ]);
+  assert.equal(s.suspendData, '{"id":"pid","submitted":true}');
+});
+
 // ------------------------------------------------------------- outside an LMS
 
 const lab = useLab();
