@@ -141,6 +141,71 @@ impl Prepared {
 /// Largest seed a JSON number holds exactly (2⁵³).
 const EXACT_SEED: u64 = 1 << 53;
 
+/// A seed as JSON: a number up to 2⁵³ (exact), a larger one (a link may fix
+/// any u64) as a string of digits.
+pub(crate) fn seed_json(seed: u64) -> crate::json::Json {
+    use crate::json::Json;
+    if seed <= EXACT_SEED {
+        Json::Number(seed as f64)
+    } else {
+        Json::String(seed.to_string())
+    }
+}
+
+/// Reads [`seed_json`]'s value.
+pub(crate) fn seed_from_json(value: &crate::json::Json) -> Option<u64> {
+    use crate::json::Json;
+    match value {
+        Json::Number(n) if n.fract() == 0.0 && (0.0..=EXACT_SEED as f64).contains(n) => {
+            Some(*n as u64)
+        }
+        Json::String(digits) if digits.bytes().all(|b| b.is_ascii_digit()) => {
+            digits.parse().ok().filter(|s| *s > EXACT_SEED)
+        }
+        _ => None,
+    }
+}
+
+/// Answers as JSON: `[{"Choice":1},{"Choice":null},{"Text":"2.5 m"}]`.
+pub(crate) fn answers_json(answers: &[Response]) -> crate::json::Json {
+    use crate::json::Json;
+    Json::Array(
+        answers
+            .iter()
+            .map(|a| {
+                let (tag, value) = match a {
+                    Response::Choice(Some(i)) => ("Choice", Json::Number(*i as f64)),
+                    Response::Choice(None) => ("Choice", Json::Null),
+                    Response::Text(t) => ("Text", Json::String(t.clone())),
+                };
+                Json::Object(vec![(tag.into(), value)])
+            })
+            .collect(),
+    )
+}
+
+/// Reads [`answers_json`]'s value.
+pub(crate) fn answers_from_json(value: &crate::json::Json) -> Option<Vec<Response>> {
+    use crate::json::Json;
+    let Json::Array(items) = value else {
+        return None;
+    };
+    items
+        .iter()
+        .map(|item| match item {
+            Json::Object(f) => match f.as_slice() {
+                [(tag, Json::Null)] if tag == "Choice" => Some(Response::Choice(None)),
+                [(tag, Json::Number(i))] if tag == "Choice" && i.fract() == 0.0 && *i >= 0.0 => {
+                    Some(Response::Choice(Some(*i as usize)))
+                }
+                [(tag, Json::String(t))] if tag == "Text" => Some(Response::Text(t.clone())),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect()
+}
+
 /// One saved attempt: its seed and the answers given so far, so an attempt
 /// survives a reload (the page keeps [`SavedAttempt::encode`] in local
 /// storage or the URL) and an instructor's `?quiz=<seed>` fixes the numbers.
@@ -157,28 +222,9 @@ impl SavedAttempt {
     #[must_use]
     pub fn encode(&self) -> String {
         use crate::json::Json;
-        let answers = self
-            .answers
-            .iter()
-            .map(|a| {
-                let (tag, value) = match a {
-                    Response::Choice(Some(i)) => ("Choice", Json::Number(*i as f64)),
-                    Response::Choice(None) => ("Choice", Json::Null),
-                    Response::Text(t) => ("Text", Json::String(t.clone())),
-                };
-                Json::Object(vec![(tag.into(), value)])
-            })
-            .collect();
-        // Seeds up to 2⁵³ are exact as JSON numbers; a larger one (a link may
-        // fix any u64) is written as a string of digits.
-        let seed = if self.seed <= EXACT_SEED {
-            Json::Number(self.seed as f64)
-        } else {
-            Json::String(self.seed.to_string())
-        };
         Json::Object(vec![
-            ("seed".into(), seed),
-            ("answers".into(), Json::Array(answers)),
+            ("seed".into(), seed_json(self.seed)),
+            ("answers".into(), answers_json(&self.answers)),
         ])
         .to_text()
     }
@@ -191,38 +237,16 @@ impl SavedAttempt {
         let Json::Object(fields) = &value else {
             return None;
         };
-        let [(s, seed), (a, Json::Array(items))] = fields.as_slice() else {
+        let [(s, seed), (a, answers)] = fields.as_slice() else {
             return None;
         };
         if s != "seed" || a != "answers" {
             return None;
         }
-        let seed = match seed {
-            Json::Number(n) if n.fract() == 0.0 && (0.0..=EXACT_SEED as f64).contains(n) => {
-                *n as u64
-            }
-            Json::String(digits) if digits.bytes().all(|b| b.is_ascii_digit()) => {
-                digits.parse().ok().filter(|s| *s > EXACT_SEED)?
-            }
-            _ => return None,
-        };
-        let answers = items
-            .iter()
-            .map(|item| match item {
-                Json::Object(f) => match f.as_slice() {
-                    [(tag, Json::Null)] if tag == "Choice" => Some(Response::Choice(None)),
-                    [(tag, Json::Number(i))]
-                        if tag == "Choice" && i.fract() == 0.0 && *i >= 0.0 =>
-                    {
-                        Some(Response::Choice(Some(*i as usize)))
-                    }
-                    [(tag, Json::String(t))] if tag == "Text" => Some(Response::Text(t.clone())),
-                    _ => None,
-                },
-                _ => None,
-            })
-            .collect::<Option<Vec<_>>>()?;
-        Some(SavedAttempt { seed, answers })
+        Some(SavedAttempt {
+            seed: seed_from_json(seed)?,
+            answers: answers_from_json(answers)?,
+        })
     }
 
     /// The saved answers fitted to `questions`: one per question, a saved

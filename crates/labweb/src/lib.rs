@@ -7,6 +7,7 @@
 pub mod app;
 pub mod dom;
 pub mod draw;
+pub mod lms;
 pub mod plot_view;
 pub mod quiz_view;
 pub mod sim;
