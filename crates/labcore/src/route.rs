@@ -517,10 +517,13 @@ pub fn format_instructor(
     with_query(format(experiment, tab), &pairs)
 }
 
-/// Runs `op` (a pointer input, an action, a reset, a loaded file) and puts
-/// back every locked parameter it changed, so a drag that would turn a
-/// locked joint moves only the free ones. Returns the labels of the
-/// parameters that had to be put back (the page says they are locked).
+/// Runs `op` (a pointer input, an action, a reset, a loaded file, a run of
+/// steps) and puts back every locked parameter it changed, so a drag that
+/// would turn a locked joint moves only the free ones. When a value cannot
+/// be put back by itself (a choice an action made, such as a grid size
+/// only a map file gives), the whole state before `op` is applied again
+/// from its link. Returns the labels of the parameters that had to be put
+/// back (the page says they are locked).
 pub fn keep_locked(
     experiment: &mut dyn Experiment,
     instructor: &Instructor,
@@ -530,23 +533,31 @@ pub fn keep_locked(
         op(experiment);
         return Vec::new();
     }
-    let before: Vec<(String, Option<f64>)> = instructor
-        .locked
-        .iter()
-        .map(|k| (k.clone(), experiment.param(k)))
-        .collect();
+    let values = |e: &dyn Experiment| -> Vec<Option<f64>> {
+        instructor.locked.iter().map(|k| e.param(k)).collect()
+    };
+    let before = values(experiment);
+    let link = format(experiment, Tab::Simulation);
     op(experiment);
+    let after = values(experiment);
+    if after == before {
+        return Vec::new();
+    }
     let mut put_back = Vec::new();
-    for (key, was) in before {
-        let now = experiment.param(&key);
+    for ((key, was), now) in instructor.locked.iter().zip(&before).zip(&after) {
         if now == was {
             continue;
         }
         if let Some(v) = was {
-            let _ = experiment.set_param(&key, v);
+            let _ = experiment.set_param(key, *v);
         }
         if let Some(spec) = experiment.params().iter().find(|s| s.key == key) {
             put_back.push(spec.label);
+        }
+    }
+    if values(experiment) != before {
+        if let Page::Experiment { params, .. } = parse(&link, &[experiment.id()]).page {
+            let _ = apply_params(experiment, &params);
         }
     }
     put_back
