@@ -98,6 +98,8 @@ test("a preset from the menu applies, and its link reproduces it in a fresh page
       null,
       { timeout: 15_000 },
     );
+    await page.click("details.presets > summary");
+    await page.locator("details.presets").scrollIntoViewIfNeeded();
     await screenshot(page, "instructor-presets-desktop");
   }));
 
@@ -136,7 +138,7 @@ test("the Instructor panel's link opened in a fresh page gives the same locks, h
     const b = await readouts(second);
     assert.equal(b.poles, a.poles, "the same loop");
     // The quiz seed reaches the quiz.
-    await second.click('[role=tab][data-tab="quiz"]');
+    await second.click('article.exp[data-experiment="pid"] [role=tab][data-tab="quiz"]');
     await second.waitForFunction(() => location.hash.includes("quiz=123"));
   }));
 
@@ -150,4 +152,16 @@ test("instructor UI screenshots: phone and dark", () =>
     await page.locator("details.instructor-panel").scrollIntoViewIfNeeded();
     await screenshot(page, "instructor-panel-phone-dark");
     assert.ok(DESKTOP.width > PHONE.width);
+  }));
+
+test("presets menu screenshot: phone, dark", () =>
+  withPage(lab, { viewport: PHONE, colorScheme: "dark" }, async (page) => {
+    await open(lab, page, "#/astar/simulation");
+    await page.click("details.presets > summary");
+    await page.locator("details.presets").scrollIntoViewIfNeeded();
+    await screenshot(page, "instructor-presets-phone-dark");
+    // Every preset of the menu is a link to this experiment's Simulation tab.
+    const hrefs = await page.$$eval("details.presets a[data-preset]", (as) => as.map((a) => a.getAttribute("href")));
+    assert.equal(hrefs.length, 3);
+    for (const h of hrefs) assert.match(h, /^#\/astar\/simulation\?/);
   }));

@@ -90,7 +90,7 @@ pub(super) fn panel_html(specs: &[ParamSpec]) -> String {
          <input type=\"text\" class=\"instructor-quiz\" inputmode=\"numeric\" autocomplete=\"off\" spellcheck=\"false\"></label>\
          <label class=\"instructor-field\">Link\
          <input type=\"text\" class=\"instructor-link\" readonly></label>\
-         <p class=\"instructor-actions\"><button type=\"button\" data-instructor=\"copy\">Copy link</button> \
+         <p class=\"instructor-actions\"><button type=\"button\" class=\"mini\" data-instructor=\"copy\">Copy link</button> \
          <span class=\"instructor-copied\" role=\"status\"></span></p>\
          </div></details>"
     )
