@@ -45,6 +45,32 @@ test("#/pid/simulation?kp=5&lock=kp disables both Kp controls and neither keys n
     await screenshot(page, "instructor-locked-desktop");
   }));
 
+test("a canvas drag or arrow key that would move a locked setpoint is refused (and moves it when unlocked)", () =>
+  withPage(lab, {}, async (page) => {
+    const r = () => page.$eval('input[type=range][data-param="r"]', (el) => Number(el.value));
+    // A click on the canvas at world x = −1 m (PID sets the setpoint where the pointer is).
+    const clickAtMinusOne = async () => {
+      const box = await page.locator("canvas.sim-canvas").boundingBox();
+      const [x0, y0, x1, y1] = (await page.getAttribute("canvas.sim-canvas", "data-view")).split(",").map(Number);
+      const scale = Math.min(box.width / (x1 - x0), box.height / (y1 - y0));
+      const px = box.x + box.width / 2 + (-1 - (x0 + x1) / 2) * scale;
+      await page.mouse.click(px, box.y + box.height / 2);
+    };
+    await open(lab, page, "#/pid/simulation?r=1");
+    await clickAtMinusOne();
+    await page.waitForFunction(() => Number(document.querySelector('input[type=range][data-param="r"]').value) < 0);
+    await open(lab, page, "#/pid/simulation?r=1&lock=r");
+    await page.reload();
+    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    await clickAtMinusOne();
+    await page.focus("canvas.sim-canvas");
+    for (let i = 0; i < 4; i++) await page.keyboard.press("ArrowLeft");
+    await page.waitForTimeout(300);
+    assert.equal(await r(), 1);
+    assert.match(await page.textContent(".sim-message"), /Setpoint r is locked by your instructor/);
+    assert.equal(await hashParam(page, "r"), "1");
+  }));
+
 test("a hidden parameter is absent, the note shows as text, an unknown key gives a notice", () =>
   withPage(lab, {}, async (page) => {
     const note = "Find the smallest Kp that <b>overshoots</b> & settles";
