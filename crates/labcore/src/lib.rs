@@ -79,7 +79,7 @@ pub use clock::Clock;
 pub use content::Content;
 pub use experiment::{
     ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamKind, ParamSpec,
-    Phase, Readout, Sanitized, Status, Tone,
+    Phase, Preset, Readout, Sanitized, Status, Tone,
 };
 pub use experiments::{find, registry, Entry};
 pub use glam;

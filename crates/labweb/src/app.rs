@@ -74,6 +74,7 @@ impl App {
         let ids: Vec<&str> = labcore::catalogue::CATALOGUE.iter().map(|p| p.id).collect();
         let parsed = route::parse(&hash, &ids);
         let quiz_seed = parsed.quiz_seed;
+        let instructor = parsed.instructor;
         let mut notices = parsed.notices;
         close_nav_menu();
         match parsed.page {
@@ -113,6 +114,12 @@ impl App {
                     }
                     if !params.is_empty() {
                         notices.extend(page.apply_params(&params));
+                    }
+                    // An instructor's locks, hidden controls and note come
+                    // with a whole state (or alone); a bare link (a tab
+                    // switch) keeps those already set.
+                    if !params.is_empty() || !instructor.is_empty() {
+                        notices.extend(page.set_instructor(instructor, quiz_seed));
                     }
                     // An instructor's link fixes the attempt (`?quiz=123`): the
                     // whole class gets the same numbers.
@@ -422,6 +429,17 @@ impl ExperimentPage {
         match &self.inner.borrow().sim {
             Some(sim) => sim.apply_params(params),
             None => vec!["The simulation is not running, so its settings were ignored.".into()],
+        }
+    }
+
+    fn set_instructor(
+        &mut self,
+        instructor: route::Instructor,
+        quiz_seed: Option<u64>,
+    ) -> Vec<String> {
+        match &self.inner.borrow().sim {
+            Some(sim) => sim.set_instructor(instructor, quiz_seed),
+            None => Vec::new(),
         }
     }
 

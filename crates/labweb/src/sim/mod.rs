@@ -27,6 +27,7 @@ use web_sys::{
 };
 
 mod canvas_input;
+mod instructor;
 mod panel;
 mod status;
 mod timebar;
@@ -108,8 +109,11 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
     } else {
         ""
     };
+    let note = instructor::note_html();
+    let presets = instructor::presets_html(exp);
+    let instructor_panel = instructor::panel_html(exp.params());
     format!(
-        "<div class=\"sim\">\
+        "{note}<div class=\"sim\">\
            <div class=\"sim-stage\">\
              <p class=\"sim-caption\">{caption}</p>\
              <div class=\"sim-frame\">\
@@ -123,11 +127,11 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
              <dl class=\"readouts\">{readouts}</dl>\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
              <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
-             <form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>\
+             {presets}<form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>\
              <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
            </div>\
            {plots}\
-         </div>",
+         </div>{instructor_panel}",
         touch = if exp.captures_touch() { "all" } else { "handles" },
         keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
     )
@@ -186,6 +190,10 @@ struct SimState {
     hash_dirty: bool,
     last_hash_ms: f64,
     frame_times: FrameTimes,
+    /// The instructor's locks, hidden controls and note from the link.
+    instructor: route::Instructor,
+    /// The quiz seed the link fixed, kept in the Simulation tab's link.
+    quiz_seed: Option<u64>,
 }
 
 /// Recent busy-frame times (step + paint), published on the canvas as
@@ -275,8 +283,14 @@ impl SimState {
         } else {
             0
         };
-        for _ in 0..steps {
-            self.exp.step(Clock::DT_S);
+        if steps > 0 {
+            // A run may move a locked parameter (an arm turning to its
+            // target): it is held, quietly.
+            let _ = route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
+                for _ in 0..steps {
+                    exp.step(Clock::DT_S);
+                }
+            });
         }
         self.follow_phase();
         let stopped = was_animating && !self.exp.animating();
@@ -315,9 +329,17 @@ impl SimState {
         }
     }
 
+    /// The link of the current state ([`SimState::state_link`]), then the
+    /// instructor's locks, hidden controls and note, then the quiz seed.
+    fn link(&self) -> String {
+        let mut pairs = self.instructor.query();
+        pairs.extend(self.quiz_seed.map(|s| format!("{}={s}", route::QUIZ_KEY)));
+        route::with_query(self.state_link(), &pairs)
+    }
+
     /// The link of the current state: the experiment's parameters, then the
     /// shell's own (`run=0` when paused, `speed` when not 1×).
-    fn link(&self) -> String {
+    fn state_link(&self) -> String {
         let mut hash = route::format(self.exp.as_ref(), Tab::Simulation);
         let mut extra = Vec::new();
         if self.exp.animated() && !self.clock.running() && !self.ended_hold {
@@ -361,6 +383,7 @@ impl SimState {
 
     fn write_hash(&mut self) {
         self.hash_dirty = false;
+        self.sync_instructor_link();
         let hash = self.link();
         if let Ok(history) = dom::window().history() {
             let _ = history.replace_state_with_url(&JsValue::NULL, "", Some(&hash));
@@ -492,10 +515,13 @@ impl SimView {
             hash_dirty: false,
             last_hash_ms: 0.0,
             frame_times: FrameTimes::default(),
+            instructor: route::Instructor::default(),
+            quiz_seed: None,
         }));
         let mut listeners = Vec::new();
         canvas_input::listen(&state, &canvas, &mut listeners);
         panel::listen(&state, panel, &mut listeners);
+        instructor::listen(&state, panel, &mut listeners);
         // Theme changes (light/dark) repaint with the new palette.
         if let Ok(Some(mql)) = dom::window().match_media("(prefers-color-scheme: dark)") {
             let s = state.clone();
@@ -591,6 +617,24 @@ impl SimView {
         notices
     }
 
+    /// Sets the instructor's locks, hidden controls, note and quiz seed from
+    /// a link (replacing any before) and shows them; returns a notice for
+    /// each key the experiment does not have.
+    pub fn set_instructor(
+        &self,
+        mut instructor: route::Instructor,
+        quiz_seed: Option<u64>,
+    ) -> Vec<String> {
+        let mut st = self.state.borrow_mut();
+        let notices = instructor.resolve(st.exp.params());
+        st.instructor = instructor;
+        st.quiz_seed = quiz_seed;
+        st.show_instructor();
+        st.shown_values.iter_mut().for_each(|v| *v = None);
+        st.needs_paint = true;
+        notices
+    }
+
     /// The URL hash of the current state on `tab`.
     pub fn hash(&self, tab: Tab) -> String {
         let st = self.state.borrow();
@@ -634,7 +678,9 @@ fn read_file(state: &Rc<RefCell<SimState>>, file: web_sys::File) {
             .and_then(|v| v.as_string())
             .unwrap_or_default();
         let mut st = s.borrow_mut();
-        match st.exp.load_file(&name, &text) {
+        let mut loaded = Ok(());
+        st.guarded(|exp| loaded = exp.load_file(&name, &text));
+        match loaded {
             Ok(()) => {
                 st.show_message(Some(&format!("Loaded “{name}”.")));
                 st.clock.reset();

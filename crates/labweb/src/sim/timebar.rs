@@ -111,9 +111,12 @@ impl SimState {
     /// One fixed step from a pause (the Step button and the `.` key).
     pub(super) fn single_step(&mut self) {
         let was_animating = self.exp.animating();
-        for _ in 0..self.clock.single_step() {
-            self.exp.step(Clock::DT_S);
-        }
+        let steps = self.clock.single_step();
+        let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
+            for _ in 0..steps {
+                exp.step(Clock::DT_S);
+            }
+        });
         self.needs_paint = true;
         self.hash_dirty = true;
         self.plots_force = true;
@@ -132,7 +135,8 @@ impl SimState {
     }
 
     pub(super) fn reset_run(&mut self) {
-        self.exp.reset();
+        // Reset keeps the parameters, locked ones above all.
+        self.guarded(|exp| exp.reset());
         self.clock.reset();
         self.phase = self.exp.status().phase;
         self.needs_paint = true;
