@@ -9,6 +9,7 @@ pub mod dom;
 pub mod draw;
 pub mod plot_view;
 pub mod quiz_view;
+pub mod report_view;
 pub mod sim;
 
 use std::cell::RefCell;
