@@ -47,7 +47,7 @@ pub const OBSERVATION_LINES: usize = 14;
 const SVG_W: f64 = 640.0;
 const SVG_H: f64 = 280.0;
 /// Plot margins: left (y tick labels), right, top, bottom (x ticks and title).
-const MARGIN: (f64, f64, f64, f64) = (64.0, 16.0, 12.0, 42.0);
+const MARGIN: (f64, f64, f64, f64) = (64.0, 24.0, 12.0, 42.0);
 /// Line segments per series at most: [`decimate_min_max`] buckets across the
 /// plot width (about two per user unit), so the drawing looks like every
 /// sample and a 20,000-sample run costs a few kilobytes.

@@ -486,7 +486,8 @@ fn plot_points_land_where_the_axes_say() {
     let svg = plot_svg(&p, 0);
     // One legend row: top = 14 + 8 + 12 = 34; bottom = 34 + 280 − 42 − 12 = 260.
     // y ∈ [−0.5, 10.5]: y = 0 → 260 − 0.5/11 · 226 = 249.73; y = 10 → 44.27.
-    assert!(svg.contains("<path d=\"M64,249.73L624,44.27\""), "{svg}");
+    // x from 64 to 640 − 24 = 616.
+    assert!(svg.contains("<path d=\"M64,249.73L616,44.27\""), "{svg}");
     // Ticks 0, 2, …, 10 on x; the first at the left edge.
     assert!(
         svg.contains("<text x=\"64\" y=\"274\" text-anchor=\"middle\" fill=\"#1b1f24\">0</text>"),
@@ -542,4 +543,62 @@ fn dates_show_local_time_and_offset() {
         date_text(2026, 6, 1, 0, 0, 0),
         "2026-06-01 00:00 (UTC+00:00)"
     );
+}
+
+/// World (0, 0)–(2, 1) fills 640 × 320 units, y up: hand-computed positions
+/// of a line, a run of raster cells and a thinned tree.
+#[test]
+fn scene_maps_world_to_picture_with_y_up() {
+    use crate::scene::{Item, RasterColour, Role};
+    use glam::DVec2;
+    let view = ViewBox {
+        min: DVec2::ZERO,
+        max: DVec2::new(2.0, 1.0),
+    };
+    let mut scene = Scene::default();
+    scene.items.push(Item::Line {
+        from: DVec2::ZERO,
+        to: DVec2::new(1.0, 1.0),
+        width_px: 2.0,
+        role: Role::Link,
+        dashed: false,
+    });
+    // Row 0 (bottom): cells 0 and 1 wall, cell 2 free, cell 3 wall.
+    scene.items.push(Item::Raster {
+        min: DVec2::ZERO,
+        cell_m: 0.5,
+        cols: 4,
+        rows: 2,
+        cells: vec![1, 1, 0, 1, 0, 0, 0, 0],
+        palette: vec![RasterColour {
+            role: Role::Obstacle,
+            alpha: 0.8,
+        }],
+    });
+    let edges = scene_svg::MAX_SEGMENTS + 5;
+    scene.items.push(Item::Segments {
+        segments: vec![(DVec2::ZERO, DVec2::new(0.5, 0.5)); edges],
+        width_px: 1.0,
+        role: Role::Visited,
+    });
+    let (svg, notes) = scene_svg::scene_svg(&scene, view);
+    assert!(svg.starts_with("<svg class=\"scene\" viewBox=\"0 0 640 320\""));
+    assert!(svg.contains("<line x1=\"0\" y1=\"320\" x2=\"320\" y2=\"0\" stroke=\"#0072B2\""));
+    // Cells are 160 units; the bottom row's top edge is at y = 320 − 160:
+    // a run of two at the left, one at x = 480.
+    assert!(svg.contains(
+        "d=\"M0,160h320v160h-320zM480,160h160v160h-160z\" fill=\"#5f6a75\" fill-opacity=\"0.8\""
+    ));
+    assert_eq!(
+        svg.matches("M0 320l160 -160").count(),
+        scene_svg::MAX_SEGMENTS
+    );
+    assert_eq!(
+        notes,
+        vec![format!(
+            "the first {} of {edges} edges drawn",
+            scene_svg::MAX_SEGMENTS
+        )]
+    );
+    well_formed_svg(&svg).unwrap();
 }
