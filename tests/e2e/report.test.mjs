@@ -140,7 +140,7 @@ async function inspect(html, id, facts, { quiz = null, letter = false } = {}) {
       assert.ok(f.width > 300, `${f.key}: the figure spans the page`);
     }
     assert.deepEqual(got.dataTables.map((t) => t.key), facts.plots, "a data table per plot");
-    assert.ok(got.dataTables.every((t) => t.rows > 0 && t.rows <= 40), JSON.stringify(got.dataTables));
+    assert.ok(got.dataTables.every((t) => t.rows > 0 && t.rows <= 30), JSON.stringify(got.dataTables));
     assert.ok(got.figures.some((f) => f.paths > 0), "a run was plotted");
     assert.equal(got.lines, 14, "room for observations");
     assert.equal(got.background, "rgb(255, 255, 255)");
@@ -156,7 +156,7 @@ async function inspect(html, id, facts, { quiz = null, letter = false } = {}) {
     // The page tree's /Count is the number of pages.
     const counts = [...pdf.toString("latin1").matchAll(/\/Count (\d+)/g)].map((m) => Number(m[1]));
     const pages = Math.max(0, ...counts);
-    assert.ok(pages >= 2 && pages <= 12, `${id}: ${pages} A4 pages`);
+    assert.ok(pages >= 2 && pages <= 16, `${id}: ${pages} A4 pages`);
     if (letter) {
       const us = await page.pdf({ path: join(SHOTS, `${id}-report-letter.pdf`), format: "Letter" });
       assert.equal(us.subarray(0, 5).toString(), "%PDF-");

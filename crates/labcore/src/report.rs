@@ -34,7 +34,7 @@ mod scene_svg;
 
 /// Most rows of a plot's data table in the report: a long series is shown
 /// at evenly spaced samples (first and last included), and the table says so.
-pub const TABLE_ROWS: usize = 40;
+pub const TABLE_ROWS: usize = 30;
 
 /// Most rows of a live table (an open list) copied into the report.
 pub const LIVE_TABLE_ROWS: usize = 60;

@@ -461,7 +461,7 @@ fn long_series_are_decimated_in_table_and_figure() {
     let mut h = String::new();
     data_table(&mut h, &p, 1);
     assert_eq!(h.matches("<tr><td>").count(), TABLE_ROWS);
-    assert!(h.contains("40 evenly spaced rows of 20000 samples"), "{h}");
+    assert!(h.contains("30 evenly spaced rows of 20000 samples"), "{h}");
     // First and last samples: t = 0 and t = 199.99.
     assert!(h.contains("<tr><td>0</td>") && h.contains("<tr><td>199.99</td>"));
     let svg = plot_svg(&p, 0);
