@@ -70,6 +70,7 @@ pub mod mobile;
 pub mod planning;
 pub mod plot;
 pub mod quiz;
+pub mod report;
 pub mod rng;
 pub mod route;
 pub mod scene;

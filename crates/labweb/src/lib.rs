@@ -10,6 +10,7 @@ pub mod draw;
 pub mod lms;
 pub mod plot_view;
 pub mod quiz_view;
+pub mod report_view;
 pub mod sim;
 
 use std::cell::RefCell;

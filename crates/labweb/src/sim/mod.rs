@@ -121,7 +121,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
                  aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps){keys}.\"></canvas>\
              </div>{statusbar}{touch_note}\
              {timebar}\
-             <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button></div>\
+             <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button>{report}</div>\
            </div>\
            <div class=\"sim-side\">{main_plot}\
              <dl class=\"readouts\">{readouts}</dl>\
@@ -133,6 +133,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
            {plots}\
          </div>{instructor_panel}",
         touch = if exp.captures_touch() { "all" } else { "handles" },
+        report = crate::report_view::BUTTON_HTML,
         keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
     )
 }

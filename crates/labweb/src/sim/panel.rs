@@ -164,6 +164,8 @@ pub(super) fn listen(
                 if let Some((name, text)) = st.exp.export_text() {
                     plot_view::download(&name, "text/plain", &text);
                 }
+            } else if attr("data-export").as_deref() == Some("report") {
+                crate::report_view::download(&st.panel, st.exp.as_ref(), &st.link());
             } else if attr("data-export").as_deref() == Some("png") {
                 st.paint();
                 export_png(&st.canvas, &format!("{}.png", st.file_stem()));
