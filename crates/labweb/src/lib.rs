@@ -10,6 +10,7 @@ pub mod draw;
 pub mod plot_view;
 pub mod quiz_view;
 pub mod sim;
+pub mod text;
 
 use std::cell::RefCell;
 use wasm_bindgen::prelude::*;

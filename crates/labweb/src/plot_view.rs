@@ -9,7 +9,10 @@ use labcore::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, SeriesR
 use labcore::quiz::format_number;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
-use web_sys::{CanvasRenderingContext2d, Element, HtmlCanvasElement};
+use web_sys::{
+    CanvasRenderingContext2d, Element, HtmlCanvasElement, ImageBitmapRenderingContext,
+    OffscreenCanvas,
+};
 
 /// Most rows shown in a plot's data table (the CSV always has every row).
 const TABLE_ROWS_MAX: usize = 500;
@@ -478,7 +481,9 @@ struct Drawn {
     key: &'static str,
     figure: Element,
     canvas: HtmlCanvasElement,
+    /// The context painted on: the canvas's own, or the off-screen one.
     ctx: CanvasRenderingContext2d,
+    surface: Surface,
     revision: Option<u64>,
     size: (f64, f64, f64),
     /// The canvas size (CSS px) and pixel ratio read by [`PlotView::measure`].
@@ -491,6 +496,62 @@ struct Drawn {
     fit_latest: bool,
     parts: Parts,
     shown: Shown,
+}
+
+/// Where a plot is painted.
+///
+/// Off screen where the browser can: the page then shows each finished
+/// picture through a `bitmaprenderer` context. A 2D canvas on the page costs
+/// the browser a copy of its whole bitmap at every frame the page changes,
+/// whether the canvas changed or not (measured in Chromium with software
+/// compositing: each 780 × 400 canvas adds about 1.7 ms a frame at a 4× CPU
+/// throttle); a bitmap shown this way costs nothing until it is replaced.
+enum Surface {
+    Offscreen {
+        offscreen: OffscreenCanvas,
+        shown: ImageBitmapRenderingContext,
+    },
+    /// The canvas's own 2D context (browsers without `OffscreenCanvas`).
+    Direct,
+}
+
+impl Surface {
+    /// The off-screen surface for `canvas` and its 2D context, if the
+    /// browser has one; `None` leaves the canvas free for a 2D context.
+    fn offscreen(canvas: &HtmlCanvasElement) -> Option<(Self, CanvasRenderingContext2d)> {
+        let offscreen = OffscreenCanvas::new(1, 1).ok()?;
+        // An `OffscreenCanvasRenderingContext2D` has every method and
+        // property of `CanvasRenderingContext2D` the plots use, and
+        // wasm-bindgen calls them by name, so one set of bindings serves both.
+        let ctx: CanvasRenderingContext2d =
+            offscreen.get_context("2d").ok().flatten()?.unchecked_into();
+        let shown = canvas
+            .get_context("bitmaprenderer")
+            .ok()
+            .flatten()?
+            .dyn_into::<ImageBitmapRenderingContext>()
+            .ok()?;
+        Some((Self::Offscreen { offscreen, shown }, ctx))
+    }
+
+    /// Sizes the surface's bitmap (and the canvas's) in device pixels.
+    fn set_size(&self, canvas: &HtmlCanvasElement, w: u32, h: u32) {
+        canvas.set_width(w);
+        canvas.set_height(h);
+        if let Self::Offscreen { offscreen, .. } = self {
+            offscreen.set_width(w);
+            offscreen.set_height(h);
+        }
+    }
+
+    /// Shows what was painted since the last call.
+    fn present(&self) {
+        if let Self::Offscreen { offscreen, shown } = self {
+            if let Ok(bitmap) = offscreen.transfer_to_image_bitmap() {
+                shown.transfer_from_image_bitmap(&bitmap);
+            }
+        }
+    }
 }
 
 /// The elements of a plot figure the drawing updates, found once at mount.
@@ -533,12 +594,18 @@ impl PlotView {
             .filter_map(|figure| {
                 let key = figure.get_attribute("data-plot")?;
                 let canvas: HtmlCanvasElement = query(&figure, "canvas")?.dyn_into().ok()?;
-                let ctx = canvas
-                    .get_context("2d")
-                    .ok()
-                    .flatten()?
-                    .dyn_into::<CanvasRenderingContext2d>()
-                    .ok()?;
+                let (surface, ctx) = match Surface::offscreen(&canvas) {
+                    Some(s) => s,
+                    None => (
+                        Surface::Direct,
+                        canvas
+                            .get_context("2d")
+                            .ok()
+                            .flatten()?
+                            .dyn_into::<CanvasRenderingContext2d>()
+                            .ok()?,
+                    ),
+                };
                 let legend: Vec<(usize, Element)> = query_all(&figure, ".legend-item[data-series]")
                     .into_iter()
                     .filter_map(|item| {
@@ -563,6 +630,7 @@ impl PlotView {
                     figure,
                     canvas,
                     ctx,
+                    surface,
                     revision: None,
                     size: (0.0, 0.0, 0.0),
                     measured: (0.0, 0.0, 0.0),
@@ -670,6 +738,7 @@ impl PlotView {
                 }
             }
         }
+        drawn.surface.present();
     }
 
     /// Switches a plot between fitting the latest run and every run (the
@@ -727,8 +796,11 @@ impl Drawn {
             return;
         }
         if self.size != size {
-            self.canvas.set_width((size.0 * size.2).round() as u32);
-            self.canvas.set_height((size.1 * size.2).round() as u32);
+            self.surface.set_size(
+                &self.canvas,
+                (size.0 * size.2).round() as u32,
+                (size.1 * size.2).round() as u32,
+            );
             self.size = size;
         }
         self.revision = Some(plot.revision);
@@ -749,6 +821,7 @@ impl Drawn {
         if let Some(x) = self.hover_x {
             show_nearest(self, plot, palette, x);
         }
+        self.surface.present();
         // "Fit latest run" only means something once a run is kept.
         if let Some(button) = &self.parts.fit {
             let hide = !plot.series.iter().any(|s| s.comparison && !s.is_empty());
@@ -840,36 +913,6 @@ pub(crate) fn paint_plot(
 /// The font of every text on a plot.
 const PLOT_FONT: &str = "12px system-ui, sans-serif";
 
-thread_local! {
-    /// Widths of texts already measured in [`PLOT_FONT`], CSS px: tick
-    /// labels and titles repeat from paint to paint, and `measureText` is a
-    /// call into the page's text shaper each time.
-    static TEXT_WIDTHS: std::cell::RefCell<std::collections::HashMap<String, f64>> =
-        std::cell::RefCell::new(std::collections::HashMap::new());
-}
-
-/// Most texts whose widths are kept (the cache starts over beyond this).
-const TEXT_WIDTHS_MAX: usize = 2048;
-
-/// The width of `t` in [`PLOT_FONT`] (the font `ctx` is set to), CSS px;
-/// measured once per text.
-fn text_width(ctx: &CanvasRenderingContext2d, t: &str) -> f64 {
-    if let Some(w) = TEXT_WIDTHS.with(|c| c.borrow().get(t).copied()) {
-        return w;
-    }
-    let w = ctx
-        .measure_text(t)
-        .map_or(7.0 * t.len() as f64, |m| m.width());
-    TEXT_WIDTHS.with(|c| {
-        let mut c = c.borrow_mut();
-        if c.len() >= TEXT_WIDTHS_MAX {
-            c.clear();
-        }
-        c.insert(t.to_owned(), w);
-    });
-    w
-}
-
 /// Width of the band at the left edge that holds the rotated y-axis title.
 const Y_TITLE_BAND: f64 = 20.0;
 /// Height of one tick label line, CSS pixels (12 px font).
@@ -929,7 +972,7 @@ pub(crate) fn paint_plot_layout(
         nice_ticks(y0, y1, max_y_ticks)
     };
     let y_labels = tick_labels(&y_ticks, log);
-    let measure = |t: &str| text_width(ctx, t);
+    let measure = |t: &str| crate::text::width(ctx, PLOT_FONT, t);
     let widest_y = y_labels.iter().map(|t| measure(t)).fold(0.0, f64::max);
     let ml = left_margin(widest_y);
     let rect = (ml, mt, (w - ml - mr).max(10.0), ph);
