@@ -632,6 +632,7 @@ impl SimView {
         st.sync_dom();
         let st = &mut *st;
         st.plots.draw(st.exp.plots(), &st.palette, true);
+        st.plots_force = false;
         st.sync_timebar();
     }
 }
