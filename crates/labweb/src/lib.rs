@@ -12,6 +12,7 @@ pub mod plot_view;
 pub mod quiz_view;
 pub mod report_view;
 pub mod sim;
+pub mod text;
 
 use std::cell::RefCell;
 use wasm_bindgen::prelude::*;

@@ -36,8 +36,6 @@ use panel::{readouts_html, tables_html};
 use status::{statusbar_html, NoticeShelf};
 use timebar::timebar_html;
 
-/// Shortest time between two redraws of the plots, milliseconds.
-const PLOT_INTERVAL_MS: f64 = 66.0;
 /// Minimum time between URL updates while a control moves, milliseconds.
 const HASH_INTERVAL_MS: f64 = 250.0;
 
@@ -167,7 +165,6 @@ struct SimState {
     clock: Clock,
     plots: PlotView,
     plots_force: bool,
-    last_plot_ms: f64,
     /// Running, speed, steps and whether the play button offers Replay, as shown.
     shown_time: (bool, f64, u64, bool),
     /// The run's phase at the last frame (the time bar offers Replay when ended).
@@ -179,6 +176,11 @@ struct SimState {
     /// What each control shows; `None` = unknown (refresh it), `Some(None)` = empty.
     shown_values: Vec<Option<Option<f64>>>,
     shown_readouts: Vec<String>,
+    /// The `<dd>` of each shown readout, found when the list is built.
+    readout_elements: Vec<Option<Element>>,
+    /// The time bar's `t = … s` output and its text.
+    time_output: Option<Element>,
+    shown_time_text: String,
     shown_status: Option<labcore::Status>,
     notices: NoticeShelf,
     /// Serial of the notice on screen.
@@ -204,6 +206,7 @@ struct FrameTimes {
     recent_ms: Vec<f64>,
     next: usize,
     max_ms: f64,
+    published_max_ms: f64,
     since_publish: usize,
 }
 
@@ -219,7 +222,10 @@ impl FrameTimes {
         self.next = (self.next + 1) % Self::WINDOW;
         self.max_ms = self.max_ms.max(ms);
         self.since_publish += 1;
-        if self.since_publish >= 15 || ms > 16.0 {
+        // Every 15 frames, and at once for a new worst frame (a slow frame
+        // alone would otherwise publish at every frame it happens).
+        if self.since_publish >= 15 || ms > self.published_max_ms {
+            self.published_max_ms = self.max_ms;
             self.since_publish = 0;
             let mut sorted = self.recent_ms.clone();
             sorted.sort_by(f64::total_cmp);
@@ -277,6 +283,13 @@ impl SimState {
             .last_time_ms
             .map_or(0.0, |last| (time_ms - last) / 1000.0);
         self.last_time_ms = Some(time_ms);
+        // Reads before writes: the plots' sizes are read while the page's
+        // layout is still clean; read after the readouts are written, each
+        // would make the browser lay the page out again mid-frame.
+        let plots_due = self.plots_force || self.plots.due(time_ms);
+        if plots_due {
+            self.plots.measure();
+        }
         let was_animating = self.exp.animating();
         // An idle experiment's clock does not tick (t counts motion only).
         let steps = if was_animating || !self.exp.animated() {
@@ -311,13 +324,14 @@ impl SimState {
             self.sync_dom();
             self.needs_paint = false;
         }
-        // Plots follow the data at most every PLOT_INTERVAL_MS: a curve
-        // needs no 60 Hz, and the frame keeps its budget for the simulation.
-        if self.plots_force || time_ms - self.last_plot_ms >= PLOT_INTERVAL_MS {
-            self.plots
-                .draw(self.exp.plots(), &self.palette, self.plots_force);
+        // Plots follow the data, each at most every PLOT_INTERVAL_MS and
+        // one a frame (they take turns), so no frame pays for all of them.
+        if self.plots_force {
+            self.plots.draw(self.exp.plots(), &self.palette, true);
             self.plots_force = false;
-            self.last_plot_ms = time_ms;
+        } else if plots_due {
+            self.plots
+                .draw_next(self.exp.plots(), &self.palette, time_ms);
         }
         self.sync_notice(time_ms);
         self.sync_timebar();
@@ -499,13 +513,15 @@ impl SimView {
             clock: Clock::default(),
             plots: PlotView::mount(panel),
             plots_force: true,
-            last_plot_ms: f64::NEG_INFINITY,
             shown_time: (true, 0.0, u64::MAX, false),
             phase: Phase::Live,
             ended_hold: false,
             needs_paint: true,
             shown_values: vec![None; n_params],
             shown_readouts: Vec::new(),
+            readout_elements: Vec::new(),
+            time_output: query(panel, ".timebar .tb-time"),
+            shown_time_text: String::new(),
             shown_status: None,
             notices: NoticeShelf::default(),
             shown_notice: None,
@@ -655,11 +671,13 @@ impl SimView {
     /// Paints once now (used by tests and right after mounting).
     pub fn paint_now(&self) {
         let mut st = self.state.borrow_mut();
+        st.plots.measure();
         st.resize();
         st.paint();
         st.sync_dom();
         let st = &mut *st;
         st.plots.draw(st.exp.plots(), &st.palette, true);
+        st.plots_force = false;
         st.sync_timebar();
     }
 }

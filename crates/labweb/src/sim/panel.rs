@@ -430,10 +430,20 @@ impl SimState {
                 list.set_inner_html(&readouts_html(&readouts));
             }
             self.shown_readouts = vec![String::new(); readouts.len()];
+            self.readout_elements = readouts
+                .iter()
+                .map(|r| query(&self.panel, &format!("[data-readout=\"{}\"]", r.key)))
+                .collect();
         }
-        for (r, shown) in readouts.iter().zip(self.shown_readouts.iter_mut()) {
+        // Only a value whose text changed is written: a write makes the
+        // browser lay the page out again.
+        for ((r, shown), dd) in readouts
+            .iter()
+            .zip(self.shown_readouts.iter_mut())
+            .zip(&self.readout_elements)
+        {
             if *shown != r.value {
-                if let Some(dd) = query(&self.panel, &format!("[data-readout=\"{}\"]", r.key)) {
+                if let Some(dd) = dd {
                     dd.set_text_content(Some(&r.value));
                 }
                 shown.clone_from(&r.value);
