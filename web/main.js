@@ -21,6 +21,18 @@ const moduleOf = (id) => MODULES.find((m) => m.ids.includes(id));
 const glues = new Map(); // group key -> Promise of its started glue module
 const articles = new Map(); // experiment id -> Promise of its article element
 let active = null; // the group whose module has the app mounted
+// Inside an LMS (a frame, or a window opened by the LMS) the SCORM bridge
+// must be there before a module starts; elsewhere it is never downloaded.
+const framed = (() => {
+  try {
+    return window.top !== window || Boolean(window.opener);
+  } catch {
+    return true;
+  }
+})();
+const lms = framed
+  ? import(`./scorm.js${new URL(import.meta.url).search}`).catch(() => null)
+  : Promise.resolve(null);
 let switching = Promise.resolve();
 
 const fatal = (message) => {
@@ -72,6 +84,7 @@ async function startModule(mod) {
     bytes = new Uint8Array(await response.arrayBuffer());
   }
   progress(1);
+  await lms;
   const glue = await import(new URL(mod.js, import.meta.url).href);
   await glue.default({ module_or_path: bytes });
   return glue;
@@ -176,8 +189,20 @@ async function showPage() {
     if (!active && !/^#?\/?$/.test(location.hash) && MODULES.length) switchTo(MODULES[0]);
     return;
   }
-  // Within the running module's group, its own listener routes.
-  if (active === mod.key) return;
+  // Within the running module's group, its own listener routes; it waits
+  // for the article of an experiment not shown before, added here.
+  if (active === mod.key) {
+    const present = app.querySelector(pageSelector(route.id));
+    if (present) return;
+    try {
+      await ensurePage(route.id);
+    } catch (error) {
+      pageFailed(error);
+      return;
+    }
+    if (active === mod.key && hashRoute()?.id === route.id) (await glues.get(active))?.reroute();
+    return;
+  }
   let article;
   try {
     article = await ensurePage(route.id);
@@ -232,7 +257,8 @@ try {
 } catch {
   // Storage may be off (private mode): no notice then.
 }
-if ("serviceWorker" in navigator && window.isSecureContext && siteVersion) {
+// Not inside a frame: an LMS (SCORM package) serves the lab its own way.
+if ("serviceWorker" in navigator && window.isSecureContext && siteVersion && window.top === window) {
   const register = () =>
     navigator.serviceWorker.register(new URL("sw.js", import.meta.url), { scope: "./" }).catch(() => {});
   if (document.readyState === "complete") register();

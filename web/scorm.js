@@ -1,5 +1,6 @@
-// SCORM 1.2 run-time glue. Loaded on every page; outside an LMS it finds no
-// `API` object and does nothing at all.
+// SCORM 1.2 run-time glue. `main.js` loads it only inside a frame or a
+// window opened by another (how an LMS launches a SCO); even there, without
+// an `API` object it does nothing at all.
 //
 // Inside an LMS (the lab uploaded as dist-scorm.zip, see README "LMS (SCORM
 // 1.2)"), it finds the LMS's `API` object in a parent frame or the opener,

@@ -268,7 +268,7 @@ impl Plot {
             "{}: {} against {}.",
             self.title,
             self.y_label,
-            self.x_label.to_lowercase()
+            self.x_label.to_ascii_lowercase()
         )];
         for s in &self.series {
             let Some((lo, hi)) = fold_range(s.y.iter().copied()) else {
@@ -289,7 +289,7 @@ impl Plot {
             parts.push(format!(
                 "{} at {} = {}.",
                 m.label,
-                self.x_label.to_lowercase(),
+                self.x_label.to_ascii_lowercase(),
                 with_unit(m.x, self.x_unit)
             ));
         }

@@ -732,7 +732,7 @@ pub fn read_answer(text: &str, unit: &str) -> Result<Reading, ReadError> {
     let factor = if rest.is_empty() {
         1.0
     } else {
-        let given = rest.to_lowercase();
+        let given = rest.to_ascii_lowercase();
         let given = given.split_whitespace().collect::<Vec<_>>().join(" ");
         let mut aliases = unit_aliases(unit);
         if aliases.is_empty() && !unit.is_empty() {
@@ -740,7 +740,7 @@ pub fn read_answer(text: &str, unit: &str) -> Result<Reading, ReadError> {
         }
         let found = aliases
             .iter()
-            .find(|(name, _)| name.to_lowercase() == given)
+            .find(|(name, _)| name.to_ascii_lowercase() == given)
             .map(|(_, f)| *f);
         match found {
             Some(f) => f,

@@ -100,6 +100,13 @@ impl App {
                         mark_nav(Some(&id));
                         return;
                     };
+                    // The built site brings each article as a reading page of
+                    // its own: until `main.js` has added it (and calls
+                    // `reroute`), there is nothing to mount into.
+                    if hosts_reading_pages() && !has_article(&self.root, &id) {
+                        mark_nav(Some(&id));
+                        return;
+                    }
                     self.page = Some(Mounted::Experiment(ExperimentPage::mount(
                         &self.root, entry,
                     )));
@@ -286,6 +293,20 @@ struct ExperimentPage {
 
 fn random_seed() -> u64 {
     (js_sys::Math::random() * 1e9).floor() as u64
+}
+
+/// Whether `main.js` brings the reading pages (`<meta name="lab-page">` in
+/// the built site); test pages have none and get articles rendered here.
+fn hosts_reading_pages() -> bool {
+    dom::document()
+        .query_selector("meta[name=lab-page]")
+        .ok()
+        .flatten()
+        .is_some()
+}
+
+fn has_article(root: &Element, id: &str) -> bool {
+    query(root, &format!("article.exp[data-experiment=\"{id}\"]")).is_some()
 }
 
 /// The experiment's article: the pre-rendered one, or a new one.

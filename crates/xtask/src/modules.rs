@@ -23,7 +23,9 @@ const PROFILE: &str = "wasm-release";
 
 /// A built module before it is copied into dist/.
 pub struct Built {
-    pub group: Group,
+    /// The module's name: its group's key (or, with
+    /// `XTASK_MODULES=per-experiment`, for measurements, the experiment's id).
+    pub key: &'static str,
     /// Experiment ids it holds, in the lab's order.
     pub ids: Vec<&'static str>,
     /// The wasm-bindgen glue (`<group>.js`) and the optimised module
@@ -68,14 +70,22 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
     let out_root = target.join("xtask").join("modules");
     remove_dir(&out_root)?;
     let mut built = Vec::new();
-    for group in Group::ALL {
-        let ids = group_ids(group);
+    let per_experiment = std::env::var("XTASK_MODULES").as_deref() == Ok("per-experiment");
+    let parts: Vec<(Group, Vec<&'static str>)> = if per_experiment {
+        Group::ALL
+            .iter()
+            .flat_map(|g| group_ids(*g).into_iter().map(move |id| (*g, vec![id])))
+            .collect()
+    } else {
+        Group::ALL.iter().map(|g| (*g, group_ids(*g))).collect()
+    };
+    for (group, ids) in parts {
         if ids.is_empty() {
             continue;
         }
+        let key: &'static str = if per_experiment { ids[0] } else { group.key() };
         step(&format!(
-            "cargo build (wasm, release) — module '{}': {}",
-            group.key(),
+            "cargo build (wasm, release) — module '{key}': {}",
             ids.join(", ")
         ));
         let t = Instant::now();
@@ -92,27 +102,23 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
             &features(&ids),
         ]))?;
         let input = target.join(WASM_TARGET).join(PROFILE).join("labweb.wasm");
-        let glue_dir = out_root.join(group.key());
+        let glue_dir = out_root.join(key);
         wasm_bindgen_cli_support::Bindgen::new()
             .input_path(&input)
             .web(true)
             .map_err(|e| format!("wasm-bindgen: {e:#}"))?
-            .out_name(group.key())
+            .out_name(key)
             .typescript(false)
             // The library defaults this to `true` (the CLI to `false`): without the
             // default URL, `init()` has nothing to fetch (TOOLCHAIN.md, trap 2).
             .omit_default_module_path(false)
             .generate(&glue_dir)
             .map_err(|e| format!("wasm-bindgen on {}: {e:#}", input.display()))?;
-        optimise(root, &glue_dir.join(format!("{}_bg.wasm", group.key())))?;
-        crate::minify::minify_in_place(root, &glue_dir.join(format!("{}.js", group.key())))?;
-        println!(
-            "module '{}' built in {:.1} s",
-            group.key(),
-            t.elapsed().as_secs_f64()
-        );
+        optimise(root, &glue_dir.join(format!("{key}_bg.wasm")))?;
+        crate::minify::minify_in_place(root, &glue_dir.join(format!("{key}.js")))?;
+        println!("module '{key}' built in {:.1} s", t.elapsed().as_secs_f64());
         built.push(Built {
-            group,
+            key,
             ids,
             glue_dir,
         });
@@ -148,7 +154,7 @@ pub fn ship_modules(built: &[Built], pkg: &Path) -> Result<Vec<Shipped>, String>
     fs::create_dir_all(pkg).map_err(|e| format!("cannot create {}: {e}", pkg.display()))?;
     let mut shipped = Vec::new();
     for b in built {
-        let key = b.group.key();
+        let key = b.key;
         let read = |name: String| {
             let p = b.glue_dir.join(name);
             fs::read(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))

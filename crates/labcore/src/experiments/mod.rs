@@ -17,11 +17,30 @@ pub mod potential;
 pub mod rrtstar;
 pub mod workspace;
 
+/// The content file compiled into this build: the whole of
+/// `assets/<id>.json` with the `reading` feature (native builds, tests, the
+/// build tool); without it (the shipped wasm modules, whose reading tabs are
+/// pages of their own) only the part the quiz and the page title need, which
+/// `build.rs` writes.
+#[cfg(feature = "reading")]
+macro_rules! content_file {
+    ($id:literal) => {
+        include_str!(concat!("../../../../assets/", $id, ".json"))
+    };
+}
+#[cfg(not(feature = "reading"))]
+macro_rules! content_file {
+    ($id:literal) => {
+        include_str!(concat!(env!("OUT_DIR"), "/", $id, ".quiz.json"))
+    };
+}
+
 /// One experiment of the lab: how to build it, its content and its quiz generators.
 pub struct Entry {
     /// Same as [`Experiment::id`] and the content file's `id`.
     pub id: &'static str,
-    /// The content file (`assets/<id>.json`), compiled in.
+    /// The content file (`assets/<id>.json`), compiled in (without the
+    /// `reading` feature, its quiz part only: see `content_file!`).
     pub content_json: &'static str,
     /// A fresh experiment at default parameters.
     pub make: fn() -> Box<dyn Experiment>,
@@ -49,7 +68,13 @@ impl Entry {
     /// [`Entry::parse_content`] for another text in place of the compiled-in
     /// file (the build tool checks edited files with it; tests feed it broken ones).
     pub fn parse_content_text(&self, json: &str) -> Result<Content, ContentError> {
+        #[cfg(feature = "reading")]
         let content = Content::parse(json)?;
+        // The quiz part of a file the build tool validated whole.
+        #[cfg(not(feature = "reading"))]
+        let content = crate::json::Json::parse(json)
+            .and_then(|v| Content::from_json(&v))
+            .map_err(ContentError::Parse)?;
         if content.id != self.id {
             return Err(ContentError::WrongId {
                 expected: self.id.into(),
@@ -81,7 +106,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "fk")]
     Entry {
         id: "fk",
-        content_json: include_str!("../../../../assets/fk.json"),
+        content_json: content_file!("fk"),
         make: || Box::new(fk::ForwardKinematics::default()),
         generators: fk::quiz_generator,
         parsed: OnceLock::new(),
@@ -89,7 +114,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "ik")]
     Entry {
         id: "ik",
-        content_json: include_str!("../../../../assets/ik.json"),
+        content_json: content_file!("ik"),
         make: || Box::new(ik::InverseKinematics::default()),
         generators: ik::quiz_generator,
         parsed: OnceLock::new(),
@@ -97,7 +122,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "workspace")]
     Entry {
         id: "workspace",
-        content_json: include_str!("../../../../assets/workspace.json"),
+        content_json: content_file!("workspace"),
         make: || Box::new(workspace::Workspace::default()),
         generators: workspace::quiz_generator,
         parsed: OnceLock::new(),
@@ -105,7 +130,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "diffdrive")]
     Entry {
         id: "diffdrive",
-        content_json: include_str!("../../../../assets/diffdrive.json"),
+        content_json: content_file!("diffdrive"),
         make: || Box::new(diffdrive::DiffDrive::default()),
         generators: diffdrive::quiz_generator,
         parsed: OnceLock::new(),
@@ -113,7 +138,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "potential")]
     Entry {
         id: "potential",
-        content_json: include_str!("../../../../assets/potential.json"),
+        content_json: content_file!("potential"),
         make: || Box::new(potential::PotentialFieldLab::default()),
         generators: potential::quiz_generator,
         parsed: OnceLock::new(),
@@ -121,7 +146,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "astar")]
     Entry {
         id: "astar",
-        content_json: include_str!("../../../../assets/astar.json"),
+        content_json: content_file!("astar"),
         make: || Box::new(astar::AStarGrid::default()),
         generators: astar::quiz_generator,
         parsed: OnceLock::new(),
@@ -129,7 +154,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "pid")]
     Entry {
         id: "pid",
-        content_json: include_str!("../../../../assets/pid.json"),
+        content_json: content_file!("pid"),
         make: || Box::new(pid::PidControl::default()),
         generators: pid::quiz_generator,
         parsed: OnceLock::new(),
@@ -137,7 +162,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "cartpole")]
     Entry {
         id: "cartpole",
-        content_json: include_str!("../../../../assets/cartpole.json"),
+        content_json: content_file!("cartpole"),
         make: || Box::new(cartpole::CartPoleBalance::default()),
         generators: cartpole::quiz_generator,
         parsed: OnceLock::new(),
@@ -145,7 +170,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "dls")]
     Entry {
         id: "dls",
-        content_json: include_str!("../../../../assets/dls.json"),
+        content_json: content_file!("dls"),
         make: || Box::new(dls::DampedLeastSquares::default()),
         generators: dls::quiz_generator,
         parsed: OnceLock::new(),
@@ -153,7 +178,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "rrtstar")]
     Entry {
         id: "rrtstar",
-        content_json: include_str!("../../../../assets/rrtstar.json"),
+        content_json: content_file!("rrtstar"),
         make: || Box::new(rrtstar::RrtStarField::default()),
         generators: rrtstar::quiz_generator,
         parsed: OnceLock::new(),
@@ -161,7 +186,7 @@ static REGISTRY: [Entry; BUILT] = [
     #[cfg(feature = "ekf")]
     Entry {
         id: "ekf",
-        content_json: include_str!("../../../../assets/ekf.json"),
+        content_json: content_file!("ekf"),
         make: || Box::new(ekf::EkfExperiment::default()),
         generators: ekf::quiz_generator,
         parsed: OnceLock::new(),

@@ -228,7 +228,7 @@ impl FrameTimes {
             self.published_max_ms = self.max_ms;
             self.since_publish = 0;
             let mut sorted = self.recent_ms.clone();
-            sorted.sort_by(f64::total_cmp);
+            sorted.sort_unstable_by(f64::total_cmp);
             let p95 = sorted[(sorted.len() * 95 / 100).min(sorted.len() - 1)];
             let _ = canvas.set_attribute("data-frame-p95-ms", &format!("{p95:.2}"));
             let _ = canvas.set_attribute("data-frame-max-ms", &format!("{:.2}", self.max_ms));

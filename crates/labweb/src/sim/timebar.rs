@@ -167,7 +167,7 @@ impl SimState {
                     let (label, icon, pressed) = play_button(now.0, now.3);
                     let _ =
                         play.set_attribute("aria-pressed", if pressed { "true" } else { "false" });
-                    let _ = play.set_attribute("data-offer", &label.to_lowercase());
+                    let _ = play.set_attribute("data-offer", &label.to_ascii_lowercase());
                     if let Some(el) = query(&play, ".tb-icon") {
                         el.set_inner_html(icon);
                     }
