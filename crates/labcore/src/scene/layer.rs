@@ -36,8 +36,10 @@ use std::sync::Arc;
 /// One segment of a layer, world coordinates.
 pub type Segment = (DVec2, DVec2);
 
-/// Journals longer than this many entries (or than the layer, whichever is
-/// more) drop their oldest half; a painter that fell that far behind redraws.
+/// A journal keeps at least this many of its latest rewrites, or half the
+/// layer's length if more (a painter further behind than half the layer
+/// redraws in full anyway, see [`SegmentLayer::plan`]); it drops its oldest
+/// entries when it holds twice that.
 const JOURNAL_MIN_KEPT: usize = 4096;
 
 static NEXT_LAYER_ID: AtomicU64 = AtomicU64::new(1);
@@ -262,7 +264,7 @@ impl SegmentLayer {
             old,
             new: segment,
         });
-        let keep = JOURNAL_MIN_KEPT.max(data.segments.len());
+        let keep = JOURNAL_MIN_KEPT.max(data.segments.len() / 2);
         if data.journal.len() > 2 * keep {
             let drop = data.journal.len() - keep;
             data.journal.drain(..drop);
@@ -545,6 +547,10 @@ mod tests {
             layer.set(i % 100, (DVec2::ZERO, DVec2::splat(x)));
         }
         assert!(layer.plan(Some(&mark)).is_full());
+        // The journal was trimmed, not kept whole.
+        assert!(layer.data.journal.len() <= 2 * JOURNAL_MIN_KEPT);
+        assert!(layer.data.journal_start > 0);
+        assert!(mark.journal_end < layer.data.journal_start);
         let mut painter = Painter::default();
         painter.paint(&layer);
         layer.set(3, (DVec2::ONE, DVec2::ONE));
