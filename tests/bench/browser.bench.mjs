@@ -72,10 +72,13 @@ test("big scene and plot paint", () =>
       Array.from(window.labweb.bench_big_scene_frames(15, 1, 0)),
       Array.from(window.labweb.bench_big_scene_frames(120, 2, 100)),
     ]);
+    const rewired = Array.from(await page.evaluate(() => window.labweb.bench_big_scene_frames(120, 3, 100)));
     const mean = (xs) => xs.reduce((a, b) => a + b, 0) / xs.length;
     const parts = await page.evaluate(() => [window.labweb.bench_big_scene_part(20, 0), window.labweb.bench_big_scene_part(20, 1)]);
     report("big scene, kept layers, steady (+100 edges/frame): p95", p95(steady), 4, "ms",
       `mean ${mean(steady).toFixed(2)} ms; full redraw p95 ${p95(full).toFixed(2)} ms in this run`);
+    report("big scene, kept, +100 edges & 100 rewires/frame: p95", p95(rewired), 4, "ms",
+      `mean ${mean(rewired).toFixed(2)} ms`);
     report("big scene, kept layers, first frame: p95", p95(first), 16, "ms", `mean ${mean(first).toFixed(2)} ms`);
     report("big scene redrawn from scratch (old way): p95", p95(full), 16, "ms",
       `mean ${mean(full).toFixed(2)} ms: raster ${parts[0].toFixed(2)} ms, segments ${parts[1].toFixed(2)} ms; JS baseline ${base.toFixed(1)} ms`);

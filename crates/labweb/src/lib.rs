@@ -210,7 +210,9 @@ const BIG_RASTER_ID: u64 = 0xb16;
 /// - `mode` 1: first frames of the kept layers (a new tree layer and a new
 ///   raster version every frame: a full redraw and an upload);
 /// - `mode` 2: steady state of the kept layers: the tree gains
-///   `edges_per_frame` edges a frame, the grid does not change.
+///   `edges_per_frame` edges a frame, the grid does not change;
+/// - `mode` 3: like 2, and as many drawn edges a frame are rewired (moved to
+///   another node, seeded), as an RRT* rewire does.
 #[wasm_bindgen]
 pub fn bench_big_scene_frames(frames: u32, mode: u32, edges_per_frame: u32) -> Vec<f64> {
     let (w, h) = (800.0, 600.0);
@@ -233,7 +235,8 @@ pub fn bench_big_scene_frames(frames: u32, mode: u32, edges_per_frame: u32) -> V
         let _ = ctx.get_image_data(0.0, 0.0, 1.0, 1.0);
         dom::now_ms() - start
     };
-    if mode == 2 {
+    let mut rewire_rng = labcore::Lcg64::new(7);
+    if mode >= 2 {
         // The first frame draws everything; the measured ones follow it.
         frame(&big_scene_kept(&parts, &layer, 1));
     }
@@ -247,6 +250,13 @@ pub fn bench_big_scene_frames(frames: u32, mode: u32, edges_per_frame: u32) -> V
             _ => {
                 for s in parts.tree.grow(edges_per_frame as usize) {
                     layer.push(*s);
+                }
+                for _ in 0..if mode == 3 { edges_per_frame } else { 0 } {
+                    let n = layer.len() as f64;
+                    let slot = (rewire_rng.next_f64() * n) as usize;
+                    let from = layer.segments()[(rewire_rng.next_f64() * n) as usize].1;
+                    let to = layer.segments()[slot].1;
+                    layer.set(slot, (from, to));
                 }
                 Some(big_scene_kept(&parts, &layer, 1))
             }
