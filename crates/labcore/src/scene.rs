@@ -5,6 +5,9 @@
 
 use glam::DVec2;
 
+mod layer;
+pub use layer::{raster_version, LayerMark, LayerOp, LayerPlan, Rewrite, Segment, SegmentLayer};
+
 /// The world rectangle shown on the canvas (y points up).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ViewBox {
@@ -185,6 +188,29 @@ pub enum Item {
         cells: Vec<u8>,
         palette: Vec<RasterColour>,
     },
+    /// A batch of segments the experiment keeps across frames (a growing
+    /// tree): drawn like [`Item::Segments`], but the page keeps the picture
+    /// and draws only what changed since its last frame (see [`SegmentLayer`]).
+    SegmentLayer {
+        layer: SegmentLayer,
+        width_px: f64,
+        role: Role,
+    },
+    /// An [`Item::Raster`] the page keeps between frames: `id` names it among
+    /// the page's kept rasters (an experiment uses a constant) and `version`
+    /// changes whenever `cells` change (for example [`raster_version`] of the
+    /// cells); the page rebuilds and uploads the image only when the version,
+    /// the size or the colours change.
+    VersionedRaster {
+        id: u64,
+        version: u64,
+        min: DVec2,
+        cell_m: f64,
+        cols: usize,
+        rows: usize,
+        cells: Vec<u8>,
+        palette: Vec<RasterColour>,
+    },
 }
 
 /// The colour of one raster state: a role and an opacity in `[0, 1]`.
@@ -307,7 +333,18 @@ impl Scene {
             | Item::Segments {
                 segments: pairs, ..
             } => pairs.iter().all(|(a, b)| ok(a) && ok(b)),
+            Item::SegmentLayer { layer, .. } => {
+                layer.segments().iter().all(|(a, b)| ok(a) && ok(b))
+            }
             Item::Raster {
+                min,
+                cell_m,
+                cols,
+                rows,
+                cells,
+                ..
+            }
+            | Item::VersionedRaster {
                 min,
                 cell_m,
                 cols,

@@ -388,19 +388,51 @@ pub fn paint(
                 segments,
                 width_px,
                 role,
-            } => {
-                // One path, one stroke.
-                ctx.begin_path();
-                for (a, b) in segments {
-                    let (a, b) = (viewport.to_px(*a), viewport.to_px(*b));
-                    ctx.move_to(a.x, a.y);
-                    ctx.line_to(b.x, b.y);
-                }
-                ctx.set_stroke_style_str(palette.colour(*role));
-                ctx.set_line_width(*width_px);
-                set_dash(ctx, false);
-                ctx.stroke();
-            }
+            } => stroke_segments(ctx, viewport, palette.colour(*role), segments, *width_px),
+            Item::SegmentLayer {
+                layer,
+                width_px,
+                role,
+            } if layer.len() >= RASTER_SEGMENTS_MIN => crate::layers::paint_segment_layer(
+                ctx,
+                viewport,
+                palette.colour(*role),
+                layer,
+                *width_px,
+                (width_px_canvas, height_px),
+                dpr,
+            ),
+            Item::SegmentLayer {
+                layer,
+                width_px,
+                role,
+            } => stroke_segments(
+                ctx,
+                viewport,
+                palette.colour(*role),
+                layer.segments(),
+                *width_px,
+            ),
+            Item::VersionedRaster {
+                id,
+                version,
+                min,
+                cell_m,
+                cols,
+                rows,
+                cells,
+                palette: states,
+            } => crate::layers::paint_versioned_raster(
+                ctx,
+                viewport,
+                palette,
+                (*id, *version),
+                *min,
+                *cell_m,
+                (*cols, *rows),
+                cells,
+                states,
+            ),
             Item::ScaleBar => {
                 paint_scale_bar(ctx, viewport, palette, height_px);
                 label_font = false;
@@ -437,6 +469,26 @@ pub fn paint(
         }
     }
     ctx.set_global_alpha(1.0);
+}
+
+/// A small batch of segments as one anti-aliased path, one stroke.
+fn stroke_segments(
+    ctx: &CanvasRenderingContext2d,
+    viewport: &Viewport,
+    colour: &str,
+    segments: &[(DVec2, DVec2)],
+    width_px: f64,
+) {
+    ctx.begin_path();
+    for (a, b) in segments {
+        let (a, b) = (viewport.to_px(*a), viewport.to_px(*b));
+        ctx.move_to(a.x, a.y);
+        ctx.line_to(b.x, b.y);
+    }
+    ctx.set_stroke_style_str(colour);
+    ctx.set_line_width(width_px);
+    set_dash(ctx, false);
+    ctx.stroke();
 }
 
 /// Longest a scale bar may be, CSS pixels.
@@ -626,7 +678,7 @@ fn trace_arrow(ctx: &CanvasRenderingContext2d, a: DVec2, b: DVec2, width_px: f64
 /// (a call per vertex across the wasm boundary costs more than the drawing:
 /// 100,000 edges took about 24 ms stroked as a path in software-rendered
 /// Chromium); smaller batches are stroked as an anti-aliased path.
-const RASTER_SEGMENTS_MIN: usize = 4000;
+pub(crate) const RASTER_SEGMENTS_MIN: usize = 4000;
 
 thread_local! {
     /// The RGBA buffer big segment batches are drawn into, reused across frames.
@@ -715,7 +767,7 @@ fn paint_points_raster(
 }
 
 /// Liang–Barsky clipping of segment `a`–`b` to `[0, max_x] × [0, max_y]`.
-fn clip_segment(a: DVec2, b: DVec2, max_x: f64, max_y: f64) -> Option<(DVec2, DVec2)> {
+pub(crate) fn clip_segment(a: DVec2, b: DVec2, max_x: f64, max_y: f64) -> Option<(DVec2, DVec2)> {
     if !(a.is_finite() && b.is_finite()) {
         return None;
     }
@@ -747,7 +799,7 @@ fn clip_segment(a: DVec2, b: DVec2, max_x: f64, max_y: f64) -> Option<(DVec2, DV
 }
 
 /// Integer Bresenham line from `a` to `b` (both already clipped).
-fn bresenham(a: DVec2, b: DVec2, mut plot: impl FnMut(i64, i64)) {
+pub(crate) fn bresenham(a: DVec2, b: DVec2, mut plot: impl FnMut(i64, i64)) {
     let (mut x, mut y) = (a.x.round() as i64, a.y.round() as i64);
     let (x1, y1) = (b.x.round() as i64, b.y.round() as i64);
     let (dx, dy) = ((x1 - x).abs(), -(y1 - y).abs());
@@ -785,27 +837,14 @@ fn paint_raster(
     if cols == 0 || rows == 0 || cells.len() < cols * rows {
         return;
     }
-    let lut: Vec<[u8; 4]> = states
-        .iter()
-        .map(|s| {
-            let [r, g, b] = hex_rgb(palette.colour(s.role));
-            [r, g, b, (s.alpha.clamp(0.0, 1.0) * 255.0) as u8]
-        })
-        .collect();
-    let mut rgba = vec![0u8; cols * rows * 4];
-    for row in 0..rows {
-        let out_row = (rows - 1 - row) * cols * 4;
-        for (col, &state) in cells[row * cols..(row + 1) * cols].iter().enumerate() {
-            if let Some(c) = (state as usize).checked_sub(1).and_then(|i| lut.get(i)) {
-                rgba[out_row + col * 4..out_row + col * 4 + 4].copy_from_slice(c);
-            }
-        }
-    }
+    let lut = crate::layers::raster_lut(palette, states);
+    let mut rgba = Vec::new();
+    crate::layers::raster_rgba(cells, (cols, rows), &lut, &mut rgba);
     blit(ctx, viewport, &rgba, min, cell_m, cols, rows);
 }
 
 /// `#rrggbb` → RGB; anything else gives a mid grey.
-fn hex_rgb(colour: &str) -> [u8; 3] {
+pub(crate) fn hex_rgb(colour: &str) -> [u8; 3] {
     let hex = colour.trim().trim_start_matches('#');
     let channel = |i: usize| {
         hex.get(i..i + 2)

@@ -7,6 +7,7 @@
 pub mod app;
 pub mod dom;
 pub mod draw;
+pub mod layers;
 pub mod lms;
 pub mod plot_view;
 pub mod quiz_view;
@@ -78,31 +79,54 @@ pub fn reroute() {
     });
 }
 
-/// The display list of the platform's big-scene budget: a 512×512 grid of
-/// cell states (one raster image) and a tree of 100,000 edges (one batch of
-/// segments), seeded so every run draws the same picture.
+/// The platform's big-scene budget: a 512×512 grid of cell states, its
+/// three state colours, and a tree of 100,000 edges, seeded so every run
+/// draws the same picture. [`BigTree::grow`] adds more edges the same way.
+pub struct BigScene {
+    pub cells: Vec<u8>,
+    pub palette: Vec<labcore::RasterColour>,
+    pub tree: BigTree,
+}
+
+/// A random tree in the 100 m square: each edge joins a random earlier node
+/// to a new node at most 2 m away in x and y.
+pub struct BigTree {
+    rng: labcore::Lcg64,
+    nodes: Vec<labcore::glam::DVec2>,
+    pub segments: Vec<(labcore::glam::DVec2, labcore::glam::DVec2)>,
+}
+
+impl BigTree {
+    /// Adds `n` edges and returns them.
+    pub fn grow(&mut self, n: usize) -> &[(labcore::glam::DVec2, labcore::glam::DVec2)] {
+        use labcore::glam::DVec2;
+        let first = self.segments.len();
+        for _ in 0..n {
+            let parent = self.nodes[(self.rng.next_f64() * self.nodes.len() as f64) as usize];
+            let child = parent + DVec2::new(self.rng.range(-2.0, 2.0), self.rng.range(-2.0, 2.0));
+            let child = child.clamp(DVec2::ZERO, DVec2::splat(100.0));
+            self.segments.push((parent, child));
+            self.nodes.push(child);
+        }
+        &self.segments[first..]
+    }
+}
+
+/// The big scene's content (see [`BigScene`]).
 #[must_use]
-pub fn big_scene() -> labcore::Scene {
+pub fn big_scene_parts() -> BigScene {
     use labcore::glam::DVec2;
-    use labcore::{Item, RasterColour, Role};
+    use labcore::{RasterColour, Role};
     let mut rng = labcore::Lcg64::new(42);
     let n = 512;
     let cells: Vec<u8> = (0..n * n).map(|_| (rng.next_f64() * 4.0) as u8).collect();
-    let mut nodes = vec![DVec2::splat(50.0)];
-    let mut segments = Vec::with_capacity(100_000);
-    for _ in 0..100_000 {
-        let parent = nodes[(rng.next_f64() * nodes.len() as f64) as usize];
-        let child = parent + DVec2::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
-        let child = child.clamp(DVec2::ZERO, DVec2::splat(100.0));
-        segments.push((parent, child));
-        nodes.push(child);
-    }
-    let mut scene = labcore::Scene::default();
-    scene.push(Item::Raster {
-        min: DVec2::ZERO,
-        cell_m: 100.0 / n as f64,
-        cols: n,
-        rows: n,
+    let mut tree = BigTree {
+        rng,
+        nodes: vec![DVec2::splat(50.0)],
+        segments: Vec::with_capacity(100_000),
+    };
+    tree.grow(100_000);
+    BigScene {
         cells,
         palette: vec![
             RasterColour {
@@ -118,13 +142,131 @@ pub fn big_scene() -> labcore::Scene {
                 alpha: 0.6,
             },
         ],
-    });
-    scene.push(Item::Segments {
-        segments,
+        tree,
+    }
+}
+
+/// The big scene as plain items, drawn from scratch every frame: one
+/// [`labcore::Item::Raster`] and one [`labcore::Item::Segments`].
+#[must_use]
+pub fn big_scene() -> labcore::Scene {
+    let parts = big_scene_parts();
+    let mut scene = labcore::Scene::default();
+    scene.push(raster_item(&parts, None));
+    scene.push(labcore::Item::Segments {
+        segments: parts.tree.segments,
         width_px: 0.6,
-        role: Role::Path,
+        role: labcore::Role::Path,
     });
     scene
+}
+
+/// The big scene's grid as a plain raster, or a versioned one (`Some((id, version))`).
+fn raster_item(parts: &BigScene, versioned: Option<(u64, u64)>) -> labcore::Item {
+    use labcore::glam::DVec2;
+    let n = 512;
+    match versioned {
+        None => labcore::Item::Raster {
+            min: DVec2::ZERO,
+            cell_m: 100.0 / n as f64,
+            cols: n,
+            rows: n,
+            cells: parts.cells.clone(),
+            palette: parts.palette.clone(),
+        },
+        Some((id, version)) => labcore::Item::VersionedRaster {
+            id,
+            version,
+            min: DVec2::ZERO,
+            cell_m: 100.0 / n as f64,
+            cols: n,
+            rows: n,
+            cells: parts.cells.clone(),
+            palette: parts.palette.clone(),
+        },
+    }
+}
+
+/// The big scene with kept layers: a versioned raster and a segment layer.
+#[must_use]
+pub fn big_scene_kept(
+    parts: &BigScene,
+    layer: &labcore::scene::SegmentLayer,
+    raster_version: u64,
+) -> labcore::Scene {
+    let mut scene = labcore::Scene::default();
+    scene.push(raster_item(parts, Some((BIG_RASTER_ID, raster_version))));
+    scene.push(labcore::Item::SegmentLayer {
+        layer: layer.clone(),
+        width_px: 0.6,
+        role: labcore::Role::Path,
+    });
+    scene
+}
+
+/// The big scene's raster among the kept rasters.
+const BIG_RASTER_ID: u64 = 0xb16;
+
+/// Per-frame milliseconds of the big scene on an 800×600 canvas, `frames`
+/// frames, each ended by a one-pixel read so the drawing has finished:
+/// - `mode` 0: the plain items drawn from scratch every frame (the old way);
+/// - `mode` 1: first frames of the kept layers (a new tree layer and a new
+///   raster version every frame: a full redraw and an upload);
+/// - `mode` 2: steady state of the kept layers: the tree gains
+///   `edges_per_frame` edges a frame, the grid does not change;
+/// - `mode` 3: like 2, and as many drawn edges a frame are rewired (moved to
+///   another node, seeded), as an RRT* rewire does.
+#[wasm_bindgen]
+pub fn bench_big_scene_frames(frames: u32, mode: u32, edges_per_frame: u32) -> Vec<f64> {
+    let (w, h) = (800.0, 600.0);
+    let Some((canvas, ctx)) = scratch_canvas(w as u32, h as u32) else {
+        return Vec::new();
+    };
+    let palette = draw::Palette::from_css(&canvas);
+    let view = labcore::ViewBox {
+        min: labcore::glam::DVec2::ZERO,
+        max: labcore::glam::DVec2::splat(100.0),
+    };
+    let viewport = draw::Viewport::fit(view, w, h);
+    let mut parts = big_scene_parts();
+    let mut layer = labcore::scene::SegmentLayer::from_segments(parts.tree.segments.clone());
+    let plain = big_scene();
+    let mut times = Vec::with_capacity(frames as usize);
+    let frame = |scene: &labcore::Scene| {
+        let start = dom::now_ms();
+        draw::paint(&ctx, scene, &viewport, w, h, 1.0, &palette);
+        let _ = ctx.get_image_data(0.0, 0.0, 1.0, 1.0);
+        dom::now_ms() - start
+    };
+    let mut rewire_rng = labcore::Lcg64::new(7);
+    if mode >= 2 {
+        // The first frame draws everything; the measured ones follow it.
+        frame(&big_scene_kept(&parts, &layer, 1));
+    }
+    for i in 0..frames {
+        let scene = match mode {
+            0 => None,
+            1 => {
+                layer = labcore::scene::SegmentLayer::from_segments(parts.tree.segments.clone());
+                Some(big_scene_kept(&parts, &layer, 1000 + u64::from(i)))
+            }
+            _ => {
+                for s in parts.tree.grow(edges_per_frame as usize) {
+                    layer.push(*s);
+                }
+                for _ in 0..if mode == 3 { edges_per_frame } else { 0 } {
+                    let n = layer.len() as f64;
+                    let slot = (rewire_rng.next_f64() * n) as usize;
+                    let from = layer.segments()[(rewire_rng.next_f64() * n) as usize].1;
+                    let to = layer.segments()[slot].1;
+                    layer.set(slot, (from, to));
+                }
+                Some(big_scene_kept(&parts, &layer, 1))
+            }
+        };
+        times.push(frame(scene.as_ref().unwrap_or(&plain)));
+    }
+    times
 }
 
 /// Paints [`big_scene`] `frames` times on an 800×600 canvas and returns the

@@ -106,6 +106,23 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
          class=\"thumb\" stroke-linecap=\"round\" stroke-linejoin=\"round\">"
     );
     for item in &scene.items {
+        // A kept layer of segments is drawn like a plain batch.
+        let layer_as_batch;
+        let item = match item {
+            Item::SegmentLayer {
+                layer,
+                width_px,
+                role,
+            } => {
+                layer_as_batch = Item::Segments {
+                    segments: layer.segments().to_vec(),
+                    width_px: *width_px,
+                    role: *role,
+                };
+                &layer_as_batch
+            }
+            other => other,
+        };
         let _ = match item {
             Item::Line {
                 from,
@@ -266,6 +283,8 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
             // Cell images and text are left to the live canvas.
             Item::Heatmap { .. }
             | Item::Raster { .. }
+            | Item::VersionedRaster { .. }
+            | Item::SegmentLayer { .. }
             | Item::Label { .. }
             | Item::ScaleBar
             | Item::OffView { .. } => Ok(()),

@@ -394,6 +394,9 @@ impl SimState {
             self.dpr,
             &self.palette,
         );
+        // Let go of the display list now: a kept layer it shares with the
+        // model (copy-on-write) would otherwise be copied by the next step.
+        self.scene.clear();
     }
 
     fn write_hash(&mut self) {

@@ -501,7 +501,7 @@ fn a_512_grid_is_one_raster_while_it_is_searched() {
     let rasters = scene
         .items
         .iter()
-        .filter(|i| matches!(i, Item::Raster { .. }))
+        .filter(|i| matches!(i, Item::VersionedRaster { .. }))
         .count();
     assert_eq!(rasters, 1, "the grid is one raster");
     eprintln!(
@@ -1390,4 +1390,51 @@ fn issue15_content_heuristics_quiz_wording_and_option_lengths() {
         .unwrap()
         .length_tells();
     assert!(4 * tells.longest <= tells.choices, "{tells:?}");
+}
+
+/// The grid's raster version, from `a`'s scene.
+fn raster_version_of(a: &AStarGrid) -> u64 {
+    let mut scene = Scene::default();
+    a.scene(&mut scene);
+    scene
+        .items
+        .iter()
+        .find_map(|i| match i {
+            Item::VersionedRaster { version, cells, .. } => {
+                assert_eq!(*version, crate::scene::raster_version(cells));
+                Some(*version)
+            }
+            _ => None,
+        })
+        .expect("the grid is a versioned raster")
+}
+
+/// Issue 16: the page uploads the grid only when its version changes; the
+/// version changes while the search expands cells and stays put once it has
+/// finished (frames of a finished search upload nothing).
+#[test]
+fn the_grid_version_changes_while_searching_and_not_once_done() {
+    let mut a = AStarGrid::default();
+    let idle = raster_version_of(&a);
+    assert_eq!(raster_version_of(&a), idle, "same state, same version");
+    a.action("plan").unwrap();
+    let mut changes = 0;
+    let mut last = raster_version_of(&a);
+    let mut frames = 0;
+    while a.animating() && frames < 100_000 {
+        a.step(1.0 / 60.0);
+        frames += 1;
+        let v = raster_version_of(&a);
+        changes += usize::from(v != last);
+        last = v;
+    }
+    assert!(changes > 3, "{changes} versions over {frames} frames");
+    for _ in 0..20 {
+        a.step(1.0 / 60.0);
+        assert_eq!(
+            raster_version_of(&a),
+            last,
+            "a finished search uploads nothing"
+        );
+    }
 }

@@ -82,10 +82,17 @@ pub(super) fn tables(a: &AStarGrid) -> Vec<Table> {
     tables
 }
 
+/// The name of A*'s grid among the rasters the page keeps ("astar").
+const RASTER_ID: u64 = 0x61_73_74_61_72;
+
 pub(super) fn scene(a: &AStarGrid, out: &mut Scene) {
     let (w, h) = (a.grid.width(), a.grid.height());
     let size = DVec2::new(w as f64, h as f64);
-    out.push(Item::Raster {
+    // Kept by the page between frames: uploaded again only when a cell
+    // changes (the version is a fingerprint of the cells).
+    out.push(Item::VersionedRaster {
+        id: RASTER_ID,
+        version: crate::scene::raster_version(&a.raster),
         min: DVec2::ZERO,
         cell_m: 1.0,
         cols: w,

@@ -29,12 +29,12 @@ use crate::experiment::{
     check_param, format_metres, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
     ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
-use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar, NO_PARENT};
+use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar};
 use crate::planning::world::{Obstacle, World};
 use crate::plot::{Plot, Series, SeriesRole};
 use crate::quiz::{format_number, Draw, Generator};
 use crate::rng::Lcg64;
-use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::scene::{Item, Role, Scene, SegmentLayer, ViewBox};
 use crate::table::Table;
 use glam::DVec2;
 
@@ -241,6 +241,66 @@ enum Drag {
 struct Run {
     planner: Planner,
     tree: RrtStar,
+    /// The tree's edges as the page draws them: slot `i` holds node `i + 1`'s
+    /// edge from its parent. Kept in step with `tree` by [`Run::grow`], so the
+    /// page strokes only new and rewired edges each frame.
+    edges: SegmentLayer,
+}
+
+impl Run {
+    fn new(planner: Planner, tree: RrtStar) -> Self {
+        let mut run = Self {
+            planner,
+            tree,
+            edges: SegmentLayer::new(),
+        };
+        run.sync_edges();
+        run
+    }
+
+    /// Node `node`'s edge from its parent (a point at the root).
+    fn edge(&self, node: usize) -> (DVec2, DVec2) {
+        let nodes = self.tree.nodes();
+        let parent = self.tree.parent(node).unwrap_or(node);
+        (nodes[parent], nodes[node])
+    }
+
+    /// Runs `n` iterations and brings the edge layer up to date.
+    fn grow(&mut self, n: usize) {
+        self.tree.iterate(n);
+        self.sync_edges();
+    }
+
+    /// Rewrites the drawn slots of the nodes rewired by the last batch (a
+    /// node keeps its slot, only its parent moved), then appends the edges of
+    /// the nodes added since. The layer's journal carries the rewrites to the
+    /// page, which erases the old edges and draws the new ones, so a rewire
+    /// never forces a redraw of the whole tree. Cost: the batch's new and
+    /// rewired nodes, independent of the tree's size.
+    fn sync_edges(&mut self) {
+        let drawn = self.edges.len();
+        let rewired: Vec<usize> = self
+            .tree
+            .rewired_in_last_batch()
+            .iter()
+            .map(|&i| i as usize)
+            .filter(|&i| i >= 1 && i - 1 < drawn)
+            .collect();
+        for i in rewired {
+            let e = self.edge(i);
+            self.edges.set(i - 1, e);
+        }
+        for i in drawn + 1..self.tree.len() {
+            let e = self.edge(i);
+            self.edges.push(e);
+        }
+    }
+
+    /// Every edge computed from the tree (tests compare the layer with it).
+    #[cfg(test)]
+    fn all_edges(&self) -> Vec<(DVec2, DVec2)> {
+        (1..self.tree.len()).map(|i| self.edge(i)).collect()
+    }
 }
 
 /// State of the RRT* experiment.
@@ -352,11 +412,15 @@ impl RrtStarField {
 
     /// The tree shown: the selected planner's, else the first.
     fn shown(&self) -> Option<&RrtStar> {
+        self.shown_run().map(|r| &r.tree)
+    }
+
+    /// The run shown: the selected planner's, else the first.
+    fn shown_run(&self) -> Option<&Run> {
         self.runs
             .iter()
             .find(|r| r.planner == self.planner)
             .or_else(|| self.runs.first())
-            .map(|r| &r.tree)
     }
 
     /// The best path of the tree shown.
@@ -383,7 +447,7 @@ impl RrtStarField {
         };
         for &planner in planners {
             match RrtStar::new(world.clone(), self.start, self.goal, self.config(planner)) {
-                Ok(tree) => self.runs.push(Run { planner, tree }),
+                Ok(tree) => self.runs.push(Run::new(planner, tree)),
                 Err(e) => {
                     self.runs.clear();
                     self.error = Some(e);
@@ -757,7 +821,7 @@ impl Experiment for RrtStarField {
                 if left == 0 {
                     continue;
                 }
-                run.tree.iterate(batch.min(left));
+                run.grow(batch.min(left));
                 if let Some(c) = run.tree.best_cost() {
                     if let Some(s) = self.plots[0].series.get_mut(i) {
                         s.push(run.tree.iterations() as f64, c);
@@ -856,7 +920,7 @@ impl Experiment for RrtStarField {
     fn preview(&mut self) {
         self.start_run(&[self.planner]);
         if let Some(run) = self.runs.first_mut() {
-            run.tree.iterate(1500);
+            run.grow(1500);
         }
         self.growing = false;
     }

@@ -1,6 +1,8 @@
 use super::quiz::*;
 use super::*;
+use crate::planning::rrt_star::NO_PARENT;
 use crate::route::{apply_params, format, restore, Tab};
+use crate::scene::LayerPlan;
 
 const DT: f64 = 1.0 / 60.0;
 
@@ -57,6 +59,7 @@ fn the_tree_is_one_segments_item_and_rewired_edges_a_second() {
         .iter()
         .filter_map(|i| match i {
             Item::Segments { segments, role, .. } => Some((*role, segments.len())),
+            Item::SegmentLayer { layer, role, .. } => Some((*role, layer.len())),
             _ => None,
         })
         .collect();
@@ -301,7 +304,7 @@ fn a_large_tree_is_one_batch_of_segments() {
     f.set_param("batch", 24.0).unwrap();
     f.action("grow").unwrap();
     if let Some(run) = f.runs.first_mut() {
-        run.tree.iterate(19_000);
+        run.grow(19_000);
     }
     let mut scene = Scene::default();
     let mut worst = 0.0f64;
@@ -323,7 +326,7 @@ fn a_large_tree_is_one_batch_of_segments() {
     let batches = scene
         .items
         .iter()
-        .filter(|i| matches!(i, Item::Segments { .. }))
+        .filter(|i| matches!(i, Item::Segments { .. } | Item::SegmentLayer { .. }))
         .count();
     assert!(batches <= 2, "{batches} segment batches");
 }
@@ -883,4 +886,119 @@ fn the_radius_numbers_in_the_theory_hold() {
     )
     .unwrap();
     assert_eq!(t.radius(1000), 0.5);
+}
+
+/// The tree's kept edge layer of `f`'s shown run, from its scene.
+fn edge_layer(f: &RrtStarField) -> SegmentLayer {
+    scene_of_field(f)
+        .items
+        .into_iter()
+        .find_map(|i| match i {
+            Item::SegmentLayer { layer, .. } => Some(layer),
+            _ => None,
+        })
+        .expect("the tree is a kept layer")
+}
+
+fn scene_of_field(f: &RrtStarField) -> Scene {
+    let mut scene = Scene::default();
+    f.scene(&mut scene);
+    scene
+}
+
+/// Property: after any sequence of batches (RRT, RRT*, Informed RRT*, random
+/// seeds, step sizes and batches), every run's edge layer holds exactly the
+/// tree's edges, slot `i` the edge into node `i + 1`.
+#[test]
+fn the_edge_layer_always_equals_the_trees_edges() {
+    let mut rng = Lcg64::new(77);
+    for case in 0..12 {
+        let mut f = RrtStarField::default();
+        f.set_param("seed", (rng.next_f64() * 1000.0).floor())
+            .unwrap();
+        f.set_param("batch", 1.0 + (rng.next_f64() * 60.0).floor())
+            .unwrap();
+        f.set_param("eta", 0.3 + rng.next_f64() * 2.0).unwrap();
+        f.action(if case % 3 == 0 { "compare" } else { "grow" })
+            .unwrap();
+        for _ in 0..(20 + (rng.next_f64() * 40.0) as usize) {
+            f.step(DT);
+            for run in &f.runs {
+                assert_eq!(
+                    run.edges.segments(),
+                    run.all_edges().as_slice(),
+                    "case {case}"
+                );
+            }
+        }
+    }
+}
+
+/// Issue 16: once the tree stops growing, a frame strokes no edge; while it
+/// grows, a frame strokes the batch's new edges and its rewired drawn edges
+/// (each rewire: erase the old edge, stroke the new), never the whole tree,
+/// so the work per frame does not grow with the tree.
+#[test]
+fn a_frame_strokes_only_new_and_rewired_edges_and_none_once_the_tree_is_static() {
+    let mut f = RrtStarField::default();
+    f.set_param("iters", 8000.0).unwrap();
+    f.set_param("batch", 40.0).unwrap();
+    f.action("grow").unwrap();
+    let mut mark = edge_layer(&f).mark();
+    let (mut frames, mut full, mut stroked_small, mut stroked_large) = (0, 0, 0usize, 0usize);
+    while f.animating() {
+        let before = f.shown().unwrap().len();
+        f.step(DT);
+        frames += 1;
+        let layer = edge_layer(&f);
+        let tree = f.shown().unwrap();
+        let plan = layer.plan(Some(&mark));
+        let added = tree.len() - before;
+        let LayerPlan::Incremental {
+            rewrites, appended, ..
+        } = plan
+        else {
+            full += 1;
+            mark = layer.mark();
+            continue;
+        };
+        assert_eq!(appended.len(), added);
+        assert!(rewrites.len() <= tree.rewired_in_last_batch().len());
+        let draws = plan.draws();
+        assert_eq!(
+            draws,
+            added
+                + rewrites
+                    .iter()
+                    .filter(|r| (r.slot as usize) < mark.len)
+                    .count()
+        );
+        if tree.len() < 2000 {
+            stroked_small = stroked_small.max(draws);
+        } else if tree.len() > 4000 {
+            stroked_large = stroked_large.max(draws);
+        }
+        mark = layer.mark();
+    }
+    assert!(frames > 100);
+    assert_eq!(full, 0, "no frame redraws the whole tree");
+    assert!(f.shown().unwrap().len() > 4000);
+    // The same batch strokes about as much at 4,000 nodes as at 2,000: the
+    // bound is the batch and its rewires, not the tree.
+    assert!(
+        stroked_large > 0 && stroked_large <= 40 * 12,
+        "{stroked_large}"
+    );
+    assert!(
+        stroked_small > 0 && stroked_small <= 40 * 12,
+        "{stroked_small}"
+    );
+    for _ in 0..30 {
+        f.step(DT);
+        let layer = edge_layer(&f);
+        let plan = layer.plan(Some(&mark));
+        assert!(!plan.is_full());
+        assert_eq!(plan.draws(), 0, "a static tree strokes nothing");
+        mark = layer.mark();
+    }
 }

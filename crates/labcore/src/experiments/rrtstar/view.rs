@@ -58,18 +58,13 @@ pub(super) fn scene(f: &RrtStarField, out: &mut Scene) {
             },
         });
     }
-    if let Some(tree) = f.shown() {
-        // The whole tree: one batch.
+    if let Some(run) = f.shown_run() {
+        let tree = &run.tree;
         let nodes = tree.nodes();
-        let segments: Vec<(DVec2, DVec2)> = tree
-            .parents()
-            .iter()
-            .zip(nodes)
-            .filter(|(p, _)| **p != NO_PARENT)
-            .map(|(p, n)| (nodes[*p as usize], *n))
-            .collect();
-        out.push(Item::Segments {
-            segments,
+        // The whole tree: one kept layer (a pointer copy; the page draws only
+        // the edges added or rewired since its last frame).
+        out.push(Item::SegmentLayer {
+            layer: run.edges.clone(),
             width_px: 1.0,
             role: Role::Visited,
         });

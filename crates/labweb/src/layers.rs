@@ -1,0 +1,466 @@
+//! Kept layers: pictures the page keeps between frames, so a frame pays for
+//! what changed rather than for the whole scene (issue 16 §3).
+//!
+//! - A [`labcore::scene::SegmentLayer`] of at least
+//!   [`crate::draw::RASTER_SEGMENTS_MIN`] segments is drawn into an RGBA
+//!   buffer that stays in wasm memory, with a coverage count per device
+//!   pixel: drawing a segment adds one to each pixel of its Bresenham line,
+//!   erasing subtracts one, and a pixel is lit while its count is positive.
+//!   Each frame applies the layer's [`labcore::scene::LayerPlan`] (new slots,
+//!   rewritten slots) or, when the layer, its epoch, the viewport, the canvas
+//!   size, the device pixel ratio or the colour changed, redraws it from
+//!   scratch. Counts make the result independent of the order of operations,
+//!   so the kept picture is byte for byte the one a full redraw makes, which is
+//!   the one [`labcore::Item::Segments`] makes today. Only the rectangle the
+//!   frame touched is uploaded (`putImageData` with a dirty rectangle) into the
+//!   layer's off-screen canvas, and the canvas is composited with one
+//!   `drawImage`.
+//! - A [`labcore::Item::VersionedRaster`] keeps its image in an off-screen
+//!   canvas of one pixel per cell, rebuilt and uploaded only when its
+//!   version, its size or its colours change; otherwise a frame is one
+//!   scaled `drawImage`.
+//!
+//! [`counters`] counts the work (segments stroked and erased, full redraws,
+//! uploads) so tests assert operations, never milliseconds.
+
+use crate::draw::{bresenham, clip_segment, hex_rgb, Palette, Viewport};
+use glam::DVec2;
+use labcore::scene::{LayerMark, LayerOp, SegmentLayer};
+use labcore::RasterColour;
+use std::cell::{Cell, RefCell};
+use wasm_bindgen::JsCast;
+use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement};
+
+/// Work done by kept layers since the last [`reset_counters`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Segments drawn into kept segment layers (a full redraw draws all).
+    pub segments_drawn: u64,
+    /// Segments erased from kept segment layers (rewired edges).
+    pub segments_erased: u64,
+    /// Kept segment layers redrawn from scratch.
+    pub full_redraws: u64,
+    /// Uploads of segment-layer pixels to their canvas (`putImageData`).
+    pub layer_uploads: u64,
+    /// Pixels uploaded by those (the dirty rectangles' areas).
+    pub layer_upload_px: u64,
+    /// Versioned rasters rebuilt and uploaded.
+    pub raster_uploads: u64,
+    /// Kept pictures composited onto a canvas (`drawImage`).
+    pub composites: u64,
+}
+
+thread_local! {
+    static COUNTERS: Cell<Counters> = const { Cell::new(Counters {
+        segments_drawn: 0,
+        segments_erased: 0,
+        full_redraws: 0,
+        layer_uploads: 0,
+        layer_upload_px: 0,
+        raster_uploads: 0,
+        composites: 0,
+    }) };
+    static SEGMENT_CACHES: RefCell<Vec<SegmentCache>> = const { RefCell::new(Vec::new()) };
+    static RASTER_CACHES: RefCell<Vec<RasterCache>> = const { RefCell::new(Vec::new()) };
+}
+
+/// The work counted since the last [`reset_counters`].
+#[must_use]
+pub fn counters() -> Counters {
+    COUNTERS.with(Cell::get)
+}
+
+/// Sets every counter to zero.
+pub fn reset_counters() {
+    COUNTERS.with(|c| c.set(Counters::default()));
+}
+
+/// Drops every kept picture (the next frame redraws each layer in full).
+pub fn forget_all() {
+    SEGMENT_CACHES.with(|c| c.borrow_mut().clear());
+    RASTER_CACHES.with(|c| c.borrow_mut().clear());
+}
+
+fn count(f: impl FnOnce(&mut Counters)) {
+    COUNTERS.with(|c| {
+        let mut v = c.get();
+        f(&mut v);
+        c.set(v);
+    });
+}
+
+/// Segment layers kept at once (each holds a count and an RGBA value per
+/// device pixel of its canvas, 8 bytes).
+const KEPT_SEGMENT_LAYERS: usize = 2;
+/// Versioned rasters kept at once.
+const KEPT_RASTERS: usize = 3;
+
+/// Everything besides the layer's own content that its kept picture depends on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct SegmentKey {
+    viewport: Viewport,
+    size: (usize, usize),
+    dpr_bits: u64,
+    pixel: [u8; 4],
+    thick: bool,
+}
+
+struct SegmentCache {
+    key: SegmentKey,
+    mark: Option<LayerMark>,
+    counts: Vec<u32>,
+    rgba: Vec<u8>,
+    canvas: HtmlCanvasElement,
+    ctx: CanvasRenderingContext2d,
+}
+
+/// A detached canvas and its 2D context.
+fn offscreen() -> Option<(HtmlCanvasElement, CanvasRenderingContext2d)> {
+    let canvas: HtmlCanvasElement = crate::dom::document()
+        .create_element("canvas")
+        .ok()?
+        .dyn_into()
+        .ok()?;
+    let ctx = canvas.get_context("2d").ok()??.dyn_into().ok()?;
+    Some((canvas, ctx))
+}
+
+/// A rectangle of device pixels touched this frame, inclusive bounds.
+#[derive(Clone, Copy, Debug)]
+struct Dirty {
+    min: (i64, i64),
+    max: (i64, i64),
+}
+
+impl Dirty {
+    const EMPTY: Dirty = Dirty {
+        min: (i64::MAX, i64::MAX),
+        max: (i64::MIN, i64::MIN),
+    };
+
+    fn add(&mut self, x: i64, y: i64) {
+        self.min = (self.min.0.min(x), self.min.1.min(y));
+        self.max = (self.max.0.max(x), self.max.1.max(y));
+    }
+
+    /// `(x, y, width, height)` clipped to a `w` × `h` image, if not empty.
+    fn rect(&self, w: usize, h: usize) -> Option<(usize, usize, usize, usize)> {
+        let x0 = self.min.0.max(0);
+        let y0 = self.min.1.max(0);
+        let x1 = self.max.0.min(w as i64 - 1);
+        let y1 = self.max.1.min(h as i64 - 1);
+        (x0 <= x1 && y0 <= y1).then(|| {
+            (
+                x0 as usize,
+                y0 as usize,
+                (x1 - x0 + 1) as usize,
+                (y1 - y0 + 1) as usize,
+            )
+        })
+    }
+}
+
+/// A coverage-counted RGBA image that segments are drawn into and erased from.
+struct Coverage<'a> {
+    counts: &'a mut [u32],
+    rgba: &'a mut [u8],
+    w: usize,
+    h: usize,
+    pixel: [u8; 4],
+    thick: bool,
+    dirty: Dirty,
+}
+
+impl Coverage<'_> {
+    fn touch(&mut self, x: i64, y: i64, draw: bool) {
+        if x < 0 || y < 0 || x as usize >= self.w || y as usize >= self.h {
+            return;
+        }
+        let i = y as usize * self.w + x as usize;
+        let c = &mut self.counts[i];
+        if draw {
+            *c += 1;
+            if *c == 1 {
+                self.rgba[i * 4..i * 4 + 4].copy_from_slice(&self.pixel);
+            }
+        } else if *c > 0 {
+            *c -= 1;
+            if *c == 0 {
+                self.rgba[i * 4..i * 4 + 4].fill(0);
+            }
+        }
+    }
+
+    /// Adds (or removes) the device pixels of segment `a`–`b` (device
+    /// pixels), exactly the pixels the plain segment painter lights.
+    fn segment(&mut self, a: DVec2, b: DVec2, draw: bool) {
+        let Some((a, b)) = clip_segment(a, b, self.w as f64 - 1.0, self.h as f64 - 1.0) else {
+            return;
+        };
+        // The line's bounding box, one pixel more right and down when thick.
+        let grow = i64::from(self.thick);
+        let (ax, ay) = (a.x.round() as i64, a.y.round() as i64);
+        let (bx, by) = (b.x.round() as i64, b.y.round() as i64);
+        self.dirty.add(ax.min(bx), ay.min(by));
+        self.dirty.add(ax.max(bx) + grow, ay.max(by) + grow);
+        let thick = self.thick;
+        bresenham(a, b, |x, y| {
+            self.touch(x, y, draw);
+            if thick {
+                self.touch(x + 1, y, draw);
+                self.touch(x, y + 1, draw);
+            }
+        });
+    }
+}
+
+/// Paints a kept segment layer of at least [`crate::draw::RASTER_SEGMENTS_MIN`]
+/// segments (see the module documentation) onto `ctx`, whose CSS size is
+/// `css_w` × `css_h` at `dpr` device pixels per CSS pixel.
+pub(crate) fn paint_segment_layer(
+    ctx: &CanvasRenderingContext2d,
+    viewport: &Viewport,
+    colour: &str,
+    layer: &SegmentLayer,
+    width_px: f64,
+    (css_w, css_h): (f64, f64),
+    dpr: f64,
+) {
+    let w = (css_w * dpr).round().max(1.0) as usize;
+    let h = (css_h * dpr).round().max(1.0) as usize;
+    let [r, g, b] = hex_rgb(colour);
+    let key = SegmentKey {
+        viewport: *viewport,
+        size: (w, h),
+        dpr_bits: dpr.to_bits(),
+        pixel: [r, g, b, 235],
+        thick: (width_px * dpr).round() >= 2.0,
+    };
+    SEGMENT_CACHES.with(|caches| {
+        let mut caches = caches.borrow_mut();
+        let found = caches
+            .iter()
+            .position(|c| c.mark.is_some_and(|m| m.id == layer.id()));
+        let mut cache = match found {
+            Some(i) => caches.remove(i),
+            None if caches.len() >= KEPT_SEGMENT_LAYERS => {
+                // Reuse the least recently painted layer's buffers and canvas.
+                let mut c = caches.pop().expect("a kept layer");
+                c.mark = None;
+                c
+            }
+            None => {
+                let Some((canvas, octx)) = offscreen() else {
+                    return;
+                };
+                SegmentCache {
+                    key,
+                    mark: None,
+                    counts: Vec::new(),
+                    rgba: Vec::new(),
+                    canvas,
+                    ctx: octx,
+                }
+            }
+        };
+        let since = cache.mark.filter(|_| cache.key == key);
+        let plan = layer.plan(since.as_ref());
+        let mut dirty = Dirty::EMPTY;
+        if plan.is_full() || cache.counts.len() != w * h {
+            cache.counts.clear();
+            cache.counts.resize(w * h, 0);
+            cache.rgba.clear();
+            cache.rgba.resize(w * h * 4, 0);
+            if cache.canvas.width() != w as u32 || cache.canvas.height() != h as u32 {
+                cache.canvas.set_width(w as u32);
+                cache.canvas.set_height(h as u32);
+            }
+            dirty.add(0, 0);
+            dirty.add(w as i64 - 1, h as i64 - 1);
+            count(|c| c.full_redraws += 1);
+        }
+        let (mut drawn, mut erased) = (0u64, 0u64);
+        {
+            let mut cover = Coverage {
+                counts: &mut cache.counts,
+                rgba: &mut cache.rgba,
+                w,
+                h,
+                pixel: key.pixel,
+                thick: key.thick,
+                dirty,
+            };
+            let to_px = |p: DVec2| viewport.to_px(p) * dpr;
+            for op in plan.ops() {
+                match op {
+                    LayerOp::Draw((a, b)) => {
+                        cover.segment(to_px(a), to_px(b), true);
+                        drawn += 1;
+                    }
+                    LayerOp::Erase((a, b)) => {
+                        cover.segment(to_px(a), to_px(b), false);
+                        erased += 1;
+                    }
+                }
+            }
+            dirty = cover.dirty;
+        }
+        if let Some((x, y, dw, dh)) = dirty.rect(w, h) {
+            if let Ok(image) = web_sys::ImageData::new_with_u8_clamped_array_and_sh(
+                wasm_bindgen::Clamped(&cache.rgba),
+                w as u32,
+                h as u32,
+            ) {
+                let _ = cache
+                    .ctx
+                    .put_image_data_with_dirty_x_and_dirty_y_and_dirty_width_and_dirty_height(
+                        &image, 0.0, 0.0, x as f64, y as f64, dw as f64, dh as f64,
+                    );
+                count(|c| {
+                    c.layer_uploads += 1;
+                    c.layer_upload_px += (dw * dh) as u64;
+                });
+            }
+        }
+        count(|c| {
+            c.segments_drawn += drawn;
+            c.segments_erased += erased;
+            c.composites += 1;
+        });
+        cache.key = key;
+        cache.mark = Some(layer.mark());
+        ctx.set_image_smoothing_enabled(true);
+        let _ = ctx.draw_image_with_html_canvas_element_and_dw_and_dh(
+            &cache.canvas,
+            0.0,
+            0.0,
+            css_w,
+            css_h,
+        );
+        caches.insert(0, cache);
+    });
+}
+
+/// The RGBA colour of each raster state (`states[s - 1]` for state `s`).
+pub(crate) fn raster_lut(palette: &Palette, states: &[RasterColour]) -> Vec<[u8; 4]> {
+    states
+        .iter()
+        .map(|s| {
+            let [r, g, b] = hex_rgb(palette.colour(s.role));
+            [r, g, b, (s.alpha.clamp(0.0, 1.0) * 255.0) as u8]
+        })
+        .collect()
+}
+
+/// Cells as an RGBA image, top row first (cell rows run bottom-up); state 0
+/// and states without a colour are transparent.
+pub(crate) fn raster_rgba(
+    cells: &[u8],
+    (cols, rows): (usize, usize),
+    lut: &[[u8; 4]],
+    rgba: &mut Vec<u8>,
+) {
+    rgba.clear();
+    rgba.resize(cols * rows * 4, 0);
+    for row in 0..rows {
+        let out_row = (rows - 1 - row) * cols * 4;
+        for (col, &state) in cells[row * cols..(row + 1) * cols].iter().enumerate() {
+            if let Some(c) = (state as usize).checked_sub(1).and_then(|i| lut.get(i)) {
+                rgba[out_row + col * 4..out_row + col * 4 + 4].copy_from_slice(c);
+            }
+        }
+    }
+}
+
+struct RasterCache {
+    id: u64,
+    version: u64,
+    size: (usize, usize),
+    lut: Vec<[u8; 4]>,
+    canvas: HtmlCanvasElement,
+    ctx: CanvasRenderingContext2d,
+}
+
+/// Paints a versioned raster (see the module documentation): its image is
+/// rebuilt and uploaded only when `version`, the size or the colours change.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn paint_versioned_raster(
+    ctx: &CanvasRenderingContext2d,
+    viewport: &Viewport,
+    palette: &Palette,
+    (id, version): (u64, u64),
+    min: DVec2,
+    cell_m: f64,
+    (cols, rows): (usize, usize),
+    cells: &[u8],
+    states: &[RasterColour],
+) {
+    if cols == 0 || rows == 0 || cells.len() < cols * rows {
+        return;
+    }
+    let lut = raster_lut(palette, states);
+    RASTER_CACHES.with(|caches| {
+        let mut caches = caches.borrow_mut();
+        let cache = match caches.iter().position(|c| c.id == id) {
+            Some(i) => Some(caches.remove(i)),
+            None if caches.len() >= KEPT_RASTERS => caches.pop(),
+            None => None,
+        };
+        let mut cache = match cache {
+            Some(mut c) => {
+                if c.id != id {
+                    // Another raster's canvas: nothing in it is fresh.
+                    c.id = id;
+                    c.size = (0, 0);
+                }
+                c
+            }
+            None => {
+                let Some((canvas, octx)) = offscreen() else {
+                    return;
+                };
+                RasterCache {
+                    id,
+                    version: 0,
+                    size: (0, 0),
+                    lut: Vec::new(),
+                    canvas,
+                    ctx: octx,
+                }
+            }
+        };
+        let fresh = cache.version == version && cache.size == (cols, rows) && cache.lut == lut;
+        if !fresh {
+            if cache.canvas.width() != cols as u32 || cache.canvas.height() != rows as u32 {
+                cache.canvas.set_width(cols as u32);
+                cache.canvas.set_height(rows as u32);
+            }
+            let mut rgba = Vec::new();
+            raster_rgba(cells, (cols, rows), &lut, &mut rgba);
+            if let Ok(image) = web_sys::ImageData::new_with_u8_clamped_array_and_sh(
+                wasm_bindgen::Clamped(&rgba),
+                cols as u32,
+                rows as u32,
+            ) {
+                let _ = cache.ctx.put_image_data(&image, 0.0, 0.0);
+            }
+            cache.version = version;
+            cache.size = (cols, rows);
+            cache.lut = lut;
+            count(|c| c.raster_uploads += 1);
+        }
+        let top_left = viewport.to_px(min + DVec2::new(0.0, rows as f64 * cell_m));
+        let size = cell_m * viewport.scale_px_per_m;
+        // Crisp cells: smoothing would smear them across boundaries.
+        ctx.set_image_smoothing_enabled(false);
+        let _ = ctx.draw_image_with_html_canvas_element_and_dw_and_dh(
+            &cache.canvas,
+            top_left.x,
+            top_left.y,
+            cols as f64 * size,
+            rows as f64 * size,
+        );
+        count(|c| c.composites += 1);
+        caches.insert(0, cache);
+    });
+}

@@ -1,0 +1,277 @@
+//! Kept layers in headless Chromium (issue 16 §3): the work a frame does is
+//! counted in operations (segments stroked, uploads), and the kept picture is
+//! compared pixel for pixel with a full redraw. No milliseconds here: the
+//! browser benchmark times the same scenes.
+
+use labcore::glam::DVec2;
+use labcore::scene::SegmentLayer;
+use labcore::{Item, Role, Scene, ViewBox};
+use labweb::draw::{paint, Palette, Viewport};
+use labweb::layers::{counters, forget_all, reset_counters, Counters};
+use wasm_bindgen::JsCast;
+use wasm_bindgen_test::*;
+use web_sys::{CanvasRenderingContext2d, HtmlCanvasElement};
+
+wasm_bindgen_test_configure!(run_in_browser);
+
+const W: f64 = 800.0;
+const H: f64 = 600.0;
+
+/// A canvas in the page (so CSS colours apply) and its context.
+fn canvas(id: &str) -> (HtmlCanvasElement, CanvasRenderingContext2d) {
+    let document = web_sys::window().unwrap().document().unwrap();
+    if let Some(old) = document.get_element_by_id(id) {
+        old.remove();
+    }
+    let c: HtmlCanvasElement = document
+        .create_element("canvas")
+        .unwrap()
+        .dyn_into()
+        .unwrap();
+    c.set_id(id);
+    c.set_width(W as u32);
+    c.set_height(H as u32);
+    document.body().unwrap().append_child(&c).unwrap();
+    let ctx = c.get_context("2d").unwrap().unwrap().dyn_into().unwrap();
+    (c, ctx)
+}
+
+fn viewport() -> Viewport {
+    Viewport::fit(
+        ViewBox {
+            min: DVec2::ZERO,
+            max: DVec2::splat(100.0),
+        },
+        W,
+        H,
+    )
+}
+
+fn pixels(ctx: &CanvasRenderingContext2d) -> Vec<u8> {
+    ctx.get_image_data(0.0, 0.0, W, H).unwrap().data().0
+}
+
+/// Fresh caches and counters, a canvas and its palette.
+fn setup(id: &str) -> (HtmlCanvasElement, CanvasRenderingContext2d, Palette) {
+    forget_all();
+    reset_counters();
+    let (c, ctx) = canvas(id);
+    let palette = Palette::from_css(&c);
+    (c, ctx, palette)
+}
+
+fn kept(parts: &labweb::BigScene, layer: &SegmentLayer, version: u64) -> Scene {
+    labweb::big_scene_kept(parts, layer, version)
+}
+
+#[wasm_bindgen_test]
+fn a_static_tree_strokes_no_segment_and_uploads_nothing() {
+    let (_c, ctx, palette) = setup("layers-static");
+    let parts = labweb::big_scene_parts();
+    let layer = SegmentLayer::from_segments(parts.tree.segments.clone());
+    paint(
+        &ctx,
+        &kept(&parts, &layer, 1),
+        &viewport(),
+        W,
+        H,
+        1.0,
+        &palette,
+    );
+    let first = counters();
+    assert_eq!(first.segments_drawn, 100_000);
+    assert_eq!(first.full_redraws, 1);
+    assert_eq!(first.raster_uploads, 1);
+    reset_counters();
+    for _ in 0..5 {
+        paint(
+            &ctx,
+            &kept(&parts, &layer, 1),
+            &viewport(),
+            W,
+            H,
+            1.0,
+            &palette,
+        );
+    }
+    assert_eq!(
+        counters(),
+        Counters {
+            composites: 10,
+            ..Counters::default()
+        },
+        "five frames of a static scene: two drawImage each, nothing else"
+    );
+}
+
+#[wasm_bindgen_test]
+fn a_growing_tree_strokes_only_its_new_edges_whatever_its_size() {
+    for size in [10_000usize, 100_000] {
+        let (_c, ctx, palette) = setup("layers-grow");
+        let mut parts = labweb::big_scene_parts();
+        let mut layer = SegmentLayer::from_segments(parts.tree.segments[..size].to_vec());
+        paint(
+            &ctx,
+            &kept(&parts, &layer, 1),
+            &viewport(),
+            W,
+            H,
+            1.0,
+            &palette,
+        );
+        reset_counters();
+        for _ in 0..5 {
+            for s in parts.tree.grow(100) {
+                layer.push(*s);
+            }
+            paint(
+                &ctx,
+                &kept(&parts, &layer, 1),
+                &viewport(),
+                W,
+                H,
+                1.0,
+                &palette,
+            );
+        }
+        let c = counters();
+        assert_eq!(c.segments_drawn, 500, "size {size}: 100 edges a frame");
+        assert_eq!(
+            (c.full_redraws, c.raster_uploads, c.segments_erased),
+            (0, 0, 0)
+        );
+        assert_eq!(c.layer_uploads, 5, "one dirty rectangle a frame");
+    }
+}
+
+#[wasm_bindgen_test]
+fn the_raster_is_uploaded_only_when_its_version_or_colours_change() {
+    let (c, ctx, palette) = setup("layers-raster");
+    let parts = labweb::big_scene_parts();
+    let layer = SegmentLayer::from_segments(parts.tree.segments.clone());
+    for version in [1, 1, 1, 2, 2, 3] {
+        paint(
+            &ctx,
+            &kept(&parts, &layer, version),
+            &viewport(),
+            W,
+            H,
+            1.0,
+            &palette,
+        );
+    }
+    assert_eq!(counters().raster_uploads, 3);
+    // Another theme colour for obstacles: the image is rebuilt once.
+    c.style().set_property("--c-obstacle", "#123456").unwrap();
+    let dark = Palette::from_css(&c);
+    for _ in 0..3 {
+        paint(
+            &ctx,
+            &kept(&parts, &layer, 3),
+            &viewport(),
+            W,
+            H,
+            1.0,
+            &dark,
+        );
+    }
+    assert_eq!(counters().raster_uploads, 4);
+}
+
+/// Pixel equality: a scene whose tree grew, was rewired and was viewed at
+/// another zoom over many frames, painted with kept layers, equals the same
+/// final scene painted from scratch with plain items.
+#[wasm_bindgen_test]
+fn kept_layers_paint_the_pixels_of_a_full_redraw() {
+    let (_a, kept_ctx, palette) = setup("layers-kept");
+    let (_b, full_ctx) = canvas("layers-full");
+    let mut parts = labweb::big_scene_parts();
+    let mut layer = SegmentLayer::from_segments(parts.tree.segments[..20_000].to_vec());
+    let mut rng = labcore::Lcg64::new(9);
+    let zoomed = Viewport::fit(
+        ViewBox {
+            min: DVec2::splat(30.0),
+            max: DVec2::splat(70.0),
+        },
+        W,
+        H,
+    );
+    for frame in 0..40 {
+        for s in parts.tree.grow(150) {
+            layer.push(*s);
+        }
+        // Rewire: move some drawn edges' ends to another node.
+        for _ in 0..30 {
+            let slot = (rng.next_f64() * layer.len() as f64) as usize;
+            let (a, _) = layer.segments()[slot];
+            let other = layer.segments()[(rng.next_f64() * layer.len() as f64) as usize].1;
+            layer.set(slot, (a, other));
+        }
+        let view = if (10..14).contains(&frame) {
+            zoomed
+        } else {
+            viewport()
+        };
+        paint(
+            &kept_ctx,
+            &kept(&parts, &layer, 1),
+            &view,
+            W,
+            H,
+            1.0,
+            &palette,
+        );
+    }
+    let c = counters();
+    assert!(c.segments_erased >= 30 * 25, "rewires are erased: {c:?}");
+    // The first frame, the zoom in and the zoom out.
+    assert_eq!(c.full_redraws, 3, "{c:?}");
+    let mut full = Scene::default();
+    full.push(Item::Raster {
+        min: DVec2::ZERO,
+        cell_m: 100.0 / 512.0,
+        cols: 512,
+        rows: 512,
+        cells: parts.cells.clone(),
+        palette: parts.palette.clone(),
+    });
+    full.push(Item::Segments {
+        segments: layer.segments().to_vec(),
+        width_px: 0.6,
+        role: Role::Path,
+    });
+    paint(&full_ctx, &full, &viewport(), W, H, 1.0, &palette);
+    let (k, f) = (pixels(&kept_ctx), pixels(&full_ctx));
+    let differ = k.chunks(4).zip(f.chunks(4)).filter(|(a, b)| a != b).count();
+    assert_eq!(differ, 0, "pixels that differ from a full redraw");
+    assert!(
+        f.chunks(4).any(|p| p != &f[0..4]),
+        "the picture is not blank"
+    );
+}
+
+/// Below the raster threshold a layer is stroked as one anti-aliased path,
+/// exactly like a plain batch, and keeps nothing.
+#[wasm_bindgen_test]
+fn a_small_layer_is_stroked_like_a_plain_batch() {
+    let (_a, ctx_a, palette) = setup("layers-small-a");
+    let (_b, ctx_b) = canvas("layers-small-b");
+    let parts = labweb::big_scene_parts();
+    let segments = parts.tree.segments[..500].to_vec();
+    let mut a = Scene::default();
+    a.push(Item::SegmentLayer {
+        layer: SegmentLayer::from_segments(segments.clone()),
+        width_px: 1.0,
+        role: Role::Visited,
+    });
+    let mut b = Scene::default();
+    b.push(Item::Segments {
+        segments,
+        width_px: 1.0,
+        role: Role::Visited,
+    });
+    paint(&ctx_a, &a, &viewport(), W, H, 1.0, &palette);
+    paint(&ctx_b, &b, &viewport(), W, H, 1.0, &palette);
+    assert_eq!(pixels(&ctx_a), pixels(&ctx_b));
+    assert_eq!(counters(), Counters::default());
+}
