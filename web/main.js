@@ -2,9 +2,10 @@
 // reading tabs are small pages of their own (rendered at build time,
 // `pages/<id>.<hash>.html`) that these lines fetch and show before any wasm
 // arrives. Then they start the
-// wasm module of the experiment's group (`pkg/<group>.<hash>.js|wasm`, with
-// progress), which owns routing within its group; a link to an experiment of
-// another group starts that group's module. Everything else lives in Rust.
+// wasm module that holds the experiment (`pkg/<key>.<hash>.js|wasm`, with
+// progress), which owns routing among its experiments; a link to an
+// experiment of another module starts that module. Everything else lives in
+// Rust.
 
 const app = document.getElementById("app");
 const nav = document.getElementById("lab-nav");
@@ -18,9 +19,9 @@ const MODULES = [...document.querySelectorAll("meta[name=lab-module]")].map((m) 
   bytes: Number(m.dataset.bytes) || 0,
 }));
 const moduleOf = (id) => MODULES.find((m) => m.ids.includes(id));
-const glues = new Map(); // group key -> Promise of its started glue module
+const glues = new Map(); // module key -> Promise of its started glue module
 const articles = new Map(); // experiment id -> Promise of its article element
-let active = null; // the group whose module has the app mounted
+let active = null; // the key of the module that has the app mounted
 // Inside an LMS (a frame, or a window opened by the LMS) the SCORM bridge
 // must be there before a module starts; elsewhere it is never downloaded.
 const framed = (() => {
@@ -57,7 +58,7 @@ const hashRoute = () => {
   return match ? { id: decodeURIComponent(match[1]), tab: match[2] } : null;
 };
 
-// Downloads a group's wasm with a progress bar, then starts it (its start
+// Downloads a module's wasm with a progress bar, then starts it (its start
 // function mounts the app on the current hash).
 async function startModule(mod) {
   if (typeof WebAssembly !== "object") {
@@ -148,7 +149,7 @@ function ensurePage(id) {
 }
 
 // Shows the home page, or the article and tab the hash names (before its
-// module runs, and while another group's module hands over).
+// module runs, and while another module hands over).
 function showStatic(article, tab) {
   const home = app.querySelector("[data-page=home]");
   if (home) home.hidden = Boolean(article);
@@ -189,7 +190,7 @@ async function showPage() {
     if (!active && !/^#?\/?$/.test(location.hash) && MODULES.length) switchTo(MODULES[0]);
     return;
   }
-  // Within the running module's group, its own listener routes; it waits
+  // Among the running module's experiments, its own listener routes; it waits
   // for the article of an experiment not shown before, added here.
   if (active === mod.key) {
     const present = app.querySelector(pageSelector(route.id));

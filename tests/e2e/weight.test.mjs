@@ -72,25 +72,26 @@ test("page budget: every experiment's first visit downloads at most 700 KB raw a
   }
 });
 
-test("a module already downloaded is not downloaded again for another experiment of its group", () =>
+test("a module already downloaded is not downloaded again for another experiment it holds", () =>
   withPage(lab, {}, async (page, context) => {
-    await open(lab, page, "#/pid/simulation");
+    // fk and ik share the "arms" module (crates/xtask/src/modules.rs).
+    await open(lab, page, "#/fk/simulation");
     const wasmHits = () => lab.server.hits.filter((p) => p.endsWith(".wasm"));
     const before = wasmHits().length;
-    // Within the page: another experiment of the group mounts from the running module.
-    await page.evaluate(() => { location.hash = "#/cartpole/simulation"; });
-    await page.waitForSelector("article.exp[data-experiment=cartpole]:not([hidden]) canvas.sim-canvas");
-    assert.equal(wasmHits().length, before, "no wasm request for a same-group experiment");
+    // Within the page: the other experiment of the module mounts from the running module.
+    await page.evaluate(() => { location.hash = "#/ik/simulation"; });
+    await page.waitForSelector("article.exp[data-experiment=ik]:not([hidden]) canvas.sim-canvas");
+    assert.equal(wasmHits().length, before, "no wasm request for an experiment of the same module");
     // A new page of the same browser: the module comes from the HTTP cache
     // (content-hashed name, cached for good).
     const second = await context.newPage();
-    await open(lab, second, "#/cartpole/aim");
-    await second.waitForSelector("article.exp[data-experiment=cartpole]:not([hidden])");
+    await open(lab, second, "#/ik/aim");
+    await second.waitForSelector("article.exp[data-experiment=ik]:not([hidden])");
     await second.waitForLoadState("networkidle");
     assert.equal(wasmHits().length, before, "the cached module is not fetched again");
-    // Another group's experiment downloads its own module, once.
+    // An experiment of another module downloads that module, once.
     await second.evaluate(() => { location.hash = "#/astar/simulation"; });
     await second.waitForSelector("article.exp[data-experiment=astar]:not([hidden]) canvas.sim-canvas");
-    assert.equal(wasmHits().length, before + 1, "the planning module is fetched once");
+    assert.equal(wasmHits().length, before + 1, "the astar module is fetched once");
     await second.close();
   }));

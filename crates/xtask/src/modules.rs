@@ -1,17 +1,20 @@
-//! One wasm module per catalogue group.
+//! The shipped wasm modules: one per experiment or per few experiments of a
+//! group ([`MODULES`]).
 //!
 //! A page downloads only the module of the experiment it shows: `labweb` is
-//! built once per [`labcore::catalogue::Group`] with `--no-default-features`
-//! and the features `labcore/<id>` of that group's experiments, so the
-//! registry of that build — and, through dead-code elimination, its code and
-//! compiled-in content — holds only them. Each module is shipped as
-//! `pkg/<group>.<hash>.wasm` and `pkg/<group>.<hash>.js`, named by a hash of
-//! both files, so a host may cache them for good and a redeployment changes
-//! the names of exactly the modules that changed. `index.html` lists them in
-//! `<meta name="lab-module">` tags, which `main.js` reads.
+//! built once per module with `--no-default-features` and the features
+//! `labcore/<id>` of its experiments, so the registry of that build — and,
+//! through dead-code elimination, their code and compiled-in content — holds
+//! only them. Each module is shipped as `pkg/<key>.<hash>.wasm` and
+//! `pkg/<key>.<hash>.js`, named by a hash of both files, so a host may cache
+//! them for good and a redeployment changes the names of exactly the modules
+//! that changed. `index.html` lists them in `<meta name="lab-module">` tags,
+//! which `main.js` reads.
 
 use crate::util::{self, file_len, remove_dir, step};
-use labcore::catalogue::{Group, CATALOGUE};
+use labcore::catalogue::CATALOGUE;
+#[cfg(test)]
+use labcore::catalogue::Group;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -23,8 +26,8 @@ const PROFILE: &str = "wasm-release";
 
 /// A built module before it is copied into dist/.
 pub struct Built {
-    /// The module's name: its group's key (or, with
-    /// `XTASK_MODULES=per-experiment`, for measurements, the experiment's id).
+    /// The module's name ([`MODULES`], or with `XTASK_MODULES=per-experiment`
+    /// the experiment's id).
     pub key: &'static str,
     /// Experiment ids it holds, in the lab's order.
     pub ids: Vec<&'static str>,
@@ -36,7 +39,7 @@ pub struct Built {
 /// A module as shipped in `dist/pkg/`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Shipped {
-    /// The group's stable key (`kinematics`, …).
+    /// The module's key (`arms`, `pid`, …).
     pub key: &'static str,
     pub ids: Vec<&'static str>,
     /// Paths relative to dist/, with the content hash in the name.
@@ -45,9 +48,29 @@ pub struct Shipped {
     pub wasm_bytes: u64,
 }
 
+/// The shipped modules and the experiments each holds. Experiments of one
+/// catalogue group that share their solvers share a module, as long as a
+/// first visit stays within its budget (700 KB raw, 250 KB gzip in all:
+/// `tests/e2e/weight.test.mjs`); the heavier ones have a module of their own.
+/// Measured as built (opt-level z, wasm-opt -O3, gzip -9), one module per
+/// catalogue group came to 469–561 KB raw, 210–244 KB gzip, too close to the
+/// budget or over it with the page's HTML, CSS and JS (about 23 KB gzip):
+/// kinematics 223 KB gzip, planning 244, control 231; one experiment alone,
+/// 189 (fk) to 217 KB gzip (astar).
+pub const MODULES: &[(&str, &[&str])] = &[
+    ("arms", &["fk", "ik"]),
+    ("chains", &["workspace", "dls"]),
+    ("mobile", &["diffdrive", "potential"]),
+    ("astar", &["astar"]),
+    ("rrtstar", &["rrtstar"]),
+    ("pid", &["pid"]),
+    ("cartpole", &["cartpole"]),
+    ("ekf", &["ekf"]),
+];
+
 /// The experiments of `group` that this build of labcore has, in lab order.
-#[must_use]
-pub fn group_ids(group: Group) -> Vec<&'static str> {
+#[cfg(test)]
+fn group_ids(group: Group) -> Vec<&'static str> {
     CATALOGUE
         .iter()
         .filter(|p| p.group == group && labcore::find(p.id).is_some())
@@ -70,20 +93,19 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
     let out_root = target.join("xtask").join("modules");
     remove_dir(&out_root)?;
     let mut built = Vec::new();
+    // XTASK_MODULES=per-experiment builds one module per experiment (to
+    // measure what sharing a module costs).
     let per_experiment = std::env::var("XTASK_MODULES").as_deref() == Ok("per-experiment");
-    let parts: Vec<(Group, Vec<&'static str>)> = if per_experiment {
-        Group::ALL
+    let parts: Vec<(&'static str, Vec<&'static str>)> = if per_experiment {
+        CATALOGUE
             .iter()
-            .flat_map(|g| group_ids(*g).into_iter().map(move |id| (*g, vec![id])))
+            .filter(|p| labcore::find(p.id).is_some())
+            .map(|p| (p.id, vec![p.id]))
             .collect()
     } else {
-        Group::ALL.iter().map(|g| (*g, group_ids(*g))).collect()
+        MODULES.iter().map(|(k, ids)| (*k, ids.to_vec())).collect()
     };
-    for (group, ids) in parts {
-        if ids.is_empty() {
-            continue;
-        }
-        let key: &'static str = if per_experiment { ids[0] } else { group.key() };
+    for (key, ids) in parts {
         step(&format!(
             "cargo build (wasm, release) — module '{key}': {}",
             ids.join(", ")
@@ -208,12 +230,20 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_experiment_is_in_exactly_one_module() {
-        let mut all: Vec<&str> = Group::ALL.iter().flat_map(|g| group_ids(*g)).collect();
+    fn every_experiment_is_in_exactly_one_module_of_its_own_group() {
+        let mut all: Vec<&str> = MODULES.iter().flat_map(|(_, ids)| ids.iter().copied()).collect();
         assert_eq!(all.len(), labcore::registry().len());
         all.sort_unstable();
         all.dedup();
         assert_eq!(all.len(), labcore::registry().len());
+        for (key, ids) in MODULES {
+            let group = labcore::catalogue::planned(ids[0]).expect("catalogued").group;
+            assert!(
+                ids.iter().all(|id| labcore::catalogue::planned(id).map(|p| p.group) == Some(group)),
+                "module {key} mixes groups"
+            );
+            assert!(group_ids(group).iter().any(|id| ids.contains(id)));
+        }
     }
 
     #[test]
