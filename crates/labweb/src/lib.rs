@@ -7,6 +7,7 @@
 pub mod app;
 pub mod dom;
 pub mod draw;
+pub mod help;
 pub mod plot_view;
 pub mod quiz_view;
 pub mod sim;
@@ -48,6 +49,7 @@ pub fn unmount() {
 #[wasm_bindgen]
 pub fn boot() {
     unmount();
+    help::install();
     let app = app::App::boot(|_| reroute());
     APP.with(|a| *a.borrow_mut() = app);
 }

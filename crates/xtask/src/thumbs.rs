@@ -268,7 +268,8 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
             | Item::Raster { .. }
             | Item::Label { .. }
             | Item::ScaleBar
-            | Item::OffView { .. } => Ok(()),
+            | Item::OffView { .. }
+            | Item::FocusRing { .. } => Ok(()),
         };
     }
     out.push_str("</svg>");
