@@ -105,11 +105,12 @@ export function useLab() {
  * Opens a fresh browser context + page and runs `fn(page, ctx)`. Afterwards
  * the test fails on anything that went wrong in the page.
  *
- * options: viewport, hasTouch, colorScheme, allowConsoleErrors, initScript.
+ * options: viewport, hasTouch, colorScheme, allowConsoleErrors, initScript,
+ * bypassCSP (to inject a test's own script, e.g. axe-core, with addScriptTag).
  */
 export async function withPage(lab, options, fn) {
-  const { viewport = DESKTOP, hasTouch = false, colorScheme = "light" } = options;
-  const context = await lab.browser.newContext({ viewport, hasTouch, colorScheme });
+  const { viewport = DESKTOP, hasTouch = false, colorScheme = "light", bypassCSP = false } = options;
+  const context = await lab.browser.newContext({ viewport, hasTouch, colorScheme, bypassCSP });
   context.setDefaultTimeout(10_000);
   const problems = [];
   const origin = lab.server.origin;

@@ -455,10 +455,12 @@ pub fn paint(
             Item::FocusRing { center, radius_px } => {
                 let c = viewport.to_px(*center);
                 set_dash(ctx, false);
+                // A 3 px ring in the focus colour between two thin lines of
+                // the background, so it shows on any colour under it.
                 for (colour, width, r) in [
-                    (palette.background.as_str(), 6.0, *radius_px),
+                    (palette.background.as_str(), 1.5, radius_px - 2.25),
+                    (palette.background.as_str(), 1.5, radius_px + 2.25),
                     (palette.focus.as_str(), 3.0, *radius_px),
-                    (palette.background.as_str(), 2.0, radius_px + 3.5),
                 ] {
                     ctx.set_stroke_style_str(colour);
                     ctx.set_line_width(width);

@@ -26,8 +26,8 @@ const SHELL_KEYS: &[(&str, &str)] = &[
     ("Escape", "Close this list, or the experiments menu"),
     ("Tab / Shift+Tab", "Move between controls"),
     (
-        "← / → (on the tabs)",
-        "Previous or next tab; Home and End for the first and last",
+        "← / →",
+        "On the tabs: previous or next tab (Home and End: the first and last)",
     ),
 ];
 

@@ -25,7 +25,7 @@ use wasm_bindgen::JsCast;
 use web_sys::{Element, Event, HtmlInputElement, HtmlSelectElement, KeyboardEvent};
 
 /// Radius of the focus ring around the chosen handle, CSS pixels.
-const RING_PX: f64 = 17.0;
+const RING_PX: f64 = 13.0;
 /// The arrow keys' step: this fraction of the view's width (Shift: a tenth of it).
 const STEP_FRACTION: f64 = 0.02;
 
@@ -328,7 +328,9 @@ pub(super) fn listen(
             };
             let mut st = s.borrow_mut();
             st.focused_handle = Some(select.value());
+            // The boxes show the newly chosen point at once (before any typing).
             st.shown_move.selected = None;
+            st.sync_move_form();
             st.needs_paint = true;
         }));
     }
