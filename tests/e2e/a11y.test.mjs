@@ -93,7 +93,7 @@ test("ik: the target moves by keyboard and by typed coordinates", () =>
     // Typed: pick the point, type x and y, Move.
     await page.selectOption("article.exp:not([hidden]) #move-handle", "target");
     await page.fill("article.exp:not([hidden]) #move-x", "1.2");
-    await page.fill("article.exp:not([hidden]) #move-y", "0,5");
+    await page.fill("article.exp:not([hidden]) #move-y", "0.5 m");
     await page.click("article.exp:not([hidden]) .sim-move button[type=submit]");
     const q = await linkParams(page);
     assert.equal(Number(q.get("tx")), 1.2);
