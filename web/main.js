@@ -1,13 +1,27 @@
-// Bootstrap. The reading tabs are already in the page (rendered at build
-// time); these few lines show the page the link names before the wasm
-// arrives, fetch the wasm only when an experiment is opened (with progress),
-// and hand routing over to it once it runs. Everything else lives in Rust.
+// Bootstrap. index.html is the shell; the home page and each experiment's
+// reading tabs are small pages of their own (rendered at build time,
+// `pages/<id>.<hash>.html`) that these lines fetch and show before any wasm
+// arrives. Then they start the
+// wasm module of the experiment's group (`pkg/<group>.<hash>.js|wasm`, with
+// progress), which owns routing within its group; a link to an experiment of
+// another group starts that group's module. Everything else lives in Rust.
 
 const app = document.getElementById("app");
 const nav = document.getElementById("lab-nav");
 const TABS = ["aim", "theory", "procedure", "simulation", "quiz", "references"];
-let wasmReady = false;
-let loading = null;
+const PAGES = new Map([...document.querySelectorAll("meta[name=lab-page]")].map((m) => [m.content, m.dataset.href]));
+const MODULES = [...document.querySelectorAll("meta[name=lab-module]")].map((m) => ({
+  key: m.content,
+  ids: m.dataset.experiments.split(" "),
+  js: m.dataset.js,
+  wasm: m.dataset.wasm,
+  bytes: Number(m.dataset.bytes) || 0,
+}));
+const moduleOf = (id) => MODULES.find((m) => m.ids.includes(id));
+const glues = new Map(); // group key -> Promise of its started glue module
+const articles = new Map(); // experiment id -> Promise of its article element
+let active = null; // the group whose module has the app mounted
+let switching = Promise.resolve();
 
 const fatal = (message) => {
   const box = document.getElementById("fatal");
@@ -26,19 +40,21 @@ const progress = (fraction) => {
   }
 };
 
-// Downloads the wasm with a progress bar, then starts it (which mounts the app).
-async function loadWasm() {
+const hashRoute = () => {
+  const match = location.hash.match(/^#\/([^/?]+)(?:\/([^/?]*))?/);
+  return match ? { id: decodeURIComponent(match[1]), tab: match[2] } : null;
+};
+
+// Downloads a group's wasm with a progress bar, then starts it (its start
+// function mounts the app on the current hash).
+async function startModule(mod) {
   if (typeof WebAssembly !== "object") {
-    fatal("This browser does not support WebAssembly; please use a current version of Firefox, Chrome, Edge or Safari.");
-    return;
+    throw new Error("this browser does not support WebAssembly; please use a current version of Firefox, Chrome, Edge or Safari");
   }
-  const version = new URL(import.meta.url).search;
-  const url = new URL("./pkg/labweb_bg.wasm" + version, import.meta.url);
-  const total = Number(document.querySelector("meta[name=lab-wasm-bytes]")?.content) || 0;
-  const response = await fetch(url);
+  const response = await fetch(new URL(mod.wasm, import.meta.url));
   if (!response.ok) throw new Error(`HTTP ${response.status} for the wasm module`);
   let bytes;
-  if (response.body && total > 0) {
+  if (response.body && mod.bytes > 0) {
     const reader = response.body.getReader();
     const chunks = [];
     let received = 0;
@@ -47,7 +63,7 @@ async function loadWasm() {
       if (done) break;
       chunks.push(value);
       received += value.length;
-      progress(Math.min(1, received / total));
+      progress(Math.min(1, received / mod.bytes));
     }
     bytes = new Uint8Array(received);
     let at = 0;
@@ -56,26 +72,71 @@ async function loadWasm() {
     bytes = new Uint8Array(await response.arrayBuffer());
   }
   progress(1);
-  const glue = await import("./pkg/labweb.js");
+  const glue = await import(new URL(mod.js, import.meta.url).href);
   await glue.default({ module_or_path: bytes });
-  wasmReady = true;
-  window.labweb = glue;
+  return glue;
 }
 
-function ensureWasm() {
-  if (!loading) {
-    loading = loadWasm().catch((error) => {
-      fatal(`The simulation engine failed to load (${error}). If you opened the file directly, serve the folder over HTTP instead.`);
-    });
+// Makes `mod` the module that runs the app: the previous one unmounts, this
+// one starts (first time) or mounts again. Calls run one after the other.
+function switchTo(mod) {
+  switching = switching.then(async () => {
+    const wanted = moduleOf(hashRoute()?.id ?? "") ?? mod;
+    if (wanted !== mod || active === mod.key) return;
+    if (active) (await glues.get(active).catch(() => null))?.unmount();
+    active = mod.key;
+    const first = !glues.has(mod.key);
+    if (first) glues.set(mod.key, startModule(mod));
+    let glue;
+    try {
+      glue = await glues.get(mod.key);
+    } catch (error) {
+      active = null;
+      glues.delete(mod.key);
+      fatal(`The simulation engine failed to load (${error.message ?? error}). If you opened the file directly, serve the folder over HTTP instead.`);
+      return;
+    }
+    if (!first) glue.boot();
+    window.labweb = glue;
+  });
+  return switching;
+}
+
+// The reading page `id` ("home" or an experiment): in the document already,
+// or fetched from its file and added (hidden).
+const pageSelector = (id) =>
+  id === "home" ? "[data-page=home]" : `article.exp[data-experiment="${CSS.escape(id)}"]`;
+function ensurePage(id) {
+  const present = app.querySelector(pageSelector(id));
+  if (present) return Promise.resolve(present);
+  if (!PAGES.has(id)) return Promise.reject(new Error(`no page named ${id}`));
+  if (!articles.has(id)) {
+    const load = fetch(new URL(PAGES.get(id), import.meta.url))
+      .then((r) => {
+        if (!r.ok) throw new Error(`HTTP ${r.status} for the reading page`);
+        return r.text();
+      })
+      .then((html) => {
+        const again = app.querySelector(pageSelector(id));
+        if (again) return again;
+        const template = document.createElement("template");
+        template.innerHTML = html;
+        const page = template.content.firstElementChild;
+        page.hidden = true;
+        if (id === "home") app.prepend(page);
+        else app.append(page);
+        app.querySelector(":scope > .loading")?.remove();
+        return page;
+      });
+    load.catch(() => articles.delete(id));
+    articles.set(id, load);
   }
+  return articles.get(id);
 }
 
-// Shows the page the hash names until the wasm takes over routing.
-function showPage() {
-  if (wasmReady) return;
-  nav?.querySelector("details")?.removeAttribute("open");
-  const match = location.hash.match(/^#\/([^/?]+)(?:\/([^/?]*))?/);
-  const article = match && [...app.querySelectorAll("article.exp")].find((a) => a.dataset.experiment === match[1]);
+// Shows the home page, or the article and tab the hash names (before its
+// module runs, and while another group's module hands over).
+function showStatic(article, tab) {
   const home = app.querySelector("[data-page=home]");
   if (home) home.hidden = Boolean(article);
   for (const a of app.querySelectorAll("article.exp")) a.hidden = a !== article;
@@ -84,11 +145,10 @@ function showPage() {
     else a.removeAttribute("aria-current");
   }
   if (!article) {
-    // A link that names no page is malformed: the wasm explains what was wrong.
-    if (!/^#?\/?$/.test(location.hash)) ensureWasm();
+    document.title = "Robotics virtual lab";
     return;
   }
-  const tab = TABS.includes(match[2]) ? match[2] : "aim";
+  tab = TABS.includes(tab) ? tab : "aim";
   article.dataset.tab = tab;
   for (const t of article.querySelectorAll("[role=tab]")) {
     const on = t.dataset.tab === tab;
@@ -97,7 +157,38 @@ function showPage() {
   }
   for (const p of article.querySelectorAll("[role=tabpanel]")) p.hidden = p.dataset.panel !== tab;
   document.title = `${article.querySelector("h1")?.textContent ?? ""} — Robotics virtual lab`;
-  ensureWasm();
+}
+
+const pageFailed = (error) =>
+  fatal(`This page could not be loaded (${error.message ?? error}). Check the connection and reload.`);
+
+async function showPage() {
+  nav?.querySelector("details")?.removeAttribute("open");
+  const route = hashRoute();
+  const mod = route && moduleOf(route.id);
+  if (!mod) {
+    // The home page (also under a running module, which shows it only once
+    // it is in the document), or a link that names no experiment: a running
+    // module explains it; before any, the first module starts to explain it.
+    const home = await ensurePage("home").catch(pageFailed);
+    if (hashRoute() && moduleOf(hashRoute().id)) return;
+    if (home && (!active || /^#?\/?$/.test(location.hash))) showStatic(null);
+    if (!active && !/^#?\/?$/.test(location.hash) && MODULES.length) switchTo(MODULES[0]);
+    return;
+  }
+  // Within the running module's group, its own listener routes.
+  if (active === mod.key) return;
+  let article;
+  try {
+    article = await ensurePage(route.id);
+  } catch (error) {
+    pageFailed(error);
+    return;
+  }
+  const now = hashRoute();
+  if (now?.id !== route.id) return;
+  if (active !== mod.key) showStatic(article, now.tab);
+  switchTo(mod);
 }
 
 window.addEventListener("hashchange", showPage);
@@ -125,3 +216,25 @@ document.querySelector("a.skip")?.addEventListener("click", (e) => {
 document.querySelector("#notice .notice-close").addEventListener("click", () => {
   document.getElementById("notice").hidden = true;
 });
+
+// Offline after one visit: once the page has loaded (never competing with
+// its first download), the service worker caches the whole site. A visit
+// after a new deployment says so quietly.
+const siteVersion = new URL(import.meta.url).searchParams.get("v");
+try {
+  const seen = localStorage.getItem("lab-version");
+  if (siteVersion && seen && seen !== siteVersion) {
+    const box = document.getElementById("updated");
+    box.hidden = false;
+    box.querySelector(".notice-close").addEventListener("click", () => { box.hidden = true; });
+  }
+  if (siteVersion) localStorage.setItem("lab-version", siteVersion);
+} catch {
+  // Storage may be off (private mode): no notice then.
+}
+if ("serviceWorker" in navigator && window.isSecureContext && siteVersion) {
+  const register = () =>
+    navigator.serviceWorker.register(new URL("sw.js", import.meta.url), { scope: "./" }).catch(() => {});
+  if (document.readyState === "complete") register();
+  else addEventListener("load", register, { once: true });
+}

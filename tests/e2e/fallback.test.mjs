@@ -38,10 +38,10 @@ test("without a 2D canvas context the reading tabs still work and the simulation
 
 test("with the wasm request blocked, the reading tabs show and work, and the page says the engine could not load", async () => {
   // Not withPage: the failed request is the point of this test.
-  const context = await lab.browser.newContext();
+  const context = await lab.browser.newContext({ serviceWorkers: "block" });
   try {
     const page = await context.newPage();
-    await page.route(/labweb_bg\.wasm/, (route) => route.abort());
+    await page.route(/\.wasm(\?|$)/, (route) => route.abort());
     await page.goto(`${lab.server.base}index.html#/fk/theory`);
     const article = page.locator("article.exp:not([hidden])");
     assert.equal(await article.getAttribute("data-experiment"), "fk");
@@ -71,6 +71,7 @@ test("with the wasm request blocked, the reading tabs show and work, and the pag
 
 test("on a high-DPI screen the canvas backing store matches the device pixels", async () => {
   const context = await lab.browser.newContext({
+    serviceWorkers: "block",
     viewport: { width: 800, height: 700 },
     deviceScaleFactor: 2,
   });

@@ -30,13 +30,24 @@ const MIME = {
   ".json": "application/json; charset=utf-8",
   ".wasm": "application/wasm",
   ".svg": "image/svg+xml; charset=utf-8",
+  ".webmanifest": "application/manifest+json; charset=utf-8",
   ".png": "image/png",
   ".ico": "image/x-icon",
   ".txt": "text/plain; charset=utf-8",
 };
 
-/** Serves dist/ under BASE_PATH on 127.0.0.1 and a free port. */
-export async function startServer() {
+/** A content-hashed file name (`control.0a1b2c3d.wasm`): it never changes. */
+export const isContentHashed = (path) => /[^/]\.[0-9a-f]{8}\.[a-z]+$/.test(path);
+
+/**
+ * Serves dist/ under BASE_PATH on 127.0.0.1 and a free port, with the cache
+ * headers `cargo xtask serve` sends (hashed names for a year, the rest
+ * revalidated). `compress: true` serves the `.br`/`.gz` siblings that
+ * `cargo xtask dist` writes, as nginx `brotli_static`/`gzip_static` would.
+ * `server.hits` lists the paths requested.
+ */
+export async function startServer({ compress = false } = {}) {
+  const hits = [];
   if (!existsSync(join(DIST, "index.html"))) {
     throw new Error("dist/index.html is missing: run `cargo xtask dist` first");
   }
@@ -48,6 +59,7 @@ export async function startServer() {
     try {
       if (req.method !== "GET" && req.method !== "HEAD") return send(405, "GET or HEAD only\n");
       const path = decodeURIComponent(new URL(req.url, "http://x").pathname);
+      hits.push(path);
       if (path === BASE_PATH.slice(0, -1)) return send(301, "", undefined, { Location: BASE_PATH });
       if (!path.startsWith(BASE_PATH) || path.includes("\0")) return send(404, "not found\n");
       let file = resolve(DIST, "." + sep + path.slice(BASE_PATH.length));
@@ -55,7 +67,22 @@ export async function startServer() {
       if ((await stat(file).catch(() => null))?.isDirectory()) file = join(file, "index.html");
       const body = await readFile(file).catch(() => null);
       if (!body) return send(404, "not found\n");
-      send(200, body, MIME[extname(file)] || "application/octet-stream");
+      const headers = isContentHashed(file) ? { "Cache-Control": "public, max-age=31536000, immutable" } : {};
+      if (compress) {
+        const accepted = String(req.headers["accept-encoding"] ?? "");
+        for (const [coding, ext] of [["br", ".br"], ["gzip", ".gz"]]) {
+          if (!accepted.includes(coding)) continue;
+          const packed = await readFile(file + ext).catch(() => null);
+          if (packed) {
+            return send(200, packed, MIME[extname(file)] || "application/octet-stream", {
+              ...headers,
+              "Content-Encoding": coding,
+              Vary: "Accept-Encoding",
+            });
+          }
+        }
+      }
+      send(200, body, MIME[extname(file)] || "application/octet-stream", headers);
     } catch {
       send(400, "bad request\n");
     }
@@ -64,6 +91,7 @@ export async function startServer() {
   const origin = `http://127.0.0.1:${server.address().port}`;
   return {
     origin,
+    hits,
     base: origin + BASE_PATH,
     close: () => new Promise((ok) => server.close(ok)),
   };
@@ -106,11 +134,19 @@ export function useLab() {
  * the test fails on anything that went wrong in the page.
  *
  * options: viewport, hasTouch, colorScheme, allowConsoleErrors, initScript,
- * bypassCSP (to inject a test's own script, e.g. axe-core, with addScriptTag).
+ * serviceWorkers ("block" by default: a test that routes or counts requests
+ * must see them all; the offline tests pass "allow"), bypassCSP (to inject a
+ * test's own script, e.g. axe-core, with addScriptTag).
  */
 export async function withPage(lab, options, fn) {
-  const { viewport = DESKTOP, hasTouch = false, colorScheme = "light", bypassCSP = false } = options;
-  const context = await lab.browser.newContext({ viewport, hasTouch, colorScheme, bypassCSP });
+  const {
+    viewport = DESKTOP,
+    hasTouch = false,
+    colorScheme = "light",
+    serviceWorkers = "block",
+    bypassCSP = false,
+  } = options;
+  const context = await lab.browser.newContext({ viewport, hasTouch, colorScheme, serviceWorkers, bypassCSP });
   context.setDefaultTimeout(10_000);
   const problems = [];
   const origin = lab.server.origin;

@@ -161,10 +161,18 @@ test("time controls: pause, single steps (button and key) are deterministic, Spa
     assert.equal(await third.locator(`${ART} select[data-time=speed]`).inputValue(), "2");
   }));
 
-/** How many distinct colours a canvas shows (a blank one shows one). */
+/**
+ * How many distinct colours a canvas shows (a blank one shows one). Read
+ * through a copy: a plot canvas shows a bitmap (`bitmaprenderer`), not a 2D
+ * context.
+ */
 const colours = (locator) =>
   locator.evaluate((c) => {
-    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    const copy = document.createElement("canvas");
+    [copy.width, copy.height] = [c.width, c.height];
+    const x = copy.getContext("2d");
+    x.drawImage(c, 0, 0);
+    const d = x.getImageData(0, 0, c.width, c.height).data;
     const seen = new Set();
     for (let i = 0; i < d.length; i += 4 * 97) seen.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
     return seen.size;
@@ -286,11 +294,11 @@ test("a plot of two 10,000-point series draws (its time is printed; the budget i
   }));
 
 test("while the engine downloads, the Simulation tab shows its progress", async () => {
-  const context = await lab.browser.newContext();
+  const context = await lab.browser.newContext({ serviceWorkers: "block" });
   try {
     const page = await context.newPage();
     // Hold the wasm back a moment, as a slow network would.
-    await page.route(/labweb_bg\.wasm/, async (route) => {
+    await page.route(/\.wasm(\?|$)/, async (route) => {
       await new Promise((ok) => setTimeout(ok, 1200));
       await route.continue();
     });
@@ -312,7 +320,14 @@ test("dark mode: the simulation and its plots are drawn dark", () =>
     await page.waitForFunction(() => /converged/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
     await settle(page);
     const corner = (sel) =>
-      page.locator(sel).first().evaluate((c) => [...c.getContext("2d").getImageData(2, 2, 1, 1).data].slice(0, 3));
+      page.locator(sel).first().evaluate((c) => {
+        // Through a copy: a plot canvas shows a bitmap, not a 2D context.
+        const copy = document.createElement("canvas");
+        [copy.width, copy.height] = [c.width, c.height];
+        const x = copy.getContext("2d");
+        x.drawImage(c, 0, 0);
+        return [...x.getImageData(2, 2, 1, 1).data].slice(0, 3);
+      });
     for (const sel of [`${ART} canvas.sim-canvas`, `${ART} .plot-canvas`]) {
       const [r, g, b] = await corner(sel);
       assert.ok(r + g + b < 150, `${sel} background is dark: ${r},${g},${b}`);

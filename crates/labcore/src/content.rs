@@ -4,7 +4,7 @@
 //! `<strong>`, `<code>`, `<sub>`, `<sup>`) and MathML (`<math>…</math>`); the
 //! files are ours and are compiled into the bundle, never user input.
 
-use serde::Deserialize;
+use crate::json::{Fields, Json};
 use std::fmt;
 
 /// Decimals with which numeric answers are shown (`{answer}`, “Expected …”).
@@ -15,8 +15,7 @@ pub const ANSWER_DECIMALS: usize = 3;
 pub const MIN_TOLERANCE: f64 = 0.0005;
 
 /// Everything the reading tabs and the quiz show for one experiment.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Content {
     /// Must equal the experiment's [`crate::Experiment::id`].
     pub id: String,
@@ -35,8 +34,7 @@ pub struct Content {
 }
 
 /// A block of the Theory tab.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Block {
     /// A sub-heading.
     Heading(String),
@@ -48,28 +46,65 @@ pub enum Block {
     Note(String),
 }
 
+impl Block {
+    /// One theory block: an object with exactly one of the keys `heading`,
+    /// `paragraph`, `formula`, `note`, holding a string.
+    fn from_json(value: &Json, index: usize) -> Result<Self, String> {
+        let place = format!("theory block {}", index + 1);
+        let Json::Object(fields) = value else {
+            return Err(format!(
+                "{place}: expected an object, found {}",
+                value.kind()
+            ));
+        };
+        let [(kind, Json::String(text))] = fields.as_slice() else {
+            return Err(format!("{place}: expected one key holding a string"));
+        };
+        let text = text.clone();
+        match kind.as_str() {
+            "heading" => Ok(Block::Heading(text)),
+            "paragraph" => Ok(Block::Paragraph(text)),
+            "formula" => Ok(Block::Formula(text)),
+            "note" => Ok(Block::Note(text)),
+            other => Err(format!(
+                "{place}: unknown variant `{other}`, expected heading, paragraph, formula or note"
+            )),
+        }
+    }
+}
+
 /// A bibliographic reference.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Reference {
     pub authors: String,
     pub title: String,
     /// Publisher, journal or site.
     pub venue: String,
-    #[serde(default)]
     pub year: Option<u32>,
     /// Chapter, pages or section.
-    #[serde(default)]
     pub detail: Option<String>,
     /// The Digital Object Identifier, without a resolver (`10.1115/1.3143764`).
-    #[serde(default)]
     pub doi: Option<String>,
     /// A stable address of the work (publisher's or author's page), `https://…`.
-    #[serde(default)]
     pub url: Option<String>,
 }
 
 impl Reference {
+    fn from_json(value: &Json, index: usize) -> Result<Self, String> {
+        let mut f = Fields::of(value, format!("reference {}", index + 1))?;
+        let reference = Reference {
+            authors: f.string("authors")?,
+            title: f.string("title")?,
+            venue: f.string("venue")?,
+            year: f.opt_count("year")?,
+            detail: f.opt_string("detail")?,
+            doi: f.opt_string("doi")?,
+            url: f.opt_string("url")?,
+        };
+        f.done()?;
+        Ok(reference)
+    }
+
     /// Where a reader can find the work: `https://doi.org/<doi>` when a DOI is
     /// given, else the stable URL.
     #[must_use]
@@ -83,8 +118,7 @@ impl Reference {
 }
 
 /// One self-assessment question.
-#[derive(Clone, Debug, Deserialize, PartialEq)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Question {
     /// Multiple choice with exactly one correct option.
     Choice {
@@ -99,10 +133,8 @@ pub enum Question {
         prompt: String,
         answer: f64,
         tolerance: f64,
-        #[serde(default)]
         unit: String,
         /// The answer is an angle in degrees, compared modulo 360°.
-        #[serde(default)]
         angle_degrees: bool,
         explanation: String,
     },
@@ -114,16 +146,53 @@ pub enum Question {
         generator: String,
         prompt: String,
         tolerance: f64,
-        #[serde(default)]
         unit: String,
         /// The answer is an angle in degrees, compared modulo 360°.
-        #[serde(default)]
         angle_degrees: bool,
         explanation: String,
     },
 }
 
 impl Question {
+    /// One quiz question, tagged by its `kind`: `choice`, `numeric` or
+    /// `generated`.
+    fn from_json(value: &Json, index: usize) -> Result<Self, String> {
+        let mut f = Fields::of(value, format!("question {}", index + 1))?;
+        let kind = f.string("kind")?;
+        let question = match kind.as_str() {
+            "choice" => Question::Choice {
+                prompt: f.string("prompt")?,
+                options: f.strings("options")?,
+                answer: f.count("answer")? as usize,
+                explanation: f.string("explanation")?,
+            },
+            "numeric" => Question::Numeric {
+                prompt: f.string("prompt")?,
+                answer: f.number("answer")?,
+                tolerance: f.number("tolerance")?,
+                unit: f.opt_string("unit")?.unwrap_or_default(),
+                angle_degrees: f.flag("angle_degrees")?,
+                explanation: f.string("explanation")?,
+            },
+            "generated" => Question::Generated {
+                generator: f.string("generator")?,
+                prompt: f.string("prompt")?,
+                tolerance: f.number("tolerance")?,
+                unit: f.opt_string("unit")?.unwrap_or_default(),
+                angle_degrees: f.flag("angle_degrees")?,
+                explanation: f.string("explanation")?,
+            },
+            other => {
+                return Err(format!(
+                    "question {}: unknown kind `{other}`, expected choice, numeric or generated",
+                    index + 1
+                ))
+            }
+        };
+        f.done()?;
+        Ok(question)
+    }
+
     #[must_use]
     pub fn prompt(&self) -> &str {
         match self {
@@ -261,10 +330,44 @@ pub const MIN_GENERATED: usize = 2;
 pub const MIN_REFERENCES: usize = 3;
 
 impl Content {
+    /// Reads the fields of a content file's JSON (no field missing, none
+    /// unknown, each of its type); [`Content::validate`] then checks the rest.
+    pub fn from_json(value: &Json) -> Result<Self, String> {
+        let mut f = Fields::of(value, "content")?;
+        let content = Content {
+            id: f.string("id")?,
+            number: f.count("number")?,
+            title: f.string("title")?,
+            summary: f.string("summary")?,
+            aim: f.strings("aim")?,
+            theory: f
+                .array("theory")?
+                .iter()
+                .enumerate()
+                .map(|(i, b)| Block::from_json(b, i))
+                .collect::<Result<_, _>>()?,
+            procedure: f.strings("procedure")?,
+            quiz: f
+                .array("quiz")?
+                .iter()
+                .enumerate()
+                .map(|(i, q)| Question::from_json(q, i))
+                .collect::<Result<_, _>>()?,
+            references: f
+                .array("references")?
+                .iter()
+                .enumerate()
+                .map(|(i, r)| Reference::from_json(r, i))
+                .collect::<Result<_, _>>()?,
+        };
+        f.done()?;
+        Ok(content)
+    }
+
     /// Parses a content file and checks it is complete (see [`Content::validate`]).
     pub fn parse(json: &str) -> Result<Self, ContentError> {
-        let content: Content =
-            serde_json::from_str(json).map_err(|e| ContentError::Parse(e.to_string()))?;
+        let value = Json::parse(json).map_err(ContentError::Parse)?;
+        let content = Content::from_json(&value).map_err(ContentError::Parse)?;
         content.validate()?;
         Ok(content)
     }
@@ -566,19 +669,91 @@ mod tests {
 
     #[test]
     fn references_link_to_their_doi_or_url() {
-        let r: Reference = serde_json::from_str(
-            r#"{"authors": "A", "title": "T", "venue": "V", "doi": "10.1115/1.3143764"}"#,
-        )
-        .unwrap();
+        let read = |text: &str| Reference::from_json(&Json::parse(text).unwrap(), 0);
+        let r = read(r#"{"authors": "A", "title": "T", "venue": "V", "doi": "10.1115/1.3143764"}"#)
+            .unwrap();
         assert_eq!(
             r.link().as_deref(),
             Some("https://doi.org/10.1115/1.3143764")
         );
-        let r: Reference = serde_json::from_str(
-            r#"{"authors": "A", "title": "T", "venue": "V", "url": "https://example.org/x"}"#,
-        )
-        .unwrap();
+        let r =
+            read(r#"{"authors": "A", "title": "T", "venue": "V", "url": "https://example.org/x"}"#)
+                .unwrap();
         assert_eq!(r.link().as_deref(), Some("https://example.org/x"));
+        assert_eq!(
+            read(r#"{"authors": "A", "title": "T", "venue": "V", "year": 1999.5}"#).unwrap_err(),
+            "reference 1: field `year` should be a whole number, found a number"
+        );
+    }
+
+    /// The reader agrees with serde_json on every content file (same values,
+    /// keys in the same order), and both refuse the same broken variants.
+    #[test]
+    fn the_json_reader_agrees_with_serde_json_on_every_content_file() {
+        fn same(a: &Json, b: &serde_json::Value) -> bool {
+            match (a, b) {
+                (Json::Null, serde_json::Value::Null) => true,
+                (Json::Bool(x), serde_json::Value::Bool(y)) => x == y,
+                (Json::Number(x), serde_json::Value::Number(y)) => Some(*x) == y.as_f64(),
+                (Json::String(x), serde_json::Value::String(y)) => x == y,
+                (Json::Array(x), serde_json::Value::Array(y)) => {
+                    x.len() == y.len() && x.iter().zip(y).all(|(a, b)| same(a, b))
+                }
+                (Json::Object(x), serde_json::Value::Object(y)) => {
+                    x.len() == y.len()
+                        && x.iter().all(|(k, v)| y.get(k).is_some_and(|w| same(v, w)))
+                }
+                _ => false,
+            }
+        }
+        for entry in crate::registry() {
+            let ours = Json::parse(entry.content_json).unwrap();
+            let theirs: serde_json::Value = serde_json::from_str(entry.content_json).unwrap();
+            assert!(same(&ours, &theirs), "{}", entry.id);
+            let cut = &entry.content_json[..entry.content_json.len() / 3];
+            assert!(
+                Json::parse(cut).is_err()
+                    && serde_json::from_str::<serde_json::Value>(cut).is_err()
+            );
+        }
+    }
+
+    #[test]
+    fn a_content_file_with_an_unknown_or_mistyped_field_is_refused_naming_it() {
+        let entry = crate::find("fk").expect("fk");
+        let good: serde_json::Value = serde_json::from_str(entry.content_json).unwrap();
+        type Edit = fn(&mut serde_json::Value);
+        let cases: [(Edit, &str); 5] = [
+            (
+                |v| v["colour"] = "red".into(),
+                "content: unknown field `colour`",
+            ),
+            (
+                |v| v["quiz"][2]["hint"] = "x".into(),
+                "question 3: unknown field `hint`",
+            ),
+            (
+                |v| v["quiz"][0]["kind"] = "essay".into(),
+                "question 1: unknown kind `essay`",
+            ),
+            (
+                |v| v["number"] = "one".into(),
+                "content: field `number` should be a whole number",
+            ),
+            (
+                |v| v["theory"][0] = serde_json::json!({"aside": "x"}),
+                "theory block 1: unknown variant `aside`",
+            ),
+        ];
+        for (edit, expected) in cases {
+            let mut v = good.clone();
+            edit(&mut v);
+            let err = entry
+                .parse_content_text(&v.to_string())
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains(expected), "{err}");
+        }
     }
 
     #[test]

@@ -235,6 +235,20 @@ pub struct ActionSpec {
     pub label: &'static str,
 }
 
+/// A named starting state that tells a story ("overshoot vs damping"): the
+/// Simulation tab lists an experiment's presets and opens one as a link
+/// (`#/<id>/simulation?<query>`), so it is shareable like any other state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Preset {
+    /// Short name shown in the menu.
+    pub name: &'static str,
+    /// One sentence: what the student will see.
+    pub description: &'static str,
+    /// The link's query, without `?` (`kp=40&ki=0&kd=1`); it may also carry
+    /// the shell's keys (`lock=`, `note=`…, see [`crate::route::Instructor`]).
+    pub query: &'static str,
+}
+
 /// Why a parameter or action was refused. The experiment's state is unchanged.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ParamError {
@@ -712,6 +726,11 @@ pub trait Experiment {
     /// Puts the experiment in a representative state for its home-page
     /// picture (e.g. a swept workspace, a solved target). Default: as built.
     fn preview(&mut self) {}
+    /// Named starting states that tell a story, shown in a Presets menu on
+    /// the Simulation tab. Default: none.
+    fn presets(&self) -> &'static [Preset] {
+        &[]
+    }
     /// Whether the simulation is still moving (the page may idle when false).
     fn animating(&self) -> bool {
         true

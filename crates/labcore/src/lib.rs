@@ -61,13 +61,16 @@ pub mod control;
 pub mod estimation;
 pub mod experiment;
 pub mod experiments;
+pub mod json;
 pub mod kinematics;
 pub mod linalg;
+pub mod lms;
 pub mod math;
 pub mod mobile;
 pub mod planning;
 pub mod plot;
 pub mod quiz;
+pub mod report;
 pub mod rng;
 pub mod route;
 pub mod scene;
@@ -77,7 +80,7 @@ pub use clock::Clock;
 pub use content::Content;
 pub use experiment::{
     ActionSpec, Experiment, Handle, Input, Modifiers, Notice, Notices, ParamError, ParamKind,
-    ParamSpec, Phase, Readout, Sanitized, Status, Tone,
+    ParamSpec, Phase, Preset, Readout, Sanitized, Status, Tone,
 };
 pub use experiments::{find, registry, Entry};
 pub use glam;

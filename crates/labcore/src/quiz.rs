@@ -58,7 +58,7 @@ pub enum PreparedKind {
 }
 
 /// What the student gave.
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Response {
     Choice(Option<usize>),
     Text(String),
@@ -138,10 +138,78 @@ impl Prepared {
     }
 }
 
+/// Largest seed a JSON number holds exactly (2⁵³).
+const EXACT_SEED: u64 = 1 << 53;
+
+/// A seed as JSON: a number up to 2⁵³ (exact), a larger one (a link may fix
+/// any u64) as a string of digits.
+pub(crate) fn seed_json(seed: u64) -> crate::json::Json {
+    use crate::json::Json;
+    if seed <= EXACT_SEED {
+        Json::Number(seed as f64)
+    } else {
+        Json::String(seed.to_string())
+    }
+}
+
+/// Reads [`seed_json`]'s value.
+pub(crate) fn seed_from_json(value: &crate::json::Json) -> Option<u64> {
+    use crate::json::Json;
+    match value {
+        Json::Number(n) if n.fract() == 0.0 && (0.0..=EXACT_SEED as f64).contains(n) => {
+            Some(*n as u64)
+        }
+        Json::String(digits) if digits.bytes().all(|b| b.is_ascii_digit()) => {
+            digits.parse().ok().filter(|s| *s > EXACT_SEED)
+        }
+        _ => None,
+    }
+}
+
+/// Answers as JSON: `[{"Choice":1},{"Choice":null},{"Text":"2.5 m"}]`.
+pub(crate) fn answers_json(answers: &[Response]) -> crate::json::Json {
+    use crate::json::Json;
+    Json::Array(
+        answers
+            .iter()
+            .map(|a| {
+                let (tag, value) = match a {
+                    Response::Choice(Some(i)) => ("Choice", Json::Number(*i as f64)),
+                    Response::Choice(None) => ("Choice", Json::Null),
+                    Response::Text(t) => ("Text", Json::String(t.clone())),
+                };
+                Json::Object(vec![(tag.into(), value)])
+            })
+            .collect(),
+    )
+}
+
+/// Reads [`answers_json`]'s value.
+pub(crate) fn answers_from_json(value: &crate::json::Json) -> Option<Vec<Response>> {
+    use crate::json::Json;
+    let Json::Array(items) = value else {
+        return None;
+    };
+    items
+        .iter()
+        .map(|item| match item {
+            Json::Object(f) => match f.as_slice() {
+                [(tag, Json::Null)] if tag == "Choice" => Some(Response::Choice(None)),
+                [(tag, Json::Number(i))] if tag == "Choice" && i.fract() == 0.0 && *i >= 0.0 => {
+                    Some(Response::Choice(Some(*i as usize)))
+                }
+                [(tag, Json::String(t))] if tag == "Text" => Some(Response::Text(t.clone())),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect()
+}
+
 /// One saved attempt: its seed and the answers given so far, so an attempt
 /// survives a reload (the page keeps [`SavedAttempt::encode`] in local
 /// storage or the URL) and an instructor's `?quiz=<seed>` fixes the numbers.
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SavedAttempt {
     pub seed: u64,
     /// One per question, in order.
@@ -149,16 +217,36 @@ pub struct SavedAttempt {
 }
 
 impl SavedAttempt {
-    /// A compact text form (JSON).
+    /// A compact text form (JSON): `{"seed":7,"answers":[{"Choice":1},
+    /// {"Choice":null},{"Text":"2.5 m"}]}`.
     #[must_use]
     pub fn encode(&self) -> String {
-        serde_json::to_string(self).unwrap_or_default()
+        use crate::json::Json;
+        Json::Object(vec![
+            ("seed".into(), seed_json(self.seed)),
+            ("answers".into(), answers_json(&self.answers)),
+        ])
+        .to_text()
     }
 
     /// Reads [`SavedAttempt::encode`]'s text; `None` for anything else.
     #[must_use]
     pub fn decode(text: &str) -> Option<Self> {
-        serde_json::from_str(text).ok()
+        use crate::json::Json;
+        let value = Json::parse(text).ok()?;
+        let Json::Object(fields) = &value else {
+            return None;
+        };
+        let [(s, seed), (a, answers)] = fields.as_slice() else {
+            return None;
+        };
+        if s != "seed" || a != "answers" {
+            return None;
+        }
+        Some(SavedAttempt {
+            seed: seed_from_json(seed)?,
+            answers: answers_from_json(answers)?,
+        })
     }
 
     /// The saved answers fitted to `questions`: one per question, a saved
@@ -878,6 +966,37 @@ mod tests {
         let text = saved.encode();
         assert_eq!(SavedAttempt::decode(&text), Some(saved.clone()));
         assert_eq!(SavedAttempt::decode("garbage"), None);
+        // The text serde_json wrote before is still read.
+        assert_eq!(
+            SavedAttempt::decode(
+                r#"{"seed":7,"answers":[{"Choice":1},{"Choice":null},{"Text":"2 m"}]}"#
+            ),
+            Some(SavedAttempt {
+                seed: 7,
+                answers: vec![
+                    Response::Choice(Some(1)),
+                    Response::Choice(None),
+                    Response::Text("2 m".into())
+                ]
+            })
+        );
+        for seed in [0, 1 << 53, (1 << 53) + 1, u64::MAX] {
+            let s = SavedAttempt {
+                seed,
+                answers: vec![Response::Text("é\n\"".into())],
+            };
+            assert_eq!(SavedAttempt::decode(&s.encode()), Some(s));
+        }
+        for bad in [
+            r#"{"seed":-1,"answers":[]}"#,
+            r#"{"seed":1.5,"answers":[]}"#,
+            r#"{"seed":"12","answers":[]}"#,
+            r#"{"seed":1,"answers":[{"Choice":-1}]}"#,
+            r#"{"seed":1,"answers":[{"Other":1}]}"#,
+            r#"{"answers":[],"seed":1}"#,
+        ] {
+            assert_eq!(SavedAttempt::decode(bad), None, "{bad}");
+        }
         let questions = vec![
             choice(vec!["a", "b"], 0),
             numeric(1.0, 0.01, "m"),

@@ -80,6 +80,10 @@ pub struct Route {
     /// instructor so a whole class draws the same numbers. Taken out of
     /// [`Page::Experiment::params`]; `None` when absent or unreadable.
     pub quiz_seed: Option<u64>,
+    /// Locks, hidden controls and the note of an instructor's link
+    /// (`lock=kp,ki&hide=noise&note=…`), taken out of the parameters; not
+    /// yet checked against the experiment (see [`Instructor::resolve`]).
+    pub instructor: Instructor,
 }
 
 /// The query key that fixes the quiz attempt's seed (`#/ik/quiz?quiz=123`).
@@ -123,6 +127,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
             page: Page::Home,
             notices,
             quiz_seed: None,
+            instructor: Instructor::default(),
         };
     };
     let id = decode(first);
@@ -135,6 +140,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
             page: Page::Home,
             notices,
             quiz_seed: None,
+            instructor: Instructor::default(),
         };
     }
     let tab = match segments.get(1) {
@@ -152,6 +158,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
     }
     let mut params = Vec::new();
     let mut quiz_seed = None;
+    let mut instructor = Instructor::default();
     for pair in query.unwrap_or("").split('&').filter(|p| !p.is_empty()) {
         match pair.split_once('=') {
             Some((k, v)) if decode(k) == QUIZ_KEY => match decode(v).trim().parse::<u64>() {
@@ -161,6 +168,13 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
                     truncate(&decode(v), 30)
                 )),
             },
+            Some((k, v)) if decode(k) == LOCK_KEY => instructor.locked.extend(key_list(v)),
+            Some((k, v)) if decode(k) == HIDE_KEY => instructor.hidden.extend(key_list(v)),
+            Some((k, v)) if decode(k) == NOTE_KEY => {
+                let (note, notice) = clean_note(&decode(v));
+                instructor.note = note;
+                notices.extend(notice);
+            }
             Some((k, v)) if !k.is_empty() => params.push((decode(k), decode(v))),
             _ => notices.push(format!(
                 "Ignored “{}” in the link.",
@@ -172,6 +186,7 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
         page: Page::Experiment { id, tab, params },
         notices,
         quiz_seed,
+        instructor,
     }
 }
 
@@ -261,6 +276,16 @@ pub fn restore<E: Experiment>(link: &str, mut fresh: E) -> (E, Vec<String>) {
     (fresh, notices)
 }
 
+/// [`restore`] for an instructor's link: also returns its locks, hidden
+/// controls and note, checked against the experiment (an unknown key is
+/// dropped with a notice).
+pub fn restore_instructor<E: Experiment>(link: &str, fresh: E) -> (E, Instructor, Vec<String>) {
+    let mut instructor = parse(link, &[fresh.id()]).instructor;
+    let (exp, mut notices) = restore(link, fresh);
+    notices.extend(instructor.resolve(exp.params()));
+    (exp, instructor, notices)
+}
+
 /// Opens a link's parameters in a tab that may already show the experiment.
 /// A link with parameters describes a whole state, so the experiment is
 /// rebuilt from `make` (its defaults) before the link is applied: whatever
@@ -348,6 +373,194 @@ pub fn format_with_quiz(experiment: &dyn Experiment, tab: Tab, quiz_seed: Option
         Some(seed) if hash.contains('?') => format!("{hash}&{QUIZ_KEY}={seed}"),
         Some(seed) => format!("{hash}?{QUIZ_KEY}={seed}"),
     }
+}
+
+/// The query key listing locked parameters (`lock=kp,ki`).
+pub const LOCK_KEY: &str = "lock";
+/// The query key listing hidden parameters (`hide=noise`).
+pub const HIDE_KEY: &str = "hide";
+/// The query key of the instructor's note (`note=Find+the+smallest+Kp…`).
+pub const NOTE_KEY: &str = "note";
+/// The longest note kept, in characters (a longer one is shortened).
+pub const NOTE_MAX_CHARS: usize = 280;
+
+/// What an instructor's link adds to a state: parameters shown but not
+/// changeable (**locked**), parameters not shown (**hidden**) and a short
+/// **note** shown above the simulation. A teaching aid, not security: a
+/// student may edit the URL. The quiz seed travels beside it as
+/// [`Route::quiz_seed`].
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Instructor {
+    /// Keys of locked parameters, in link order, without repeats once resolved.
+    pub locked: Vec<String>,
+    /// Keys of hidden parameters.
+    pub hidden: Vec<String>,
+    /// Plain text (no control characters, at most [`NOTE_MAX_CHARS`]); the
+    /// page shows it as text, never as HTML.
+    pub note: Option<String>,
+}
+
+impl Instructor {
+    /// Nothing locked, hidden or noted.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.locked.is_empty() && self.hidden.is_empty() && self.note.is_none()
+    }
+
+    #[must_use]
+    pub fn is_locked(&self, key: &str) -> bool {
+        self.locked.iter().any(|k| k == key)
+    }
+
+    #[must_use]
+    pub fn is_hidden(&self, key: &str) -> bool {
+        self.hidden.iter().any(|k| k == key)
+    }
+
+    /// Keeps the keys that name one of `specs` (each once, in the order
+    /// written) and drops the rest with a notice each, e.g. “Cannot lock
+    /// “kq”: this experiment has no such setting; ignored.”.
+    pub fn resolve(&mut self, specs: &[crate::ParamSpec]) -> Vec<String> {
+        let mut notices = Vec::new();
+        for (list, verb) in [(&mut self.locked, "lock"), (&mut self.hidden, "hide")] {
+            let mut kept: Vec<String> = Vec::new();
+            for key in list.drain(..) {
+                if !specs.iter().any(|s| s.key == key) {
+                    notices.push(format!(
+                        "Cannot {verb} “{}”: this experiment has no such setting; ignored.",
+                        truncate(&key, 30)
+                    ));
+                } else if !kept.contains(&key) {
+                    kept.push(key);
+                }
+            }
+            *list = kept;
+        }
+        notices
+    }
+
+    /// The link's `lock=…&hide=…&note=…` pairs (only those in use), in
+    /// that order, each already encoded.
+    #[must_use]
+    pub fn query(&self) -> Vec<String> {
+        let list = |keys: &[String]| keys.iter().map(|k| encode(k)).collect::<Vec<_>>().join(",");
+        let mut out = Vec::new();
+        if !self.locked.is_empty() {
+            out.push(format!("{LOCK_KEY}={}", list(&self.locked)));
+        }
+        if !self.hidden.is_empty() {
+            out.push(format!("{HIDE_KEY}={}", list(&self.hidden)));
+        }
+        if let Some(note) = &self.note {
+            out.push(format!("{NOTE_KEY}={}", encode(note)));
+        }
+        out
+    }
+}
+
+/// The keys of a `lock=`/`hide=` value: comma-separated, trimmed, empties dropped.
+fn key_list(raw: &str) -> Vec<String> {
+    decode(raw)
+        .split(',')
+        .map(str::trim)
+        .filter(|k| !k.is_empty())
+        .map(str::to_owned)
+        .collect()
+}
+
+/// A note as the page keeps it: control characters (line breaks included)
+/// become spaces, the ends are trimmed, and more than [`NOTE_MAX_CHARS`]
+/// characters are cut with a notice. Empty: no note.
+#[must_use]
+pub fn clean_note(raw: &str) -> (Option<String>, Option<String>) {
+    let text: String = raw
+        .chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    let text = text.trim();
+    if text.is_empty() {
+        return (None, None);
+    }
+    if text.chars().count() > NOTE_MAX_CHARS {
+        let cut: String = text.chars().take(NOTE_MAX_CHARS).collect();
+        return (
+            Some(cut.trim_end().to_owned()),
+            Some(format!(
+                "The instructor's note is longer than {NOTE_MAX_CHARS} characters; shortened."
+            )),
+        );
+    }
+    (Some(text.to_owned()), None)
+}
+
+/// Appends encoded `key=value` pairs to a hash's query.
+#[must_use]
+pub fn with_query(mut hash: String, pairs: &[String]) -> String {
+    if !pairs.is_empty() {
+        hash.push(if hash.contains('?') { '&' } else { '?' });
+        hash.push_str(&pairs.join("&"));
+    }
+    hash
+}
+
+/// A whole instructor's link: the state ([`format`]), then the locks,
+/// hidden controls and note, then the quiz seed.
+#[must_use]
+pub fn format_instructor(
+    experiment: &dyn Experiment,
+    tab: Tab,
+    instructor: &Instructor,
+    quiz_seed: Option<u64>,
+) -> String {
+    let mut pairs = instructor.query();
+    pairs.extend(quiz_seed.map(|s| format!("{QUIZ_KEY}={s}")));
+    with_query(format(experiment, tab), &pairs)
+}
+
+/// Runs `op` (a pointer input, an action, a reset, a loaded file, a run of
+/// steps) and puts back every locked parameter it changed, so a drag that
+/// would turn a locked joint moves only the free ones. When a value cannot
+/// be put back by itself (a choice an action made, such as a grid size
+/// only a map file gives), the whole state before `op` is applied again
+/// from its link. Returns the labels of the parameters that had to be put
+/// back (the page says they are locked).
+pub fn keep_locked(
+    experiment: &mut dyn Experiment,
+    instructor: &Instructor,
+    op: impl FnOnce(&mut dyn Experiment),
+) -> Vec<&'static str> {
+    if instructor.locked.is_empty() {
+        op(experiment);
+        return Vec::new();
+    }
+    let values = |e: &dyn Experiment| -> Vec<Option<f64>> {
+        instructor.locked.iter().map(|k| e.param(k)).collect()
+    };
+    let before = values(experiment);
+    let link = format(experiment, Tab::Simulation);
+    op(experiment);
+    let after = values(experiment);
+    if after == before {
+        return Vec::new();
+    }
+    let mut put_back = Vec::new();
+    for ((key, was), now) in instructor.locked.iter().zip(&before).zip(&after) {
+        if now == was {
+            continue;
+        }
+        if let Some(v) = was {
+            let _ = experiment.set_param(key, *v);
+        }
+        if let Some(spec) = experiment.params().iter().find(|s| s.key == key) {
+            put_back.push(spec.label);
+        }
+    }
+    if values(experiment) != before {
+        if let Page::Experiment { params, .. } = parse(&link, &[experiment.id()]).page {
+            let _ = apply_params(experiment, &params);
+        }
+    }
+    put_back
 }
 
 /// Percent-decoding of a URL component; invalid escapes are kept verbatim.
@@ -536,6 +749,105 @@ mod tests {
         let hash = format_with_quiz(&exp, Tab::Quiz, Some(42));
         assert!(hash.starts_with("#/fk/quiz?t1=35&") && hash.ends_with("&quiz=42"));
         assert_eq!(parse(&hash, IDS).quiz_seed, Some(42));
+    }
+
+    #[test]
+    fn instructor_keys_leave_the_parameters_and_round_trip() {
+        use crate::experiments::fk::ForwardKinematics;
+        let r = parse(
+            "#/fk/simulation?t1=10&lock=t1,l2&hide=l1&note=Find+the+reach%3A+%3Cb%3Ebold%3C%2Fb%3E&quiz=5",
+            IDS,
+        );
+        assert!(r.notices.is_empty(), "{:?}", r.notices);
+        assert_eq!(r.quiz_seed, Some(5));
+        assert_eq!(r.instructor.locked, vec!["t1", "l2"]);
+        assert_eq!(r.instructor.hidden, vec!["l1"]);
+        // Kept as the text written: the page shows it as text, never as HTML.
+        assert_eq!(
+            r.instructor.note.as_deref(),
+            Some("Find the reach: <b>bold</b>")
+        );
+        assert!(matches!(&r.page, Page::Experiment { params, .. } if params.len() == 1));
+        let mut exp = ForwardKinematics::default();
+        exp.set_param("t1", 10.0).unwrap();
+        let link = format_instructor(&exp, Tab::Simulation, &r.instructor, r.quiz_seed);
+        assert!(
+            link.ends_with(
+                "&lock=t1,l2&hide=l1&note=Find%20the%20reach%3A%20%3Cb%3Ebold%3C%2Fb%3E&quiz=5"
+            ),
+            "{link}"
+        );
+        let (back, instructor, notices) = restore_instructor(&link, ForwardKinematics::default());
+        assert!(notices.is_empty(), "{notices:?}");
+        assert_eq!(instructor, r.instructor);
+        assert_eq!(back.param("t1"), Some(10.0));
+    }
+
+    #[test]
+    fn unknown_locks_and_hides_are_ignored_with_a_notice() {
+        use crate::experiments::fk::ForwardKinematics;
+        let (_, instructor, notices) = restore_instructor(
+            "#/fk/simulation?lock=t1,kp,t1,,%20l1%20&hide=zz",
+            ForwardKinematics::default(),
+        );
+        assert_eq!(
+            instructor.locked,
+            vec!["t1", "l1"],
+            "repeats and blanks dropped"
+        );
+        assert!(instructor.hidden.is_empty());
+        assert_eq!(
+            notices,
+            vec![
+                "Cannot lock “kp”: this experiment has no such setting; ignored.".to_owned(),
+                "Cannot hide “zz”: this experiment has no such setting; ignored.".to_owned(),
+            ]
+        );
+    }
+
+    #[test]
+    fn notes_are_plain_short_text() {
+        assert_eq!(clean_note("  a\nb\tc\u{0}  "), (Some("a b c".into()), None));
+        assert_eq!(clean_note(" \n "), (None, None));
+        let long = "é".repeat(NOTE_MAX_CHARS + 50);
+        let (note, notice) = clean_note(&long);
+        assert_eq!(note.unwrap().chars().count(), NOTE_MAX_CHARS);
+        assert!(notice.unwrap().contains("shortened"));
+        let r = parse(&format!("#/fk/simulation?note={}", encode(&long)), IDS);
+        assert_eq!(r.notices.len(), 1);
+        assert_eq!(r.instructor.note.unwrap().chars().count(), NOTE_MAX_CHARS);
+        // An empty note is no note, and the link leaves it out.
+        let r = parse("#/fk/simulation?note=", IDS);
+        assert!(r.instructor.is_empty() && r.notices.is_empty());
+        assert!(r.instructor.query().is_empty());
+    }
+
+    #[test]
+    fn keep_locked_puts_back_what_an_input_changed() {
+        use crate::experiments::fk::ForwardKinematics;
+        use glam::DVec2;
+        let mut exp = ForwardKinematics::default();
+        let instructor = Instructor {
+            locked: vec!["t1".into()],
+            ..Instructor::default()
+        };
+        // Dragging the tip turns both joints; θ₁ is locked, so only θ₂ moves.
+        let put_back = keep_locked(&mut exp, &instructor, |e| {
+            e.input(crate::Input::PointerDown(DVec2::new(0.2, 1.2)));
+            e.input(crate::Input::PointerMove {
+                pos: DVec2::new(-0.5, 1.0),
+                pressed: true,
+            });
+        });
+        assert_eq!(put_back, vec!["θ₁"]);
+        assert_eq!(exp.param("t1"), Some(35.0));
+        assert_ne!(exp.param("t2"), Some(60.0), "the free joint followed");
+        // Nothing locked: nothing put back.
+        let put_back = keep_locked(&mut exp, &Instructor::default(), |e| {
+            let _ = e.set_param("t1", 0.0);
+        });
+        assert!(put_back.is_empty());
+        assert_eq!(exp.param("t1"), Some(0.0));
     }
 
     #[test]

@@ -269,6 +269,20 @@ fn set_param_returns_exactly_the_stored_value() {
 /// releases with and without Shift/Ctrl, keyboard nudges, typed parameter
 /// values (any value the field accepts, clamped or not), buttons, and time.
 fn random_session(exp: &mut dyn labcore::Experiment, seed: u64) {
+    random_session_with(exp, seed, &mut |exp, op| op(exp));
+}
+
+/// A student's input as an operation on the experiment; the shell runs it
+/// through `run` (e.g. [`labcore::route::keep_locked`]).
+type Op<'a> = &'a mut dyn FnMut(&mut dyn labcore::Experiment);
+
+/// [`random_session`] with every input, action, reset and run of steps
+/// passed through `run`.
+fn random_session_with(
+    exp: &mut dyn labcore::Experiment,
+    seed: u64,
+    run: &mut dyn FnMut(&mut dyn labcore::Experiment, Op),
+) {
     let view = exp.view();
     let mut rng = labcore::Lcg64::new(seed);
     for _ in 0..40 {
@@ -281,7 +295,7 @@ fn random_session(exp: &mut dyn labcore::Experiment, seed: u64) {
             shift: rng.next_f64() < 0.2,
             ctrl: rng.next_f64() < 0.1,
         };
-        match rng.int(0, 7) {
+        run(exp, &mut |exp| match rng.int(0, 7) {
             0 => exp.input_with(Input::PointerDown(p), modifiers),
             1 => exp.input_with(
                 Input::PointerMove {
@@ -323,10 +337,13 @@ fn random_session(exp: &mut dyn labcore::Experiment, seed: u64) {
                 }
             }
             _ => exp.reset(),
-        }
-        for _ in 0..rng.int(0, 30) {
-            exp.step(1.0 / 60.0);
-        }
+        });
+        let steps = rng.int(0, 30);
+        run(exp, &mut |exp| {
+            for _ in 0..steps {
+                exp.step(1.0 / 60.0);
+            }
+        });
     }
 }
 
@@ -364,6 +381,100 @@ fn permalinks_reproduce_every_state_reachable_by_pointer_and_keyboard() {
                     entry.id,
                     spec.key
                 );
+            }
+        }
+    }
+}
+
+/// Issue 17 §2: an instructor's link carries its locks, hidden controls,
+/// note and quiz seed beside the state. For random sessions and random
+/// choices: format → parse → apply gives the same locks, hides, note, seed
+/// and state, without a notice.
+#[test]
+fn instructor_links_round_trip_locks_hides_notes_and_the_quiz_seed() {
+    use labcore::route::{apply_params, format, format_instructor, parse, Instructor, Page, Tab};
+    let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
+    // Characters a note may hold, those a URL must escape among them.
+    const NOTE_CHARS: &[char] = &[
+        'a', 'Z', '7', ' ', '&', '=', '?', '#', '%', '+', ',', '<', '>', '"', '\'', 'é', 'θ', '≤',
+        '😀', '/', ';',
+    ];
+    for entry in registry() {
+        for seed in 0..8 {
+            let mut exp = (entry.make)();
+            random_session(exp.as_mut(), seed);
+            let mut rng = labcore::Lcg64::new(seed + 10_000);
+            let mut keys = |p: f64| -> Vec<String> {
+                exp.params()
+                    .iter()
+                    .filter(|_| rng.next_f64() < p)
+                    .map(|s| s.key.to_owned())
+                    .collect()
+            };
+            let locked = keys(0.3);
+            let hidden = keys(0.2);
+            let note: String = (0..rng.int(0, 60))
+                .map(|_| NOTE_CHARS[rng.int(0, NOTE_CHARS.len() as i64 - 1) as usize])
+                .collect();
+            let note = Some(note.trim().to_owned()).filter(|n| !n.is_empty());
+            let quiz = (rng.next_f64() < 0.5).then(|| rng.int(0, 999_999) as u64);
+            let instructor = Instructor {
+                locked,
+                hidden,
+                note,
+            };
+            let link = format_instructor(exp.as_ref(), Tab::Simulation, &instructor, quiz);
+            let route = parse(&link, &ids);
+            assert!(route.notices.is_empty(), "{link}: {:?}", route.notices);
+            assert_eq!(route.quiz_seed, quiz, "{link}");
+            let mut back = route.instructor;
+            let Page::Experiment { params, .. } = route.page else {
+                panic!("{link}");
+            };
+            let mut fresh = (entry.make)();
+            assert!(back.resolve(fresh.params()).is_empty(), "{link}");
+            assert_eq!(back, instructor, "{link}");
+            let notices = apply_params(fresh.as_mut(), &params);
+            assert!(notices.is_empty(), "{link}: {notices:?}");
+            assert_eq!(
+                format(fresh.as_ref(), Tab::Simulation),
+                format(exp.as_ref(), Tab::Simulation)
+            );
+        }
+    }
+}
+
+/// Whatever a student does, through pointer, keyboard, typed values,
+/// actions, resets and running the clock, a locked parameter keeps the value it had when the
+/// link was opened (the shell runs every input through `keep_locked`).
+#[test]
+fn locked_parameters_survive_random_sessions() {
+    use labcore::route::{keep_locked, Instructor};
+    for entry in registry() {
+        for seed in 0..8 {
+            let mut exp = (entry.make)();
+            random_session(exp.as_mut(), seed);
+            let mut rng = labcore::Lcg64::new(seed + 20_000);
+            let locked: Vec<String> = exp
+                .params()
+                .iter()
+                .filter(|_| rng.next_f64() < 0.4)
+                .map(|s| s.key.to_owned())
+                .collect();
+            let before: Vec<Option<f64>> = locked.iter().map(|k| exp.param(k)).collect();
+            let instructor = Instructor {
+                locked: locked.clone(),
+                ..Instructor::default()
+            };
+            random_session_with(exp.as_mut(), seed + 1, &mut |exp, op| {
+                let _ = keep_locked(exp, &instructor, |e| op(e));
+            });
+            for (key, was) in locked.iter().zip(before) {
+                // An unset optional field a drag then sets cannot be unset
+                // again by a value: only keys that had a value are held.
+                if was.is_some() {
+                    assert_eq!(exp.param(key), was, "{}.{key} seed {seed}", entry.id);
+                }
             }
         }
     }

@@ -1,12 +1,15 @@
 //! Routing and pages: the home page and the six-tab experiment page.
 //!
-//! `cargo xtask dist` puts the navigation, the home page and every
-//! experiment's article (reading tabs filled in) into `index.html`, and a few
-//! lines of `main.js` show the right one before the wasm arrives. Once the
-//! wasm is ready, this module owns routing: it shows the page the hash names,
-//! mounts the simulation and the quiz into their panels, and keeps the link
-//! complete. Pages missing from the document (test pages) are rendered from
-//! the same [`labcore::content_html`] functions.
+//! `cargo xtask dist` puts the navigation and the home page into
+//! `index.html` and each experiment's article (reading tabs filled in) into a
+//! reading page of its own; `main.js` fetches and shows the one the link
+//! names, then starts the wasm module of that experiment's group. Once a
+//! module runs, this module owns routing within it: it shows the page the
+//! hash names, mounts the simulation and the quiz into their panels, and
+//! keeps the link complete; a link to an experiment of another group is left
+//! to `main.js`, which starts that group's module. Articles missing from the
+//! document (test pages, a link followed before its reading page arrived) are
+//! rendered from the same [`labcore::content_html`] functions.
 
 use crate::dom::{self, escape, query, query_all, Listener};
 use crate::quiz_view::{self, Attempt};
@@ -14,7 +17,7 @@ use crate::sim::{self, SimView};
 use labcore::content::Content;
 use labcore::content_html;
 use labcore::route::{self, Page, Tab};
-use labcore::{registry, Entry};
+use labcore::Entry;
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::JsCast;
@@ -66,9 +69,12 @@ impl App {
     /// Shows the page the location hash names.
     pub fn route(&mut self) {
         let hash = dom::window().location().hash().unwrap_or_default();
-        let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
+        // Every experiment of the lab is a page, also those whose code is in
+        // another module: `main.js` hands those over to their module.
+        let ids: Vec<&str> = labcore::catalogue::CATALOGUE.iter().map(|p| p.id).collect();
         let parsed = route::parse(&hash, &ids);
         let quiz_seed = parsed.quiz_seed;
+        let instructor = parsed.instructor;
         let mut notices = parsed.notices;
         close_nav_menu();
         match parsed.page {
@@ -88,7 +94,10 @@ impl App {
                 let same = matches!(&self.page, Some(Mounted::Experiment(p)) if p.id == id);
                 if !same {
                     self.page = None;
+                    // Not in this module: `main.js` shows its reading page and
+                    // starts its module, which routes from here.
                     let Some(entry) = labcore::find(&id) else {
+                        mark_nav(Some(&id));
                         return;
                     };
                     self.page = Some(Mounted::Experiment(ExperimentPage::mount(
@@ -105,6 +114,12 @@ impl App {
                     }
                     if !params.is_empty() {
                         notices.extend(page.apply_params(&params));
+                    }
+                    // An instructor's locks, hidden controls and note come
+                    // with a whole state (or alone); a bare link (a tab
+                    // switch) keeps those already set.
+                    if !params.is_empty() || !instructor.is_empty() {
+                        notices.extend(page.set_instructor(instructor, quiz_seed));
                     }
                     // An instructor's link fixes the attempt (`?quiz=123`): the
                     // whole class gets the same numbers.
@@ -186,21 +201,16 @@ fn mark_nav(current: Option<&str>) {
     }
 }
 
-/// Shows the home page (rendering it if the document has none) and hides
-/// every experiment article.
+/// Shows the home page (once `main.js` has added it) and hides every
+/// experiment article.
 fn show_home(root: &Element) {
     for article in query_all(root, "article.exp") {
         dom::set_hidden(&article, true);
     }
-    let home = match query(root, "[data-page=home]") {
-        Some(home) => home,
-        None => {
-            let _ = root.insert_adjacent_html("afterbegin", &content_html::home(|_| String::new()));
-            let Some(home) = query(root, "[data-page=home]") else {
-                return;
-            };
-            home
-        }
+    // The home page is a reading page of its own: `main.js` fetches it and
+    // adds it (a module holds only its group's content, too little for it).
+    let Some(home) = query(root, "[data-page=home]") else {
+        return;
     };
     dom::set_hidden(&home, false);
     // Cards without a picture get one painted from the experiment's preview
@@ -419,6 +429,17 @@ impl ExperimentPage {
         match &self.inner.borrow().sim {
             Some(sim) => sim.apply_params(params),
             None => vec!["The simulation is not running, so its settings were ignored.".into()],
+        }
+    }
+
+    fn set_instructor(
+        &mut self,
+        instructor: route::Instructor,
+        quiz_seed: Option<u64>,
+    ) -> Vec<String> {
+        match &self.inner.borrow().sim {
+            Some(sim) => sim.set_instructor(instructor, quiz_seed),
+            None => Vec::new(),
         }
     }
 

@@ -174,6 +174,9 @@ fn set_dash(ctx: &CanvasRenderingContext2d, dashed: bool) {
     let _ = ctx.set_line_dash(&pattern);
 }
 
+/// The font of scene labels.
+const LABEL_FONT: &str = "600 13px system-ui, sans-serif";
+
 /// Paints `scene` into a canvas of `width_px` × `height_px` CSS pixels whose
 /// backing store is `dpr` times larger.
 pub fn paint(
@@ -191,6 +194,9 @@ pub fn paint(
     ctx.fill_rect(0.0, 0.0, width_px, height_px);
     ctx.set_line_cap("round");
     ctx.set_line_join("round");
+    // Whether the context's font and baseline are the labels' (the scale
+    // bar and the off-view marks set their own).
+    let mut label_font = false;
     for item in &scene.items {
         ctx.set_global_alpha(1.0);
         match item {
@@ -324,9 +330,13 @@ pub fn paint(
                 offset_px,
             } => {
                 let c = viewport.to_px(*pos) + *offset_px;
-                ctx.set_font("600 13px system-ui, sans-serif");
-                ctx.set_text_baseline("middle");
-                let text_w = ctx.measure_text(text).map_or(0.0, |m| m.width());
+                // The font is set once a paint (setting it parses it).
+                if !label_font {
+                    ctx.set_font(LABEL_FONT);
+                    ctx.set_text_baseline("middle");
+                    label_font = true;
+                }
+                let text_w = crate::text::width(ctx, LABEL_FONT, text);
                 // Keep labels inside the canvas.
                 let x = c.x.min(width_px - text_w - 4.0).max(4.0);
                 let y = c.y.clamp(10.0, height_px - 10.0);
@@ -440,7 +450,10 @@ pub fn paint(
                 set_dash(ctx, false);
                 ctx.stroke();
             }
-            Item::ScaleBar => paint_scale_bar(ctx, viewport, palette, height_px),
+            Item::ScaleBar => {
+                paint_scale_bar(ctx, viewport, palette, height_px);
+                label_font = false;
+            }
             Item::OffView { at, label, role } => {
                 paint_off_view(
                     ctx,
@@ -451,6 +464,7 @@ pub fn paint(
                     label,
                     *role,
                 );
+                label_font = false;
             }
             Item::FocusRing { center, radius_px } => {
                 let c = viewport.to_px(*center);

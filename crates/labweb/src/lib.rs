@@ -8,9 +8,12 @@ pub mod app;
 pub mod dom;
 pub mod draw;
 pub mod help;
+pub mod lms;
 pub mod plot_view;
 pub mod quiz_view;
+pub mod report_view;
 pub mod sim;
+pub mod text;
 
 use std::cell::RefCell;
 use wasm_bindgen::prelude::*;

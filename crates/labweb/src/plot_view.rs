@@ -9,7 +9,10 @@ use labcore::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, SeriesR
 use labcore::quiz::format_number;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
-use web_sys::{CanvasRenderingContext2d, Element, HtmlCanvasElement};
+use web_sys::{
+    CanvasRenderingContext2d, Element, HtmlCanvasElement, ImageBitmapRenderingContext,
+    OffscreenCanvas,
+};
 
 /// Most rows shown in a plot's data table (the CSV always has every row).
 const TABLE_ROWS_MAX: usize = 500;
@@ -368,24 +371,72 @@ pub struct Layout {
 }
 
 impl Layout {
+    /// The layout as JSON, one decimal per coordinate. Built with integer
+    /// formatting into one string: `{:.1}` takes the exact (and slow)
+    /// float-formatting path, and this runs at every plot paint.
     fn json(&self) -> String {
-        let r = |r: &Rect| format!("[{:.1},{:.1},{:.1},{:.1}]", r.x, r.y, r.w, r.h);
-        let list = |v: &[Rect]| v.iter().map(r).collect::<Vec<_>>().join(",");
-        let ticks = |v: &[(String, Rect)]| {
-            v.iter()
-                .map(|(t, rect)| format!("[\"{}\",{}]", t.replace('"', ""), r(rect)))
-                .collect::<Vec<_>>()
-                .join(",")
-        };
-        let opt = |o: &Option<Rect>| o.as_ref().map_or("null".to_owned(), r);
-        format!(
-            "{{\"labels\":[{}],\"xticks\":[{}],\"yticks\":[{}],\"xtitle\":{},\"ytitle\":{}}}",
-            list(&self.labels),
-            ticks(&self.x_ticks),
-            ticks(&self.y_ticks),
-            opt(&self.x_title),
-            opt(&self.y_title)
-        )
+        use std::fmt::Write as _;
+        fn num(out: &mut String, v: f64) {
+            let tenths = (v * 10.0).round();
+            if !tenths.is_finite() || tenths.abs() >= 1e15 {
+                out.push('0');
+                return;
+            }
+            let n = tenths as i64;
+            if n < 0 {
+                out.push('-');
+            }
+            let a = n.unsigned_abs();
+            let _ = write!(out, "{}.{}", a / 10, a % 10);
+        }
+        fn rect(out: &mut String, r: &Rect) {
+            out.push('[');
+            for (i, v) in [r.x, r.y, r.w, r.h].into_iter().enumerate() {
+                if i > 0 {
+                    out.push(',');
+                }
+                num(out, v);
+            }
+            out.push(']');
+        }
+        fn ticks(out: &mut String, v: &[(String, Rect)]) {
+            for (i, (t, r)) in v.iter().enumerate() {
+                if i > 0 {
+                    out.push(',');
+                }
+                out.push_str("[\"");
+                out.extend(t.chars().filter(|c| *c != '"'));
+                out.push_str("\",");
+                rect(out, r);
+                out.push(']');
+            }
+        }
+        fn opt(out: &mut String, o: Option<&Rect>) {
+            match o {
+                Some(r) => rect(out, r),
+                None => out.push_str("null"),
+            }
+        }
+        let mut out = String::with_capacity(
+            64 + 40 * (self.labels.len() + self.x_ticks.len() + self.y_ticks.len()),
+        );
+        out.push_str("{\"labels\":[");
+        for (i, r) in self.labels.iter().enumerate() {
+            if i > 0 {
+                out.push(',');
+            }
+            rect(&mut out, r);
+        }
+        out.push_str("],\"xticks\":[");
+        ticks(&mut out, &self.x_ticks);
+        out.push_str("],\"yticks\":[");
+        ticks(&mut out, &self.y_ticks);
+        out.push_str("],\"xtitle\":");
+        opt(&mut out, self.x_title.as_ref());
+        out.push_str(",\"ytitle\":");
+        opt(&mut out, self.y_title.as_ref());
+        out.push('}');
+        out
     }
 }
 
@@ -424,25 +475,116 @@ impl Frame {
     }
 }
 
-/// One drawn plot: its canvas and what was last drawn there.
+/// One drawn plot: its canvas, the elements around it, and what was last
+/// drawn or written there (so an unchanged value is never written again).
 struct Drawn {
     key: &'static str,
     figure: Element,
     canvas: HtmlCanvasElement,
+    /// The context painted on: the canvas's own, or the off-screen one.
     ctx: CanvasRenderingContext2d,
+    surface: Surface,
     revision: Option<u64>,
     size: (f64, f64, f64),
+    /// The canvas size (CSS px) and pixel ratio read by [`PlotView::measure`].
+    measured: (f64, f64, f64),
+    /// When it was last painted (animation-frame time, ms).
+    painted_ms: f64,
     frame: Frame,
     hover_x: Option<f64>,
     /// Whether the x axis fits the latest run (the comparison runs ignored).
     fit_latest: bool,
+    parts: Parts,
+    shown: Shown,
+}
+
+/// Where a plot is painted.
+///
+/// Off screen where the browser can: the page then shows each finished
+/// picture through a `bitmaprenderer` context. A 2D canvas on the page costs
+/// the browser a copy of its whole bitmap at every frame the page changes,
+/// whether the canvas changed or not (measured in Chromium with software
+/// compositing: each 780 × 400 canvas adds about 1.7 ms a frame at a 4× CPU
+/// throttle); a bitmap shown this way costs nothing until it is replaced.
+enum Surface {
+    Offscreen {
+        offscreen: OffscreenCanvas,
+        shown: ImageBitmapRenderingContext,
+    },
+    /// The canvas's own 2D context (browsers without `OffscreenCanvas`).
+    Direct,
+}
+
+impl Surface {
+    /// The off-screen surface for `canvas` and its 2D context, if the
+    /// browser has one; `None` leaves the canvas free for a 2D context.
+    fn offscreen(canvas: &HtmlCanvasElement) -> Option<(Self, CanvasRenderingContext2d)> {
+        let offscreen = OffscreenCanvas::new(1, 1).ok()?;
+        // An `OffscreenCanvasRenderingContext2D` has every method and
+        // property of `CanvasRenderingContext2D` the plots use, and
+        // wasm-bindgen calls them by name, so one set of bindings serves both.
+        let ctx: CanvasRenderingContext2d =
+            offscreen.get_context("2d").ok().flatten()?.unchecked_into();
+        let shown = canvas
+            .get_context("bitmaprenderer")
+            .ok()
+            .flatten()?
+            .dyn_into::<ImageBitmapRenderingContext>()
+            .ok()?;
+        Some((Self::Offscreen { offscreen, shown }, ctx))
+    }
+
+    /// Sizes the surface's bitmap (and the canvas's) in device pixels.
+    fn set_size(&self, canvas: &HtmlCanvasElement, w: u32, h: u32) {
+        canvas.set_width(w);
+        canvas.set_height(h);
+        if let Self::Offscreen { offscreen, .. } = self {
+            offscreen.set_width(w);
+            offscreen.set_height(h);
+        }
+    }
+
+    /// Shows what was painted since the last call.
+    fn present(&self) {
+        if let Self::Offscreen { offscreen, shown } = self {
+            if let Ok(bitmap) = offscreen.transfer_to_image_bitmap() {
+                shown.transfer_from_image_bitmap(&bitmap);
+            }
+        }
+    }
+}
+
+/// The elements of a plot figure the drawing updates, found once at mount.
+struct Parts {
+    legend_extra: Option<Element>,
+    fit: Option<Element>,
+    summary: Option<Element>,
+    table: Option<Element>,
+    tip: Option<Element>,
+    /// The series' legend entries with their series index.
+    legend: Vec<(usize, Element)>,
+}
+
+/// What the figure's elements show now.
+#[derive(Default)]
+struct Shown {
     legend_extra: String,
+    layout: String,
+    summary: Option<String>,
+    fit_hidden: Option<bool>,
+    /// Per legend entry: hidden, and the label it shows.
+    legend: Vec<Option<(bool, String)>>,
 }
 
 /// Every plot of the mounted simulation.
 pub struct PlotView {
     plots: Vec<Drawn>,
 }
+
+/// Shortest time between two paints of one plot while its data streams,
+/// milliseconds: a curve needs no 60 Hz, and the frame keeps its budget for
+/// the simulation.
+pub const PLOT_INTERVAL_MS: f64 = 66.0;
 
 impl PlotView {
     /// Finds the plot figures rendered by [`render`] inside `root`.
@@ -452,92 +594,116 @@ impl PlotView {
             .filter_map(|figure| {
                 let key = figure.get_attribute("data-plot")?;
                 let canvas: HtmlCanvasElement = query(&figure, "canvas")?.dyn_into().ok()?;
-                let ctx = canvas
-                    .get_context("2d")
-                    .ok()
-                    .flatten()?
-                    .dyn_into::<CanvasRenderingContext2d>()
-                    .ok()?;
+                let (surface, ctx) = match Surface::offscreen(&canvas) {
+                    Some(s) => s,
+                    None => (
+                        Surface::Direct,
+                        canvas
+                            .get_context("2d")
+                            .ok()
+                            .flatten()?
+                            .dyn_into::<CanvasRenderingContext2d>()
+                            .ok()?,
+                    ),
+                };
+                let legend: Vec<(usize, Element)> = query_all(&figure, ".legend-item[data-series]")
+                    .into_iter()
+                    .filter_map(|item| {
+                        let i = item.get_attribute("data-series")?.parse().ok()?;
+                        Some((i, item))
+                    })
+                    .collect();
+                let parts = Parts {
+                    legend_extra: query(&figure, ".legend-extra"),
+                    fit: query(&figure, "[data-plot-fit]"),
+                    summary: query(&figure, ".plot-summary"),
+                    table: query(&figure, ".plot-table"),
+                    tip: query(&figure, ".plot-tip"),
+                    legend,
+                };
+                let shown = Shown {
+                    legend: vec![None; parts.legend.len()],
+                    ..Shown::default()
+                };
                 Some(Drawn {
                     key: Box::leak(key.into_boxed_str()),
                     figure,
                     canvas,
                     ctx,
+                    surface,
                     revision: None,
                     size: (0.0, 0.0, 0.0),
+                    measured: (0.0, 0.0, 0.0),
+                    painted_ms: f64::NEG_INFINITY,
                     frame: Frame::default(),
                     hover_x: None,
                     fit_latest: false,
-                    legend_extra: String::new(),
+                    parts,
+                    shown,
                 })
             })
             .collect();
         Self { plots }
     }
 
-    /// Redraws the plots whose data, size or theme changed.
+    /// Reads every plot canvas's size. Call it before the frame writes to the
+    /// page: reading a size after a write forces the browser to lay the page
+    /// out again in the middle of the frame.
+    pub fn measure(&mut self) {
+        if self.plots.is_empty() {
+            return;
+        }
+        let dpr = dom::window().device_pixel_ratio().max(1.0);
+        for drawn in &mut self.plots {
+            let rect = drawn.canvas.get_bounding_client_rect();
+            drawn.measured = (rect.width(), rect.height(), dpr);
+        }
+    }
+
+    /// Whether some plot may be painted at `now_ms` (its last paint is at
+    /// least [`PLOT_INTERVAL_MS`] old).
+    #[must_use]
+    pub fn due(&self, now_ms: f64) -> bool {
+        self.plots
+            .iter()
+            .any(|d| now_ms - d.painted_ms >= PLOT_INTERVAL_MS)
+    }
+
+    /// Repaints the plots whose data, size or theme changed (every plot with
+    /// `force`), at the sizes of the last [`PlotView::measure`].
     pub fn draw(&mut self, plots: &[Plot], palette: &Palette, force: bool) {
         for drawn in &mut self.plots {
-            let Some(plot) = plots.iter().find(|p| p.key == drawn.key) else {
-                continue;
-            };
-            let rect = drawn.canvas.get_bounding_client_rect();
-            let dpr = dom::window().device_pixel_ratio().max(1.0);
-            let size = (rect.width(), rect.height(), dpr);
-            if size.0 < 1.0 {
-                continue;
-            }
-            if !force && drawn.revision == Some(plot.revision) && drawn.size == size {
-                continue;
-            }
-            if drawn.size != size {
-                drawn.canvas.set_width((size.0 * dpr).round() as u32);
-                drawn.canvas.set_height((size.1 * dpr).round() as u32);
-                drawn.size = size;
-            }
-            drawn.revision = Some(plot.revision);
-            let (frame, layout) =
-                paint_plot_layout(&drawn.ctx, plot, palette, size, drawn.fit_latest);
-            drawn.frame = frame;
-            let _ = drawn.canvas.set_attribute("data-layout", &layout.json());
-            let extra = legend_extra_html(plot);
-            if extra != drawn.legend_extra {
-                if let Some(span) = query(&drawn.figure, ".legend-extra") {
-                    span.set_inner_html(&extra);
-                }
-                drawn.legend_extra = extra;
-            }
-            if let Some(x) = drawn.hover_x {
-                show_nearest(drawn, plot, palette, x);
-            }
-            // "Fit latest run" only means something once a run is kept.
-            if let Some(button) = query(&drawn.figure, "[data-plot-fit]") {
-                let kept = plot.series.iter().any(|s| s.comparison && !s.is_empty());
-                dom::set_hidden(&button, !kept);
-            }
-            if let Some(summary) = query(&drawn.figure, ".plot-summary") {
-                summary.set_text_content(Some(&plot.summary()));
-            }
-            // A series with no samples yet (an empty slot for a pinned run)
-            // has no legend entry.
-            for item in query_all(&drawn.figure, ".legend-item[data-series]") {
-                let series = item
-                    .get_attribute("data-series")
-                    .and_then(|i| i.parse::<usize>().ok())
-                    .and_then(|i| plot.series.get(i));
-                dom::set_hidden(&item, series.is_none_or(|s| s.is_empty()));
-                // A label that changed (a pin named after its gains) is rewritten.
-                if let Some(s) = series {
-                    if item.text_content().as_deref() != Some(s.label.as_str()) {
-                        item.set_inner_html(&legend_entry_html(s));
-                    }
+            if let Some(plot) = plots.iter().find(|p| p.key == drawn.key) {
+                if force || drawn.stale(plot) {
+                    drawn.paint(plot, palette);
                 }
             }
-            if let Some(table) = query(&drawn.figure, ".plot-table") {
-                if !table.has_attribute("hidden") {
-                    table.set_inner_html(&table_html(plot));
-                }
+        }
+    }
+
+    /// Paints at most one plot at animation-frame time `now_ms`: of those
+    /// whose data or size changed and whose last paint is at least
+    /// [`PLOT_INTERVAL_MS`] old, the one painted longest ago. Several plots
+    /// streaming together thus take turns, one a frame, each still about
+    /// every [`PLOT_INTERVAL_MS`]. Uses the sizes of the last
+    /// [`PlotView::measure`]. Returns whether a plot was painted.
+    pub fn draw_next(&mut self, plots: &[Plot], palette: &Palette, now_ms: f64) -> bool {
+        let next = self
+            .plots
+            .iter_mut()
+            .filter(|d| now_ms - d.painted_ms >= PLOT_INTERVAL_MS)
+            .filter_map(|d| {
+                let plot = plots.iter().find(|p| p.key == d.key)?;
+                d.stale(plot).then_some((d, plot))
+            })
+            .min_by(|a, b| a.0.painted_ms.total_cmp(&b.0.painted_ms));
+        match next {
+            Some((drawn, plot)) => {
+                drawn.paint(plot, palette);
+                drawn.painted_ms = now_ms;
+                true
             }
+            None => false,
         }
     }
 
@@ -567,11 +733,12 @@ impl PlotView {
         match drawn.hover_x {
             Some(x) => show_nearest(drawn, plot, palette, x),
             None => {
-                if let Some(tip) = query(&drawn.figure, ".plot-tip") {
-                    dom::set_hidden(&tip, true);
+                if let Some(tip) = &drawn.parts.tip {
+                    dom::set_hidden(tip, true);
                 }
             }
         }
+        drawn.surface.present();
     }
 
     /// Switches a plot between fitting the latest run and every run (the
@@ -582,7 +749,7 @@ impl PlotView {
         };
         drawn.fit_latest = !drawn.fit_latest;
         drawn.revision = None;
-        if let Some(button) = query(&drawn.figure, "[data-plot-fit]") {
+        if let Some(button) = &drawn.parts.fit {
             let _ = button.set_attribute(
                 "aria-pressed",
                 if drawn.fit_latest { "true" } else { "false" },
@@ -599,18 +766,103 @@ impl PlotView {
         ) else {
             return false;
         };
-        let Some(table) = query(&drawn.figure, ".plot-table") else {
+        let Some(table) = &drawn.parts.table else {
             return false;
         };
         let show = table.has_attribute("hidden");
         if show {
             table.set_inner_html(&table_html(plot));
         }
-        dom::set_hidden(&table, !show);
+        dom::set_hidden(table, !show);
         if let Some(button) = query(&drawn.figure, "[data-plot-table]") {
             let _ = button.set_attribute("aria-expanded", if show { "true" } else { "false" });
         }
         show
+    }
+}
+
+impl Drawn {
+    /// Whether the plot's data or the measured size differ from what is drawn.
+    fn stale(&self, plot: &Plot) -> bool {
+        self.measured.0 >= 1.0
+            && (self.revision != Some(plot.revision) || self.size != self.measured)
+    }
+
+    /// Paints the plot at the measured size and brings the figure's legend,
+    /// summary and table up to date, writing only what changed.
+    fn paint(&mut self, plot: &Plot, palette: &Palette) {
+        let size = self.measured;
+        if size.0 < 1.0 {
+            return;
+        }
+        if self.size != size {
+            self.surface.set_size(
+                &self.canvas,
+                (size.0 * size.2).round() as u32,
+                (size.1 * size.2).round() as u32,
+            );
+            self.size = size;
+        }
+        self.revision = Some(plot.revision);
+        let (frame, layout) = paint_plot_layout(&self.ctx, plot, palette, size, self.fit_latest);
+        self.frame = frame;
+        let json = layout.json();
+        if json != self.shown.layout {
+            let _ = self.canvas.set_attribute("data-layout", &json);
+            self.shown.layout = json;
+        }
+        let extra = legend_extra_html(plot);
+        if extra != self.shown.legend_extra {
+            if let Some(span) = &self.parts.legend_extra {
+                span.set_inner_html(&extra);
+            }
+            self.shown.legend_extra = extra;
+        }
+        if let Some(x) = self.hover_x {
+            show_nearest(self, plot, palette, x);
+        }
+        self.surface.present();
+        // "Fit latest run" only means something once a run is kept.
+        if let Some(button) = &self.parts.fit {
+            let hide = !plot.series.iter().any(|s| s.comparison && !s.is_empty());
+            if self.shown.fit_hidden != Some(hide) {
+                dom::set_hidden(button, hide);
+                self.shown.fit_hidden = Some(hide);
+            }
+        }
+        if let Some(summary) = &self.parts.summary {
+            let text = plot.summary();
+            if self.shown.summary.as_deref() != Some(text.as_str()) {
+                summary.set_text_content(Some(&text));
+                self.shown.summary = Some(text);
+            }
+        }
+        // A series with no samples yet (an empty slot for a pinned run) has
+        // no legend entry; a label that changed (a pin named after its
+        // gains) is rewritten.
+        for ((i, item), shown) in self.parts.legend.iter().zip(self.shown.legend.iter_mut()) {
+            let series = plot.series.get(*i);
+            let hide = series.is_none_or(labcore::Series::is_empty);
+            let label = series.map_or("", |s| s.label.as_str());
+            match shown {
+                Some((h, l)) if *h == hide && l == label => continue,
+                _ => {}
+            }
+            if shown.as_ref().is_none_or(|(h, _)| *h != hide) {
+                dom::set_hidden(item, hide);
+            }
+            if let Some(s) = series {
+                if item.text_content().as_deref() != Some(s.label.as_str()) {
+                    item.set_inner_html(&legend_entry_html(s));
+                }
+            }
+            *shown = Some((hide, label.to_owned()));
+        }
+        if let Some(table) = &self.parts.table {
+            if !table.has_attribute("hidden") {
+                table.set_inner_html(&table_html(plot));
+            }
+        }
     }
 }
 
@@ -658,6 +910,9 @@ pub(crate) fn paint_plot(
     paint_plot_layout(ctx, plot, palette, size, false).0
 }
 
+/// The font of every text on a plot.
+const PLOT_FONT: &str = "12px system-ui, sans-serif";
+
 /// Width of the band at the left edge that holds the rotated y-axis title.
 const Y_TITLE_BAND: f64 = 20.0;
 /// Height of one tick label line, CSS pixels (12 px font).
@@ -680,7 +935,7 @@ pub(crate) fn paint_plot_layout(
     let (_, mr, mt, mb) = MARGIN;
     let text = css(palette, "--c-text");
     let grid = css(palette, "--c-grid");
-    ctx.set_font("12px system-ui, sans-serif");
+    ctx.set_font(PLOT_FONT);
     ctx.set_fill_style_str(&text);
     let Some(x_range) = x_range_for(plot, fit_latest) else {
         ctx.set_text_align("center");
@@ -717,10 +972,7 @@ pub(crate) fn paint_plot_layout(
         nice_ticks(y0, y1, max_y_ticks)
     };
     let y_labels = tick_labels(&y_ticks, log);
-    let measure = |t: &str| {
-        ctx.measure_text(t)
-            .map_or(7.0 * t.len() as f64, |m| m.width())
-    };
+    let measure = |t: &str| crate::text::width(ctx, PLOT_FONT, t);
     let widest_y = y_labels.iter().map(|t| measure(t)).fold(0.0, f64::max);
     let ml = left_margin(widest_y);
     let rect = (ml, mt, (w - ml - mr).max(10.0), ph);
@@ -919,7 +1171,6 @@ pub(crate) fn paint_plot_layout(
         });
     }
     let diamond_count = taken.len();
-    ctx.set_font("12px system-ui, sans-serif");
     // Reference-line labels: at an end of their line, where no series is.
     let mut to_draw: Vec<PlacedLabel> = Vec::new();
     for (line, a, b) in &ref_px {
@@ -1047,7 +1298,7 @@ fn show_nearest(drawn: &Drawn, plot: &Plot, palette: &Palette, x: f64) {
     ctx.line_to(px, t + ph);
     ctx.stroke();
     set_dash(ctx, &[]);
-    if let Some(tip) = query(&drawn.figure, ".plot-tip") {
+    if let Some(tip) = &drawn.parts.tip {
         tip.set_text_content(Some(&format!(
             "{} = {}{} · {}",
             plot.x_label,
@@ -1059,7 +1310,7 @@ fn show_nearest(drawn: &Drawn, plot: &Plot, palette: &Palette, x: f64) {
             },
             lines.join(" · ")
         )));
-        dom::set_hidden(&tip, false);
+        dom::set_hidden(tip, false);
     }
 }
 
@@ -1338,6 +1589,23 @@ mod tests {
         for name in ["±2 % band", "set-point", "expected 3"] {
             assert!(html.contains(name), "{name}");
         }
+    }
+
+    #[test]
+    fn layout_json_has_one_decimal_per_coordinate() {
+        let r = |x, y, w, h| Rect { x, y, w, h };
+        let layout = Layout {
+            labels: vec![r(1.04, -2.36, 30.0, 14.0)],
+            x_ticks: vec![("0.5".into(), r(10.0, 20.25, 7.5, 14.0))],
+            y_ticks: vec![("\"1\"".into(), r(-0.04, 0.0, 1e20, 14.0))],
+            x_title: None,
+            y_title: Some(r(0.0, 0.0, 14.0, 99.95)),
+        };
+        assert_eq!(
+            layout.json(),
+            "{\"labels\":[[1.0,-2.4,30.0,14.0]],\"xticks\":[[\"0.5\",[10.0,20.3,7.5,14.0]]],\
+             \"yticks\":[[\"1\",[0.0,0.0,0,14.0]]],\"xtitle\":null,\"ytitle\":[0.0,0.0,14.0,100.0]}"
+        );
     }
 
     #[test]

@@ -162,6 +162,13 @@ pub fn restore(form: &Element, attempt: &Attempt, saved: &SavedAttempt) {
             _ => {}
         }
     }
+    // An attempt the LMS kept as submitted comes back graded.
+    let graded_in_lms = crate::lms::experiment_of(form)
+        .and_then(|id| crate::lms::suspended(&id))
+        .is_some_and(|s| s.submitted && s.seed == attempt.seed);
+    if graded_in_lms {
+        grade_form(form, attempt);
+    }
 }
 
 /// Numbers (1-based) of the questions with no answer yet.
@@ -206,7 +213,8 @@ pub fn submit(form: &Element, attempt: &Attempt) -> bool {
         }
         return false;
     }
-    grade_form(form, attempt);
+    let score = grade_form(form, attempt);
+    crate::lms::submitted(form, attempt, score);
     true
 }
 
@@ -236,8 +244,9 @@ fn feedback(verdict: &labcore::quiz::Grade) -> String {
 
 /// Grades the form in place: marks each question right or wrong, shows how
 /// each answer was read, the expected answer and the explanation (written
-/// into the page only now), and the score at the top.
-pub fn grade_form(form: &Element, attempt: &Attempt) {
+/// into the page only now), and the score at the top. Returns the number of
+/// right answers.
+pub fn grade_form(form: &Element, attempt: &Attempt) -> usize {
     let mut score = 0;
     for item in query_all(form, ".quiz-q") {
         let Some(index) = item
@@ -283,6 +292,8 @@ pub fn grade_form(form: &Element, attempt: &Attempt) {
         crate::dom::set_hidden(&out, false);
         out.scroll_into_view_with_bool(true);
     }
+    let _ = form.set_attribute(crate::lms::SUBMITTED_ATTR, "");
+    score
 }
 
 /// Local-storage key of an experiment's attempt in progress.
@@ -290,17 +301,23 @@ fn storage_key(experiment_id: &str) -> String {
     format!("labquiz:{experiment_id}")
 }
 
-/// The attempt saved for this experiment by [`store`], if any (and readable).
+/// The attempt saved for this experiment: the LMS's inside one (see
+/// [`crate::lms`]), else the one [`store`] kept, if any (and readable).
 pub fn load_saved(experiment_id: &str) -> Option<SavedAttempt> {
+    if let Some(kept) = crate::lms::suspended(experiment_id) {
+        return Some(kept.attempt());
+    }
     let storage = web_sys::window()?.local_storage().ok()??;
     let text = storage.get_item(&storage_key(experiment_id)).ok()??;
     SavedAttempt::decode(&text)
 }
 
 /// Keeps the attempt's seed and answers so a reload restores them
-/// (silently does nothing when storage is unavailable, e.g. private mode).
+/// (silently does nothing when storage is unavailable, e.g. private mode),
+/// and tells an LMS, if there is one (`lab-quiz-progress`).
 pub fn store(experiment_id: &str, form: &Element, attempt: &Attempt) {
     if let Some(Ok(Some(storage))) = web_sys::window().map(|w| w.local_storage()) {
         let _ = storage.set_item(&storage_key(experiment_id), &saved(form, attempt).encode());
     }
+    crate::lms::progress(form, attempt);
 }

@@ -19,7 +19,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
-const WASM_TARGET: &str = "wasm32-unknown-unknown";
+use crate::modules::{build_modules, ship_modules, WASM_TARGET};
+use crate::util::{remove_dir, step};
 
 /// `wasm-opt` level. Measured on labweb's wasm-bindgen output (fk + ik
 /// experiments, Rust 1.95, binaryen 132, 2-core machine):
@@ -38,7 +39,7 @@ const WASM_TARGET: &str = "wasm32-unknown-unknown";
 /// every frame benefit from (rustc builds them at opt-level 3 for the same
 /// reason). Re-measure with `XTASK_WASM_OPT=-Oz cargo xtask dist && cargo
 /// xtask size` if the bundle's character changes.
-const WASM_OPT_LEVEL: &str = "-O3";
+pub const WASM_OPT_LEVEL: &str = "-O3";
 
 /// Features of the Rust 1.95 `wasm32-unknown-unknown` output: exactly those
 /// LLVM's default "generic" CPU enables (and lists in the module's
@@ -67,54 +68,7 @@ pub fn dist() -> Result<PathBuf, String> {
     ensure_wasm_target()?;
     ensure_node_modules(&root)?;
 
-    step("cargo build (wasm, release)");
-    util::run(util::cargo().args([
-        "build",
-        "-p",
-        "labweb",
-        "--release",
-        "--target",
-        WASM_TARGET,
-    ]))?;
-    let target = util::target_dir();
-    let input = target.join(WASM_TARGET).join("release").join("labweb.wasm");
-
-    step("wasm-bindgen (target web)");
-    let glue = target.join("xtask").join("bindgen");
-    remove_dir(&glue)?;
-    wasm_bindgen_cli_support::Bindgen::new()
-        .input_path(&input)
-        .web(true)
-        .map_err(|e| format!("wasm-bindgen: {e:#}"))?
-        .out_name("labweb")
-        .typescript(false)
-        // The library defaults this to `true` (the CLI to `false`): without the
-        // default URL, `init()` has nothing to fetch (TOOLCHAIN.md, trap 2).
-        .omit_default_module_path(false)
-        .generate(&glue)
-        .map_err(|e| format!("wasm-bindgen on {}: {e:#}", input.display()))?;
-
-    // XTASK_WASM_OPT=-O3 (or any wasm-opt level, or `none`) overrides the
-    // level for measurements; the default is WASM_OPT_LEVEL.
-    let level = std::env::var("XTASK_WASM_OPT").unwrap_or_else(|_| WASM_OPT_LEVEL.into());
-    let wasm = glue.join("labweb_bg.wasm");
-    if level == "none" {
-        println!("== wasm-opt skipped (XTASK_WASM_OPT=none)");
-    } else {
-        step(&format!("wasm-opt {level}"));
-        let optimised = glue.join("labweb_bg.opt.wasm");
-        let before = file_len(&wasm)?;
-        let t = Instant::now();
-        wasm_opt(&root, &wasm, &optimised, &level)?;
-        fs::rename(&optimised, &wasm)
-            .map_err(|e| format!("cannot replace {}: {e}", wasm.display()))?;
-        println!(
-            "wasm: {} -> {} ({level}, {:.1} s)",
-            util::human(before),
-            util::human(file_len(&wasm)?),
-            t.elapsed().as_secs_f64()
-        );
-    }
+    let modules = build_modules(&root)?;
 
     step("assemble dist/");
     let dist = root.join("dist");
@@ -125,11 +79,23 @@ pub fn dist() -> Result<PathBuf, String> {
     } else {
         println!("warning: web/ does not exist; dist/ holds only pkg/");
     }
-    copy_tree(&glue, &dist.join("pkg"))?;
-    step("pages (navigation, home, reading tabs)");
-    crate::pages::render_index(&dist, file_len(&dist.join("pkg/labweb_bg.wasm")).ok())?;
+    step("minify main.js and style.css");
+    for file in ["main.js", "style.css"] {
+        if dist.join(file).is_file() {
+            crate::minify::minify_in_place(&root, &dist.join(file))?;
+        }
+    }
+    let shipped = ship_modules(&modules, &dist.join("pkg"))?;
+    step("pages (navigation, home, one reading page per experiment)");
+    crate::pages::render_site(&dist, &shipped)?;
     check_relative_urls(&dist)?;
-    stamp_version(&dist)?;
+    let version = stamp_version(&dist)?;
+    step("service worker (offline cache)");
+    let (files, bytes) = crate::offline::write_service_worker(&dist, &version)?;
+    println!(
+        "sw.js caches {files} files, {} raw, as version {version}",
+        util::human(bytes)
+    );
     step("precompressed siblings (.gz, .br)");
     let (n, raw, gz, br) = crate::precompress::write_siblings(&dist)?;
     println!(
@@ -145,24 +111,6 @@ pub fn dist() -> Result<PathBuf, String> {
         started.elapsed().as_secs_f64()
     );
     Ok(dist)
-}
-
-fn step(name: &str) {
-    println!("== {name}");
-}
-
-fn file_len(p: &Path) -> Result<u64, String> {
-    fs::metadata(p)
-        .map(|m| m.len())
-        .map_err(|e| format!("cannot stat {}: {e}", p.display()))
-}
-
-fn remove_dir(p: &Path) -> Result<(), String> {
-    match fs::remove_dir_all(p) {
-        Ok(()) => Ok(()),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(format!("cannot remove {}: {e}", p.display())),
-    }
 }
 
 /// Adds the wasm target through rustup when it is not installed.
@@ -205,7 +153,8 @@ pub fn ensure_node_modules(root: &Path) -> Result<(), String> {
     .iter()
     .find_map(|p| fs::metadata(p).and_then(|m| m.modified()).ok());
     let fresh = matches!(installed, Some(t) if t >= lock_time)
-        && root.join("node_modules/.bin/wasm-opt").exists();
+        && root.join("node_modules/.bin/wasm-opt").exists()
+        && root.join("node_modules/.bin/esbuild").exists();
     if fresh {
         return Ok(());
     }
@@ -224,7 +173,7 @@ pub fn ensure_node_modules(root: &Path) -> Result<(), String> {
     )
 }
 
-fn wasm_opt(root: &Path, input: &Path, output: &Path, level: &str) -> Result<(), String> {
+pub fn wasm_opt(root: &Path, input: &Path, output: &Path, level: &str) -> Result<(), String> {
     let bin = root.join("node_modules/.bin/wasm-opt");
     if !bin.exists() {
         return Err(format!(
@@ -424,17 +373,14 @@ fn check_relative_urls(dist: &Path) -> Result<(), String> {
 }
 
 /// Appends `?v=<hash of the whole site>` to every reference in
-/// `dist/index.html` that names a file of dist/, and to the scripts' imports
-/// of the wasm glue (`./pkg/labweb.js`), so a redeployed site is not served
-/// stale.
-///
-/// The glue fetches `labweb_bg.wasm` relative to its own URL without the
-/// query; `main.js` fetches it itself with its own `?v=`.
-fn stamp_version(dist: &Path) -> Result<(), String> {
+/// `dist/index.html` that names a file of dist/ (the stylesheet, `main.js`,
+/// the icon), so a redeployed site is not served stale. The wasm modules,
+/// their glue and the reading pages carry their own content hash in their
+/// names (see [`crate::modules`]).
+fn stamp_version(dist: &Path) -> Result<String, String> {
     let index = dist.join("index.html");
-    let Ok(html) = fs::read_to_string(&index) else {
-        return Ok(());
-    };
+    let html =
+        fs::read_to_string(&index).map_err(|e| format!("cannot read {}: {e}", index.display()))?;
     let files: Vec<String> = files_below(dist)?
         .iter()
         .map(|p| slash_path(p))
@@ -471,59 +417,8 @@ fn stamp_version(dist: &Path) -> Result<(), String> {
     out.push_str(&html[last..]);
 
     fs::write(&index, out).map_err(|e| format!("cannot write {}: {e}", index.display()))?;
-    let stamped = stamp_glue_imports(dist, &files, &version)?;
-    println!(
-        "dist/index.html: references stamped with ?v={version}; the glue import too in {}",
-        if stamped.is_empty() {
-            "no module".to_owned()
-        } else {
-            stamped.join(", ")
-        }
-    );
-    Ok(())
-}
-
-/// The wasm glue's module specifier, as the site's scripts import it.
-const GLUE_IMPORT: &str = "./pkg/labweb.js";
-
-/// Rewrites `"./pkg/labweb.js"` to `"./pkg/labweb.js?v=<version>"` in every
-/// script of dist/ outside `pkg/`, so the glue is versioned like everything
-/// else. (An inline `<script type="importmap">` would do the same without
-/// touching the scripts, but the Content-Security-Policy forbids inline
-/// scripts.) Returns the files changed.
-fn stamp_glue_imports(dist: &Path, files: &[String], version: &str) -> Result<Vec<String>, String> {
-    if !files
-        .iter()
-        .any(|f| f == GLUE_IMPORT.trim_start_matches("./"))
-    {
-        return Ok(Vec::new());
-    }
-    let mut changed = Vec::new();
-    for f in files {
-        if f.starts_with("pkg/") || !(f.ends_with(".js") || f.ends_with(".mjs")) {
-            continue;
-        }
-        let path = dist.join(f);
-        let text = fs::read_to_string(&path).map_err(|e| format!("cannot read dist/{f}: {e}"))?;
-        let stamped = stamp_specifier(&text, GLUE_IMPORT, version);
-        if stamped != text {
-            fs::write(&path, stamped).map_err(|e| format!("cannot write dist/{f}: {e}"))?;
-            changed.push(f.clone());
-        }
-    }
-    Ok(changed)
-}
-
-/// `text` with every quoted `specifier` (`"…"` or `'…'`) given `?v=version`.
-fn stamp_specifier(text: &str, specifier: &str, version: &str) -> String {
-    let mut out = text.to_owned();
-    for q in ['"', '\''] {
-        out = out.replace(
-            &format!("{q}{specifier}{q}"),
-            &format!("{q}{specifier}?v={version}{q}"),
-        );
-    }
-    out
+    println!("dist/index.html: references stamped with ?v={version}");
+    Ok(version)
 }
 
 #[cfg(test)]
@@ -572,14 +467,5 @@ mod tests {
         assert!(url_problem("style.css", &r("link", "href")).is_none());
         assert!(url_problem("#/fk/aim", &r("a", "href")).is_none());
         assert!(url_problem("data:image/png;base64,AA", &r("img", "src")).is_none());
-    }
-
-    #[test]
-    fn stamps_the_glue_import_in_scripts() {
-        let js = r#"const g = await import("./pkg/labweb.js"); import x from './pkg/labweb.js'; "./pkg/labweb.jsx""#;
-        assert_eq!(
-            stamp_specifier(js, GLUE_IMPORT, "0badf00d"),
-            r#"const g = await import("./pkg/labweb.js?v=0badf00d"); import x from './pkg/labweb.js?v=0badf00d'; "./pkg/labweb.jsx""#
-        );
     }
 }

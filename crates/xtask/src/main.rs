@@ -5,8 +5,12 @@
 //! and `flate2` are used: no other build tool has to be installed by hand.
 
 mod dist;
+mod minify;
+mod modules;
+mod offline;
 mod pages;
 mod precompress;
+mod scorm;
 mod serve;
 mod size;
 mod test;
@@ -19,7 +23,9 @@ const HELP: &str = "\
 usage: cargo xtask <command> [options]
 
 commands:
-  dist                      build the site into dist/ (wasm, JS glue, web/ files)
+  dist [--scorm]            build the site into dist/ (wasm, JS glue, web/ files);
+                            --scorm also writes dist-scorm/ and dist-scorm.zip
+                            (a SCORM 1.2 package, one SCO per experiment)
   serve [--port N] [--host H] [--base /prefix/]
                             build dist/, then serve it (default http://127.0.0.1:8000/)
   size                      raw and gzip -9 size of every file in dist/
@@ -40,7 +46,7 @@ fn main() -> ExitCode {
         None => ("help", &[][..]),
     };
     let result = match cmd {
-        "dist" => no_args(cmd, rest).and_then(|()| dist::dist().map(|_| ())),
+        "dist" => dist_cmd(rest),
         "serve" => serve::parse_args(rest).and_then(serve::serve),
         "size" => no_args(cmd, rest).and_then(|()| size::size()),
         "test" => test::parse_args(rest).and_then(test::test),
@@ -58,6 +64,20 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// `dist`, and with `--scorm` the LMS package made from it.
+fn dist_cmd(rest: &[String]) -> Result<(), String> {
+    let scorm = match rest {
+        [] => false,
+        [flag] if flag == "--scorm" => true,
+        [other, ..] => return Err(format!("`dist` takes only --scorm (got `{other}`)")),
+    };
+    let dist = dist::dist()?;
+    if scorm {
+        scorm::package(&dist)?;
+    }
+    Ok(())
 }
 
 fn no_args(cmd: &str, rest: &[String]) -> Result<(), String> {

@@ -1,6 +1,7 @@
-//! Build-time pages: validates every content file and writes the
-//! navigation, the home page and each experiment's article (reading tabs
-//! filled in) into `dist/index.html`, so they show before the wasm loads.
+//! Build-time pages: validates every content file, writes the home page and
+//! each experiment's article (reading tabs filled in) as reading pages of
+//! their own (`dist/pages/<id>.<hash>.html`, which `main.js` fetches and
+//! shows before any wasm loads), and fills `dist/index.html`, the shell.
 
 use std::fs;
 use std::path::Path;
@@ -8,7 +9,9 @@ use std::path::Path;
 /// Where the template wants the navigation and the pages.
 const NAV_SLOT: &str = "<!--NAV-->";
 const PAGES_SLOT: &str = "<!--PAGES-->";
-const WASM_BYTES_SLOT: &str = "<!--WASM-BYTES-->";
+/// What `#app` holds until `main.js` has fetched the page the link names.
+const LOADING: &str = "<p class=\"loading\">Loading…</p>";
+const MODULES_SLOT: &str = "<!--MODULES-->";
 const CSP_SLOT: &str = "<!--CSP-->";
 
 /// The site's Content-Security-Policy: nothing inline (no `<script>` body, no
@@ -52,36 +55,64 @@ fn check_one(entry: &labcore::Entry, text: &str) -> Result<(), String> {
         .map_err(|e| format!("assets/{}.json: {e}", entry.id))
 }
 
-/// The HTML of every page: the home page, then one hidden article per
-/// experiment (`main.js` shows the one the link names).
+/// The home page's HTML (what `index.html` carries besides the navigation).
 #[must_use]
-pub fn pages_html() -> String {
-    let mut html = labcore::content_html::home(crate::thumbs::thumbnail);
-    for entry in labcore::registry() {
-        let article =
-            labcore::content_html::article(entry.id, entry.content().map_err(|e| e.to_string()));
-        html.push_str(&article.replacen("<article ", "<article hidden ", 1));
-    }
-    html
+pub fn home_html() -> String {
+    labcore::content_html::home(crate::thumbs::thumbnail)
 }
 
-/// Fills the slots of `dist/index.html`.
-pub fn render_index(dist: &Path, wasm_bytes: Option<u64>) -> Result<(), String> {
+/// One experiment's article (six tabs, reading tabs filled in), as its
+/// reading page `pages/<id>.<hash>.html` holds it; `main.js` inserts it.
+#[must_use]
+pub fn article_html(entry: &labcore::Entry) -> String {
+    labcore::content_html::article(entry.id, entry.content().map_err(|e| e.to_string()))
+}
+
+/// Writes the home page and each experiment's reading page into
+/// `dist/pages/` and fills the slots of `dist/index.html`: the navigation,
+/// the policy and the `<meta>` tags that tell `main.js` where each reading
+/// page and wasm module are. `index.html` itself is the shell every page
+/// shares, so an experiment page does not download the home page's pictures.
+pub fn render_site(dist: &Path, modules: &[crate::modules::Shipped]) -> Result<(), String> {
+    let pages = dist.join("pages");
+    fs::create_dir_all(&pages).map_err(|e| format!("cannot create {}: {e}", pages.display()))?;
+    let mut metas = String::new();
+    let reading = std::iter::once(("home", home_html()))
+        .chain(labcore::registry().iter().map(|e| (e.id, article_html(e))));
+    for (id, html) in reading {
+        let name = format!(
+            "{id}.{}.html",
+            crate::modules::content_hash(&[html.as_bytes()])
+        );
+        fs::write(pages.join(&name), &html)
+            .map_err(|e| format!("cannot write pages/{name}: {e}"))?;
+        metas.push_str(&format!(
+            "<meta name=\"lab-page\" content=\"{id}\" data-href=\"pages/{name}\">\n"
+        ));
+    }
+    for m in modules {
+        metas.push_str(&format!(
+            "<meta name=\"lab-module\" content=\"{}\" data-experiments=\"{}\" data-js=\"{}\" \
+             data-wasm=\"{}\" data-bytes=\"{}\">\n",
+            m.key,
+            m.ids.join(" "),
+            m.js,
+            m.wasm,
+            m.wasm_bytes
+        ));
+    }
     let index = dist.join("index.html");
     let template =
         fs::read_to_string(&index).map_err(|e| format!("cannot read {}: {e}", index.display()))?;
-    for slot in [NAV_SLOT, PAGES_SLOT, CSP_SLOT] {
+    for slot in [NAV_SLOT, PAGES_SLOT, CSP_SLOT, MODULES_SLOT] {
         if !template.contains(slot) {
             return Err(format!("web/index.html has no {slot} slot"));
         }
     }
-    let meta = wasm_bytes.map_or(String::new(), |n| {
-        format!("<meta name=\"lab-wasm-bytes\" content=\"{n}\">")
-    });
     let html = template
         .replace(NAV_SLOT, &labcore::content_html::nav())
-        .replace(PAGES_SLOT, &pages_html())
-        .replace(WASM_BYTES_SLOT, &meta)
+        .replace(PAGES_SLOT, LOADING)
+        .replace(MODULES_SLOT, metas.trim_end())
         .replace(CSP_SLOT, &csp_meta());
     fs::write(&index, html).map_err(|e| format!("cannot write {}: {e}", index.display()))
 }
@@ -124,14 +155,38 @@ mod tests {
     }
 
     #[test]
-    fn pages_hold_every_experiment_hidden_and_the_home_page() {
-        let html = pages_html();
-        assert!(html.contains("data-page=\"home\""));
+    fn every_experiment_has_a_reading_page_and_the_home_page_links_it() {
+        let home = home_html();
+        assert!(home.contains("data-page=\"home\""));
+        assert!(
+            !home.contains("<article"),
+            "the home page carries no article"
+        );
         for entry in labcore::registry() {
-            assert!(html.contains(&format!(
-                "<article hidden class=\"exp\" data-experiment=\"{}\"",
+            assert!(
+                home.contains(&format!("href=\"#/{}/aim\"", entry.id)),
+                "{}",
+                entry.id
+            );
+            let article = article_html(entry);
+            assert!(article.starts_with(&format!(
+                "<article class=\"exp\" data-experiment=\"{}\"",
                 entry.id
             )));
+            for tab in [
+                "aim",
+                "theory",
+                "procedure",
+                "simulation",
+                "quiz",
+                "references",
+            ] {
+                assert!(
+                    article.contains(&format!("data-panel=\"{tab}\"")),
+                    "{} {tab}",
+                    entry.id
+                );
+            }
         }
     }
 

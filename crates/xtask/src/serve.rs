@@ -314,6 +314,17 @@ fn accepts(value: &str, coding: &str) -> bool {
 /// is no sibling; the file as it is otherwise. Every file goes with the
 /// site's Content-Security-Policy header (the same policy as the `<meta>` in
 /// `index.html`; a header can also be set by hosts, and covers every file).
+/// A content-hashed name never changes its content (see
+/// [`crate::modules::is_content_hashed`]): cache it for a year; everything
+/// else is revalidated on each load, so a rebuild shows at once.
+fn cache_control(path: &Path) -> &'static str {
+    if crate::modules::is_content_hashed(path) {
+        "public, max-age=31536000, immutable"
+    } else {
+        "no-cache"
+    }
+}
+
 fn send_file(
     out: &mut TcpStream,
     path: &Path,
@@ -360,10 +371,11 @@ fn send_file(
     write!(
         out,
         "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {}\r\n{encoding}Vary: Accept-Encoding\r\n\
-         Cache-Control: no-cache\r\nX-Content-Type-Options: nosniff\r\n\
+         Cache-Control: {}\r\nX-Content-Type-Options: nosniff\r\n\
          Content-Security-Policy: {}\r\nConnection: {}\r\n\r\n",
         mime(path),
         body.len(),
+        cache_control(path),
         crate::pages::CONTENT_SECURITY_POLICY,
         if keep_alive { "keep-alive" } else { "close" }
     )?;
@@ -485,6 +497,16 @@ mod tests {
             "a/labweb_bg.wasm"
         )));
         assert!(!crate::precompress::compressible(Path::new("a/b.png")));
+    }
+
+    #[test]
+    fn hashed_modules_are_cached_for_good_and_the_rest_revalidated() {
+        assert_eq!(
+            cache_control(Path::new("dist/pkg/control.0a1b2c3d.wasm")),
+            "public, max-age=31536000, immutable"
+        );
+        assert_eq!(cache_control(Path::new("dist/index.html")), "no-cache");
+        assert_eq!(cache_control(Path::new("dist/main.js")), "no-cache");
     }
 
     #[test]

@@ -60,9 +60,9 @@ pub fn size() -> Result<(), String> {
 }
 
 /// The files the home page loads — `index.html`, what its `<link>` and
-/// `<script>` tags name, and those scripts' static imports (not the
-/// `import()` of the wasm glue, which waits for an experiment) — and their
-/// total gzip size.
+/// `<script>` tags name, those scripts' static imports (not the `import()`
+/// of a wasm module's glue, which waits for an experiment) and the home's
+/// reading page — and their total gzip size.
 pub fn first_page(dist: &Path) -> Result<(Vec<String>, u64), String> {
     let read = |name: &str| {
         std::fs::read(dist.join(name)).map_err(|e| format!("cannot read dist/{name}: {e}"))
@@ -87,11 +87,22 @@ pub fn first_page(dist: &Path) -> Result<(Vec<String>, u64), String> {
         }
         files.push(name);
     }
+    // main.js fetches the home page's own reading page.
+    if let Some(home) = reading_page(&html, "home") {
+        files.push(home);
+    }
     let mut total = 0;
     for f in &files {
         total += gzip_len(&read(f)?);
     }
     Ok((files, total))
+}
+
+/// The reading page `main.js` fetches for `id` (`<meta name="lab-page">`).
+fn reading_page(html: &str, id: &str) -> Option<String> {
+    let tag = format!("<meta name=\"lab-page\" content=\"{id}\" data-href=\"");
+    let rest = &html[html.find(&tag)? + tag.len()..];
+    Some(rest[..rest.find('"')?].to_owned())
 }
 
 /// Relative file names after any of `prefixes` (`./` and `?v=…` removed;
@@ -137,6 +148,16 @@ pub fn check_first_page_budget() -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn finds_the_reading_page_of_an_id() {
+        let html = r#"<meta name="lab-page" content="home" data-href="pages/home.0a1b2c3d.html">"#;
+        assert_eq!(
+            reading_page(html, "home").as_deref(),
+            Some("pages/home.0a1b2c3d.html")
+        );
+        assert_eq!(reading_page(html, "fk"), None);
+    }
 
     #[test]
     fn finds_static_references_only() {

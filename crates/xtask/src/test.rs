@@ -115,7 +115,11 @@ pub fn test(opts: Options) -> Result<(), String> {
         "wasm tests in headless Chromium (labweb)",
         wasm_test("labweb", true),
     ));
-    steps.push(("dist", Box::new(|| dist::dist().map(|_| ()))));
+    // The SCORM package too: tests/e2e/scorm.test.mjs launches it in a test LMS.
+    steps.push((
+        "dist --scorm",
+        Box::new(|| dist::dist().and_then(|d| crate::scorm::package(&d).map(|_| ()))),
+    ));
     steps.push((
         "first-page budget (gzip)",
         Box::new(crate::size::check_first_page_budget),

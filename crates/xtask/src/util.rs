@@ -128,3 +128,21 @@ pub fn fnv1a(bytes: &[u8]) -> u64 {
     }
     h
 }
+
+pub fn step(name: &str) {
+    println!("== {name}");
+}
+
+pub fn file_len(p: &Path) -> Result<u64, String> {
+    std::fs::metadata(p)
+        .map(|m| m.len())
+        .map_err(|e| format!("cannot stat {}: {e}", p.display()))
+}
+
+pub fn remove_dir(p: &Path) -> Result<(), String> {
+    match std::fs::remove_dir_all(p) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(format!("cannot remove {}: {e}", p.display())),
+    }
+}

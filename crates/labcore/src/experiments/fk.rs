@@ -94,7 +94,30 @@ impl ForwardKinematics {
     }
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "Full stretch",
+        description: "Both joints straight: the tip sits on the outer circle, L₁ + L₂ from the base.",
+        query: "t1=0&t2=0",
+    },
+    crate::experiment::Preset {
+        name: "Folded onto the inner rim",
+        description: "The elbow folded back (θ₂ = 180°): the tip sits |L₁ − L₂| from the base, on the edge of the hole.",
+        query: "t1=30&t2=180",
+    },
+    crate::experiment::Preset {
+        name: "Equal links close the hole",
+        description: "With L₁ = L₂ a folded arm brings the tip back to the base: the workspace has no hole.",
+        query: "l1=0.8&l2=0.8&t2=180",
+    },
+];
+
 impl Experiment for ForwardKinematics {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "fk"
     }

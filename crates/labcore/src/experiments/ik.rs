@@ -228,7 +228,30 @@ fn ease(t: f64) -> f64 {
     t * t * (3.0 - 2.0 * t)
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "Out of reach",
+        description: "A target beyond L₁ + L₂: no angles reach it; the arm points at it, fully stretched.",
+        query: "tx=2.5&ty=0",
+    },
+    crate::experiment::Preset {
+        name: "Elbow down",
+        description: "The same kind of target solved on the other branch: the elbow flips, the tip still arrives.",
+        query: "elbow=0&tx=0.5&ty=1",
+    },
+    crate::experiment::Preset {
+        name: "Wrist keeps its angle",
+        description: "A wrist link held at φ = 90°: the two-link arm solves for the wrist point below the target.",
+        query: "l3=0.4&phi=90&tx=0.5&ty=1.2",
+    },
+];
+
 impl Experiment for InverseKinematics {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "ik"
     }

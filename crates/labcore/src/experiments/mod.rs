@@ -61,7 +61,24 @@ impl Entry {
     }
 }
 
-static REGISTRY: [Entry; 11] = [
+/// How many experiments this build holds.
+const BUILT: usize = cfg!(feature = "fk") as usize
+    + cfg!(feature = "ik") as usize
+    + cfg!(feature = "workspace") as usize
+    + cfg!(feature = "diffdrive") as usize
+    + cfg!(feature = "potential") as usize
+    + cfg!(feature = "astar") as usize
+    + cfg!(feature = "pid") as usize
+    + cfg!(feature = "cartpole") as usize
+    + cfg!(feature = "dls") as usize
+    + cfg!(feature = "rrtstar") as usize
+    + cfg!(feature = "ekf") as usize;
+
+/// The experiments this build holds: every one by default; a wasm module
+/// of one group is built with only its group's features (`cargo xtask dist`),
+/// so the other experiments' code and content are not in it.
+static REGISTRY: [Entry; BUILT] = [
+    #[cfg(feature = "fk")]
     Entry {
         id: "fk",
         content_json: include_str!("../../../../assets/fk.json"),
@@ -69,6 +86,7 @@ static REGISTRY: [Entry; 11] = [
         generators: fk::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "ik")]
     Entry {
         id: "ik",
         content_json: include_str!("../../../../assets/ik.json"),
@@ -76,6 +94,7 @@ static REGISTRY: [Entry; 11] = [
         generators: ik::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "workspace")]
     Entry {
         id: "workspace",
         content_json: include_str!("../../../../assets/workspace.json"),
@@ -83,6 +102,7 @@ static REGISTRY: [Entry; 11] = [
         generators: workspace::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "diffdrive")]
     Entry {
         id: "diffdrive",
         content_json: include_str!("../../../../assets/diffdrive.json"),
@@ -90,6 +110,7 @@ static REGISTRY: [Entry; 11] = [
         generators: diffdrive::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "potential")]
     Entry {
         id: "potential",
         content_json: include_str!("../../../../assets/potential.json"),
@@ -97,6 +118,7 @@ static REGISTRY: [Entry; 11] = [
         generators: potential::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "astar")]
     Entry {
         id: "astar",
         content_json: include_str!("../../../../assets/astar.json"),
@@ -104,6 +126,7 @@ static REGISTRY: [Entry; 11] = [
         generators: astar::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "pid")]
     Entry {
         id: "pid",
         content_json: include_str!("../../../../assets/pid.json"),
@@ -111,6 +134,7 @@ static REGISTRY: [Entry; 11] = [
         generators: pid::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "cartpole")]
     Entry {
         id: "cartpole",
         content_json: include_str!("../../../../assets/cartpole.json"),
@@ -118,6 +142,7 @@ static REGISTRY: [Entry; 11] = [
         generators: cartpole::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "dls")]
     Entry {
         id: "dls",
         content_json: include_str!("../../../../assets/dls.json"),
@@ -125,6 +150,7 @@ static REGISTRY: [Entry; 11] = [
         generators: dls::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "rrtstar")]
     Entry {
         id: "rrtstar",
         content_json: include_str!("../../../../assets/rrtstar.json"),
@@ -132,6 +158,7 @@ static REGISTRY: [Entry; 11] = [
         generators: rrtstar::quiz_generator,
         parsed: OnceLock::new(),
     },
+    #[cfg(feature = "ekf")]
     Entry {
         id: "ekf",
         content_json: include_str!("../../../../assets/ekf.json"),

@@ -211,7 +211,30 @@ impl Workspace {
     }
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "A dominant link opens a hole",
+        description: "L₁ longer than L₂ + L₃: the workspace is a ring with a hole of radius L₁ − L₂ − L₃.",
+        query: "l1=1.2&l2=0.3&l3=0.2",
+    },
+    crate::experiment::Preset {
+        name: "Equal links fill the disc",
+        description: "Three equal links can fold back onto the base: no hole at all.",
+        query: "l1=0.6&l2=0.6&l3=0.6",
+    },
+    crate::experiment::Preset {
+        name: "Few samples fake a hole",
+        description: "Only 1,000 random samples: after a sweep the rim is nearly found, yet an empty hole shows round the base where none exists.",
+        query: "n=1000",
+    },
+];
+
 impl Experiment for Workspace {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "workspace"
     }

@@ -177,9 +177,12 @@ impl SimState {
         }
     }
 
-    /// Moves handle `id` to `to` (keyboard or typed) and says where it went.
+    /// Moves handle `id` to `to` (keyboard or typed), through the
+    /// instructor's locks like a pointer drag, and says where it went.
     fn move_to(&mut self, id: &str, to: DVec2) {
-        self.exp.move_handle(id, to);
+        self.guarded(|exp| {
+            exp.move_handle(id, to);
+        });
         self.needs_paint = true;
         self.hash_dirty = true;
         self.shown_values.iter_mut().for_each(|v| *v = None);

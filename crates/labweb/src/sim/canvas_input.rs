@@ -53,7 +53,7 @@ pub(super) fn listen(
             // on a handle is kept from scrolling by the touchstart below.
             let _ = st.canvas.set_pointer_capture(e.pointer_id());
             st.pressed_pointer = Some(e.pointer_id());
-            st.exp.input_with(Input::PointerDown(w), modifiers(e));
+            st.guarded_input(Input::PointerDown(w), modifiers(e));
             st.needs_paint = true;
         },
     ));
@@ -114,12 +114,11 @@ pub(super) fn listen(
                     st.pending_touch = None;
                     let _ = st.canvas.set_pointer_capture(id);
                     st.pressed_pointer = Some(id);
-                    st.exp.input_with(Input::PointerDown(start), modifiers(e));
+                    st.guarded_input(Input::PointerDown(start), modifiers(e));
                 }
             }
             let pressed = st.pressed_pointer == Some(e.pointer_id());
-            st.exp
-                .input_with(Input::PointerMove { pos: w, pressed }, modifiers(e));
+            st.guarded_input(Input::PointerMove { pos: w, pressed }, modifiers(e));
             if pressed {
                 st.needs_paint = true;
                 st.hash_dirty = true;
@@ -138,8 +137,8 @@ pub(super) fn listen(
                     st.pending_touch = None;
                     if kind == "pointerup" {
                         // A tap: it acts where it landed.
-                        st.exp.input_with(Input::PointerDown(start), modifiers(e));
-                        st.exp.input_with(Input::PointerUp(start), modifiers(e));
+                        st.guarded_input(Input::PointerDown(start), modifiers(e));
+                        st.guarded_input(Input::PointerUp(start), modifiers(e));
                         st.interaction_ended();
                     }
                     return;
@@ -150,7 +149,7 @@ pub(super) fn listen(
             }
             st.pressed_pointer = None;
             let w = st.to_world(e);
-            st.exp.input_with(Input::PointerUp(w), modifiers(e));
+            st.guarded_input(Input::PointerUp(w), modifiers(e));
             st.interaction_ended();
         }));
     }
@@ -203,7 +202,7 @@ pub(super) fn listen(
             shift: false,
             ctrl: e.ctrl_key() || e.meta_key(),
         };
-        st.exp.input_with(Input::Nudge(delta), mods);
+        st.guarded_input(Input::Nudge(delta), mods);
         st.interaction_ended();
     }));
 }

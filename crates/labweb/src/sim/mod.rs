@@ -28,6 +28,7 @@ use web_sys::{
 
 mod a11y;
 mod canvas_input;
+mod instructor;
 mod panel;
 mod status;
 mod timebar;
@@ -36,8 +37,6 @@ use panel::{readouts_html, tables_html};
 use status::{statusbar_html, NoticeShelf};
 use timebar::timebar_html;
 
-/// Shortest time between two redraws of the plots, milliseconds.
-const PLOT_INTERVAL_MS: f64 = 66.0;
 /// Minimum time between URL updates while a control moves, milliseconds.
 const HASH_INTERVAL_MS: f64 = 250.0;
 
@@ -109,8 +108,11 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
     } else {
         ""
     };
+    let note = instructor::note_html();
+    let presets = instructor::presets_html(exp);
+    let instructor_panel = instructor::panel_html(exp.params());
     format!(
-        "<div class=\"sim\">\
+        "{note}<div class=\"sim\">\
            <div class=\"sim-stage\">\
              <p class=\"sim-caption\">{caption}</p>\
              <div class=\"sim-frame\">\
@@ -118,18 +120,19 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
                  aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps), [ and ] choose a point to move{keys}, D describes the scene, question mark lists every key.\"></canvas>\
              </div>{statusbar}{touch_note}\
              {timebar}\
-             <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button>{describe}</div>\
+             <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button>{report}{describe}</div>\
            </div>\
            <div class=\"sim-side\">{main_plot}\
              <dl class=\"readouts\">{readouts}</dl>\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
              <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
-             <form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>{move_form}\
+             {presets}<form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>{move_form}\
              <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
            </div>\
            {plots}\
-         </div>",
+         </div>{instructor_panel}",
         touch = if exp.captures_touch() { "all" } else { "handles" },
+        report = crate::report_view::BUTTON_HTML,
         keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
         describe = a11y::describe_button_html(),
         move_form = a11y::move_form_html(),
@@ -165,7 +168,6 @@ struct SimState {
     clock: Clock,
     plots: PlotView,
     plots_force: bool,
-    last_plot_ms: f64,
     /// Running, speed, steps and whether the play button offers Replay, as shown.
     shown_time: (bool, f64, u64, bool),
     /// The run's phase at the last frame (the time bar offers Replay when ended).
@@ -177,6 +179,11 @@ struct SimState {
     /// What each control shows; `None` = unknown (refresh it), `Some(None)` = empty.
     shown_values: Vec<Option<Option<f64>>>,
     shown_readouts: Vec<String>,
+    /// The `<dd>` of each shown readout, found when the list is built.
+    readout_elements: Vec<Option<Element>>,
+    /// The time bar's `t = … s` output and its text.
+    time_output: Option<Element>,
+    shown_time_text: String,
     shown_status: Option<labcore::Status>,
     notices: NoticeShelf,
     /// Serial of the notice on screen.
@@ -189,6 +196,10 @@ struct SimState {
     hash_dirty: bool,
     last_hash_ms: f64,
     frame_times: FrameTimes,
+    /// The instructor's locks, hidden controls and note from the link.
+    instructor: route::Instructor,
+    /// The quiz seed the link fixed, kept in the Simulation tab's link.
+    quiz_seed: Option<u64>,
     /// The handle the keyboard and the Move form act on (drawn with a ring).
     focused_handle: Option<String>,
     shown_move: a11y::ShownMove,
@@ -201,6 +212,7 @@ struct FrameTimes {
     recent_ms: Vec<f64>,
     next: usize,
     max_ms: f64,
+    published_max_ms: f64,
     since_publish: usize,
 }
 
@@ -216,7 +228,10 @@ impl FrameTimes {
         self.next = (self.next + 1) % Self::WINDOW;
         self.max_ms = self.max_ms.max(ms);
         self.since_publish += 1;
-        if self.since_publish >= 15 || ms > 16.0 {
+        // Every 15 frames, and at once for a new worst frame (a slow frame
+        // alone would otherwise publish at every frame it happens).
+        if self.since_publish >= 15 || ms > self.published_max_ms {
+            self.published_max_ms = self.max_ms;
             self.since_publish = 0;
             let mut sorted = self.recent_ms.clone();
             sorted.sort_by(f64::total_cmp);
@@ -274,6 +289,13 @@ impl SimState {
             .last_time_ms
             .map_or(0.0, |last| (time_ms - last) / 1000.0);
         self.last_time_ms = Some(time_ms);
+        // Reads before writes: the plots' sizes are read while the page's
+        // layout is still clean; read after the readouts are written, each
+        // would make the browser lay the page out again mid-frame.
+        let plots_due = self.plots_force || self.plots.due(time_ms);
+        if plots_due {
+            self.plots.measure();
+        }
         let was_animating = self.exp.animating();
         // An idle experiment's clock does not tick (t counts motion only).
         let steps = if was_animating || !self.exp.animated() {
@@ -281,8 +303,14 @@ impl SimState {
         } else {
             0
         };
-        for _ in 0..steps {
-            self.exp.step(Clock::DT_S);
+        if steps > 0 {
+            // A run may move a locked parameter (an arm turning to its
+            // target): it is held, quietly.
+            let _ = route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
+                for _ in 0..steps {
+                    exp.step(Clock::DT_S);
+                }
+            });
         }
         let phase_before = self.phase;
         self.follow_phase();
@@ -307,13 +335,14 @@ impl SimState {
             self.sync_dom();
             self.needs_paint = false;
         }
-        // Plots follow the data at most every PLOT_INTERVAL_MS: a curve
-        // needs no 60 Hz, and the frame keeps its budget for the simulation.
-        if self.plots_force || time_ms - self.last_plot_ms >= PLOT_INTERVAL_MS {
-            self.plots
-                .draw(self.exp.plots(), &self.palette, self.plots_force);
+        // Plots follow the data, each at most every PLOT_INTERVAL_MS and
+        // one a frame (they take turns), so no frame pays for all of them.
+        if self.plots_force {
+            self.plots.draw(self.exp.plots(), &self.palette, true);
             self.plots_force = false;
-            self.last_plot_ms = time_ms;
+        } else if plots_due {
+            self.plots
+                .draw_next(self.exp.plots(), &self.palette, time_ms);
         }
         self.sync_notice(time_ms);
         self.sync_timebar();
@@ -326,9 +355,17 @@ impl SimState {
         }
     }
 
+    /// The link of the current state ([`SimState::state_link`]), then the
+    /// instructor's locks, hidden controls and note, then the quiz seed.
+    fn link(&self) -> String {
+        let mut pairs = self.instructor.query();
+        pairs.extend(self.quiz_seed.map(|s| format!("{}={s}", route::QUIZ_KEY)));
+        route::with_query(self.state_link(), &pairs)
+    }
+
     /// The link of the current state: the experiment's parameters, then the
     /// shell's own (`run=0` when paused, `speed` when not 1×).
-    fn link(&self) -> String {
+    fn state_link(&self) -> String {
         let mut hash = route::format(self.exp.as_ref(), Tab::Simulation);
         let mut extra = Vec::new();
         if self.exp.animated() && !self.clock.running() && !self.ended_hold {
@@ -373,6 +410,7 @@ impl SimState {
 
     fn write_hash(&mut self) {
         self.hash_dirty = false;
+        self.sync_instructor_link();
         let hash = self.link();
         if let Ok(history) = dom::window().history() {
             let _ = history.replace_state_with_url(&JsValue::NULL, "", Some(&hash));
@@ -487,13 +525,15 @@ impl SimView {
             clock: Clock::default(),
             plots: PlotView::mount(panel),
             plots_force: true,
-            last_plot_ms: f64::NEG_INFINITY,
             shown_time: (true, 0.0, u64::MAX, false),
             phase: Phase::Live,
             ended_hold: false,
             needs_paint: true,
             shown_values: vec![None; n_params],
             shown_readouts: Vec::new(),
+            readout_elements: Vec::new(),
+            time_output: query(panel, ".timebar .tb-time"),
+            shown_time_text: String::new(),
             shown_status: None,
             notices: NoticeShelf::default(),
             shown_notice: None,
@@ -504,12 +544,15 @@ impl SimView {
             hash_dirty: false,
             last_hash_ms: 0.0,
             frame_times: FrameTimes::default(),
+            instructor: route::Instructor::default(),
+            quiz_seed: None,
             focused_handle: None,
             shown_move: a11y::ShownMove::default(),
         }));
         let mut listeners = Vec::new();
         canvas_input::listen(&state, &canvas, &mut listeners);
         panel::listen(&state, panel, &mut listeners);
+        instructor::listen(&state, panel, &mut listeners);
         a11y::listen(&state, panel, &mut listeners);
         // Theme changes (light/dark, more contrast, forced colours) repaint
         // with the new palette.
@@ -613,6 +656,24 @@ impl SimView {
         notices
     }
 
+    /// Sets the instructor's locks, hidden controls, note and quiz seed from
+    /// a link (replacing any before) and shows them; returns a notice for
+    /// each key the experiment does not have.
+    pub fn set_instructor(
+        &self,
+        mut instructor: route::Instructor,
+        quiz_seed: Option<u64>,
+    ) -> Vec<String> {
+        let mut st = self.state.borrow_mut();
+        let notices = instructor.resolve(st.exp.params());
+        st.instructor = instructor;
+        st.quiz_seed = quiz_seed;
+        st.show_instructor();
+        st.shown_values.iter_mut().for_each(|v| *v = None);
+        st.needs_paint = true;
+        notices
+    }
+
     /// The URL hash of the current state on `tab`.
     pub fn hash(&self, tab: Tab) -> String {
         let st = self.state.borrow();
@@ -632,11 +693,13 @@ impl SimView {
     /// Paints once now (used by tests and right after mounting).
     pub fn paint_now(&self) {
         let mut st = self.state.borrow_mut();
+        st.plots.measure();
         st.resize();
         st.paint();
         st.sync_dom();
         let st = &mut *st;
         st.plots.draw(st.exp.plots(), &st.palette, true);
+        st.plots_force = false;
         st.sync_timebar();
     }
 }
@@ -656,7 +719,9 @@ fn read_file(state: &Rc<RefCell<SimState>>, file: web_sys::File) {
             .and_then(|v| v.as_string())
             .unwrap_or_default();
         let mut st = s.borrow_mut();
-        match st.exp.load_file(&name, &text) {
+        let mut loaded = Ok(());
+        st.guarded(|exp| loaded = exp.load_file(&name, &text));
+        match loaded {
             Ok(()) => {
                 st.show_message(Some(&format!("Loaded “{name}”.")));
                 st.clock.reset();

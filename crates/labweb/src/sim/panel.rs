@@ -133,7 +133,9 @@ pub(super) fn listen(
             let attr = |name: &str| button.get_attribute(name);
             let mut st = s.borrow_mut();
             if let Some(key) = attr("data-action") {
-                if let Err(err) = st.exp.action(&key) {
+                let mut done = Ok(());
+                st.guarded(|exp| done = exp.action(&key));
+                if let Err(err) = done {
                     st.show_message(Some(&err.to_string()));
                 }
                 st.needs_paint = true;
@@ -162,6 +164,8 @@ pub(super) fn listen(
                 if let Some((name, text)) = st.exp.export_text() {
                     plot_view::download(&name, "text/plain", &text);
                 }
+            } else if attr("data-export").as_deref() == Some("report") {
+                crate::report_view::download(&st.panel, st.exp.as_ref(), &st.link());
             } else if attr("data-export").as_deref() == Some("png") {
                 st.paint();
                 export_png(&st.canvas, &format!("{}.png", st.file_stem()));
@@ -291,7 +295,7 @@ fn control_html(spec: &ParamSpec) -> String {
     let v = format_number(spec.default, 4);
     match spec.kind {
         ParamKind::Slider => format!(
-            "<div class=\"ctl ctl-slider\"><label for=\"p-{key}\">{label}</label>\
+            "<div class=\"ctl ctl-slider\" data-ctl=\"{key}\"><label for=\"p-{key}\">{label}</label>\
              <input type=\"range\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"{step}\" value=\"{v}\">\
              <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" value=\"{v}\" aria-label=\"{label} value{unit_aria}\">\
              <span class=\"unit\" aria-hidden=\"true\">{unit}</span></span></div>",
@@ -301,7 +305,7 @@ fn control_html(spec: &ParamSpec) -> String {
             unit_aria = if spec.unit.is_empty() { String::new() } else { format!(" in {unit}") },
         ),
         ParamKind::OptionalNumber => format!(
-            "<div class=\"ctl ctl-number\"><label for=\"p-{key}\">{label}</label>\
+            "<div class=\"ctl ctl-number\" data-ctl=\"{key}\"><label for=\"p-{key}\">{label}</label>\
              <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"any\" \
              placeholder=\"—\" aria-label=\"{label}{unit_aria}\"><span class=\"unit\" aria-hidden=\"true\">{unit}</span></span></div>",
             min = spec.min,
@@ -309,13 +313,13 @@ fn control_html(spec: &ParamSpec) -> String {
             unit_aria = if spec.unit.is_empty() { String::new() } else { format!(" in {unit}") },
         ),
         ParamKind::Number => format!(
-            "<div class=\"ctl ctl-number\"><label for=\"p-{key}\">{label}</label>\
+            "<div class=\"ctl ctl-number\" data-ctl=\"{key}\"><label for=\"p-{key}\">{label}</label>\
              <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" id=\"p-{key}\" data-param=\"{key}\" min=\"{min}\" max=\"{max}\" step=\"1\" value=\"{v}\"></span></div>",
             min = spec.min,
             max = spec.max,
         ),
         ParamKind::Toggle { off, on } => format!(
-            "<fieldset class=\"ctl ctl-toggle\"><legend>{label}</legend><div class=\"seg\">\
+            "<fieldset class=\"ctl ctl-toggle\" data-ctl=\"{key}\"><legend>{label}</legend><div class=\"seg\">\
              <label><input type=\"radio\" name=\"p-{key}\" data-param=\"{key}\" value=\"1\"{c1}><span>{on}</span></label>\
              <label><input type=\"radio\" name=\"p-{key}\" data-param=\"{key}\" value=\"0\"{c0}><span>{off}</span></label>\
              </div></fieldset>",
@@ -334,7 +338,7 @@ fn control_html(spec: &ParamSpec) -> String {
                 })
                 .collect();
             format!(
-                "<div class=\"ctl ctl-choice\"><label for=\"p-{key}\">{label}</label>\
+                "<div class=\"ctl ctl-choice\" data-ctl=\"{key}\"><label for=\"p-{key}\">{label}</label>\
                  <select id=\"p-{key}\" data-param=\"{key}\">{opts}</select></div>"
             )
         }
@@ -426,10 +430,20 @@ impl SimState {
                 list.set_inner_html(&readouts_html(&readouts));
             }
             self.shown_readouts = vec![String::new(); readouts.len()];
+            self.readout_elements = readouts
+                .iter()
+                .map(|r| query(&self.panel, &format!("[data-readout=\"{}\"]", r.key)))
+                .collect();
         }
-        for (r, shown) in readouts.iter().zip(self.shown_readouts.iter_mut()) {
+        // Only a value whose text changed is written: a write makes the
+        // browser lay the page out again.
+        for ((r, shown), dd) in readouts
+            .iter()
+            .zip(self.shown_readouts.iter_mut())
+            .zip(&self.readout_elements)
+        {
             if *shown != r.value {
-                if let Some(dd) = query(&self.panel, &format!("[data-readout=\"{}\"]", r.key)) {
+                if let Some(dd) = dd {
                     dd.set_text_content(Some(&r.value));
                 }
                 shown.clone_from(&r.value);
@@ -454,6 +468,14 @@ impl SimState {
             .iter()
             .find(|s| s.key == key)
             .map_or(key, |s| s.label);
+        if self.instructor.is_locked(key) {
+            // The controls are disabled; this catches anything that still
+            // reaches here (a script, an old event).
+            self.show_message(Some(&format!("{label} is locked by your instructor.")));
+            self.shown_values.iter_mut().for_each(|v| *v = None);
+            self.needs_paint = true;
+            return;
+        }
         match self.exp.set_param(key, value) {
             Ok(Sanitized::InRange(_)) => self.show_message(None),
             Ok(Sanitized::Clamped(v)) => self.show_message(Some(&format!(

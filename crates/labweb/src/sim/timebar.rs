@@ -111,9 +111,12 @@ impl SimState {
     /// One fixed step from a pause (the Step button and the `.` key).
     pub(super) fn single_step(&mut self) {
         let was_animating = self.exp.animating();
-        for _ in 0..self.clock.single_step() {
-            self.exp.step(Clock::DT_S);
-        }
+        let steps = self.clock.single_step();
+        let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
+            for _ in 0..steps {
+                exp.step(Clock::DT_S);
+            }
+        });
         self.needs_paint = true;
         self.hash_dirty = true;
         self.plots_force = true;
@@ -132,7 +135,8 @@ impl SimState {
     }
 
     pub(super) fn reset_run(&mut self) {
-        self.exp.reset();
+        // Reset keeps the parameters, locked ones above all.
+        self.guarded(|exp| exp.reset());
         self.clock.reset();
         self.phase = self.exp.status().phase;
         self.needs_paint = true;
@@ -152,7 +156,12 @@ impl SimState {
             return;
         }
         let _ = self.canvas.set_attribute("data-steps", &now.2.to_string());
-        if let Some(bar) = query(&self.panel, ".timebar") {
+        let controls_changed =
+            (now.0, now.1, now.3) != (self.shown_time.0, self.shown_time.1, self.shown_time.3);
+        if let Some(bar) = controls_changed
+            .then(|| query(&self.panel, ".timebar"))
+            .flatten()
+        {
             if (now.0, now.3) != (self.shown_time.0, self.shown_time.3) {
                 if let Some(play) = query(&bar, ".tb-play") {
                     let (label, icon, pressed) = play_button(now.0, now.3);
@@ -174,9 +183,14 @@ impl SimState {
                     select.set_value(&format!("{}", now.1));
                 }
             }
-            if let Some(out) = query(&bar, ".tb-time") {
-                out.set_text_content(Some(&format!("t = {:.2} s", self.clock.time_s())));
+        }
+        // The time is written only when its text changes.
+        let text = format!("t = {:.2} s", self.clock.time_s());
+        if text != self.shown_time_text {
+            if let Some(out) = &self.time_output {
+                out.set_text_content(Some(&text));
             }
+            self.shown_time_text = text;
         }
         self.shown_time = now;
     }

@@ -1079,7 +1079,30 @@ fn check_side(grid: &OccupancyGrid) -> Result<(), String> {
     }
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "The trap maze",
+        description: "The start sits in a cup that opens away from the goal: A* (and even weighted, greedy A*) floods the cup before it finds the way round.",
+        query: "walls=32x24.3s.d.v.1.v.1.v.1.v.1.v.1.v.1.v.1.v.1.v.1.v.1.v.1.v.1.v.1.v.1.j.d&sx=14&sy=12&gx=28&gy=12",
+    },
+    crate::experiment::Preset {
+        name: "Dijkstra floods the grid",
+        description: "No heuristic: the search expands in every direction, several times the cells A* needs, for the same cost.",
+        query: "h=3",
+    },
+    crate::experiment::Preset {
+        name: "Manhattan with diagonals",
+        description: "An inadmissible heuristic: Manhattan distance overestimates on an 8-connected grid and the status warns.",
+        query: "h=0&conn=1",
+    },
+];
+
 impl Experiment for AStarGrid {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "astar"
     }

@@ -580,7 +580,25 @@ mod view;
 
 pub use quiz::quiz_generator;
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "Too soft: the pole is lost",
+        description: "kθ = 15, below the stability limit: the pole swings wider each time and falls within seconds.",
+        query: "kth=15",
+    },
+    crate::experiment::Preset {
+        name: "Control off",
+        description: "No controller: the pole, started 6° off upright, falls over.",
+        query: "ctl=0",
+    },
+];
+
 impl Experiment for CartPoleBalance {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "cartpole"
     }

@@ -427,7 +427,25 @@ impl DiffDrive {
     }
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "A goal behind the robot",
+        description: "The goal is straight behind: the robot first turns on the spot at its turn limit, then drives.",
+        query: "w1x=1&w1y=3",
+    },
+    crate::experiment::Preset {
+        name: "Lazy steering: wide arcs",
+        description: "A low Kω on a two-waypoint route: the robot turns late and drives a longer path than with the default gain.",
+        query: "kw=0.5&w1x=7&w1y=5&w2x=1&w2y=5",
+    },
+];
+
 impl Experiment for DiffDrive {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "diffdrive"
     }

@@ -279,7 +279,30 @@ impl DampedLeastSquares {
     }
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "The bare update oscillates",
+        description: "λ = 0 and no safeguards, a target just outside the reach: the joints jump and the run never converges.",
+        query: "guard=0&lambda=0&tx=0&ty=2.5",
+    },
+    crate::experiment::Preset {
+        name: "Adaptive damping settles",
+        description: "The same kind of target with adaptive damping: λ rises near the singularity and the arm settles stretched.",
+        query: "guard=0&lambda=0.01&adaptive=1&tx=0&ty=2.45",
+    },
+    crate::experiment::Preset {
+        name: "Far outside the reach",
+        description: "A target well beyond the arm: it settles fully stretched towards it, the gap left as the error.",
+        query: "lambda=0.3&tx=2&ty=2",
+    },
+];
+
 impl Experiment for DampedLeastSquares {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "dls"
     }

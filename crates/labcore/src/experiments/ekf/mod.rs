@@ -763,7 +763,30 @@ fn position_trace(p: DMat3) -> f64 {
     p.x_axis.x + p.y_axis.y
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "No landmarks in view",
+        description: "A sensor range of 0.5 m: no landmark is ever seen, so the filter only predicts and its ellipse keeps growing like dead reckoning.",
+        query: "range=0.5",
+    },
+    crate::experiment::Preset {
+        name: "Sloppy odometry, good sensor",
+        description: "Very noisy wheels: dead reckoning drifts metres away while the EKF stays close to the truth.",
+        query: "sv=0.5&sw=30",
+    },
+    crate::experiment::Preset {
+        name: "EKF-SLAM builds the map",
+        description: "No map given: the filter estimates the landmarks as it meets them.",
+        query: "mode=1",
+    },
+];
+
 impl Experiment for EkfExperiment {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "ekf"
     }

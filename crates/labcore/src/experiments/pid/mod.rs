@@ -695,7 +695,30 @@ impl PidControl {
     }
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "Overshoot vs damping: little damping",
+        description: "Kp 40 with Kd 1: the cart shoots about 60 % past the setpoint and rings before it settles.",
+        query: "kp=40&ki=0&kd=1",
+    },
+    crate::experiment::Preset {
+        name: "Overshoot vs damping: plenty of damping",
+        description: "The same Kp 40 with Kd 12: no overshoot at all; compare the two runs.",
+        query: "kp=40&ki=0&kd=12",
+    },
+    crate::experiment::Preset {
+        name: "A push leaves an offset",
+        description: "A constant push of 5 N and no integral action: the cart stops d / Kp = 0.25 m past the setpoint.",
+        query: "kp=20&ki=0&kd=6&d=5",
+    },
+];
+
 impl Experiment for PidControl {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "pid"
     }

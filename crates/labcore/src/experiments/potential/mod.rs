@@ -464,7 +464,30 @@ impl PotentialFieldLab {
     }
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "Two obstacles trap the robot",
+        description: "Two obstacles close together in front of the goal: the pushes cancel the pull and the robot stops in a local minimum.",
+        query: "rad=0.4&o1x=4&o1y=3.6&o2x=4&o2y=2.4&gx=7.4&gy=3",
+    },
+    crate::experiment::Preset {
+        name: "The pull beats the push",
+        description: "A strong attraction and a weak repulsion with an obstacle on the line: the robot drives into it.",
+        query: "ka=2&kr=0.8&o1x=3&o1y=3&gx=7.2&gy=3",
+    },
+    crate::experiment::Preset {
+        name: "A wide berth",
+        description: "A strong push felt from far away: the robot keeps well clear of the obstacles on its way to the goal.",
+        query: "kr=4&d0=2&gx=7.2&gy=3",
+    },
+];
+
 impl Experiment for PotentialFieldLab {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "potential"
     }

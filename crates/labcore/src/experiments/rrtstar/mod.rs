@@ -525,7 +525,25 @@ impl RrtStarField {
     }
 }
 
+/// Presets: named starting states that tell a story (see [`crate::experiment::Preset`]).
+const PRESETS: &[crate::experiment::Preset] = &[
+    crate::experiment::Preset {
+        name: "RRT keeps its first path",
+        description: "Plain RRT never rewires: press Grow and its path stays long and crooked.",
+        query: "planner=0",
+    },
+    crate::experiment::Preset {
+        name: "RRT* straightens it",
+        description: "The same seed with RRT*: rewiring shortens the best path as the tree grows.",
+        query: "planner=1",
+    },
+];
+
 impl Experiment for RrtStarField {
+    fn presets(&self) -> &'static [crate::experiment::Preset] {
+        PRESETS
+    }
+
     fn id(&self) -> &'static str {
         "rrtstar"
     }

@@ -1,0 +1,1006 @@
+//! The lab report: one self-contained HTML file a student hands in.
+//!
+//! [`render`] is a pure function of the experiment's state, its content, the
+//! link that reproduces the run, a date and (when the Self-assessment was
+//! submitted) the quiz attempt. The file holds the title and aim, the date,
+//! the link, every parameter with its unit, the status, readouts and live
+//! tables, every plot as inline SVG drawn here from the plot data (crisp in
+//! print) with a data table, the quiz score and answers, and a lined box for
+//! the student's observations.
+//!
+//! Self-contained means no request anywhere: the CSS is inline (this is a
+//! downloaded document, not the site, so the site's CSP does not apply), there
+//! are no fonts, images or scripts, and the file carries its own
+//! `Content-Security-Policy` (`default-src 'none'`) so even a browser that
+//! opens it from disk fetches nothing. The only address in the file is the
+//! link back to the lab, as text and as a link.
+//!
+//! Everything that comes from the student or a link (the note, text state,
+//! quiz answers, the link itself) is escaped with
+//! [`crate::content_html::escape`]; the content file's inline markup
+//! (`<em>`, MathML) is ours and compiled in, and goes in as HTML, exactly as
+//! on the site.
+
+use crate::content::Content;
+use crate::content_html::escape;
+use crate::experiment::{Experiment, ParamKind, ParamSpec, Tone};
+use crate::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, Series, SeriesRole};
+use crate::quiz::{format_number, grade, score_percent, Prepared, PreparedKind, Response};
+use crate::scene::Scene;
+use crate::table::Table;
+use std::fmt::Write as _;
+
+mod scene_svg;
+
+/// Most rows of a plot's data table in the report: a long series is shown
+/// at evenly spaced samples (first and last included), and the table says so.
+pub const TABLE_ROWS: usize = 30;
+
+/// Most rows of a live table (an open list) copied into the report.
+pub const LIVE_TABLE_ROWS: usize = 60;
+
+/// Ruled lines in the observations box.
+pub const OBSERVATION_LINES: usize = 14;
+
+/// Width and height of a plot's SVG drawing area, in SVG user units
+/// (CSS pixels at 100 %; the figure scales to the page width).
+const SVG_W: f64 = 640.0;
+const SVG_H: f64 = 280.0;
+/// Plot margins: left (y tick labels), right, top, bottom (x ticks and title).
+const MARGIN: (f64, f64, f64, f64) = (64.0, 24.0, 12.0, 42.0);
+/// Line segments per series at most: [`decimate_min_max`] buckets across the
+/// plot width (about two per user unit), so the drawing looks like every
+/// sample and a 20,000-sample run costs a few kilobytes.
+const DRAW_BUCKETS: usize = 300;
+/// Longest text value (a wall code) copied into the parameter table.
+const TEXT_STATE_MAX: usize = 120;
+
+/// A submitted Self-assessment attempt: the questions as the student saw
+/// them (drawn from `seed`) and the answers given, one per question.
+#[derive(Clone, Copy, Debug)]
+pub struct QuizResult<'a> {
+    pub seed: u64,
+    pub questions: &'a [Prepared],
+    pub answers: &'a [Response],
+}
+
+impl QuizResult<'_> {
+    /// `(correct, total)` by [`crate::quiz::grade`]; a missing answer is blank.
+    #[must_use]
+    pub fn score(&self) -> (usize, usize) {
+        let correct = self
+            .questions
+            .iter()
+            .enumerate()
+            .filter(|(i, q)| grade(q, &self.answer(*i, q)).correct)
+            .count();
+        (correct, self.questions.len())
+    }
+
+    fn answer(&self, i: usize, q: &Prepared) -> Response {
+        self.answers.get(i).cloned().unwrap_or(match q.kind {
+            PreparedKind::Choice { .. } => Response::Choice(None),
+            PreparedKind::Numeric { .. } => Response::Text(String::new()),
+        })
+    }
+}
+
+/// What goes into a report.
+#[derive(Clone, Copy)]
+pub struct Report<'a> {
+    pub experiment: &'a dyn Experiment,
+    pub content: &'a Content,
+    /// The absolute address that reproduces the run (the page's URL with
+    /// the state in its hash).
+    pub link: &'a str,
+    /// When the report was made, as the student's clock shows it.
+    pub date: &'a str,
+    /// The quiz attempt, when it was submitted.
+    pub quiz: Option<QuizResult<'a>>,
+    /// An instructor's note from the link (`note=`), shown as text.
+    pub note: Option<&'a str>,
+}
+
+/// The file name of an experiment's report: `pid-report.html`.
+#[must_use]
+pub fn file_name(id: &str) -> String {
+    format!("{id}-report.html")
+}
+
+/// A date and time as the report shows it: `2026-11-25 14:05 (UTC+01:00)`.
+/// `month` is 1–12; `utc_offset_min` is local time minus UTC in minutes
+/// (east positive; JavaScript's `getTimezoneOffset` has the opposite sign).
+#[must_use]
+pub fn date_text(
+    year: i32,
+    month: u32,
+    day: u32,
+    hour: u32,
+    minute: u32,
+    utc_offset_min: i32,
+) -> String {
+    let sign = if utc_offset_min < 0 { '-' } else { '+' };
+    let off = utc_offset_min.unsigned_abs();
+    format!(
+        "{year:04}-{month:02}-{day:02} {hour:02}:{minute:02} (UTC{sign}{:02}:{:02})",
+        off / 60,
+        off % 60
+    )
+}
+
+/// The whole report as one HTML document (see the module doc).
+#[must_use]
+pub fn render(r: &Report<'_>) -> String {
+    let exp = r.experiment;
+    let c = r.content;
+    let mut h = String::with_capacity(64 * 1024);
+    let title = format!("Lab report: {}", c.title);
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
+         <title>{}</title><style>{CSS}</style></head><body><main>",
+        escape(&title)
+    );
+    // Title block with room for the student's name.
+    let _ = write!(
+        h,
+        "<header><p class=\"eyebrow\">Robotics virtual lab · Experiment {} · Lab report</p>\
+         <h1>{}</h1><dl class=\"meta\"><div><dt>Date</dt><dd class=\"date\">{}</dd></div>\
+         <div><dt>Name</dt><dd class=\"blank\"></dd></div><div><dt>Group</dt><dd class=\"blank\"></dd></div></dl>\
+         <p class=\"link\">Reproduce this run: <a href=\"{link}\">{link}</a></p></header>",
+        c.number,
+        escape(&c.title),
+        escape(r.date),
+        link = escape(r.link),
+    );
+    if let Some(note) = r.note.filter(|n| !n.trim().is_empty()) {
+        let _ = write!(
+            h,
+            "<aside class=\"note\"><strong>Instructor's note:</strong> {}</aside>",
+            escape(note)
+        );
+    }
+    h.push_str("<section class=\"aim\"><h2>Aim</h2>");
+    for p in &c.aim {
+        // Content files are ours (trusted inline markup), as on the site.
+        let _ = write!(h, "<p>{p}</p>");
+    }
+    h.push_str("</section>");
+
+    parameters_section(&mut h, exp);
+    results_section(&mut h, exp);
+    plots_section(&mut h, exp.plots());
+    quiz_section(&mut h, r.quiz.as_ref());
+
+    let lines = "<div class=\"line\"></div>".repeat(OBSERVATION_LINES);
+    let _ = write!(
+        h,
+        "<section class=\"observations\"><h2>Observations and conclusions</h2>\
+         <p class=\"muted\">What did you see? Compare it with the theory, explain any difference, \
+         and say what you would change next.</p><div class=\"lines\">{lines}</div></section>\
+         <footer><p>Made by the Robotics virtual lab on {}. This file is self-contained: it needs no \
+         network and makes no request. Open the link above to see the run again.</p></footer>",
+        escape(r.date)
+    );
+    h.push_str("</main></body></html>\n");
+    h
+}
+
+/// The parameter table: every parameter (grouped ones under their group's
+/// heading) with its value and unit, then the text state the link carries.
+fn parameters_section(h: &mut String, exp: &dyn Experiment) {
+    h.push_str(
+        "<section class=\"params\"><h2>Parameters</h2><table class=\"data\"><thead><tr>\
+         <th scope=\"col\">Parameter</th><th scope=\"col\">Value</th><th scope=\"col\">Unit</th>\
+         <th scope=\"col\">Link key</th></tr></thead><tbody>",
+    );
+    let specs = exp.params();
+    let row = |h: &mut String, spec: &ParamSpec| {
+        let _ = write!(
+            h,
+            "<tr data-param=\"{}\"><th scope=\"row\">{}</th><td class=\"num\">{}</td><td>{}</td><td><code>{}</code></td></tr>",
+            escape(spec.key),
+            escape(spec.label),
+            escape(&param_value(spec, exp.param(spec.key))),
+            escape(spec.unit),
+            escape(spec.key)
+        );
+    };
+    for spec in specs.iter().filter(|s| s.group.is_none()) {
+        row(h, spec);
+    }
+    let mut groups: Vec<&str> = Vec::new();
+    for g in specs.iter().filter_map(|s| s.group) {
+        if !groups.contains(&g) {
+            groups.push(g);
+        }
+    }
+    for g in groups {
+        let _ = write!(
+            h,
+            "<tr class=\"group\"><th colspan=\"4\" scope=\"rowgroup\">{}</th></tr>",
+            escape(g)
+        );
+        for spec in specs.iter().filter(|s| s.group == Some(g)) {
+            row(h, spec);
+        }
+    }
+    for (key, value) in exp.extra_state() {
+        let shown: String = value.chars().take(TEXT_STATE_MAX).collect();
+        let more = if value.chars().count() > TEXT_STATE_MAX {
+            "… (the whole value is in the link)"
+        } else {
+            ""
+        };
+        let _ = write!(
+            h,
+            "<tr data-param=\"{k}\"><th scope=\"row\">Text state</th><td class=\"text\">{}{more}</td><td></td><td><code>{k}</code></td></tr>",
+            escape(&shown),
+            k = escape(key)
+        );
+    }
+    h.push_str("</tbody></table></section>");
+}
+
+/// A parameter's value as the page shows it: a number, a toggle's or a
+/// choice's label, or "not set".
+fn param_value(spec: &ParamSpec, value: Option<f64>) -> String {
+    let Some(v) = value else {
+        return "not set".into();
+    };
+    match spec.kind {
+        ParamKind::Toggle { off, on } => (if v >= 0.5 { on } else { off }).to_owned(),
+        ParamKind::Choice(options) => options
+            .get(v.round().max(0.0) as usize)
+            .map_or_else(|| format_number(v, 0), |o| (*o).to_owned()),
+        _ => format_number(v, 6),
+    }
+}
+
+/// The status, the readouts and the live tables.
+fn results_section(h: &mut String, exp: &dyn Experiment) {
+    let status = exp.status();
+    let tone = match status.tone {
+        Tone::Neutral => "neutral",
+        Tone::Good => "good",
+        Tone::Warning => "warning",
+        Tone::Bad => "bad",
+    };
+    let _ = write!(
+        h,
+        "<section class=\"results\"><h2>Results</h2><p class=\"status {tone}\"><strong>Status:</strong> {}</p>",
+        escape(&status.text)
+    );
+    let mut scene = Scene::default();
+    exp.scene(&mut scene);
+    let (picture, thinned) = scene_svg::scene_svg(&scene, exp.view());
+    let thinned = if thinned.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", escape(&thinned.join("; ")))
+    };
+    let _ = write!(
+        h,
+        "<figure class=\"scene\">{picture}<figcaption>The simulation when the report was made{thinned}.</figcaption></figure>"
+    );
+    let readouts = exp.readouts();
+    if !readouts.is_empty() {
+        h.push_str(
+            "<table class=\"data readouts\"><caption>Readouts</caption><thead><tr><th scope=\"col\">Quantity</th>\
+             <th scope=\"col\">Value</th></tr></thead><tbody>",
+        );
+        for r in &readouts {
+            let _ = write!(
+                h,
+                "<tr data-readout=\"{}\"><th scope=\"row\">{}</th><td class=\"num\">{}</td></tr>",
+                escape(r.key),
+                escape(r.label),
+                escape(&r.value)
+            );
+        }
+        h.push_str("</tbody></table>");
+    }
+    for t in exp.tables() {
+        live_table(h, &t);
+    }
+    h.push_str("</section>");
+}
+
+fn live_table(h: &mut String, t: &Table) {
+    let head: String = t
+        .columns
+        .iter()
+        .map(|c| format!("<th scope=\"col\">{}</th>", escape(c)))
+        .collect();
+    let _ = write!(
+        h,
+        "<table class=\"data live\" data-table=\"{}\"><caption>{}</caption><thead><tr>{head}</tr></thead><tbody>",
+        escape(t.key),
+        escape(&t.caption)
+    );
+    for (i, row) in t.rows.iter().take(LIVE_TABLE_ROWS).enumerate() {
+        let mark = if t.highlight == Some(i) {
+            " class=\"current\""
+        } else {
+            ""
+        };
+        let cells: String = row
+            .iter()
+            .map(|c| format!("<td>{}</td>", escape(c)))
+            .collect();
+        let _ = write!(h, "<tr{mark}>{cells}</tr>");
+    }
+    h.push_str("</tbody></table>");
+    if t.rows.len() > LIVE_TABLE_ROWS {
+        let _ = write!(
+            h,
+            "<p class=\"muted\">The first {LIVE_TABLE_ROWS} of {} rows.</p>",
+            t.rows.len()
+        );
+    }
+}
+
+fn plots_section(h: &mut String, plots: &[Plot]) {
+    if plots.is_empty() {
+        return;
+    }
+    h.push_str("<section class=\"plots\"><h2>Plots</h2>");
+    for (i, full) in plots.iter().enumerate() {
+        // Series with no samples yet (an unused pin slot) are left out.
+        let mut plot = full.clone();
+        plot.series.retain(|s| !s.is_empty());
+        let plot = &plot;
+        let _ = write!(
+            h,
+            "<figure class=\"plot\" data-plot=\"{}\">{}<figcaption><strong>Figure {}.</strong> {}</figcaption></figure>",
+            escape(plot.key),
+            plot_svg(plot, i),
+            i + 1,
+            escape(&plot.summary())
+        );
+        data_table(h, plot, i + 1);
+    }
+    h.push_str("</section>");
+}
+
+/// Colour (Okabe–Ito, as the site's light theme) and dash of each series
+/// role: every pair of roles differs in dash as well as colour, so the
+/// figure reads in grey print too.
+fn role_style(role: SeriesRole) -> (&'static str, &'static str) {
+    match role {
+        SeriesRole::Primary => ("#0072B2", ""),
+        SeriesRole::Secondary => ("#D55E00", "9 4"),
+        SeriesRole::Tertiary => ("#009E73", "2 3"),
+        SeriesRole::Quaternary => ("#CC79A7", "9 3 2 3"),
+        SeriesRole::Reference => ("#5f6a75", "5 5"),
+        SeriesRole::Bound => ("#B36B00", "2 2"),
+    }
+}
+
+/// A number for an SVG attribute: two decimals are finer than print.
+fn n(v: f64) -> String {
+    format_number(v, 2)
+}
+
+/// Tick label decimals for a tick step (0.25 → 2).
+fn step_decimals(step: f64) -> usize {
+    if !(step.is_finite() && step > 0.0) {
+        return 0;
+    }
+    let mut d = 0;
+    let mut s = step;
+    while d < 6 && (s - s.round()).abs() > 1e-9 * s.max(1.0) {
+        s *= 10.0;
+        d += 1;
+    }
+    d
+}
+
+/// `10ᵏ` for a log axis tick.
+fn power_label(v: f64) -> String {
+    const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let k = v.log10().round() as i32;
+    if (-2..=3).contains(&k) {
+        return format_number(v, 2);
+    }
+    let mut s = String::from("10");
+    if k < 0 {
+        s.push('⁻');
+    }
+    for c in k.unsigned_abs().to_string().chars() {
+        s.push(DIGITS[c.to_digit(10).unwrap_or(0) as usize]);
+    }
+    s
+}
+
+/// An axis title with its unit: `Time (s)`.
+fn axis_title(label: &str, unit: &str) -> String {
+    if unit.is_empty() {
+        label.to_owned()
+    } else {
+        format!("{label} ({unit})")
+    }
+}
+
+/// One legend entry: a swatch (line or band) and a label.
+struct LegendEntry {
+    colour: &'static str,
+    dash: &'static str,
+    band: bool,
+    label: String,
+}
+
+/// The plot as an SVG figure: axes with nice ticks (linear or log), bands,
+/// reference lines, every series decimated to [`DRAW_BUCKETS`] min–max
+/// buckets, markers and a legend. `index` makes the clip path's id unique in
+/// the document.
+fn plot_svg(plot: &Plot, index: usize) -> String {
+    // Legend first: its rows set the drawing's top.
+    let mut legend: Vec<LegendEntry> = plot
+        .series
+        .iter()
+        .map(|s| {
+            let (colour, dash) = role_style(s.role);
+            LegendEntry {
+                colour,
+                dash,
+                band: false,
+                label: if s.unit.is_empty() || s.unit == plot.y_unit {
+                    s.label.clone()
+                } else {
+                    format!("{} ({})", s.label, s.unit)
+                },
+            }
+        })
+        .collect();
+    legend.extend(plot.bands.iter().map(|b| LegendEntry {
+        colour: "#E69F00",
+        dash: "",
+        band: true,
+        label: b.label.clone(),
+    }));
+    legend.extend(plot.ref_lines.iter().map(|l| LegendEntry {
+        colour: "#5f6a75",
+        dash: "5 5",
+        band: false,
+        label: l.label.clone(),
+    }));
+    // Lay the legend out in rows (about 6.2 units per character at 11 px).
+    let mut placed: Vec<(f64, f64, &LegendEntry)> = Vec::new();
+    let (mut x, mut y) = (MARGIN.0, 14.0);
+    for e in &legend {
+        let w = 30.0 + 6.2 * e.label.chars().count() as f64 + 14.0;
+        if x + w > SVG_W && x > MARGIN.0 {
+            x = MARGIN.0;
+            y += 16.0;
+        }
+        placed.push((x, y, e));
+        x += w;
+    }
+    let legend_h = if legend.is_empty() { 0.0 } else { y + 8.0 };
+    let top = legend_h + MARGIN.2;
+    let height = top + SVG_H;
+    let (left, right, bottom) = (
+        MARGIN.0,
+        SVG_W - MARGIN.1,
+        top + SVG_H - MARGIN.3 - MARGIN.2,
+    );
+
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        "<svg viewBox=\"0 0 {w} {hh}\" width=\"{w}\" height=\"{hh}\" \
+         role=\"img\" aria-labelledby=\"plot{index}-title\" font-family=\"system-ui, sans-serif\" font-size=\"11\">\
+         <title id=\"plot{index}-title\">{}</title>",
+        escape(plot.title),
+        w = n(SVG_W),
+        hh = n(height),
+    );
+    for (lx, ly, e) in &placed {
+        if e.band {
+            let _ = write!(
+                s,
+                "<rect x=\"{}\" y=\"{}\" width=\"24\" height=\"9\" fill=\"{}\" fill-opacity=\"0.25\" stroke=\"{}\" stroke-width=\"0.8\"/>",
+                n(*lx),
+                n(ly - 7.0),
+                e.colour,
+                e.colour
+            );
+        } else {
+            let _ = write!(
+                s,
+                "<line x1=\"{}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"{}\" stroke-width=\"2.5\"{}/>",
+                n(*lx),
+                n(lx + 24.0),
+                e.colour,
+                dash_attr(e.dash),
+                y = n(ly - 3.5)
+            );
+        }
+        let _ = write!(
+            s,
+            "<text x=\"{}\" y=\"{}\" fill=\"#1b1f24\">{}</text>",
+            n(lx + 30.0),
+            n(*ly),
+            escape(&e.label)
+        );
+    }
+
+    let Some((x0, x1)) = plot.x_range() else {
+        let _ = write!(
+            s,
+            "<rect x=\"{l}\" y=\"{t}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#8c97a3\"/>\
+             <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"#5a6470\">No data yet: run the simulation first.</text></svg>",
+            n(right - left),
+            n(bottom - top),
+            n((left + right) / 2.0),
+            n((top + bottom) / 2.0),
+            l = n(left),
+            t = n(top)
+        );
+        return s;
+    };
+    let (x0, x1) = widen(x0, x1);
+    let log = plot.log_y;
+    let (mut y0, mut y1) = plot.y_range((x0, x1)).unwrap_or((0.0, 1.0));
+    if log {
+        y0 = y0.max(1e-300);
+        y1 = y1.max(y0);
+        let (a, b) = (y0.log10().floor(), y1.log10().ceil());
+        y0 = 10f64.powf(a);
+        y1 = 10f64.powf(if b > a { b } else { a + 1.0 });
+    } else {
+        let (a, b) = widen(y0, y1);
+        let pad = (b - a) * 0.05;
+        y0 = a - pad;
+        y1 = b + pad;
+    }
+    let fy = |v: f64| if log { v.max(1e-300).log10() } else { v };
+    let (fy0, fy1) = (fy(y0), fy(y1));
+    let px = |x: f64| left + (x - x0) / (x1 - x0) * (right - left);
+    let py = |y: f64| bottom - (fy(y) - fy0) / (fy1 - fy0) * (bottom - top);
+
+    // Grid and tick labels.
+    let x_ticks = nice_ticks(x0, x1, 8);
+    let x_dec = step_decimals(
+        x_ticks
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .next()
+            .unwrap_or(1.0),
+    );
+    for t in &x_ticks {
+        let x = px(*t);
+        let _ = write!(
+            s,
+            "<line x1=\"{x}\" y1=\"{}\" x2=\"{x}\" y2=\"{}\" stroke=\"#e3e7ec\"/>\
+             <text x=\"{x}\" y=\"{}\" text-anchor=\"middle\" fill=\"#1b1f24\">{}</text>",
+            n(top),
+            n(bottom),
+            n(bottom + 14.0),
+            escape(&format_number(*t, x_dec)),
+            x = n(x)
+        );
+    }
+    let y_ticks = if log {
+        log_ticks(y0, y1, 7)
+    } else {
+        nice_ticks(y0, y1, 7)
+    };
+    let y_dec = step_decimals(
+        y_ticks
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .next()
+            .unwrap_or(1.0),
+    );
+    for t in &y_ticks {
+        let y = py(*t);
+        let label = if log {
+            power_label(*t)
+        } else {
+            format_number(*t, y_dec)
+        };
+        let _ = write!(
+            s,
+            "<line x1=\"{}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"#e3e7ec\"/>\
+             <text x=\"{}\" y=\"{}\" text-anchor=\"end\" fill=\"#1b1f24\">{}</text>",
+            n(left),
+            n(right),
+            n(left - 6.0),
+            n(y + 4.0),
+            escape(&label),
+            y = n(y)
+        );
+    }
+    // Axis titles.
+    let _ = write!(
+        s,
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"#1b1f24\" font-size=\"12\">{}</text>\
+         <text transform=\"translate(14 {}) rotate(-90)\" text-anchor=\"middle\" fill=\"#1b1f24\" font-size=\"12\">{}</text>",
+        n((left + right) / 2.0),
+        n(bottom + 32.0),
+        escape(&axis_title(plot.x_label, plot.x_unit)),
+        n((top + bottom) / 2.0),
+        escape(&axis_title(plot.y_label, plot.y_unit)),
+    );
+    let _ = write!(
+        s,
+        "<defs><clipPath id=\"plot{index}-clip\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath></defs>\
+         <g clip-path=\"url(#plot{index}-clip)\">",
+        n(left),
+        n(top),
+        n(right - left),
+        n(bottom - top)
+    );
+    for b in &plot.bands {
+        let (bx, by, bw, bh) = match b.axis {
+            Axis::Y => {
+                let (ya, yb) = (py(b.hi), py(b.lo));
+                (left, ya.min(yb), right - left, (yb - ya).abs())
+            }
+            Axis::X => {
+                let (xa, xb) = (px(b.lo), px(b.hi));
+                (xa.min(xb), top, (xb - xa).abs(), bottom - top)
+            }
+        };
+        if [bx, by, bw, bh].iter().all(|v| v.is_finite()) {
+            let _ = write!(
+                s,
+                "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#E69F00\" fill-opacity=\"0.18\"/>",
+                n(bx),
+                n(by),
+                n(bw),
+                n(bh)
+            );
+        }
+    }
+    for l in &plot.ref_lines {
+        let (xa, ya, xb, yb) = match l.axis {
+            Axis::Y => (left, py(l.value), right, py(l.value)),
+            Axis::X => (px(l.value), top, px(l.value), bottom),
+        };
+        if [xa, ya, xb, yb].iter().all(|v| v.is_finite()) {
+            let _ = write!(
+                s,
+                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#5f6a75\" stroke-width=\"1.2\" stroke-dasharray=\"5 5\"/>",
+                n(xa),
+                n(ya),
+                n(xb),
+                n(yb)
+            );
+        }
+    }
+    // Comparison runs first, so the latest run is drawn on top.
+    let order = plot
+        .series
+        .iter()
+        .filter(|s| s.comparison)
+        .chain(plot.series.iter().filter(|s| !s.comparison));
+    for series in order {
+        series_path(&mut s, series, (x0, x1), log, &px, &py);
+    }
+    s.push_str("</g>");
+    for m in &plot.markers {
+        if !(m.x.is_finite() && m.y.is_finite()) || (log && m.y <= 0.0) {
+            continue;
+        }
+        let (mx, my) = (px(m.x), py(m.y));
+        // Label on the side with more room.
+        let anchor_end = mx > (left + right) / 2.0;
+        let _ = write!(
+            s,
+            "<circle cx=\"{}\" cy=\"{}\" r=\"4\" fill=\"#ffffff\" stroke=\"#1b1f24\" stroke-width=\"1.5\"/>\
+             <text x=\"{}\" y=\"{}\" text-anchor=\"{}\" fill=\"#1b1f24\">{}</text>",
+            n(mx),
+            n(my),
+            n(if anchor_end { mx - 7.0 } else { mx + 7.0 }),
+            n((my - 7.0).max(top + 10.0)),
+            if anchor_end { "end" } else { "start" },
+            escape(&m.label)
+        );
+    }
+    let _ = write!(
+        s,
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#8c97a3\"/></svg>",
+        n(left),
+        n(top),
+        n(right - left),
+        n(bottom - top)
+    );
+    s
+}
+
+/// A degenerate range widened around its value, so the axis has a width.
+fn widen(lo: f64, hi: f64) -> (f64, f64) {
+    if hi - lo > 1e-12 * lo.abs().max(hi.abs()).max(1e-300) {
+        (lo, hi)
+    } else {
+        let pad = if lo == 0.0 { 1.0 } else { lo.abs() * 0.1 };
+        (lo - pad, hi + pad)
+    }
+}
+
+fn dash_attr(dash: &str) -> String {
+    if dash.is_empty() {
+        String::new()
+    } else {
+        format!(" stroke-dasharray=\"{dash}\"")
+    }
+}
+
+/// One series as an SVG path of its min–max decimated samples.
+fn series_path(
+    s: &mut String,
+    series: &Series,
+    (x0, x1): (f64, f64),
+    log: bool,
+    px: &dyn Fn(f64) -> f64,
+    py: &dyn Fn(f64) -> f64,
+) {
+    let points = decimate_min_max(&series.x, &series.y, (x0, x1), DRAW_BUCKETS, |y| {
+        !log || y > 0.0
+    });
+    if points.is_empty() {
+        return;
+    }
+    let (colour, dash) = role_style(series.role);
+    let mut d = String::with_capacity(points.len() * 14);
+    for (i, (x, y)) in points.iter().enumerate() {
+        let _ = write!(
+            d,
+            "{}{},{}",
+            if i == 0 { "M" } else { "L" },
+            n(px(*x)),
+            n(py(*y))
+        );
+    }
+    if points.len() == 1 {
+        // A single sample: a dot.
+        let _ = write!(
+            s,
+            "<circle cx=\"{}\" cy=\"{}\" r=\"2.5\" fill=\"{colour}\"/>",
+            n(px(points[0].0)),
+            n(py(points[0].1))
+        );
+        return;
+    }
+    let _ = write!(
+        s,
+        "<path d=\"{d}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"{}\" stroke-linejoin=\"round\"{}{}/>",
+        if series.comparison { "1.5" } else { "2.2" },
+        dash_attr(dash),
+        if series.comparison {
+            " stroke-opacity=\"0.6\""
+        } else {
+            ""
+        }
+    );
+}
+
+/// Indices of at most `max` evenly spaced samples of `len`, the first and
+/// the last included (all of them when `len ≤ max`).
+#[must_use]
+pub fn table_rows(len: usize, max: usize) -> Vec<usize> {
+    if len <= max {
+        return (0..len).collect();
+    }
+    if max < 2 {
+        return (0..max).collect();
+    }
+    let mut rows: Vec<usize> = (0..max)
+        .map(|k| ((k as f64) * (len - 1) as f64 / (max - 1) as f64).round() as usize)
+        .collect();
+    rows.dedup();
+    rows
+}
+
+/// A value in a data table: four decimals in the usual range, otherwise
+/// four significant digits with an exponent.
+fn cell(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || (1e-3..1e6).contains(&a) {
+        format_number(v, 4)
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// The plot's data as a table, at most [`TABLE_ROWS`] evenly spaced rows.
+fn data_table(h: &mut String, plot: &Plot, figure: usize) {
+    let total = plot.series.iter().map(Series::len).max().unwrap_or(0);
+    let shared_x = plot.series.windows(2).all(|w| w[0].x == w[1].x);
+    let col = |label: &str, unit: &str| {
+        format!(
+            "<th scope=\"col\">{}</th>",
+            escape(&axis_title(label, unit))
+        )
+    };
+    let head = if shared_x {
+        let mut row = col(plot.x_label, plot.x_unit);
+        for s in &plot.series {
+            row.push_str(&col(&s.label, s.unit));
+        }
+        format!("<tr>{row}</tr>")
+    } else {
+        // Each series has its own x: its name over an (x, y) pair of columns.
+        let mut names = String::new();
+        let mut pairs = String::new();
+        for s in &plot.series {
+            let _ = write!(
+                names,
+                "<th scope=\"colgroup\" colspan=\"2\">{}</th>",
+                escape(&s.label)
+            );
+            pairs.push_str(&col(plot.x_label, plot.x_unit));
+            pairs.push_str(&col(plot.y_label, s.unit));
+        }
+        format!("<tr>{names}</tr><tr>{pairs}</tr>")
+    };
+    let _ = write!(
+        h,
+        "<table class=\"data plot-data\" data-plot-table=\"{}\"><caption>Data of figure {figure}: {}</caption>\
+         <thead>{head}</thead><tbody>",
+        escape(plot.key),
+        escape(plot.title)
+    );
+    if total == 0 {
+        let cols = if shared_x {
+            plot.series.len() + 1
+        } else {
+            plot.series.len() * 2
+        };
+        let _ = write!(h, "<tr><td colspan=\"{cols}\">No samples yet.</td></tr>");
+    } else if shared_x {
+        let xs = &plot.series[0].x;
+        for i in table_rows(xs.len(), TABLE_ROWS) {
+            let _ = write!(h, "<tr><td>{}</td>", escape(&cell(xs[i])));
+            for s in &plot.series {
+                let _ = write!(
+                    h,
+                    "<td>{}</td>",
+                    s.y.get(i).map_or(String::new(), |v| escape(&cell(*v)))
+                );
+            }
+            h.push_str("</tr>");
+        }
+    } else {
+        let picks: Vec<Vec<usize>> = plot
+            .series
+            .iter()
+            .map(|s| table_rows(s.len(), TABLE_ROWS))
+            .collect();
+        let rows = picks.iter().map(Vec::len).max().unwrap_or(0);
+        for r in 0..rows {
+            h.push_str("<tr>");
+            for (s, p) in plot.series.iter().zip(&picks) {
+                match p.get(r) {
+                    Some(&i) => {
+                        let _ = write!(
+                            h,
+                            "<td>{}</td><td>{}</td>",
+                            escape(&cell(s.x[i])),
+                            escape(&cell(s.y[i]))
+                        );
+                    }
+                    None => h.push_str("<td></td><td></td>"),
+                }
+            }
+            h.push_str("</tr>");
+        }
+    }
+    h.push_str("</tbody></table>");
+    if total > TABLE_ROWS {
+        let _ = write!(
+            h,
+            "<p class=\"muted table-note\">{TABLE_ROWS} evenly spaced rows of {total} samples (first and last included); \
+             the figure is drawn from every sample, and the plot's CSV button in the lab exports them all.</p>"
+        );
+    }
+}
+
+fn quiz_section(h: &mut String, quiz: Option<&QuizResult<'_>>) {
+    h.push_str("<section class=\"quiz\"><h2>Self-assessment</h2>");
+    let Some(q) = quiz else {
+        h.push_str("<p class=\"muted\">The self-assessment had not been submitted when this report was made.</p></section>");
+        return;
+    };
+    let (correct, total) = q.score();
+    let _ = write!(
+        h,
+        "<p class=\"score\"><strong>Score: {correct} / {total} ({}%)</strong> · attempt seed <code>{}</code></p>\
+         <table class=\"data answers\"><thead><tr><th scope=\"col\">#</th><th scope=\"col\">Question</th>\
+         <th scope=\"col\">Answer given</th><th scope=\"col\">Expected</th><th scope=\"col\">Result</th></tr></thead><tbody>",
+        score_percent(correct, total),
+        q.seed
+    );
+    for (i, question) in q.questions.iter().enumerate() {
+        let answer = q.answer(i, question);
+        let verdict = grade(question, &answer);
+        // Options and prompts are content (trusted markup); typed text is escaped.
+        let given = match (&question.kind, &answer) {
+            (PreparedKind::Choice { options, .. }, Response::Choice(Some(k))) => options
+                .get(*k)
+                .cloned()
+                .unwrap_or_else(|| "(no answer)".into()),
+            (_, Response::Text(t)) if !t.trim().is_empty() => {
+                let shown: String = t.chars().take(200).collect();
+                match &verdict.read_as {
+                    Some(read) if read.trim() != shown.trim() => format!(
+                        "{} <span class=\"muted\">(read as {})</span>",
+                        escape(&shown),
+                        escape(read)
+                    ),
+                    _ => escape(&shown),
+                }
+            }
+            _ => "<span class=\"muted\">(no answer)</span>".into(),
+        };
+        let expected = match question.kind {
+            PreparedKind::Choice { .. } => verdict.expected.clone(),
+            PreparedKind::Numeric { .. } => escape(&verdict.expected),
+        };
+        let (class, mark) = if verdict.correct {
+            ("right", "✓ correct")
+        } else {
+            ("wrong", "✗ wrong")
+        };
+        let _ = write!(
+            h,
+            "<tr class=\"{class}\"><td>{}</td><td>{}</td><td>{given}</td><td>{expected}</td><td>{mark}</td></tr>",
+            i + 1,
+            question.prompt
+        );
+    }
+    h.push_str("</tbody></table></section>");
+}
+
+/// The report's style sheet: light, print-first, A4 and Letter.
+const CSS: &str = "\
+:root{color-scheme:light}\
+*{box-sizing:border-box}\
+body{margin:0;background:#fff;color:#1b1f24;font:11pt/1.45 system-ui,-apple-system,'Segoe UI',Roboto,Arial,sans-serif}\
+main{max-width:180mm;margin:0 auto;padding:12mm 8mm}\
+h1{font-size:20pt;margin:.1em 0 .3em;line-height:1.2}\
+h2{font-size:14pt;margin:1.4em 0 .5em;padding-bottom:.15em;border-bottom:1.5px solid #0072B2;break-after:avoid;page-break-after:avoid}\
+.eyebrow{margin:0;color:#5a6470;font-size:9.5pt;letter-spacing:.03em;text-transform:uppercase}\
+.meta{display:flex;flex-wrap:wrap;gap:.4em 2em;margin:.4em 0}\
+.meta div{display:flex;gap:.5em;align-items:baseline}\
+.meta dt{font-weight:600}.meta dd{margin:0}\
+.meta dd.blank{min-width:38mm;border-bottom:1px solid #1b1f24;height:1.2em}\
+.link{font-size:9.5pt;overflow-wrap:anywhere;word-break:break-all;margin:.4em 0}\
+a{color:#0057a0}\
+.note{border-left:4px solid #B36B00;background:#fdf5e8;padding:.4em .8em;margin:1em 0}\
+.muted{color:#5a6470}\
+table.data{border-collapse:collapse;width:100%;margin:.5em 0 1em;font-size:9.5pt;break-inside:avoid;page-break-inside:avoid}\
+table.data caption{text-align:left;font-weight:600;padding:.2em 0}\
+table.data th,table.data td{border:1px solid #c9d0d8;padding:.2em .45em;text-align:left;vertical-align:top}\
+table.data thead th{background:#eef2f6}\
+table.data td.num,table.plot-data td{font-variant-numeric:tabular-nums}\
+table.data td.text{overflow-wrap:anywhere;word-break:break-all;font-family:ui-monospace,Menlo,Consolas,monospace;font-size:8.5pt}\
+tr.group th{background:#f6f7f9;font-style:italic}\
+tr.current td{font-weight:600}\
+.status.good{color:#007a5a}.status.warning{color:#a65a00}.status.bad{color:#b3261e}\
+figure.plot,figure.scene{margin:1em 0 .4em;break-inside:avoid;page-break-inside:avoid}\
+figure.scene svg{display:block;max-width:100%;height:auto;margin:0 auto}\
+figure.plot svg{display:block;width:100%;height:auto;max-width:100%}\
+figcaption{font-size:9pt;color:#3b434c;margin-top:.3em}\
+.table-note{font-size:8.5pt;margin-top:-.6em}\
+table.answers td:last-child{white-space:nowrap}table.answers td:nth-child(2){width:45%}\
+tr.right td:last-child{color:#007a5a;font-weight:600}tr.wrong td:last-child{color:#b3261e;font-weight:600}\
+.observations{break-inside:avoid;page-break-inside:avoid}\
+.lines{border:1px solid #8c97a3;border-radius:4px;padding:0 4mm}\
+.line{height:9mm;border-bottom:1px solid #c9d0d8}\
+.line:last-child{border-bottom:0}\
+footer{margin-top:2em;font-size:8.5pt;color:#5a6470;border-top:1px solid #d8dde3}\
+code{font-family:ui-monospace,Menlo,Consolas,monospace;font-size:.92em}\
+@page{size:auto;margin:15mm 14mm}\
+@page :first{margin-top:12mm}\
+@media print{main{max-width:none;padding:0}a{color:#1b1f24}body{font-size:10pt}h2{margin-top:1em}\
+*{-webkit-print-color-adjust:exact;print-color-adjust:exact}}\
+";
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,574 @@
+//! The simulation's display list ([`Scene`]) as an SVG picture for the
+//! report: the world rectangle [`crate::Experiment::view`] scaled to the page,
+//! y up, in the site's light colours, with the same fills, dashes and arrow
+//! heads as the canvas (labweb's `draw.rs`).
+//!
+//! Very large batches are thinned so a report stays small: at most the first
+//! [`MAX_SEGMENTS`] tree edges, [`MAX_POINTS`] evenly spaced sample points
+//! and [`MAX_RASTER_RUNS`] runs of grid cells are drawn, and the caption says
+//! when that happened.
+
+use super::n;
+use crate::content_html::escape;
+use crate::quiz::format_number;
+use crate::scene::{Item, Role, Scene, ViewBox};
+use glam::DVec2;
+use std::fmt::Write as _;
+
+/// Most segments of one [`Item::Segments`] batch drawn (the first ones: a
+/// tree's edges come in the order they grew, so its trunk is kept). About
+/// ten bytes each in the file.
+pub const MAX_SEGMENTS: usize = 16_000;
+/// Most points of one [`Item::Points`] cloud drawn.
+pub const MAX_POINTS: usize = 4_000;
+/// Most horizontal runs of equal cells drawn for one [`Item::Raster`].
+pub const MAX_RASTER_RUNS: usize = 12_000;
+/// Largest picture side, SVG user units (CSS pixels).
+const MAX_W: f64 = 640.0;
+const MAX_H: f64 = 520.0;
+
+/// The light theme's colour of each role (web/style.css, `:root`).
+fn colour(role: Role) -> &'static str {
+    match role {
+        Role::Grid => "#d5dbe1",
+        Role::Bound => "#7a8590",
+        Role::Link | Role::Robot => "#0072B2",
+        Role::Joint | Role::Base | Role::Text => "#1b1f24",
+        Role::Tip | Role::Warning => "#D55E00",
+        Role::Target | Role::Estimate => "#CC79A7",
+        Role::Ghost | Role::Obstacle => "#5f6a75",
+        Role::Sample => "#009E73",
+        Role::Accent => "#B36B00",
+        Role::Path => "#E69F00",
+        Role::Visited => "#56B4E9",
+    }
+}
+
+/// World → picture coordinates.
+struct Map {
+    min: DVec2,
+    max_y: f64,
+    scale: f64,
+}
+
+impl Map {
+    fn p(&self, w: DVec2) -> (f64, f64) {
+        (
+            (w.x - self.min.x) * self.scale,
+            (self.max_y - w.y) * self.scale,
+        )
+    }
+    fn xy(&self, w: DVec2) -> String {
+        let (x, y) = self.p(w);
+        format!("{},{}", n1(x), n1(y))
+    }
+}
+
+/// One decimal: a tenth of a CSS pixel.
+fn n1(v: f64) -> String {
+    format_number(v, 1)
+}
+
+fn dash(dashed: bool) -> &'static str {
+    if dashed {
+        " stroke-dasharray=\"6 5\""
+    } else {
+        ""
+    }
+}
+
+/// Indices of at most `max` of `len` items, evenly spaced.
+fn thin(len: usize, max: usize) -> impl Iterator<Item = usize> {
+    let stride = len.div_ceil(max.max(1)).max(1);
+    (0..len).step_by(stride)
+}
+
+/// The picture, and what was thinned (empty when everything is drawn).
+pub(super) fn scene_svg(scene: &Scene, view: ViewBox) -> (String, Vec<String>) {
+    let size = view.max - view.min;
+    let scale = if size.x > 0.0 && size.y > 0.0 && size.is_finite() {
+        (MAX_W / size.x).min(MAX_H / size.y)
+    } else {
+        1.0
+    };
+    let m = Map {
+        min: view.min,
+        max_y: view.max.y,
+        scale,
+    };
+    let (w, h) = (size.x.max(0.0) * scale, size.y.max(0.0) * scale);
+    let mut notes = Vec::new();
+    let mut s = String::new();
+    let _ = write!(
+        s,
+        "<svg class=\"scene\" viewBox=\"0 0 {w} {h}\" width=\"{w}\" height=\"{h}\" role=\"img\" \
+         aria-label=\"The simulation\" font-family=\"system-ui, sans-serif\" font-size=\"13\" \
+         stroke-linecap=\"round\" stroke-linejoin=\"round\">\
+         <rect width=\"{w}\" height=\"{h}\" fill=\"#ffffff\"/>",
+        w = n(w),
+        h = n(h)
+    );
+    for item in &scene.items {
+        item_svg(&mut s, item, &m, (w, h), &mut notes);
+    }
+    let _ = write!(
+        s,
+        "<rect width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"#8c97a3\"/></svg>",
+        w = n(w),
+        h = n(h)
+    );
+    (s, notes)
+}
+
+fn finite(p: &DVec2) -> bool {
+    p.is_finite()
+}
+
+fn item_svg(s: &mut String, item: &Item, m: &Map, (w, h): (f64, f64), notes: &mut Vec<String>) {
+    match item {
+        Item::Line {
+            from,
+            to,
+            width_px,
+            role,
+            dashed,
+        } if finite(from) && finite(to) => {
+            let (a, b) = (m.p(*from), m.p(*to));
+            let _ = write!(
+                s,
+                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"{}\"{}{}/>",
+                n1(a.0),
+                n1(a.1),
+                n1(b.0),
+                n1(b.1),
+                colour(*role),
+                n1(*width_px),
+                dash(*dashed),
+                if *role == Role::Ghost {
+                    " stroke-opacity=\"0.7\""
+                } else {
+                    ""
+                }
+            );
+        }
+        Item::Circle {
+            center,
+            radius_m,
+            role,
+            fill,
+            dashed,
+        } if finite(center) && radius_m.is_finite() => {
+            let (x, y) = m.p(*center);
+            let r = (radius_m * m.scale).max(0.0);
+            let paint = if *fill {
+                format!("fill=\"{}\" fill-opacity=\"0.18\"", colour(*role))
+            } else {
+                format!(
+                    "fill=\"none\" stroke=\"{}\" stroke-width=\"2\"{}",
+                    colour(*role),
+                    dash(*dashed)
+                )
+            };
+            let _ = write!(
+                s,
+                "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" {paint}/>",
+                n1(x),
+                n1(y),
+                n1(r)
+            );
+        }
+        Item::Dot {
+            center,
+            radius_px,
+            role,
+        } if finite(center) => {
+            let (x, y) = m.p(*center);
+            let _ = write!(
+                s,
+                "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\" stroke=\"#ffffff\" stroke-width=\"2\"/>",
+                n1(x),
+                n1(y),
+                n1(*radius_px),
+                colour(*role)
+            );
+        }
+        Item::Points {
+            points,
+            radius_px,
+            role,
+        } => {
+            if points.len() > MAX_POINTS {
+                notes.push(format!(
+                    "{} of {} sample points drawn",
+                    points.len().div_ceil(points.len().div_ceil(MAX_POINTS)),
+                    points.len()
+                ));
+            }
+            let d = n1(radius_px * 2.0);
+            let mut path = String::new();
+            for i in thin(points.len(), MAX_POINTS) {
+                let p = points[i];
+                if finite(&p) {
+                    let (x, y) = m.p(p);
+                    let _ = write!(
+                        path,
+                        "M{},{}h{d}v{d}h-{d}z",
+                        n1(x - radius_px),
+                        n1(y - radius_px)
+                    );
+                }
+            }
+            if !path.is_empty() {
+                let _ = write!(
+                    s,
+                    "<path d=\"{path}\" fill=\"{}\" fill-opacity=\"0.55\"/>",
+                    colour(*role)
+                );
+            }
+        }
+        Item::Heatmap {
+            min,
+            cell_m,
+            cols,
+            rows,
+            values,
+            role,
+        } => {
+            // Ten opacity levels, one path each: a fine heat map stays small.
+            let c = m.scale * cell_m;
+            let mut levels: Vec<String> = vec![String::new(); 10];
+            for row in 0..*rows {
+                for col in 0..*cols {
+                    let Some(v) = values.get(row * cols + col) else {
+                        continue;
+                    };
+                    if v.is_nan() || *v <= 0.0 {
+                        continue;
+                    }
+                    let level = ((f64::from(v.min(1.0)) * 10.0).ceil() as usize).clamp(1, 10);
+                    let corner = *min + DVec2::new(col as f64, (row + 1) as f64) * *cell_m;
+                    let (x, y) = m.p(corner);
+                    let _ = write!(
+                        levels[level - 1],
+                        "M{},{}h{c}v{c}h-{c}z",
+                        n1(x),
+                        n1(y),
+                        c = n1(c)
+                    );
+                }
+            }
+            for (i, path) in levels.iter().enumerate() {
+                if !path.is_empty() {
+                    let _ = write!(
+                        s,
+                        "<path d=\"{path}\" fill=\"{}\" fill-opacity=\"{}\"/>",
+                        colour(*role),
+                        format_number((i + 1) as f64 * 0.06, 2)
+                    );
+                }
+            }
+        }
+        Item::Ellipse {
+            center,
+            semi_axis_a,
+            semi_axis_b,
+            role,
+        } if finite(center) && finite(semi_axis_a) && finite(semi_axis_b) => {
+            let (x, y) = m.p(*center);
+            let ra = (semi_axis_a.length() * m.scale).max(0.5);
+            let rb = (semi_axis_b.length() * m.scale).max(0.5);
+            // Picture y points down, so the angle changes sign.
+            let deg = -semi_axis_a.y.atan2(semi_axis_a.x).to_degrees();
+            let _ = write!(
+                s,
+                "<ellipse cx=\"0\" cy=\"0\" rx=\"{}\" ry=\"{}\" transform=\"translate({} {}) rotate({})\" \
+                 fill=\"{c}\" fill-opacity=\"0.18\" stroke=\"{c}\" stroke-width=\"2\"/>",
+                n1(ra),
+                n1(rb),
+                n1(x),
+                n1(y),
+                n1(deg),
+                c = colour(*role)
+            );
+        }
+        Item::Label {
+            pos,
+            text,
+            role,
+            offset_px,
+        } if finite(pos) => {
+            let (x, y) = m.p(*pos);
+            let x = (x + offset_px.x).clamp(4.0, (w - 4.0).max(4.0));
+            let y = (y + offset_px.y).clamp(10.0, (h - 10.0).max(10.0));
+            let _ = write!(
+                s,
+                "<text x=\"{}\" y=\"{}\" dominant-baseline=\"middle\" font-weight=\"600\" fill=\"{}\" \
+                 stroke=\"#ffffff\" stroke-width=\"4\" paint-order=\"stroke\">{}</text>",
+                n1(x),
+                n1(y),
+                colour(*role),
+                escape(text)
+            );
+        }
+        Item::Polyline {
+            points,
+            width_px,
+            role,
+            dashed,
+            closed,
+        } if points.len() >= 2 => {
+            let pts: Vec<String> = points
+                .iter()
+                .filter(|p| finite(p))
+                .map(|p| m.xy(*p))
+                .collect();
+            let _ = write!(
+                s,
+                "<{tag} points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{}/>",
+                pts.join(" "),
+                colour(*role),
+                n1(*width_px),
+                dash(*dashed),
+                tag = if *closed { "polygon" } else { "polyline" }
+            );
+        }
+        Item::Polygon { points, role } if points.len() >= 3 => {
+            let pts: Vec<String> = points
+                .iter()
+                .filter(|p| finite(p))
+                .map(|p| m.xy(*p))
+                .collect();
+            let _ = write!(
+                s,
+                "<polygon points=\"{}\" fill=\"{c}\" fill-opacity=\"0.35\" stroke=\"{c}\" stroke-width=\"2\"/>",
+                pts.join(" "),
+                c = colour(*role)
+            );
+        }
+        Item::Rect {
+            min,
+            max,
+            role,
+            fill,
+        } if finite(min) && finite(max) => {
+            let (a, b) = (m.p(*min), m.p(*max));
+            let c = colour(*role);
+            let paint = if *fill {
+                format!("fill=\"{c}\" fill-opacity=\"0.35\" stroke=\"{c}\" stroke-width=\"2\"")
+            } else {
+                format!("fill=\"none\" stroke=\"{c}\" stroke-width=\"2\"")
+            };
+            let _ = write!(
+                s,
+                "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" {paint}/>",
+                n1(a.0.min(b.0)),
+                n1(a.1.min(b.1)),
+                n1((b.0 - a.0).abs()),
+                n1((b.1 - a.1).abs())
+            );
+        }
+        Item::Arrow {
+            from,
+            to,
+            width_px,
+            role,
+        } => {
+            let d = arrow_path(m, *from, *to, *width_px);
+            if !d.is_empty() {
+                let _ = write!(
+                    s,
+                    "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
+                    colour(*role),
+                    n1(*width_px)
+                );
+            }
+        }
+        Item::Arrows {
+            arrows,
+            width_px,
+            role,
+        } => {
+            let d: String = thin(arrows.len(), MAX_POINTS)
+                .map(|i| arrow_path(m, arrows[i].0, arrows[i].1, *width_px))
+                .collect();
+            if !d.is_empty() {
+                let _ = write!(
+                    s,
+                    "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
+                    colour(*role),
+                    n1(*width_px)
+                );
+            }
+        }
+        Item::Segments {
+            segments,
+            width_px,
+            role,
+        } => {
+            if segments.len() > MAX_SEGMENTS {
+                notes.push(format!(
+                    "the first {MAX_SEGMENTS} of {} edges drawn",
+                    segments.len()
+                ));
+            }
+            // Whole units and a relative end point: about ten bytes an edge.
+            let mut d = String::new();
+            for (a, b) in segments.iter().take(MAX_SEGMENTS) {
+                if finite(a) && finite(b) {
+                    let (pa, pb) = (m.p(*a), m.p(*b));
+                    let (ax, ay) = (pa.0.round(), pa.1.round());
+                    let _ = write!(
+                        d,
+                        "M{} {}l{} {}",
+                        format_number(ax, 0),
+                        format_number(ay, 0),
+                        format_number(pb.0 - ax, 1),
+                        format_number(pb.1 - ay, 1)
+                    );
+                }
+            }
+            if !d.is_empty() {
+                let _ = write!(
+                    s,
+                    "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
+                    colour(*role),
+                    n1(*width_px)
+                );
+            }
+        }
+        Item::ScaleBar => scale_bar(s, m.scale, h),
+        Item::Raster {
+            min,
+            cell_m,
+            cols,
+            rows,
+            cells,
+            palette,
+        } => {
+            if *cols == 0 || *rows == 0 || cells.len() < cols * rows {
+                return;
+            }
+            // Horizontal runs of one state, one path per state.
+            let mut paths: Vec<String> = vec![String::new(); palette.len()];
+            let c = m.scale * cell_m;
+            let mut runs = 0usize;
+            let mut skipped = false;
+            'rows: for row in 0..*rows {
+                let line = &cells[row * cols..(row + 1) * cols];
+                let mut col = 0;
+                while col < *cols {
+                    let state = line[col];
+                    let start = col;
+                    while col < *cols && line[col] == state {
+                        col += 1;
+                    }
+                    let Some(path) = (state as usize)
+                        .checked_sub(1)
+                        .and_then(|i| paths.get_mut(i))
+                    else {
+                        continue;
+                    };
+                    if runs >= MAX_RASTER_RUNS {
+                        skipped = true;
+                        break 'rows;
+                    }
+                    runs += 1;
+                    let corner = *min + DVec2::new(start as f64, (row + 1) as f64) * *cell_m;
+                    let (x, y) = m.p(corner);
+                    let _ = write!(
+                        path,
+                        "M{},{}h{}v{}h-{}z",
+                        n1(x),
+                        n1(y),
+                        n1(c * (col - start) as f64),
+                        n1(c),
+                        n1(c * (col - start) as f64)
+                    );
+                }
+            }
+            for (path, state) in paths.iter().zip(palette) {
+                if !path.is_empty() {
+                    let _ = write!(
+                        s,
+                        "<path d=\"{path}\" fill=\"{}\" fill-opacity=\"{}\"/>",
+                        colour(state.role),
+                        format_number(f64::from(state.alpha.clamp(0.0, 1.0)), 2)
+                    );
+                }
+            }
+            if skipped {
+                notes.push(format!(
+                    "the grid ({cols} × {rows} cells) is too detailed to draw here in full: open the link to see it"
+                ));
+            }
+        }
+        // Marks at the canvas edge for something out of view, and items
+        // with non-finite or too few points, are left out.
+        _ => {}
+    }
+}
+
+/// A shaft and a two-stroke head sized in pixels (as on the canvas).
+fn arrow_path(m: &Map, from: DVec2, to: DVec2, width_px: f64) -> String {
+    if !(finite(&from) && finite(&to)) {
+        return String::new();
+    }
+    let (a, b) = (m.p(from), m.p(to));
+    let (a, b) = (DVec2::new(a.0, a.1), DVec2::new(b.0, b.1));
+    let d = b - a;
+    let len = d.length();
+    if len.is_nan() || len <= 0.5 {
+        return String::new();
+    }
+    let head = (4.0 + 2.5 * width_px).min(len * 0.5);
+    let u = d / len;
+    let nrm = DVec2::new(-u.y, u.x);
+    let back = b - u * head;
+    let (l, r) = (back + nrm * head * 0.5, back - nrm * head * 0.5);
+    format!(
+        "M{},{}L{},{}M{},{}L{},{}L{},{}",
+        n1(a.x),
+        n1(a.y),
+        n1(b.x),
+        n1(b.y),
+        n1(l.x),
+        n1(l.y),
+        n1(b.x),
+        n1(b.y),
+        n1(r.x),
+        n1(r.y)
+    )
+}
+
+/// A metre scale bar in the lower left corner: the largest round length
+/// (1, 2 or 5 × 10ᵏ m) at most 120 units long.
+fn scale_bar(s: &mut String, scale: f64, h: f64) {
+    let limit_m = 120.0 / scale.max(1e-12);
+    let decade = 10f64.powf(limit_m.log10().floor());
+    let Some(len_m) = [5.0, 2.0, 1.0]
+        .iter()
+        .map(|k| k * decade)
+        .find(|l| *l <= limit_m)
+    else {
+        return;
+    };
+    let len = len_m * scale;
+    let (x, y) = (14.0, h - 14.0);
+    let label = if len_m >= 1.0 {
+        format!("{} m", format_number(len_m, 0))
+    } else {
+        format!("{} cm", format_number(len_m * 100.0, 1))
+    };
+    let _ = write!(
+        s,
+        "<path d=\"M{x},{}V{y}H{}V{}\" fill=\"none\" stroke=\"#1b1f24\" stroke-width=\"2\"/>\
+         <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"#1b1f24\">{label}</text>",
+        n1(y - 5.0),
+        n1(x + len),
+        n1(y - 5.0),
+        n1(x + len / 2.0),
+        n1(y - 8.0),
+        x = n1(x),
+        y = n1(y)
+    );
+}

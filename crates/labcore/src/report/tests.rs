@@ -1,0 +1,604 @@
+use super::*;
+use crate::clock::Clock;
+use crate::experiment::{Input, ParamError, Readout, Sanitized, Status};
+use crate::plot::{Band, Marker, RefLine};
+use crate::scene::{Scene, ViewBox};
+
+/// Checks that every tag of `html` is closed in order (HTML void elements
+/// and `/>` excepted), skipping the doctype and the style sheet; returns the
+/// problem found. Quote-aware, so a `>` inside an attribute value is fine.
+fn balanced(html: &str) -> Result<(), String> {
+    const VOID: [&str; 8] = ["meta", "br", "hr", "img", "input", "link", "col", "wbr"];
+    let mut stack: Vec<String> = Vec::new();
+    let b = html.as_bytes();
+    let mut i = 0;
+    while let Some(off) = html[i..].find('<') {
+        let start = i + off;
+        if html[start..].starts_with("<!") {
+            i = start + html[start..].find('>').ok_or("unclosed doctype")? + 1;
+            continue;
+        }
+        // Find the end of the tag, outside quotes.
+        let mut j = start + 1;
+        let mut quote: Option<u8> = None;
+        while j < b.len() {
+            match (quote, b[j]) {
+                (None, b'"' | b'\'') => quote = Some(b[j]),
+                (Some(q), c) if c == q => quote = None,
+                (None, b'>') => break,
+                _ => {}
+            }
+            j += 1;
+        }
+        if j >= b.len() {
+            return Err(format!("unterminated tag at {start}"));
+        }
+        let tag = &html[start + 1..j];
+        i = j + 1;
+        if let Some(name) = tag.strip_prefix('/') {
+            let name = name.trim();
+            match stack.pop() {
+                Some(open) if open == name => {}
+                other => return Err(format!("</{name}> closes {other:?} at {start}")),
+            }
+            continue;
+        }
+        let name: String = tag
+            .chars()
+            .take_while(|c| !c.is_whitespace() && *c != '/')
+            .collect();
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric()) {
+            return Err(format!("odd tag <{tag}> at {start}"));
+        }
+        if tag.ends_with('/') || VOID.contains(&name.as_str()) {
+            continue;
+        }
+        if name == "style" {
+            let end = html[i..].find("</style>").ok_or("unclosed style")?;
+            i += end + "</style>".len();
+            continue;
+        }
+        stack.push(name);
+    }
+    if stack.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("unclosed: {stack:?}"))
+    }
+}
+
+/// Each `<svg>…</svg>` of the page: balanced with no void elements (every
+/// empty element self-closed, as XML wants) and only XML's entities.
+fn svgs(html: &str) -> Vec<&str> {
+    let mut out = Vec::new();
+    let mut rest = html;
+    while let Some(a) = rest.find("<svg") {
+        let end = rest[a..].find("</svg>").expect("svg closed") + a + "</svg>".len();
+        out.push(&rest[a..end]);
+        rest = &rest[end..];
+    }
+    out
+}
+
+fn well_formed_svg(svg: &str) -> Result<(), String> {
+    balanced(svg)?;
+    for void in ["<br", "<meta", "<img", "<input"] {
+        if svg.contains(void) {
+            return Err(format!("{void} in svg"));
+        }
+    }
+    for (k, _) in svg.match_indices('&') {
+        let tail = &svg[k..];
+        if !["&amp;", "&lt;", "&gt;", "&quot;", "&#39;"]
+            .iter()
+            .any(|e| tail.starts_with(e))
+        {
+            return Err(format!("entity {}", &tail[..tail.len().min(8)]));
+        }
+    }
+    Ok(())
+}
+
+/// No request can leave the file: no script, image, frame, style sheet or
+/// font reference, and no address but the link back to the lab.
+fn self_contained(html: &str, link: &str) -> Result<(), String> {
+    let lower = html.to_lowercase();
+    for bad in [
+        "src=",
+        "<script",
+        "<img",
+        "<iframe",
+        "<link",
+        "<object",
+        "<embed",
+        "@import",
+        "@font-face",
+        "srcset",
+        "xlink:href",
+    ] {
+        if lower.contains(bad) {
+            return Err(format!("found {bad}"));
+        }
+    }
+    // `url(` only for the plots' own clip paths.
+    for (k, _) in lower.match_indices("url(") {
+        if !lower[k..].starts_with("url(#plot") {
+            return Err(format!("url( at {k}"));
+        }
+    }
+    let without_link = html.replace(&escape(link), "");
+    let lower = without_link.to_lowercase();
+    if lower.contains("http:") || lower.contains("https:") || lower.contains("//") {
+        return Err("an address other than the link".into());
+    }
+    Ok(())
+}
+
+/// No tag carries an `on…` attribute (text that merely reads "onerror=" is fine).
+fn no_handler_attributes(html: &str) -> bool {
+    let mut rest = html;
+    while let Some(a) = rest.find('<') {
+        let tail = &rest[a + 1..];
+        let end = tail.find('>').unwrap_or(tail.len());
+        // Drop quoted attribute values, then look at attribute names.
+        let mut unquoted = String::new();
+        let mut quote = None;
+        for c in tail[..end].chars() {
+            match (quote, c) {
+                (None, '"' | '\'') => quote = Some(c),
+                (Some(q), c) if c == q => quote = None,
+                (None, c) => unquoted.push(c),
+                _ => {}
+            }
+        }
+        if unquoted
+            .split_whitespace()
+            .skip(1)
+            .any(|attr| attr.to_lowercase().starts_with("on"))
+        {
+            return false;
+        }
+        rest = &tail[end..];
+    }
+    true
+}
+
+fn content_of(id: &str) -> &'static Content {
+    crate::find(id).unwrap().content().unwrap()
+}
+
+/// Every experiment in its preview state after a long run, with a submitted
+/// quiz: every parameter, readout and plot is in the report, each plot once
+/// as SVG and once as a data table; the file is balanced, self-contained and
+/// small.
+#[test]
+fn every_experiment_reports_every_parameter_and_plot_self_contained() {
+    let mut largest = (0, "");
+    for entry in crate::registry() {
+        let mut exp = (entry.make)();
+        exp.preview();
+        let steps = if exp.animated() { 3600 } else { 0 }; // a minute at 60 Hz
+        for _ in 0..steps {
+            exp.step(Clock::DT_S);
+        }
+        let content = entry.content().unwrap();
+        let questions = crate::quiz::prepare(content, entry.generators, 42).unwrap();
+        let answers: Vec<Response> = questions
+            .iter()
+            .map(|q| match &q.kind {
+                PreparedKind::Choice { answer, .. } => Response::Choice(Some(*answer)),
+                PreparedKind::Numeric { .. } => Response::Text("1".into()),
+            })
+            .collect();
+        let link = format!(
+            "https://lab.example.org/sub/{}",
+            crate::route::format(exp.as_ref(), crate::route::Tab::Simulation)
+        );
+        let html = render(&Report {
+            experiment: exp.as_ref(),
+            content,
+            link: &link,
+            date: "2026-11-25 12:00",
+            quiz: Some(QuizResult {
+                seed: 42,
+                questions: &questions,
+                answers: &answers,
+            }),
+            note: None,
+        });
+        let id = entry.id;
+        balanced(&html).unwrap_or_else(|e| panic!("{id}: {e}"));
+        self_contained(&html, &link).unwrap_or_else(|e| panic!("{id}: {e}"));
+        assert!(
+            html.contains(&format!("<h1>{}</h1>", escape(&content.title))),
+            "{id}"
+        );
+        assert!(
+            html.contains(&format!("<p>{}</p>", content.aim[0])),
+            "{id}: aim"
+        );
+        assert!(
+            html.contains(&format!("href=\"{}\"", escape(&link))),
+            "{id}: link"
+        );
+        assert!(html.contains("2026-11-25 12:00"), "{id}: date");
+        for spec in exp.params() {
+            assert!(
+                html.contains(&format!("<tr data-param=\"{}\">", spec.key)),
+                "{id}: parameter {}",
+                spec.key
+            );
+        }
+        for r in exp.readouts() {
+            assert!(
+                html.contains(&format!("data-readout=\"{}\"", r.key)),
+                "{id}: {}",
+                r.key
+            );
+        }
+        for t in exp.tables() {
+            assert!(
+                html.contains(&format!("data-table=\"{}\"", t.key)),
+                "{id}: {}",
+                t.key
+            );
+        }
+        let plots = exp.plots();
+        let mut figures = svgs(&html);
+        // The scene first, then one per plot.
+        let scene = figures.remove(0);
+        assert!(scene.starts_with("<svg class=\"scene\""), "{id}");
+        well_formed_svg(scene).unwrap_or_else(|e| panic!("{id} scene: {e}"));
+        assert!(scene.len() > 500, "{id}: the scene draws something");
+        assert_eq!(figures.len(), plots.len(), "{id}: one svg per plot");
+        for (svg, plot) in figures.iter().zip(plots) {
+            well_formed_svg(svg).unwrap_or_else(|e| panic!("{id} {}: {e}", plot.key));
+            assert!(
+                html.contains(&format!("data-plot=\"{}\"", plot.key)),
+                "{id}"
+            );
+            assert!(
+                html.contains(&format!("data-plot-table=\"{}\"", plot.key)),
+                "{id}"
+            );
+            if plot.sample_count() > 0 {
+                assert!(svg.contains("<path d=\"M"), "{id} {}: a curve", plot.key);
+            }
+        }
+        // The quiz was answered with every choice right.
+        let (right, total) = QuizResult {
+            seed: 42,
+            questions: &questions,
+            answers: &answers,
+        }
+        .score();
+        assert!(
+            html.contains(&format!("Score: {right} / {total}")),
+            "{id}: score"
+        );
+        assert_eq!(html.matches("<tr class=\"right\">").count(), right, "{id}");
+        assert_eq!(
+            html.matches("<tr class=\"wrong\">").count(),
+            total - right,
+            "{id}"
+        );
+        assert_eq!(
+            html.matches("<div class=\"line\"></div>").count(),
+            OBSERVATION_LINES
+        );
+        assert!(html.len() < 400_000, "{id}: {} bytes", html.len());
+        if html.len() > largest.0 {
+            largest = (html.len(), id);
+        }
+    }
+    eprintln!("largest report: {} ({} bytes)", largest.1, largest.0);
+}
+
+/// A made-up experiment whose every text is hostile markup.
+struct Hostile {
+    plots: Vec<Plot>,
+}
+
+const EVIL: &str = "<script>alert(1)</script><img src=x onerror=alert(2)>\"'&";
+
+const HOSTILE_PARAMS: [ParamSpec; 2] = [
+    ParamSpec::slider("k", "<b>K</b>", "<i>m</i>", 0.0, 1.0, 0.1, 0.5),
+    ParamSpec::choice("c", "Choice", &["<em>a</em>", "b"], 0),
+];
+
+impl Experiment for Hostile {
+    fn id(&self) -> &'static str {
+        "hostile"
+    }
+    fn params(&self) -> &'static [ParamSpec] {
+        &HOSTILE_PARAMS
+    }
+    fn param(&self, key: &str) -> Option<f64> {
+        match key {
+            "k" => Some(0.5),
+            "c" => Some(0.0),
+            _ => None,
+        }
+    }
+    fn set_param(&mut self, key: &str, _: f64) -> Result<Sanitized, ParamError> {
+        Err(ParamError::UnknownKey { key: key.into() })
+    }
+    fn input(&mut self, _: Input) {}
+    fn step(&mut self, _: f64) {}
+    fn plots(&self) -> &[Plot] {
+        &self.plots
+    }
+    fn tables(&self) -> Vec<Table> {
+        let mut t = Table::new("t", EVIL, &["<th>"]);
+        t.push_row(vec![EVIL.into()]);
+        vec![t]
+    }
+    fn extra_state(&self) -> Vec<(&'static str, String)> {
+        vec![("walls", EVIL.into())]
+    }
+    fn view(&self) -> ViewBox {
+        ViewBox::centered(1.0)
+    }
+    fn scene(&self, out: &mut Scene) {
+        out.items.push(crate::scene::Item::Label {
+            pos: glam::DVec2::ZERO,
+            text: EVIL.into(),
+            role: crate::scene::Role::Text,
+            offset_px: glam::DVec2::ZERO,
+        });
+    }
+    fn readouts(&self) -> Vec<Readout> {
+        vec![Readout::new("r", "<u>r</u>", EVIL)]
+    }
+    fn status(&self) -> Status {
+        Status::new(EVIL, Tone::Bad)
+    }
+    fn hint(&self) -> &'static str {
+        ""
+    }
+}
+
+fn hostile_plot() -> Plot {
+    let mut p = Plot::new(
+        "evil",
+        "<script>t</script>",
+        ("<x>", "<s>"),
+        ("<y>", "&"),
+        vec![Series::new(EVIL, "m", SeriesRole::Primary)],
+    );
+    for i in 0..5 {
+        p.series[0].push(f64::from(i), f64::from(i * i));
+    }
+    p.markers.push(Marker {
+        x: 2.0,
+        y: 4.0,
+        label: EVIL.into(),
+    });
+    p.ref_lines.push(RefLine {
+        axis: Axis::Y,
+        value: 3.0,
+        label: EVIL.into(),
+    });
+    p.bands.push(Band {
+        axis: Axis::X,
+        lo: 1.0,
+        hi: 2.0,
+        label: EVIL.into(),
+    });
+    p
+}
+
+/// Text from a link, a note, the student or an experiment never becomes
+/// markup: no element, attribute or handler can be injected.
+#[test]
+fn hostile_text_everywhere_is_escaped() {
+    let exp = Hostile {
+        plots: vec![hostile_plot()],
+    };
+    let content = content_of("pid");
+    let questions =
+        crate::quiz::prepare(content, crate::find("pid").unwrap().generators, 1).unwrap();
+    let answers: Vec<Response> = questions
+        .iter()
+        .map(|_| Response::Text(EVIL.into()))
+        .collect();
+    let link = format!("https://x.example/#/pid/simulation?a=\"><script>x</script>{EVIL}");
+    let html = render(&Report {
+        experiment: &exp,
+        content,
+        link: &link,
+        date: EVIL,
+        quiz: Some(QuizResult {
+            seed: 1,
+            questions: &questions,
+            answers: &answers,
+        }),
+        note: Some(EVIL),
+    });
+    let lower = html.to_lowercase();
+    assert!(!lower.contains("<script"), "script injected");
+    assert!(!lower.contains("<img"), "img injected");
+    assert!(!lower.contains("<b>k"), "label markup");
+    assert!(!lower.contains("<th>\""), "table header markup");
+    assert!(no_handler_attributes(&html), "handler injected");
+    assert!(html.contains("&lt;script&gt;alert(1)&lt;/script&gt;"));
+    assert!(html.contains("&lt;b&gt;K&lt;/b&gt;"));
+    balanced(&html).unwrap();
+    for svg in svgs(&html) {
+        well_formed_svg(svg).unwrap();
+    }
+    // Every typed answer is wrong (a choice question got text: blank).
+    assert!(html.contains(&format!("Score: 0 / {}", questions.len())));
+}
+
+#[test]
+fn table_rows_are_evenly_spaced_with_first_and_last() {
+    assert_eq!(table_rows(5, 40), vec![0, 1, 2, 3, 4]);
+    assert_eq!(table_rows(0, 40), Vec::<usize>::new());
+    // k · 99 / 4 = 0, 24.75, 49.5, 74.25, 99.
+    assert_eq!(table_rows(100, 5), vec![0, 25, 50, 74, 99]);
+    let rows = table_rows(20_000, TABLE_ROWS);
+    assert_eq!(rows.len(), TABLE_ROWS);
+    assert_eq!((rows[0], rows[TABLE_ROWS - 1]), (0, 19_999));
+    assert!(rows.windows(2).all(|w| w[1] > w[0]));
+}
+
+/// A long run's table is cut to [`TABLE_ROWS`] rows and says so; its
+/// figure is decimated to a few points per bucket, so the report stays small.
+#[test]
+fn long_series_are_decimated_in_table_and_figure() {
+    let mut p = Plot::new(
+        "long",
+        "Long",
+        ("Time", "s"),
+        ("x", "m"),
+        vec![Series::new("x", "m", SeriesRole::Primary)],
+    );
+    for i in 0..20_000 {
+        let t = f64::from(i) * 0.01;
+        p.series[0].push(t, crate::math::sin(t));
+    }
+    let mut h = String::new();
+    data_table(&mut h, &p, 1);
+    assert_eq!(h.matches("<tr><td>").count(), TABLE_ROWS);
+    assert!(h.contains("30 evenly spaced rows of 20000 samples"), "{h}");
+    // First and last samples: t = 0 and t = 199.99.
+    assert!(h.contains("<tr><td>0</td>") && h.contains("<tr><td>199.99</td>"));
+    let svg = plot_svg(&p, 0);
+    let vertices = svg.matches('L').count() + 1;
+    assert!(vertices <= DRAW_BUCKETS * 4, "{vertices}");
+    assert!(svg.len() < 40_000, "{}", svg.len());
+}
+
+/// A line from (0, 0) to (10, 10): x spans the plot from the left margin to
+/// the right; y is padded by 5 % of its range on each side.
+#[test]
+fn plot_points_land_where_the_axes_say() {
+    let mut p = Plot::new(
+        "lin",
+        "Line",
+        ("x", ""),
+        ("y", ""),
+        vec![Series::new("y", "", SeriesRole::Primary)],
+    );
+    p.series[0].push(0.0, 0.0);
+    p.series[0].push(10.0, 10.0);
+    let svg = plot_svg(&p, 0);
+    // One legend row: top = 14 + 8 + 12 = 34; bottom = 34 + 280 − 42 − 12 = 260.
+    // y ∈ [−0.5, 10.5]: y = 0 → 260 − 0.5/11 · 226 = 249.73; y = 10 → 44.27.
+    // x from 64 to 640 − 24 = 616.
+    assert!(svg.contains("<path d=\"M64,249.73L616,44.27\""), "{svg}");
+    // Ticks 0, 2, …, 10 on x; the first at the left edge.
+    assert!(
+        svg.contains("<text x=\"64\" y=\"274\" text-anchor=\"middle\" fill=\"#1b1f24\">0</text>"),
+        "{svg}"
+    );
+}
+
+#[test]
+fn an_empty_plot_and_an_unsubmitted_quiz_say_so() {
+    let mut plot = hostile_plot();
+    plot.clear();
+    let exp = Hostile { plots: vec![plot] };
+    let html = render(&Report {
+        experiment: &exp,
+        content: content_of("fk"),
+        link: "http://localhost/#/fk/simulation",
+        date: "today",
+        quiz: None,
+        note: None,
+    });
+    assert!(html.contains("No data yet: run the simulation first."));
+    assert!(html.contains("No samples yet."));
+    assert!(html.contains("had not been submitted"));
+    assert!(!html.contains("Score:"));
+    assert!(!html.contains("Instructor's note"));
+    balanced(&html).unwrap();
+}
+
+#[test]
+fn log_axis_ticks_read_as_powers_of_ten() {
+    assert_eq!(power_label(1e-6), "10⁻⁶");
+    assert_eq!(power_label(1e5), "10⁵");
+    assert_eq!(power_label(0.01), "0.01");
+    assert_eq!(power_label(1000.0), "1000");
+    let mut p = hostile_plot();
+    p.log_y = true;
+    let svg = plot_svg(&p, 3);
+    well_formed_svg(&svg).unwrap();
+    assert!(svg.contains("id=\"plot3-clip\""));
+}
+
+#[test]
+fn dates_show_local_time_and_offset() {
+    assert_eq!(
+        date_text(2026, 11, 5, 9, 7, 60),
+        "2026-11-05 09:07 (UTC+01:00)"
+    );
+    assert_eq!(
+        date_text(2026, 1, 30, 23, 59, -210),
+        "2026-01-30 23:59 (UTC-03:30)"
+    );
+    assert_eq!(
+        date_text(2026, 6, 1, 0, 0, 0),
+        "2026-06-01 00:00 (UTC+00:00)"
+    );
+}
+
+/// World (0, 0)–(2, 1) fills 640 × 320 units, y up: hand-computed positions
+/// of a line, a run of raster cells and a thinned tree.
+#[test]
+fn scene_maps_world_to_picture_with_y_up() {
+    use crate::scene::{Item, RasterColour, Role};
+    use glam::DVec2;
+    let view = ViewBox {
+        min: DVec2::ZERO,
+        max: DVec2::new(2.0, 1.0),
+    };
+    let mut scene = Scene::default();
+    scene.items.push(Item::Line {
+        from: DVec2::ZERO,
+        to: DVec2::new(1.0, 1.0),
+        width_px: 2.0,
+        role: Role::Link,
+        dashed: false,
+    });
+    // Row 0 (bottom): cells 0 and 1 wall, cell 2 free, cell 3 wall.
+    scene.items.push(Item::Raster {
+        min: DVec2::ZERO,
+        cell_m: 0.5,
+        cols: 4,
+        rows: 2,
+        cells: vec![1, 1, 0, 1, 0, 0, 0, 0],
+        palette: vec![RasterColour {
+            role: Role::Obstacle,
+            alpha: 0.8,
+        }],
+    });
+    let edges = scene_svg::MAX_SEGMENTS + 5;
+    scene.items.push(Item::Segments {
+        segments: vec![(DVec2::ZERO, DVec2::new(0.5, 0.5)); edges],
+        width_px: 1.0,
+        role: Role::Visited,
+    });
+    let (svg, notes) = scene_svg::scene_svg(&scene, view);
+    assert!(svg.starts_with("<svg class=\"scene\" viewBox=\"0 0 640 320\""));
+    assert!(svg.contains("<line x1=\"0\" y1=\"320\" x2=\"320\" y2=\"0\" stroke=\"#0072B2\""));
+    // Cells are 160 units; the bottom row's top edge is at y = 320 − 160:
+    // a run of two at the left, one at x = 480.
+    assert!(svg.contains(
+        "d=\"M0,160h320v160h-320zM480,160h160v160h-160z\" fill=\"#5f6a75\" fill-opacity=\"0.8\""
+    ));
+    assert_eq!(
+        svg.matches("M0 320l160 -160").count(),
+        scene_svg::MAX_SEGMENTS
+    );
+    assert_eq!(
+        notes,
+        vec![format!(
+            "the first {} of {edges} edges drawn",
+            scene_svg::MAX_SEGMENTS
+        )]
+    );
+    well_formed_svg(&svg).unwrap();
+}

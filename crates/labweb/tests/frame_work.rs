@@ -1,0 +1,366 @@
+//! The work a frame does, counted (never timed): what the page asks of the
+//! browser while a simulation runs with its plots streaming. These counts
+//! hold the gains measured on a throttled phone (`cargo xtask bench
+//! --browser`, issue 16 §3): plots take turns, one a frame; nothing unchanged
+//! is written to the page; sizes are read before anything is written (no
+//! forced layout); text is measured once; a long series is drawn with at
+//! most four points per pixel column.
+//!
+//! The browser's own methods are wrapped by a spy (installed once, below)
+//! that counts calls per kind of canvas: the simulation canvas, or a plot.
+
+use glam::DVec2;
+use labcore::plot::{Plot, Series, SeriesRole};
+use wasm_bindgen::JsCast;
+use wasm_bindgen::JsValue;
+use wasm_bindgen_test::*;
+
+wasm_bindgen_test_configure!(run_in_browser);
+
+fn document() -> web_sys::Document {
+    web_sys::window().unwrap().document().unwrap()
+}
+
+/// Wraps the canvas and DOM methods a frame may call with counters in
+/// `window.__spy`. A canvas call counts for `sim` on the simulation canvas
+/// and for `plot` on any other (a plot's canvas or its off-screen one); a
+/// size read (`getBoundingClientRect`) after a DOM write in the same frame
+/// counts as a forced layout.
+const SPY: &str = r#"
+if (!window.__spy) {
+  const spy = (window.__spy = { c: {}, dirty: false, plotPaints: new Map() });
+  const bump = (k) => (spy.c[k] = (spy.c[k] || 0) + 1);
+  const kind = (ctx) => (ctx.canvas && ctx.canvas.classList && ctx.canvas.classList.contains("sim-canvas") ? "sim" : "plot");
+  const protos = [window.CanvasRenderingContext2D, window.OffscreenCanvasRenderingContext2D]
+    .filter(Boolean).map((c) => c.prototype);
+  for (const proto of protos) {
+    for (const m of ["fillText", "strokeText", "measureText", "lineTo", "moveTo", "setTransform"]) {
+      const orig = proto[m];
+      proto[m] = function (...a) {
+        bump(`${kind(this)}.${m}`);
+        if (m === "setTransform" && kind(this) === "plot") {
+          spy.plotPaints.set(this.canvas, (spy.plotPaints.get(this.canvas) || 0) + 1);
+        }
+        return orig.apply(this, a);
+      };
+    }
+    const font = Object.getOwnPropertyDescriptor(proto, "font");
+    Object.defineProperty(proto, "font", {
+      get: font.get,
+      set(v) { bump(`${kind(this)}.font`); font.set.call(this, v); },
+    });
+  }
+  const writes = [
+    [Node.prototype, "textContent"], [Element.prototype, "innerHTML"], [HTMLElement.prototype, "hidden"],
+  ];
+  for (const [proto, p] of writes) {
+    const d = Object.getOwnPropertyDescriptor(proto, p);
+    Object.defineProperty(proto, p, {
+      get: d.get,
+      set(v) { bump(`dom.${p}`); bump("dom.writes"); spy.dirty = true; d.set.call(this, v); },
+    });
+  }
+  for (const m of ["setAttribute", "removeAttribute"]) {
+    const orig = Element.prototype[m];
+    Element.prototype[m] = function (...a) {
+      bump(`dom.${m}`); bump("dom.writes"); spy.dirty = true;
+      return orig.apply(this, a);
+    };
+  }
+  const rect = Element.prototype.getBoundingClientRect;
+  Element.prototype.getBoundingClientRect = function () {
+    bump("dom.sizeReads");
+    if (spy.dirty) bump("dom.forcedLayouts");
+    spy.dirty = false;
+    return rect.call(this);
+  };
+}
+// A new count: the page is laid out (as between two real frames).
+window.__spy.c = {};
+window.__spy.dirty = false;
+window.__spy.plotPaints = new Map();
+"#;
+
+/// Installs the spy (once) and zeroes its counts.
+fn reset_counts() {
+    js_sys::Function::new_no_args(SPY)
+        .call0(&JsValue::NULL)
+        .unwrap();
+}
+
+/// The count of `key` since the last [`reset_counts`].
+fn count(key: &str) -> u32 {
+    js_sys::Function::new_with_args("k", "return window.__spy.c[k] || 0")
+        .call1(&JsValue::NULL, &JsValue::from_str(key))
+        .unwrap()
+        .as_f64()
+        .unwrap() as u32
+}
+
+/// Paints per plot canvas since the last [`reset_counts`].
+fn plot_paints() -> Vec<u32> {
+    let v = js_sys::Function::new_no_args("return [...window.__spy.plotPaints.values()]")
+        .call0(&JsValue::NULL)
+        .unwrap();
+    js_sys::Array::from(&v)
+        .iter()
+        .map(|n| n.as_f64().unwrap() as u32)
+        .collect()
+}
+
+/// A stand-in for the experiments with several live plots (cart-pole and
+/// EKF have four): every step adds a sample to each plot, while its
+/// readouts and scene labels stay the same.
+struct Streamer {
+    t_s: f64,
+    plots: Vec<Plot>,
+}
+
+/// Labels on the stand-in's scene.
+const LABELS: usize = 6;
+
+impl Streamer {
+    fn new(n_plots: usize, samples: usize) -> Self {
+        let keys = ["a", "b", "c", "d"];
+        let plots = keys[..n_plots]
+            .iter()
+            .map(|key| {
+                let mut p = Plot::new(
+                    key,
+                    "Signal",
+                    ("Time", "s"),
+                    ("Value", "m"),
+                    vec![
+                        Series::new("now", "m", SeriesRole::Primary),
+                        Series::new("model", "m", SeriesRole::Secondary),
+                    ],
+                );
+                for i in 0..samples {
+                    let t = i as f64 * 1e-3;
+                    p.series[0].push(t, (t * 40.0).sin());
+                    p.series[1].push(t, (t * 7.0).cos());
+                }
+                p
+            })
+            .collect();
+        Self { t_s: 0.0, plots }
+    }
+}
+
+impl labcore::Experiment for Streamer {
+    fn id(&self) -> &'static str {
+        "streamer"
+    }
+    fn params(&self) -> &'static [labcore::ParamSpec] {
+        &[]
+    }
+    fn param(&self, _key: &str) -> Option<f64> {
+        None
+    }
+    fn set_param(&mut self, key: &str, _v: f64) -> Result<labcore::Sanitized, labcore::ParamError> {
+        Err(labcore::ParamError::UnknownKey { key: key.into() })
+    }
+    fn input(&mut self, _input: labcore::Input) {}
+    fn step(&mut self, dt_s: f64) {
+        self.t_s += dt_s;
+        let t = self.t_s;
+        for p in &mut self.plots {
+            p.series[0].push(t, (t * 3.0).sin());
+            p.series[1].push(t, (t * 3.0).sin() * 0.9);
+            p.touch();
+        }
+    }
+    fn animated(&self) -> bool {
+        true
+    }
+    fn view(&self) -> labcore::ViewBox {
+        labcore::ViewBox::centered(3.0)
+    }
+    fn scene(&self, out: &mut labcore::Scene) {
+        let x = (self.t_s * 2.0).sin();
+        out.items.push(labcore::Item::Line {
+            from: DVec2::ZERO,
+            to: DVec2::new(x, 1.0),
+            width_px: 3.0,
+            role: labcore::Role::Link,
+            dashed: false,
+        });
+        for k in 0..LABELS {
+            out.items.push(labcore::Item::Label {
+                pos: DVec2::new(k as f64 - 2.5, -1.0),
+                text: format!("{k} m"),
+                role: labcore::Role::Text,
+                offset_px: DVec2::ZERO,
+            });
+        }
+    }
+    fn readouts(&self) -> Vec<labcore::Readout> {
+        vec![
+            labcore::Readout::new("gain", "Gain", "2.00".to_owned()),
+            labcore::Readout::new("mode", "Mode", "streaming".to_owned()),
+        ]
+    }
+    fn plots(&self) -> &[Plot] {
+        &self.plots
+    }
+    fn status(&self) -> labcore::Status {
+        labcore::Status::new("streaming", labcore::Tone::Neutral)
+    }
+    fn hint(&self) -> &'static str {
+        "streamer"
+    }
+}
+
+/// Mounts a [`Streamer`] in a bare Simulation panel (no animation loop: the
+/// test runs the frames) and paints it once.
+fn mount(exp: Streamer) -> labweb::sim::SimView {
+    labweb::unmount();
+    if let Some(old) = document().get_element_by_id("lab-under-test") {
+        old.remove();
+    }
+    let panel = document().create_element("div").unwrap();
+    panel.set_id("lab-under-test");
+    document().body().unwrap().append_child(&panel).unwrap();
+    panel.set_inner_html(&format!(
+        "<style>#lab-under-test{{width:390px}}.sim-canvas{{display:block;width:360px;height:300px}}\
+         .plot-canvas{{display:block;width:360px;height:200px}}</style>{}",
+        labweb::sim::render(&exp, "streamer")
+    ));
+    let view = labweb::sim::SimView::mount(&panel, Box::new(exp)).unwrap();
+    view.paint_now();
+    view
+}
+
+/// Frame times of a 60 Hz display, ms (16.7 ms apart: one fixed step of
+/// 1/60 s each, now and then two).
+fn frame_ms(i: usize) -> f64 {
+    1000.0 + i as f64 * 16.7
+}
+
+#[wasm_bindgen_test]
+fn four_streaming_plots_take_turns_one_paint_a_frame_each_about_every_66_ms() {
+    let view = mount(Streamer::new(4, 200));
+    // Frame 0 only starts the clock; from frame 1 on every plot has new
+    // data at every frame. The plots take turns: in frames 1 to 8 each is
+    // painted twice, once every fourth frame (4 × 16.7 ms ≥ 66 ms).
+    reset_counts();
+    for i in 0..9 {
+        view.frame_at(frame_ms(i));
+    }
+    let per_plot = plot_paints();
+    assert_eq!(per_plot, [2, 2, 2, 2], "paints per plot in frames 0 to 8");
+    // Two seconds more: never two plot paints in one frame, and each plot
+    // still about every 66 ms (30 each; at least 28 each allows for phase).
+    let mut most_in_a_frame = 0;
+    let mut total = 0;
+    for i in 9..129 {
+        reset_counts();
+        view.frame_at(frame_ms(i));
+        let n: u32 = plot_paints().iter().sum();
+        most_in_a_frame = most_in_a_frame.max(n);
+        total += n;
+    }
+    assert!(
+        most_in_a_frame <= 1,
+        "{most_in_a_frame} plot paints in one frame"
+    );
+    assert!(total >= 4 * 28, "{total} plot paints in 120 frames");
+}
+
+#[wasm_bindgen_test]
+fn a_frame_reads_every_size_before_it_writes_so_the_page_is_never_laid_out_mid_frame() {
+    let view = mount(Streamer::new(4, 200));
+    let mut forced = 0;
+    let mut reads = 0;
+    for i in 0..60 {
+        reset_counts();
+        view.frame_at(frame_ms(i));
+        forced += count("dom.forcedLayouts");
+        reads += count("dom.sizeReads");
+    }
+    assert!(reads > 0, "the frames read the canvas sizes");
+    assert_eq!(forced, 0, "size reads after a write in the same frame");
+}
+
+#[wasm_bindgen_test]
+fn repainting_what_has_not_changed_writes_nothing_to_the_page_and_measures_no_text() {
+    let view = mount(Streamer::new(4, 200));
+    for i in 0..30 {
+        view.frame_at(frame_ms(i));
+    }
+    // Paused: the data, readouts and time stand still.
+    let play = document()
+        .query_selector("#lab-under-test .tb-play")
+        .unwrap()
+        .unwrap()
+        .dyn_into::<web_sys::HtmlElement>()
+        .unwrap();
+    play.click();
+    view.paint_now();
+    reset_counts();
+    // A full repaint of the scene and of every plot (as after a theme change).
+    view.paint_now();
+    assert_eq!(count("plot.setTransform"), 4, "every plot repainted");
+    assert_eq!(
+        count("dom.writes"),
+        0,
+        "DOM writes: textContent {}, innerHTML {}, hidden {}, setAttribute {}, removeAttribute {}",
+        count("dom.textContent"),
+        count("dom.innerHTML"),
+        count("dom.hidden"),
+        count("dom.setAttribute"),
+        count("dom.removeAttribute")
+    );
+    assert_eq!(count("plot.measureText"), 0, "plot texts are measured once");
+    assert_eq!(
+        count("sim.measureText"),
+        0,
+        "scene labels are measured once"
+    );
+    // One font a plot paint; the scene's labels set theirs once, not per label.
+    assert_eq!(count("plot.font"), 4);
+    assert_eq!(count("sim.font"), 1, "{LABELS} labels, one font setting");
+    assert_eq!(count("sim.fillText"), LABELS as u32);
+}
+
+#[wasm_bindgen_test]
+fn running_frames_write_only_the_time_when_readouts_do_not_change() {
+    let view = mount(Streamer::new(1, 10));
+    for i in 0..10 {
+        view.frame_at(frame_ms(i));
+    }
+    let mut text_writes = Vec::new();
+    for i in 10..70 {
+        reset_counts();
+        view.frame_at(frame_ms(i));
+        text_writes.push(count("dom.textContent"));
+    }
+    // At 1× and 60 Hz the time "t = 0.00 s" changes every frame; the
+    // readouts never do; the plot's summary only when it is painted.
+    assert!(text_writes.iter().all(|n| *n <= 2), "{text_writes:?}");
+    let time_only = text_writes.iter().filter(|n| **n == 1).count();
+    assert!(time_only >= 40, "{text_writes:?}");
+}
+
+#[wasm_bindgen_test]
+fn a_plot_of_100000_samples_draws_at_most_four_points_per_pixel_column() {
+    let view = mount(Streamer::new(1, 100_000));
+    reset_counts();
+    view.paint_now();
+    let canvas = document()
+        .query_selector("#lab-under-test .plot-canvas")
+        .unwrap()
+        .unwrap();
+    let width_px = canvas.get_bounding_client_rect().width();
+    assert!((300.0..=400.0).contains(&width_px), "{width_px}");
+    let points = count("plot.lineTo") + count("plot.moveTo");
+    // Two series, each at most four points (first, lowest, highest, last)
+    // per pixel column of the plot area (narrower than the canvas), plus the
+    // grid and tick lines.
+    let bound = (2.0 * 4.0 * width_px) as u32 + 40;
+    assert!(
+        points <= bound,
+        "{points} points for 200,000 samples, bound {bound}"
+    );
+    assert!(points >= 200, "the curves are drawn: {points}");
+}

@@ -1,0 +1,239 @@
+//! One wasm module per catalogue group.
+//!
+//! A page downloads only the module of the experiment it shows: `labweb` is
+//! built once per [`labcore::catalogue::Group`] with `--no-default-features`
+//! and the features `labcore/<id>` of that group's experiments, so the
+//! registry of that build — and, through dead-code elimination, its code and
+//! compiled-in content — holds only them. Each module is shipped as
+//! `pkg/<group>.<hash>.wasm` and `pkg/<group>.<hash>.js`, named by a hash of
+//! both files, so a host may cache them for good and a redeployment changes
+//! the names of exactly the modules that changed. `index.html` lists them in
+//! `<meta name="lab-module">` tags, which `main.js` reads.
+
+use crate::util::{self, file_len, remove_dir, step};
+use labcore::catalogue::{Group, CATALOGUE};
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+pub const WASM_TARGET: &str = "wasm32-unknown-unknown";
+
+/// The cargo profile of the shipped modules (workspace `Cargo.toml`).
+const PROFILE: &str = "wasm-release";
+
+/// A built module before it is copied into dist/.
+pub struct Built {
+    pub group: Group,
+    /// Experiment ids it holds, in the lab's order.
+    pub ids: Vec<&'static str>,
+    /// The wasm-bindgen glue (`<group>.js`) and the optimised module
+    /// (`<group>_bg.wasm`), in a directory of their own.
+    pub glue_dir: PathBuf,
+}
+
+/// A module as shipped in `dist/pkg/`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Shipped {
+    /// The group's stable key (`kinematics`, …).
+    pub key: &'static str,
+    pub ids: Vec<&'static str>,
+    /// Paths relative to dist/, with the content hash in the name.
+    pub js: String,
+    pub wasm: String,
+    pub wasm_bytes: u64,
+}
+
+/// The experiments of `group` that this build of labcore has, in lab order.
+#[must_use]
+pub fn group_ids(group: Group) -> Vec<&'static str> {
+    CATALOGUE
+        .iter()
+        .filter(|p| p.group == group && labcore::find(p.id).is_some())
+        .map(|p| p.id)
+        .collect()
+}
+
+/// The cargo features that build `ids` and nothing else.
+#[must_use]
+pub fn features(ids: &[&str]) -> String {
+    ids.iter()
+        .map(|id| format!("labcore/{id}"))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// Builds, binds and optimises one module per group that has experiments.
+pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
+    let target = util::target_dir();
+    let out_root = target.join("xtask").join("modules");
+    remove_dir(&out_root)?;
+    let mut built = Vec::new();
+    for group in Group::ALL {
+        let ids = group_ids(group);
+        if ids.is_empty() {
+            continue;
+        }
+        step(&format!(
+            "cargo build (wasm, release) — module '{}': {}",
+            group.key(),
+            ids.join(", ")
+        ));
+        let t = Instant::now();
+        util::run(util::cargo().args([
+            "build",
+            "-p",
+            "labweb",
+            "--profile",
+            PROFILE,
+            "--target",
+            WASM_TARGET,
+            "--no-default-features",
+            "--features",
+            &features(&ids),
+        ]))?;
+        let input = target.join(WASM_TARGET).join(PROFILE).join("labweb.wasm");
+        let glue_dir = out_root.join(group.key());
+        wasm_bindgen_cli_support::Bindgen::new()
+            .input_path(&input)
+            .web(true)
+            .map_err(|e| format!("wasm-bindgen: {e:#}"))?
+            .out_name(group.key())
+            .typescript(false)
+            // The library defaults this to `true` (the CLI to `false`): without the
+            // default URL, `init()` has nothing to fetch (TOOLCHAIN.md, trap 2).
+            .omit_default_module_path(false)
+            .generate(&glue_dir)
+            .map_err(|e| format!("wasm-bindgen on {}: {e:#}", input.display()))?;
+        optimise(root, &glue_dir.join(format!("{}_bg.wasm", group.key())))?;
+        crate::minify::minify_in_place(root, &glue_dir.join(format!("{}.js", group.key())))?;
+        println!(
+            "module '{}' built in {:.1} s",
+            group.key(),
+            t.elapsed().as_secs_f64()
+        );
+        built.push(Built {
+            group,
+            ids,
+            glue_dir,
+        });
+    }
+    Ok(built)
+}
+
+/// Runs wasm-opt on `wasm` in place (level from `XTASK_WASM_OPT`, `none` to
+/// skip; default [`crate::dist::WASM_OPT_LEVEL`]).
+fn optimise(root: &Path, wasm: &Path) -> Result<(), String> {
+    let level =
+        std::env::var("XTASK_WASM_OPT").unwrap_or_else(|_| crate::dist::WASM_OPT_LEVEL.into());
+    if level == "none" {
+        println!("wasm-opt skipped (XTASK_WASM_OPT=none)");
+        return Ok(());
+    }
+    let optimised = wasm.with_extension("opt.wasm");
+    let before = file_len(wasm)?;
+    let t = Instant::now();
+    crate::dist::wasm_opt(root, wasm, &optimised, &level)?;
+    fs::rename(&optimised, wasm).map_err(|e| format!("cannot replace {}: {e}", wasm.display()))?;
+    println!(
+        "wasm-opt {level}: {} -> {} ({:.1} s)",
+        util::human(before),
+        util::human(file_len(wasm)?),
+        t.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Copies each module into `pkg` under its content-hashed names.
+pub fn ship_modules(built: &[Built], pkg: &Path) -> Result<Vec<Shipped>, String> {
+    fs::create_dir_all(pkg).map_err(|e| format!("cannot create {}: {e}", pkg.display()))?;
+    let mut shipped = Vec::new();
+    for b in built {
+        let key = b.group.key();
+        let read = |name: String| {
+            let p = b.glue_dir.join(name);
+            fs::read(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))
+        };
+        let js = read(format!("{key}.js"))?;
+        let wasm = read(format!("{key}_bg.wasm"))?;
+        let hash = content_hash(&[&js, &wasm]);
+        let js_name = format!("{key}.{hash}.js");
+        let wasm_name = format!("{key}.{hash}.wasm");
+        for (name, bytes) in [(&js_name, &js), (&wasm_name, &wasm)] {
+            fs::write(pkg.join(name), bytes)
+                .map_err(|e| format!("cannot write pkg/{name}: {e}"))?;
+        }
+        shipped.push(Shipped {
+            key,
+            ids: b.ids.clone(),
+            js: format!("pkg/{js_name}"),
+            wasm: format!("pkg/{wasm_name}"),
+            wasm_bytes: wasm.len() as u64,
+        });
+    }
+    Ok(shipped)
+}
+
+/// Eight hex digits naming the content of `parts` (FNV-1a, 32 bits shown).
+#[must_use]
+pub fn content_hash(parts: &[&[u8]]) -> String {
+    let mut input = Vec::new();
+    for p in parts {
+        input.extend_from_slice(&util::fnv1a(p).to_le_bytes());
+    }
+    format!("{:08x}", util::fnv1a(&input) as u32)
+}
+
+/// Whether a file name carries a content hash (`name.<8 hex>.ext`): such a
+/// file never changes under its name, so hosts may cache it for good.
+#[must_use]
+pub fn is_content_hashed(path: &Path) -> bool {
+    let Some(name) = path.file_name().and_then(|n| n.to_str()) else {
+        return false;
+    };
+    let mut parts = name.rsplit('.');
+    let (Some(_ext), Some(hash), Some(stem)) = (parts.next(), parts.next(), parts.next()) else {
+        return false;
+    };
+    !stem.is_empty() && hash.len() == 8 && hash.bytes().all(|c| c.is_ascii_hexdigit())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_experiment_is_in_exactly_one_module() {
+        let mut all: Vec<&str> = Group::ALL.iter().flat_map(|g| group_ids(*g)).collect();
+        assert_eq!(all.len(), labcore::registry().len());
+        all.sort_unstable();
+        all.dedup();
+        assert_eq!(all.len(), labcore::registry().len());
+    }
+
+    #[test]
+    fn features_name_labcore_experiments() {
+        assert_eq!(
+            features(&["pid", "cartpole"]),
+            "labcore/pid,labcore/cartpole"
+        );
+    }
+
+    #[test]
+    fn the_hash_follows_the_content() {
+        let a = content_hash(&[b"js", b"wasm"]);
+        assert_eq!(a.len(), 8);
+        assert_eq!(a, content_hash(&[b"js", b"wasm"]));
+        assert_ne!(a, content_hash(&[b"js", b"wasm!"]));
+        assert_ne!(a, content_hash(&[b"jswasm", b""]));
+    }
+
+    #[test]
+    fn hashed_names_are_recognised() {
+        assert!(is_content_hashed(Path::new("pkg/control.0a1b2c3d.wasm")));
+        assert!(is_content_hashed(Path::new("pages/pid.0a1b2c3d.html")));
+        assert!(!is_content_hashed(Path::new("main.js")));
+        assert!(!is_content_hashed(Path::new("pkg/control.wasm")));
+        assert!(!is_content_hashed(Path::new("pkg/control.0a1b2c3x.wasm")));
+        assert!(!is_content_hashed(Path::new("0a1b2c3d.wasm")));
+    }
+}

@@ -1,0 +1,193 @@
+// Instructor links (issue 17 §2): locked and hidden controls, the note, the
+// Presets menu and the Instructor panel that builds a link.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { DESKTOP, PHONE, open, readouts, screenshot, useLab, withPage } from "./helpers.mjs";
+
+const lab = useLab();
+
+const kpSlider = 'input[type=range][data-param="kp"]';
+const kpBox = 'input[type=text][data-param="kp"]';
+const hashParam = (page, key) =>
+  page.evaluate((k) => new URLSearchParams(location.hash.split("?")[1] ?? "").get(k), key);
+
+test("#/pid/simulation?kp=5&lock=kp disables both Kp controls and neither keys nor typing change it", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/pid/simulation?kp=5&lock=kp");
+    for (const sel of [kpSlider, kpBox]) {
+      assert.equal(await page.$eval(sel, (el) => el.disabled), true, `${sel} is disabled`);
+    }
+    assert.equal(await page.$eval(kpSlider, (el) => Number(el.value)), 5);
+    // A visible lock beside the label, and the accessible names say "locked".
+    const badge = page.locator('[data-ctl="kp"] .ctl-lock');
+    assert.equal(await badge.isVisible(), true);
+    assert.match(await badge.textContent(), /locked/);
+    assert.match(await page.locator(kpSlider).evaluate((el) => el.labels[0].textContent), /locked/);
+    assert.match(await page.getAttribute(kpBox, "aria-label"), /\(locked\)$/);
+    // Keyboard: a disabled slider takes no focus, so arrow keys go nowhere near it.
+    await page.locator(kpSlider).focus().catch(() => {});
+    for (let i = 0; i < 5; i++) await page.keyboard.press("ArrowRight");
+    await page.keyboard.type("9");
+    assert.equal(await page.$eval(kpSlider, (el) => Number(el.value)), 5);
+    // Typing into the box is refused; a forced click as well.
+    await page.locator(kpBox).fill("50", { force: true, timeout: 1000 }).catch(() => {});
+    await page.locator(kpSlider).click({ force: true, timeout: 1000 }).catch(() => {});
+    await page.waitForTimeout(400);
+    assert.equal(await page.$eval(kpSlider, (el) => Number(el.value)), 5);
+    assert.equal(await hashParam(page, "kp"), "5");
+    assert.equal(await hashParam(page, "lock"), "kp", "the link keeps the lock");
+    // Other controls still work.
+    assert.equal(await page.$eval('input[type=range][data-param="kd"]', (el) => el.disabled), false);
+    // Reset keeps the locked value.
+    await page.click('[data-time="reset"]');
+    assert.equal(await page.$eval(kpSlider, (el) => Number(el.value)), 5);
+    await screenshot(page, "instructor-locked-desktop");
+  }));
+
+test("a canvas drag or arrow key that would move a locked setpoint is refused (and moves it when unlocked)", () =>
+  withPage(lab, {}, async (page) => {
+    const r = () => page.$eval('input[type=range][data-param="r"]', (el) => Number(el.value));
+    // A click on the canvas at world x = −1 m (PID sets the setpoint where the pointer is).
+    const clickAtMinusOne = async () => {
+      const box = await page.locator("canvas.sim-canvas").boundingBox();
+      const [x0, y0, x1, y1] = (await page.getAttribute("canvas.sim-canvas", "data-view")).split(",").map(Number);
+      const scale = Math.min(box.width / (x1 - x0), box.height / (y1 - y0));
+      const px = box.x + box.width / 2 + (-1 - (x0 + x1) / 2) * scale;
+      await page.mouse.click(px, box.y + box.height / 2);
+    };
+    await open(lab, page, "#/pid/simulation?r=1");
+    await clickAtMinusOne();
+    await page.waitForFunction(() => Number(document.querySelector('input[type=range][data-param="r"]').value) < 0);
+    await open(lab, page, "#/pid/simulation?r=1&lock=r");
+    await page.reload();
+    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    await clickAtMinusOne();
+    await page.focus("canvas.sim-canvas");
+    for (let i = 0; i < 4; i++) await page.keyboard.press("ArrowLeft");
+    await page.waitForTimeout(300);
+    assert.equal(await r(), 1);
+    assert.match(await page.textContent(".sim-message"), /Setpoint r is locked by your instructor/);
+    assert.equal(await hashParam(page, "r"), "1");
+  }));
+
+test("a hidden parameter is absent, the note shows as text, an unknown key gives a notice", () =>
+  withPage(lab, {}, async (page) => {
+    const note = "Find the smallest Kp that <b>overshoots</b> & settles";
+    await open(
+      lab,
+      page,
+      `#/pid/simulation?hide=noise,seed&lock=kp,zz&note=${encodeURIComponent(note)}`,
+    );
+    assert.equal(await page.locator('[data-param="noise"]').first().isVisible(), false);
+    assert.equal(await page.locator('[data-param="seed"]').first().isVisible(), false);
+    const aside = page.locator("aside.instructor-note");
+    assert.equal(await aside.isVisible(), true);
+    assert.equal(await aside.locator("h3").textContent(), "Instructor's note");
+    assert.equal(await aside.locator("p").textContent(), note, "plain text, not HTML");
+    assert.equal(await aside.locator("b").count(), 0);
+    // The note sits above the canvas.
+    const noteBox = await aside.boundingBox();
+    const canvasBox = await page.locator("canvas.sim-canvas").boundingBox();
+    assert.ok(noteBox.y + noteBox.height <= canvasBox.y + 1, "note above the simulation");
+    const bar = await page.locator("#notice .notice-text").textContent();
+    assert.match(bar, /Cannot lock “zz”/);
+    assert.equal(await hashParam(page, "lock"), "kp", "the unknown key is dropped from the link");
+    assert.equal(await hashParam(page, "note"), note);
+    await screenshot(page, "instructor-note-desktop");
+  }));
+
+test("a preset from the menu applies, and its link reproduces it in a fresh page", () =>
+  withPage(lab, {}, async (page, context) => {
+    await open(lab, page, "#/pid/simulation");
+    await page.click("details.presets > summary");
+    await page.click('a[data-preset="Overshoot vs damping: little damping"]');
+    await page.waitForFunction(() => location.hash.includes("kd=1"));
+    assert.equal(await page.$eval('input[type=range][data-param="kd"]', (el) => Number(el.value)), 1);
+    assert.equal(await page.$eval(kpSlider, (el) => Number(el.value)), 40);
+    assert.equal(await page.locator("#notice").isVisible(), false, "no notice");
+    await page.waitForFunction(() => location.hash.includes("kp=40"));
+    const hash = await page.evaluate(() => location.hash);
+    const second = await context.newPage();
+    await open(lab, second, hash);
+    for (const key of ["kp", "ki", "kd"]) {
+      const sel = `input[type=range][data-param="${key}"]`;
+      assert.equal(
+        await second.$eval(sel, (el) => el.value),
+        await page.$eval(sel, (el) => el.value),
+        `${key} from ${hash}`,
+      );
+    }
+    // The story: let it run and the overshoot is large.
+    await second.waitForFunction(
+      () => parseFloat(document.querySelector('[data-readout="overshoot"]')?.textContent) > 50,
+      null,
+      { timeout: 15_000 },
+    );
+    await page.click("details.presets > summary");
+    await page.locator("details.presets").scrollIntoViewIfNeeded();
+    await screenshot(page, "instructor-presets-desktop");
+  }));
+
+test("the Instructor panel's link opened in a fresh page gives the same locks, hides, note and state", () =>
+  withPage(lab, {}, async (page, context) => {
+    await open(lab, page, "#/pid/simulation?kp=30&kd=2");
+    await page.click("details.instructor-panel > summary");
+    await page.check('input[data-lock="kp"]');
+    await page.check('input[data-lock="kd"]');
+    await page.check('input[data-hide="noise"]');
+    await page.fill(".instructor-note-input", "Which Kd stops the ringing?");
+    await page.fill(".instructor-quiz", "123");
+    await page.click('[data-instructor="copy"]');
+    assert.match(await page.textContent(".instructor-copied"), /Copied|Selected/);
+    const link = await page.inputValue(".instructor-link");
+    assert.ok(link.startsWith(lab.server.base), link);
+    const hash = link.slice(link.indexOf("#"));
+    const q = new URLSearchParams(hash.split("?")[1]);
+    assert.equal(q.get("lock"), "kp,kd");
+    assert.equal(q.get("hide"), "noise");
+    assert.equal(q.get("note"), "Which Kd stops the ringing?");
+    assert.equal(q.get("quiz"), "123");
+    await screenshot(page, "instructor-panel-desktop");
+
+    const second = await context.newPage();
+    await second.goto(link);
+    await second.waitForFunction(() => document.body.dataset.ready === "1");
+    for (const key of ["kp", "kd"]) {
+      assert.equal(await second.$eval(`input[type=range][data-param="${key}"]`, (el) => el.disabled), true, key);
+    }
+    assert.equal(await second.$eval('input[type=range][data-param="ki"]', (el) => el.disabled), false);
+    assert.equal(await second.$eval(kpSlider, (el) => Number(el.value)), 30);
+    assert.equal(await second.locator('[data-param="noise"]').first().isVisible(), false);
+    assert.equal(await second.textContent(".instructor-note p"), "Which Kd stops the ringing?");
+    const a = await readouts(page);
+    const b = await readouts(second);
+    assert.equal(b.poles, a.poles, "the same loop");
+    // The quiz seed reaches the quiz.
+    await second.click('article.exp[data-experiment="pid"] [role=tab][data-tab="quiz"]');
+    await second.waitForFunction(() => location.hash.includes("quiz=123"));
+  }));
+
+test("instructor UI screenshots: phone and dark", () =>
+  withPage(lab, { viewport: PHONE, colorScheme: "dark" }, async (page) => {
+    await open(lab, page, "#/pid/simulation?kp=5&lock=kp&hide=noise&note=Find%20the%20smallest%20Kp%20that%20overshoots.");
+    await screenshot(page, "instructor-note-phone-dark");
+    await page.locator('[data-ctl="kp"]').scrollIntoViewIfNeeded();
+    await screenshot(page, "instructor-locked-phone-dark");
+    await page.click("details.instructor-panel > summary");
+    await page.locator("details.instructor-panel").scrollIntoViewIfNeeded();
+    await screenshot(page, "instructor-panel-phone-dark");
+    assert.ok(DESKTOP.width > PHONE.width);
+  }));
+
+test("presets menu screenshot: phone, dark", () =>
+  withPage(lab, { viewport: PHONE, colorScheme: "dark" }, async (page) => {
+    await open(lab, page, "#/astar/simulation");
+    await page.click("details.presets > summary");
+    await page.locator("details.presets").scrollIntoViewIfNeeded();
+    await screenshot(page, "instructor-presets-phone-dark");
+    // Every preset of the menu is a link to this experiment's Simulation tab.
+    const hrefs = await page.$$eval("details.presets a[data-preset]", (as) => as.map((a) => a.getAttribute("href")));
+    assert.equal(hrefs.length, 3);
+    for (const h of hrefs) assert.match(h, /^#\/astar\/simulation\?/);
+  }));

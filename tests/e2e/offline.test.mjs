@@ -1,0 +1,104 @@
+// Offline after one visit (issue 17 §1): the service worker caches the whole
+// site on the first visit; with the network off, every experiment — also the
+// ones never opened — loads, draws and steps, and survives a reload.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { experimentIds, open, useLab, waitReady, withPage } from "./helpers.mjs";
+
+const lab = useLab();
+
+/** Waits until the service worker controls the page and holds its cache. */
+const workerReady = (page) =>
+  page.evaluate(async () => {
+    const reg = await navigator.serviceWorker.ready;
+    if (!navigator.serviceWorker.controller) {
+      await new Promise((ok) => navigator.serviceWorker.addEventListener("controllerchange", ok, { once: true }));
+    }
+    const names = await caches.keys();
+    const cache = await caches.open(names.find((n) => n.startsWith("lab-")));
+    return { scope: reg.scope, cached: (await cache.keys()).length };
+  });
+
+/** The Simulation tab of `id` is mounted, drawn, and one step advances it. */
+async function drawsAndSteps(page, id) {
+  const canvas = page.locator(`article.exp[data-experiment=${id}]:not([hidden]) canvas.sim-canvas`);
+  await canvas.waitFor({ state: "visible" });
+  const inked = await canvas.evaluate((c) => {
+    const data = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 3; i < data.length; i += 4 * 97) if (data[i] > 0) n++;
+    return n;
+  });
+  assert.ok(inked > 0, `${id}: the canvas is drawn`);
+  const steps = () => canvas.evaluate((c) => Number(c.dataset.steps ?? 0));
+  const before = await steps();
+  const step = page.locator(`article.exp[data-experiment=${id}]:not([hidden]) button[data-time=step]`);
+  if ((await step.count()) > 0) {
+    const play = page.locator(`article.exp[data-experiment=${id}]:not([hidden]) button[data-time=play]`);
+    if ((await play.getAttribute("aria-pressed")) === "true") await play.click();
+    await step.click();
+    await page.waitForFunction(
+      ([sel, n]) => Number(document.querySelector(sel)?.dataset.steps ?? 0) > n,
+      [`article.exp[data-experiment=${id}]:not([hidden]) canvas.sim-canvas`, before],
+    );
+  }
+}
+
+test("offline after one visit: every experiment's Simulation tab opens, draws, steps and reloads with the network off", () =>
+  withPage(lab, { serviceWorkers: "allow" }, async (page, context) => {
+    const ids = ["fk", "ik", "workspace", "diffdrive", "potential", "astar", "pid", "cartpole", "dls", "rrtstar", "ekf"];
+    await open(lab, page, "#/");
+    await open(lab, page, "#/pid/simulation");
+    const { scope, cached } = await workerReady(page);
+    assert.ok(scope.startsWith(lab.server.base), `the worker's scope is the lab's folder: ${scope}`);
+    assert.ok(cached > 20, `the whole site is cached (${cached} files)`);
+    await context.setOffline(true);
+    for (const id of ids) {
+      await page.goto(`${lab.server.base}index.html#/${id}/simulation`);
+      await waitReady(page);
+      await drawsAndSteps(page, id);
+      await page.reload();
+      await waitReady(page);
+      await drawsAndSteps(page, id);
+    }
+    // The home page too, from the folder URL.
+    await page.goto(lab.server.base);
+    await page.waitForSelector("[data-page=home]:not([hidden]) a.card");
+    await context.setOffline(false);
+  }));
+
+test("the site is installable: a manifest with icons, under the sub-path", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/");
+    const href = await page.getAttribute("link[rel=manifest]", "href");
+    const url = new URL(href, page.url());
+    assert.ok(url.pathname.startsWith(new URL(lab.server.base).pathname), `manifest under the sub-path: ${url}`);
+    const manifest = await (await page.request.get(url.href)).json();
+    assert.equal(manifest.start_url, "./");
+    assert.equal(manifest.scope, "./");
+    assert.equal(manifest.display, "standalone");
+    for (const size of ["192x192", "512x512"]) {
+      const icon = manifest.icons.find((i) => i.sizes === size);
+      assert.ok(icon, `a ${size} icon`);
+      const res = await page.request.get(new URL(icon.src, url).href);
+      assert.equal(res.status(), 200);
+      assert.equal(res.headers()["content-type"], "image/png");
+    }
+    const themes = await page.$$eval("meta[name=theme-color]", (ms) => ms.map((m) => m.media));
+    assert.deepEqual(themes.sort(), ["(prefers-color-scheme: dark)", "(prefers-color-scheme: light)"]);
+  }));
+
+test("a new deployment is announced quietly on the next visit", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/");
+    assert.ok(await page.locator("#updated").isHidden(), "no notice on a first visit");
+    await page.evaluate(() => localStorage.setItem("lab-version", "00000000"));
+    await page.reload();
+    await page.waitForSelector("[data-page=home]:not([hidden])");
+    const notice = page.locator("#updated");
+    await notice.waitFor({ state: "visible" });
+    assert.match(await notice.innerText(), /updated/);
+    await notice.locator("button").click();
+    assert.ok(await notice.isHidden());
+  }));

@@ -1,0 +1,47 @@
+// The test LMS: scorm-again's Scorm12API as `window.API`, every call it gets
+// recorded in `window.lmsLog`, then the SCO named by `?sco=<id>` (default:
+// the manifest's first item) launched in the iframe from the package's
+// imsmanifest.xml, as an LMS does. `window.SAVED_CMI` (set by the test
+// before the page loads) is the cmi an LMS kept from an earlier session.
+(async () => {
+  const status = document.getElementById("lms-status");
+  const log = (window.lmsLog = []);
+  const api = new Scorm12API({ autocommit: false, logLevel: 5 });
+  for (const name of ["LMSInitialize", "LMSCommit", "LMSFinish"]) {
+    api.on(name, () => log.push([name]));
+  }
+  api.on("LMSSetValue.cmi.*", (element, value) => log.push(["LMSSetValue", element, value]));
+
+  const pkg = "content/1/";
+  const manifest = new DOMParser().parseFromString(
+    await (await fetch(pkg + "imsmanifest.xml")).text(),
+    "application/xml",
+  );
+  const items = [...manifest.getElementsByTagName("item")];
+  const wanted = new URLSearchParams(location.search).get("sco");
+  const item = wanted ? items.find((i) => i.getAttribute("identifier") === `item-${wanted}`) : items[0];
+  const resource = [...manifest.getElementsByTagName("resource")].find(
+    (r) => r.getAttribute("identifier") === item.getAttribute("identifierref"),
+  );
+  const mastery = item.getElementsByTagNameNS("*", "masteryscore")[0]?.textContent ?? "";
+
+  if (window.SAVED_CMI) {
+    api.loadFromJSON(window.SAVED_CMI);
+    api.cmi.core.entry = "resume";
+  } else {
+    api.cmi.core.entry = "ab-initio";
+  }
+  api.cmi.student_data.mastery_score = mastery;
+  api.cmi.core.student_id = "s-001";
+  api.cmi.core.student_name = "Student, Test";
+  window.API = api;
+  window.lmsLaunch = resource.getAttribute("href");
+  // `?origin=` puts the SCO on another origin (where it must not reach the API).
+  const origin = new URLSearchParams(location.search).get("origin");
+  const here = location.pathname.replace(/[^/]*$/, "");
+  document.getElementById("sco").src = (origin ? origin + here : "") + pkg + window.lmsLaunch;
+  status.textContent = `launched ${window.lmsLaunch}`;
+})().catch((e) => {
+  document.getElementById("lms-status").textContent = `LMS error: ${e}`;
+  throw e;
+});

@@ -1,0 +1,96 @@
+// Page weight, counted the way a browser downloads it: every response of a
+// first visit with an empty cache, summed raw (as a host that does not
+// compress sends it) and gzip -9 (as `cargo xtask dist`'s .gz siblings are).
+// Bytes, not milliseconds: the figures are the same on a busy machine.
+// The table is also written to target/page-weights.json (README quotes it).
+
+import { after, test } from "node:test";
+import assert from "node:assert/strict";
+import { mkdirSync, writeFileSync } from "node:fs";
+import { join } from "node:path";
+import { gzipSync } from "node:zlib";
+import { experimentIds, open, useLab, withPage } from "./helpers.mjs";
+
+/** Budgets of issue 16, in bytes (1 KB = 1,000 bytes, the stricter reading). */
+const EXPERIMENT_RAW = 700_000;
+const EXPERIMENT_GZIP = 250_000;
+const HOME_GZIP = 150_000;
+
+const lab = useLab();
+const table = [];
+
+after(() => {
+  const dir = join(process.cwd(), "target");
+  mkdirSync(dir, { recursive: true });
+  writeFileSync(join(dir, "page-weights.json"), JSON.stringify(table, null, 2));
+  const kb = (n) => `${(n / 1000).toFixed(1)} KB`;
+  console.log("\npage              files   raw          gzip -9");
+  for (const r of table) {
+    console.log(`${r.page.padEnd(18)}${String(r.files).padEnd(8)}${kb(r.raw).padEnd(13)}${kb(r.gzip)}`);
+  }
+});
+
+/** Opens `hash` in a fresh context and sums every response it downloaded. */
+async function weigh(hash) {
+  let result;
+  await withPage(lab, {}, async (page) => {
+    const bodies = [];
+    page.on("response", (res) => bodies.push(res.body().then((b) => [res.url(), b]).catch(() => null)));
+    await open(lab, page, hash);
+    if (hash !== "#/") {
+      await page.waitForSelector("article.exp:not([hidden]) canvas.sim-canvas");
+    }
+    await page.waitForLoadState("networkidle");
+    const files = (await Promise.all(bodies)).filter(Boolean);
+    result = {
+      files: files.length,
+      names: files.map(([u]) => new URL(u).pathname.split("/").pop()),
+      raw: files.reduce((n, [, b]) => n + b.length, 0),
+      gzip: files.reduce((n, [, b]) => n + gzipSync(b, { level: 9 }).length, 0),
+    };
+  });
+  return result;
+}
+
+test("page budget: the home page downloads at most 150 KB gzip", async () => {
+  const w = await weigh("#/");
+  table.push({ page: "home", ...w });
+  assert.ok(!w.names.some((n) => n.endsWith(".wasm")), "the home page downloads no wasm");
+  assert.ok(w.gzip <= HOME_GZIP, `home: ${w.gzip} bytes gzip > ${HOME_GZIP} (${w.names.join(", ")})`);
+});
+
+test("page budget: every experiment's first visit downloads at most 700 KB raw and 250 KB gzip", async (t) => {
+  for (const id of await experimentIds(lab)) {
+    await t.test(id, async () => {
+      const w = await weigh(`#/${id}/simulation`);
+      table.push({ page: id, ...w });
+      const wasm = w.names.filter((n) => n.endsWith(".wasm"));
+      assert.equal(wasm.length, 1, `${id} downloads one wasm module: ${wasm}`);
+      assert.ok(w.raw <= EXPERIMENT_RAW, `${id}: ${w.raw} bytes raw > ${EXPERIMENT_RAW} (${w.names.join(", ")})`);
+      assert.ok(w.gzip <= EXPERIMENT_GZIP, `${id}: ${w.gzip} bytes gzip > ${EXPERIMENT_GZIP}`);
+    });
+  }
+});
+
+test("a module already downloaded is not downloaded again for another experiment of its group", () =>
+  withPage(lab, {}, async (page, context) => {
+    await open(lab, page, "#/pid/simulation");
+    const wasmHits = () => lab.server.hits.filter((p) => p.endsWith(".wasm"));
+    const before = wasmHits().length;
+    // Within the page: another experiment of the group mounts from the running module.
+    await page.evaluate(() => { location.hash = "#/cartpole/simulation"; });
+    await page.waitForSelector("article.exp[data-experiment=cartpole]:not([hidden]) canvas.sim-canvas");
+    assert.equal(wasmHits().length, before, "no wasm request for a same-group experiment");
+    // A new page of the same browser: the module comes from the HTTP cache
+    // (content-hashed name, cached for good).
+    const second = await context.newPage();
+    await open(lab, second, "#/cartpole/aim");
+    await second.waitForSelector("article.exp[data-experiment=cartpole]:not([hidden])");
+    await second.waitForLoadState("networkidle");
+    assert.equal(wasmHits().length, before, "the cached module is not fetched again");
+    // Another group's experiment downloads its own module, once.
+    await second.evaluate(() => { location.hash = "#/astar/simulation"; });
+    await second.waitForSelector("article.exp[data-experiment=astar]:not([hidden]) canvas.sim-canvas");
+    assert.equal(wasmHits().length, before + 1, "the planning module is fetched once");
+    await second.close();
+  }));
