@@ -135,11 +135,18 @@ export function useLab() {
  *
  * options: viewport, hasTouch, colorScheme, allowConsoleErrors, initScript,
  * serviceWorkers ("block" by default: a test that routes or counts requests
- * must see them all; the offline tests pass "allow").
+ * must see them all; the offline tests pass "allow"), bypassCSP (to inject a
+ * test's own script, e.g. axe-core, with addScriptTag).
  */
 export async function withPage(lab, options, fn) {
-  const { viewport = DESKTOP, hasTouch = false, colorScheme = "light", serviceWorkers = "block" } = options;
-  const context = await lab.browser.newContext({ viewport, hasTouch, colorScheme, serviceWorkers });
+  const {
+    viewport = DESKTOP,
+    hasTouch = false,
+    colorScheme = "light",
+    serviceWorkers = "block",
+    bypassCSP = false,
+  } = options;
+  const context = await lab.browser.newContext({ viewport, hasTouch, colorScheme, serviceWorkers, bypassCSP });
   context.setDefaultTimeout(10_000);
   const problems = [];
   const origin = lab.server.origin;

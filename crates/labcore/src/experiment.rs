@@ -313,6 +313,43 @@ impl Input {
     }
 }
 
+/// A point the student can drag (a waypoint, an obstacle, a start or goal,
+/// an arm's target), listed so the keyboard and typed coordinates can move it
+/// too: every drag has a non-drag alternative (WCAG 2.2 success criterion
+/// 2.5.7, "Dragging Movements").
+#[derive(Clone, Debug, PartialEq)]
+pub struct Handle {
+    /// Stable key within the experiment while the handle exists (`w2`,
+    /// `start`, `o1`, `target`).
+    pub id: String,
+    /// What the page and a screen reader call it ("Waypoint 2").
+    pub label: String,
+    /// Where it is now (world, metres).
+    pub at: DVec2,
+    /// The keyboard's step for it when it moves on a lattice (a grid cell,
+    /// metres); `None`: the page's step, a fraction of the view.
+    pub step_m: Option<f64>,
+}
+
+impl Handle {
+    /// A handle moved by the page's default keyboard step.
+    #[must_use]
+    pub fn new(id: impl Into<String>, label: impl Into<String>, at: DVec2) -> Self {
+        Self {
+            id: id.into(),
+            label: label.into(),
+            at,
+            step_m: None,
+        }
+    }
+}
+
+/// `(2.10, 3.40) m`: a point as the scene descriptions say it.
+#[must_use]
+pub fn format_point(p: DVec2) -> String {
+    format!("({}, {}) m", format_fixed(p.x, 2), format_fixed(p.y, 2))
+}
+
 /// Keys held while a pointer input happened (Shift-click, Ctrl-click).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Modifiers {
@@ -580,6 +617,44 @@ pub trait Experiment {
     /// swipe that starts elsewhere scrolls the page; a tap still acts.
     fn handle_at(&self, _p: DVec2, _tolerance_m: f64) -> bool {
         false
+    }
+    /// Every draggable handle now, in a stable order (the keyboard cycles
+    /// through them with `[` and `]`). An experiment whose
+    /// [`Experiment::handle_at`] is true somewhere lists at least one.
+    /// Default: none.
+    fn handles(&self) -> Vec<Handle> {
+        Vec::new()
+    }
+    /// Moves the handle `id` to `to` (world) exactly as a pointer drag would:
+    /// a press on the handle, a move to `to`, a release there. Returns
+    /// whether there was such a handle (a refused point, NaN or infinite,
+    /// changes nothing). Override it where a press on the handle could grab
+    /// another one or a short drag counts as a tap.
+    fn move_handle(&mut self, id: &str, to: DVec2) -> bool {
+        let Some(h) = self.handles().into_iter().find(|h| h.id == id) else {
+            return false;
+        };
+        if !to.is_finite() {
+            return false;
+        }
+        self.input(Input::PointerDown(h.at));
+        self.input(Input::PointerMove {
+            pos: to,
+            pressed: true,
+        });
+        self.input(Input::PointerUp(to));
+        true
+    }
+    /// One or two sentences a screen reader says about the scene ("robot at
+    /// (2.10, 3.40) m heading 45°, 2 of 3 waypoints reached"), on request and
+    /// when a run ends. Default: the status and the readouts.
+    fn describe(&self) -> String {
+        let readouts: Vec<String> = self
+            .readouts()
+            .iter()
+            .map(|r| format!("{} {}", r.label, r.value))
+            .collect();
+        format!("{}. {}.", self.status().text, readouts.join(", "))
     }
     /// Live tables shown beside the canvas (an open list, a comparison).
     fn tables(&self) -> Vec<Table> {

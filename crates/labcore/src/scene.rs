@@ -176,6 +176,11 @@ pub enum Item {
         label: String,
         role: Role,
     },
+    /// The keyboard's chosen handle (see [`crate::experiment::Handle`]): a
+    /// ring of `radius_px` CSS pixels around it in the page's focus colour,
+    /// with a halo that keeps it visible on any background. The page adds it
+    /// after the experiment's scene.
+    FocusRing { center: DVec2, radius_px: f64 },
     /// A grid of cells painted as one image: cell `(col, row)` has state
     /// `cells[row * cols + col]`, row 0 at `min.y`; state `s > 0` takes the
     /// colour of `palette[s - 1]` and 0 is transparent (an occupancy grid with
@@ -326,6 +331,7 @@ impl Scene {
             Item::Label { pos, .. } => ok(pos),
             Item::ScaleBar => true,
             Item::OffView { at, .. } => ok(at),
+            Item::FocusRing { center, radius_px } => ok(center) && radius_px.is_finite(),
             Item::Polyline { points, .. } | Item::Polygon { points, .. } => points.iter().all(ok),
             Item::Rect { min, max, .. } => ok(min) && ok(max),
             Item::Arrow { from, to, .. } => ok(from) && ok(to),

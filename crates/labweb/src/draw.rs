@@ -7,7 +7,7 @@
 use glam::DVec2;
 use labcore::{Item, RasterColour, Role, Scene, ViewBox};
 use std::f64::consts::TAU;
-use wasm_bindgen::JsValue;
+use wasm_bindgen::{JsCast, JsValue};
 use web_sys::{CanvasRenderingContext2d, Element};
 
 /// Theme colours per role, read from CSS custom properties (`--c-link`, …).
@@ -16,6 +16,8 @@ pub struct Palette {
     colours: Vec<(Role, String)>,
     vars: Vec<(&'static str, String)>,
     pub background: String,
+    /// The focus ring's colour: the page's focus outline (`--focus`).
+    pub focus: String,
 }
 
 /// Other theme colours the plots use.
@@ -54,6 +56,7 @@ impl Palette {
                 .and_then(|s| s.get_property_value(var).ok())
                 .map(|v| v.trim().to_owned())
                 .filter(|v| !v.is_empty())
+                .map(|v| resolve_colour(&v))
                 .unwrap_or_else(|| fallback.to_owned())
         };
         Self {
@@ -63,6 +66,7 @@ impl Palette {
                 .collect(),
             vars: PLOT_VARS.iter().map(|v| (*v, read(v, "#888"))).collect(),
             background: read("--c-canvas", "#fff"),
+            focus: read("--focus", "#E69F00"),
         }
     }
 
@@ -80,6 +84,51 @@ impl Palette {
             .find(|(r, _)| *r == role)
             .map_or("#888", |(_, c)| c.as_str())
     }
+}
+
+/// A theme colour as `#rrggbb`: hex as it is; anything else (a system colour
+/// such as `CanvasText` under `forced-colors: active`, `rgb()`…) through a
+/// probe element's computed colour, so the canvas and the raster tables get
+/// the user's own colours.
+fn resolve_colour(value: &str) -> String {
+    if value.starts_with('#') {
+        return value.to_owned();
+    }
+    let resolved = (|| {
+        let doc = crate::dom::document();
+        let probe: web_sys::HtmlElement = doc.create_element("span").ok()?.dyn_into().ok()?;
+        let style = probe.style();
+        style.set_property("color", value).ok()?;
+        // The probe keeps the colour asked for (forced colours would repaint it).
+        let _ = style.set_property("forced-color-adjust", "none");
+        let _ = style.set_property("display", "none");
+        doc.body()?.append_child(&probe).ok()?;
+        let computed = crate::dom::window()
+            .get_computed_style(&probe)
+            .ok()
+            .flatten()
+            .and_then(|s| s.get_property_value("color").ok());
+        probe.remove();
+        rgb_to_hex(&computed?)
+    })();
+    resolved.unwrap_or_else(|| value.to_owned())
+}
+
+/// `rgb(12, 34, 56)` or `rgba(12, 34, 56, 1)` → `#0c2238`.
+fn rgb_to_hex(css: &str) -> Option<String> {
+    let inner = css.trim().split_once('(')?.1.strip_suffix(')')?;
+    let parts: Vec<u8> = inner
+        .split([',', ' ', '/'])
+        .filter(|p| !p.is_empty())
+        .take(3)
+        .map(|p| {
+            p.trim()
+                .parse::<f64>()
+                .ok()
+                .map(|v| v.round().clamp(0.0, 255.0) as u8)
+        })
+        .collect::<Option<_>>()?;
+    (parts.len() == 3).then(|| format!("#{:02x}{:02x}{:02x}", parts[0], parts[1], parts[2]))
 }
 
 /// The world → CSS-pixel mapping of one frame.
@@ -448,6 +497,23 @@ pub fn paint(
                     *role,
                 );
                 label_font = false;
+            }
+            Item::FocusRing { center, radius_px } => {
+                let c = viewport.to_px(*center);
+                set_dash(ctx, false);
+                // A 3 px ring in the focus colour between two thin lines of
+                // the background, so it shows on any colour under it.
+                for (colour, width, r) in [
+                    (palette.background.as_str(), 1.5, radius_px - 2.25),
+                    (palette.background.as_str(), 1.5, radius_px + 2.25),
+                    (palette.focus.as_str(), 3.0, *radius_px),
+                ] {
+                    ctx.set_stroke_style_str(colour);
+                    ctx.set_line_width(width);
+                    ctx.begin_path();
+                    let _ = ctx.arc(c.x, c.y, r, 0.0, std::f64::consts::TAU);
+                    ctx.stroke();
+                }
             }
             Item::Raster {
                 min,
@@ -958,6 +1024,21 @@ fn blit_to(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn computed_colours_become_hex_for_the_raster_tables() {
+        assert_eq!(rgb_to_hex("rgb(12, 34, 56)").as_deref(), Some("#0c2238"));
+        assert_eq!(
+            rgb_to_hex("rgba(255, 255, 255, 1)").as_deref(),
+            Some("#ffffff")
+        );
+        assert_eq!(
+            rgb_to_hex("rgb(0 128 255 / 0.5)").as_deref(),
+            Some("#0080ff")
+        );
+        assert_eq!(rgb_to_hex("CanvasText"), None);
+        assert_eq!(rgb_to_hex("rgb(1, 2)"), None);
+    }
 
     #[test]
     fn the_scale_bar_takes_the_longest_round_length_that_fits() {

@@ -7,6 +7,7 @@
 pub mod app;
 pub mod dom;
 pub mod draw;
+pub mod help;
 pub mod layers;
 pub mod lms;
 pub mod plot_view;
@@ -52,6 +53,7 @@ pub fn unmount() {
 #[wasm_bindgen]
 pub fn boot() {
     unmount();
+    help::install();
     let app = app::App::boot(|_| reroute());
     APP.with(|a| *a.borrow_mut() = app);
 }

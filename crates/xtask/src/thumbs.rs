@@ -287,7 +287,8 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
             | Item::SegmentLayer { .. }
             | Item::Label { .. }
             | Item::ScaleBar
-            | Item::OffView { .. } => Ok(()),
+            | Item::OffView { .. }
+            | Item::FocusRing { .. } => Ok(()),
         };
     }
     out.push_str("</svg>");

@@ -8,8 +8,8 @@
 //! reachable point.
 
 use crate::experiment::{
-    check_param, format_fixed, format_magnitude, format_metres, Experiment, Input, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_degrees, format_fixed, format_magnitude, format_metres, format_point,
+    Experiment, Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};
@@ -162,6 +162,23 @@ impl Experiment for ForwardKinematics {
 
     /// Nothing moves on its own: the arm follows the sliders and the pointer.
     fn step(&mut self, _dt_s: f64) {}
+
+    fn handles(&self) -> Vec<Handle> {
+        vec![Handle::new("tip", "End-effector", self.tip())]
+    }
+
+    /// "Tip at (0.76, 1.27) m, θ₁ 35.0°, θ₂ 40.0°, 87.1% of the reach used; in reach."
+    fn describe(&self) -> String {
+        let reach = Annulus::of_chain(&self.lengths()).reach_used(self.tip());
+        format!(
+            "Two-link arm with θ₁ {} and θ₂ {}: tip at {}, {}% of the reach used; {}.",
+            format_degrees(self.theta1_deg),
+            format_degrees(self.theta2_deg),
+            format_point(self.tip()),
+            format_fixed(100.0 * reach, 1),
+            self.status().text
+        )
+    }
 
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         (self.tip() - p).length() <= tolerance_m

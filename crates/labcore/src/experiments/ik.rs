@@ -11,8 +11,8 @@
 //! is what the two links solve for.
 
 use crate::experiment::{
-    check_param, clamp_to_params, with_coordinate, Experiment, Input, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
+    check_param, clamp_to_params, format_degrees, format_point, with_coordinate, Experiment,
+    Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
@@ -346,6 +346,34 @@ impl Experiment for InverseKinematics {
         self.theta1_deg = PARAMS[0].default;
         self.theta2_deg = PARAMS[1].default;
         self.resolve();
+    }
+
+    /// The target (before any is set: on the tip, where a press would set it).
+    fn handles(&self) -> Vec<Handle> {
+        vec![Handle::new(
+            "target",
+            "Target",
+            self.target.unwrap_or_else(|| self.tip()),
+        )]
+    }
+
+    /// "Target at (1.10, 0.90) m: in reach. Arm at θ₁ 66.4°, θ₂ -67.8°, tip at (1.10, 0.90) m."
+    fn describe(&self) -> String {
+        let arm = format!(
+            "Arm at θ₁ {}, θ₂ {}, tip at {}",
+            format_degrees(self.theta1_deg),
+            format_degrees(self.theta2_deg),
+            format_point(self.tip())
+        );
+        match self.target {
+            None => format!("No target yet: {}. {arm}.", self.status().text),
+            Some(t) => format!(
+                "Target at {}: {}. {arm}{}.",
+                format_point(t),
+                self.status().text,
+                if self.animating() { ", moving" } else { "" }
+            ),
+        }
     }
 
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {

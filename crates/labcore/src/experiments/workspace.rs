@@ -9,8 +9,8 @@
 //! `r = max(0, L_max − (R − L_max))`.
 
 use crate::experiment::{
-    check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Readout,
-    Sanitized, Status, Tone,
+    check_param, format_point, ActionSpec, Experiment, Handle, Input, Notice, Notices, ParamError,
+    ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, tip, Annulus};
 use crate::kinematics::dls::DlsSolver;
@@ -339,6 +339,36 @@ impl Experiment for Workspace {
 
     fn plots(&self) -> &[Plot] {
         &self.plots
+    }
+
+    fn handles(&self) -> Vec<Handle> {
+        vec![Handle::new("tip", "End-effector", self.tip())]
+    }
+
+    /// "Tip at (1.17, 2.02) m. Swept 8000 samples: outer radius 2.500 m (theory 2.500 m), …"
+    fn describe(&self) -> String {
+        let value = |key| crate::experiment::readout_value(self, key).unwrap_or_default();
+        let tip = format!(
+            "{}-link arm, tip at {}",
+            self.lengths_m.len(),
+            format_point(self.tip())
+        );
+        if self.tips.is_empty() {
+            format!(
+                "{tip}. No workspace sweep yet: press Sweep workspace; {}.",
+                self.status().text
+            )
+        } else {
+            format!(
+                "{tip}. {}: {} samples; outer radius {} measured, {} in theory; inner hole {} measured, {} in theory.",
+                self.status().text,
+                value("samples"),
+                value("outer"),
+                value("outer_theory"),
+                value("inner"),
+                value("inner_theory")
+            )
+        }
     }
 
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {

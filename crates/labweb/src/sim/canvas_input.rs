@@ -158,6 +158,11 @@ pub(super) fn listen(
         let Some(e) = e.dyn_ref::<KeyboardEvent>() else {
             return;
         };
+        // Handles chosen with [ ], moved with the arrows; D describes.
+        if s.borrow_mut().a11y_key(e) {
+            e.prevent_default();
+            return;
+        }
         match e.key().as_str() {
             " " | "Spacebar" => {
                 // Play/pause without scrolling the page.

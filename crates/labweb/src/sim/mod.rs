@@ -26,6 +26,7 @@ use web_sys::{
     CanvasRenderingContext2d, Element, HtmlCanvasElement, HtmlElement, PointerEvent, ResizeObserver,
 };
 
+mod a11y;
 mod canvas_input;
 mod instructor;
 mod panel;
@@ -116,16 +117,16 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
              <p class=\"sim-caption\">{caption}</p>\
              <div class=\"sim-frame\">\
                <canvas class=\"sim-canvas\" data-touch=\"{touch}\" tabindex=\"0\" role=\"application\" aria-roledescription=\"simulation\" \
-                 aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps){keys}.\"></canvas>\
+                 aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps), [ and ] choose a point to move{keys}, D describes the scene, question mark lists every key.\"></canvas>\
              </div>{statusbar}{touch_note}\
              {timebar}\
-             <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button>{report}</div>\
+             <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button>{report}{describe}</div>\
            </div>\
            <div class=\"sim-side\">{main_plot}\
              <dl class=\"readouts\">{readouts}</dl>\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
              <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
-             {presets}<form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>\
+             {presets}<form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>{move_form}\
              <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
            </div>\
            {plots}\
@@ -133,6 +134,8 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
         touch = if exp.captures_touch() { "all" } else { "handles" },
         report = crate::report_view::BUTTON_HTML,
         keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
+        describe = a11y::describe_button_html(),
+        move_form = a11y::move_form_html(),
     )
 }
 
@@ -197,6 +200,9 @@ struct SimState {
     instructor: route::Instructor,
     /// The quiz seed the link fixed, kept in the Simulation tab's link.
     quiz_seed: Option<u64>,
+    /// The handle the keyboard and the Move form act on (drawn with a ring).
+    focused_handle: Option<String>,
+    shown_move: a11y::ShownMove,
 }
 
 /// Recent busy-frame times (step + paint), published on the canvas as
@@ -306,12 +312,17 @@ impl SimState {
                 }
             });
         }
+        let phase_before = self.phase;
         self.follow_phase();
         let stopped = was_animating && !self.exp.animating();
         if stopped {
             // The state the motion ended in belongs in the link and is worth announcing.
             self.hash_dirty = true;
             self.announce();
+        }
+        if phase_before == Phase::Live && self.phase == Phase::Ended {
+            // The run is over: say what the scene shows now.
+            self.describe_scene();
         }
         // Paint while moving, and once more for the frame on which it stopped.
         if steps > 0 && (was_animating || self.exp.animating()) {
@@ -385,6 +396,7 @@ impl SimState {
         }
         self.scene.clear();
         self.exp.scene(&mut self.scene);
+        self.push_focus_ring();
         paint(
             &self.ctx,
             &self.scene,
@@ -537,20 +549,30 @@ impl SimView {
             frame_times: FrameTimes::default(),
             instructor: route::Instructor::default(),
             quiz_seed: None,
+            focused_handle: None,
+            shown_move: a11y::ShownMove::default(),
         }));
         let mut listeners = Vec::new();
         canvas_input::listen(&state, &canvas, &mut listeners);
         panel::listen(&state, panel, &mut listeners);
         instructor::listen(&state, panel, &mut listeners);
-        // Theme changes (light/dark) repaint with the new palette.
-        if let Ok(Some(mql)) = dom::window().match_media("(prefers-color-scheme: dark)") {
-            let s = state.clone();
-            listeners.push(Listener::new(mql.as_ref(), "change", move |_| {
-                let mut st = s.borrow_mut();
-                st.palette = Palette::from_css(&st.canvas);
-                st.needs_paint = true;
-                st.plots_force = true;
-            }));
+        a11y::listen(&state, panel, &mut listeners);
+        // Theme changes (light/dark, more contrast, forced colours) repaint
+        // with the new palette.
+        for query in [
+            "(prefers-color-scheme: dark)",
+            "(prefers-contrast: more)",
+            "(forced-colors: active)",
+        ] {
+            if let Ok(Some(mql)) = dom::window().match_media(query) {
+                let s = state.clone();
+                listeners.push(Listener::new(mql.as_ref(), "change", move |_| {
+                    let mut st = s.borrow_mut();
+                    st.palette = Palette::from_css(&st.canvas);
+                    st.needs_paint = true;
+                    st.plots_force = true;
+                }));
+            }
         }
         let s = state.clone();
         listeners.push(Listener::new(

@@ -458,6 +458,7 @@ impl SimState {
             }
             self.shown_tables = tables;
         }
+        self.sync_move_form();
     }
 
     pub(super) fn set_param(&mut self, key: &str, value: f64) {

@@ -1418,6 +1418,21 @@ impl Experiment for AStarGrid {
         &self.plots
     }
 
+    /// The start and the goal; the keyboard moves them one cell at a time.
+    fn handles(&self) -> Vec<crate::experiment::Handle> {
+        [("start", "Start", self.start), ("goal", "Goal", self.goal)]
+            .into_iter()
+            .map(|(id, label, cell)| crate::experiment::Handle {
+                step_m: Some(1.0),
+                ..crate::experiment::Handle::new(id, label, self.cell_center(cell))
+            })
+            .collect()
+    }
+
+    fn describe(&self) -> String {
+        view::describe(self)
+    }
+
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         let near = |c: Cell| (self.cell_center(c) - p).length() <= tolerance_m.max(0.5);
         near(self.start) || near(self.goal)

@@ -415,6 +415,28 @@ pub(super) fn status(a: &AStarGrid) -> Status {
     }
 }
 
+/// "Start at cell (2, 20), goal at cell (29, 3) on a 32 × 24 grid with 37
+/// walls; arrived: path cost 32.627." Cells as (column, row), row 0 at the top.
+pub(super) fn describe(a: &AStarGrid) -> String {
+    let robot = match (a.phase, a.robot()) {
+        (Phase::Driving | Phase::Arrived, Some(p)) => {
+            format!(" Robot at {}.", crate::experiment::format_point(p))
+        }
+        _ => String::new(),
+    };
+    format!(
+        "Start at cell ({}, {}), goal at cell ({}, {}) on a {} × {} grid with {} walls; {}.{robot}",
+        a.start.x,
+        a.start.y,
+        a.goal.x,
+        a.goal.y,
+        a.grid.width(),
+        a.grid.height(),
+        a.grid.blocked_count(),
+        status(a).text
+    )
+}
+
 pub(super) fn hint(a: &AStarGrid) -> &'static str {
     match (a.walls_in_link(), a.zoomed()) {
         (true, false) => "Drag to paint or erase walls; Shift-click sets the start, Ctrl-click the goal (or drag them). Then press Plan & drive.",

@@ -772,6 +772,19 @@ impl Experiment for CartPoleBalance {
         view::scene(self, out);
     }
 
+    /// The pole's tip (dragging it sets the start angle).
+    fn handles(&self) -> Vec<crate::experiment::Handle> {
+        vec![crate::experiment::Handle::new(
+            "tip",
+            "Pole tip",
+            self.tip_of(&self.sim.state),
+        )]
+    }
+
+    fn describe(&self) -> String {
+        view::describe(self)
+    }
+
     fn readouts(&self) -> Vec<Readout> {
         view::readouts(self)
     }

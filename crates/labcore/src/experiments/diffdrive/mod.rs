@@ -645,6 +645,53 @@ impl Experiment for DiffDrive {
         &self.plots
     }
 
+    /// The waypoints, by slot (`w2` is the one the link keys `w2x`, `w2y` hold).
+    fn handles(&self) -> Vec<crate::experiment::Handle> {
+        self.route()
+            .into_iter()
+            .filter_map(|i| {
+                let at = self.slots[i]?;
+                Some(crate::experiment::Handle::new(
+                    format!("w{}", i + 1),
+                    format!("Waypoint {}", i + 1),
+                    at,
+                ))
+            })
+            .collect()
+    }
+
+    /// A drag of waypoint `id` to `to`: grabbed (a press on it), moved, released.
+    /// Grabbed by slot, so a waypoint on top of another is still the one moved,
+    /// and a short move is never taken for a tap (which removes it).
+    fn move_handle(&mut self, id: &str, to: DVec2) -> bool {
+        let Some((slot, _)) = crate::experiment::point_slot(&format!("{id}x"), 'w', MAX_WAYPOINTS)
+        else {
+            return false;
+        };
+        let Some(at) = self.slots[slot] else {
+            return false;
+        };
+        if !to.is_finite() {
+            return false;
+        }
+        self.selected = Some(slot);
+        self.press = Some(Press {
+            slot: Some(slot),
+            at,
+            moved: true,
+        });
+        self.input(Input::PointerMove {
+            pos: to,
+            pressed: true,
+        });
+        self.input(Input::PointerUp(to));
+        true
+    }
+
+    fn describe(&self) -> String {
+        view::describe(self)
+    }
+
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         self.waypoint_near(p, tolerance_m.max(0.0)).is_some()
     }

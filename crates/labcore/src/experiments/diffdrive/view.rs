@@ -288,6 +288,30 @@ pub(super) fn status(d: &DiffDrive) -> Status {
     )
 }
 
+/// "Robot at (2.10, 3.40) m heading 45.0°, 2 of 3 waypoints reached; waypoint 3 of 3: driving."
+pub(super) fn describe(d: &DiffDrive) -> String {
+    let pose = d.pose();
+    let heading = crate::kinematics::two_link_ik::wrap_pi(pose.theta_rad).to_degrees();
+    let robot = format!(
+        "Robot at {} heading {}",
+        crate::experiment::format_point(pose.position()),
+        format_degrees(heading)
+    );
+    let total = d.waypoints().len();
+    if total == 0 {
+        return format!("{robot}, no waypoints yet; {}.", status(d).text);
+    }
+    let next = d.follower.goal().map_or(String::new(), |g| {
+        format!(", next at {}", crate::experiment::format_point(g))
+    });
+    format!(
+        "{robot}, {} of {total} waypoint{} reached{next}; {}.",
+        d.reached(),
+        if total == 1 { "" } else { "s" },
+        status(d).text
+    )
+}
+
 pub(super) fn hint() -> &'static str {
     "Click or tap to drop a goal; click again to queue more waypoints. Drag a waypoint to move it, tap it to remove it."
 }

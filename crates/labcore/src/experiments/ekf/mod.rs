@@ -899,6 +899,10 @@ impl Experiment for EkfExperiment {
         view::scene(self, out);
     }
 
+    fn describe(&self) -> String {
+        view::describe(self)
+    }
+
     fn readouts(&self) -> Vec<Readout> {
         view::readouts(self)
     }

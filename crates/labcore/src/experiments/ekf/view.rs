@@ -131,6 +131,25 @@ pub(super) fn scene(e: &EkfExperiment, out: &mut Scene) {
     });
 }
 
+/// "Robot at (…) m heading 12.0°; the estimate is 0.057 m and -0.8° off,
+/// 6 landmarks (known map); EKF localisation running."
+pub(super) fn describe(e: &EkfExperiment) -> String {
+    let truth = e.live.truth;
+    let value = |key| crate::experiment::readout_value(e, key).unwrap_or_default();
+    format!(
+        "Robot at {} heading {}; the estimate is {} and {} off (dead reckoning alone: {}); landmarks {}; {}.",
+        crate::experiment::format_point(truth.truncate()),
+        crate::experiment::format_degrees(
+            crate::kinematics::two_link_ik::wrap_pi(truth.z).to_degrees()
+        ),
+        value("error"),
+        value("heading_error"),
+        value("dr_error"),
+        value("landmarks"),
+        status(e).text
+    )
+}
+
 pub(super) fn readouts(e: &EkfExperiment) -> Vec<Readout> {
     let run = &e.live;
     let (truth, est, cov) = (run.truth, run.estimate(), run.pose_cov());

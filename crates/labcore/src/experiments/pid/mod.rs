@@ -844,6 +844,19 @@ impl Experiment for PidControl {
         view::scene(self, out);
     }
 
+    /// The setpoint marker (it moves along x only).
+    fn handles(&self) -> Vec<crate::experiment::Handle> {
+        vec![crate::experiment::Handle::new(
+            "setpoint",
+            "Setpoint",
+            DVec2::new(self.setpoint_m, MARKER_TOP_M),
+        )]
+    }
+
+    fn describe(&self) -> String {
+        view::describe(self)
+    }
+
     fn readouts(&self) -> Vec<Readout> {
         view::readouts(self)
     }

@@ -274,6 +274,22 @@ pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
 /// The run's state from the model's evidence: running while the state is
 /// [`RunState::Running`], otherwise ended (settled, recorded in full, off the
 /// track or diverged), so the page offers Replay.
+/// "Cart at 1.075 m, setpoint 1.000 m, error -0.075 m; overshoot 7.8%, rise
+/// time 0.82 s, settling time --; stepping to 1.000 m."
+pub(super) fn describe(e: &PidControl) -> String {
+    let value = |key| crate::experiment::readout_value(e, key).unwrap_or_default();
+    format!(
+        "Cart at {}, setpoint {}, error {}; overshoot {}, rise time {}, settling time {}; {}.",
+        value("x"),
+        format_metres(e.setpoint_m),
+        value("error"),
+        value("overshoot"),
+        value("rise"),
+        value("settling"),
+        status(e).text
+    )
+}
+
 pub(super) fn status(e: &PidControl) -> Status {
     let why_unstable = || match e.poles().map(|(_, s)| s) {
         Some(Stability::Unstable) => "the loop is unstable",

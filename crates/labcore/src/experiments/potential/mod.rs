@@ -762,6 +762,54 @@ impl Experiment for PotentialFieldLab {
         &self.plots
     }
 
+    /// The goal (once set), the start and the obstacles (`o1`…, as in the link).
+    fn handles(&self) -> Vec<crate::experiment::Handle> {
+        use crate::experiment::Handle as H;
+        let mut out = Vec::new();
+        if let Some(g) = self.goal {
+            out.push(H::new("goal", "Goal", g));
+        }
+        out.push(H::new("start", "Start", self.start));
+        for (i, c) in self.slots[..self.count].iter().enumerate() {
+            out.push(H::new(
+                format!("o{}", i + 1),
+                format!("Obstacle {}", i + 1),
+                *c,
+            ));
+        }
+        out
+    }
+
+    /// A drag of handle `id`: grabbed by name (a press on it, even where
+    /// another handle overlaps), moved to `to`, released.
+    fn move_handle(&mut self, id: &str, to: DVec2) -> bool {
+        let handle = match id {
+            "goal" if self.goal.is_some() => Handle::Goal,
+            "start" => Handle::Start,
+            _ => match crate::experiment::point_slot(&format!("{id}x"), 'o', self.count) {
+                Some((i, _)) => Handle::Obstacle(i),
+                None => return false,
+            },
+        };
+        if !to.is_finite() {
+            return false;
+        }
+        self.notices.clear();
+        self.tap = None;
+        self.dragging = Some(handle);
+        self.selected = handle;
+        self.input(Input::PointerMove {
+            pos: to,
+            pressed: true,
+        });
+        self.input(Input::PointerUp(to));
+        true
+    }
+
+    fn describe(&self) -> String {
+        self.description()
+    }
+
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         self.handle_under(p, tolerance_m.max(0.0)).is_some()
             || self.obstacle_at(p, tolerance_m.max(0.0)).is_some()

@@ -231,6 +231,31 @@ impl PotentialFieldLab {
         }
     }
 
+    /// "Robot at (…) m, goal at (…) m, 2 obstacles; reached the goal in 8.7 s."
+    pub(super) fn description(&self) -> String {
+        use crate::experiment::format_point;
+        let robot = self.run.map_or(self.start, |r| r.pose.position());
+        let obstacles = match self.count {
+            0 => "no obstacles".to_owned(),
+            1 => "1 obstacle".to_owned(),
+            n => format!("{n} obstacles"),
+        };
+        match self.goal {
+            None => format!(
+                "Robot at the start {}, {obstacles}, no goal yet; {}.",
+                format_point(robot),
+                self.current_status().text
+            ),
+            Some(g) => format!(
+                "Robot at {}, goal at {} ({} away), {obstacles}; {}.",
+                format_point(robot),
+                format_point(g),
+                format_metres((g - robot).length()),
+                self.current_status().text
+            ),
+        }
+    }
+
     /// The live numbers beside the canvas.
     pub(super) fn readout_list(&self) -> Vec<Readout> {
         let run = self.run;

@@ -857,6 +857,62 @@ impl Experiment for RrtStarField {
         &self.plots
     }
 
+    /// The start, the goal and the obstacles (`o1`…, by centre).
+    fn handles(&self) -> Vec<crate::experiment::Handle> {
+        use crate::experiment::Handle as H;
+        let mut out = vec![
+            H::new("start", "Start", self.start),
+            H::new("goal", "Goal", self.goal),
+        ];
+        for (i, o) in self.obstacles.iter().enumerate() {
+            out.push(H::new(
+                format!("o{}", i + 1),
+                format!("Obstacle {}", i + 1),
+                Self::centre_of(o),
+            ));
+        }
+        out
+    }
+
+    /// A drag of handle `id`: grabbed by name (where the start or goal
+    /// overlaps an obstacle, a press there would take them), moved so its
+    /// centre is at `to`, released (an obstacle left off the field goes, as
+    /// after a pointer drag).
+    fn move_handle(&mut self, id: &str, to: DVec2) -> bool {
+        let drag = match id {
+            "start" => Drag::Start,
+            "goal" => Drag::Goal,
+            _ => {
+                match crate::experiment::point_slot(&format!("{id}x"), 'o', self.obstacles.len()) {
+                    Some((index, _)) => {
+                        let o = &self.obstacles[index];
+                        Drag::Obstacle {
+                            index,
+                            grab: Self::centre_of(o),
+                            origin: Self::origin_of(o),
+                        }
+                    }
+                    None => return false,
+                }
+            }
+        };
+        if !to.is_finite() {
+            return false;
+        }
+        self.drag = drag;
+        self.nudge = drag;
+        self.input(Input::PointerMove {
+            pos: to,
+            pressed: true,
+        });
+        self.input(Input::PointerUp(to));
+        true
+    }
+
+    fn describe(&self) -> String {
+        view::describe(self)
+    }
+
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         let tol = tolerance_m.max(HANDLE_M);
         (p - self.start).length() <= tol

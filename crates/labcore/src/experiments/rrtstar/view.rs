@@ -201,6 +201,25 @@ pub(super) fn readouts(f: &RrtStarField) -> Vec<Readout> {
     ]
 }
 
+/// "Start at (…) m, goal at (…) m, 4 obstacles; 1125 nodes; done: best path 8.655 m."
+pub(super) fn describe(f: &RrtStarField) -> String {
+    use crate::experiment::format_point;
+    let tree = f.shown().map_or(String::new(), |t| {
+        format!(" {} nodes in the tree;", t.len())
+    });
+    let robot = f
+        .robot()
+        .map_or(String::new(), |p| format!(" Robot at {}.", format_point(p)));
+    format!(
+        "Start at {}, goal at {}, {} obstacle{};{tree} {}.{robot}",
+        format_point(f.start),
+        format_point(f.goal),
+        f.obstacles.len(),
+        if f.obstacles.len() == 1 { "" } else { "s" },
+        status(f).text
+    )
+}
+
 pub(super) fn status(f: &RrtStarField) -> Status {
     if let Some(e) = f.error {
         let text = match e {
