@@ -11,10 +11,12 @@ import { join } from "node:path";
 import { gzipSync } from "node:zlib";
 import { experimentIds, open, useLab, withPage } from "./helpers.mjs";
 
-/** Budgets of issue 16, in bytes (1 KB = 1,000 bytes, the stricter reading). */
-const EXPERIMENT_RAW = 700_000;
-const EXPERIMENT_GZIP = 250_000;
-const HOME_GZIP = 150_000;
+/** Budgets of issue 16, in bytes, with 1 KB = 1,024 bytes as `cargo xtask
+ * size` and the README count (the table prints both units). */
+const KB = 1024;
+const EXPERIMENT_RAW = 700 * KB;
+const EXPERIMENT_GZIP = 250 * KB;
+const HOME_GZIP = 150 * KB;
 
 const lab = useLab();
 const table = [];
@@ -23,10 +25,10 @@ after(() => {
   const dir = join(process.cwd(), "target");
   mkdirSync(dir, { recursive: true });
   writeFileSync(join(dir, "page-weights.json"), JSON.stringify(table, null, 2));
-  const kb = (n) => `${(n / 1000).toFixed(1)} KB`;
-  console.log("\npage              files   raw          gzip -9");
+  const kib = (n) => `${(n / 1024).toFixed(1)} KiB (${n.toLocaleString("en")} B)`;
+  console.log("\npage              files   raw                          gzip -9");
   for (const r of table) {
-    console.log(`${r.page.padEnd(18)}${String(r.files).padEnd(8)}${kb(r.raw).padEnd(13)}${kb(r.gzip)}`);
+    console.log(`${r.page.padEnd(18)}${String(r.files).padEnd(8)}${kib(r.raw).padEnd(29)}${kib(r.gzip)}`);
   }
 });
 

@@ -309,14 +309,19 @@ fn has_article(root: &Element, id: &str) -> bool {
     query(root, &format!("article.exp[data-experiment=\"{id}\"]")).is_some()
 }
 
-/// The experiment's article: the pre-rendered one, or a new one.
+/// The experiment's article: the one `main.js` added, or (test pages, built
+/// with every experiment's full content) one rendered here. A shipped module
+/// carries no reading content and never renders one: it waits for `main.js`.
 fn find_or_render_article(app_root: &Element, entry: &'static Entry) -> Element {
     let selector = format!("article.exp[data-experiment=\"{}\"]", entry.id);
     if let Some(article) = query(app_root, &selector) {
         return article;
     }
-    let html = content_html::article(entry.id, entry.content().map_err(|e| e.to_string()));
-    let _ = app_root.insert_adjacent_html("beforeend", &html);
+    #[cfg(feature = "all-experiments")]
+    {
+        let html = content_html::article(entry.id, entry.content().map_err(|e| e.to_string()));
+        let _ = app_root.insert_adjacent_html("beforeend", &html);
+    }
     query(app_root, &selector).unwrap_or_else(|| app_root.clone())
 }
 
