@@ -13,7 +13,16 @@ use json::Json;
 use std::path::Path;
 
 const IDS: [&str; 11] = [
-    "fk", "ik", "workspace", "diffdrive", "potential", "astar", "pid", "cartpole", "dls", "rrtstar",
+    "fk",
+    "ik",
+    "workspace",
+    "diffdrive",
+    "potential",
+    "astar",
+    "pid",
+    "cartpole",
+    "dls",
+    "rrtstar",
     "ekf",
 ];
 const READING: [&str; 3] = ["theory", "procedure", "references"];

@@ -190,8 +190,20 @@ export async function withPage(lab, options, fn) {
  */
 export async function open(lab, page, hash = "#/") {
   await page.goto(`${lab.server.base}index.html${hash}`);
-  if (/^#\/[^/?]+/.test(hash)) {
+  const id = hash.match(/^#\/([^/?]+)/)?.[1];
+  if (id) {
     await waitReady(page);
+    // A link to an experiment of another module (the same page, a new hash)
+    // starts that module: wait until its simulation is mounted (on any tab),
+    // unless the link names no experiment at all.
+    const known = await page.evaluate(
+      (x) => Boolean(document.querySelector(`meta[name=lab-page][content="${CSS.escape(x)}"]`)) && x !== "home",
+      id,
+    );
+    if (known) {
+      const art = `article.exp[data-experiment="${id}"]:not([hidden])`;
+      await page.waitForSelector(`${art} canvas.sim-canvas, ${art} .sim-error`, { state: "attached" });
+    }
   } else {
     await page.waitForSelector("[data-page=home]:not([hidden])");
   }

@@ -280,7 +280,11 @@ pub fn place_label(
             spots.push((r.distance_to(anchor), r));
         }
     }
-    spots.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.x.total_cmp(&b.1.x)).then(a.1.y.total_cmp(&b.1.y)));
+    spots.sort_unstable_by(|a, b| {
+        a.0.total_cmp(&b.0)
+            .then(a.1.x.total_cmp(&b.1.x))
+            .then(a.1.y.total_cmp(&b.1.y))
+    });
     for (d, r) in spots {
         if d < 4.0 {
             continue; // never on the anchor itself

@@ -12,9 +12,9 @@
 //! which `main.js` reads.
 
 use crate::util::{self, file_len, remove_dir, step};
-use labcore::catalogue::CATALOGUE;
 #[cfg(test)]
 use labcore::catalogue::Group;
+use labcore::catalogue::CATALOGUE;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -139,11 +139,7 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
         optimise(root, &glue_dir.join(format!("{key}_bg.wasm")))?;
         crate::minify::minify_in_place(root, &glue_dir.join(format!("{key}.js")))?;
         println!("module '{key}' built in {:.1} s", t.elapsed().as_secs_f64());
-        built.push(Built {
-            key,
-            ids,
-            glue_dir,
-        });
+        built.push(Built { key, ids, glue_dir });
     }
     Ok(built)
 }
@@ -231,15 +227,21 @@ mod tests {
 
     #[test]
     fn every_experiment_is_in_exactly_one_module_of_its_own_group() {
-        let mut all: Vec<&str> = MODULES.iter().flat_map(|(_, ids)| ids.iter().copied()).collect();
+        let mut all: Vec<&str> = MODULES
+            .iter()
+            .flat_map(|(_, ids)| ids.iter().copied())
+            .collect();
         assert_eq!(all.len(), labcore::registry().len());
         all.sort_unstable();
         all.dedup();
         assert_eq!(all.len(), labcore::registry().len());
         for (key, ids) in MODULES {
-            let group = labcore::catalogue::planned(ids[0]).expect("catalogued").group;
+            let group = labcore::catalogue::planned(ids[0])
+                .expect("catalogued")
+                .group;
             assert!(
-                ids.iter().all(|id| labcore::catalogue::planned(id).map(|p| p.group) == Some(group)),
+                ids.iter()
+                    .all(|id| labcore::catalogue::planned(id).map(|p| p.group) == Some(group)),
                 "module {key} mixes groups"
             );
             assert!(group_ids(group).iter().any(|id| ids.contains(id)));

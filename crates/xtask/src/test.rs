@@ -87,6 +87,23 @@ pub fn test(opts: Options) -> Result<(), String> {
                     "--",
                     "-D",
                     "warnings",
+                ]))?;
+                // As a shipped module is built: one experiment, no reading
+                // content (the code behind `cfg(not(feature = "reading"))`).
+                util::run(util::cargo().args([
+                    "clippy",
+                    "-p",
+                    "labweb",
+                    "-p",
+                    "labcore",
+                    "--target",
+                    "wasm32-unknown-unknown",
+                    "--no-default-features",
+                    "--features",
+                    "labcore/astar",
+                    "--",
+                    "-D",
+                    "warnings",
                 ]))
             }),
         ));

@@ -1023,7 +1023,9 @@ const ARENA_LONGEST: &str = "version 1\n12\tarena.map\t49\t49\t4\t32\t47\t19\t48
 
 /// [`ARENA_LONGEST`], read.
 fn arena_scenario() -> Option<crate::planning::movingai::Scenario> {
-    parse_scen(ARENA_LONGEST).ok().and_then(|s| s.last().cloned())
+    parse_scen(ARENA_LONGEST)
+        .ok()
+        .and_then(|s| s.last().cloned())
 }
 
 /// The cells of `grid` that differ from `base`, as the runs of a wall code

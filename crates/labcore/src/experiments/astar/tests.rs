@@ -315,7 +315,10 @@ fn load_file_reads_a_map_and_refuses_a_malformed_one_unchanged() {
     a.action("arena").unwrap();
     a.action("plan").unwrap();
     settle(&mut a);
-    let s = parse_scen(crate::planning::movingai::ARENA_SCEN).unwrap().pop().unwrap();
+    let s = parse_scen(crate::planning::movingai::ARENA_SCEN)
+        .unwrap()
+        .pop()
+        .unwrap();
     assert!((a.path_cost - s.optimal_length).abs() < 1e-6);
 }
 
@@ -1444,5 +1447,7 @@ fn the_arena_scenario_is_the_files_last() {
     use crate::planning::movingai::{parse_scen, ARENA_SCEN};
     let all = parse_scen(ARENA_SCEN).unwrap();
     assert_eq!(arena_scenario(), all.last().cloned());
-    assert!(all.iter().all(|s| s.bucket <= arena_scenario().unwrap().bucket));
+    assert!(all
+        .iter()
+        .all(|s| s.bucket <= arena_scenario().unwrap().bucket));
 }
