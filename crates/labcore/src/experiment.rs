@@ -638,12 +638,7 @@ pub trait Experiment {
             return false;
         }
         self.input(Input::PointerDown(h.at));
-        self.input(Input::PointerMove {
-            pos: to,
-            pressed: true,
-        });
-        self.input(Input::PointerUp(to));
-        true
+        finish_drag(self, to)
     }
     /// One or two sentences a screen reader says about the scene ("robot at
     /// (2.10, 3.40) m heading 45°, 2 of 3 waypoints reached"), on request and
@@ -735,6 +730,18 @@ pub trait Experiment {
     fn animating(&self) -> bool {
         true
     }
+}
+
+/// Ends a drag an experiment has grabbed (a press on a handle, or its own
+/// record of one): moves the pressed pointer to `to` and releases it there,
+/// as a hand would. [`Experiment::move_handle`] and its overrides end with it.
+pub fn finish_drag<E: Experiment + ?Sized>(exp: &mut E, to: DVec2) -> bool {
+    exp.input(Input::PointerMove {
+        pos: to,
+        pressed: true,
+    });
+    exp.input(Input::PointerUp(to));
+    true
 }
 
 /// The slot (0-based) and axis of a numbered point's link key: with prefix

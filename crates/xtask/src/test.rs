@@ -76,35 +76,23 @@ pub fn test(opts: Options) -> Result<(), String> {
             "clippy (wasm)",
             Box::new(|| {
                 dist::ensure_wasm_target()?;
-                util::run(util::cargo().args([
-                    "clippy",
-                    "-p",
-                    "labweb",
-                    "-p",
-                    "labcore",
-                    "--target",
-                    "wasm32-unknown-unknown",
-                    "--",
-                    "-D",
-                    "warnings",
-                ]))?;
-                // As a shipped module is built: one experiment, no reading
-                // content (the code behind `cfg(not(feature = "reading"))`).
-                util::run(util::cargo().args([
-                    "clippy",
-                    "-p",
-                    "labweb",
-                    "-p",
-                    "labcore",
-                    "--target",
-                    "wasm32-unknown-unknown",
-                    "--no-default-features",
-                    "--features",
-                    "labcore/astar",
-                    "--",
-                    "-D",
-                    "warnings",
-                ]))
+                // As the tests build it (every experiment), and as a shipped
+                // module is built: one experiment, no reading content (the
+                // code behind `cfg(not(feature = "reading"))`).
+                let configs: [&[&str]; 2] = [
+                    &[],
+                    &["--no-default-features", "--features", "labcore/astar"],
+                ];
+                for features in configs {
+                    util::run(
+                        util::cargo()
+                            .args(["clippy", "-p", "labweb", "-p", "labcore"])
+                            .args(["--target", "wasm32-unknown-unknown"])
+                            .args(features)
+                            .args(["--", "-D", "warnings"]),
+                    )?;
+                }
+                Ok(())
             }),
         ));
     }

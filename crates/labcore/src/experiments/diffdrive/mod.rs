@@ -680,12 +680,7 @@ impl Experiment for DiffDrive {
             at,
             moved: true,
         });
-        self.input(Input::PointerMove {
-            pos: to,
-            pressed: true,
-        });
-        self.input(Input::PointerUp(to));
-        true
+        crate::experiment::finish_drag(self, to)
     }
 
     fn describe(&self) -> String {

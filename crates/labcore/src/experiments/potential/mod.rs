@@ -798,12 +798,7 @@ impl Experiment for PotentialFieldLab {
         self.tap = None;
         self.dragging = Some(handle);
         self.selected = handle;
-        self.input(Input::PointerMove {
-            pos: to,
-            pressed: true,
-        });
-        self.input(Input::PointerUp(to));
-        true
+        crate::experiment::finish_drag(self, to)
     }
 
     fn describe(&self) -> String {

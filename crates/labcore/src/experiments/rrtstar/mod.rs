@@ -901,12 +901,7 @@ impl Experiment for RrtStarField {
         }
         self.drag = drag;
         self.nudge = drag;
-        self.input(Input::PointerMove {
-            pos: to,
-            pressed: true,
-        });
-        self.input(Input::PointerUp(to));
-        true
+        crate::experiment::finish_drag(self, to)
     }
 
     fn describe(&self) -> String {
