@@ -69,7 +69,9 @@ pub fn first_page(dist: &Path) -> Result<(Vec<String>, u64), String> {
     };
     let html = String::from_utf8_lossy(&read("index.html")?).into_owned();
     let mut files = vec!["index.html".to_owned()];
-    let mut queue: Vec<String> = referenced(&html, &["href=\"", "src=\""]);
+    // ` href=` and ` src=` only: a `data-href` (where `main.js` finds the
+    // reading pages) is not something the page loads by itself.
+    let mut queue: Vec<String> = referenced(&html, &[" href=\"", " src=\""]);
     while let Some(name) = queue.pop() {
         if files.contains(&name) || !dist.join(&name).is_file() {
             continue;
@@ -148,6 +150,15 @@ pub fn check_first_page_budget() -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_data_href_is_not_a_reference() {
+        let html = r#"<link rel="stylesheet" href="style.css"><meta name="lab-page" content="fk" data-href="pages/fk.0a1b2c3d.html"><script type="module" src="main.js"></script>"#;
+        assert_eq!(
+            referenced(html, &[" href=\"", " src=\""]),
+            ["style.css", "main.js"]
+        );
+    }
 
     #[test]
     fn finds_the_reading_page_of_an_id() {
