@@ -267,7 +267,6 @@ pub fn paint(
                 points,
                 *radius_px,
                 (width_px_canvas, height_px),
-                dpr,
             ),
             Item::Points {
                 points,
@@ -797,6 +796,12 @@ fn paint_segments_raster(
 
 /// Draws a large cloud of small square dots into one RGBA image (like
 /// [`paint_segments_raster`]: one `drawImage` instead of a call per dot).
+///
+/// The image has one pixel per CSS pixel, whatever the pixel ratio, and
+/// covers only the dots' bounding box: a streaming cloud (the workspace
+/// sweep adds to it at every frame) is uploaded at every frame, and at a
+/// pixel ratio of 2 a full-canvas device-pixel image is four times the
+/// bytes for dots that are a pixel or two across anyway.
 fn paint_points_raster(
     ctx: &CanvasRenderingContext2d,
     viewport: &Viewport,
@@ -804,23 +809,38 @@ fn paint_points_raster(
     points: &[DVec2],
     radius_px: f64,
     (css_w, css_h): (f64, f64),
-    dpr: f64,
 ) {
-    let w = (css_w * dpr).round().max(1.0) as usize;
-    let h = (css_h * dpr).round().max(1.0) as usize;
     let [r, g, b] = hex_rgb(colour);
     let pixel = [r, g, b, 140];
-    let half = (radius_px * dpr).round().max(1.0) as i64;
+    let half = radius_px.round().max(1.0) as i64;
+    // The dots' bounding box in whole CSS pixels, within the canvas.
+    let (mut x0, mut y0, mut x1, mut y1) = (i64::MAX, i64::MAX, i64::MIN, i64::MIN);
+    for p in points {
+        let q = viewport.to_px(*p);
+        if q.is_finite() {
+            let (cx, cy) = (q.x.round() as i64, q.y.round() as i64);
+            x0 = x0.min(cx - half + 1);
+            y0 = y0.min(cy - half + 1);
+            x1 = x1.max(cx + half);
+            y1 = y1.max(cy + half);
+        }
+    }
+    let (x0, y0) = (x0.max(0), y0.max(0));
+    let (x1, y1) = (x1.min(css_w.ceil() as i64), y1.min(css_h.ceil() as i64));
+    if x1 <= x0 || y1 <= y0 {
+        return;
+    }
+    let (w, h) = ((x1 - x0) as usize, (y1 - y0) as usize);
     SEGMENT_BUFFER.with(|buffer| {
         let mut rgba = buffer.borrow_mut();
         rgba.clear();
         rgba.resize(w * h * 4, 0);
         for p in points {
-            let q = viewport.to_px(*p) * dpr;
+            let q = viewport.to_px(*p);
             if !q.is_finite() {
                 continue;
             }
-            let (cx, cy) = (q.x.round() as i64, q.y.round() as i64);
+            let (cx, cy) = (q.x.round() as i64 - x0, q.y.round() as i64 - y0);
             for y in (cy - half + 1).max(0)..(cy + half).min(h as i64) {
                 for x in (cx - half + 1).max(0)..(cx + half).min(w as i64) {
                     let i = (y as usize * w + x as usize) * 4;
@@ -828,7 +848,14 @@ fn paint_points_raster(
                 }
             }
         }
-        blit_to(ctx, &rgba, (w, h), (0.0, 0.0, css_w, css_h), true);
+        // Crisp: each image pixel becomes a square of device pixels.
+        blit_to(
+            ctx,
+            &rgba,
+            (w, h),
+            (x0 as f64, y0 as f64, w as f64, h as f64),
+            false,
+        );
     });
 }
 

@@ -7,11 +7,13 @@ use crate::dom::{self, escape, query, query_all};
 use crate::draw::Palette;
 use labcore::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, SeriesRole};
 use labcore::quiz::format_number;
+use std::cell::RefCell;
+use std::rc::Rc;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 use web_sys::{
     CanvasRenderingContext2d, Element, HtmlCanvasElement, ImageBitmapRenderingContext,
-    OffscreenCanvas,
+    IntersectionObserver, IntersectionObserverEntry, OffscreenCanvas,
 };
 
 /// Most rows shown in a plot's data table (the CSV always has every row).
@@ -269,31 +271,65 @@ pub fn place_label(
         }
     }
     // A ring search: spots around the anchor, nearest first.
-    let mut spots = Vec::new();
+    RING_SPOTS.with(|cache| {
+        let mut cache = cache.borrow_mut();
+        let key = (w.to_bits(), h.to_bits());
+        let at_key = match cache.iter().position(|(k, _)| *k == key) {
+            Some(i) => i,
+            None => {
+                if cache.len() >= RING_SIZES_KEPT {
+                    cache.remove(0);
+                }
+                cache.push((key, ring_spots(w, h)));
+                cache.len() - 1
+            }
+        };
+        for &(d, dx, dy) in &cache[at_key].1 {
+            if d < 4.0 {
+                continue; // never on the anchor itself
+            }
+            if keep(&mut best, at(anchor.0 + dx, anchor.1 + dy), d) == 0 {
+                break;
+            }
+        }
+    });
+    best.map_or(clamp(at(anchor.0, anchor.1)), |b| b.2)
+}
+
+/// The ring search's spots for a `w` × `h` label: (distance to the anchor,
+/// offset of the label's corner from it), nearest first, ties by x then y.
+/// The order does not depend on where the anchor is, so one sort serves
+/// every label of that size (a streaming plot places its labels at every
+/// paint).
+fn ring_spots(w: f64, h: f64) -> Vec<(f64, f64, f64)> {
     let (step_x, step_y) = (8.0, (h * 0.5).max(6.0));
+    let mut spots = Vec::new();
     for i in -24..=24 {
         for j in -16..=16 {
-            let r = at(
-                anchor.0 + f64::from(i) * step_x - w / 2.0,
-                anchor.1 + f64::from(j) * step_y - h / 2.0,
+            let (dx, dy) = (
+                f64::from(i) * step_x - w / 2.0,
+                f64::from(j) * step_y - h / 2.0,
             );
-            spots.push((r.distance_to(anchor), r));
+            let r = Rect { x: dx, y: dy, w, h };
+            spots.push((r.distance_to((0.0, 0.0)), dx, dy));
         }
     }
     spots.sort_unstable_by(|a, b| {
         a.0.total_cmp(&b.0)
-            .then(a.1.x.total_cmp(&b.1.x))
-            .then(a.1.y.total_cmp(&b.1.y))
+            .then(a.1.total_cmp(&b.1))
+            .then(a.2.total_cmp(&b.2))
     });
-    for (d, r) in spots {
-        if d < 4.0 {
-            continue; // never on the anchor itself
-        }
-        if keep(&mut best, r, d) == 0 {
-            break;
-        }
-    }
-    best.map_or(clamp(at(anchor.0, anchor.1)), |b| b.2)
+    spots
+}
+
+/// Label sizes (as bits) with their [`ring_spots`], oldest first.
+type RingCache = Vec<((u64, u64), Vec<(f64, f64, f64)>)>;
+
+/// How many label sizes keep their ring: a plot has a few labels at most.
+const RING_SIZES_KEPT: usize = 16;
+
+thread_local! {
+    static RING_SPOTS: std::cell::RefCell<RingCache> = const { std::cell::RefCell::new(Vec::new()) };
 }
 
 /// The number of decimals that shows every multiple of `step` exactly
@@ -498,6 +534,8 @@ struct Drawn {
     hover_x: Option<f64>,
     /// Whether the x axis fits the latest run (the comparison runs ignored).
     fit_latest: bool,
+    /// Where its labels went at the last paint.
+    labels: LabelMemory,
     parts: Parts,
     shown: Shown,
 }
@@ -583,12 +621,71 @@ struct Shown {
 /// Every plot of the mounted simulation.
 pub struct PlotView {
     plots: Vec<Drawn>,
+    /// Whether each plot's canvas is on screen, as the browser last said.
+    visible: Rc<RefCell<Vec<bool>>>,
+    _watch: Option<VisibilityWatch>,
+    /// When the summaries were last written (animation-frame time, ms).
+    summaries_ms: f64,
+}
+
+/// The observer that tells which plots are on screen, disconnected on drop.
+struct VisibilityWatch {
+    observer: IntersectionObserver,
+    _closure: Closure<dyn FnMut(js_sys::Array)>,
+}
+
+impl Drop for VisibilityWatch {
+    fn drop(&mut self) {
+        self.observer.disconnect();
+    }
+}
+
+/// Watches `canvases` scroll in and out of view, writing into `visible`.
+fn watch_visibility(
+    canvases: Vec<HtmlCanvasElement>,
+    visible: &Rc<RefCell<Vec<bool>>>,
+) -> Option<VisibilityWatch> {
+    let flags = visible.clone();
+    let watched = canvases.clone();
+    let closure = Closure::<dyn FnMut(js_sys::Array)>::new(move |entries: js_sys::Array| {
+        let mut flags = flags.borrow_mut();
+        for entry in entries.iter() {
+            let entry: IntersectionObserverEntry = entry.unchecked_into();
+            let target = entry.target();
+            if let Some(i) = watched
+                .iter()
+                .position(|c| c.is_same_node(Some(target.as_ref())))
+            {
+                if let Some(flag) = flags.get_mut(i) {
+                    *flag = entry.is_intersecting();
+                }
+            }
+        }
+    });
+    let observer = IntersectionObserver::new(closure.as_ref().unchecked_ref()).ok()?;
+    for c in &canvases {
+        observer.observe(c);
+    }
+    Some(VisibilityWatch {
+        observer,
+        _closure: closure,
+    })
 }
 
 /// Shortest time between two paints of one plot while its data streams,
 /// milliseconds: a curve needs no 60 Hz, and the frame keeps its budget for
 /// the simulation.
 pub const PLOT_INTERVAL_MS: f64 = 66.0;
+
+/// The same for a plot scrolled out of view: it is kept roughly up to date
+/// (for a glance, a test or a screen reader's table) without costing the
+/// frames of the plots a student is watching. On a phone most plots are
+/// below the fold.
+pub const HIDDEN_PLOT_INTERVAL_MS: f64 = 1000.0;
+
+/// Shortest time between two writes of the plots' text summaries while a
+/// run streams, milliseconds.
+pub const SUMMARY_INTERVAL_MS: f64 = 1000.0;
 
 impl PlotView {
     /// Finds the plot figures rendered by [`render`] inside `root`.
@@ -642,12 +739,50 @@ impl PlotView {
                     frame: Frame::default(),
                     hover_x: None,
                     fit_latest: false,
+                    labels: LabelMemory::default(),
                     parts,
                     shown,
                 })
             })
-            .collect();
-        Self { plots }
+            .collect::<Vec<Drawn>>();
+        // Every plot counts as on screen until the browser says otherwise.
+        let visible = Rc::new(RefCell::new(vec![true; plots.len()]));
+        let watch = if plots.is_empty() {
+            None
+        } else {
+            watch_visibility(plots.iter().map(|d| d.canvas.clone()).collect(), &visible)
+        };
+        Self {
+            plots,
+            visible,
+            _watch: watch,
+            summaries_ms: f64::NEG_INFINITY,
+        }
+    }
+
+    /// Marks plot `key` as on screen or not (as the browser's intersection
+    /// observer does when the page scrolls); for tests.
+    #[doc(hidden)]
+    pub fn set_visible(&mut self, key: &str, on_screen: bool) {
+        if let Some(i) = self.plots.iter().position(|d| d.key == key) {
+            if let Some(flag) = self.visible.borrow_mut().get_mut(i) {
+                *flag = on_screen;
+            }
+        }
+    }
+
+    /// The shortest time between two paints of each plot now, ms.
+    fn intervals(&self) -> Vec<f64> {
+        let visible = self.visible.borrow();
+        (0..self.plots.len())
+            .map(|i| {
+                if visible.get(i).copied().unwrap_or(true) {
+                    PLOT_INTERVAL_MS
+                } else {
+                    HIDDEN_PLOT_INTERVAL_MS
+                }
+            })
+            .collect()
     }
 
     /// Reads every plot canvas's size. Call it before the frame writes to the
@@ -665,12 +800,14 @@ impl PlotView {
     }
 
     /// Whether some plot may be painted at `now_ms` (its last paint is at
-    /// least [`PLOT_INTERVAL_MS`] old).
+    /// least [`PLOT_INTERVAL_MS`] old, [`HIDDEN_PLOT_INTERVAL_MS`] if it is
+    /// out of view).
     #[must_use]
     pub fn due(&self, now_ms: f64) -> bool {
         self.plots
             .iter()
-            .any(|d| now_ms - d.painted_ms >= PLOT_INTERVAL_MS)
+            .zip(self.intervals())
+            .any(|(d, interval)| now_ms - d.painted_ms >= interval)
     }
 
     /// Repaints the plots whose data, size or theme changed (every plot with
@@ -685,17 +822,38 @@ impl PlotView {
         }
     }
 
+    /// Writes every plot's text summary that changed. The frame loop calls it
+    /// with the rest of the page's text, not at every plot paint: at once
+    /// with `now` (an input, the end of a motion), else at most every
+    /// [`SUMMARY_INTERVAL_MS`]. Summaries are read on demand by a screen
+    /// reader, not watched; every text written costs the page a layout.
+    pub fn sync_text(&mut self, plots: &[Plot], now_ms: f64, now: bool) {
+        if !now && now_ms - self.summaries_ms < SUMMARY_INTERVAL_MS {
+            return;
+        }
+        self.summaries_ms = now_ms;
+        for drawn in &mut self.plots {
+            if let Some(plot) = plots.iter().find(|p| p.key == drawn.key) {
+                drawn.sync_summary(plot);
+            }
+        }
+    }
+
     /// Paints at most one plot at animation-frame time `now_ms`: of those
     /// whose data or size changed and whose last paint is at least
-    /// [`PLOT_INTERVAL_MS`] old, the one painted longest ago. Several plots
+    /// [`PLOT_INTERVAL_MS`] old ([`HIDDEN_PLOT_INTERVAL_MS`] out of view),
+    /// the one painted longest ago. Several plots
     /// streaming together thus take turns, one a frame, each still about
     /// every [`PLOT_INTERVAL_MS`]. Uses the sizes of the last
     /// [`PlotView::measure`]. Returns whether a plot was painted.
     pub fn draw_next(&mut self, plots: &[Plot], palette: &Palette, now_ms: f64) -> bool {
+        let intervals = self.intervals();
         let next = self
             .plots
             .iter_mut()
-            .filter(|d| now_ms - d.painted_ms >= PLOT_INTERVAL_MS)
+            .zip(intervals)
+            .filter(|(d, interval)| now_ms - d.painted_ms >= *interval)
+            .map(|(d, _)| d)
             .filter_map(|d| {
                 let plot = plots.iter().find(|p| p.key == d.key)?;
                 d.stale(plot).then_some((d, plot))
@@ -733,7 +891,15 @@ impl PlotView {
             let left = drawn.canvas.get_bounding_client_rect().left();
             drawn.frame.world_x(cx - left)
         });
-        drawn.frame = paint_plot_layout(&drawn.ctx, plot, palette, drawn.size, drawn.fit_latest).0;
+        drawn.frame = paint_plot_layout(
+            &drawn.ctx,
+            plot,
+            palette,
+            drawn.size,
+            drawn.fit_latest,
+            &mut drawn.labels,
+        )
+        .0;
         match drawn.hover_x {
             Some(x) => show_nearest(drawn, plot, palette, x),
             None => {
@@ -786,6 +952,17 @@ impl PlotView {
 }
 
 impl Drawn {
+    /// Writes the plot's text summary (read by screen readers) if it changed.
+    fn sync_summary(&mut self, plot: &Plot) {
+        if let Some(summary) = &self.parts.summary {
+            let text = plot.summary();
+            if self.shown.summary.as_deref() != Some(text.as_str()) {
+                summary.set_text_content(Some(&text));
+                self.shown.summary = Some(text);
+            }
+        }
+    }
+
     /// Whether the plot's data or the measured size differ from what is drawn.
     fn stale(&self, plot: &Plot) -> bool {
         self.measured.0 >= 1.0
@@ -808,7 +985,14 @@ impl Drawn {
             self.size = size;
         }
         self.revision = Some(plot.revision);
-        let (frame, layout) = paint_plot_layout(&self.ctx, plot, palette, size, self.fit_latest);
+        let (frame, layout) = paint_plot_layout(
+            &self.ctx,
+            plot,
+            palette,
+            size,
+            self.fit_latest,
+            &mut self.labels,
+        );
         self.frame = frame;
         let json = layout.json();
         if json != self.shown.layout {
@@ -832,13 +1016,6 @@ impl Drawn {
             if self.shown.fit_hidden != Some(hide) {
                 dom::set_hidden(button, hide);
                 self.shown.fit_hidden = Some(hide);
-            }
-        }
-        if let Some(summary) = &self.parts.summary {
-            let text = plot.summary();
-            if self.shown.summary.as_deref() != Some(text.as_str()) {
-                summary.set_text_content(Some(&text));
-                self.shown.summary = Some(text);
             }
         }
         // A series with no samples yet (an empty slot for a pinned run) has
@@ -911,7 +1088,24 @@ pub(crate) fn paint_plot(
     palette: &Palette,
     size: (f64, f64, f64),
 ) -> Frame {
-    paint_plot_layout(ctx, plot, palette, size, false).0
+    paint_plot_layout(ctx, plot, palette, size, false, &mut LabelMemory::default()).0
+}
+
+/// Where each label of a plot went at its last paint: the label's text and
+/// its corner's offset from its anchor. A streaming plot is repainted many
+/// times a second; a label keeps its place while that place stays free,
+/// rather than being searched for again (and jumping about) at every paint.
+#[derive(Default)]
+pub(crate) struct LabelMemory(Vec<(String, (f64, f64))>);
+
+impl LabelMemory {
+    /// The spot `label` had, moved with its `anchor`, if it had one.
+    fn spot(&self, label: &str, anchor: (f64, f64)) -> Option<(f64, f64)> {
+        self.0
+            .iter()
+            .find(|(l, _)| l == label)
+            .map(|(_, (dx, dy))| (anchor.0 + dx, anchor.1 + dy))
+    }
 }
 
 /// The font of every text on a plot.
@@ -931,6 +1125,7 @@ pub(crate) fn paint_plot_layout(
     palette: &Palette,
     (w, h, dpr): (f64, f64, f64),
     fit_latest: bool,
+    labels: &mut LabelMemory,
 ) -> (Frame, Layout) {
     let mut layout = Layout::default();
     let _ = ctx.set_transform(dpr, 0.0, 0.0, dpr, 0.0, 0.0);
@@ -1177,6 +1372,7 @@ pub(crate) fn paint_plot_layout(
     let diamond_count = taken.len();
     // Reference-line labels: at an end of their line, where no series is.
     let mut to_draw: Vec<PlacedLabel> = Vec::new();
+    let mut placed = Vec::new();
     for (line, a, b) in &ref_px {
         if line.label.is_empty() {
             continue;
@@ -1199,8 +1395,14 @@ pub(crate) fn paint_plot_layout(
             ],
         };
         let anchor = (b.0, b.1);
+        let preferred: Vec<(f64, f64)> = labels
+            .spot(&line.label, anchor)
+            .into_iter()
+            .chain(preferred)
+            .collect();
         let r = place_label(anchor, size, &preferred, &plot_rect, &curves, &taken);
         taken.push(r);
+        placed.push((line.label.clone(), (r.x - anchor.0, r.y - anchor.1)));
         to_draw.push((line.label.clone(), r, None));
     }
     // Marker labels: beside their diamond if free, else in free space with a
@@ -1212,12 +1414,16 @@ pub(crate) fn paint_plot_layout(
             continue;
         }
         let size = (measure(&m.label) + 6.0, TICK_H + 2.0);
-        let preferred = [
-            (px + 8.0, py - size.1 - 4.0),
-            (px - size.0 - 8.0, py - size.1 - 4.0),
-            (px + 8.0, py + 4.0),
-            (px - size.0 - 8.0, py + 4.0),
-        ];
+        let preferred: Vec<(f64, f64)> = labels
+            .spot(&m.label, (*px, *py))
+            .into_iter()
+            .chain([
+                (px + 8.0, py - size.1 - 4.0),
+                (px - size.0 - 8.0, py - size.1 - 4.0),
+                (px + 8.0, py + 4.0),
+                (px - size.0 - 8.0, py + 4.0),
+            ])
+            .collect();
         let r = place_label(
             (*px, *py),
             size,
@@ -1227,9 +1433,11 @@ pub(crate) fn paint_plot_layout(
             &taken,
         );
         taken.push(r);
+        placed.push((m.label.clone(), (r.x - px, r.y - py)));
         let far = r.distance_to((*px, *py)) > 12.0;
         to_draw.push((m.label.clone(), r, far.then_some((*px, *py))));
     }
+    labels.0 = placed;
     ctx.set_text_align("left");
     ctx.set_text_baseline("middle");
     for (label, r, leader) in &to_draw {

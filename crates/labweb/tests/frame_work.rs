@@ -198,6 +198,7 @@ impl labcore::Experiment for Streamer {
         vec![
             labcore::Readout::new("gain", "Gain", "2.00".to_owned()),
             labcore::Readout::new("mode", "Mode", "streaming".to_owned()),
+            labcore::Readout::new("clock", "Clock", format!("{:.3} s", self.t_s)),
         ]
     }
     fn plots(&self) -> &[Plot] {
@@ -250,7 +251,7 @@ fn four_streaming_plots_take_turns_one_paint_a_frame_each_about_every_66_ms() {
     let per_plot = plot_paints();
     assert_eq!(per_plot, [2, 2, 2, 2], "paints per plot in frames 0 to 8");
     // Two seconds more: never two plot paints in one frame, and each plot
-    // still about every 66 ms (30 each; at least 28 each allows for phase).
+    // still about every 66 ms.
     let mut most_in_a_frame = 0;
     let mut total = 0;
     for i in 9..129 {
@@ -264,7 +265,53 @@ fn four_streaming_plots_take_turns_one_paint_a_frame_each_about_every_66_ms() {
         most_in_a_frame <= 1,
         "{most_in_a_frame} plot paints in one frame"
     );
-    assert!(total >= 4 * 28, "{total} plot paints in 120 frames");
+    // 120 frames, less the one in fifteen that writes the page's text
+    // (every 250 ms) and paints no plot: 112, 28 a plot.
+    assert!(total >= 4 * 26, "{total} plot paints in 120 frames");
+}
+
+/// The `data-layout` a plot's canvas carries (rewritten at each paint that
+/// moved a label or an axis).
+fn plot_layout(key: &str) -> String {
+    document()
+        .query_selector(&format!(
+            "#lab-under-test figure[data-plot=\"{key}\"] canvas"
+        ))
+        .unwrap()
+        .unwrap()
+        .get_attribute("data-layout")
+        .unwrap_or_default()
+}
+
+#[wasm_bindgen_test]
+fn a_plot_out_of_view_is_painted_once_a_second_and_at_once_when_it_comes_back() {
+    let view = mount(Streamer::new(2, 200));
+    for i in 0..10 {
+        view.frame_at(frame_ms(i));
+    }
+    view.set_plot_visible("b", false);
+    reset_counts();
+    // Two seconds of streaming.
+    for i in 10..130 {
+        view.frame_at(frame_ms(i));
+    }
+    let mut per_plot = plot_paints();
+    per_plot.sort_unstable();
+    // The plot in view about every 66 ms (a few frames go to the page's
+    // text); the other once a second (labweb::plot_view::HIDDEN_PLOT_INTERVAL_MS).
+    assert_eq!(per_plot.len(), 2, "{per_plot:?}");
+    assert!((1..=3).contains(&per_plot[0]), "{per_plot:?}");
+    assert!(per_plot[1] >= 24, "{per_plot:?}");
+    // Scrolled back into view: painted at the next frame or the one after.
+    let before = plot_layout("b");
+    view.set_plot_visible("b", true);
+    view.frame_at(frame_ms(130));
+    view.frame_at(frame_ms(131));
+    assert_ne!(
+        plot_layout("b"),
+        before,
+        "the plot back in view was not repainted"
+    );
 }
 
 #[wasm_bindgen_test]
@@ -323,23 +370,94 @@ fn repainting_what_has_not_changed_writes_nothing_to_the_page_and_measures_no_te
     assert_eq!(count("sim.fillText"), LABELS as u32);
 }
 
+/// The text of the `<dd>` of readout `key` on the page.
+fn readout_text(key: &str) -> String {
+    document()
+        .query_selector(&format!("#lab-under-test [data-readout=\"{key}\"]"))
+        .unwrap()
+        .unwrap()
+        .text_content()
+        .unwrap_or_default()
+}
+
 #[wasm_bindgen_test]
-fn running_frames_write_only_the_time_when_readouts_do_not_change() {
+fn while_a_run_streams_the_page_text_is_written_every_250_ms_and_never_in_a_plot_frame() {
+    // The clock readout and the time change at every step.
     let view = mount(Streamer::new(1, 10));
     for i in 0..10 {
         view.frame_at(frame_ms(i));
     }
-    let mut text_writes = Vec::new();
+    let mut text_frames = Vec::new();
+    let summary = || {
+        document()
+            .query_selector("#lab-under-test .plot-summary")
+            .unwrap()
+            .unwrap()
+            .text_content()
+            .unwrap_or_default()
+    };
+    let mut summaries = vec![summary()];
     for i in 10..70 {
         reset_counts();
         view.frame_at(frame_ms(i));
-        text_writes.push(count("dom.textContent"));
+        if summary() != *summaries.last().unwrap() {
+            summaries.push(summary());
+        }
+        let writes = count("dom.textContent");
+        let plot_paints: u32 = plot_paints().iter().sum();
+        if writes > 0 {
+            text_frames.push(i);
+            assert_eq!(plot_paints, 0, "frame {i} wrote text and painted a plot");
+        }
     }
-    // At 1× and 60 Hz the time "t = 0.00 s" changes every frame; the
-    // readouts never do; the plot's summary only when it is painted.
-    assert!(text_writes.iter().all(|n| *n <= 2), "{text_writes:?}");
-    let time_only = text_writes.iter().filter(|n| **n == 1).count();
-    assert!(time_only >= 40, "{text_writes:?}");
+    // 60 frames of 16.7 ms with a write at most every 250 ms
+    // (labweb::sim::TEXT_INTERVAL_MS): 4, or 5 with the phase.
+    assert!(
+        (4..=5).contains(&text_frames.len()),
+        "frames that wrote text: {text_frames:?}"
+    );
+    assert!(
+        text_frames
+            .windows(2)
+            .all(|w| frame_ms(w[1]) - frame_ms(w[0]) >= labweb::sim::TEXT_INTERVAL_MS),
+        "{text_frames:?}"
+    );
+    // The plot's summary for screen readers: once a second
+    // (labweb::plot_view::SUMMARY_INTERVAL_MS).
+    assert!(summaries.len() <= 3, "{summaries:?}");
+}
+
+#[wasm_bindgen_test]
+fn pausing_shows_the_readouts_of_the_moment_it_stopped_at_the_next_frame() {
+    let view = mount(Streamer::new(1, 10));
+    for i in 0..37 {
+        view.frame_at(frame_ms(i));
+    }
+    let play = document()
+        .query_selector("#lab-under-test .tb-play")
+        .unwrap()
+        .unwrap()
+        .dyn_into::<web_sys::HtmlElement>()
+        .unwrap();
+    play.click();
+    view.frame_at(frame_ms(37));
+    // The model's time when it stopped: the steps the clock took, 1/60 s each.
+    let steps: f64 = document()
+        .query_selector("#lab-under-test .sim-canvas")
+        .unwrap()
+        .unwrap()
+        .get_attribute("data-steps")
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(readout_text("clock"), format!("{:.3} s", steps / 60.0));
+    let time = document()
+        .query_selector("#lab-under-test .tb-time")
+        .unwrap()
+        .unwrap()
+        .text_content()
+        .unwrap();
+    assert_eq!(time, format!("t = {:.2} s", steps / 60.0));
 }
 
 #[wasm_bindgen_test]

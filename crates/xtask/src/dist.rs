@@ -183,7 +183,9 @@ pub fn wasm_opt(root: &Path, input: &Path, output: &Path, level: &str) -> Result
     }
     util::run(
         Command::new(&bin)
-            .arg(level)
+            // One level (`-O3`), or several flags (`-O3 -g` keeps the names,
+            // for a profile).
+            .args(level.split_whitespace())
             .args(WASM_FEATURES)
             .arg(input)
             .arg("-o")

@@ -40,6 +40,14 @@ use timebar::timebar_html;
 /// Minimum time between URL updates while a control moves, milliseconds.
 const HASH_INTERVAL_MS: f64 = 250.0;
 
+/// Minimum time between two writes of the page's text (readouts, status,
+/// tables, the time, plot summaries) while the clock alone changes them,
+/// milliseconds. Numbers that change 60 times a second cannot be read, and
+/// every text write makes the browser restyle, lay out and repaint the page:
+/// on a phone at a 4× CPU throttle that cost a frame each time. An input, an
+/// action or the end of a motion writes at once.
+pub const TEXT_INTERVAL_MS: f64 = 250.0;
+
 /// Why the simulation could not start (the reading tabs still work).
 #[derive(Debug)]
 pub struct SimError(pub String);
@@ -184,6 +192,10 @@ struct SimState {
     /// The time bar's `t = … s` output and its text.
     time_output: Option<Element>,
     shown_time_text: String,
+    /// When the page's text was last written (animation-frame time, ms).
+    text_ms: f64,
+    /// The model moved since the page's text was last written.
+    text_stale: bool,
     shown_status: Option<labcore::Status>,
     notices: NoticeShelf,
     /// Serial of the notice on screen.
@@ -296,6 +308,9 @@ impl SimState {
         if plots_due {
             self.plots.measure();
         }
+        // Painting asked for by an input, an action or a resize (before the
+        // clock's steps ask for theirs): its text is written at once.
+        let input_paint = self.needs_paint;
         let was_animating = self.exp.animating();
         // An idle experiment's clock does not tick (t counts motion only).
         let steps = if was_animating || !self.exp.animated() {
@@ -329,23 +344,38 @@ impl SimState {
             self.needs_paint = true;
         }
         let busy = self.needs_paint || steps > 0;
+        // The page's text follows the model at once after an input or when a
+        // motion ends; while only the clock moves it, every TEXT_INTERVAL_MS.
+        let text_due = input_paint
+            || stopped
+            || self.phase != phase_before
+            || time_ms - self.text_ms >= TEXT_INTERVAL_MS;
         if self.needs_paint {
             self.resize();
             self.paint();
-            self.sync_dom();
+            self.text_stale = true;
             self.needs_paint = false;
         }
+        let write_text = self.text_stale && text_due;
+        if write_text {
+            self.sync_dom();
+            let at_once = input_paint || !self.exp.animating();
+            self.plots.sync_text(self.exp.plots(), time_ms, at_once);
+            self.text_ms = time_ms;
+            self.text_stale = false;
+        }
         // Plots follow the data, each at most every PLOT_INTERVAL_MS and
-        // one a frame (they take turns), so no frame pays for all of them.
+        // one a frame (they take turns), so no frame pays for all of them;
+        // nor for a plot and the page's text together, unless forced.
         if self.plots_force {
             self.plots.draw(self.exp.plots(), &self.palette, true);
             self.plots_force = false;
-        } else if plots_due {
+        } else if plots_due && (input_paint || !write_text) {
             self.plots
                 .draw_next(self.exp.plots(), &self.palette, time_ms);
         }
         self.sync_notice(time_ms);
-        self.sync_timebar();
+        self.sync_timebar(write_text || input_paint);
         if self.hash_dirty && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS {
             self.write_hash();
             self.last_hash_ms = time_ms;
@@ -537,6 +567,8 @@ impl SimView {
             readout_elements: Vec::new(),
             time_output: query(panel, ".timebar .tb-time"),
             shown_time_text: String::new(),
+            text_ms: f64::NEG_INFINITY,
+            text_stale: false,
             shown_status: None,
             notices: NoticeShelf::default(),
             shown_notice: None,
@@ -693,6 +725,14 @@ impl SimView {
         self.state.borrow_mut().frame(time_ms);
     }
 
+    /// Marks plot `key` as scrolled into view or out of it, as the browser's
+    /// intersection observer does (browser tests cannot scroll between
+    /// frames they drive themselves).
+    #[doc(hidden)]
+    pub fn set_plot_visible(&self, key: &str, on_screen: bool) {
+        self.state.borrow_mut().plots.set_visible(key, on_screen);
+    }
+
     /// Paints once now (used by tests and right after mounting).
     pub fn paint_now(&self) {
         let mut st = self.state.borrow_mut();
@@ -702,8 +742,9 @@ impl SimView {
         st.sync_dom();
         let st = &mut *st;
         st.plots.draw(st.exp.plots(), &st.palette, true);
+        st.plots.sync_text(st.exp.plots(), dom::now_ms(), true);
         st.plots_force = false;
-        st.sync_timebar();
+        st.sync_timebar(true);
     }
 }
 

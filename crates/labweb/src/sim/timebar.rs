@@ -120,7 +120,7 @@ impl SimState {
         self.needs_paint = true;
         self.hash_dirty = true;
         self.plots_force = true;
-        self.sync_timebar();
+        self.sync_timebar(true);
         if was_animating && !self.exp.animating() {
             self.announce();
         }
@@ -130,8 +130,11 @@ impl SimState {
         self.clock.set_running(running);
         self.last_time_ms = None;
         self.hash_dirty = true;
+        // The next frame shows the readouts of the moment it stopped (or
+        // started), not those of up to TEXT_INTERVAL_MS before.
+        self.needs_paint = true;
         // The button says so at once, not at the next frame.
-        self.sync_timebar();
+        self.sync_timebar(true);
     }
 
     pub(super) fn reset_run(&mut self) {
@@ -144,17 +147,33 @@ impl SimState {
         self.plots_force = true;
     }
 
-    /// Brings the play button, the speed and the time read-out up to date.
-    pub(super) fn sync_timebar(&mut self) {
+    /// Brings the time bar up to date: its buttons at once, the time's text
+    /// only with `text` (a frame that writes the page's text).
+    pub(super) fn sync_timebar(&mut self, text: bool) {
         let now = (
             self.clock.running(),
             self.clock.speed(),
             self.clock.steps(),
             self.phase == Phase::Ended,
         );
-        if now == self.shown_time {
-            return;
+        if now != self.shown_time {
+            self.sync_time_controls(now);
         }
+        if text {
+            // The time is written only when its text changes.
+            let text = format!("t = {:.2} s", self.clock.time_s());
+            if text != self.shown_time_text {
+                if let Some(out) = &self.time_output {
+                    out.set_text_content(Some(&text));
+                }
+                self.shown_time_text = text;
+            }
+        }
+    }
+
+    /// The step count (`data-steps` on the canvas, for tests), the play
+    /// button and the speed, for `now` = (running, speed, steps, ended).
+    fn sync_time_controls(&mut self, now: (bool, f64, u64, bool)) {
         let _ = self.canvas.set_attribute("data-steps", &now.2.to_string());
         let controls_changed =
             (now.0, now.1, now.3) != (self.shown_time.0, self.shown_time.1, self.shown_time.3);
@@ -183,14 +202,6 @@ impl SimState {
                     select.set_value(&format!("{}", now.1));
                 }
             }
-        }
-        // The time is written only when its text changes.
-        let text = format!("t = {:.2} s", self.clock.time_s());
-        if text != self.shown_time_text {
-            if let Some(out) = &self.time_output {
-                out.set_text_content(Some(&text));
-            }
-            self.shown_time_text = text;
         }
         self.shown_time = now;
     }
