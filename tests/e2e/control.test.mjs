@@ -143,8 +143,14 @@ test("cartpole: the pole is caught, nudged, dropped and caught again; LQR gains 
     await waitReadout(page, "theta", "<", 1, { abs: true });
     await pauseAndStep(page);
 
+    // Nudged while paused, the readouts show the kick itself (while a run
+    // streams they follow it four times a second, and the kick is brief).
+    const play = page.locator("button[data-time=play]");
+    await play.click();
+    await page.waitForFunction(() => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "false");
     await page.locator("button[data-action=nudge]").click();
     await waitReadout(page, "omega", ">", 5, { abs: true });
+    await play.click();
     await waitReadout(page, "theta", "<", 0.5, { abs: true });
 
     await page.locator("button[data-action=drop]").click();

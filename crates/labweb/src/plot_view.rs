@@ -7,13 +7,11 @@ use crate::dom::{self, escape, query, query_all};
 use crate::draw::Palette;
 use labcore::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, SeriesRole};
 use labcore::quiz::format_number;
-use std::cell::RefCell;
-use std::rc::Rc;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 use web_sys::{
     CanvasRenderingContext2d, Element, HtmlCanvasElement, ImageBitmapRenderingContext,
-    IntersectionObserver, IntersectionObserverEntry, OffscreenCanvas,
+    OffscreenCanvas,
 };
 
 /// Most rows shown in a plot's data table (the CSV always has every row).
@@ -536,6 +534,9 @@ struct Drawn {
     fit_latest: bool,
     /// Where its labels went at the last paint.
     labels: LabelMemory,
+    /// Whether its canvas was in the window at the last
+    /// [`PlotView::measure`].
+    on_screen: bool,
     parts: Parts,
     shown: Shown,
 }
@@ -621,55 +622,8 @@ struct Shown {
 /// Every plot of the mounted simulation.
 pub struct PlotView {
     plots: Vec<Drawn>,
-    /// Whether each plot's canvas is on screen, as the browser last said.
-    visible: Rc<RefCell<Vec<bool>>>,
-    _watch: Option<VisibilityWatch>,
     /// When the summaries were last written (animation-frame time, ms).
     summaries_ms: f64,
-}
-
-/// The observer that tells which plots are on screen, disconnected on drop.
-struct VisibilityWatch {
-    observer: IntersectionObserver,
-    _closure: Closure<dyn FnMut(js_sys::Array)>,
-}
-
-impl Drop for VisibilityWatch {
-    fn drop(&mut self) {
-        self.observer.disconnect();
-    }
-}
-
-/// Watches `canvases` scroll in and out of view, writing into `visible`.
-fn watch_visibility(
-    canvases: Vec<HtmlCanvasElement>,
-    visible: &Rc<RefCell<Vec<bool>>>,
-) -> Option<VisibilityWatch> {
-    let flags = visible.clone();
-    let watched = canvases.clone();
-    let closure = Closure::<dyn FnMut(js_sys::Array)>::new(move |entries: js_sys::Array| {
-        let mut flags = flags.borrow_mut();
-        for entry in entries.iter() {
-            let entry: IntersectionObserverEntry = entry.unchecked_into();
-            let target = entry.target();
-            if let Some(i) = watched
-                .iter()
-                .position(|c| c.is_same_node(Some(target.as_ref())))
-            {
-                if let Some(flag) = flags.get_mut(i) {
-                    *flag = entry.is_intersecting();
-                }
-            }
-        }
-    });
-    let observer = IntersectionObserver::new(closure.as_ref().unchecked_ref()).ok()?;
-    for c in &canvases {
-        observer.observe(c);
-    }
-    Some(VisibilityWatch {
-        observer,
-        _closure: closure,
-    })
 }
 
 /// Shortest time between two paints of one plot while its data streams,
@@ -740,43 +694,24 @@ impl PlotView {
                     hover_x: None,
                     fit_latest: false,
                     labels: LabelMemory::default(),
+                    on_screen: true,
                     parts,
                     shown,
                 })
             })
             .collect::<Vec<Drawn>>();
-        // Every plot counts as on screen until the browser says otherwise.
-        let visible = Rc::new(RefCell::new(vec![true; plots.len()]));
-        let watch = if plots.is_empty() {
-            None
-        } else {
-            watch_visibility(plots.iter().map(|d| d.canvas.clone()).collect(), &visible)
-        };
         Self {
             plots,
-            visible,
-            _watch: watch,
             summaries_ms: f64::NEG_INFINITY,
-        }
-    }
-
-    /// Marks plot `key` as on screen or not (as the browser's intersection
-    /// observer does when the page scrolls); for tests.
-    #[doc(hidden)]
-    pub fn set_visible(&mut self, key: &str, on_screen: bool) {
-        if let Some(i) = self.plots.iter().position(|d| d.key == key) {
-            if let Some(flag) = self.visible.borrow_mut().get_mut(i) {
-                *flag = on_screen;
-            }
         }
     }
 
     /// The shortest time between two paints of each plot now, ms.
     fn intervals(&self) -> Vec<f64> {
-        let visible = self.visible.borrow();
-        (0..self.plots.len())
-            .map(|i| {
-                if visible.get(i).copied().unwrap_or(true) {
+        self.plots
+            .iter()
+            .map(|d| {
+                if d.on_screen {
                     PLOT_INTERVAL_MS
                 } else {
                     HIDDEN_PLOT_INTERVAL_MS
@@ -792,10 +727,18 @@ impl PlotView {
         if self.plots.is_empty() {
             return;
         }
-        let dpr = dom::window().device_pixel_ratio().max(1.0);
+        let window = dom::window();
+        let dpr = window.device_pixel_ratio().max(1.0);
+        let view_h = window
+            .inner_height()
+            .ok()
+            .and_then(|h| h.as_f64())
+            .unwrap_or(f64::INFINITY);
         for drawn in &mut self.plots {
             let rect = drawn.canvas.get_bounding_client_rect();
             drawn.measured = (rect.width(), rect.height(), dpr);
+            // Scrolled out of view (or in a hidden panel: no size).
+            drawn.on_screen = rect.height() > 0.0 && rect.bottom() > 0.0 && rect.top() < view_h;
         }
     }
 

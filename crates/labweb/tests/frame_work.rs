@@ -213,7 +213,8 @@ impl labcore::Experiment for Streamer {
 }
 
 /// Mounts a [`Streamer`] in a bare Simulation panel (no animation loop: the
-/// test runs the frames) and paints it once.
+/// test runs the frames) and paints it once. Every plot is pinned to the top
+/// of the window, in view whatever the test runner's window size.
 fn mount(exp: Streamer) -> labweb::sim::SimView {
     labweb::unmount();
     if let Some(old) = document().get_element_by_id("lab-under-test") {
@@ -224,7 +225,8 @@ fn mount(exp: Streamer) -> labweb::sim::SimView {
     document().body().unwrap().append_child(&panel).unwrap();
     panel.set_inner_html(&format!(
         "<style>#lab-under-test{{width:390px}}.sim-canvas{{display:block;width:360px;height:300px}}\
-         .plot-canvas{{display:block;width:360px;height:200px}}</style>{}",
+         .plot-canvas{{display:block;width:360px;height:200px}}\
+         #lab-under-test figure.plot{{position:fixed;top:0;left:0;width:360px}}</style>{}",
         labweb::sim::render(&exp, "streamer")
     ));
     let view = labweb::sim::SimView::mount(&panel, Box::new(exp)).unwrap();
@@ -270,46 +272,60 @@ fn four_streaming_plots_take_turns_one_paint_a_frame_each_about_every_66_ms() {
     assert!(total >= 4 * 26, "{total} plot paints in 120 frames");
 }
 
-/// The `data-layout` a plot's canvas carries (rewritten at each paint that
-/// moved a label or an axis).
-fn plot_layout(key: &str) -> String {
-    document()
-        .query_selector(&format!(
-            "#lab-under-test figure[data-plot=\"{key}\"] canvas"
-        ))
-        .unwrap()
-        .unwrap()
-        .get_attribute("data-layout")
-        .unwrap_or_default()
+/// Paints since the last [`reset_counts`] of the plot whose canvas is
+/// `width_px` device pixels wide.
+fn plot_paints_at_width(width_px: u32) -> u32 {
+    js_sys::Function::new_with_args(
+        "w",
+        "let n = 0; for (const [c, k] of window.__spy.plotPaints) if (c.width === w) n += k; return n",
+    )
+    .call1(&JsValue::NULL, &JsValue::from(width_px))
+    .unwrap()
+    .as_f64()
+    .unwrap() as u32
 }
 
 #[wasm_bindgen_test]
 fn a_plot_out_of_view_is_painted_once_a_second_and_at_once_when_it_comes_back() {
     let view = mount(Streamer::new(2, 200));
+    // Plot b's canvas is narrower than plot a's, to tell their paints apart.
+    let b_style = |css: &str| {
+        document()
+            .query_selector("#lab-under-test figure[data-plot=\"b\"] canvas")
+            .unwrap()
+            .unwrap()
+            .set_attribute("style", &format!("width: 300px; {css}"))
+            .unwrap();
+    };
+    b_style("");
+    view.paint_now();
+    let dpr = web_sys::window().unwrap().device_pixel_ratio();
+    let (a_px, b_px) = ((360.0 * dpr).round() as u32, (300.0 * dpr).round() as u32);
     for i in 0..10 {
         view.frame_at(frame_ms(i));
     }
-    view.set_plot_visible("b", false);
+    // Plot b scrolls far below the window.
+    b_style("margin-top: 20000px");
     reset_counts();
     // Two seconds of streaming.
     for i in 10..130 {
         view.frame_at(frame_ms(i));
     }
-    let mut per_plot = plot_paints();
-    per_plot.sort_unstable();
     // The plot in view about every 66 ms (a few frames go to the page's
     // text); the other once a second (labweb::plot_view::HIDDEN_PLOT_INTERVAL_MS).
-    assert_eq!(per_plot.len(), 2, "{per_plot:?}");
-    assert!((1..=3).contains(&per_plot[0]), "{per_plot:?}");
-    assert!(per_plot[1] >= 24, "{per_plot:?}");
-    // Scrolled back into view: painted at the next frame or the one after.
-    let before = plot_layout("b");
-    view.set_plot_visible("b", true);
-    view.frame_at(frame_ms(130));
-    view.frame_at(frame_ms(131));
-    assert_ne!(
-        plot_layout("b"),
-        before,
+    let (a, b) = (plot_paints_at_width(a_px), plot_paints_at_width(b_px));
+    assert!(a >= 24, "plot a painted {a} times");
+    assert!((1..=3).contains(&b), "plot b painted {b} times");
+    // Scrolled back into view: painted as soon as the plots are measured
+    // again, within PLOT_INTERVAL_MS (four frames).
+    b_style("");
+    reset_counts();
+    for i in 130..134 {
+        view.frame_at(frame_ms(i));
+    }
+    assert_eq!(
+        plot_paints_at_width(b_px),
+        1,
         "the plot back in view was not repainted"
     );
 }

@@ -5,6 +5,7 @@
 //! and `flate2` are used: no other build tool has to be installed by hand.
 
 mod dist;
+mod import_names;
 mod minify;
 mod modules;
 mod offline;

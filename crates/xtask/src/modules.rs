@@ -105,6 +105,7 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
     } else {
         MODULES.iter().map(|(k, ids)| (*k, ids.to_vec())).collect()
     };
+    let mut finishing = Vec::new();
     for (key, ids) in parts {
         step(&format!(
             "cargo build (wasm, release) — module '{key}': {}",
@@ -136,12 +137,44 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
             .omit_default_module_path(false)
             .generate(&glue_dir)
             .map_err(|e| format!("wasm-bindgen on {}: {e:#}", input.display()))?;
-        optimise(root, &glue_dir.join(format!("{key}_bg.wasm")))?;
-        crate::minify::minify_in_place(root, &glue_dir.join(format!("{key}.js")))?;
-        println!("module '{key}' built in {:.1} s", t.elapsed().as_secs_f64());
+        // wasm-opt and the minifier run beside the next module's cargo
+        // build: on a 2-core machine the two overlap well (cargo's last
+        // step, linking with LTO, is single-threaded).
+        let (root, dir) = (root.to_path_buf(), glue_dir.clone());
+        finishing.push(std::thread::spawn(move || -> Result<(), String> {
+            optimise(&root, &dir.join(format!("{key}_bg.wasm")))?;
+            shorten_imports(
+                &dir.join(format!("{key}_bg.wasm")),
+                &dir.join(format!("{key}.js")),
+            )?;
+            crate::minify::minify_in_place(&root, &dir.join(format!("{key}.js")))?;
+            println!("module '{key}' built in {:.1} s", t.elapsed().as_secs_f64());
+            Ok(())
+        }));
         built.push(Built { key, ids, glue_dir });
     }
+    for handle in finishing {
+        handle
+            .join()
+            .map_err(|_| "a module's wasm-opt thread panicked".to_owned())??;
+    }
     Ok(built)
+}
+
+/// Gives the imports of `wasm` short names, in the module and in its glue
+/// `js`, in place ([`crate::import_names`]).
+fn shorten_imports(wasm: &Path, js: &Path) -> Result<(), String> {
+    let read = |p: &Path| fs::read(p).map_err(|e| format!("cannot read {}: {e}", p.display()));
+    let (module, renames) = crate::import_names::shorten(&read(wasm)?)
+        .map_err(|e| format!("{}: {e}", wasm.display()))?;
+    let glue =
+        String::from_utf8(read(js)?).map_err(|_| format!("{} is not UTF-8", js.display()))?;
+    let glue = crate::import_names::rename_in_glue(&glue, &renames)
+        .map_err(|e| format!("{}: {e}", js.display()))?;
+    fs::write(wasm, module).map_err(|e| format!("cannot write {}: {e}", wasm.display()))?;
+    fs::write(js, glue).map_err(|e| format!("cannot write {}: {e}", js.display()))?;
+    println!("{}: {} imports renamed", wasm.display(), renames.len());
+    Ok(())
 }
 
 /// Runs wasm-opt on `wasm` in place (level from `XTASK_WASM_OPT`, `none` to

@@ -45,7 +45,7 @@ fn wasm_test(package: &'static str, browser: bool) -> Box<dyn Fn() -> Result<(),
         // absolute path also works when CARGO_TARGET_DIR points elsewhere.
         cmd.env(
             "CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER",
-            util::target_dir().join("release/wasm-bindgen-test-runner"),
+            util::target_dir().join("tool/wasm-bindgen-test-runner"),
         );
         if browser && Path::new(CHROMEDRIVER).exists() {
             cmd.env("CHROMEDRIVER", CHROMEDRIVER);
@@ -101,7 +101,8 @@ pub fn test(opts: Options) -> Result<(), String> {
         "build wasm test runner",
         cargo_step(&[
             "build",
-            "--release",
+            "--profile",
+            "tool",
             "-p",
             "xtask",
             "--bin",

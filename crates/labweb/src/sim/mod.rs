@@ -725,14 +725,6 @@ impl SimView {
         self.state.borrow_mut().frame(time_ms);
     }
 
-    /// Marks plot `key` as scrolled into view or out of it, as the browser's
-    /// intersection observer does (browser tests cannot scroll between
-    /// frames they drive themselves).
-    #[doc(hidden)]
-    pub fn set_plot_visible(&self, key: &str, on_screen: bool) {
-        self.state.borrow_mut().plots.set_visible(key, on_screen);
-    }
-
     /// Paints once now (used by tests and right after mounting).
     pub fn paint_now(&self) {
         let mut st = self.state.borrow_mut();
