@@ -156,9 +156,17 @@ const PHONE_RUN = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 2,
 
 /**
  * What a student presses to start an experiment whose default scene waits
- * for them (an action key); the others run as soon as the tab opens.
+ * for them (an action key). The others replay their run from the start
+ * (Reset), since it may have ended while the page loaded at full speed.
  */
 const START_ACTION = { workspace: "sweep", astar: "plan", rrtstar: "grow", pid: "step", cartpole: "nudge" };
+
+/**
+ * Experiments whose scene moves only while the student moves it: during the
+ * count the bench moves their point with the arrow keys, 20 times a second,
+ * as a student dragging it would.
+ */
+const DRIVEN_BY_KEYS = new Set(["fk", "ik", "dls"]);
 
 /** Long tasks with their start times, from the start of every document. */
 const recordLongTaskTimes = () => {
@@ -170,8 +178,9 @@ const recordLongTaskTimes = () => {
 
 /**
  * Counts animation frames for `ms` in the page: frames, the 95th-percentile
- * interval between them, long tasks that started meanwhile, and how many
- * fixed simulation steps the clock advanced (proof that it was running).
+ * interval between them, long tasks that started meanwhile, how many fixed
+ * simulation steps the clock advanced and in how many frames the scene was
+ * painted (proof that it was running).
  */
 const countFrames = (page, ms) =>
   page.evaluate(
@@ -179,10 +188,20 @@ const countFrames = (page, ms) =>
       new Promise((done) => {
         const canvas = document.querySelector("article.exp:not([hidden]) canvas.sim-canvas");
         const steps0 = Number(canvas.dataset.steps || 0);
+        // Frames in which the scene was painted (its paint starts with a
+        // setTransform on the simulation canvas).
+        const proto = CanvasRenderingContext2D.prototype;
+        const setTransform = proto.setTransform;
+        const paintedIn = new Set();
+        proto.setTransform = function (...a) {
+          if (this.canvas === canvas) paintedIn.add(times.length);
+          return setTransform.apply(this, a);
+        };
         const times = [];
         const tick = (t) => {
           times.push(t);
           if (t - times[0] < ms) return requestAnimationFrame(tick);
+          proto.setTransform = setTransform;
           const gaps = times.slice(1).map((t, i) => t - times[i]).sort((a, b) => a - b);
           const long = window.__longTaskTimes.filter(([start]) => start >= times[0]).map(([, d]) => Math.round(d));
           done({
@@ -190,6 +209,7 @@ const countFrames = (page, ms) =>
             p95: gaps[Math.min(gaps.length - 1, Math.floor(gaps.length * 0.95))],
             long,
             steps: Number(canvas.dataset.steps || 0) - steps0,
+            painted: paintedIn.size,
           });
         };
         requestAnimationFrame(tick);
@@ -226,13 +246,28 @@ test("phone (4× CPU throttle, 390×844, DPR 2): each experiment running", async
       await page.waitForTimeout(300);
       const scope = page.locator("article.exp:not([hidden])");
       const action = START_ACTION[id];
+      const reset = scope.locator("button[data-time=reset]");
       if (action) await scope.locator(`.sim-actions button[data-action=${action}]`).click();
+      else if (await reset.count()) await reset.click();
       // A paused or ended run is started as a student would: Play (or Replay).
       const play = scope.locator(".tb-play");
       if ((await play.count()) && (await play.getAttribute("data-offer")) !== "pause") await play.click();
-      const r = await countFrames(page, seconds * 1000);
+      let keys = 0;
+      const counting = countFrames(page, seconds * 1000);
+      if (DRIVEN_BY_KEYS.has(id)) {
+        await scope.locator("canvas.sim-canvas").focus();
+        let done = false;
+        counting.then(() => (done = true), () => (done = true));
+        while (!done) {
+          await page.keyboard.press(keys % 40 < 20 ? "ArrowRight" : "ArrowLeft");
+          keys += 1;
+          await new Promise((ok) => setTimeout(ok, 50));
+        }
+      }
+      const r = await counting;
+      const moving = keys ? `${keys} key presses` : `${r.steps} sim steps`;
       report(`phone ${id}: frames in ${seconds} s`, r.frames, 60 * seconds - 6, "frames",
-        `${r.steps} sim steps`, { higherIsBetter: true });
+        `${moving}, ${r.painted} frames painted`, { higherIsBetter: true });
       report(`phone ${id}: frame interval p95`, r.p95, 17.5, "ms");
       report(`phone ${id}: tasks over 50 ms while running`, r.long.length, 0, "tasks",
         r.long.length ? `durations ${r.long.join(", ")} ms` : "");
