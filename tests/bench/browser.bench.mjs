@@ -162,6 +162,12 @@ const PHONE_RUN = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 2,
 const START_ACTION = { workspace: "sweep", astar: "plan", rrtstar: "grow", pid: "step", cartpole: "nudge" };
 
 /**
+ * Experiments whose default scene waits for a goal: a tap on the canvas at
+ * this fraction of its width and height sets one, and the robot sets off.
+ */
+const START_TAP = { diffdrive: [0.85, 0.2], potential: [0.85, 0.25] };
+
+/**
  * Experiments whose scene moves only while the student moves it: during the
  * count the bench moves their point with the arrow keys, 20 times a second,
  * as a student dragging it would.
@@ -245,17 +251,26 @@ test("phone (4× CPU throttle, 390×844, DPR 2): each experiment running", async
       await cdp.send("Emulation.setCPUThrottlingRate", { rate: cpuSlowdown });
       await page.waitForTimeout(300);
       const scope = page.locator("article.exp:not([hidden])");
+      // Buttons are pressed where they are (below the canvas, perhaps below
+      // the fold): the page stays scrolled to the scene, as a student
+      // watching it would keep it.
       const action = START_ACTION[id];
       const reset = scope.locator("button[data-time=reset]");
-      if (action) await scope.locator(`.sim-actions button[data-action=${action}]`).click();
-      else if (await reset.count()) await reset.click();
+      if (action) await scope.locator(`.sim-actions button[data-action=${action}]`).dispatchEvent("click");
+      else if (await reset.count()) await reset.dispatchEvent("click");
+      const canvas = scope.locator("canvas.sim-canvas");
+      if (START_TAP[id]) {
+        const box = await canvas.boundingBox();
+        const [fx, fy] = START_TAP[id];
+        await page.touchscreen.tap(box.x + fx * box.width, box.y + fy * box.height);
+      }
       // A paused or ended run is started as a student would: Play (or Replay).
       const play = scope.locator(".tb-play");
-      if ((await play.count()) && (await play.getAttribute("data-offer")) !== "pause") await play.click();
+      if ((await play.count()) && (await play.getAttribute("data-offer")) !== "pause") await play.dispatchEvent("click");
       let keys = 0;
       const counting = countFrames(page, seconds * 1000);
       if (DRIVEN_BY_KEYS.has(id)) {
-        await scope.locator("canvas.sim-canvas").focus();
+        await canvas.focus();
         let done = false;
         counting.then(() => (done = true), () => (done = true));
         while (!done) {
