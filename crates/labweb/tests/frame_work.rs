@@ -345,6 +345,17 @@ fn a_frame_reads_every_size_before_it_writes_so_the_page_is_never_laid_out_mid_f
     assert_eq!(forced, 0, "size reads after a write in the same frame");
 }
 
+/// Clicks the time bar's Play/Pause button.
+fn press_play() {
+    document()
+        .query_selector("#lab-under-test .tb-play")
+        .unwrap()
+        .unwrap()
+        .dyn_into::<web_sys::HtmlElement>()
+        .unwrap()
+        .click();
+}
+
 #[wasm_bindgen_test]
 fn repainting_what_has_not_changed_writes_nothing_to_the_page_and_measures_no_text() {
     let view = mount(Streamer::new(4, 200));
@@ -352,13 +363,7 @@ fn repainting_what_has_not_changed_writes_nothing_to_the_page_and_measures_no_te
         view.frame_at(frame_ms(i));
     }
     // Paused: the data, readouts and time stand still.
-    let play = document()
-        .query_selector("#lab-under-test .tb-play")
-        .unwrap()
-        .unwrap()
-        .dyn_into::<web_sys::HtmlElement>()
-        .unwrap();
-    play.click();
+    press_play();
     view.paint_now();
     reset_counts();
     // A full repaint of the scene and of every plot (as after a theme change).
@@ -449,13 +454,7 @@ fn pausing_shows_the_readouts_of_the_moment_it_stopped_at_the_next_frame() {
     for i in 0..37 {
         view.frame_at(frame_ms(i));
     }
-    let play = document()
-        .query_selector("#lab-under-test .tb-play")
-        .unwrap()
-        .unwrap()
-        .dyn_into::<web_sys::HtmlElement>()
-        .unwrap();
-    play.click();
+    press_play();
     view.frame_at(frame_ms(37));
     // The model's time when it stopped: the steps the clock took, 1/60 s each.
     let steps: f64 = document()
