@@ -114,6 +114,8 @@ fn plot_paints() -> Vec<u32> {
 struct Streamer {
     t_s: f64,
     plots: Vec<Plot>,
+    /// Where a drag last moved the pointer (world x, m).
+    dragged_x_m: f64,
 }
 
 /// Labels on the stand-in's scene.
@@ -143,7 +145,11 @@ impl Streamer {
                 p
             })
             .collect();
-        Self { t_s: 0.0, plots }
+        Self {
+            t_s: 0.0,
+            plots,
+            dragged_x_m: 0.0,
+        }
     }
 }
 
@@ -160,7 +166,11 @@ impl labcore::Experiment for Streamer {
     fn set_param(&mut self, key: &str, _v: f64) -> Result<labcore::Sanitized, labcore::ParamError> {
         Err(labcore::ParamError::UnknownKey { key: key.into() })
     }
-    fn input(&mut self, _input: labcore::Input) {}
+    fn input(&mut self, input: labcore::Input) {
+        if let labcore::Input::PointerMove { pos, pressed: true } = input {
+            self.dragged_x_m = pos.x;
+        }
+    }
     fn step(&mut self, dt_s: f64) {
         self.t_s += dt_s;
         let t = self.t_s;
@@ -199,6 +209,7 @@ impl labcore::Experiment for Streamer {
             labcore::Readout::new("gain", "Gain", "2.00".to_owned()),
             labcore::Readout::new("mode", "Mode", "streaming".to_owned()),
             labcore::Readout::new("clock", "Clock", format!("{:.3} s", self.t_s)),
+            labcore::Readout::new("drag", "Dragged to", format!("{:.4} m", self.dragged_x_m)),
         ]
     }
     fn plots(&self) -> &[Plot] {
@@ -446,6 +457,69 @@ fn while_a_run_streams_the_page_text_is_written_every_250_ms_and_never_in_a_plot
     // The plot's summary for screen readers: once a second
     // (labweb::plot_view::SUMMARY_INTERVAL_MS).
     assert!(summaries.len() <= 3, "{summaries:?}");
+}
+
+/// Sends a mouse pointer event of `kind` at client (`x`, `y`) to the
+/// simulation canvas, the button held unless it is the `pointerup`.
+fn pointer(kind: &str, x: f64, y: f64) {
+    let init = web_sys::PointerEventInit::new();
+    init.set_is_primary(true);
+    init.set_pointer_id(1);
+    init.set_pointer_type("mouse");
+    init.set_bubbles(true);
+    init.set_client_x(x as i32);
+    init.set_client_y(y as i32);
+    init.set_buttons(u16::from(kind != "pointerup"));
+    let event = web_sys::PointerEvent::new_with_event_init_dict(kind, &init).unwrap();
+    document()
+        .query_selector("#lab-under-test .sim-canvas")
+        .unwrap()
+        .unwrap()
+        .dispatch_event(&event)
+        .unwrap();
+}
+
+#[wasm_bindgen_test]
+fn a_drag_writes_the_page_text_at_the_pace_of_a_run_and_its_last_value_when_it_ends() {
+    let view = mount(Streamer::new(1, 10));
+    press_play();
+    view.frame_at(frame_ms(0));
+    let rect = document()
+        .query_selector("#lab-under-test .sim-canvas")
+        .unwrap()
+        .unwrap()
+        .get_bounding_client_rect();
+    let (x0, y) = (rect.left() + 20.0, rect.top() + rect.height() / 2.0);
+    pointer("pointerdown", x0, y);
+    view.frame_at(frame_ms(1));
+
+    // 28 frames (467 ms) of dragging with a move at every frame, the clock
+    // paused; the pointer went down (and the text was written) at frame 1.
+    let mut text_frames = Vec::new();
+    for i in 2..30 {
+        // 7 px a frame: never through the canvas's centre, where x is 0 m
+        // as before the drag.
+        pointer("pointermove", x0 + 7.0 * i as f64, y);
+        reset_counts();
+        view.frame_at(frame_ms(i));
+        if count("dom.textContent") > 0 {
+            text_frames.push((i, readout_text("drag")));
+        }
+    }
+    // Every 250 ms (labweb::sim::TEXT_INTERVAL_MS): once, at frame 16.
+    assert_eq!(
+        text_frames.len(),
+        1,
+        "frames that wrote text: {text_frames:?}"
+    );
+    let during = readout_text("drag");
+    pointer("pointerup", x0 + 7.0 * 30.0, y);
+    view.frame_at(frame_ms(30));
+    assert_ne!(
+        readout_text("drag"),
+        during,
+        "the drag's last value shows when it ends"
+    );
 }
 
 #[wasm_bindgen_test]

@@ -170,7 +170,7 @@ impl SimState {
                     (view.max.x - view.min.x) * STEP_FRACTION * fine
                 });
                 self.student_acted();
-                self.move_to(&h.id, h.at + dir * step);
+                self.move_to(&h.id, h.at + dir * step, true);
                 true
             }
             _ => false,
@@ -178,12 +178,14 @@ impl SimState {
     }
 
     /// Moves handle `id` to `to` (keyboard or typed), through the
-    /// instructor's locks like a pointer drag, and says where it went.
-    fn move_to(&mut self, id: &str, to: DVec2) {
+    /// instructor's locks like a pointer drag, and says where it went. A key
+    /// move is `paced` like a drag (keys repeat); a typed one is not.
+    fn move_to(&mut self, id: &str, to: DVec2, paced: bool) {
         self.guarded(|exp| {
             exp.move_handle(id, to);
         });
         self.needs_paint = true;
+        self.text_paced = paced;
         self.hash_dirty = true;
         self.shown_values.iter_mut().for_each(|v| *v = None);
         match self.exp.handles().into_iter().find(|h| h.id == id) {
@@ -287,7 +289,7 @@ impl SimState {
             (Ok(x), Ok(y)) => {
                 let to = DVec2::new(x, y);
                 self.focused_handle = Some(id.clone());
-                self.move_to(&id, to);
+                self.move_to(&id, to, false);
                 match self.focused() {
                     Some(h) if (h.at - to).length() > 0.006 => self.show_message(Some(&format!(
                         "{} could not go to {}; it is at {}.",

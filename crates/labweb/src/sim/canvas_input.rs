@@ -121,6 +121,7 @@ pub(super) fn listen(
             st.guarded_input(Input::PointerMove { pos: w, pressed }, modifiers(e));
             if pressed {
                 st.needs_paint = true;
+                st.text_paced = true;
                 st.hash_dirty = true;
             }
         },

@@ -196,6 +196,10 @@ struct SimState {
     text_ms: f64,
     /// The model moved since the page's text was last written.
     text_stale: bool,
+    /// This frame's input is part of a stream (a drag's moves, arrow keys
+    /// moving a point): its text keeps the pace of a run instead of being
+    /// written at every event.
+    text_paced: bool,
     shown_status: Option<labcore::Status>,
     notices: NoticeShelf,
     /// Serial of the notice on screen.
@@ -309,8 +313,12 @@ impl SimState {
             self.plots.measure();
         }
         // Painting asked for by an input, an action or a resize (before the
-        // clock's steps ask for theirs): its text is written at once.
-        let input_paint = self.needs_paint;
+        // clock's steps ask for theirs): its text is written at once, unless
+        // the input is a stream (a drag, a held arrow key), whose text is
+        // written at most every TEXT_INTERVAL_MS and once more when it ends.
+        let input_paint = self.needs_paint && !self.text_paced;
+        let streamed_input = self.needs_paint && self.text_paced;
+        self.text_paced = false;
         let was_animating = self.exp.animating();
         // An idle experiment's clock does not tick (t counts motion only).
         let steps = if was_animating || !self.exp.animated() {
@@ -357,6 +365,11 @@ impl SimState {
             self.needs_paint = false;
         }
         let write_text = self.text_stale && text_due;
+        if streamed_input && !write_text {
+            // The status badge follows a drag at once (it is written only
+            // when it changes: "in reach", "out of reach").
+            self.sync_status();
+        }
         if write_text {
             self.sync_dom();
             let at_once = input_paint || !self.exp.animating();
@@ -569,6 +582,7 @@ impl SimView {
             shown_time_text: String::new(),
             text_ms: f64::NEG_INFINITY,
             text_stale: false,
+            text_paced: false,
             shown_status: None,
             notices: NoticeShelf::default(),
             shown_notice: None,
