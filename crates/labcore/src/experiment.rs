@@ -342,6 +342,13 @@ impl Handle {
             step_m: None,
         }
     }
+
+    /// The target handle of an arm experiment: at `target` once set, else
+    /// on the arm's `tip`, where a press would set it (IK and DLS).
+    #[must_use]
+    pub fn arm_target(target: Option<DVec2>, tip: DVec2) -> Self {
+        Self::new("target", "Target", target.unwrap_or(tip))
+    }
 }
 
 /// `(2.10, 3.40) m`: a point as the scene descriptions say it.

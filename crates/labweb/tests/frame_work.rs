@@ -258,9 +258,7 @@ fn four_streaming_plots_take_turns_one_paint_a_frame_each_about_every_66_ms() {
     // data at every frame. The plots take turns: in frames 1 to 8 each is
     // painted twice, once every fourth frame (4 × 16.7 ms ≥ 66 ms).
     reset_counts();
-    for i in 0..9 {
-        view.frame_at(frame_ms(i));
-    }
+    run_frames(&view, 0..9);
     let per_plot = plot_paints();
     assert_eq!(per_plot, [2, 2, 2, 2], "paints per plot in frames 0 to 8");
     // Two seconds more: never two plot paints in one frame, and each plot
@@ -312,16 +310,12 @@ fn a_plot_out_of_view_is_painted_once_a_second_and_at_once_when_it_comes_back() 
     view.paint_now();
     let dpr = web_sys::window().unwrap().device_pixel_ratio();
     let (a_px, b_px) = ((360.0 * dpr).round() as u32, (300.0 * dpr).round() as u32);
-    for i in 0..10 {
-        view.frame_at(frame_ms(i));
-    }
+    run_frames(&view, 0..10);
     // Plot b scrolls far below the window.
     b_style("margin-top: 20000px");
     reset_counts();
     // Two seconds of streaming.
-    for i in 10..130 {
-        view.frame_at(frame_ms(i));
-    }
+    run_frames(&view, 10..130);
     // The plot in view about every 66 ms (a few frames go to the page's
     // text); the other once a second (labweb::plot_view::HIDDEN_PLOT_INTERVAL_MS).
     let (a, b) = (plot_paints_at_width(a_px), plot_paints_at_width(b_px));
@@ -331,9 +325,7 @@ fn a_plot_out_of_view_is_painted_once_a_second_and_at_once_when_it_comes_back() 
     // again, within PLOT_INTERVAL_MS (four frames).
     b_style("");
     reset_counts();
-    for i in 130..134 {
-        view.frame_at(frame_ms(i));
-    }
+    run_frames(&view, 130..134);
     assert_eq!(
         plot_paints_at_width(b_px),
         1,
@@ -356,6 +348,13 @@ fn a_frame_reads_every_size_before_it_writes_so_the_page_is_never_laid_out_mid_f
     assert_eq!(forced, 0, "size reads after a write in the same frame");
 }
 
+/// Runs the frames numbered `frames` (see [`frame_ms`]).
+fn run_frames(view: &labweb::sim::SimView, frames: std::ops::Range<usize>) {
+    for i in frames {
+        view.frame_at(frame_ms(i));
+    }
+}
+
 /// Clicks the time bar's Play/Pause button.
 fn press_play() {
     document()
@@ -370,9 +369,7 @@ fn press_play() {
 #[wasm_bindgen_test]
 fn repainting_what_has_not_changed_writes_nothing_to_the_page_and_measures_no_text() {
     let view = mount(Streamer::new(4, 200));
-    for i in 0..30 {
-        view.frame_at(frame_ms(i));
-    }
+    run_frames(&view, 0..30);
     // Paused: the data, readouts and time stand still.
     press_play();
     view.paint_now();
@@ -416,9 +413,7 @@ fn readout_text(key: &str) -> String {
 fn while_a_run_streams_the_page_text_is_written_every_250_ms_and_never_in_a_plot_frame() {
     // The clock readout and the time change at every step.
     let view = mount(Streamer::new(1, 10));
-    for i in 0..10 {
-        view.frame_at(frame_ms(i));
-    }
+    run_frames(&view, 0..10);
     let mut text_frames = Vec::new();
     let summary = || {
         document()
@@ -525,9 +520,7 @@ fn a_drag_writes_the_page_text_at_the_pace_of_a_run_and_its_last_value_when_it_e
 #[wasm_bindgen_test]
 fn pausing_shows_the_readouts_of_the_moment_it_stopped_at_the_next_frame() {
     let view = mount(Streamer::new(1, 10));
-    for i in 0..37 {
-        view.frame_at(frame_ms(i));
-    }
+    run_frames(&view, 0..37);
     press_play();
     view.frame_at(frame_ms(37));
     // The model's time when it stopped: the steps the clock took, 1/60 s each.

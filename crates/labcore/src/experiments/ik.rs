@@ -350,11 +350,7 @@ impl Experiment for InverseKinematics {
 
     /// The target (before any is set: on the tip, where a press would set it).
     fn handles(&self) -> Vec<Handle> {
-        vec![Handle::new(
-            "target",
-            "Target",
-            self.target.unwrap_or_else(|| self.tip()),
-        )]
+        vec![Handle::arm_target(self.target, self.tip())]
     }
 
     /// "Target at (1.10, 0.90) m: in reach. Arm at θ₁ 66.4°, θ₂ -67.8°, tip at (1.10, 0.90) m."

@@ -470,11 +470,7 @@ impl Experiment for DampedLeastSquares {
 
     /// The target (before any is set: on the tip, where a press would set it).
     fn handles(&self) -> Vec<Handle> {
-        vec![Handle::new(
-            "target",
-            "Target",
-            self.target.unwrap_or_else(|| self.tip()),
-        )]
+        vec![Handle::arm_target(self.target, self.tip())]
     }
 
     /// "4-link arm, tip at (…) m, target at (…) m: converged in 4 iterations; error 5.6 × 10⁻⁷ m."
