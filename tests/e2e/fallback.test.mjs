@@ -53,13 +53,21 @@ test("with the wasm request blocked, the reading tabs show and work, and the pag
     await fatal.waitFor({ state: "visible" });
     assert.match(await fatal.innerText(), /could not|failed/i);
     // Tabs are links: they still switch without the wasm, and Back returns.
+    // Each click is a navigation: wait until it is in the history before the
+    // next step, or Back may return past it on a busy machine.
     await article.locator("[role=tab][data-tab=references]").click();
+    await page.waitForURL(/#\/fk\/references$/);
     await article.locator("[data-panel=references] ol.refs li").first().waitFor({ state: "visible" });
     assert.ok(await theory.isHidden());
     await article.locator("[role=tab][data-tab=simulation]").click();
-    assert.match(await article.locator("[data-panel=simulation]").innerText(), /could not start/);
+    await page.waitForURL(/#\/fk\/simulation$/);
+    const simulation = article.locator("[data-panel=simulation]");
+    await simulation.waitFor({ state: "visible" });
+    assert.match(await simulation.innerText(), /could not start/);
     await page.goBack();
+    await page.waitForURL(/#\/fk\/references$/);
     await article.locator("[data-panel=references]").waitFor({ state: "visible" });
+    assert.ok(await simulation.isHidden());
     // The navigation works without the wasm too: two clicks to another experiment.
     await page.locator("#lab-nav summary").click();
     await page.locator("#lab-nav a[data-experiment=dls]").click();
