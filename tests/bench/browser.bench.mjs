@@ -229,6 +229,9 @@ test("phone (4× CPU throttle, 390×844, DPR 2): each experiment running", async
     await open(lab, page, "#/");
     ids = await page.$$eval("a.card[data-experiment]", (cards) => cards.map((c) => c.dataset.experiment));
   });
+  // PHONE_IDS=rrtstar,ik measures only those experiments.
+  const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
+  if (only?.length) ids = ids.filter((id) => only.includes(id));
   const { viewport, deviceScaleFactor, hasTouch, cpuSlowdown, seconds } = PHONE_RUN;
   const context = await lab.browser.newContext({ viewport, deviceScaleFactor, hasTouch });
   await context.addInitScript(recordLongTaskTimes);

@@ -1,8 +1,7 @@
 //! Kept layers: pictures the page keeps between frames, so a frame pays for
 //! what changed rather than for the whole scene (issue 16 §3).
 //!
-//! - A [`labcore::scene::SegmentLayer`] of at least
-//!   [`crate::draw::RASTER_SEGMENTS_MIN`] segments is drawn into an RGBA
+//! - A [`labcore::scene::SegmentLayer`], whatever its size, is drawn into an RGBA
 //!   buffer that stays in wasm memory, with a coverage count per device
 //!   pixel: drawing a segment adds one to each pixel of its Bresenham line,
 //!   erasing subtracts one, and a pixel is lit while its count is positive.

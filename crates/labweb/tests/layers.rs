@@ -250,28 +250,36 @@ fn kept_layers_paint_the_pixels_of_a_full_redraw() {
     );
 }
 
-/// Below the raster threshold a layer is stroked as one anti-aliased path,
-/// exactly like a plain batch, and keeps nothing.
+/// A small layer (a tree's first batches) is kept too: its first frame draws
+/// its edges once, and a frame after that draws only what was added.
 #[wasm_bindgen_test]
-fn a_small_layer_is_stroked_like_a_plain_batch() {
-    let (_a, ctx_a, palette) = setup("layers-small-a");
-    let (_b, ctx_b) = canvas("layers-small-b");
+fn a_small_layer_is_kept_too() {
+    let (_c, ctx, palette) = setup("layers-small");
     let parts = labweb::big_scene_parts();
-    let segments = parts.tree.segments[..500].to_vec();
-    let mut a = Scene::default();
-    a.push(Item::SegmentLayer {
-        layer: SegmentLayer::from_segments(segments.clone()),
-        width_px: 1.0,
-        role: Role::Visited,
-    });
-    let mut b = Scene::default();
-    b.push(Item::Segments {
-        segments,
-        width_px: 1.0,
-        role: Role::Visited,
-    });
-    paint(&ctx_a, &a, &viewport(), W, H, 1.0, &palette);
-    paint(&ctx_b, &b, &viewport(), W, H, 1.0, &palette);
-    assert_eq!(pixels(&ctx_a), pixels(&ctx_b));
-    assert_eq!(counters(), Counters::default());
+    let mut layer = SegmentLayer::from_segments(parts.tree.segments[..24].to_vec());
+    let scene = |layer: &SegmentLayer| {
+        let mut scene = Scene::default();
+        scene.push(Item::SegmentLayer {
+            layer: layer.clone(),
+            width_px: 1.0,
+            role: Role::Visited,
+        });
+        scene
+    };
+    reset_counters();
+    paint(&ctx, &scene(&layer), &viewport(), W, H, 1.0, &palette);
+    assert_eq!(
+        (counters().segments_drawn, counters().full_redraws),
+        (24, 1)
+    );
+    for s in &parts.tree.segments[24..48] {
+        layer.push(*s);
+    }
+    reset_counters();
+    paint(&ctx, &scene(&layer), &viewport(), W, H, 1.0, &palette);
+    let c = counters();
+    assert_eq!((c.segments_drawn, c.full_redraws), (24, 0), "{c:?}");
+    assert_eq!(c.composites, 1);
+    let p = pixels(&ctx);
+    assert!(p.chunks(4).any(|px| px[3] != 0), "the edges are drawn");
 }
