@@ -99,6 +99,34 @@ impl Clock {
         n
     }
 
+    /// Takes the `steps` that [`Clock::advance`] gave, calling `step` for
+    /// each, but stops once `spent_ms()` (the frame's work so far) reaches
+    /// `budget_ms`; the first step is always taken. The steps not taken are
+    /// not counted: after a slow frame the simulation runs slower than real
+    /// time for a moment instead of piling the catch-up into one long frame
+    /// (which would make the next frame slower still). Returns the steps taken.
+    ///
+    /// Which steps run never depends on time, only how many fall in a frame:
+    /// step N of a run is the same state however the frames fell.
+    pub fn take_steps(
+        &mut self,
+        steps: u32,
+        budget_ms: f64,
+        mut spent_ms: impl FnMut() -> f64,
+        mut step: impl FnMut(),
+    ) -> u32 {
+        let mut taken = 0;
+        while taken < steps {
+            step();
+            taken += 1;
+            if spent_ms() >= budget_ms {
+                break;
+            }
+        }
+        self.steps -= u64::from(steps - taken);
+        taken
+    }
+
     /// One step, as the "step" button does; pauses the clock. Returns 1.
     pub fn single_step(&mut self) -> u32 {
         self.set_running(false);
@@ -161,6 +189,37 @@ mod tests {
         assert!((14..=15).contains(&c.advance(10.0)));
         c.set_speed(4.0);
         assert_eq!(c.advance(10.0), Clock::MAX_STEPS_PER_FRAME);
+    }
+
+    #[test]
+    fn a_frame_over_its_work_budget_stops_stepping_and_uncounts_the_rest() {
+        let mut c = Clock::default();
+        let given = c.advance(0.25);
+        assert_eq!(given, 15);
+        // Each step costs 3 ms of a 10 ms budget: the fourth crosses it.
+        let spent = std::cell::Cell::new(0.0);
+        let mut ran = 0;
+        let taken = c.take_steps(
+            given,
+            10.0,
+            || spent.get(),
+            || {
+                spent.set(spent.get() + 3.0);
+                ran += 1;
+            },
+        );
+        assert_eq!((taken, ran), (4, 4));
+        assert_eq!(c.steps(), 4, "the 11 steps not taken are not counted");
+        // A single step over the whole budget is still taken.
+        let given = c.advance(2.5 / 60.0);
+        assert_eq!(given, 2);
+        assert_eq!(c.take_steps(given, 1.0, || 50.0, || {}), 1);
+        assert_eq!(c.steps(), 5);
+        // Within budget, every step given is taken.
+        let given = c.advance(3.2 / 60.0);
+        assert_eq!(given, 3);
+        assert_eq!(c.take_steps(given, 10.0, || 0.0, || {}), 3);
+        assert_eq!(c.steps(), 8);
     }
 
     #[test]

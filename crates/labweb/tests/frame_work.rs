@@ -60,6 +60,11 @@ if (!window.__spy) {
       set(v) { bump(`dom.${p}`); bump("dom.writes"); spy.dirty = true; d.set.call(this, v); },
     });
   }
+  const replaceState = History.prototype.replaceState;
+  History.prototype.replaceState = function (...a) {
+    bump("history.replaceState");
+    return replaceState.apply(this, a);
+  };
   for (const m of ["setAttribute", "removeAttribute"]) {
     const orig = Element.prototype[m];
     Element.prototype[m] = function (...a) {
@@ -491,6 +496,7 @@ fn a_drag_writes_the_page_text_at_the_pace_of_a_run_and_its_last_value_when_it_e
     // 28 frames (467 ms) of dragging with a move at every frame, the clock
     // paused; the pointer went down (and the text was written) at frame 1.
     let mut text_frames = Vec::new();
+    let mut link_writes = 0;
     for i in 2..30 {
         // 7 px a frame: never through the canvas's centre, where x is 0 m
         // as before the drag.
@@ -500,7 +506,11 @@ fn a_drag_writes_the_page_text_at_the_pace_of_a_run_and_its_last_value_when_it_e
         if count("dom.textContent") > 0 {
             text_frames.push((i, readout_text("drag")));
         }
+        link_writes += count("history.replaceState");
     }
+    // The link waits for the drag to end (each URL change makes the browser
+    // fetch and decode the page's icon again).
+    assert_eq!(link_writes, 0, "URL updates during the drag");
     // Every 250 ms (labweb::sim::TEXT_INTERVAL_MS): once, at frame 16.
     assert_eq!(
         text_frames.len(),
@@ -514,6 +524,14 @@ fn a_drag_writes_the_page_text_at_the_pace_of_a_run_and_its_last_value_when_it_e
         readout_text("drag"),
         during,
         "the drag's last value shows when it ends"
+    );
+    // 250 ms after the last move, the link holds the state it ended in.
+    reset_counts();
+    run_frames(&view, 31..47);
+    assert_eq!(
+        count("history.replaceState"),
+        1,
+        "one URL update after the drag"
     );
 }
 

@@ -38,6 +38,10 @@ use status::{statusbar_html, NoticeShelf};
 use timebar::timebar_html;
 
 /// Minimum time between URL updates while a control moves, milliseconds.
+/// While a drag or a held arrow key streams, the URL waits until the stream
+/// has been still this long: each URL change makes the browser fetch the
+/// page's icon again and decode it (an SVG, a document of its own: about
+/// 12 ms a time on a 4x-throttled phone).
 const HASH_INTERVAL_MS: f64 = 250.0;
 
 /// Minimum time between two writes of the page's text (readouts, status,
@@ -47,6 +51,13 @@ const HASH_INTERVAL_MS: f64 = 250.0;
 /// on a phone at a 4× CPU throttle that cost a frame each time. An input, an
 /// action or the end of a motion writes at once.
 pub const TEXT_INTERVAL_MS: f64 = 250.0;
+
+/// The share of a frame the simulation's steps may take, milliseconds (see
+/// [`Clock::take_steps`]): after a slow frame the clock asks for several
+/// steps to catch up, and taking them all made that frame slower still (RRT*
+/// grew up to 16 batches in one frame). Half of a 60 Hz frame; the paint
+/// needs the rest.
+pub const STEP_BUDGET_MS: f64 = 8.0;
 
 /// Why the simulation could not start (the reading tabs still work).
 #[derive(Debug)]
@@ -211,6 +222,8 @@ struct SimState {
     shown_view: labcore::ViewBox,
     hash_dirty: bool,
     last_hash_ms: f64,
+    /// When a streamed input (a drag, a held arrow key) last moved the scene.
+    last_stream_ms: f64,
     frame_times: FrameTimes,
     /// The instructor's locks, hidden controls and note from the link.
     instructor: route::Instructor,
@@ -326,15 +339,23 @@ impl SimState {
         } else {
             0
         };
-        if steps > 0 {
+        let steps = if steps > 0 {
             // A run may move a locked parameter (an arm turning to its
             // target): it is held, quietly.
+            let clock = &mut self.clock;
+            let mut taken = 0;
             let _ = route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
-                for _ in 0..steps {
-                    exp.step(Clock::DT_S);
-                }
+                taken = clock.take_steps(
+                    steps,
+                    STEP_BUDGET_MS,
+                    || dom::now_ms() - start,
+                    || exp.step(Clock::DT_S),
+                );
             });
-        }
+            taken
+        } else {
+            0
+        };
         let phase_before = self.phase;
         self.follow_phase();
         let stopped = was_animating && !self.exp.animating();
@@ -389,7 +410,13 @@ impl SimState {
         }
         self.sync_notice(time_ms);
         self.sync_timebar(write_text || input_paint);
-        if self.hash_dirty && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS {
+        if streamed_input {
+            self.last_stream_ms = time_ms;
+        }
+        if self.hash_dirty
+            && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS
+            && time_ms - self.last_stream_ms >= HASH_INTERVAL_MS
+        {
             self.write_hash();
             self.last_hash_ms = time_ms;
         }
@@ -592,6 +619,7 @@ impl SimView {
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
             last_hash_ms: 0.0,
+            last_stream_ms: f64::NEG_INFINITY,
             frame_times: FrameTimes::default(),
             instructor: route::Instructor::default(),
             quiz_seed: None,
