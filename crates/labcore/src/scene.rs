@@ -229,12 +229,24 @@ pub struct RasterColour {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Scene {
     pub items: Vec<Item>,
+    /// How many of the first items are the scene's backdrop: what a run
+    /// does not move (a field, its obstacles, a quiver of forces). The page
+    /// keeps their picture while they stay equal and paints only the items
+    /// after them; 0 keeps nothing. Set by [`Scene::end_backdrop`].
+    pub backdrop: usize,
 }
 
 impl Scene {
     /// Empties the list, keeping its allocation.
     pub fn clear(&mut self) {
         self.items.clear();
+        self.backdrop = 0;
+    }
+
+    /// Marks the items pushed so far as the backdrop (see [`Scene::backdrop`]).
+    /// Only a hint for the painter: the picture is the same either way.
+    pub fn end_backdrop(&mut self) {
+        self.backdrop = self.items.len();
     }
 
     pub fn push(&mut self, item: Item) {

@@ -11,7 +11,7 @@ use wasm_bindgen::{JsCast, JsValue};
 use web_sys::{CanvasRenderingContext2d, Element};
 
 /// Theme colours per role, read from CSS custom properties (`--c-link`, …).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Palette {
     colours: Vec<(Role, String)>,
     vars: Vec<(&'static str, String)>,
@@ -188,16 +188,92 @@ pub fn paint(
     dpr: f64,
     palette: &Palette,
 ) {
+    paint_items(
+        ctx,
+        &scene.items,
+        viewport,
+        width_px,
+        height_px,
+        dpr,
+        palette,
+        true,
+    );
+}
+
+/// As [`paint`], keeping the picture of the scene's backdrop
+/// ([`Scene::backdrop`]) in `backdrop` between frames: while the backdrop's
+/// items stay equal, a frame composites that picture and paints only the
+/// items after it. The pixels are those [`paint`] gives.
+#[allow(clippy::too_many_arguments)]
+pub fn paint_with_backdrop(
+    ctx: &CanvasRenderingContext2d,
+    scene: &Scene,
+    viewport: &Viewport,
+    width_px: f64,
+    height_px: f64,
+    dpr: f64,
+    palette: &Palette,
+    backdrop: &mut crate::layers::Backdrop,
+) {
+    let split = scene.backdrop.min(scene.items.len());
+    let (below, above) = scene.items.split_at(split);
+    let kept = split > 0
+        && backdrop.composite(
+            ctx,
+            below,
+            viewport,
+            (width_px, height_px),
+            dpr,
+            palette,
+            |bctx| {
+                paint_items(
+                    bctx, below, viewport, width_px, height_px, dpr, palette, true,
+                );
+            },
+        );
+    if kept {
+        paint_items(
+            ctx, above, viewport, width_px, height_px, dpr, palette, false,
+        );
+    } else {
+        paint_items(
+            ctx,
+            &scene.items,
+            viewport,
+            width_px,
+            height_px,
+            dpr,
+            palette,
+            true,
+        );
+    }
+}
+
+/// Paints `items` (over the background when `background`) into a canvas of
+/// `width_px` × `height_px` CSS pixels at `dpr` device pixels per CSS pixel.
+#[allow(clippy::too_many_arguments)]
+fn paint_items(
+    ctx: &CanvasRenderingContext2d,
+    items: &[Item],
+    viewport: &Viewport,
+    width_px: f64,
+    height_px: f64,
+    dpr: f64,
+    palette: &Palette,
+    background: bool,
+) {
     let width_px_canvas = width_px;
     let _ = ctx.set_transform(dpr, 0.0, 0.0, dpr, 0.0, 0.0);
-    ctx.set_fill_style_str(&palette.background);
-    ctx.fill_rect(0.0, 0.0, width_px, height_px);
+    if background {
+        ctx.set_fill_style_str(&palette.background);
+        ctx.fill_rect(0.0, 0.0, width_px, height_px);
+    }
     ctx.set_line_cap("round");
     ctx.set_line_join("round");
     // Whether the context's font and baseline are the labels' (the scale
     // bar and the off-view marks set their own).
     let mut label_font = false;
-    for item in &scene.items {
+    for item in items {
         ctx.set_global_alpha(1.0);
         match item {
             Item::Line {

@@ -283,3 +283,89 @@ fn a_small_layer_is_kept_too() {
     let p = pixels(&ctx);
     assert!(p.chunks(4).any(|px| px[3] != 0), "the edges are drawn");
 }
+
+/// A scene whose backdrop (a quiver, discs, a label) stays put while a dot
+/// moves: the backdrop is painted into its kept picture once, every later
+/// frame composites it, and the pixels are those of a full redraw. A changed
+/// backdrop is painted directly until it has stayed the same for a frame.
+#[wasm_bindgen_test]
+fn a_backdrop_is_painted_once_while_it_stays_and_gives_the_pixels_of_a_full_redraw() {
+    let (_a, kept_ctx, palette) = setup("backdrop-kept");
+    let (_b, full_ctx) = canvas("backdrop-full");
+    let scene = |disc_x: f64, dot_x: f64| {
+        let mut scene = Scene::default();
+        let arrows = (0..300)
+            .map(|i| {
+                let p = DVec2::new(5.0 + 3.0 * (i % 30) as f64, 5.0 + 9.0 * (i / 30) as f64);
+                (p, p + DVec2::new(1.5, 0.8))
+            })
+            .collect();
+        scene.push(Item::Arrows {
+            arrows,
+            width_px: 1.2,
+            role: Role::Bound,
+        });
+        scene.push(Item::Circle {
+            center: DVec2::new(disc_x, 50.0),
+            radius_m: 8.0,
+            role: Role::Obstacle,
+            fill: true,
+            dashed: false,
+        });
+        scene.push(Item::Label {
+            pos: DVec2::new(20.0, 20.0),
+            text: "start".into(),
+            role: Role::Text,
+            offset_px: DVec2::new(-14.0, 22.0),
+        });
+        scene.end_backdrop();
+        scene.push(Item::Dot {
+            center: DVec2::new(dot_x, 30.0),
+            radius_px: 7.0,
+            role: Role::Robot,
+        });
+        scene
+    };
+    let mut backdrop = labweb::layers::Backdrop::default();
+    let frame = |backdrop: &mut labweb::layers::Backdrop, s: &Scene| {
+        labweb::draw::paint_with_backdrop(&kept_ctx, s, &viewport(), W, H, 1.0, &palette, backdrop)
+    };
+    for i in 0..6 {
+        frame(&mut backdrop, &scene(40.0, 10.0 + 10.0 * f64::from(i)));
+    }
+    let c = counters();
+    assert_eq!(c.backdrop_draws, 1, "{c:?}");
+    assert_eq!(c.composites, 5, "every frame after the first: {c:?}");
+    paint(
+        &full_ctx,
+        &scene(40.0, 60.0),
+        &viewport(),
+        W,
+        H,
+        1.0,
+        &palette,
+    );
+    let (k, f) = (pixels(&kept_ctx), pixels(&full_ctx));
+    let differ = k.chunks(4).zip(f.chunks(4)).filter(|(a, b)| a != b).count();
+    assert_eq!(differ, 0, "pixels that differ from a full redraw");
+
+    // A dragged disc: painted directly while it moves, kept once it stops.
+    reset_counters();
+    for i in 0..3 {
+        frame(&mut backdrop, &scene(41.0 + f64::from(i), 60.0));
+    }
+    assert_eq!(counters().backdrop_draws, 0);
+    assert_eq!(counters().composites, 0);
+    frame(&mut backdrop, &scene(43.0, 60.0));
+    assert_eq!(counters().backdrop_draws, 1);
+    paint(
+        &full_ctx,
+        &scene(43.0, 60.0),
+        &viewport(),
+        W,
+        H,
+        1.0,
+        &palette,
+    );
+    assert_eq!(pixels(&kept_ctx), pixels(&full_ctx));
+}

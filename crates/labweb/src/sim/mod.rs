@@ -12,7 +12,7 @@
 //! screen-reader announcements.
 
 use crate::dom::{self, escape, query, Listener};
-use crate::draw::{paint, Palette, Viewport};
+use crate::draw::{paint, paint_with_backdrop, Palette, Viewport};
 use crate::plot_view::{self, PlotView};
 use glam::DVec2;
 use labcore::clock::Clock;
@@ -222,6 +222,8 @@ struct SimState {
     shown_view: labcore::ViewBox,
     hash_dirty: bool,
     last_hash_ms: f64,
+    /// The kept picture of the scene's backdrop.
+    backdrop: crate::layers::Backdrop,
     /// When a streamed input (a drag, a held arrow key) last moved the scene.
     last_stream_ms: f64,
     frame_times: FrameTimes,
@@ -467,7 +469,7 @@ impl SimState {
         self.scene.clear();
         self.exp.scene(&mut self.scene);
         self.push_focus_ring();
-        paint(
+        paint_with_backdrop(
             &self.ctx,
             &self.scene,
             &self.viewport,
@@ -475,6 +477,7 @@ impl SimState {
             h,
             self.dpr,
             &self.palette,
+            &mut self.backdrop,
         );
         // Let go of the display list now: a kept layer it shares with the
         // model (copy-on-write) would otherwise be copied by the next step.
@@ -619,6 +622,7 @@ impl SimView {
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
             last_hash_ms: 0.0,
+            backdrop: crate::layers::Backdrop::default(),
             last_stream_ms: f64::NEG_INFINITY,
             frame_times: FrameTimes::default(),
             instructor: route::Instructor::default(),

@@ -992,3 +992,37 @@ fn a_basin_map_after_an_ended_run_keeps_time_running_until_it_is_complete() {
     assert!(!e.basin_computing());
     assert_eq!(e.status().phase, crate::experiment::Phase::Ended);
 }
+
+/// The backdrop (the quiver, the obstacles, the start and the goal) holds
+/// still while the robot runs, so the page can keep its picture; the robot
+/// and its trail come after it.
+#[test]
+fn the_backdrop_holds_still_while_the_robot_runs() {
+    let mut e = PotentialFieldLab::default();
+    click(&mut e, DVec2::new(7.2, 3.0));
+    let scene = |e: &PotentialFieldLab| {
+        let mut scene = Scene::default();
+        e.scene(&mut scene);
+        scene
+    };
+    let before = scene(&e);
+    assert!(before.items[..before.backdrop]
+        .iter()
+        .any(|i| matches!(i, Item::Arrows { .. })));
+    for _ in 0..60 {
+        e.step(DT);
+    }
+    assert!(e.animating(), "still running after 1 s");
+    let after = scene(&e);
+    assert_eq!(
+        before.items[..before.backdrop],
+        after.items[..after.backdrop]
+    );
+    assert!(after.items[after.backdrop..].iter().any(|i| matches!(
+        i,
+        Item::Polyline {
+            role: Role::Path,
+            ..
+        }
+    )));
+}

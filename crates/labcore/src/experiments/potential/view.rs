@@ -184,6 +184,9 @@ impl PotentialFieldLab {
                 offset_px: DVec2::new(-14.0, -20.0),
             });
         }
+        // The field, its quiver, the obstacles, the start and the goal stay
+        // put while the robot runs.
+        out.end_backdrop();
         if self.trail.len() > 1 {
             out.push(Item::Polyline {
                 points: self.trail.clone(),
