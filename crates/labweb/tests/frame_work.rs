@@ -57,7 +57,12 @@ if (!window.__spy) {
     const d = Object.getOwnPropertyDescriptor(proto, p);
     Object.defineProperty(proto, p, {
       get: d.get,
-      set(v) { bump(`dom.${p}`); bump("dom.writes"); spy.dirty = true; d.set.call(this, v); },
+      set(v) {
+        bump(`dom.${p}`); bump("dom.writes"); spy.dirty = true;
+        const el = this.nodeType === 1 ? this : this.parentElement;
+        bump(`dom.${p}@${el && el.className}`);
+        d.set.call(this, v);
+      },
     });
   }
   const replaceState = History.prototype.replaceState;
@@ -232,6 +237,14 @@ impl labcore::Experiment for Streamer {
 /// test runs the frames) and paints it once. Every plot is pinned to the top
 /// of the window, in view whatever the test runner's window size.
 fn mount(exp: Streamer) -> labweb::sim::SimView {
+    mount_experiment(exp, "streamer")
+}
+
+/// Mounts any experiment on a 360 × 300 px canvas.
+fn mount_experiment(
+    exp: impl labcore::Experiment + 'static,
+    caption: &str,
+) -> labweb::sim::SimView {
     labweb::unmount();
     if let Some(old) = document().get_element_by_id("lab-under-test") {
         old.remove();
@@ -243,7 +256,7 @@ fn mount(exp: Streamer) -> labweb::sim::SimView {
         "<style>#lab-under-test{{width:390px}}.sim-canvas{{display:block;width:360px;height:300px}}\
          .plot-canvas{{display:block;width:360px;height:200px}}\
          #lab-under-test figure.plot{{position:fixed;top:0;left:0;width:360px}}</style>{}",
-        labweb::sim::render(&exp, "streamer")
+        labweb::sim::render(&exp, caption)
     ));
     let view = labweb::sim::SimView::mount(&panel, Box::new(exp)).unwrap();
     view.paint_now();
@@ -581,4 +594,69 @@ fn a_plot_of_100000_samples_draws_at_most_four_points_per_pixel_column() {
         "{points} points for 200,000 samples, bound {bound}"
     );
     assert!(points >= 200, "the curves are drawn: {points}");
+}
+
+/// Presses `key` on the simulation canvas.
+fn key_on_canvas(key: &str) {
+    let init = web_sys::KeyboardEventInit::new();
+    init.set_key(key);
+    init.set_bubbles(true);
+    let event =
+        web_sys::KeyboardEvent::new_with_keyboard_event_init_dict("keydown", &init).unwrap();
+    document()
+        .query_selector("#lab-under-test .sim-canvas")
+        .unwrap()
+        .unwrap()
+        .dispatch_event(&event)
+        .unwrap();
+}
+
+/// A held arrow key moving the IK target: each press starts the arm turning
+/// and the arm stops before the next, yet the page's text keeps the 250 ms
+/// pace (before, every start and stop wrote it: 20 times a second).
+#[cfg(feature = "all-experiments")]
+#[wasm_bindgen_test]
+fn a_held_key_whose_presses_start_and_end_motions_writes_the_text_at_the_pace() {
+    let view = mount_experiment(labcore::experiments::ik::InverseKinematics::default(), "ik");
+    view.frame_at(frame_ms(0));
+    key_on_canvas("]");
+    view.frame_at(frame_ms(1));
+    let mut text_frames = 0;
+    let mut painted = 0;
+    for i in 2..62 {
+        if i % 3 == 2 {
+            // Back and forth, within reach.
+            key_on_canvas(if i % 2 == 0 {
+                "ArrowLeft"
+            } else {
+                "ArrowRight"
+            });
+        }
+        reset_counts();
+        view.frame_at(frame_ms(i));
+        if count("dom.textContent") > 0 {
+            text_frames += 1;
+        }
+        if count("sim.setTransform") > 0 {
+            painted += 1;
+        }
+    }
+    assert!(painted > 40, "the arm moved in {painted} of 60 frames");
+    // One second of presses: every 250 ms, give or take one.
+    assert!(
+        (3..=5).contains(&text_frames),
+        "frames that wrote text: {text_frames}"
+    );
+    // Once the key is let go and the arm has stopped, the state is announced.
+    run_frames(&view, 62..240);
+    let live = document()
+        .query_selector("#lab-under-test .sim-live")
+        .unwrap()
+        .unwrap()
+        .text_content()
+        .unwrap();
+    assert!(
+        live.contains("in reach") && live.contains("Arm at θ₁"),
+        "announced: {live}"
+    );
 }

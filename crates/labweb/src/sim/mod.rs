@@ -226,6 +226,9 @@ struct SimState {
     backdrop: crate::layers::Backdrop,
     /// When a streamed input (a drag, a held arrow key) last moved the scene.
     last_stream_ms: f64,
+    /// A motion ended during a stream of input: announce the state once the
+    /// stream has been still for [`TEXT_INTERVAL_MS`].
+    announce_when_still: bool,
     frame_times: FrameTimes,
     /// The instructor's locks, hidden controls and note from the link.
     instructor: route::Instructor,
@@ -334,6 +337,13 @@ impl SimState {
         let input_paint = self.needs_paint && !self.text_paced;
         let streamed_input = self.needs_paint && self.text_paced;
         self.text_paced = false;
+        if streamed_input {
+            self.last_stream_ms = time_ms;
+        }
+        // A stream of input keeps the page's text at its pace, even when each
+        // input starts and ends a motion (an IK arm turning to a target moved
+        // by a held key started and stopped 20 times a second).
+        let streaming = time_ms - self.last_stream_ms < TEXT_INTERVAL_MS;
         let was_animating = self.exp.animating();
         // An idle experiment's clock does not tick (t counts motion only).
         let steps = if was_animating || !self.exp.animated() {
@@ -362,13 +372,27 @@ impl SimState {
         self.follow_phase();
         let stopped = was_animating && !self.exp.animating();
         if stopped {
-            // The state the motion ended in belongs in the link and is worth announcing.
+            // The state the motion ended in belongs in the link.
             self.hash_dirty = true;
-            self.announce();
         }
-        if phase_before == Phase::Live && self.phase == Phase::Ended {
-            // The run is over: say what the scene shows now.
-            self.describe_scene();
+        let run_over = phase_before == Phase::Live && self.phase == Phase::Ended;
+        if streaming && (stopped || run_over) {
+            // Under a held key each press starts and ends a motion: one
+            // announcement when the stream settles, not twenty a second.
+            self.announce_when_still = true;
+        } else {
+            if stopped {
+                // The state the motion ended in is worth announcing.
+                self.announce();
+            }
+            if run_over {
+                // The run is over: say what the scene shows now.
+                self.describe_scene();
+            }
+        }
+        if self.announce_when_still && !streaming && !self.exp.animating() {
+            self.announce_when_still = false;
+            self.announce();
         }
         // Paint while moving, and once more for the frame on which it stopped.
         if steps > 0 && (was_animating || self.exp.animating()) {
@@ -378,8 +402,7 @@ impl SimState {
         // The page's text follows the model at once after an input or when a
         // motion ends; while only the clock moves it, every TEXT_INTERVAL_MS.
         let text_due = input_paint
-            || stopped
-            || self.phase != phase_before
+            || ((stopped || self.phase != phase_before) && !streaming)
             || time_ms - self.text_ms >= TEXT_INTERVAL_MS;
         if self.needs_paint {
             self.resize();
@@ -391,7 +414,7 @@ impl SimState {
         if streamed_input && !write_text {
             // The status badge follows a drag at once (it is written only
             // when it changes: "in reach", "out of reach").
-            self.sync_status();
+            self.sync_status_during_stream();
         }
         if write_text {
             self.sync_dom();
@@ -412,9 +435,6 @@ impl SimState {
         }
         self.sync_notice(time_ms);
         self.sync_timebar(write_text || input_paint);
-        if streamed_input {
-            self.last_stream_ms = time_ms;
-        }
         if self.hash_dirty
             && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS
             && time_ms - self.last_stream_ms >= HASH_INTERVAL_MS
@@ -624,6 +644,7 @@ impl SimView {
             last_hash_ms: 0.0,
             backdrop: crate::layers::Backdrop::default(),
             last_stream_ms: f64::NEG_INFINITY,
+            announce_when_still: false,
             frame_times: FrameTimes::default(),
             instructor: route::Instructor::default(),
             quiz_seed: None,
