@@ -617,46 +617,55 @@ fn key_on_canvas(key: &str) {
 #[cfg(feature = "all-experiments")]
 #[wasm_bindgen_test]
 fn a_held_key_whose_presses_start_and_end_motions_writes_the_text_at_the_pace() {
-    let view = mount_experiment(labcore::experiments::ik::InverseKinematics::default(), "ik");
-    view.frame_at(frame_ms(0));
-    key_on_canvas("]");
-    view.frame_at(frame_ms(1));
-    let mut text_frames = 0;
-    let mut painted = 0;
-    for i in 2..62 {
-        if i % 3 == 2 {
-            // Back and forth, within reach.
-            key_on_canvas(if i % 2 == 0 {
-                "ArrowLeft"
-            } else {
-                "ArrowRight"
-            });
+    // With the target chosen ([) and moved as a handle, and without (the
+    // arrows nudge what the experiment moves by default).
+    for choose_handle in [true, false] {
+        let view = mount_experiment(labcore::experiments::ik::InverseKinematics::default(), "ik");
+        view.frame_at(frame_ms(0));
+        if choose_handle {
+            key_on_canvas("]");
         }
-        reset_counts();
-        view.frame_at(frame_ms(i));
-        if count("dom.textContent") > 0 {
-            text_frames += 1;
+        view.frame_at(frame_ms(1));
+        let mut text_frames = 0;
+        let mut painted = 0;
+        for i in 2..62 {
+            if i % 3 == 2 {
+                // Back and forth, within reach.
+                key_on_canvas(if i % 2 == 0 {
+                    "ArrowLeft"
+                } else {
+                    "ArrowRight"
+                });
+            }
+            reset_counts();
+            view.frame_at(frame_ms(i));
+            if count("dom.textContent") > 0 {
+                text_frames += 1;
+            }
+            if count("sim.setTransform") > 0 {
+                painted += 1;
+            }
         }
-        if count("sim.setTransform") > 0 {
-            painted += 1;
-        }
+        assert!(
+            painted > 40,
+            "handle {choose_handle}: the arm moved in {painted} of 60 frames"
+        );
+        // One second of presses: every 250 ms, give or take one.
+        assert!(
+            (3..=5).contains(&text_frames),
+            "handle {choose_handle}: frames that wrote text: {text_frames}"
+        );
+        // Once the key is let go and the arm has stopped, the state is announced.
+        run_frames(&view, 62..240);
+        let live = document()
+            .query_selector("#lab-under-test .sim-live")
+            .unwrap()
+            .unwrap()
+            .text_content()
+            .unwrap();
+        assert!(
+            live.contains("in reach") && live.contains("Arm at θ₁"),
+            "handle {choose_handle}: announced: {live}"
+        );
     }
-    assert!(painted > 40, "the arm moved in {painted} of 60 frames");
-    // One second of presses: every 250 ms, give or take one.
-    assert!(
-        (3..=5).contains(&text_frames),
-        "frames that wrote text: {text_frames}"
-    );
-    // Once the key is let go and the arm has stopped, the state is announced.
-    run_frames(&view, 62..240);
-    let live = document()
-        .query_selector("#lab-under-test .sim-live")
-        .unwrap()
-        .unwrap()
-        .text_content()
-        .unwrap();
-    assert!(
-        live.contains("in reach") && live.contains("Arm at θ₁"),
-        "announced: {live}"
-    );
 }

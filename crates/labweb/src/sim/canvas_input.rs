@@ -205,6 +205,8 @@ pub(super) fn listen(
         };
         st.guarded_input(Input::Nudge(delta), mods);
         st.interaction_ended();
+        // Keys repeat: a held arrow is a stream, written at the text's pace.
+        st.text_paced = true;
     }));
 }
 /// The modifier keys of a pointer event (⌘ counts as Ctrl on a Mac).
