@@ -86,5 +86,5 @@ pub use experiments::{find, registry, Entry};
 pub use glam;
 pub use plot::{Plot, Series, SeriesRole};
 pub use rng::Lcg64;
-pub use scene::{Item, RasterColour, Role, Scene, ViewBox};
+pub use scene::{BackdropKey, Item, RasterColour, Role, Scene, ViewBox};
 pub use table::Table;

@@ -231,9 +231,51 @@ pub struct Scene {
     pub items: Vec<Item>,
     /// How many of the first items are the scene's backdrop: what a run
     /// does not move (a field, its obstacles, a quiver of forces). The page
-    /// keeps their picture while they stay equal and paints only the items
-    /// after them; 0 keeps nothing. Set by [`Scene::end_backdrop`].
+    /// keeps their picture while [`Scene::backdrop_key`] stays the same and
+    /// paints only the items after them; 0 keeps nothing. Set by
+    /// [`Scene::end_backdrop`].
     pub backdrop: usize,
+    /// A fingerprint of what the backdrop's items are made from
+    /// ([`BackdropKey`]): equal keys mean equal items, which each experiment
+    /// that marks a backdrop asserts in a test.
+    pub backdrop_key: u64,
+}
+
+/// Builds a [`Scene::backdrop_key`]: a 64-bit FNV-1a fingerprint of the bits
+/// of the numbers a backdrop is drawn from. Comparing a key costs nothing
+/// and needs no copy of the items (which would add their comparison and
+/// cloning code to every page's module).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BackdropKey(u64);
+
+impl Default for BackdropKey {
+    fn default() -> Self {
+        Self(0xcbf2_9ce4_8422_2325)
+    }
+}
+
+impl BackdropKey {
+    /// Mixes in one number (its exact bits: 0.0 and -0.0 differ).
+    #[must_use]
+    pub fn num(self, v: f64) -> Self {
+        const PRIME: u64 = 0x0000_0100_0000_01b3;
+        let mut h = self.0;
+        for b in v.to_bits().to_le_bytes() {
+            h = (h ^ u64::from(b)).wrapping_mul(PRIME);
+        }
+        Self(h)
+    }
+
+    /// Mixes in a point's coordinates.
+    #[must_use]
+    pub fn point(self, p: DVec2) -> Self {
+        self.num(p.x).num(p.y)
+    }
+
+    #[must_use]
+    pub fn finish(self) -> u64 {
+        self.0
+    }
 }
 
 impl Scene {
@@ -241,12 +283,15 @@ impl Scene {
     pub fn clear(&mut self) {
         self.items.clear();
         self.backdrop = 0;
+        self.backdrop_key = 0;
     }
 
-    /// Marks the items pushed so far as the backdrop (see [`Scene::backdrop`]).
-    /// Only a hint for the painter: the picture is the same either way.
-    pub fn end_backdrop(&mut self) {
+    /// Marks the items pushed so far as the backdrop, made from what `key`
+    /// fingerprints (see [`Scene::backdrop`]). Only a hint for the painter:
+    /// the picture is the same either way.
+    pub fn end_backdrop(&mut self, key: u64) {
         self.backdrop = self.items.len();
+        self.backdrop_key = key;
     }
 
     pub fn push(&mut self, item: Item) {

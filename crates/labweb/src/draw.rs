@@ -201,9 +201,9 @@ pub fn paint(
 }
 
 /// As [`paint`], keeping the picture of the scene's backdrop
-/// ([`Scene::backdrop`]) in `backdrop` between frames: while the backdrop's
-/// items stay equal, a frame composites that picture and paints only the
-/// items after it. The pixels are those [`paint`] gives.
+/// ([`Scene::backdrop`]) in `backdrop` between frames: while its key
+/// ([`Scene::backdrop_key`]) stays the same, a frame composites that picture
+/// and paints only the items after it. The pixels are those [`paint`] gives.
 #[allow(clippy::too_many_arguments)]
 pub fn paint_with_backdrop(
     ctx: &CanvasRenderingContext2d,
@@ -220,7 +220,7 @@ pub fn paint_with_backdrop(
     let kept = split > 0
         && backdrop.composite(
             ctx,
-            below,
+            scene.backdrop_key,
             viewport,
             (width_px, height_px),
             dpr,

@@ -25,7 +25,6 @@
 use crate::draw::{bresenham, clip_segment, hex_rgb, Palette, Viewport};
 use glam::DVec2;
 use labcore::scene::{LayerMark, LayerOp, SegmentLayer};
-use labcore::Item;
 use labcore::RasterColour;
 use std::cell::{Cell, RefCell};
 use wasm_bindgen::JsCast;
@@ -130,34 +129,33 @@ fn offscreen() -> Option<(HtmlCanvasElement, CanvasRenderingContext2d)> {
 
 /// The kept picture of a scene's backdrop ([`labcore::Scene::backdrop`]):
 /// the items a run does not move, painted once into an off-screen canvas
-/// and composited with one `drawImage` while they, the viewport, the canvas
-/// size, the pixel ratio and the colours stay the same. A quiver of 300
-/// force arrows stroked at every frame cost about 7 ms of raster a frame on
-/// a 4x-throttled phone.
+/// and composited with one `drawImage` while their key
+/// ([`labcore::Scene::backdrop_key`]), the viewport, the canvas size, the
+/// pixel ratio and the colours stay the same. A quiver of 300 force arrows
+/// stroked at every frame cost about 7 ms of raster a frame on a
+/// 4x-throttled phone.
 ///
-/// The items are compared, not versioned, so the picture can never be stale.
-/// While they change at every frame (a dragged obstacle), the frame paints
-/// them directly and keeps nothing: a picture is made only once the backdrop
-/// has been the same for two frames in a row.
+/// While the key changes at every frame (a dragged obstacle), the frame
+/// paints the backdrop directly and keeps nothing: a picture is made only
+/// once the key has been the same for two frames in a row.
 #[derive(Default)]
 pub struct Backdrop {
-    items: Vec<Item>,
-    key: Option<(Viewport, (u32, u32), u64)>,
+    key: Option<(u64, Viewport, (u32, u32), u64)>,
     palette: Option<Palette>,
     picture: Option<(HtmlCanvasElement, CanvasRenderingContext2d)>,
     drawn: bool,
 }
 
 impl Backdrop {
-    /// Composites the kept picture of `items` onto `ctx` and returns true;
-    /// `draw` paints the picture when it is missing. Returns false, having
-    /// drawn nothing, when the backdrop changed since the last frame (the
-    /// caller then paints the whole scene).
+    /// Composites the kept picture of the backdrop fingerprinted by `key`
+    /// onto `ctx` and returns true; `draw` paints the picture when it is
+    /// missing. Returns false, having drawn nothing, when the backdrop
+    /// changed since the last frame (the caller then paints the whole scene).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn composite(
         &mut self,
         ctx: &CanvasRenderingContext2d,
-        items: &[Item],
+        key: u64,
         viewport: &Viewport,
         (css_w, css_h): (f64, f64),
         dpr: f64,
@@ -168,13 +166,8 @@ impl Backdrop {
             (css_w * dpr).round().max(1.0) as u32,
             (css_h * dpr).round().max(1.0) as u32,
         );
-        let key = (*viewport, size, dpr.to_bits());
-        let same = self.key == Some(key)
-            && self.palette.as_ref() == Some(palette)
-            && self.items.as_slice() == items;
-        if !same {
-            self.items.clear();
-            self.items.extend_from_slice(items);
+        let key = (key, *viewport, size, dpr.to_bits());
+        if self.key != Some(key) || self.palette.as_ref() != Some(palette) {
             self.key = Some(key);
             if self.palette.as_ref() != Some(palette) {
                 self.palette = Some(palette.clone());

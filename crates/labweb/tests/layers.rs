@@ -318,7 +318,7 @@ fn a_backdrop_is_painted_once_while_it_stays_and_gives_the_pixels_of_a_full_redr
             role: Role::Text,
             offset_px: DVec2::new(-14.0, 22.0),
         });
-        scene.end_backdrop();
+        scene.end_backdrop(labcore::BackdropKey::default().num(disc_x).finish());
         scene.push(Item::Dot {
             center: DVec2::new(dot_x, 30.0),
             radius_px: 7.0,

@@ -2,6 +2,7 @@
 //! status badge. Everything here only reads the state.
 
 use super::*;
+use crate::mobile::potential_field::{Attraction, Repulsion};
 
 impl PotentialFieldLab {
     pub(super) fn status_of_run(&self) -> Status {
@@ -107,6 +108,30 @@ impl PotentialFieldLab {
         arrows
     }
 
+    /// The fingerprint of what the backdrop is drawn from: the field (its
+    /// gains, laws, goal and obstacles), the view, the start and the goal.
+    pub(super) fn backdrop_key(&self) -> u64 {
+        let p = &self.field.params;
+        let mut key = crate::BackdropKey::default()
+            .num(p.k_att)
+            .num(p.k_rep)
+            .num(p.influence_m)
+            .num(f64::from(u8::from(p.attraction == Attraction::Quadratic)))
+            .num(f64::from(u8::from(p.repulsion == Repulsion::Khatib)))
+            .point(self.field.goal)
+            .num(self.view as f64)
+            .point(self.start)
+            .num(self.field.obstacles.len() as f64);
+        for o in &self.field.obstacles {
+            key = key.point(o.centre).num(o.radius_m);
+        }
+        match self.goal {
+            Some(g) => key.num(1.0).point(g),
+            None => key.num(0.0),
+        }
+        .finish()
+    }
+
     /// The display list (the trait's `scene` delegates here).
     pub(super) fn draw_scene(&self, out: &mut Scene) {
         if let (Some(map), true) = (&self.basin, self.goal.is_some()) {
@@ -185,8 +210,11 @@ impl PotentialFieldLab {
             });
         }
         // The field, its quiver, the obstacles, the start and the goal stay
-        // put while the robot runs.
-        out.end_backdrop();
+        // put while the robot runs (a basin map fills in as it runs: no
+        // backdrop then).
+        if self.basin.is_none() || self.goal.is_none() {
+            out.end_backdrop(self.backdrop_key());
+        }
         if self.trail.len() > 1 {
             out.push(Item::Polyline {
                 points: self.trail.clone(),
