@@ -529,6 +529,22 @@ pub fn keep_locked(
     instructor: &Instructor,
     op: impl FnOnce(&mut dyn Experiment),
 ) -> Vec<&'static str> {
+    let mut op = Some(op);
+    keep_locked_dyn(experiment, instructor, &mut |e| {
+        if let Some(op) = op.take() {
+            op(e);
+        }
+    })
+}
+
+/// [`keep_locked`]'s body, compiled once for every caller's `op` (each
+/// caller's own copy cost the shipped modules about 800 bytes).
+#[inline(never)]
+fn keep_locked_dyn(
+    experiment: &mut dyn Experiment,
+    instructor: &Instructor,
+    op: &mut dyn FnMut(&mut dyn Experiment),
+) -> Vec<&'static str> {
     if instructor.locked.is_empty() {
         op(experiment);
         return Vec::new();

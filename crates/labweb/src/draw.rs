@@ -11,13 +11,20 @@ use wasm_bindgen::{JsCast, JsValue};
 use web_sys::{CanvasRenderingContext2d, Element};
 
 /// Theme colours per role, read from CSS custom properties (`--c-link`, …).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Palette {
     colours: Vec<(Role, String)>,
     vars: Vec<(&'static str, String)>,
     pub background: String,
     /// The focus ring's colour: the page's focus outline (`--focus`).
     pub focus: String,
+    /// Which reading of the CSS this is (each [`Palette::from_css`] takes
+    /// the next number): kept pictures compare it instead of the colours.
+    pub(crate) reading: u64,
+}
+
+thread_local! {
+    static PALETTE_READINGS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
 }
 
 /// Other theme colours the plots use.
@@ -67,6 +74,10 @@ impl Palette {
             vars: PLOT_VARS.iter().map(|v| (*v, read(v, "#888"))).collect(),
             background: read("--c-canvas", "#fff"),
             focus: read("--focus", "#E69F00"),
+            reading: PALETTE_READINGS.with(|n| {
+                n.set(n.get() + 1);
+                n.get()
+            }),
         }
     }
 

@@ -138,10 +138,14 @@ fn offscreen() -> Option<(HtmlCanvasElement, CanvasRenderingContext2d)> {
 /// While the key changes at every frame (a dragged obstacle), the frame
 /// paints the backdrop directly and keeps nothing: a picture is made only
 /// once the key has been the same for two frames in a row.
+/// What a backdrop picture was drawn with: the backdrop's key, the
+/// viewport, the size in device pixels, the pixel ratio's bits and the
+/// palette's reading.
+type BackdropDrawn = (u64, Viewport, (u32, u32), u64, u64);
+
 #[derive(Default)]
 pub struct Backdrop {
-    key: Option<(u64, Viewport, (u32, u32), u64)>,
-    palette: Option<Palette>,
+    key: Option<BackdropDrawn>,
     picture: Option<(HtmlCanvasElement, CanvasRenderingContext2d)>,
     drawn: bool,
 }
@@ -166,12 +170,9 @@ impl Backdrop {
             (css_w * dpr).round().max(1.0) as u32,
             (css_h * dpr).round().max(1.0) as u32,
         );
-        let key = (key, *viewport, size, dpr.to_bits());
-        if self.key != Some(key) || self.palette.as_ref() != Some(palette) {
+        let key = (key, *viewport, size, dpr.to_bits(), palette.reading);
+        if self.key != Some(key) {
             self.key = Some(key);
-            if self.palette.as_ref() != Some(palette) {
-                self.palette = Some(palette.clone());
-            }
             self.drawn = false;
             return false;
         }

@@ -368,4 +368,20 @@ fn a_backdrop_is_painted_once_while_it_stays_and_gives_the_pixels_of_a_full_redr
         &palette,
     );
     assert_eq!(pixels(&kept_ctx), pixels(&full_ctx));
+    // Colours read again (the theme changed): drawn anew.
+    let palette = Palette::from_css(&_a);
+    reset_counters();
+    for _ in 0..3 {
+        labweb::draw::paint_with_backdrop(
+            &kept_ctx,
+            &scene(43.0, 60.0),
+            &viewport(),
+            W,
+            H,
+            1.0,
+            &palette,
+            &mut backdrop,
+        );
+    }
+    assert_eq!((counters().backdrop_draws, counters().composites), (1, 2));
 }

@@ -86,43 +86,28 @@ pub(super) fn tone_name(tone: labcore::Tone) -> &'static str {
 impl SimState {
     /// Brings the status badge up to date with the run's state.
     pub(super) fn sync_status(&mut self) {
-        self.sync_status_parts(true);
+        let status = self.exp.status();
+        if Some(&status) != self.shown_status.as_ref() {
+            if let Some(badge) = query(&self.panel, ".sim-status") {
+                badge.set_text_content(Some(&status.text));
+                let _ = badge.set_attribute("data-tone", tone_name(status.tone));
+                let _ = badge.set_attribute("data-phase", phase_name(status.phase));
+            }
+            self.shown_status = Some(status);
+        }
     }
 
     /// The badge during a stream of input (a drag, a held arrow key): a new
-    /// tone shows at once, with its text ("in reach" turning "out of reach:
-    /// target 1.71 m away"); the rest follows at the text's pace, like the
-    /// readouts. Under a held key each press starts and ends a motion, and
-    /// the phase would flicker between live and ended.
+    /// tone shows at once ("in reach" turning "out of reach: target 1.71 m
+    /// away"); the rest follows at the text's pace, like the readouts. Under
+    /// a held key each press starts and ends a motion, and the badge would
+    /// flicker between live and ended.
     pub(super) fn sync_status_during_stream(&mut self) {
         let tone = self.exp.status().tone;
         if self.shown_status.as_ref().is_some_and(|s| s.tone == tone) {
             return;
         }
-        self.sync_status_parts(false);
-    }
-
-    /// Writes the parts of the badge that changed.
-    fn sync_status_parts(&mut self, with_phase: bool) {
-        let mut status = self.exp.status();
-        let old = self.shown_status.take();
-        if let (false, Some(old)) = (with_phase, &old) {
-            status.phase = old.phase;
-        }
-        if old.as_ref() != Some(&status) {
-            if let Some(badge) = query(&self.panel, ".sim-status") {
-                if old.as_ref().map(|o| &o.text) != Some(&status.text) {
-                    badge.set_text_content(Some(&status.text));
-                }
-                if old.as_ref().map(|o| o.tone) != Some(status.tone) {
-                    let _ = badge.set_attribute("data-tone", tone_name(status.tone));
-                }
-                if old.as_ref().map(|o| o.phase) != Some(status.phase) {
-                    let _ = badge.set_attribute("data-phase", phase_name(status.phase));
-                }
-            }
-        }
-        self.shown_status = Some(status);
+        self.sync_status();
     }
 
     /// The caption: the touch hint while the last pointer was a finger.
