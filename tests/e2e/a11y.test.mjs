@@ -13,8 +13,16 @@ const LIVE = "article.exp:not([hidden]) .sim-live";
 
 /** The link's parameters now (the page writes the hash a moment after an input). */
 async function linkParams(page) {
+  // The link is written once a key or a drag has been still for 250 ms:
+  // wait past that, then until it holds still (a busy machine runs late).
   await page.waitForTimeout(400);
-  const hash = await page.evaluate(() => location.hash);
+  let hash = await page.evaluate(() => location.hash);
+  for (let tries = 0; tries < 10; tries++) {
+    await page.waitForTimeout(300);
+    const now = await page.evaluate(() => location.hash);
+    if (now === hash) break;
+    hash = now;
+  }
   return new URLSearchParams(hash.split("?")[1] || "");
 }
 

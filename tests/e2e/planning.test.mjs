@@ -54,7 +54,9 @@ test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds 
     await page.mouse.down();
     await page.mouse.move(b.x, b.y, { steps: 8 });
     await page.mouse.up();
-    await page.waitForFunction((n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] > n, before);
+    // The readout follows a drag at the text's pace (every 250 ms) and
+    // shows its last value when it ends: wait for that one.
+    await page.waitForFunction((n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] >= n, before + 7);
     assert.equal(await walls(page), before + 7, "seven cells painted, no gaps");
     // Shift-click sets the start.
     const s = await cellToPage(page, 2, 2, 24);
@@ -115,7 +117,9 @@ test("astar: a finger paints walls too: the canvas takes the touch and the page 
     await touch("touchStart", a);
     for (let i = 1; i <= 8; i++) await touch("touchMove", { x: a.x, y: a.y + ((b.y - a.y) * i) / 8 });
     await touch("touchEnd");
-    await page.waitForFunction((n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] > n, before);
+    // The readout follows a drag at the text's pace (every 250 ms) and
+    // shows its last value when it ends: wait for that one.
+    await page.waitForFunction((n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] >= n, before + 7);
     assert.equal(await walls(page), before + 7, "a vertical swipe painted seven cells");
     assert.equal(await page.evaluate(() => scrollY), scrollY, "the page did not scroll");
   }));
