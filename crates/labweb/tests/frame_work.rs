@@ -484,12 +484,7 @@ fn pointer(kind: &str, x: f64, y: f64) {
     init.set_client_y(y as i32);
     init.set_buttons(u16::from(kind != "pointerup"));
     let event = web_sys::PointerEvent::new_with_event_init_dict(kind, &init).unwrap();
-    document()
-        .query_selector("#lab-under-test .sim-canvas")
-        .unwrap()
-        .unwrap()
-        .dispatch_event(&event)
-        .unwrap();
+    dispatch_on_canvas(&event);
 }
 
 #[wasm_bindgen_test]
@@ -603,12 +598,7 @@ fn key_on_canvas(key: &str) {
     init.set_bubbles(true);
     let event =
         web_sys::KeyboardEvent::new_with_keyboard_event_init_dict("keydown", &init).unwrap();
-    document()
-        .query_selector("#lab-under-test .sim-canvas")
-        .unwrap()
-        .unwrap()
-        .dispatch_event(&event)
-        .unwrap();
+    dispatch_on_canvas(&event);
 }
 
 /// A held arrow key moving the IK target: each press starts the arm turning
@@ -668,4 +658,14 @@ fn a_held_key_whose_presses_start_and_end_motions_writes_the_text_at_the_pace() 
             "handle {choose_handle}: announced: {live}"
         );
     }
+}
+
+/// Dispatches `event` on the mounted simulation canvas.
+fn dispatch_on_canvas(event: &web_sys::Event) {
+    document()
+        .query_selector("#lab-under-test .sim-canvas")
+        .unwrap()
+        .unwrap()
+        .dispatch_event(event)
+        .unwrap();
 }
