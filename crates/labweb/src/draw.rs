@@ -247,16 +247,7 @@ pub fn paint_with_backdrop(
             ctx, above, viewport, width_px, height_px, dpr, palette, false,
         );
     } else {
-        paint_items(
-            ctx,
-            &scene.items,
-            viewport,
-            width_px,
-            height_px,
-            dpr,
-            palette,
-            true,
-        );
+        paint(ctx, scene, viewport, width_px, height_px, dpr, palette);
     }
 }
 
