@@ -2,14 +2,24 @@
 //! failure, with a timing line per step and a summary at the end.
 
 use crate::{dist, util};
+use std::cell::Cell;
 use std::path::Path;
 use std::process::Command;
+use std::rc::Rc;
 use std::time::{Duration, Instant};
 
 const CHROMIUM: &str = "/usr/bin/chromium";
 const CHROMEDRIVER: &str = "/usr/bin/chromedriver";
 const INSTALL_HINT: &str =
     "install the Debian packages chromium and chromium-driver (sudo apt-get install chromium chromium-driver)";
+/// The Debian packages of the real servers `tests/hosts/` runs README's recipes on.
+const SERVER_PACKAGES: [&str; 3] = ["nginx", "libnginx-mod-http-brotli-static", "apache2"];
+/// What those packages install that the suite uses.
+const SERVER_FILES: [&str; 3] = [
+    "/usr/sbin/nginx",
+    "/usr/share/nginx/modules/ngx_http_brotli_static_module.so",
+    "/usr/sbin/apache2",
+];
 
 pub struct Options {
     quick: bool,
@@ -144,6 +154,34 @@ pub fn test(opts: Options) -> Result<(), String> {
         }),
     ));
 
+    // README's nginx and Apache recipes on the real servers. Without the
+    // packages and without root to install them, the suite is skipped (said
+    // loudly), not failed: the rest of the tests still mean something.
+    let servers_present = Rc::new(Cell::new(false));
+    let present = Rc::clone(&servers_present);
+    let servers_ran = Rc::clone(&servers_present);
+    steps.push((
+        "nginx and Apache present",
+        Box::new(move || {
+            present.set(ensure_servers()?);
+            Ok(())
+        }),
+    ));
+    steps.push((
+        "README's server recipes on nginx and Apache (node --test tests/hosts/)",
+        Box::new(move || {
+            if !servers_present.get() {
+                println!("SKIPPED: {}", servers_hint());
+                return Ok(());
+            }
+            util::run(
+                Command::new("node")
+                    .args(["--test", "tests/hosts/"])
+                    .current_dir(util::root()),
+            )
+        }),
+    ));
+
     let started = Instant::now();
     let total = steps.len();
     let mut done: Vec<(&str, Duration)> = Vec::new();
@@ -170,6 +208,12 @@ pub fn test(opts: Options) -> Result<(), String> {
     }
     summary(&done, started.elapsed());
     println!("all {total} steps passed");
+    if !servers_ran.get() {
+        println!(
+            "but README's server recipes were not tested: {}",
+            servers_hint()
+        );
+    }
     Ok(())
 }
 
@@ -217,6 +261,49 @@ pub fn ensure_chromium() -> Result<(), String> {
     } else {
         Err(format!(
             "apt-get finished but {CHROMIUM} or {CHROMEDRIVER} is still missing"
+        ))
+    }
+}
+
+fn servers_hint() -> String {
+    format!(
+        "the real-server suite (tests/hosts/) needs the Debian packages {}: \
+         run as root, or `sudo apt-get update && sudo apt-get install -y {}`",
+        SERVER_PACKAGES.join(", "),
+        SERVER_PACKAGES.join(" ")
+    )
+}
+
+/// Installs Debian's nginx, its Brotli static module and Apache when missing
+/// (as root). `Ok(false)` when they are missing and this is not root: the
+/// caller skips the suite and says why.
+pub fn ensure_servers() -> Result<bool, String> {
+    let present = || SERVER_FILES.iter().all(|f| Path::new(f).exists());
+    if present() {
+        return Ok(true);
+    }
+    let uid = util::output(Command::new("id").arg("-u"))?;
+    if uid.trim() != "0" {
+        println!("SKIPPING: {}", servers_hint());
+        return Ok(false);
+    }
+    util::run(
+        Command::new("apt-get")
+            .arg("update")
+            .env("DEBIAN_FRONTEND", "noninteractive"),
+    )?;
+    util::run(
+        Command::new("apt-get")
+            .args(["install", "-y"])
+            .args(SERVER_PACKAGES)
+            .env("DEBIAN_FRONTEND", "noninteractive"),
+    )?;
+    if present() {
+        Ok(true)
+    } else {
+        Err(format!(
+            "apt-get finished but one of {} is still missing",
+            SERVER_FILES.join(", ")
         ))
     }
 }
