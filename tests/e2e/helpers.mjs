@@ -329,7 +329,9 @@ export async function runFor(page, ms) {
  * machine's): the run either reaches the event within that budget or the
  * lab is wrong. Returns the page time it took, in ms.
  */
-export async function runUntil(page, predicate, arg, { sliceMs = 50, maxMs = 60_000, what = "the condition" } = {}) {
+export async function runUntil(page, predicate, arg, { sliceMs = 50, maxMs, timeout, what = "the condition" } = {}) {
+  // `timeout` (page.waitForFunction's word) is page time here too.
+  maxMs = maxMs ?? Math.max(timeout ?? 0, 60_000);
   for (let t = 0; ; t += sliceMs) {
     if (await page.evaluate(predicate, arg)) return t;
     if (t >= maxMs) throw new Error(`${what} did not hold within ${maxMs} ms of page time`);
