@@ -245,6 +245,9 @@ export async function open(lab, page, hash = "#/") {
         },
         id,
       );
+      // On a stopped clock, one frame: the controls and readouts show the
+      // link's state as a running page's first frame shows it.
+      if (stoppedClocks.has(page.context())) await page.clock.runFor(17);
     }
   } else {
     await poll(page, () => Boolean(document.querySelector("[data-page=home]:not([hidden])")));
