@@ -3,7 +3,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { open, readNumber, readouts, screenshot, useLab, withPage } from "./helpers.mjs";
+import { open, readNumber, readouts, runFor, runUntil, screenshot, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 
@@ -30,7 +30,8 @@ const degrees = (text) => Number.parseFloat(text);
 
 /** Waits until the status badge matches `pattern`. */
 async function waitStatus(page, pattern) {
-  await page.waitForFunction(
+  await runUntil(
+      page,
     (source) => new RegExp(source).test(document.querySelector(".sim-status").textContent),
     pattern.source,
   );
@@ -38,12 +39,12 @@ async function waitStatus(page, pattern) {
 }
 
 test("ik: a clicked target is solved, the arm animates there, and the elbow toggle flips the bend", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/ik/simulation");
     await clickWorld(page, 0.9, 0.8);
     await waitStatus(page, /^in reach$/);
     // The move takes 0.8 s; wait until the readouts match the target.
-    await page.waitForFunction(() => {
+    await runUntil(page, () => {
       const x = Number.parseFloat(document.querySelector("[data-readout=x]").textContent);
       const y = Number.parseFloat(document.querySelector("[data-readout=y]").textContent);
       return Math.hypot(x - 0.9, y - 0.8) < 0.02;
@@ -58,7 +59,8 @@ test("ik: a clicked target is solved, the arm animates there, and the elbow togg
     assert.ok(Math.hypot(x - 0.9, y - 0.8) < 0.02, `FK(IK) = (${x}, ${y})`);
     // Screen readers hear the settled result, not the pose the arm started
     // from: the readouts, then (the run has ended) the scene's description.
-    await page.waitForFunction(
+    await runUntil(
+      page,
       (t1) => /θ₁ (solved: )?/.test(document.querySelector(".sim-live").textContent)
         && document.querySelector(".sim-live").textContent.includes(t1),
       r.theta1,
@@ -66,8 +68,8 @@ test("ik: a clicked target is solved, the arm animates there, and the elbow togg
     assert.match(await page.locator(".sim-live").textContent(), /in reach/);
 
     await page.locator("input[data-param=elbow][value='0']").check({ force: true });
-    await page.waitForFunction(() => Number.parseFloat(document.querySelector("[data-readout=theta2]").textContent) > 0);
-    await page.waitForTimeout(1000);
+    await runUntil(page, () => Number.parseFloat(document.querySelector("[data-readout=theta2]").textContent) > 0);
+    await runFor(page, 1000);
     r = await readouts(page);
     assert.ok(degrees(r.theta2) > 0, "elbow down has θ2 > 0");
     assert.ok(Math.abs(degrees(r.theta2) + up.t2) < 0.15, "the branches mirror θ2");
@@ -77,13 +79,13 @@ test("ik: a clicked target is solved, the arm animates there, and the elbow togg
   }));
 
 test("ik: a target outside the annulus shows 'out of reach', says why, and the arm stretches toward it", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/ik/simulation");
     await clickWorld(page, 2.2, 0.0);
     const status = await waitStatus(page, /out of reach/);
     assert.match(status, /target 2\.\d\d m away > L₁ \+ L₂ = 1\.70 m/);
     // The arm reaches out along the line to the target (|tip| = L1 + L2, on the x axis).
-    await page.waitForFunction(() => {
+    await runUntil(page, () => {
       const x = Number.parseFloat(document.querySelector("[data-readout=x]").textContent);
       const y = Number.parseFloat(document.querySelector("[data-readout=y]").textContent);
       return Math.abs(x - 1.7) < 0.02 && Math.abs(y) < 0.02;
@@ -94,10 +96,10 @@ test("ik: a target outside the annulus shows 'out of reach', says why, and the a
   }));
 
 test("workspace: Sweep fills the cloud over many frames and the radii match theory", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/workspace/simulation?l1=1&l2=0.5&l3=0.2&n=20000");
     await page.locator("button[data-action=sweep]").click();
-    await page.waitForFunction(() => /sweeping/.test(document.querySelector(".sim-status").textContent));
+    await runUntil(page, () => /sweeping/.test(document.querySelector(".sim-status").textContent));
     await waitStatus(page, /^swept 20000 samples$/);
     const r = await readouts(page);
     assert.equal(r.samples, "20000 / 20000");
@@ -117,7 +119,7 @@ test("workspace: Sweep fills the cloud over many frames and the radii match theo
   }));
 
 test("dls: a reachable click converges below 1e-6 m; an unreachable one settles on the boundary", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/dls/simulation?n=7&rate=60");
     assert.equal(await page.locator("input[type=range][data-param=n]").inputValue(), "7");
     await clickWorld(page, 1.2, 0.9);

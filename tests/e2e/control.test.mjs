@@ -6,7 +6,7 @@ import { test } from "node:test";
 import assert from "node:assert/strict";
 import { readFile } from "node:fs/promises";
 import { join } from "node:path";
-import { DESKTOP, SHOTS, open, readouts, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+import { DESKTOP, SHOTS, open, readouts, runFor, runUntil, runUntilReadout, screenshot, settle, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 const PHONE_TALL = { width: 390, height: 844 };
@@ -14,23 +14,11 @@ const PHONE_TALL = { width: 390, height: 844 };
 const num = (text) => Number.parseFloat(text);
 
 /**
- * Waits until `[data-readout=key]`'s number (its magnitude with `abs`) is
- * `op` (">" or "<") `bound`. The test is data, not a function turned into a
- * string: the page's Content-Security-Policy forbids `new Function` in it.
+ * Runs the page's frozen clock until `[data-readout=key]`'s number (its
+ * magnitude with `abs`) is `op` (">" or "<") `bound`: simulated time, so a
+ * busy machine cannot make it miss (helpers.mjs `runUntilReadout`).
  */
-async function waitReadout(page, key, op, bound, { abs = false } = {}) {
-  await page.waitForFunction(
-    ([k, o, b, a]) => {
-      const el = document.querySelector(`[data-readout="${k}"]`);
-      if (!el) return false;
-      const raw = Number.parseFloat(el.textContent);
-      const v = a ? Math.abs(raw) : raw;
-      return o === ">" ? v > b : v < b;
-    },
-    [key, op, bound, abs],
-  );
-  return (await readouts(page))[key];
-}
+const waitReadout = runUntilReadout;
 
 /** Clicks a plot's CSV button and returns the downloaded text. */
 async function downloadCsv(page, key) {
@@ -51,7 +39,8 @@ async function fullPage(page, name) {
 async function pauseAndStep(page) {
   const play = page.locator("button[data-time=play]");
   await play.click();
-  await page.waitForFunction(
+  await runUntil(
+      page,
     () => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "false",
   );
   const canvas = page.locator("canvas.sim-canvas");
@@ -59,19 +48,21 @@ async function pauseAndStep(page) {
   await settle(page);
   assert.equal(Number(await canvas.getAttribute("data-steps")), before, "paused: the clock stands still");
   await page.locator("button[data-time=step]").click();
-  await page.waitForFunction(
+  await runUntil(
+      page,
     (n) => Number(document.querySelector("canvas.sim-canvas").dataset.steps) === n + 1,
     before,
   );
   assert.match(await page.evaluate(() => location.hash), /run=0/);
   await play.click();
-  await page.waitForFunction(
+  await runUntil(
+      page,
     () => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "true",
   );
 }
 
 test("pid: the cart chases the setpoint, runs can be pinned, the time bar steps and the CSV downloads", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation");
     let r = await readouts(page);
     assert.ok(num(r.x) < 0.5, `the cart starts near 0: ${r.x}`);
@@ -89,14 +80,14 @@ test("pid: the cart chases the setpoint, runs can be pinned, the time bar steps 
     const fit = page.locator("article.exp:not([hidden]) figure.plot [data-plot-fit]").first();
     assert.equal(await fit.isVisible(), false, "no pin yet: nothing to fit past");
     await page.locator("button[data-action=pin]").click();
-    await page.waitForSelector("[data-readout=pinA]");
-    await fit.waitFor({ state: "visible" });
+    await runUntil(page, () => Boolean(document.querySelector("[data-readout=pinA]")));
+    await runUntil(page, () => Boolean(document.querySelector("article.exp:not([hidden]) figure.plot [data-plot-fit]:not([hidden])")?.offsetParent));
     assert.match((await readouts(page)).pinA, /^Kp 12 · Ki 2 · Kd 6, overshoot \d+\.\d%, rise /);
 
     // A gain change replays the step from x = 0 with the pin kept.
     await page.locator("input[type=text][data-param=kd]").fill("2");
     await page.locator("input[type=text][data-param=kd]").press("Enter");
-    await page.waitForFunction(() => /kd=2(&|$)/.test(location.hash));
+    await runUntil(page, () => /kd=2(&|$)/.test(location.hash));
     await waitReadout(page, "x", ">", 0.9);
     await page.locator("button[data-action=step]").click();
     await waitReadout(page, "x", "<", 0.5);
@@ -130,11 +121,11 @@ test("pid: the cart chases the setpoint, runs can be pinned, the time bar steps 
       "Time since step (s),u (applied) (N),P = Kp·e (N),I = Ki·∫e (N),D = Kd·de/dt (N)",
     );
     await page.locator("button[data-action=clear_pins]").click();
-    await page.waitForFunction(() => !document.querySelector("[data-readout=pinA]"));
+    await runUntil(page, () => !document.querySelector("[data-readout=pinA]"));
   }));
 
 test("cartpole: the pole is caught, nudged, dropped and caught again; LQR gains go to the sliders", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/cartpole/simulation");
     let r = await readouts(page);
     assert.match(r.open_eig, /^3\.972, /);
@@ -147,25 +138,25 @@ test("cartpole: the pole is caught, nudged, dropped and caught again; LQR gains 
     // streams they follow it four times a second, and the kick is brief).
     const play = page.locator("button[data-time=play]");
     await play.click();
-    await page.waitForFunction(() => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "false");
+    await runUntil(page, () => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "false");
     await page.locator("button[data-action=nudge]").click();
     await waitReadout(page, "omega", ">", 5, { abs: true });
     await play.click();
     await waitReadout(page, "theta", "<", 0.5, { abs: true });
 
     await page.locator("button[data-action=drop]").click();
-    await page.waitForFunction(() => /control off/.test(document.querySelector(".sim-status").textContent));
+    await runUntil(page, () => /control off/.test(document.querySelector(".sim-status").textContent));
     await waitReadout(page, "theta", ">", 3, { abs: true });
     await page.locator("button[data-action=catch]").click();
     await waitReadout(page, "theta", "<", 1, { abs: true });
     // The status judges the recent swing, so it may still name the drop's
     // peak when θ first reads under 1°; the catch shows once that passes.
-    await page.waitForFunction(() => /^balanc/.test(document.querySelector("article.exp:not([hidden]) [data-readout=status]").textContent));
+    await runUntil(page, () => /^balanc/.test(document.querySelector("article.exp:not([hidden]) [data-readout=status]").textContent));
 
     await page.locator("button[data-action=lqr]").click();
     const proposal = (await readouts(page)).lqr;
     const kth = /kθ ([\d.]+)/.exec(proposal)[1];
-    await page.waitForFunction((k) => location.hash.includes(`kth=${Number(k)}`), kth);
+    await runUntil(page, (k) => location.hash.includes(`kth=${Number(k)}`), kth);
     assert.equal(await page.locator("input[type=text][data-param=kth]").inputValue(), String(Number(kth)));
 
     const csv = await downloadCsv(page, "angle");
@@ -175,25 +166,26 @@ test("cartpole: the pole is caught, nudged, dropped and caught again; LQR gains 
   }));
 
 test("cartpole: with control off and RK4 the pole falls and the run ends", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/cartpole/simulation?ctl=0&integ=1&fall=1&th0=5");
-    await page.waitForFunction(() => /pole fallen/.test(document.querySelector(".sim-status").textContent));
+    await runUntil(page, () => /pole fallen/.test(document.querySelector(".sim-status").textContent));
     const r = await readouts(page);
     assert.match(r.status, /^fallen at \d+\.\d\d s$/);
     assert.ok(Math.abs(num(r.theta)) > 12);
   }));
 
 test("cartpole: with θ₀ = 0 the pole rests, and neither Play nor Step adds samples (issue 14)", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/cartpole/simulation?th0=0");
-    await page.waitForFunction(() => /balanced/.test(document.querySelector(".sim-status").textContent));
+    await runUntil(page, () => /balanced/.test(document.querySelector(".sim-status").textContent));
     const rows = async () => (await downloadCsv(page, "angle")).trim().split("\r\n").length;
     const before = await rows();
     await settle(page);
     assert.equal(await rows(), before, "Play: the resting pole adds no samples");
     const play = page.locator("button[data-time=play]");
     await play.click();
-    await page.waitForFunction(
+    await runUntil(
+      page,
       () => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "false",
     );
     for (let i = 0; i < 20; i += 1) {
@@ -209,7 +201,7 @@ for (const [name, viewport] of [
   ["phone", PHONE_TALL],
 ]) {
   test(`screenshots of both simulation tabs (${name})`, () =>
-    withPage(lab, { viewport }, async (page) => {
+    withPage(lab, { viewport, clock: true }, async (page) => {
       await open(lab, page, "#/pid/simulation");
       await waitReadout(page, "x", ">", 0.95);
       await page.locator("button[data-action=pin]").click();
@@ -221,7 +213,7 @@ for (const [name, viewport] of [
       await screenshot(page, `pid-simulation-${name}`);
       await fullPage(page, `pid-full-${name}`);
       await open(lab, page, "#/cartpole/simulation?th0=20");
-      await page.waitForTimeout(1500);
+      await runFor(page, 1500);
       await settle(page);
       await screenshot(page, `cartpole-simulation-${name}`);
       await fullPage(page, `cartpole-full-${name}`);

@@ -5,13 +5,14 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { readFile } from "node:fs/promises";
-import { DESKTOP, open, readouts, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+import { DESKTOP, open, readouts, runFor, runUntil, screenshot, settle, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 
 /** Waits until the status badge matches `pattern`; returns its text. */
 async function waitStatus(page, pattern, timeout = 10_000) {
-  await page.waitForFunction(
+  await runUntil(
+      page,
     (source) => new RegExp(source).test(document.querySelector(".sim-status").textContent),
     pattern.source,
     { timeout },
@@ -21,7 +22,8 @@ async function waitStatus(page, pattern, timeout = 10_000) {
 
 /** Waits until the play button's aria-pressed is `value` (updated on the next frame). */
 function waitPressed(page, value) {
-  return page.waitForFunction(
+  return runUntil(
+      page,
     (v) => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === v,
     value,
   );
@@ -38,7 +40,7 @@ async function downloadCsv(page, key) {
 }
 
 test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, passes the consistency check and exports CSV", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/ekf/simulation");
     await waitStatus(page, /^EKF localisation running$/);
     for (const key of ["error", "heading_error", "trace", "nees", "obs_per_loop", "dr_error", "landmarks"]) {
@@ -46,7 +48,8 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
     }
     // The readouts change while the robot drives.
     const first = await readouts(page);
-    await page.waitForFunction(
+    await runUntil(
+      page,
       (before) => document.querySelector("[data-readout=dr_error]").textContent.trim() !== before,
       first.dr_error,
     );
@@ -60,7 +63,7 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
     await waitPressed(page, "false");
     await settle(page);
     const paused = await readouts(page);
-    await page.waitForTimeout(600);
+    await runFor(page, 600);
     assert.deepEqual(await readouts(page), paused, "paused: the readouts hold still");
     // Single steps advance the run: 30 frames of 1/60 s are 10 filter steps.
     const step = page.locator("button[data-time=step]");
@@ -68,14 +71,14 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
     await settle(page);
     const stepped = await readouts(page);
     assert.notDeepEqual(stepped, paused, "single steps moved the run");
-    await page.waitForTimeout(400);
+    await runFor(page, 400);
     assert.deepEqual(await readouts(page), stepped, "still paused after stepping");
 
     // EKF-SLAM: the map starts empty and fills as landmarks are seen.
     await page.locator("select[data-param=mode]").selectOption("1");
     await waitStatus(page, /^EKF-SLAM: 0 of 6 landmarks mapped$/);
     // The link follows within its update interval.
-    await page.waitForFunction(() => /mode=1/.test(location.hash));
+    await runUntil(page, () => /mode=1/.test(location.hash));
     assert.match(await page.evaluate(() => location.hash), /run=0/, "still paused, and the link says so");
     await play.click();
     await waitPressed(page, "true");
@@ -108,7 +111,7 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
   }));
 
 test("ekf: a setting changed under a consistency check leaves the status on the run (issue 13 §4)", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/ekf/simulation?runs=10");
     await waitStatus(page, /^EKF localisation running$/);
     await page.locator("button[data-action=check]").click();
@@ -118,7 +121,7 @@ test("ekf: a setting changed under a consistency check leaves the status on the 
     await sw.press("Enter");
     // The check is dropped and the badge tells the run's state again, for good.
     await waitStatus(page, /^EKF localisation running$/);
-    await page.waitForTimeout(1500);
+    await runFor(page, 1500);
     assert.equal((await page.locator(".sim-status").textContent()).trim(), "EKF localisation running");
   }));
 
@@ -127,9 +130,9 @@ test("ekf: the Simulation tab at desktop and phone sizes", async () => {
     ["desktop", DESKTOP],
     ["phone", { width: 390, height: 844 }],
   ]) {
-    await withPage(lab, { viewport }, async (page) => {
+    await withPage(lab, { viewport, clock: true }, async (page) => {
       await open(lab, page, "#/ekf/simulation");
-      await page.waitForTimeout(2500);
+      await runFor(page, 2500);
       const canvas = await page.locator("canvas.sim-canvas").boundingBox();
       assert.ok(canvas.width > 200 && canvas.height > 200, `canvas ${canvas.width}×${canvas.height}`);
       const overflow = await page.evaluate(

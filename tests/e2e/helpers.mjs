@@ -134,10 +134,14 @@ export function useLab() {
  * the test fails on anything that went wrong in the page.
  *
  * options: viewport, hasTouch, colorScheme, allowConsoleErrors, initScript,
+ * clock (Playwright's clock, stopped from the start: see `runFor` and `runUntil`),
  * serviceWorkers ("block" by default: a test that routes or counts requests
  * must see them all; the offline tests pass "allow"), bypassCSP (to inject a
  * test's own script, e.g. axe-core, with addScriptTag).
  */
+/** Contexts whose pages run on a stopped clock (`withPage`'s `clock`). */
+const stoppedClocks = new WeakSet();
+
 export async function withPage(lab, options, fn) {
   const {
     viewport = DESKTOP,
@@ -145,9 +149,41 @@ export async function withPage(lab, options, fn) {
     colorScheme = "light",
     serviceWorkers = "block",
     bypassCSP = false,
+    clock = false,
   } = options;
   const context = await lab.browser.newContext({ viewport, hasTouch, colorScheme, serviceWorkers, bypassCSP });
   context.setDefaultTimeout(10_000);
+  // The page's clock is Playwright's, stopped before the page loads: no
+  // animation frame or timer fires unless the test advances time (`runFor`,
+  // `runUntil`), so a simulation moves by the same fixed steps however busy
+  // the machine is. (Loading needs no timer: fetches and the wasm's start
+  // are promises.)
+  if (clock) {
+    await context.clock.install();
+    await context.clock.pauseAt(Date.now() + 1000);
+    // The clock's frame ids start at 10^12; web-sys reads an id as an i32
+    // (browsers count from 1), so a cancelled frame would be cancelled under
+    // a truncated id and still fire. Hand the page small ids.
+    await context.addInitScript(() => {
+      const request = window.requestAnimationFrame.bind(window);
+      const cancel = window.cancelAnimationFrame.bind(window);
+      const ids = new Map();
+      let next = 1;
+      window.requestAnimationFrame = (callback) => {
+        const id = next++;
+        ids.set(id, request((t) => {
+          ids.delete(id);
+          callback(t);
+        }));
+        return id;
+      };
+      window.cancelAnimationFrame = (id) => {
+        if (ids.has(id)) cancel(ids.get(id));
+        ids.delete(id);
+      };
+    });
+    stoppedClocks.add(context);
+  }
   const problems = [];
   const origin = lab.server.origin;
   if (options.initScript) await context.addInitScript(options.initScript);
@@ -201,11 +237,36 @@ export async function open(lab, page, hash = "#/") {
       id,
     );
     if (known) {
-      const art = `article.exp[data-experiment="${id}"]:not([hidden])`;
-      await page.waitForSelector(`${art} canvas.sim-canvas, ${art} .sim-error`, { state: "attached" });
+      await poll(
+        page,
+        (x) => {
+          const art = `article.exp[data-experiment="${CSS.escape(x)}"]:not([hidden])`;
+          return Boolean(document.querySelector(`${art} canvas.sim-canvas, ${art} .sim-error`));
+        },
+        id,
+      );
+      // On a stopped clock, one frame: the controls and readouts show the
+      // link's state as a running page's first frame shows it.
+      if (stoppedClocks.has(page.context())) await page.clock.runFor(17);
     }
   } else {
-    await page.waitForSelector("[data-page=home]:not([hidden])");
+    await poll(page, () => Boolean(document.querySelector("[data-page=home]:not([hidden])")));
+  }
+}
+
+/**
+ * Waits, in real time, until `predicate(arg)` holds in the page, asking from
+ * here (Node) every 25 ms: unlike `page.waitForFunction`, whose polling
+ * runs on the page's own animation frames and timers, it also works on a
+ * page whose clock is stopped (`withPage`'s `clock`). For page-load and DOM
+ * events only; a simulated event is reached with `runUntil`.
+ */
+export async function poll(page, predicate, arg, { timeout = 10_000 } = {}) {
+  const end = Date.now() + timeout;
+  for (;;) {
+    if (await page.evaluate(predicate, arg)) return;
+    if (Date.now() > end) throw new Error(`poll: the page did not get there within ${timeout} ms`);
+    await new Promise((ok) => setTimeout(ok, 25));
   }
 }
 
@@ -220,7 +281,7 @@ export function readNumber(text) {
 }
 
 export async function waitReady(page) {
-  await page.waitForFunction(() => document.body && document.body.dataset.ready === "1");
+  await poll(page, () => Boolean(document.body && document.body.dataset.ready === "1"));
 }
 
 /** Experiment ids, read from the home page's cards (not hard-coded). */
@@ -249,9 +310,54 @@ export async function screenshot(page, name) {
   await page.screenshot({ path: join(SHOTS, `${name}.png`) });
 }
 
-/** Waits for two animation frames so layout and canvas drawing have settled. */
+/**
+ * Waits for two animation frames so layout and canvas drawing have settled.
+ * On a stopped clock it runs two frames' worth of page time instead.
+ */
 export function settle(page) {
+  if (stoppedClocks.has(page.context())) return page.clock.runFor(34);
   return page.evaluate(
     () => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(ok))),
   );
+}
+
+/** Advances a frozen clock by `ms` of page time, one 60 Hz frame at a time. */
+export async function runFor(page, ms) {
+  await page.clock.runFor(ms);
+}
+
+/**
+ * Advances a frozen clock in slices of `sliceMs` until `predicate(arg)`
+ * holds in the page, at most `maxMs` of page time (simulated time, not the
+ * machine's): the run either reaches the event within that budget or the
+ * lab is wrong. Returns the page time it took, in ms.
+ */
+export async function runUntil(page, predicate, arg, { sliceMs = 50, maxMs, timeout, what = "the condition" } = {}) {
+  // `timeout` (page.waitForFunction's word) is page time here too.
+  maxMs = maxMs ?? Math.max(timeout ?? 0, 60_000);
+  for (let t = 0; ; t += sliceMs) {
+    if (await page.evaluate(predicate, arg)) return t;
+    if (t >= maxMs) throw new Error(`${what} did not hold within ${maxMs} ms of page time`);
+    await page.clock.runFor(sliceMs);
+  }
+}
+
+/**
+ * `runUntil` for a readout: `[data-readout=key]`'s number (its magnitude with
+ * `abs`) is `op` (">" or "<") `bound`. Returns the readout's text.
+ */
+export async function runUntilReadout(page, key, op, bound, { abs = false, maxMs = 60_000 } = {}) {
+  await runUntil(
+    page,
+    ([k, o, b, a]) => {
+      const el = document.querySelector(`article.exp:not([hidden]) [data-readout="${k}"]`);
+      if (!el) return false;
+      const raw = Number.parseFloat(el.textContent);
+      const v = a ? Math.abs(raw) : raw;
+      return o === ">" ? v > b : v < b;
+    },
+    [key, op, bound, abs],
+    { maxMs, what: `readout ${key} ${op} ${bound}` },
+  );
+  return (await readouts(page))[key];
 }

@@ -5,7 +5,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { readFile } from "node:fs/promises";
-import { DESKTOP, open, readouts, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+import { DESKTOP, open, readouts, runFor, runUntil, screenshot, settle, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 const SIM = 'article.exp:not([hidden]) [data-panel="simulation"]';
@@ -31,7 +31,8 @@ async function clickWorld(page, x, y) {
 
 /** Waits until the status badge matches `pattern`; returns its text. */
 async function waitStatus(page, pattern, timeout = 10_000) {
-  await page.waitForFunction(
+  await runUntil(
+      page,
     ([sel, source]) => new RegExp(source).test(document.querySelector(sel).textContent),
     [`${SIM} .sim-status`, pattern.source],
     { timeout },
@@ -63,19 +64,19 @@ function near(actual, expected, what) {
 }
 
 test("diffdrive: clicked waypoints are driven in order, the time bar pauses and steps, run cards and CSV", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/diffdrive/simulation");
     assert.match(await waitStatus(page, /idle/), /^idle: click to drop a goal$/);
     // The robot starts in the middle of the field, (4, 3), facing right.
     await clickWorld(page, 6, 1.5);
     await clickWorld(page, 6.5, 4.5);
     await waitStatus(page, /^waypoint 1 of 2: /);
-    await page.waitForFunction(() => /w2y=/.test(location.hash));
+    await runUntil(page, () => /w2y=/.test(location.hash));
     const link = await linkParams(page);
     for (const [key, value] of Object.entries({ w1x: 6, w1y: 1.5, w2x: 6.5, w2y: 4.5 })) near(link[key], value, key);
     // Readouts change over time while the robot turns and drives.
     const first = await readouts(page);
-    await page.waitForTimeout(400);
+    await runFor(page, 400);
     const later = await readouts(page);
     assert.notEqual(later.heading + later.goal, first.heading + first.goal, "the robot moves");
     assert.match(later.vl, / m\/s$/);
@@ -87,10 +88,11 @@ test("diffdrive: clicked waypoints are driven in order, the time bar pauses and 
     await settle(page);
     const paused = await readouts(page);
     const steps = Number(await page.getAttribute(`${SIM} canvas.sim-canvas`, "data-steps"));
-    await page.waitForTimeout(300);
+    await runFor(page, 300);
     assert.deepEqual(await readouts(page), paused, "paused readouts hold still");
     await page.click(`${SIM} button[data-time=step]`);
-    await page.waitForFunction(
+    await runUntil(
+      page,
       ([sel, n]) => Number(document.querySelector(sel).dataset.steps) === n + 1,
       [`${SIM} canvas.sim-canvas`, steps],
     );
@@ -118,18 +120,18 @@ test("diffdrive: clicked waypoints are driven in order, the time bar pauses and 
 
     // Tapping a waypoint removes it (and its slot leaves the link).
     await clickWorld(page, 6.5, 4.5);
-    await page.waitForFunction(() => document.querySelector("[data-readout=waypoints]").textContent === "1 of 1");
-    await page.waitForFunction(() => !/w2x/.test(location.hash));
+    await runUntil(page, () => document.querySelector("[data-readout=waypoints]").textContent === "1 of 1");
+    await runUntil(page, () => !/w2x/.test(location.hash));
   }));
 
 test("potential: a goal behind two close obstacles is trapped in bounded time; the basin map fills in", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/potential/simulation?rad=0.4&o1x=4&o1y=3.6&o2x=4&o2y=2.4");
     assert.equal((await readouts(page)).obstacles, "2");
     await clickWorld(page, 7.4, 3);
     await waitStatus(page, /^running$/);
     const early = await readouts(page);
-    await page.waitForTimeout(400);
+    await runFor(page, 400);
     assert.notEqual((await readouts(page)).goal, early.goal, "the robot approaches");
     const status = await waitStatus(page, /trapped|reached|collided|stopped|pushed off/, 30_000);
     assert.match(status, /^trapped in a local minimum \d+\.\d{3} m from the goal$/);
@@ -141,10 +143,10 @@ test("potential: a goal behind two close obstacles is trapped in bounded time; t
     assert.equal(csv.text.split(/\r?\n/)[0], "Time (s),goal distance (m),|F_rep|");
 
     await page.click(`${SIM} button[data-action=basin]`);
-    await page.waitForFunction(() => /so far/.test(document.querySelector("[data-readout=reach]").textContent));
+    await runUntil(page, () => /so far/.test(document.querySelector("[data-readout=reach]").textContent));
     // The shown map is part of the link.
-    await page.waitForFunction(() => /[?&]map=1(&|$)/.test(location.hash));
-    await page.waitForFunction(() => /^\d+\.\d%$/.test(document.querySelector("[data-readout=reach]").textContent), null, {
+    await runUntil(page, () => /[?&]map=1(&|$)/.test(location.hash));
+    await runUntil(page, () => /^\d+\.\d%$/.test(document.querySelector("[data-readout=reach]").textContent), null, {
       timeout: 20_000,
     });
     const share = number((await readouts(page)).reach);
@@ -163,15 +165,15 @@ test("potential: a goal behind two close obstacles is trapped in bounded time; t
     // prompt is a notice; the status keeps the run's state.)
     await page.click(`${SIM} button[data-action=add]`);
     await clickWorld(page, 6, 1.2);
-    await page.waitForFunction(() => document.querySelector("[data-readout=obstacles]").textContent === "3");
-    await page.waitForFunction(() => /nobs=3/.test(location.hash) && /o3y=/.test(location.hash));
+    await runUntil(page, () => document.querySelector("[data-readout=obstacles]").textContent === "3");
+    await runUntil(page, () => /nobs=3/.test(location.hash) && /o3y=/.test(location.hash));
     const link = await linkParams(page);
     near(link.o3x, 6, "o3x");
     near(link.o3y, 1.2, "o3y");
   }));
 
 test("potential: gains that push harder than the pull drive the robot off the field, and that is not called a trap", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     // Issue 13's repro: it used to read "trapped in a local minimum 7.947 m
     // from the goal" while the speed read 1.1 m/s.
     await open(
@@ -187,7 +189,7 @@ test("potential: gains that push harder than the pull drive the robot off the fi
   }));
 
 test("diffdrive on a touch screen: a tap drops a waypoint, a drag from it moves it, a swipe elsewhere scrolls", () =>
-  withPage(lab, { hasTouch: true, viewport: PHONE_TALL }, async (page, context) => {
+  withPage(lab, { hasTouch: true, viewport: PHONE_TALL, clock: true }, async (page, context) => {
     await open(lab, page, "#/diffdrive/simulation?run=0");
     const cdp = await context.newCDPSession(page);
     const touch = (type, p) =>
@@ -198,7 +200,7 @@ test("diffdrive on a touch screen: a tap drops a waypoint, a drag from it moves 
     const tapAt = await worldToPage(page, 5, 2);
     await touch("touchStart", tapAt);
     await touch("touchEnd");
-    await page.waitForFunction(() => document.querySelector("[data-readout=waypoints]").textContent === "0 of 1");
+    await runUntil(page, () => document.querySelector("[data-readout=waypoints]").textContent === "0 of 1");
     // A drag that starts on the waypoint moves it, and the page does not scroll.
     const scrollBefore = await page.evaluate(() => scrollY);
     const to = await worldToPage(page, 3, 4);
@@ -208,7 +210,7 @@ test("diffdrive on a touch screen: a tap drops a waypoint, a drag from it moves 
     }
     await touch("touchEnd");
     // The link follows within its update interval (250 ms).
-    await page.waitForFunction(() => {
+    await runUntil(page, () => {
       const q = new URLSearchParams(location.hash.split("?")[1] ?? "");
       return Math.abs(Number(q.get("w1x")) - 3) <= 0.02;
     });
@@ -221,7 +223,7 @@ test("diffdrive on a touch screen: a tap drops a waypoint, a drag from it moves 
     await touch("touchStart", from);
     for (let i = 1; i <= 8; i++) await touch("touchMove", { x: from.x, y: from.y - 25 * i });
     await touch("touchEnd");
-    await page.waitForFunction((y) => scrollY > y, scrollBefore);
+    await runUntil(page, (y) => scrollY > y, scrollBefore);
     assert.equal((await readouts(page)).waypoints, "0 of 1", "the swipe dropped no waypoint");
   }));
 
@@ -232,7 +234,7 @@ test("mobile experiments: screenshots of the Simulation tab at desktop and phone
   ];
   for (const viewport of [DESKTOP, PHONE_TALL]) {
     for (const [id, hash, pattern] of pages) {
-      await withPage(lab, { viewport }, async (page) => {
+      await withPage(lab, { viewport, clock: true }, async (page) => {
         await open(lab, page, hash);
         await waitStatus(page, pattern, 30_000);
         await page.locator(`${SIM} canvas.sim-canvas`).scrollIntoViewIfNeeded();

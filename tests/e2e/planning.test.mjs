@@ -8,7 +8,7 @@ import assert from "node:assert/strict";
 import { readFile } from "node:fs/promises";
 import { dirname, join, resolve } from "node:path";
 import { fileURLToPath } from "node:url";
-import { DESKTOP, open, readNumber, readouts, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+import { DESKTOP, open, readNumber, readouts, runUntil, screenshot, settle, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 const ART = "article.exp:not([hidden])";
@@ -33,7 +33,8 @@ function cellToPage(page, col, row, rows) {
 }
 
 function waitStatus(page, pattern, timeout = 20_000) {
-  return page.waitForFunction(
+  return runUntil(
+      page,
     (source) => new RegExp(source).test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent),
     pattern.source,
     { timeout },
@@ -43,7 +44,7 @@ function waitStatus(page, pattern, timeout = 20_000) {
 const walls = async (page) => Number((await readouts(page)).grid.match(/(\d+) walls/)[1]);
 
 test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds the path; open list and Compare tables render", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     assert.equal(await page.locator(`${ART} canvas.sim-canvas`).getAttribute("data-touch"), "all");
     const before = await walls(page);
@@ -56,21 +57,21 @@ test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds 
     await page.mouse.up();
     // The readout follows a drag at the text's pace (every 250 ms) and
     // shows its last value when it ends: wait for that one.
-    await page.waitForFunction((n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] >= n, before + 7);
+    await runUntil(page, (n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] >= n, before + 7);
     assert.equal(await walls(page), before + 7, "seven cells painted, no gaps");
     // Shift-click sets the start.
     const s = await cellToPage(page, 2, 2, 24);
     await page.keyboard.down("Shift");
     await page.mouse.click(s.x, s.y);
     await page.keyboard.up("Shift");
-    await page.waitForFunction(() => /sx=2&sy=2/.test(location.hash));
+    await runUntil(page, () => /sx=2&sy=2/.test(location.hash));
     assert.equal(await walls(page), before + 7, "Shift-click paints nothing");
     assert.match(await page.evaluate(() => location.hash), /walls=32x24\./);
 
     await page.click(`${ART} button[data-action=plan]`);
     // The open list panel: the cell being expanded is highlighted.
     const openList = page.locator(`${ART} [data-table=open]`);
-    await openList.locator("tr.current").waitFor({ state: "visible" });
+    await runUntil(page, () => Boolean(document.querySelector("article.exp:not([hidden]) tr.current")));
     assert.deepEqual(await openList.locator("thead th").allInnerTexts(), ["", "cell", "g", "h", "f"]);
     assert.equal(await openList.locator("tr.current td").first().innerText(), "expanding");
     await screenshot(page, "astar-searching");
@@ -81,7 +82,7 @@ test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds 
 
     await page.click(`${ART} button[data-action=compare]`);
     const compare = page.locator(`${ART} [data-table=compare]`);
-    await compare.locator("tbody tr").nth(3).waitFor({ state: "visible" });
+    await runUntil(page, () => document.querySelectorAll("article.exp:not([hidden]) [data-table=compare] tbody tr").length >= 4);
     const rows = await compare.locator("tbody tr").evaluateAll((trs) => trs.map((tr) => [...tr.cells].map((c) => c.textContent)));
     assert.equal(rows.length, 4);
     assert.match(rows[0][0], /^A\* \(Octile\)/);
@@ -100,7 +101,7 @@ async function viewBox(page) {
 }
 
 test("astar: a finger paints walls too: the canvas takes the touch and the page does not scroll", () =>
-  withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page, context) => {
+  withPage(lab, { viewport: PHONE_390, hasTouch: true, clock: true }, async (page, context) => {
     await open(lab, page, "#/astar/simulation");
     await page.locator(`${ART} canvas.sim-canvas`).scrollIntoViewIfNeeded();
     const before = await walls(page);
@@ -119,13 +120,13 @@ test("astar: a finger paints walls too: the canvas takes the touch and the page 
     await touch("touchEnd");
     // The readout follows a drag at the text's pace (every 250 ms) and
     // shows its last value when it ends: wait for that one.
-    await page.waitForFunction((n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] >= n, before + 7);
+    await runUntil(page, (n) => /(\d+) walls/.exec(document.querySelector("[data-readout=grid]").textContent)[1] >= n, before + 7);
     assert.equal(await walls(page), before + 7, "a vertical swipe painted seven cells");
     assert.equal(await page.evaluate(() => scrollY), scrollY, "the page did not scroll");
   }));
 
 test("astar step 1: on a 390 px phone the grid's cells are at least 24 CSS px under a finger", () =>
-  withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page) => {
+  withPage(lab, { viewport: PHONE_390, hasTouch: true, clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     const canvas = page.locator(`${ART} canvas.sim-canvas`);
     const box = await canvas.boundingBox();
@@ -136,14 +137,14 @@ test("astar step 1: on a 390 px phone the grid's cells are at least 24 CSS px un
   }));
 
 test("astar: the arena map loads from the file input, a malformed map is refused with its line, and the link keeps the walls", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     const input = page.locator(`${ART} input.file-input`);
     await input.setInputFiles(ARENA);
-    await page.waitForFunction(() => /^49 × 49/.test(document.querySelector("[data-readout=grid]").textContent));
+    await runUntil(page, () => /^49 × 49/.test(document.querySelector("[data-readout=grid]").textContent));
     const message = page.locator(`${ART} .sim-message`);
-    await page.waitForFunction(() => /Loaded “arena\.map”/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
-    await page.waitForFunction(() => /walls=49x49\./.test(location.hash));
+    await runUntil(page, () => /Loaded “arena\.map”/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
+    await runUntil(page, () => /walls=49x49\./.test(location.hash));
     const grid = (await readouts(page)).grid;
 
     await input.setInputFiles({
@@ -151,7 +152,7 @@ test("astar: the arena map loads from the file input, a malformed map is refused
       mimeType: "text/plain",
       buffer: Buffer.from("type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n"),
     });
-    await page.waitForFunction(() => /broken\.map/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
+    await runUntil(page, () => /broken\.map/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
     assert.match(await message.innerText(), /Could not load “broken\.map”: .*line 6/);
     assert.equal((await readouts(page)).grid, grid, "the arena map is kept");
 
@@ -160,7 +161,7 @@ test("astar: the arena map loads from the file input, a malformed map is refused
     // A reload of the link gives the same grid.
     const hash = await page.evaluate(() => location.hash);
     await page.reload();
-    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    await runUntil(page, () => document.body.dataset.ready === "1");
     assert.equal(await page.evaluate(() => location.hash), hash);
     assert.equal((await readouts(page)).grid, grid);
     // Save file gives the map back.
@@ -171,10 +172,10 @@ test("astar: the arena map loads from the file input, a malformed map is refused
   }));
 
 test("astar step 6: a 512 × 512 maze travels in its link as its seed and reopens as the same maze", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation?size=5&rate=50");
     await page.click(`${ART} button[data-action=maze]`);
-    await page.waitForFunction(() => /maze=512x512\.1/.test(location.hash) && !/&walls=/.test(location.hash));
+    await runUntil(page, () => /maze=512x512\.1/.test(location.hash) && !/&walls=/.test(location.hash));
     const grid = (await readouts(page)).grid;
     assert.match(grid, /^512 × 512, \d+ walls/);
     assert.match((await readouts(page)).link, /holds the walls/);
@@ -182,12 +183,12 @@ test("astar step 6: a 512 × 512 maze travels in its link as its seed and reopen
     await waitStatus(page, /^(path found|arrived)/, 30_000);
     await screenshot(page, "astar-512-maze");
     await page.reload();
-    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    await runUntil(page, () => document.body.dataset.ready === "1");
     assert.equal((await readouts(page)).grid, grid, "the link rebuilt the maze, not an empty grid");
   }));
 
 test("astar: a link that could not carry its walls says so and asks for the .map file", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation?size=6&nowalls=600x400&ends=1.0.599.399");
     await waitStatus(page, /walls not in the link: load this 600 × 400 grid's \.map file/);
     assert.match((await readouts(page)).link, /load the \.map file/);
@@ -195,12 +196,13 @@ test("astar: a link that could not carry its walls says so and asks for the .map
   }));
 
 test("rrtstar: the best length shrinks as the tree grows, Compare overlays three curves, and the cost CSV downloads", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/rrtstar/simulation?batch=8&iters=4000");
     await page.click(`${ART} button[data-action=grow]`);
-    await page.waitForFunction(() => /\d/.test(document.querySelector("[data-readout=best]").textContent), null, { timeout: 20_000 });
+    await runUntil(page, () => /\d/.test(document.querySelector("[data-readout=best]").textContent), null, { timeout: 20_000 });
     const first = readNumber((await readouts(page)).best);
-    await page.waitForFunction(
+    await runUntil(
+      page,
       (b) => Number.parseFloat(document.querySelector("[data-readout=best]").textContent) < b - 0.05,
       first,
       { timeout: 30_000 },
@@ -232,15 +234,15 @@ test("rrtstar: the best length shrinks as the tree grows, Compare overlays three
 
 for (const viewport of [DESKTOP, PHONE_390]) {
   test(`screenshots at ${viewport.width}px: both planning Simulation tabs fit without sideways scrolling`, () =>
-    withPage(lab, { viewport }, async (page) => {
+    withPage(lab, { viewport, clock: true }, async (page) => {
       await open(lab, page, "#/astar/simulation");
       await page.click(`${ART} button[data-action=plan]`);
-      await page.locator(`${ART} [data-table=open] tr.current`).waitFor({ state: "visible" });
+      await runUntil(page, () => Boolean(document.querySelector("article.exp:not([hidden]) [data-table=open] tr.current")));
       await settle(page);
       assert.ok((await page.evaluate(() => document.documentElement.scrollWidth)) <= viewport.width);
       await screenshot(page, `astar-sim-${viewport.width}`);
       await page.goto(page.url().replace(/#.*/, "#/rrtstar/simulation?iters=1500&batch=60"));
-      await page.waitForFunction(() => document.body.dataset.ready === "1");
+      await runUntil(page, () => document.body.dataset.ready === "1");
       await page.click(`${ART} button[data-action=grow]`);
       await waitStatus(page, /^done/, 30_000);
       await settle(page);

@@ -5,7 +5,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { readFile } from "node:fs/promises";
-import { DESKTOP, open, readouts, screenshot, settle, useLab, waitReady, withPage } from "./helpers.mjs";
+import { DESKTOP, open, readouts, runFor, runUntil, screenshot, settle, useLab, waitReady, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 const PHONE_390 = { width: 390, height: 844 };
@@ -13,7 +13,7 @@ const ART = "article.exp:not([hidden])";
 
 for (const viewport of [DESKTOP, PHONE_390]) {
   test(`navigation at ${viewport.width}px: the grouped menu reaches every experiment in two clicks, no label cut, no sideways scroll`, () =>
-    withPage(lab, { viewport }, async (page) => {
+    withPage(lab, { viewport, clock: true }, async (page) => {
       await open(lab, page, "#/");
       await page.click("#lab-nav summary");
       const links = page.locator("#lab-nav a[data-experiment]");
@@ -59,15 +59,15 @@ test("on a phone the six tabs stay on one row", () =>
   }));
 
 test("Back returns to the tab and page seen before; parameter changes add no history entries", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/fk/aim");
     await page.click(`${ART} [role=tab][data-tab=theory]`);
     await page.click(`${ART} [role=tab][data-tab=simulation]`);
-    await page.waitForFunction(() => /t1=/.test(location.hash));
+    await runUntil(page, () => /t1=/.test(location.hash));
     const length = await page.evaluate(() => history.length);
     await page.focus(`${ART} input[type=range][data-param=t1]`);
     for (let i = 0; i < 4; i++) await page.keyboard.press("ArrowRight");
-    await page.waitForFunction(() => /t1=39/.test(location.hash));
+    await runUntil(page, () => /t1=39/.test(location.hash));
     assert.equal(await page.evaluate(() => history.length), length, "slider moves replace the entry");
     await page.goBack();
     await page.locator(`${ART} [data-panel=theory]`).waitFor({ state: "visible" });
@@ -90,7 +90,7 @@ const bottom = (page, selector) =>
   page.locator(selector).first().evaluate((el) => el.getBoundingClientRect().bottom);
 
 test("at 1280×800 the Simulation tab shows the whole canvas, the time controls and the actions without scrolling, readouts beside", () =>
-  withPage(lab, { viewport: DESKTOP }, async (page) => {
+  withPage(lab, { viewport: DESKTOP, clock: true }, async (page) => {
     await open(lab, page, "#/dls/simulation");
     await settle(page);
     for (const sel of ["canvas.sim-canvas", ".timebar", ".sim-actions button"]) {
@@ -109,7 +109,7 @@ test("at 1280×800 the Simulation tab shows the whole canvas, the time controls 
 // On a phone the main plot comes right under the canvas (issue 13 §3), so the
 // readouts follow the primary action, below the first screen.
 test("at 390×844 the canvas, the time bar, the main plot and the primary action are on the first screen", () =>
-  withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page) => {
+  withPage(lab, { viewport: PHONE_390, hasTouch: true, clock: true }, async (page) => {
     await open(lab, page, "#/workspace/simulation");
     await settle(page);
     for (const sel of ["canvas.sim-canvas", ".timebar", ".sim-mainplot canvas", "button[data-action=sweep]"]) {
@@ -120,13 +120,13 @@ test("at 390×844 the canvas, the time bar, the main plot and the primary action
   }));
 
 test("time controls: pause, single steps (button and key) are deterministic, Space plays without scrolling, speed is in the link", () =>
-  withPage(lab, {}, async (page, context) => {
+  withPage(lab, { clock: true }, async (page, context) => {
     const link = "#/workspace/simulation?n=30000&run=0";
     await open(lab, page, link);
     const play = page.locator(`${ART} button[data-time=play]`);
     assert.equal(await play.getAttribute("aria-pressed"), "false", "the link paused it");
     await page.click(`${ART} button[data-action=sweep]`);
-    await page.waitForTimeout(300);
+    await runFor(page, 300);
     assert.match((await readouts(page)).samples, /^0 \//, "paused: nothing sampled");
     for (let i = 0; i < 5; i++) await page.click(`${ART} button[data-time=step]`);
     await page.focus(`${ART} canvas.sim-canvas`);
@@ -149,12 +149,12 @@ test("time controls: pause, single steps (button and key) are deterministic, Spa
     const scrollBefore = await page.evaluate(() => scrollY);
     await page.focus(`${ART} canvas.sim-canvas`);
     await page.keyboard.press(" ");
-    await page.waitForFunction(() => document.querySelector("article.exp:not([hidden]) button[data-time=play]").getAttribute("aria-pressed") === "true");
+    await runUntil(page, () => document.querySelector("article.exp:not([hidden]) button[data-time=play]").getAttribute("aria-pressed") === "true");
     assert.equal(await page.evaluate(() => scrollY), scrollBefore, "Space did not scroll");
-    await page.waitForFunction(() => /^swept/.test(document.querySelector(`article.exp:not([hidden]) .sim-status`).textContent));
+    await runUntil(page, () => /^swept/.test(document.querySelector(`article.exp:not([hidden]) .sim-status`).textContent));
 
     await page.selectOption(`${ART} select[data-time=speed]`, "2");
-    await page.waitForFunction(() => /speed=2/.test(location.hash));
+    await runUntil(page, () => /speed=2/.test(location.hash));
     const hash = await page.evaluate(() => location.hash);
     const third = await context.newPage();
     await open(lab, third, hash);
@@ -179,9 +179,9 @@ const colours = (locator) =>
   });
 
 test("plots: DLS draws error (log) and manipulability against iteration, with hover values, a summary and a data table", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/dls/simulation?tx=1.3&ty=1.1&rate=60");
-    await page.waitForFunction(() => /converged/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    await runUntil(page, () => /converged/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
     const figures = page.locator(`${ART} figure.plot`);
     assert.deepEqual(await figures.evaluateAll((fs) => fs.map((f) => f.dataset.plot)), ["error", "manipulability"]);
     const canvas = figures.first().locator("canvas");
@@ -192,7 +192,7 @@ test("plots: DLS draws error (log) and manipulability against iteration, with ho
     const box = await canvas.boundingBox();
     await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
     const tip = figures.first().locator(".plot-tip");
-    await page.waitForFunction((el) => el.textContent.length > 0, await tip.elementHandle());
+    await runUntil(page, (el) => el.textContent.length > 0, await tip.elementHandle());
     assert.match(await tip.textContent(), /^Iteration = \d+ · error: /);
     await figures.first().locator("[data-plot-table]").click();
     assert.equal(await figures.first().locator("[data-plot-table]").getAttribute("aria-expanded"), "true");
@@ -203,9 +203,9 @@ test("plots: DLS draws error (log) and manipulability against iteration, with ho
   }));
 
 test("exports: a plot's CSV holds every sample with units in the header; the canvas saves as a PNG named after the experiment and seed", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/dls/simulation?tx=1.3&ty=1.1&rate=60");
-    await page.waitForFunction(() => /converged in (\d+)/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    await runUntil(page, () => /converged in (\d+)/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
     const iterations = Number((await readouts(page)).iterations);
     const [csv] = await Promise.all([page.waitForEvent("download"), page.click(`${ART} [data-plot-csv=error]`)]);
     assert.equal(csv.suggestedFilename(), "dls-error.csv");
@@ -224,17 +224,28 @@ test("exports: a plot's CSV holds every sample with units in the header; the can
     await page.goto(page.url().replace(/#.*/, "#/workspace/simulation?seed=7&n=5000"));
     await waitReady(page);
     await page.click(`${ART} button[data-action=sweep]`);
-    await page.waitForFunction(() => /^swept/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    await runUntil(page, () => /^swept/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
     const [radii] = await Promise.all([page.waitForEvent("download"), page.click(`${ART} [data-plot-csv=radii]`)]);
     assert.equal(radii.suggestedFilename(), "workspace-seed7-radii.csv");
     const head = (await readFile(await radii.path(), "utf8")).split(/\r?\n/)[0];
     assert.equal(head, "Samples drawn,outer radius (measured) (m),inner hole (measured) (m)");
   }));
 
+/** Waits (real time) until the page's scroll position has held still for 200 ms. */
+async function scrollSettled(page) {
+  let last = await page.evaluate(() => scrollY);
+  let stillSince = Date.now();
+  while (Date.now() - stillSince < 200) {
+    await new Promise((ok) => setTimeout(ok, 25));
+    const now = await page.evaluate(() => scrollY);
+    if (now !== last) [last, stillSince] = [now, Date.now()];
+  }
+}
+
 test("touch: a swipe from empty canvas scrolls the page, a drag from the target moves it, a tap still acts", () =>
-  withPage(lab, { viewport: PHONE_390, hasTouch: true }, async (page, context) => {
+  withPage(lab, { viewport: PHONE_390, hasTouch: true, clock: true }, async (page, context) => {
     await open(lab, page, "#/ik/simulation?tx=1&ty=0.8");
-    await page.waitForFunction(() => /in reach/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    await runUntil(page, () => /in reach/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
     const cdp = await context.newCDPSession(page);
     const touch = (type, p) =>
       cdp.send("Input.dispatchTouchEvent", { type, touchPoints: p ? [{ x: Math.round(p.x), y: Math.round(p.y), id: 1 }] : [] });
@@ -253,7 +264,9 @@ test("touch: a swipe from empty canvas scrolls the page, a drag from the target 
     await touch("touchStart", start);
     for (let i = 1; i <= 10; i++) await touch("touchMove", { x: start.x, y: start.y - 18 * i });
     await touch("touchEnd");
-    await page.waitForTimeout(300);
+    // The browser's fling runs on its own (real) clock: wait until the
+    // page has held still for 200 ms before reading where it stopped.
+    await scrollSettled(page);
     assert.ok((await page.evaluate(() => scrollY)) > scroll0, "the page scrolled");
     assert.equal(await target(), before, "the target did not move");
     // A drag that starts on the target moves it and does not scroll.
@@ -262,13 +275,15 @@ test("touch: a swipe from empty canvas scrolls the page, a drag from the target 
     await touch("touchStart", from);
     for (let i = 1; i <= 8; i++) await touch("touchMove", { x: from.x - 6 * i, y: from.y + 6 * i });
     await touch("touchEnd");
-    await page.waitForFunction((b) => new URLSearchParams(location.hash.split("?")[1]).get("tx") !== b, before);
+    await runUntil(page, (b) => new URLSearchParams(location.hash.split("?")[1]).get("tx") !== b, before);
     assert.equal(await page.evaluate(() => scrollY), scroll1, "dragging a handle does not scroll");
-    // A tap on empty canvas still sets a target there.
+    // A tap on empty canvas still sets a target there (aimed once the page
+    // holds still, so the canvas is where its box says).
+    await scrollSettled(page);
     const tapAt = await world(-0.8, 0.9);
     await touch("touchStart", tapAt);
     await touch("touchEnd");
-    await page.waitForFunction(() => Math.abs(Number(new URLSearchParams(location.hash.split("?")[1]).get("tx")) + 0.8) < 0.05);
+    await runUntil(page, () => Math.abs(Number(new URLSearchParams(location.hash.split("?")[1]).get("tx")) + 0.8) < 0.05);
   }));
 
 test("a 512×512 grid plus 100,000 segments paints (its time is printed; the budget is in bench --browser)", () =>
@@ -315,9 +330,9 @@ test("while the engine downloads, the Simulation tab shows its progress", async 
 });
 
 test("dark mode: the simulation and its plots are drawn dark", () =>
-  withPage(lab, { colorScheme: "dark" }, async (page) => {
+  withPage(lab, { colorScheme: "dark", clock: true }, async (page) => {
     await open(lab, page, "#/dls/simulation?tx=1.3&ty=1.1&rate=60");
-    await page.waitForFunction(() => /converged/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    await runUntil(page, () => /converged/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
     await settle(page);
     const corner = (sel) =>
       page.locator(sel).first().evaluate((c) => {
@@ -340,11 +355,12 @@ test("dark mode: the simulation and its plots are drawn dark", () =>
 const intersects = (a, b) => a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3];
 
 test("pid plots: marker and reference labels never overlap, tick labels are distinct and clear of the axis titles, bands and lines are in the legend", () =>
-  withPage(lab, { viewport: DESKTOP }, async (page) => {
+  withPage(lab, { viewport: DESKTOP, clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation");
     const response = page.locator(`${ART} figure.plot[data-plot=response]`);
     // Wait until the step response carries its markers (rise, settling).
-    await page.waitForFunction(
+    await runUntil(
+      page,
       (art) => {
         const c = document.querySelector(`${art} figure.plot[data-plot=response] canvas`);
         return c && c.dataset.layout && JSON.parse(c.dataset.layout).labels.length >= 3;
