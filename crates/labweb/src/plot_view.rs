@@ -1025,6 +1025,7 @@ fn css(palette: &Palette, var: &str) -> String {
 }
 
 /// Paints one plot; returns the mapping used.
+#[cfg(feature = "bench-exports")]
 pub(crate) fn paint_plot(
     ctx: &CanvasRenderingContext2d,
     plot: &Plot,

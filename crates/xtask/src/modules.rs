@@ -78,6 +78,9 @@ fn group_ids(group: Group) -> Vec<&'static str> {
         .collect()
 }
 
+/// Set (to anything) for modules with the paint benchmarks' exports.
+pub const BENCH_EXPORTS_VAR: &str = "XTASK_BENCH_EXPORTS";
+
 /// The cargo features that build `ids` and nothing else.
 #[must_use]
 pub fn features(ids: &[&str]) -> String {
@@ -96,6 +99,9 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
     // XTASK_MODULES=per-experiment builds one module per experiment (to
     // measure what sharing a module costs).
     let per_experiment = std::env::var("XTASK_MODULES").as_deref() == Ok("per-experiment");
+    // XTASK_BENCH_EXPORTS=1 (`cargo xtask bench --browser`) adds the paint
+    // benchmarks' exports to every module; shipped modules go without.
+    let bench_exports = std::env::var_os(BENCH_EXPORTS_VAR).is_some();
     let parts: Vec<(&'static str, Vec<&'static str>)> = if per_experiment {
         CATALOGUE
             .iter()
@@ -112,6 +118,10 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
             ids.join(", ")
         ));
         let t = Instant::now();
+        let mut wanted = features(&ids);
+        if bench_exports {
+            wanted.push_str(",bench-exports");
+        }
         util::run(util::cargo().args([
             "build",
             "-p",
@@ -122,7 +132,7 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
             WASM_TARGET,
             "--no-default-features",
             "--features",
-            &features(&ids),
+            &wanted,
         ]))?;
         let input = target.join(WASM_TARGET).join(PROFILE).join("labweb.wasm");
         let glue_dir = out_root.join(key);
