@@ -328,9 +328,20 @@ async function accentCrops(b, id) {
         const math = maths[i];
         if (!math) return null;
         math.scrollIntoView({ block: "center" });
-        const r = math.getBoundingClientRect();
-        // A wide display formula: its first 520 px.
-        return { x: r.x - 6, y: r.y - 10, width: Math.min(r.width, 520) + 12, height: r.height + 20 };
+        // What the formula draws (a display formula's box is the whole line),
+        // with some of the sentence around an inline one; at most 560 px
+        // wide, from a little left of the first accent.
+        const parts = [...math.children].map((c) => c.getBoundingClientRect());
+        const em = Number.parseFloat(getComputedStyle(math).fontSize);
+        const pad = math.getAttribute("display") === "block" ? 0.5 * em : 4 * em;
+        const left = Math.min(...parts.map((r) => r.left)) - pad;
+        const right = Math.max(...parts.map((r) => r.right)) + pad;
+        const top = Math.min(...parts.map((r) => r.top)) - 0.6 * em;
+        const bottom = Math.max(...parts.map((r) => r.bottom)) + 0.3 * em;
+        const first = math.querySelector("mover").getBoundingClientRect().left;
+        const from = Math.max(left, Math.min(first - 4 * em, right - 560));
+        const k = devicePixelRatio;
+        return { x: from * k, y: top * k, width: (Math.min(right, from + 560) - from) * k, height: (bottom - top) * k };
       },
       id,
       k,
@@ -341,6 +352,20 @@ async function accentCrops(b, id) {
     images.push(crop(await b.screenshot(), rect));
   }
   return stacked(images, 6);
+}
+
+/** `image` k times larger (nearest pixel), to look at accents closely. */
+function enlarged(image, k = 2) {
+  const width = image.width * k;
+  const height = image.height * k;
+  const rgba = Buffer.alloc(width * height * 4);
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      const from = (Math.floor(y / k) * image.width + Math.floor(x / k)) * 4;
+      image.rgba.copy(rgba, (y * width + x) * 4, from, from + 4);
+    }
+  }
+  return { width, height, rgba };
 }
 
 function save(name, image) {
@@ -427,8 +452,9 @@ test("accents side by side in Chromium, Firefox and WebKit", { skip: ids.length 
       const ink = await accentInk(b, id);
       console.log(`# ${b.name} ${id} ${JSON.stringify(ink)}`);
       const shots = { chromium: await accentCrops(b, id), ...accentPictures[id] };
-      for (const [browser, image] of Object.entries(shots)) save(`browsers-accents-${id}-${browser}`, image);
-      save(`browsers-accents-${id}`, sideBySide(Object.values(shots), 24));
+      for (const [browser, image] of Object.entries(shots)) save(`browsers-accents-${id}-${browser}`, enlarged(image));
+      // Left to right: Chromium, Firefox, WebKit.
+      save(`browsers-accents-${id}`, enlarged(sideBySide(Object.values(shots), 24)));
       const astray = ink.filter((a) => a.missing || a.gap > GAP_MAX_EM || a.gap < 0 || Math.abs(a.shift) > SHIFT_MAX_EM);
       assert.deepEqual(astray, [], `${id}: accents away from their letter in Chromium`);
     }
