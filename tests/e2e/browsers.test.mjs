@@ -156,6 +156,9 @@ async function webkit() {
   };
 }
 
+/** `fn(...args)` as an expression (the arguments as JSON). */
+const call = (fn, args) => `(${fn})(...${JSON.stringify(args)})`;
+
 async function chromium() {
   const browser = await launchBrowser();
   const page = await browser.newPage({ viewport: DESKTOP });
@@ -163,11 +166,10 @@ async function chromium() {
     name: "chromium",
     version: `chromium ${browser.version()}`,
     goto: (url) => page.goto(url),
-    evaluate: (fn, ...args) => page.evaluate((a) => (0, eval)(`(${a.fn})`)(...a.args), { fn: String(fn), args }),
-    waitFor: (fn, ...args) =>
-      page
-        .waitForFunction((a) => (0, eval)(`(${a.fn})`)(...a.args), { fn: String(fn), args }, { timeout: 20_000 })
-        .then((h) => h.jsonValue()),
+    // Playwright passes one argument; an expression string (run by the
+    // driver, not by the page's eval, which the policy forbids) passes several.
+    evaluate: (fn, ...args) => page.evaluate(call(fn, args)),
+    waitFor: (fn, ...args) => page.waitForFunction(call(fn, args), undefined, { timeout: 20_000 }).then((h) => h.jsonValue()),
     screenshot: async () => decodePng(await page.screenshot()),
     close: () => browser.close(),
   };
