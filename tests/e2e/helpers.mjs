@@ -17,6 +17,8 @@ export const DIST = join(ROOT, "dist");
 export const SHOTS = join(ROOT, "target", "e2e-shots");
 /** The lab is served below this prefix, as on a host that puts it in a sub-folder. */
 export const BASE_PATH = "/some/sub/path/";
+/** Where `startServer({ probe: true })` serves tests/e2e/error-probe.js. */
+export const PROBE_PATH = "/__test__/error-probe.js";
 export const TABS = ["aim", "theory", "procedure", "simulation", "quiz", "references"];
 export const DESKTOP = { width: 1280, height: 800 };
 export const PHONE = { width: 360, height: 740 };
@@ -44,9 +46,11 @@ export const isContentHashed = (path) => /[^/]\.[0-9a-f]{8}\.[a-z]+$/.test(path)
  * headers `cargo xtask serve` sends (hashed names for a year, the rest
  * revalidated). `compress: true` serves the `.br`/`.gz` siblings that
  * `cargo xtask dist` writes, as nginx `brotli_static`/`gzip_static` would.
- * `server.hits` lists the paths requested.
+ * `server.hits` lists the paths requested. `probe: true` puts
+ * tests/e2e/error-probe.js first in `index.html`'s <head> (served at
+ * PROBE_PATH), for a browser whose driver reports no console errors.
  */
-export async function startServer({ compress = false } = {}) {
+export async function startServer({ compress = false, probe = false } = {}) {
   const hits = [];
   if (!existsSync(join(DIST, "index.html"))) {
     throw new Error("dist/index.html is missing: run `cargo xtask dist` first");
@@ -61,14 +65,19 @@ export async function startServer({ compress = false } = {}) {
       const path = decodeURIComponent(new URL(req.url, "http://x").pathname);
       hits.push(path);
       if (path === BASE_PATH.slice(0, -1)) return send(301, "", undefined, { Location: BASE_PATH });
+      if (probe && path === PROBE_PATH) {
+        return send(200, await readFile(join(ROOT, "tests", "e2e", "error-probe.js")), MIME[".js"]);
+      }
       if (!path.startsWith(BASE_PATH) || path.includes("\0")) return send(404, "not found\n");
       let file = resolve(DIST, "." + sep + path.slice(BASE_PATH.length));
       if (file !== DIST && !file.startsWith(DIST + sep)) return send(403, "forbidden\n");
       if ((await stat(file).catch(() => null))?.isDirectory()) file = join(file, "index.html");
-      const body = await readFile(file).catch(() => null);
+      let body = await readFile(file).catch(() => null);
       if (!body) return send(404, "not found\n");
+      const probed = probe && file === join(DIST, "index.html");
+      if (probed) body = String(body).replace("<head>", `<head>\n<script src="${PROBE_PATH}"></script>`);
       const headers = isContentHashed(file) ? { "Cache-Control": "public, max-age=31536000, immutable" } : {};
-      if (compress) {
+      if (compress && !probed) {
         const accepted = String(req.headers["accept-encoding"] ?? "");
         for (const [coding, ext] of [["br", ".br"], ["gzip", ".gz"]]) {
           if (!accepted.includes(coding)) continue;

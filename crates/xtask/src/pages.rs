@@ -63,9 +63,14 @@ pub fn home_html() -> String {
 
 /// One experiment's article (six tabs, reading tabs filled in), as its
 /// reading page `pages/<id>.<hash>.html` holds it; `main.js` inserts it.
+/// Accents are written in the form every browser engine draws over their
+/// letter (see [`crate::accents`]).
 #[must_use]
 pub fn article_html(entry: &labcore::Entry) -> String {
-    labcore::content_html::article(entry.id, entry.content().map_err(|e| e.to_string()))
+    crate::accents::portable(&labcore::content_html::article(
+        entry.id,
+        entry.content().map_err(|e| e.to_string()),
+    ))
 }
 
 /// Writes the home page and each experiment's reading page into
@@ -131,6 +136,28 @@ mod tests {
     #[test]
     fn every_content_file_is_valid() {
         validate_content().expect("content validates");
+    }
+
+    /// WebKit draws a `<mover>` accent with a plain `<mo>˙</mo>` well above
+    /// and to the left of its letter: every accent on a reading page must be
+    /// in the portable form (issue 24; `tests/e2e/browsers.test.mjs` checks
+    /// where the engines draw it).
+    #[test]
+    fn webkit_accents_every_accent_on_the_reading_pages_is_in_the_portable_form() {
+        let mut portable = 0;
+        for entry in labcore::registry() {
+            let html = article_html(entry);
+            assert_eq!(
+                crate::accents::non_portable(&html),
+                Vec::<String>::new(),
+                "{}",
+                entry.id
+            );
+            portable += html.matches("<mover accent=\"true\">").count();
+        }
+        // θ̇, θ̈, μ̄, P̄, x̂ … on the cartpole, ekf, pid, dls, diffdrive and
+        // workspace pages.
+        assert!(portable >= 49, "{portable} accents");
     }
 
     #[test]

@@ -127,6 +127,11 @@ pub fn test(opts: Options) -> Result<(), String> {
         }),
     ));
     steps.push(("Chromium present", Box::new(ensure_chromium)));
+    // Before the end-to-end step: tests/e2e/browsers.test.mjs needs them.
+    steps.push((
+        "Firefox ESR, WebKitGTK driver and Xvfb present",
+        Box::new(ensure_other_browsers),
+    ));
     steps.push((
         "wasm tests in headless Chromium (labweb)",
         wasm_test("labweb", true),
@@ -232,13 +237,45 @@ fn summary(done: &[(&str, Duration)], total: Duration) {
 /// Installs Debian's chromium + chromium-driver when missing (as root), or
 /// fails with the command to run.
 pub fn ensure_chromium() -> Result<(), String> {
-    if Path::new(CHROMIUM).exists() && Path::new(CHROMEDRIVER).exists() {
+    ensure_debian_packages(
+        &[CHROMIUM, CHROMEDRIVER],
+        &["chromium", "chromium-driver"],
+        INSTALL_HINT,
+    )
+}
+
+/// Firefox ESR (driven over WebDriver BiDi by puppeteer-core), WebKitGTK's
+/// WebDriver with its MiniBrowser, and the X server it draws on: what
+/// `tests/e2e/browsers.test.mjs` runs the lab in besides Chromium.
+const OTHER_BROWSERS: [(&str, &str); 3] = [
+    ("/usr/bin/firefox-esr", "firefox-esr"),
+    ("/usr/bin/WebKitWebDriver", "webkit2gtk-driver"),
+    ("/usr/bin/Xvfb", "xvfb"),
+];
+const OTHER_BROWSERS_HINT: &str =
+    "install the Debian packages firefox-esr, webkit2gtk-driver and xvfb \
+     (sudo apt-get install firefox-esr webkit2gtk-driver xvfb)";
+
+/// Installs Debian's firefox-esr, webkit2gtk-driver and xvfb when missing
+/// (as root; about 141 MB of downloads, 57 packages on a machine that has
+/// Chromium), or fails with the command to run.
+pub fn ensure_other_browsers() -> Result<(), String> {
+    let paths: Vec<&str> = OTHER_BROWSERS.iter().map(|(p, _)| *p).collect();
+    let packages: Vec<&str> = OTHER_BROWSERS.iter().map(|(_, p)| *p).collect();
+    ensure_debian_packages(&paths, &packages, OTHER_BROWSERS_HINT)
+}
+
+/// Installs `packages` with apt-get when any of `paths` is missing (as root),
+/// or fails with `hint`.
+fn ensure_debian_packages(paths: &[&str], packages: &[&str], hint: &str) -> Result<(), String> {
+    let present = || paths.iter().all(|p| Path::new(p).exists());
+    if present() {
         return Ok(());
     }
     let uid = util::output(Command::new("id").arg("-u"))?;
     if uid.trim() != "0" {
-        println!("{INSTALL_HINT}");
-        return Err(INSTALL_HINT.into());
+        println!("{hint}");
+        return Err(hint.into());
     }
     util::run(
         Command::new("apt-get")
@@ -247,20 +284,16 @@ pub fn ensure_chromium() -> Result<(), String> {
     )?;
     util::run(
         Command::new("apt-get")
-            .args([
-                "install",
-                "-y",
-                "--no-install-recommends",
-                "chromium",
-                "chromium-driver",
-            ])
+            .args(["install", "-y", "--no-install-recommends"])
+            .args(packages)
             .env("DEBIAN_FRONTEND", "noninteractive"),
     )?;
-    if Path::new(CHROMIUM).exists() && Path::new(CHROMEDRIVER).exists() {
+    if present() {
         Ok(())
     } else {
         Err(format!(
-            "apt-get finished but {CHROMIUM} or {CHROMEDRIVER} is still missing"
+            "apt-get finished but one of {} is still missing",
+            paths.join(", ")
         ))
     }
 }
