@@ -58,65 +58,28 @@ impl Tally {
         counted
     }
 
-    /// What the score line says after the grading (the attempt number, the
-    /// score that counts, whether another attempt may be graded), e.g.
-    /// “Attempt 2 of 2. The best score counts: 17%. No attempts left.”
+    /// What the score line says after a grading (how many attempts are
+    /// graded, the score that counts, whether another may be), e.g. “2 of
+    /// 2 attempts graded. The best score counts: 17%. No attempts left.”;
+    /// or, `refused`, why an attempt is not graded: “No attempts left: 2 of
+    /// 2 attempts graded. The best score counts: 17%.”
     #[must_use]
-    pub fn line(&self, rules: &QuizRules) -> String {
-        let mut text = String::new();
-        if let Some(n) = rules.attempts {
-            text.push_str(&format!("Attempt {} of {n}. ", self.graded));
-        }
-        if let Some(c) = self
-            .counted
-            .filter(|_| *rules != QuizRules::default() || self.graded > 1)
-        {
-            text.push_str(&format!("The {} score counts: {c}%. ", rules.score.slug()));
-        }
-        text.push_str(if rules.allows(self.graded) {
-            "Press New attempt for fresh questions."
-        } else {
-            "No attempts left."
+    pub fn line(&self, rules: &QuizRules, refused: bool) -> String {
+        let graded = rules.attempts.map_or(String::new(), |n| {
+            format!("{} of {n} attempts graded. ", self.graded)
         });
-        text
-    }
-
-    /// Why an attempt is not graded, when the rules allow no more
-    /// (`None` when they do): “No attempts left: 2 of 2 graded. The best
-    /// score counts: 17%.”
-    #[must_use]
-    pub fn refusal(&self, rules: &QuizRules) -> Option<String> {
-        let n = rules.attempts.filter(|_| !rules.allows(self.graded))?;
-        let counted = self.counted.map_or(String::new(), |c| {
-            format!(" The {} score counts: {c}%.", rules.score.slug())
-        });
-        Some(format!(
-            "No attempts left: {} of {n} graded.{counted}",
-            self.graded
-        ))
-    }
-
-    /// `graded counted` (`2 17`), as local storage keeps it; empty before
-    /// the first grading.
-    #[must_use]
-    pub fn encode(&self) -> String {
-        match self.counted {
-            Some(c) => format!("{} {c}", self.graded),
-            None => String::new(),
-        }
-    }
-
-    /// Reads [`Tally::encode`]'s text; anything else is no attempt graded.
-    #[must_use]
-    pub fn decode(text: &str) -> Tally {
-        let mut words = text.split(' ').map(str::parse);
-        match (words.next(), words.next()) {
-            (Some(Ok(graded)), Some(Ok(counted))) => Tally {
-                graded: graded as u32,
-                counted: Some(counted),
-            },
-            _ => Tally::default(),
-        }
+        let counts = match self.counted {
+            Some(c) if *rules != QuizRules::default() || self.graded > 1 => {
+                format!("The {} score counts: {c}%.", rules.score.slug())
+            }
+            _ => String::new(),
+        };
+        let next = match (refused, rules.allows(self.graded)) {
+            (true, _) => return format!("No attempts left: {graded}{counts}"),
+            (_, true) => "Press New attempt for fresh questions.",
+            _ => "No attempts left.",
+        };
+        format!("{graded}{counts} {next}").trim_start().to_owned()
     }
 }
 
@@ -274,20 +237,6 @@ mod tests {
         assert_eq!(Suspended::decode(odd).unwrap().tally, Tally::default());
         let odd = r#"{"id":"fk","seed":7,"answers":[],"graded":2}"#;
         assert_eq!(Suspended::decode(odd).unwrap().tally, Tally::default());
-        // Local storage's short form.
-        let t = Tally {
-            graded: 3,
-            counted: Some(8),
-        };
-        assert_eq!(t.encode(), "3 8");
-        assert_eq!(Tally::decode("3 8"), t);
-        assert_eq!(Tally::default().encode(), "");
-        for bad in ["", "3", "x 8", "3 -8", "3 8 9x"] {
-            assert_eq!(
-                Tally::decode(bad).graded,
-                if bad == "3 8 9x" { 3 } else { 0 }
-            );
-        }
     }
 
     /// Issue 24 §2: with attempts=2 the third attempt is refused with a
@@ -301,34 +250,38 @@ mod tests {
             score: ScoreRule::Best,
         };
         let mut t = Tally::default();
-        assert_eq!(t.refusal(&rules), None);
+        assert!(rules.allows(t.graded));
         assert_eq!(t.record(8, &rules), 8);
         assert_eq!(
-            t.line(&rules),
-            "Attempt 1 of 2. The best score counts: 8%. Press New attempt for fresh questions."
+            t.line(&rules, false),
+            "1 of 2 attempts graded. The best score counts: 8%. Press New attempt for fresh questions."
         );
         assert_eq!(t.record(17, &rules), 17);
         assert_eq!(
-            t.line(&rules),
-            "Attempt 2 of 2. The best score counts: 17%. No attempts left."
+            t.line(&rules, false),
+            "2 of 2 attempts graded. The best score counts: 17%. No attempts left."
         );
+        assert!(!rules.allows(t.graded));
         assert_eq!(
-            t.refusal(&rules).as_deref(),
-            Some("No attempts left: 2 of 2 graded. The best score counts: 17%.")
+            t.line(&rules, true),
+            "No attempts left: 2 of 2 attempts graded. The best score counts: 17%."
         );
         // Unlimited, best (the defaults): nothing added to one grading; from
         // the second on the line says which score counts.
         let free = QuizRules::default();
         let mut t = Tally::default();
         t.record(8, &free);
-        assert_eq!(t.line(&free), "Press New attempt for fresh questions.");
+        assert_eq!(
+            t.line(&free, false),
+            "Press New attempt for fresh questions."
+        );
         t.record(17, &free);
         t.record(8, &free);
         assert_eq!(
-            t.line(&free),
+            t.line(&free, false),
             "The best score counts: 17%. Press New attempt for fresh questions."
         );
-        assert_eq!(t.refusal(&free), None);
+        assert!(free.allows(t.graded));
         let last = QuizRules {
             score: ScoreRule::Last,
             ..free

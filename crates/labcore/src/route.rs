@@ -175,26 +175,14 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
                 instructor.note = note;
                 notices.extend(notice);
             }
-            Some((k, v)) if decode(k) == ATTEMPTS_KEY => {
-                let v = decode(v);
-                match v.trim() {
-                    "unlimited" => instructor.quiz.attempts = None,
-                    n => match n.parse::<u32>() {
-                        Ok(n) if n > 0 => instructor.quiz.attempts = Some(n),
-                        _ => notices.push(format!(
-                            "Attempts “{}” is not a whole number from 1 or “unlimited”; allowed any number.",
-                            truncate(&v, 30)
-                        )),
-                    },
+            Some((k, v)) if [ATTEMPTS_KEY, SCORE_KEY].contains(&decode(k).as_str()) => {
+                if !instructor.quiz.set(&decode(k), &decode(v)) {
+                    notices.push(format!(
+                        "Ignored “{}”: attempts takes a whole number from 1 or unlimited, score takes best, last or first.",
+                        truncate(&decode(pair), 30)
+                    ));
                 }
             }
-            Some((k, v)) if decode(k) == SCORE_KEY => match ScoreRule::from_slug(&decode(v)) {
-                Some(rule) => instructor.quiz.score = rule,
-                None => notices.push(format!(
-                    "Score “{}” is not best, last or first; the best attempt counts.",
-                    truncate(&decode(v), 30)
-                )),
-            },
             Some((k, v)) if !k.is_empty() => params.push((decode(k), decode(v))),
             _ => notices.push(format!(
                 "Ignored “{}” in the link.",
@@ -465,6 +453,24 @@ pub struct QuizRules {
 }
 
 impl QuizRules {
+    /// Sets the rule of a link's `key` ([`ATTEMPTS_KEY`]: a whole number
+    /// from 1 or `unlimited`; [`SCORE_KEY`]: a [`ScoreRule`] word) from its
+    /// `value`. False, with the rule kept, for a value that is neither.
+    pub fn set(&mut self, key: &str, value: &str) -> bool {
+        let value = value.trim();
+        if key == SCORE_KEY {
+            let rule = ScoreRule::from_slug(value);
+            self.score = rule.unwrap_or(self.score);
+            return rule.is_some();
+        }
+        match value.parse::<u64>() {
+            _ if value == "unlimited" => self.attempts = None,
+            Ok(n @ 1..=999_999) => self.attempts = Some(n as u32),
+            _ => return false,
+        }
+        true
+    }
+
     /// Whether another attempt may be graded after `graded` of them.
     #[must_use]
     pub fn allows(&self, graded: u32) -> bool {
@@ -933,9 +939,10 @@ mod tests {
         assert_eq!(
             r.notices,
             vec![
-                "Attempts “0” is not a whole number from 1 or “unlimited”; allowed any number."
+                "Ignored “attempts=0”: attempts takes a whole number from 1 or unlimited, score takes best, last or first."
                     .to_owned(),
-                "Score “median” is not best, last or first; the best attempt counts.".to_owned(),
+                "Ignored “score=median”: attempts takes a whole number from 1 or unlimited, score takes best, last or first."
+                    .to_owned(),
             ]
         );
         assert_eq!(parse("#/fk/quiz?attempts=-1", IDS).notices.len(), 1);
