@@ -217,6 +217,10 @@ async function showPage() {
   switchTo(mod);
 }
 
+// A SCORM launch names its experiment in the query (`index.html?sco=pid`),
+// which LMSs keep where some drop the `#`: without a hash, open it.
+const sco = new URLSearchParams(location.search).get("sco");
+if (sco && moduleOf(sco) && /^#?\/?$/.test(location.hash)) history.replaceState(null, "", `#/${sco}/aim`);
 window.addEventListener("hashchange", showPage);
 showPage();
 

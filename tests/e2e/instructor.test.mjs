@@ -191,3 +191,19 @@ test("presets menu screenshot: phone, dark", () =>
     assert.equal(hrefs.length, 3);
     for (const h of hrefs) assert.match(h, /^#\/astar\/simulation\?/);
   }));
+
+test("attempts= and score= in a link stay in the simulation's link and in the Instructor panel's link (issue 24)", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/pid/simulation?kp=30&attempts=2&score=first");
+    assert.match(await page.evaluate(() => location.hash), /&attempts=2&score=first/);
+    await page.click("details.instructor-panel > summary");
+    await page.check('input[data-lock="kp"]');
+    const link = await page.inputValue(".instructor-link");
+    const q = new URLSearchParams(link.slice(link.indexOf("#")).split("?")[1]);
+    assert.equal(q.get("attempts"), "2");
+    assert.equal(q.get("score"), "first");
+    assert.equal(q.get("lock"), "kp");
+    // The quiz tab's link keeps them too.
+    await page.click('article.exp[data-experiment="pid"] [role=tab][data-tab="quiz"]');
+    await page.waitForFunction(() => /^#\/pid\/quiz\?attempts=2&score=first&quiz=\d+$/.test(location.hash));
+  }));

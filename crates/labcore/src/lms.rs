@@ -7,11 +7,15 @@
 //! [`Suspended::encode`] never returns more: it shortens long typed answers
 //! first, then leaves trailing answers out, and the seed and the submitted
 //! flag are always kept (a relaunch rebuilds the same questions).
+//!
+//! It also keeps the [`Tally`] of graded attempts, so an instructor's
+//! attempts limit and score rule ([`QuizRules`]) hold across launches.
 
 use crate::json::Json;
 use crate::quiz::{
     answers_from_json, answers_json, seed_from_json, seed_json, Response, SavedAttempt,
 };
+use crate::route::QuizRules;
 
 /// The most characters `cmi.suspend_data` holds in SCORM 1.2.
 pub const SUSPEND_DATA_MAX_CHARS: usize = 4096;
@@ -30,6 +34,53 @@ pub struct Suspended {
     pub answers: Vec<Response>,
     /// True once the attempt was graded (a relaunch shows the score again).
     pub submitted: bool,
+    /// The quiz's graded attempts so far (this one and earlier ones).
+    pub tally: Tally,
+}
+
+/// How many attempts of one experiment's quiz were graded, and the
+/// percentage that counts under the instructor's [`QuizRules`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Tally {
+    /// Graded attempts so far.
+    pub graded: u32,
+    /// The percentage that counts (`None` before the first grading).
+    pub counted: Option<usize>,
+}
+
+impl Tally {
+    /// Records an attempt graded at `percent`; returns the percentage that
+    /// counts now (see [`crate::route::ScoreRule::fold`]).
+    pub fn record(&mut self, percent: usize, rules: &QuizRules) -> usize {
+        let counted = rules.score.fold(self.counted, percent);
+        self.graded = self.graded.saturating_add(1);
+        self.counted = Some(counted);
+        counted
+    }
+
+    /// What the score line says after a grading (how many attempts are
+    /// graded, the score that counts, whether another may be), e.g. “2 of
+    /// 2 attempts graded. The best score counts: 17%. No attempts left.”;
+    /// or, `refused`, why an attempt is not graded: “No attempts left: 2 of
+    /// 2 attempts graded. The best score counts: 17%.”
+    #[must_use]
+    pub fn line(&self, rules: &QuizRules, refused: bool) -> String {
+        let graded = rules.attempts.map_or(String::new(), |n| {
+            format!("{} of {n} attempts graded. ", self.graded)
+        });
+        let counts = match self.counted {
+            Some(c) if *rules != QuizRules::default() || self.graded > 1 => {
+                format!("The {} score counts: {c}%.", rules.score.slug())
+            }
+            _ => String::new(),
+        };
+        let next = match (refused, rules.allows(self.graded)) {
+            (true, _) => return format!("No attempts left: {graded}{counts}"),
+            (_, true) => "Press New attempt for fresh questions.",
+            _ => "No attempts left.",
+        };
+        format!("{graded}{counts} {next}").trim_start().to_owned()
+    }
 }
 
 impl Suspended {
@@ -86,24 +137,42 @@ impl Suspended {
             Some(Json::Bool(b)) => *b,
             Some(_) => return None,
         };
+        // Written from the first grading on; a count that is not a whole
+        // number means none.
+        let whole = |name| match field(name) {
+            Some(Json::Number(n)) if *n >= 0.0 && n.fract() == 0.0 => Some(*n as usize),
+            _ => None,
+        };
         Some(Suspended {
             id: id.clone(),
             seed: seed_from_json(field("seed")?)?,
             answers: answers_from_json(field("answers")?)?,
             submitted,
+            tally: match (whole("graded"), whole("counted")) {
+                (Some(graded), counted @ Some(_)) => Tally {
+                    graded: graded.min(u32::MAX as usize) as u32,
+                    counted,
+                },
+                _ => Tally::default(),
+            },
         })
     }
 }
 
-/// `{"id":"pid","seed":42,"answers":[…],"submitted":true}`.
+/// `{"id":"pid","seed":42,"answers":[…],"submitted":true}`, then
+/// `"graded":2,"counted":17` once an attempt was graded.
 fn json(s: &Suspended) -> String {
-    Json::Object(vec![
+    let mut fields = vec![
         ("id".into(), Json::String(s.id.clone())),
         ("seed".into(), seed_json(s.seed)),
         ("answers".into(), answers_json(&s.answers)),
         ("submitted".into(), Json::Bool(s.submitted)),
-    ])
-    .to_text()
+    ];
+    if let Some(c) = s.tally.counted {
+        fields.push(("graded".into(), Json::Number(f64::from(s.tally.graded))));
+        fields.push(("counted".into(), Json::Number(c as f64)));
+    }
+    Json::Object(fields).to_text()
 }
 
 #[cfg(test)]
@@ -121,6 +190,7 @@ mod tests {
                 Response::Choice(None),
             ],
             submitted: true,
+            tally: Tally::default(),
         }
     }
 
@@ -144,6 +214,83 @@ mod tests {
         assert_eq!(Suspended::decode(r#"{"seed":1}"#), None);
         let old = Suspended::decode(r#"{"id":"fk","seed":7,"answers":[]}"#).unwrap();
         assert!(!old.submitted);
+    }
+
+    /// Issue 24 §2: the graded attempts and the score that counts travel in
+    /// `suspend_data`, so a relaunch keeps the attempts limit and the rule.
+    #[test]
+    fn attempts_tally_is_kept_in_suspend_data() {
+        let mut s = sample();
+        s.tally = Tally {
+            graded: 2,
+            counted: Some(17),
+        };
+        let text = s.encode();
+        assert!(
+            text.ends_with(r#","submitted":true,"graded":2,"counted":17}"#),
+            "{text}"
+        );
+        assert_eq!(Suspended::decode(&text), Some(s));
+        // Before the first grading nothing is written, and bad counts are none.
+        assert!(!sample().encode().contains("graded"));
+        let odd = r#"{"id":"fk","seed":7,"answers":[],"graded":-1,"counted":5}"#;
+        assert_eq!(Suspended::decode(odd).unwrap().tally, Tally::default());
+        let odd = r#"{"id":"fk","seed":7,"answers":[],"graded":2}"#;
+        assert_eq!(Suspended::decode(odd).unwrap().tally, Tally::default());
+    }
+
+    /// Issue 24 §2: with attempts=2 the third attempt is refused with a
+    /// clear message; the score line names the attempt and the score that
+    /// counts (best keeps 17 of 8 → 17 → 8).
+    #[test]
+    fn attempts_limit_refuses_a_third_grading_with_a_clear_message() {
+        use crate::route::ScoreRule;
+        let rules = QuizRules {
+            attempts: Some(2),
+            score: ScoreRule::Best,
+        };
+        let mut t = Tally::default();
+        assert!(rules.allows(t.graded));
+        assert_eq!(t.record(8, &rules), 8);
+        assert_eq!(
+            t.line(&rules, false),
+            "1 of 2 attempts graded. The best score counts: 8%. Press New attempt for fresh questions."
+        );
+        assert_eq!(t.record(17, &rules), 17);
+        assert_eq!(
+            t.line(&rules, false),
+            "2 of 2 attempts graded. The best score counts: 17%. No attempts left."
+        );
+        assert!(!rules.allows(t.graded));
+        assert_eq!(
+            t.line(&rules, true),
+            "No attempts left: 2 of 2 attempts graded. The best score counts: 17%."
+        );
+        // Unlimited, best (the defaults): nothing added to one grading; from
+        // the second on the line says which score counts.
+        let free = QuizRules::default();
+        let mut t = Tally::default();
+        t.record(8, &free);
+        assert_eq!(
+            t.line(&free, false),
+            "Press New attempt for fresh questions."
+        );
+        t.record(17, &free);
+        t.record(8, &free);
+        assert_eq!(
+            t.line(&free, false),
+            "The best score counts: 17%. Press New attempt for fresh questions."
+        );
+        assert!(free.allows(t.graded));
+        let last = QuizRules {
+            score: ScoreRule::Last,
+            ..free
+        };
+        let mut t = Tally::default();
+        for p in [8, 17, 8] {
+            t.record(p, &last);
+        }
+        assert_eq!(t.counted, Some(8));
     }
 
     /// Property: whatever the answers (many, long, full of characters JSON
@@ -176,6 +323,10 @@ mod tests {
                 seed: rng.next_u64(),
                 answers,
                 submitted: case % 2 == 0,
+                tally: Tally {
+                    graded: case,
+                    counted: (case > 0).then_some(case as usize % 101),
+                },
             };
             let text = s.encode();
             assert!(
@@ -184,8 +335,8 @@ mod tests {
             );
             let back = Suspended::decode(&text).expect("decodes");
             assert_eq!(
-                (&back.id, back.seed, back.submitted),
-                (&s.id, s.seed, s.submitted)
+                (&back.id, back.seed, back.submitted, back.tally),
+                (&s.id, s.seed, s.submitted, s.tally)
             );
             assert!(back.answers.len() <= s.answers.len());
             if json(&s).chars().count() <= SUSPEND_DATA_MAX_CHARS {

@@ -175,6 +175,14 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
                 instructor.note = note;
                 notices.extend(notice);
             }
+            Some((k, v)) if [ATTEMPTS_KEY, SCORE_KEY].contains(&decode(k).as_str()) => {
+                if !instructor.quiz.set(&decode(k), &decode(v)) {
+                    notices.push(format!(
+                        "Ignored “{}”: attempts takes a whole number from 1 or unlimited, score takes best, last or first.",
+                        truncate(&decode(pair), 30)
+                    ));
+                }
+            }
             Some((k, v)) if !k.is_empty() => params.push((decode(k), decode(v))),
             _ => notices.push(format!(
                 "Ignored “{}” in the link.",
@@ -383,12 +391,99 @@ pub const HIDE_KEY: &str = "hide";
 pub const NOTE_KEY: &str = "note";
 /// The longest note kept, in characters (a longer one is shortened).
 pub const NOTE_MAX_CHARS: usize = 280;
+/// The query key of how many graded attempts the quiz allows (`attempts=2`,
+/// or `attempts=unlimited`, the default).
+pub const ATTEMPTS_KEY: &str = "attempts";
+/// The query key of which graded attempt's score counts (`score=best`,
+/// `last` or `first`; best when absent).
+pub const SCORE_KEY: &str = "score";
+
+/// Which graded attempt gives the quiz's score, the one an LMS records.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ScoreRule {
+    /// The highest percentage of all graded attempts.
+    #[default]
+    Best,
+    /// The latest graded attempt's, even when lower than before.
+    Last,
+    /// The first graded attempt's; later ones are practice.
+    First,
+}
+
+impl ScoreRule {
+    /// Every rule, default first.
+    pub const ALL: [ScoreRule; 3] = [ScoreRule::Best, ScoreRule::Last, ScoreRule::First];
+
+    /// The word in a link (`score=last`) and in messages.
+    #[must_use]
+    pub fn slug(self) -> &'static str {
+        match self {
+            ScoreRule::Best => "best",
+            ScoreRule::Last => "last",
+            ScoreRule::First => "first",
+        }
+    }
+
+    /// The rule a link's word names (`best`, `last`, `first`, trimmed).
+    #[must_use]
+    pub fn from_slug(slug: &str) -> Option<ScoreRule> {
+        Self::ALL.into_iter().find(|r| r.slug() == slug.trim())
+    }
+
+    /// The percentage that counts once an attempt scoring `percent` is
+    /// graded, `counted` being what counted before (`None` before the
+    /// first graded attempt).
+    #[must_use]
+    pub fn fold(self, counted: Option<usize>, percent: usize) -> usize {
+        match (self, counted) {
+            (ScoreRule::Best, Some(c)) => c.max(percent),
+            (ScoreRule::First, Some(c)) => c,
+            _ => percent,
+        }
+    }
+}
+
+/// An instructor's rules for grading the quiz (`attempts=2&score=first`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct QuizRules {
+    /// Graded attempts allowed; `None`: no limit.
+    pub attempts: Option<u32>,
+    /// Which graded attempt's score counts.
+    pub score: ScoreRule,
+}
+
+impl QuizRules {
+    /// Sets the rule of a link's `key` ([`ATTEMPTS_KEY`]: a whole number
+    /// from 1 or `unlimited`; [`SCORE_KEY`]: a [`ScoreRule`] word) from its
+    /// `value`. False, with the rule kept, for a value that is neither.
+    pub fn set(&mut self, key: &str, value: &str) -> bool {
+        let value = value.trim();
+        if key == SCORE_KEY {
+            let rule = ScoreRule::from_slug(value);
+            self.score = rule.unwrap_or(self.score);
+            return rule.is_some();
+        }
+        match value.parse::<u64>() {
+            _ if value == "unlimited" => self.attempts = None,
+            Ok(n @ 1..=999_999) => self.attempts = Some(n as u32),
+            _ => return false,
+        }
+        true
+    }
+
+    /// Whether another attempt may be graded after `graded` of them.
+    #[must_use]
+    pub fn allows(&self, graded: u32) -> bool {
+        self.attempts.is_none_or(|n| graded < n)
+    }
+}
 
 /// What an instructor's link adds to a state: parameters shown but not
-/// changeable (**locked**), parameters not shown (**hidden**) and a short
-/// **note** shown above the simulation. A teaching aid, not security: a
-/// student may edit the URL. The quiz seed travels beside it as
-/// [`Route::quiz_seed`].
+/// changeable (**locked**), parameters not shown (**hidden**), a short
+/// **note** shown above the simulation and the quiz's grading **rules**
+/// (attempts allowed, which score counts). A teaching aid, not security: a
+/// student may edit the URL (inside an LMS the package's rules hold). The
+/// quiz seed travels beside it as [`Route::quiz_seed`].
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Instructor {
     /// Keys of locked parameters, in link order, without repeats once resolved.
@@ -398,13 +493,18 @@ pub struct Instructor {
     /// Plain text (no control characters, at most [`NOTE_MAX_CHARS`]); the
     /// page shows it as text, never as HTML.
     pub note: Option<String>,
+    /// Attempts allowed and which score counts (`attempts=2&score=best`).
+    pub quiz: QuizRules,
 }
 
 impl Instructor {
     /// Nothing locked, hidden or noted.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.locked.is_empty() && self.hidden.is_empty() && self.note.is_none()
+        self.locked.is_empty()
+            && self.hidden.is_empty()
+            && self.note.is_none()
+            && self.quiz == QuizRules::default()
     }
 
     #[must_use]
@@ -439,8 +539,9 @@ impl Instructor {
         notices
     }
 
-    /// The link's `lock=…&hide=…&note=…` pairs (only those in use), in
-    /// that order, each already encoded.
+    /// The link's `lock=…&hide=…&note=…&attempts=…&score=…` pairs (only
+    /// those in use, a default rule left out), in that order, each already
+    /// encoded.
     #[must_use]
     pub fn query(&self) -> Vec<String> {
         let list = |keys: &[String]| keys.iter().map(|k| encode(k)).collect::<Vec<_>>().join(",");
@@ -453,6 +554,12 @@ impl Instructor {
         }
         if let Some(note) = &self.note {
             out.push(format!("{NOTE_KEY}={}", encode(note)));
+        }
+        if let Some(n) = self.quiz.attempts {
+            out.push(format!("{ATTEMPTS_KEY}={n}"));
+        }
+        if self.quiz.score != ScoreRule::Best {
+            out.push(format!("{SCORE_KEY}={}", self.quiz.score.slug()));
         }
         out
     }
@@ -797,6 +904,76 @@ mod tests {
         assert!(notices.is_empty(), "{notices:?}");
         assert_eq!(instructor, r.instructor);
         assert_eq!(back.param("t1"), Some(10.0));
+    }
+
+    /// Issue 24 §2: `attempts=` and `score=` in an instructor's link.
+    #[test]
+    fn attempts_and_score_rule_come_from_the_link_and_round_trip() {
+        use crate::experiments::fk::ForwardKinematics;
+        let r = parse("#/fk/quiz?attempts=2&score=last&quiz=9", IDS);
+        assert!(r.notices.is_empty(), "{:?}", r.notices);
+        let rules = QuizRules {
+            attempts: Some(2),
+            score: ScoreRule::Last,
+        };
+        assert_eq!(r.instructor.quiz, rules);
+        assert!(!r.instructor.is_empty());
+        assert!(matches!(&r.page, Page::Experiment { params, .. } if params.is_empty()));
+        let link = format_instructor(
+            &ForwardKinematics::default(),
+            Tab::Quiz,
+            &r.instructor,
+            r.quiz_seed,
+        );
+        assert!(link.ends_with("&attempts=2&score=last&quiz=9"), "{link}");
+        assert_eq!(parse(&link, IDS).instructor, r.instructor);
+        // The defaults: any number of attempts, the best counts; left out of links.
+        let r = parse("#/fk/quiz?attempts=unlimited&score=best", IDS);
+        assert!(r.notices.is_empty());
+        assert_eq!(r.instructor.quiz, QuizRules::default());
+        assert!(r.instructor.is_empty() && r.instructor.query().is_empty());
+        assert_eq!(QuizRules::default().score, ScoreRule::Best);
+        // Bad values keep the default, with a notice each.
+        let r = parse("#/fk/quiz?attempts=0&score=median", IDS);
+        assert_eq!(r.instructor.quiz, QuizRules::default());
+        assert_eq!(
+            r.notices,
+            vec![
+                "Ignored “attempts=0”: attempts takes a whole number from 1 or unlimited, score takes best, last or first."
+                    .to_owned(),
+                "Ignored “score=median”: attempts takes a whole number from 1 or unlimited, score takes best, last or first."
+                    .to_owned(),
+            ]
+        );
+        assert_eq!(parse("#/fk/quiz?attempts=-1", IDS).notices.len(), 1);
+        assert_eq!(parse("#/fk/quiz?attempts=2.5", IDS).notices.len(), 1);
+    }
+
+    /// Issue 24 §2: with attempts=2 a third attempt is not graded; best
+    /// keeps the higher of 8 → 17 → 8, last and first do as named.
+    #[test]
+    fn attempts_limit_and_score_rules_fold_as_named() {
+        let two = QuizRules {
+            attempts: Some(2),
+            ..QuizRules::default()
+        };
+        assert!(two.allows(0) && two.allows(1) && !two.allows(2) && !two.allows(3));
+        assert!(QuizRules::default().allows(u32::MAX - 1));
+        let run = |rule: ScoreRule| {
+            [8, 17, 8]
+                .into_iter()
+                .scan(None, |counted, p| {
+                    *counted = Some(rule.fold(*counted, p));
+                    *counted
+                })
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(run(ScoreRule::Best), [8, 17, 17]);
+        assert_eq!(run(ScoreRule::Last), [8, 17, 8]);
+        assert_eq!(run(ScoreRule::First), [8, 8, 8]);
+        for rule in ScoreRule::ALL {
+            assert_eq!(ScoreRule::from_slug(rule.slug()), Some(rule));
+        }
     }
 
     #[test]

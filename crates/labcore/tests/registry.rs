@@ -418,10 +418,16 @@ fn instructor_links_round_trip_locks_hides_notes_and_the_quiz_seed() {
                 .collect();
             let note = Some(note.trim().to_owned()).filter(|n| !n.is_empty());
             let quiz = (rng.next_f64() < 0.5).then(|| rng.int(0, 999_999) as u64);
+            // The quiz's grading rules (issue 24): attempts allowed, score rule.
+            let rules = labcore::route::QuizRules {
+                attempts: (rng.next_f64() < 0.5).then(|| rng.int(1, 20) as u32),
+                score: labcore::route::ScoreRule::ALL[rng.int(0, 2) as usize],
+            };
             let instructor = Instructor {
                 locked,
                 hidden,
                 note,
+                quiz: rules,
             };
             let link = format_instructor(exp.as_ref(), Tab::Simulation, &instructor, quiz);
             let route = parse(&link, &ids);

@@ -75,6 +75,7 @@ impl App {
         let parsed = route::parse(&hash, &ids);
         let quiz_seed = parsed.quiz_seed;
         let instructor = parsed.instructor;
+        let quiz_rules = instructor.quiz;
         let mut notices = parsed.notices;
         close_nav_menu();
         match parsed.page {
@@ -127,6 +128,7 @@ impl App {
                     // switch) keeps those already set.
                     if !params.is_empty() || !instructor.is_empty() {
                         notices.extend(page.set_instructor(instructor, quiz_seed));
+                        page.set_quiz_rules(quiz_rules);
                     }
                     // An instructor's link fixes the attempt (`?quiz=123`): the
                     // whole class gets the same numbers.
@@ -283,6 +285,8 @@ struct PageInner {
     sim: Option<SimView>,
     content: Option<&'static Content>,
     attempt: Option<Attempt>,
+    /// The instructor's attempts limit and score rule, and what is graded.
+    grading: quiz_view::Grading,
 }
 
 struct ExperimentPage {
@@ -349,6 +353,7 @@ impl ExperimentPage {
             sim,
             content: content.ok(),
             attempt: None,
+            grading: quiz_view::Grading::load(entry.id, route::QuizRules::default()),
         }));
         // The attempt in progress before a reload, else a fresh one.
         let seed = quiz_view::load_saved(entry.id).map_or_else(random_seed, |saved| saved.seed);
@@ -399,10 +404,11 @@ impl ExperimentPage {
                 "submit",
                 move |e: Event| {
                     e.prevent_default();
-                    let p = page.borrow();
+                    let p = &mut *page.borrow_mut();
                     if let (Some(form), Some(attempt)) = (query(&p.root, "form.quiz"), &p.attempt) {
                         // Asks for confirmation first when questions are unanswered.
-                        quiz_view::submit(&form, attempt);
+                        let quiz = p.content.map_or(&[][..], |c| &c.quiz);
+                        quiz_view::submit(&form, attempt, &mut p.grading, quiz);
                     }
                 },
             ));
@@ -411,7 +417,7 @@ impl ExperimentPage {
             listeners.push(Listener::new(quiz_panel.as_ref(), "input", move |_| {
                 let p = page.borrow();
                 if let (Some(form), Some(attempt)) = (query(&p.root, "form.quiz"), &p.attempt) {
-                    quiz_view::store(p.id, &form, attempt);
+                    quiz_view::store(p.id, &form, attempt, p.grading.tally);
                 }
             }));
             let page = inner.clone();
@@ -466,6 +472,16 @@ impl ExperimentPage {
         match &self.inner.borrow().sim {
             Some(sim) => sim.set_instructor(instructor, quiz_seed),
             None => Vec::new(),
+        }
+    }
+
+    /// The link's attempts limit and score rule for the quiz (a SCORM
+    /// launch's rules stay); other rules start their own count outside an
+    /// LMS.
+    fn set_quiz_rules(&mut self, rules: route::QuizRules) {
+        let mut p = self.inner.borrow_mut();
+        if p.grading.rules != rules {
+            p.grading = quiz_view::Grading::load(p.id, rules);
         }
     }
 
@@ -543,11 +559,21 @@ impl PageInner {
 
     fn write_hash(&self) {
         let hash = match (&self.sim, self.tab) {
-            // The Self-assessment link names its attempt, so it can be shared.
-            (_, Tab::Quiz) => match &self.attempt {
-                Some(a) => format!("#/{}/quiz?{}={}", self.id, route::QUIZ_KEY, a.seed),
-                None => format!("#/{}/quiz", self.id),
-            },
+            // The Self-assessment link names its attempt, so it can be
+            // shared, after the instructor's grading rules (kept on reload).
+            (_, Tab::Quiz) => {
+                let rules = route::Instructor {
+                    quiz: self.grading.rules,
+                    ..route::Instructor::default()
+                };
+                let mut pairs = rules.query();
+                pairs.extend(
+                    self.attempt
+                        .as_ref()
+                        .map(|a| format!("{}={}", route::QUIZ_KEY, a.seed)),
+                );
+                route::with_query(format!("#/{}/quiz", self.id), &pairs)
+            }
             (Some(sim), tab) => sim.hash(tab),
             (None, tab) => format!("#/{}/{}", self.id, tab.slug()),
         };
@@ -564,11 +590,14 @@ impl PageInner {
                 let attempt = Attempt { seed, questions };
                 form.set_inner_html(&quiz_view::render(&attempt));
                 let _ = form.remove_attribute("data-confirm-unanswered");
+                // A new attempt is not graded yet (a kept one is marked
+                // again by `restore`), so the LMS does not keep it as graded.
+                let _ = form.remove_attribute(crate::lms::SUBMITTED_ATTR);
                 // Answers typed before a reload come back (same seed only).
                 if let Some(saved) = quiz_view::load_saved(self.id) {
-                    quiz_view::restore(&form, &attempt, &saved);
+                    quiz_view::restore(&form, &attempt, &saved, &mut self.grading);
                 }
-                quiz_view::store(self.id, &form, &attempt);
+                quiz_view::store(self.id, &form, &attempt, self.grading.tally);
                 self.attempt = Some(attempt);
             }
             Err(e) => form.set_inner_html(&content_html::content_error(&e.to_string())),

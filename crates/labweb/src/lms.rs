@@ -6,17 +6,26 @@
 //! - `lab-quiz-progress` (`CustomEvent`), whenever the attempt's answers are
 //!   kept: `detail = { id, suspendData }`;
 //! - `lab-quiz-submitted`, when an attempt is graded:
-//!   `detail = { id, score, max, percent, suspendData }`, with `score` right
-//!   answers of `max` questions and `percent` their rounded percentage;
+//!   `detail = { id, score, max, percent, counted, questions, suspendData }`,
+//!   with `score` right answers of `max` questions, `percent` their rounded
+//!   percentage, `counted` the percentage the instructor's rule makes count
+//!   (best, last or first graded attempt) and `questions` one
+//!   `[choice, given, correct, expected]` per question (see [`questions`]);
 //! - `window.labLms.suspendData(id)`, set by `scorm.js` only inside an LMS:
 //!   the attempt the LMS kept for experiment `id` (a
 //!   [`labcore::lms::Suspended`] text), or `null`.
 //!
 //! Outside an LMS nobody listens and `window.labLms` does not exist, so the
 //! quiz behaves exactly as before (its attempt lives in local storage).
+//!
+//! A package's launch (`index.html?sco=pid&attempts=2&score=first`) also
+//! fixes the quiz's grading rules for the whole session: [`launch_rules`].
 
-use crate::quiz_view::{saved, Attempt};
-use labcore::lms::Suspended;
+use crate::quiz_view::{responses, saved, Attempt};
+use labcore::content::Question;
+use labcore::lms::{Suspended, Tally};
+use labcore::quiz::{grade, read_answer, PreparedKind, Response};
+use labcore::route::QuizRules;
 use wasm_bindgen::{JsCast, JsValue};
 use web_sys::{CustomEvent, CustomEventInit, Element};
 
@@ -30,6 +39,23 @@ pub fn experiment_of(form: &Element) -> Option<String> {
         .ok()
         .flatten()?
         .get_attribute("data-experiment")
+}
+
+/// The grading rules of a SCORM launch (`index.html?sco=pid&attempts=2`,
+/// see `cargo xtask dist --scorm`): the package's, which no link opened
+/// inside the SCO changes. `None` for a page not launched as a SCO.
+#[must_use]
+pub fn launch_rules() -> Option<QuizRules> {
+    let search = web_sys::window()?.location().search().ok()?;
+    let query = search.strip_prefix('?')?;
+    query
+        .split('&')
+        .any(|pair| pair.starts_with("sco="))
+        .then(|| {
+            labcore::route::parse(&format!("#/x?{query}"), &["x"])
+                .instructor
+                .quiz
+        })
 }
 
 /// The attempt an LMS kept for `id`, when the page runs inside one and the
@@ -49,25 +75,26 @@ pub fn suspended(id: &str) -> Option<Suspended> {
     Suspended::decode(&text).filter(|s| s.id == id)
 }
 
-/// The form's attempt as an LMS keeps it.
+/// The form's attempt, with the quiz's graded attempts, as an LMS keeps it.
 #[must_use]
-pub fn suspend_data(id: &str, form: &Element, attempt: &Attempt) -> String {
+pub fn suspend_data(id: &str, form: &Element, attempt: &Attempt, tally: Tally) -> String {
     let kept = saved(form, attempt);
     Suspended {
         id: id.to_owned(),
         seed: kept.seed,
         answers: kept.answers,
         submitted: form.has_attribute(SUBMITTED_ATTR),
+        tally,
     }
     .encode()
 }
 
 /// Announces that the attempt's answers changed (`lab-quiz-progress`).
-pub fn progress(form: &Element, attempt: &Attempt) {
+pub fn progress(form: &Element, attempt: &Attempt, tally: Tally) {
     let Some(id) = experiment_of(form) else {
         return;
     };
-    let data = suspend_data(&id, form, attempt);
+    let data = suspend_data(&id, form, attempt, tally);
     dispatch(
         "lab-quiz-progress",
         &[
@@ -78,26 +105,76 @@ pub fn progress(form: &Element, attempt: &Attempt) {
 }
 
 /// Announces a graded attempt (`lab-quiz-submitted`): `score` right of the
-/// attempt's questions.
-pub fn submitted(form: &Element, attempt: &Attempt, score: usize) {
+/// attempt's questions, `tally` already counting it; `quiz` is the content's
+/// questions (for option numbers in content order).
+pub fn submitted(form: &Element, attempt: &Attempt, score: usize, tally: Tally, quiz: &[Question]) {
     let Some(id) = experiment_of(form) else {
         return;
     };
     let max = attempt.questions.len();
-    let data = suspend_data(&id, form, attempt);
+    let data = suspend_data(&id, form, attempt, tally);
+    let percent = labcore::quiz::score_percent(score, max);
     dispatch(
         "lab-quiz-submitted",
         &[
             ("id", JsValue::from_str(&id)),
             ("score", JsValue::from_f64(score as f64)),
             ("max", JsValue::from_f64(max as f64)),
+            ("percent", JsValue::from_f64(percent as f64)),
             (
-                "percent",
-                JsValue::from_f64(labcore::quiz::score_percent(score, max) as f64),
+                "counted",
+                JsValue::from_f64(tally.counted.unwrap_or(percent) as f64),
             ),
+            ("questions", questions(form, attempt, quiz).into()),
             ("suspendData", JsValue::from_str(&data)),
         ],
     );
+}
+
+/// Each question of a graded attempt as `[choice, given, correct,
+/// expected]` for `cmi.interactions` (`scorm.js` writes them): a choice
+/// question's `given` and `expected` are option numbers in the content's
+/// order, so every student's letters mean the same option whatever the
+/// shuffle; a numeric question's are the value read in its unit and the
+/// answer. `given` is null when blank or unreadable.
+fn questions(form: &Element, attempt: &Attempt, quiz: &[Question]) -> js_sys::Array {
+    let out = js_sys::Array::new();
+    for (i, (q, r)) in attempt
+        .questions
+        .iter()
+        .zip(responses(form, attempt))
+        .enumerate()
+    {
+        let (given, expected) = match (&q.kind, &r) {
+            (PreparedKind::Choice { options, answer }, _) => {
+                let in_content = |k: usize| {
+                    let at = match quiz.get(i) {
+                        Some(Question::Choice { options: all, .. }) => {
+                            options.get(k).and_then(|o| all.iter().position(|a| a == o))
+                        }
+                        _ => None,
+                    };
+                    at.unwrap_or(k) as f64
+                };
+                let picked = match r {
+                    Response::Choice(Some(k)) => Some(in_content(k)),
+                    _ => None,
+                };
+                (picked, in_content(*answer))
+            }
+            (PreparedKind::Numeric { answer, unit, .. }, Response::Text(text)) => {
+                (read_answer(text, unit).ok().map(|x| x.value), *answer)
+            }
+            (PreparedKind::Numeric { answer, .. }, _) => (None, *answer),
+        };
+        out.push(&js_sys::Array::of4(
+            &JsValue::from_bool(matches!(q.kind, PreparedKind::Choice { .. })),
+            &given.map_or(JsValue::NULL, JsValue::from_f64),
+            &JsValue::from_bool(grade(q, &r).correct),
+            &JsValue::from_f64(expected),
+        ));
+    }
+    out
 }
 
 fn dispatch(kind: &str, fields: &[(&str, JsValue)]) {

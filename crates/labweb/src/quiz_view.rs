@@ -3,10 +3,15 @@
 //! Worked answers and explanations are not in the page before submission:
 //! [`render`] leaves their places empty and [`grade_form`] fills them from the
 //! attempt held in memory. Submitting with unanswered questions asks for
-//! confirmation first; the score shows at the top of the form.
+//! confirmation first; the score shows at the top of the form. An
+//! instructor's rules ([`Grading`]) limit the graded attempts and choose
+//! which one's score counts.
 
 use crate::dom::{escape, query, query_all};
+use labcore::content::Question;
+use labcore::lms::Tally;
 use labcore::quiz::{grade, score_percent, Prepared, PreparedKind, Response, SavedAttempt};
+use labcore::route::QuizRules;
 use wasm_bindgen::JsCast;
 use web_sys::{Element, HtmlInputElement};
 
@@ -14,6 +19,27 @@ use web_sys::{Element, HtmlInputElement};
 pub struct Attempt {
     pub seed: u64,
     pub questions: Vec<Prepared>,
+}
+
+/// How an experiment's quiz is graded: the instructor's rules (from the
+/// link, or a SCORM package's launch) and the attempts graded so far.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Grading {
+    pub rules: QuizRules,
+    pub tally: Tally,
+}
+
+impl Grading {
+    /// The rules for `id` (a SCORM launch's, else `link_rules`), with the
+    /// attempts the LMS counted; outside an LMS the count starts with the
+    /// page (a teaching aid: the LMS's count is the one that holds).
+    #[must_use]
+    pub fn load(id: &str, link_rules: QuizRules) -> Grading {
+        Grading {
+            rules: crate::lms::launch_rules().unwrap_or(link_rules),
+            tally: crate::lms::suspended(id).map_or_else(Tally::default, |s| s.tally),
+        }
+    }
 }
 
 /// The form for an attempt.
@@ -136,7 +162,7 @@ pub fn saved(form: &Element, attempt: &Attempt) -> SavedAttempt {
 
 /// Puts saved answers back into a freshly rendered form (answers that do not
 /// fit this attempt's questions are left blank).
-pub fn restore(form: &Element, attempt: &Attempt, saved: &SavedAttempt) {
+pub fn restore(form: &Element, attempt: &Attempt, saved: &SavedAttempt, grading: &mut Grading) {
     if saved.seed != attempt.seed {
         return;
     }
@@ -167,7 +193,7 @@ pub fn restore(form: &Element, attempt: &Attempt, saved: &SavedAttempt) {
         .and_then(|id| crate::lms::suspended(&id))
         .is_some_and(|s| s.submitted && s.seed == attempt.seed);
     if graded_in_lms {
-        grade_form(form, attempt);
+        grade_form(form, attempt, grading, false);
     }
 }
 
@@ -181,10 +207,24 @@ pub fn unanswered(form: &Element, attempt: &Attempt) -> Vec<usize> {
         .collect()
 }
 
+/// Shows `text` in the form's alert line.
+fn alert(form: &Element, text: &str) {
+    if let Some(confirm) = query(form, ".quiz-confirm") {
+        confirm.set_text_content(Some(text));
+        crate::dom::set_hidden(&confirm, false);
+    }
+}
+
 /// The submit button: with unanswered questions the first press only asks
-/// for confirmation (the form remembers it), the next one grades. Returns
-/// true when the form was graded.
-pub fn submit(form: &Element, attempt: &Attempt) -> bool {
+/// for confirmation (the form remembers it), the next one grades, unless
+/// the instructor's attempts are used up (then it says so and grades
+/// nothing). Returns true when the form was graded; `quiz` is the content's
+/// questions (for the LMS's per-question record).
+pub fn submit(form: &Element, attempt: &Attempt, grading: &mut Grading, quiz: &[Question]) -> bool {
+    if !grading.rules.allows(grading.tally.graded) {
+        alert(form, &grading.tally.line(&grading.rules, true));
+        return false;
+    }
     let missing = unanswered(form, attempt);
     let confirmed = form.has_attribute("data-confirm-unanswered");
     if !missing.is_empty() && !confirmed {
@@ -203,18 +243,15 @@ pub fn submit(form: &Element, attempt: &Attempt) -> bool {
                 missing.len()
             )
         };
-        if let Some(confirm) = query(form, ".quiz-confirm") {
-            confirm.set_text_content(Some(&text));
-            crate::dom::set_hidden(&confirm, false);
-        }
+        alert(form, &text);
         let _ = form.set_attribute("data-confirm-unanswered", "");
         if let Some(button) = query(form, "button[type=submit]") {
             button.set_text_content(Some("Submit anyway"));
         }
         return false;
     }
-    let score = grade_form(form, attempt);
-    crate::lms::submitted(form, attempt, score);
+    let score = grade_form(form, attempt, grading, true);
+    crate::lms::submitted(form, attempt, score, grading.tally, quiz);
     true
 }
 
@@ -244,9 +281,11 @@ fn feedback(verdict: &labcore::quiz::Grade) -> String {
 
 /// Grades the form in place: marks each question right or wrong, shows how
 /// each answer was read, the expected answer and the explanation (written
-/// into the page only now), and the score at the top. Returns the number of
-/// right answers.
-pub fn grade_form(form: &Element, attempt: &Attempt) -> usize {
+/// into the page only now), and the score at the top with what the
+/// instructor's rules make of it; `record` counts it as a graded attempt
+/// (not when a kept attempt is shown again). Returns the number of right
+/// answers.
+pub fn grade_form(form: &Element, attempt: &Attempt, grading: &mut Grading, record: bool) -> usize {
     let mut score = 0;
     for item in query_all(form, ".quiz-q") {
         let Some(index) = item
@@ -283,11 +322,15 @@ pub fn grade_form(form: &Element, attempt: &Attempt) -> usize {
     if let Some(confirm) = query(form, ".quiz-confirm") {
         crate::dom::set_hidden(&confirm, true);
     }
+    let total = attempt.questions.len();
+    let percent = score_percent(score, total);
+    if record {
+        grading.tally.record(percent, &grading.rules);
+    }
     if let Some(out) = query(form, ".quiz-score") {
-        let total = attempt.questions.len();
         out.set_text_content(Some(&format!(
-            "Score: {score} / {total} ({}%). Press New attempt for fresh questions.",
-            score_percent(score, total)
+            "Score: {score} / {total} ({percent}%). {}",
+            grading.tally.line(&grading.rules, false)
         )));
         crate::dom::set_hidden(&out, false);
         out.scroll_into_view_with_bool(true);
@@ -314,10 +357,11 @@ pub fn load_saved(experiment_id: &str) -> Option<SavedAttempt> {
 
 /// Keeps the attempt's seed and answers so a reload restores them
 /// (silently does nothing when storage is unavailable, e.g. private mode),
-/// and tells an LMS, if there is one (`lab-quiz-progress`).
-pub fn store(experiment_id: &str, form: &Element, attempt: &Attempt) {
+/// and tells an LMS, if there is one (`lab-quiz-progress`, with the
+/// attempts graded so far).
+pub fn store(experiment_id: &str, form: &Element, attempt: &Attempt, tally: Tally) {
     if let Some(Ok(Some(storage))) = web_sys::window().map(|w| w.local_storage()) {
         let _ = storage.set_item(&storage_key(experiment_id), &saved(form, attempt).encode());
     }
-    crate::lms::progress(form, attempt);
+    crate::lms::progress(form, attempt, tally);
 }

@@ -25,9 +25,12 @@ const HELP: &str = "\
 usage: cargo xtask <command> [options]
 
 commands:
-  dist [--scorm]            build the site into dist/ (wasm, JS glue, web/ files);
+  dist [--scorm [--attempts N|unlimited] [--score best|last|first]]
+                            build the site into dist/ (wasm, JS glue, web/ files);
                             --scorm also writes dist-scorm/ and dist-scorm.zip
-                            (a SCORM 1.2 package, one SCO per experiment)
+                            (a SCORM 1.2 package, one SCO per experiment), its
+                            quizzes graded N times at most (default unlimited),
+                            the best, last or first attempt counting (default best)
   serve [--port N] [--host H] [--base /prefix/]
                             build dist/, then serve it (default http://127.0.0.1:8000/)
   size                      raw and gzip -9 size of every file in dist/
@@ -68,16 +71,23 @@ fn main() -> ExitCode {
     }
 }
 
-/// `dist`, and with `--scorm` the LMS package made from it.
+/// `dist`, and with `--scorm` (then `--attempts`, `--score`) the LMS
+/// package made from it.
 fn dist_cmd(rest: &[String]) -> Result<(), String> {
-    let scorm = match rest {
-        [] => false,
-        [flag] if flag == "--scorm" => true,
-        [other, ..] => return Err(format!("`dist` takes only --scorm (got `{other}`)")),
+    let rules = match rest.split_first() {
+        None => None,
+        Some((flag, options)) if flag == "--scorm" => Some(
+            scorm::parse_rules(options).map_err(|e| format!("`dist --scorm`: {e}"))?,
+        ),
+        Some((other, _)) => {
+            return Err(format!(
+                "`dist` takes only --scorm [--attempts N|unlimited] [--score best|last|first] (got `{other}`)"
+            ))
+        }
     };
     let dist = dist::dist()?;
-    if scorm {
-        scorm::package(&dist)?;
+    if let Some(rules) = rules {
+        scorm::package(&dist, &rules)?;
     }
     Ok(())
 }

@@ -3,13 +3,21 @@
 //! `dist-scorm.zip` beside it, the file an instructor uploads to an LMS.
 //!
 //! **One SCO per experiment.** Each experiment is its own `<item>` with its
-//! own launch URL (`index.html#/<id>/aim`). An LMS keeps the SCORM data
+//! own launch URL (`index.html?sco=<id>`: a query, which LMSs keep, where
+//! some drop a `#` fragment; `web/main.js` opens the experiment's Aim tab
+//! and `web/scorm.js` reports that experiment's quiz only). An LMS keeps the SCORM data
 //! model per SCO, so each experiment gets its own `lesson_status`, score and
 //! `suspend_data`: eleven quizzes are recorded side by side and a relaunch
 //! resumes the right attempt. One SCO for the whole lab would have one score
 //! and one 4,096-character `suspend_data` for all eleven. Every SCO launches
 //! the same `index.html`; the files are listed once, in a shared `asset`
 //! resource that each SCO depends on.
+//!
+//! **Grading rules.** `--attempts N|unlimited` and `--score best|last|first`
+//! go into every launch URL (`index.html?sco=pid&attempts=2&score=last`),
+//! with the meaning of an instructor link's keys (`labcore::route`); the
+//! page holds them for the whole SCO session, whatever link is opened in
+//! it. Left out: any number of attempts, the best one counts.
 //!
 //! The package holds no precompressed `.gz`/`.br` siblings: an LMS serves
 //! the plain files, so they would only make the upload bigger.
@@ -18,6 +26,7 @@
 //! §2.3.5 (manifest, `adlcp:scormtype`, `adlcp:masteryscore`).
 
 use crate::util;
+use labcore::route::{Instructor, QuizRules};
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -53,13 +62,39 @@ pub fn experiments() -> Vec<Sco> {
         .collect()
 }
 
-/// Builds `dist-scorm/` and `dist-scorm.zip` next to `dist` from it.
-/// Returns (folder, zip).
-pub fn package(dist: &Path) -> Result<(PathBuf, PathBuf), String> {
+/// The grading rules of `--attempts N|unlimited` and `--score
+/// best|last|first` (each at most once) in `args`, read as an instructor
+/// link's `attempts=`/`score=`; any other argument is an error.
+pub fn parse_rules(args: &[String]) -> Result<QuizRules, String> {
+    let mut pairs = Vec::new();
+    let mut rest = args.iter();
+    while let Some(flag) = rest.next() {
+        let key = match flag.as_str() {
+            "--attempts" => labcore::route::ATTEMPTS_KEY,
+            "--score" => labcore::route::SCORE_KEY,
+            other => return Err(format!("unknown option `{other}`")),
+        };
+        let value = rest.next().ok_or_else(|| format!("{flag} needs a value"))?;
+        if pairs.iter().any(|(k, _)| *k == key) {
+            return Err(format!("{flag} given twice"));
+        }
+        pairs.push((key, labcore::route::encode(value)));
+    }
+    let query: Vec<String> = pairs.iter().map(|(k, v)| format!("{k}={v}")).collect();
+    let route = labcore::route::parse(&format!("#/x?{}", query.join("&")), &["x"]);
+    match route.notices.first() {
+        Some(problem) => Err(problem.clone()),
+        None => Ok(route.instructor.quiz),
+    }
+}
+
+/// Builds `dist-scorm/` and `dist-scorm.zip` next to `dist` from it, every
+/// SCO launched with `rules`. Returns (folder, zip).
+pub fn package(dist: &Path, rules: &QuizRules) -> Result<(PathBuf, PathBuf), String> {
     let parent = dist.parent().unwrap_or(Path::new("."));
     let folder = parent.join("dist-scorm");
     let zip = parent.join("dist-scorm.zip");
-    let files = write_package(dist, &folder, &zip, &experiments())?;
+    let files = write_package(dist, &folder, &zip, &experiments(), rules)?;
     let raw: u64 = files
         .iter()
         .filter_map(|f| fs::metadata(folder.join(f)).ok())
@@ -68,8 +103,9 @@ pub fn package(dist: &Path) -> Result<(PathBuf, PathBuf), String> {
     let zipped = fs::metadata(&zip)
         .map_err(|e| format!("cannot stat {}: {e}", zip.display()))?
         .len();
+    let launch = launch_href("<id>", rules);
     println!(
-        "dist-scorm/ ready: {} files, {} unzipped; dist-scorm.zip {} (SCORM 1.2, {} SCOs)",
+        "dist-scorm/ ready: {} files, {} unzipped; dist-scorm.zip {} (SCORM 1.2, {} SCOs, launched as {launch})",
         files.len(),
         util::human(raw),
         util::human(zipped),
@@ -79,13 +115,14 @@ pub fn package(dist: &Path) -> Result<(PathBuf, PathBuf), String> {
 }
 
 /// Copies `dist` into `folder` (without precompressed siblings), writes the
-/// manifest for `scos` and zips the folder into `zip`. Returns every file of
-/// the package (slash paths, manifest first).
+/// manifest for `scos` (launched with `rules`) and zips the folder into
+/// `zip`. Returns every file of the package (slash paths, manifest first).
 pub fn write_package(
     dist: &Path,
     folder: &Path,
     zip: &Path,
     scos: &[Sco],
+    rules: &QuizRules,
 ) -> Result<Vec<String>, String> {
     if !dist.join("index.html").is_file() {
         return Err(format!("{} has no index.html", dist.display()));
@@ -108,7 +145,7 @@ pub fn write_package(
         site.push(util::slash_path(&rel));
     }
     site.sort();
-    let manifest = manifest_xml(scos, &site);
+    let manifest = manifest_xml(scos, &site, rules);
     fs::write(folder.join(MANIFEST), &manifest)
         .map_err(|e| format!("cannot write {MANIFEST}: {e}"))?;
     let mut all = vec![MANIFEST.to_owned()];
@@ -117,10 +154,10 @@ pub fn write_package(
     Ok(all)
 }
 
-/// `imsmanifest.xml` for `scos`, every one launching `index.html#/<id>/aim`
-/// and depending on one asset resource that lists `files`.
+/// `imsmanifest.xml` for `scos`, every one launching `index.html?sco=<id>`
+/// (with `rules`) and depending on one asset resource that lists `files`.
 #[must_use]
-pub fn manifest_xml(scos: &[Sco], files: &[String]) -> String {
+pub fn manifest_xml(scos: &[Sco], files: &[String], rules: &QuizRules) -> String {
     let mut x = String::new();
     x.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     x.push_str(&format!(
@@ -141,7 +178,7 @@ pub fn manifest_xml(scos: &[Sco], files: &[String]) -> String {
         x.push_str(&format!(
             "    <resource identifier=\"sco-{}\" type=\"webcontent\" adlcp:scormtype=\"sco\" href=\"{}\">\n      <file href=\"index.html\"/>\n      <dependency identifierref=\"lab-files\"/>\n    </resource>\n",
             xml_id(&s.id),
-            escape(&launch_href(&s.id))
+            escape(&launch_href(&s.id, rules))
         ));
     }
     x.push_str(
@@ -154,10 +191,21 @@ pub fn manifest_xml(scos: &[Sco], files: &[String]) -> String {
     x
 }
 
-/// The launch URL of an experiment's SCO: its Aim tab.
+/// The launch URL of an experiment's SCO: the experiment in the query (no
+/// fragment, which some LMSs drop), then the grading rules that are not
+/// the defaults (`index.html?sco=pid&attempts=2&score=last`).
 #[must_use]
-pub fn launch_href(id: &str) -> String {
-    format!("index.html#/{id}/aim")
+pub fn launch_href(id: &str, rules: &QuizRules) -> String {
+    let rules = Instructor {
+        quiz: *rules,
+        ..Instructor::default()
+    };
+    let mut href = format!("index.html?sco={id}");
+    for pair in rules.query() {
+        href.push('&');
+        href.push_str(&pair);
+    }
+    href
 }
 
 /// An experiment id as an XML `ID` (letters, digits, `-`, `_`, `.`; the
@@ -232,7 +280,11 @@ mod tests {
     fn manifest_is_scorm_1_2_with_one_sco_per_experiment() {
         let scos = experiments();
         assert_eq!(scos.len(), labcore::registry().len());
-        let text = manifest_xml(&scos, &["index.html".into(), "main.js".into()]);
+        let text = manifest_xml(
+            &scos,
+            &["index.html".into(), "main.js".into()],
+            &QuizRules::default(),
+        );
         let doc = roxmltree::Document::parse(&text).expect("well-formed XML");
         let root = doc.root_element();
         assert_eq!(root.tag_name().name(), "manifest");
@@ -264,7 +316,7 @@ mod tests {
                 .unwrap_or_else(|| panic!("item of {} names no SCO resource", s.id));
             assert_eq!(
                 resource.attribute("href"),
-                Some(format!("index.html#/{}/aim", s.id).as_str())
+                Some(format!("index.html?sco={}", s.id).as_str())
             );
             let title = item.children().find(|n| n.has_tag_name("title"));
             assert_eq!(title.and_then(|n| n.text()), Some(s.title.as_str()));
@@ -304,6 +356,7 @@ mod tests {
                 title: "Forces & <moments> \"quoted\"".into(),
             }],
             &["x&y.html".into()],
+            &QuizRules::default(),
         );
         let doc = roxmltree::Document::parse(&text).unwrap();
         let title = doc
@@ -325,7 +378,7 @@ mod tests {
         let folder = dir.join("dist-scorm");
         let zip_path = dir.join("dist-scorm.zip");
         let scos = experiments();
-        let files = write_package(&dist, &folder, &zip_path, &scos).unwrap();
+        let files = write_package(&dist, &folder, &zip_path, &scos, &QuizRules::default()).unwrap();
         assert_eq!(
             files,
             [
@@ -348,10 +401,12 @@ mod tests {
         for h in &hrefs {
             assert!(folder.join(h).is_file(), "{h} is named but missing");
         }
-        // Launch URLs name an existing file before their fragment.
+        // Launch URLs name an existing file before their query, and carry
+        // no fragment (some LMSs drop it).
         for r in doc.descendants().filter(|n| n.has_tag_name("resource")) {
             if let Some(href) = r.attribute("href") {
-                let file = href.split('#').next().unwrap();
+                assert!(!href.contains('#'), "{href}");
+                let file = href.split('?').next().unwrap();
                 assert!(folder.join(file).is_file(), "{href}");
             }
         }
@@ -387,12 +442,64 @@ mod tests {
 
         // A second run replaces the package (no stale file survives).
         fs::remove_file(dist.join("scorm.js")).unwrap();
-        let again = write_package(&dist, &folder, &zip_path, &scos).unwrap();
+        let again = write_package(&dist, &folder, &zip_path, &scos, &QuizRules::default()).unwrap();
         assert!(!again.contains(&"scorm.js".to_owned()));
         assert!(!folder.join("scorm.js").exists());
         let archive = zip::ZipArchive::new(fs::File::open(&zip_path).unwrap()).unwrap();
         assert_eq!(archive.len(), again.len());
         fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Issue 24 §2: a SCO's launch does not depend on the `#` fragment.
+    #[test]
+    fn launch_without_fragment_names_the_sco_in_the_query() {
+        let scos = experiments();
+        let text = manifest_xml(&scos, &["index.html".into()], &QuizRules::default());
+        let doc = roxmltree::Document::parse(&text).unwrap();
+        let hrefs: Vec<&str> = doc
+            .descendants()
+            .filter(|n| n.attribute((ADLCP_NS, "scormtype")) == Some("sco"))
+            .filter_map(|n| n.attribute("href"))
+            .collect();
+        assert_eq!(hrefs.len(), scos.len());
+        for (s, href) in scos.iter().zip(&hrefs) {
+            assert_eq!(*href, format!("index.html?sco={}", s.id));
+        }
+    }
+
+    /// Issue 24 §2: `--attempts` and `--score` reach every launch URL, with
+    /// the instructor link's meaning; bad values are clear errors.
+    #[test]
+    fn attempts_and_score_options_reach_every_launch() {
+        let args = |a: &[&str]| a.iter().map(|s| (*s).to_owned()).collect::<Vec<_>>();
+        let rules = parse_rules(&args(&["--attempts", "2", "--score", "last"])).unwrap();
+        assert_eq!(rules.attempts, Some(2));
+        assert_eq!(rules.score, labcore::route::ScoreRule::Last);
+        assert_eq!(
+            launch_href("pid", &rules),
+            "index.html?sco=pid&attempts=2&score=last"
+        );
+        let text = manifest_xml(&experiments(), &["index.html".into()], &rules);
+        assert!(text.contains("href=\"index.html?sco=pid&amp;attempts=2&amp;score=last\""));
+        roxmltree::Document::parse(&text).expect("well-formed with the rules");
+        // The defaults write nothing.
+        let default = parse_rules(&args(&["--attempts", "unlimited", "--score", "best"])).unwrap();
+        assert_eq!(default, QuizRules::default());
+        assert_eq!(launch_href("pid", &default), "index.html?sco=pid");
+        assert_eq!(parse_rules(&[]).unwrap(), QuizRules::default());
+        for (bad, says) in [
+            (&["--attempts", "0"][..], "Ignored “attempts=0”"),
+            (&["--score", "median"], "Ignored “score=median”"),
+            (&["--attempts"], "--attempts needs a value"),
+            (
+                &["--score", "best", "--score", "last"],
+                "--score given twice",
+            ),
+            (&["--retakes", "2"], "unknown option `--retakes`"),
+        ] {
+            let err = parse_rules(&args(bad)).unwrap_err();
+            assert!(err.contains(says), "{bad:?}: {err}");
+        }
     }
 
     #[test]
@@ -403,6 +510,7 @@ mod tests {
             &dir.join("out"),
             &dir.join("out.zip"),
             &[],
+            &QuizRules::default(),
         )
         .unwrap_err();
         assert!(err.contains("has no index.html"), "{err}");

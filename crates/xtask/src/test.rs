@@ -139,7 +139,11 @@ pub fn test(opts: Options) -> Result<(), String> {
     // The SCORM package too: tests/e2e/scorm.test.mjs launches it in a test LMS.
     steps.push((
         "dist --scorm",
-        Box::new(|| dist::dist().and_then(|d| crate::scorm::package(&d).map(|_| ()))),
+        Box::new(|| {
+            dist::dist().and_then(|d| {
+                crate::scorm::package(&d, &labcore::route::QuizRules::default()).map(|_| ())
+            })
+        }),
     ));
     steps.push((
         "first-page budget (gzip)",

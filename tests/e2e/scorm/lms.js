@@ -3,6 +3,9 @@
 // the manifest's first item) launched in the iframe from the package's
 // imsmanifest.xml, as an LMS does. `window.SAVED_CMI` (set by the test
 // before the page loads) is the cmi an LMS kept from an earlier session.
+// Like some real LMSs, it drops the launch URL's `#` fragment (issue 24);
+// `?launch-query=<pairs>` appends to the launch's query, as a package built
+// with `cargo xtask dist --scorm --attempts 2 --score last` writes it.
 (async () => {
   const status = document.getElementById("lms-status");
   const log = (window.lmsLog = []);
@@ -36,10 +39,14 @@
   api.cmi.core.student_name = "Student, Test";
   window.API = api;
   window.lmsLaunch = resource.getAttribute("href");
+  const extra = new URLSearchParams(location.search).get("launch-query");
+  let launched = window.lmsLaunch.split("#")[0];
+  if (extra) launched += (launched.includes("?") ? "&" : "?") + extra;
+  window.lmsLaunched = launched;
   // `?origin=` puts the SCO on another origin (where it must not reach the API).
   const origin = new URLSearchParams(location.search).get("origin");
   const here = location.pathname.replace(/[^/]*$/, "");
-  document.getElementById("sco").src = (origin ? origin + here : "") + pkg + window.lmsLaunch;
+  document.getElementById("sco").src = (origin ? origin + here : "") + pkg + launched;
   status.textContent = `launched ${window.lmsLaunch}`;
 })().catch((e) => {
   document.getElementById("lms-status").textContent = `LMS error: ${e}`;

@@ -206,6 +206,7 @@ fn read_panel(panel: &Element) -> (Instructor, Option<u64>) {
             locked: checked("data-lock"),
             hidden: checked("data-hide"),
             note: route::clean_note(&note).0,
+            ..Instructor::default()
         },
         quiz,
     )
@@ -319,7 +320,9 @@ impl SimState {
         if !details.has_attribute("open") {
             return;
         }
-        let (instructor, quiz) = read_panel(&self.panel);
+        let (mut instructor, quiz) = read_panel(&self.panel);
+        // The panel has no field for the quiz's rules: the link's stay.
+        instructor.quiz = self.instructor.quiz;
         let mut pairs = instructor.query();
         pairs.extend(quiz.map(|s| format!("{}={s}", route::QUIZ_KEY)));
         let hash = route::with_query(self.state_link(), &pairs);
