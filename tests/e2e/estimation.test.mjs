@@ -62,9 +62,9 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
     const paused = await readouts(page);
     await page.waitForTimeout(600);
     assert.deepEqual(await readouts(page), paused, "paused: the readouts hold still");
-    // Single steps advance the run: 30 frames of 1/60 s are 10 filter steps.
+    // Single steps advance the run: each press is one filter step.
     const step = page.locator("button[data-time=step]");
-    for (let i = 0; i < 30; i += 1) await step.click();
+    for (let i = 0; i < 10; i += 1) await step.click();
     await settle(page);
     const stepped = await readouts(page);
     assert.notDeepEqual(stepped, paused, "single steps moved the run");

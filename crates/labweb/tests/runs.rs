@@ -376,3 +376,37 @@ fn pid_replay_of_a_run_ends_at_the_same_step_as_the_first_run() {
         assert_eq!(replay, first, "replayed with {steps_a_frame} steps a frame");
     }
 }
+
+/// Issue 23 §2: the link is written at a pace while a run goes; a change
+/// made just before leaving the tab is written as the tab is left, so Back
+/// returns to the state left (not a link up to 250 ms old, which rebuilt
+/// the run from it).
+#[wasm_bindgen_test]
+async fn a_change_just_before_leaving_the_tab_survives_back() {
+    mount("#/pid/simulation");
+    for _ in 0..30 {
+        frame(ONE_STEP_MS);
+    }
+    let slider: web_sys::HtmlInputElement = element("input[type=range][data-param=kp]")
+        .dyn_into()
+        .unwrap();
+    let set_kp = |value: &str| {
+        slider.set_value(value);
+        let init = web_sys::EventInit::new();
+        init.set_bubbles(true);
+        let input = web_sys::Event::new_with_event_init_dict("input", &init).unwrap();
+        slider.dispatch_event(&input).unwrap();
+        // One frame: the change shows; its link is written unless one was
+        // written less than the pace before.
+        frame(ONE_STEP_MS);
+    };
+    set_kp("30");
+    assert!(hash().contains("kp=30"), "{}", hash());
+    set_kp("40");
+    let (steps, state) = shown();
+    click_tab("theory").await;
+    back().await;
+    labweb::paint_now();
+    assert_eq!(shown(), (steps, state));
+    assert!(hash().contains("kp=40"), "{}", hash());
+}
