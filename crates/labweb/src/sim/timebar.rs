@@ -53,7 +53,7 @@ fn step_text(step_s: f64) -> String {
 pub(super) enum ClockState {
     /// Playing, and the model moves: t goes on.
     Running,
-    /// The student paused a live run: the badge adds "· paused".
+    /// The student paused a live run: the badge starts "paused ·".
     Paused,
     /// Playing, but nothing moves (a balanced pole at rest, an arm at its
     /// target): t holds until something moves again; the time bar says so.
