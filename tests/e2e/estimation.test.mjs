@@ -40,7 +40,7 @@ async function downloadCsv(page, key) {
 test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, passes the consistency check and exports CSV", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/ekf/simulation");
-    await waitStatus(page, /^EKF localisation on the known map$/);
+    await waitStatus(page, /^EKF localisation, known map$/);
     for (const key of ["error", "heading_error", "trace", "nees", "obs_per_loop", "dr_error", "landmarks"]) {
       assert.ok(await page.locator(`[data-readout=${key}]`).count(), `readout ${key} is shown`);
     }
@@ -110,16 +110,16 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
 test("ekf: a setting changed under a consistency check leaves the status on the run (issue 13 §4)", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/ekf/simulation?runs=10");
-    await waitStatus(page, /^EKF localisation on the known map$/);
+    await waitStatus(page, /^EKF localisation, known map$/);
     await page.locator("button[data-action=check]").click();
     await waitStatus(page, /^consistency check… \d+\/10 runs$/);
     const sw = page.locator("input[type=text][data-param=sw]");
     await sw.fill("9");
     await sw.press("Enter");
     // The check is dropped and the badge tells the run's state again, for good.
-    await waitStatus(page, /^EKF localisation on the known map$/);
+    await waitStatus(page, /^EKF localisation, known map$/);
     await page.waitForTimeout(1500);
-    assert.equal((await page.locator(".sim-status").textContent()).trim(), "EKF localisation on the known map");
+    assert.equal((await page.locator(".sim-status").textContent()).trim(), "EKF localisation, known map");
   }));
 
 test("ekf: the Simulation tab at desktop and phone sizes", async () => {
