@@ -42,7 +42,7 @@ async function downloadCsv(page, key) {
 test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, passes the consistency check and exports CSV", () =>
   withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/ekf/simulation");
-    await waitStatus(page, /^EKF localisation running$/);
+    await waitStatus(page, /^EKF localisation, known map$/);
     for (const key of ["error", "heading_error", "trace", "nees", "obs_per_loop", "dr_error", "landmarks"]) {
       assert.ok(await page.locator(`[data-readout=${key}]`).count(), `readout ${key} is shown`);
     }
@@ -65,9 +65,9 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
     const paused = await readouts(page);
     await runFor(page, 600);
     assert.deepEqual(await readouts(page), paused, "paused: the readouts hold still");
-    // Single steps advance the run: 30 frames of 1/60 s are 10 filter steps.
+    // Single steps advance the run: each press is one filter step.
     const step = page.locator("button[data-time=step]");
-    for (let i = 0; i < 30; i += 1) await step.click();
+    for (let i = 0; i < 10; i += 1) await step.click();
     await settle(page);
     const stepped = await readouts(page);
     assert.notDeepEqual(stepped, paused, "single steps moved the run");
@@ -113,16 +113,16 @@ test("ekf: the run moves, pauses and single-steps, maps landmarks in SLAM mode, 
 test("ekf: a setting changed under a consistency check leaves the status on the run (issue 13 §4)", () =>
   withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/ekf/simulation?runs=10");
-    await waitStatus(page, /^EKF localisation running$/);
+    await waitStatus(page, /^EKF localisation, known map$/);
     await page.locator("button[data-action=check]").click();
     await waitStatus(page, /^consistency check… \d+\/10 runs$/);
     const sw = page.locator("input[type=text][data-param=sw]");
     await sw.fill("9");
     await sw.press("Enter");
     // The check is dropped and the badge tells the run's state again, for good.
-    await waitStatus(page, /^EKF localisation running$/);
+    await waitStatus(page, /^EKF localisation, known map$/);
     await runFor(page, 1500);
-    assert.equal((await page.locator(".sim-status").textContent()).trim(), "EKF localisation running");
+    assert.equal((await page.locator(".sim-status").textContent()).trim(), "EKF localisation, known map");
   }));
 
 test("ekf: the Simulation tab at desktop and phone sizes", async () => {

@@ -221,7 +221,7 @@ test("astar: after Plan & drive the report holds the search's tables and plots",
 test("ekf: after a run the report holds every plot and no quiz", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/ekf/simulation");
-    await waitStatus(page, /^EKF localisation running$/);
+    await waitStatus(page, /^EKF localisation, known map$/);
     // Run at 4× for a while: many samples, so the tables are decimated.
     await page.selectOption(`${ART} select[data-time=speed]`, "4");
     await page.waitForFunction(() => Number(document.querySelector("canvas.sim-canvas").dataset.steps) > 4000, null, {

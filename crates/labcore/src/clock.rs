@@ -101,25 +101,28 @@ impl Clock {
 
     /// Takes the `steps` that [`Clock::advance`] gave, calling `step` for
     /// each, but stops once `spent_ms()` (the frame's work so far) reaches
-    /// `budget_ms`; the first step is always taken. The steps not taken are
-    /// not counted: after a slow frame the simulation runs slower than real
-    /// time for a moment instead of piling the catch-up into one long frame
-    /// (which would make the next frame slower still). Returns the steps taken.
+    /// `budget_ms`, or once `step` returns `false` (the run ended: a step
+    /// after the end would count time the run never had); the first step is
+    /// always taken. The steps not taken are not counted: after a slow frame
+    /// the simulation runs slower than real time for a moment instead of
+    /// piling the catch-up into one long frame (which would make the next
+    /// frame slower still). Returns the steps taken.
     ///
     /// Which steps run never depends on time, only how many fall in a frame:
-    /// step N of a run is the same state however the frames fell.
+    /// step N of a run is the same state however the frames fell, and a run
+    /// ends at the same step however they fell.
     pub fn take_steps(
         &mut self,
         steps: u32,
         budget_ms: f64,
         mut spent_ms: impl FnMut() -> f64,
-        mut step: impl FnMut(),
+        mut step: impl FnMut() -> bool,
     ) -> u32 {
         let mut taken = 0;
         while taken < steps {
-            step();
+            let goes_on = step();
             taken += 1;
-            if spent_ms() >= budget_ms {
+            if !goes_on || spent_ms() >= budget_ms {
                 break;
             }
         }
@@ -127,11 +130,34 @@ impl Clock {
         taken
     }
 
-    /// One step, as the "step" button does; pauses the clock. Returns 1.
-    pub fn single_step(&mut self) -> u32 {
+    /// One press of the Step button: pauses, then takes `steps` fixed steps
+    /// (the model's own step, [`Clock::fixed_steps_in`]), calling `step` for
+    /// each until it returns `false` (the run ended). Counts and returns the
+    /// steps taken.
+    pub fn single_step(&mut self, steps: u32, mut step: impl FnMut() -> bool) -> u32 {
         self.set_running(false);
-        self.steps += 1;
-        1
+        let mut taken = 0;
+        while taken < steps {
+            taken += 1;
+            if !step() {
+                break;
+            }
+        }
+        self.steps += u64::from(taken);
+        taken
+    }
+
+    /// How many fixed steps of [`Clock::DT_S`] make a model step of
+    /// `step_s` seconds ([`crate::Experiment::natural_step_s`]): the nearest
+    /// whole number, at least 1 (1 for a NaN or infinite step).
+    #[must_use]
+    pub fn fixed_steps_in(step_s: f64) -> u32 {
+        let n = (step_s / Self::DT_S).round();
+        if n.is_finite() && n >= 1.0 {
+            n.min(f64::from(u32::MAX)) as u32
+        } else {
+            1
+        }
     }
 }
 
@@ -206,6 +232,7 @@ mod tests {
             || {
                 spent.set(spent.get() + 3.0);
                 ran += 1;
+                true
             },
         );
         assert_eq!((taken, ran), (4, 4));
@@ -213,12 +240,12 @@ mod tests {
         // A single step over the whole budget is still taken.
         let given = c.advance(2.5 / 60.0);
         assert_eq!(given, 2);
-        assert_eq!(c.take_steps(given, 1.0, || 50.0, || {}), 1);
+        assert_eq!(c.take_steps(given, 1.0, || 50.0, || true), 1);
         assert_eq!(c.steps(), 5);
         // Within budget, every step given is taken.
         let given = c.advance(3.2 / 60.0);
         assert_eq!(given, 3);
-        assert_eq!(c.take_steps(given, 10.0, || 0.0, || {}), 3);
+        assert_eq!(c.take_steps(given, 10.0, || 0.0, || true), 3);
         assert_eq!(c.steps(), 8);
     }
 
@@ -233,9 +260,52 @@ mod tests {
     }
 
     #[test]
+    fn a_frame_stops_stepping_when_the_run_ends_and_counts_only_the_steps_taken() {
+        let mut c = Clock::default();
+        let given = c.advance(5.5 / 60.0);
+        assert_eq!(given, 5);
+        // The run ends on its second step: the three after it never happen.
+        let mut left = 2;
+        let taken = c.take_steps(
+            given,
+            100.0,
+            || 0.0,
+            || {
+                left -= 1;
+                left > 0
+            },
+        );
+        assert_eq!(taken, 2);
+        assert_eq!(c.steps(), 2);
+    }
+
+    #[test]
+    fn a_step_press_takes_the_models_step_in_fixed_steps() {
+        assert_eq!(Clock::fixed_steps_in(Clock::DT_S), 1);
+        assert_eq!(Clock::fixed_steps_in(0.05), 3);
+        assert_eq!(Clock::fixed_steps_in(0.02), 1);
+        for odd in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(Clock::fixed_steps_in(odd), 1, "{odd}");
+        }
+        let mut c = Clock::default();
+        let mut ran = 0;
+        assert_eq!(
+            c.single_step(3, || {
+                ran += 1;
+                true
+            }),
+            3
+        );
+        assert_eq!((ran, c.steps(), c.running()), (3, 3, false));
+        // A press that ends the run stops there.
+        assert_eq!(c.single_step(3, || false), 1);
+        assert_eq!(c.steps(), 4);
+    }
+
+    #[test]
     fn single_step_pauses_and_counts() {
         let mut c = Clock::default();
-        assert_eq!(c.single_step(), 1);
+        assert_eq!(c.single_step(1, || true), 1);
         assert!(!c.running());
         assert_eq!(c.steps(), 1);
         assert!((c.time_s() - Clock::DT_S).abs() < 1e-15);

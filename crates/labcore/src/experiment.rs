@@ -611,6 +611,15 @@ pub trait Experiment {
     fn animated(&self) -> bool {
         false
     }
+    /// The model's own step, seconds: what one press of the time bar's Step
+    /// takes (and what the time bar says a step is). An experiment with a
+    /// natural step (a filter cycle) returns it; the shell takes the nearest
+    /// whole number of [`crate::clock::Clock::DT_S`] steps
+    /// ([`crate::clock::Clock::fixed_steps_in`]), so running and stepping
+    /// still take the same fixed steps. Default: one fixed step.
+    fn natural_step_s(&self) -> f64 {
+        crate::clock::Clock::DT_S
+    }
     /// Back to the start of the run (time controls' Reset): the motion, the
     /// trail, the plots restart; the parameters are kept.
     fn reset(&mut self) {}

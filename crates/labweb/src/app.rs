@@ -115,18 +115,25 @@ impl App {
                 if let Some(Mounted::Experiment(page)) = &mut self.page {
                     // A link with parameters describes a whole state: in a tab
                     // that already shows this experiment, start again from the
-                    // constructor so nothing the link leaves out is kept (unless
-                    // the link is exactly the state shown, e.g. Back to it).
-                    if same && !params.is_empty() && !page.shows(&hash) {
+                    // constructor so nothing the link leaves out is kept. The
+                    // link of exactly the state shown (Back to it, or the link
+                    // the page itself just wrote: a tab link is routed twice,
+                    // on `popstate` and on `hashchange`, and the first writes
+                    // the whole link) changes nothing: applying it again would
+                    // restart a run under a running clock (a parameter set
+                    // restarts PID's step response).
+                    let shown = same && page.shows(&hash);
+                    let new_state = !params.is_empty() && !shown;
+                    if same && new_state {
                         page.rebuild_sim();
                     }
-                    if !params.is_empty() {
+                    if new_state {
                         notices.extend(page.apply_params(&params));
                     }
                     // An instructor's locks, hidden controls and note come
                     // with a whole state (or alone); a bare link (a tab
                     // switch) keeps those already set.
-                    if !params.is_empty() || !instructor.is_empty() {
+                    if new_state || (params.is_empty() && !instructor.is_empty()) {
                         notices.extend(page.set_instructor(instructor, quiz_seed));
                         page.set_quiz_rules(quiz_rules);
                     }
@@ -154,6 +161,16 @@ impl App {
             dom::clear_notice();
         } else {
             dom::notice(&route::summarize_notices(&notices, route::NOTICE_LIMIT));
+        }
+    }
+
+    /// Calls `f` with the mounted simulation (tests compare its model with
+    /// a run of their own); `None` when no simulation is mounted.
+    #[doc(hidden)]
+    pub fn with_sim<R>(&self, f: impl FnOnce(&SimView) -> R) -> Option<R> {
+        match &self.page {
+            Some(Mounted::Experiment(page)) => page.inner.borrow().sim.as_ref().map(f),
+            _ => None,
         }
     }
 
@@ -388,6 +405,7 @@ impl ExperimentPage {
                         &p.root,
                         &format!("[role=tab][data-tab={}]", Tab::ALL[next].slug()),
                     );
+                    p.flush_link();
                     drop(p);
                     push_hash(&hash);
                     crate::reroute();
@@ -397,6 +415,20 @@ impl ExperimentPage {
                 },
             ));
         }
+        // Leaving the Simulation tab by a link (a tab, a preset): the link
+        // of the state shown is written first (it is paced while a run
+        // goes), so Back returns to this state, not one up to 250 ms old.
+        let page = inner.clone();
+        listeners.push(Listener::new(root.as_ref(), "click", move |e: Event| {
+            let is_link = e
+                .target()
+                .and_then(|t| t.dyn_into::<Element>().ok())
+                .and_then(|el| el.closest("a[href^=\"#\"]").ok().flatten())
+                .is_some();
+            if is_link {
+                page.borrow().flush_link();
+            }
+        }));
         if let Some(quiz_panel) = query(&root, "[data-panel=quiz]") {
             let page = inner.clone();
             listeners.push(Listener::new(
@@ -578,6 +610,13 @@ impl PageInner {
             (None, tab) => format!("#/{}/{}", self.id, tab.slug()),
         };
         replace_hash(&hash);
+    }
+
+    /// On the Simulation tab, writes its link now if it is behind the state.
+    fn flush_link(&self) {
+        if let (Tab::Simulation, Some(sim)) = (self.tab, &self.sim) {
+            sim.flush_link();
+        }
     }
 
     fn new_attempt(&mut self, seed: u64) {

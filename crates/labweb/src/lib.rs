@@ -68,6 +68,18 @@ pub fn paint_now() {
     });
 }
 
+/// Calls `f` with the mounted simulation's experiment and the steps its
+/// clock counts; `None` when none is mounted (tests compare the page's run
+/// with one of their own).
+#[doc(hidden)]
+pub fn inspect_sim<R>(f: impl FnOnce(&dyn labcore::Experiment, u64) -> R) -> Option<R> {
+    APP.with(|a| {
+        a.borrow()
+            .as_ref()
+            .and_then(|app| app.with_sim(|sim| sim.inspect(f)))
+    })
+}
+
 /// Re-reads the location hash (used by tests; browsers call it on `hashchange`).
 #[wasm_bindgen]
 pub fn reroute() {

@@ -87,7 +87,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
     let readouts = readouts_html(&exp.readouts());
     let statusbar = statusbar_html(&exp.status());
     let timebar = if exp.animated() {
-        timebar_html()
+        timebar_html(exp.natural_step_s())
     } else {
         String::new()
     };
@@ -191,6 +191,8 @@ struct SimState {
     shown_time: (bool, f64, u64, bool),
     /// The run's phase at the last frame (the time bar offers Replay when ended).
     phase: Phase,
+    /// What the badge and the time bar show of the clock (`data-clock`).
+    shown_clock: Option<timebar::ClockState>,
     /// The clock was stopped because the run ended (not by the student): it
     /// resumes by itself when the run is live again (a new goal, a reset).
     ended_hold: bool,
@@ -361,7 +363,12 @@ impl SimState {
                     steps,
                     STEP_BUDGET_MS,
                     || dom::now_ms() - start,
-                    || exp.step(Clock::DT_S),
+                    // A run ends on the step that ends it, however the
+                    // frames fell (a replay ends at the same t).
+                    || {
+                        exp.step(Clock::DT_S);
+                        exp.status().phase != Phase::Ended
+                    },
                 );
             });
             taken
@@ -623,6 +630,7 @@ impl SimView {
             plots_force: true,
             shown_time: (true, 0.0, u64::MAX, false),
             phase: Phase::Live,
+            shown_clock: None,
             ended_hold: false,
             needs_paint: true,
             shown_values: vec![None; n_params],
@@ -783,6 +791,24 @@ impl SimView {
             Tab::Simulation => st.link(),
             _ => format!("#/{}/{}", st.exp.id(), tab.slug()),
         }
+    }
+
+    /// Writes the link now if the state moved since it was last written
+    /// (before the page leaves the Simulation tab).
+    pub fn flush_link(&self) {
+        if let Ok(mut st) = self.state.try_borrow_mut() {
+            if st.hash_dirty {
+                st.write_hash();
+            }
+        }
+    }
+
+    /// Calls `f` with the experiment and the steps the clock counts (tests
+    /// compare a run in the page with one of their own).
+    #[doc(hidden)]
+    pub fn inspect<R>(&self, f: impl FnOnce(&dyn Experiment, u64) -> R) -> R {
+        let st = self.state.borrow();
+        f(st.exp.as_ref(), st.clock.steps())
     }
 
     /// Runs one animation frame at `time_ms` (browser tests drive the clock

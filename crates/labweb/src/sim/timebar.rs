@@ -17,7 +17,10 @@ const ICON_RESET: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" 
 
 /// The shell's time controls: the same widget, place and keys in every
 /// animated experiment.
-pub(super) fn timebar_html() -> String {
+///
+/// `step_s` is the model's own step ([`labcore::Experiment::natural_step_s`]):
+/// the Step button says what one press takes.
+pub(super) fn timebar_html(step_s: f64) -> String {
     let speeds: String = SPEEDS
         .iter()
         .map(|v| {
@@ -29,11 +32,60 @@ pub(super) fn timebar_html() -> String {
         "<div class=\"timebar\" role=\"group\" aria-label=\"Time controls\">\
          <button type=\"button\" class=\"tb-play\" data-time=\"play\" data-offer=\"pause\" aria-pressed=\"true\" aria-keyshortcuts=\"Space\">\
          <span class=\"tb-icon\">{ICON_PAUSE}</span> <span class=\"tb-label\">Pause</span></button>\
-         <button type=\"button\" data-time=\"step\" aria-keyshortcuts=\".\" title=\"One step (key .)\">{ICON_STEP} <span class=\"tb-text\">Step</span></button>\
+         <button type=\"button\" data-time=\"step\" aria-keyshortcuts=\".\" title=\"One step: {step} s (key .)\">{ICON_STEP} <span class=\"tb-text\">Step</span></button>\
          <label class=\"tb-speed\"><span class=\"tb-speed-text\">Playback</span> <select data-time=\"speed\">{speeds}</select></label>\
          <button type=\"button\" data-time=\"reset\">{ICON_RESET} <span class=\"tb-text\">Reset</span></button>\
-         <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output></div>"
+         <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output></div>",
+        step = step_text(step_s),
     )
+}
+
+/// A step's length as the Step button's title says it: `0.05`, `0.017`.
+fn step_text(step_s: f64) -> String {
+    let text = format!("{step_s:.3}");
+    text.trim_end_matches('0').trim_end_matches('.').to_owned()
+}
+
+/// What the shell's time controls make of a live or ended run, shown on the
+/// status badge and the time bar (`data-clock`): the model's status says
+/// what the run is; this says whether simulated time goes on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum ClockState {
+    /// Playing, and the model moves: t goes on.
+    Running,
+    /// The student paused a live run: the badge starts "paused ·".
+    Paused,
+    /// Playing, but nothing moves (a balanced pole at rest, an arm at its
+    /// target): t holds until something moves again; the time bar says so.
+    Held,
+    /// The run is over (the badge adds "· ended"; the time bar offers Replay).
+    Ended,
+}
+
+impl ClockState {
+    /// The pure rule: `animated` (the experiment has time controls),
+    /// `running` (the clock plays), `ended` (the model's phase),
+    /// `animating` (the model still moves).
+    pub(super) fn of(animated: bool, running: bool, ended: bool, animating: bool) -> Self {
+        if ended {
+            Self::Ended
+        } else if animated && !running {
+            Self::Paused
+        } else if animated && !animating {
+            Self::Held
+        } else {
+            Self::Running
+        }
+    }
+
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            Self::Running => "running",
+            Self::Paused => "paused",
+            Self::Held => "held",
+            Self::Ended => "ended",
+        }
+    }
 }
 
 fn speed_label(v: f64) -> &'static str {
@@ -108,14 +160,18 @@ impl SimState {
         }
     }
 
-    /// One fixed step from a pause (the Step button and the `.` key).
+    /// One model step from a pause (the Step button and the `.` key): the
+    /// fixed steps that make the model's own step (one filter cycle of the
+    /// EKF), fewer if the run ends on the way.
     pub(super) fn single_step(&mut self) {
         let was_animating = self.exp.animating();
-        let steps = self.clock.single_step();
+        let steps = Clock::fixed_steps_in(self.exp.natural_step_s());
+        let clock = &mut self.clock;
         let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
-            for _ in 0..steps {
+            clock.single_step(steps, || {
                 exp.step(Clock::DT_S);
-            }
+                exp.status().phase != Phase::Ended
+            });
         });
         self.needs_paint = true;
         self.hash_dirty = true;
@@ -159,9 +215,29 @@ impl SimState {
         if now != self.shown_time {
             self.sync_time_controls(now);
         }
+        let clock = ClockState::of(
+            self.exp.animated(),
+            self.clock.running(),
+            now.3,
+            self.exp.animating(),
+        );
+        if Some(clock) != self.shown_clock {
+            // The badge says "paused" (CSS adds it), the time bar "held".
+            for el in [".sim-status", ".timebar"] {
+                if let Some(el) = query(&self.panel, el) {
+                    let _ = el.set_attribute("data-clock", clock.name());
+                }
+            }
+            self.shown_clock = Some(clock);
+        }
         if text {
             // The time is written only when its text changes.
-            let text = format!("t = {:.2} s", self.clock.time_s());
+            let held = if clock == ClockState::Held {
+                " · held"
+            } else {
+                ""
+            };
+            let text = format!("t = {:.2} s{held}", self.clock.time_s());
             if text != self.shown_time_text {
                 if let Some(out) = &self.time_output {
                     out.set_text_content(Some(&text));
@@ -218,6 +294,26 @@ mod tests {
         assert_eq!(play_button(true, false).0, "Pause");
         assert_eq!(play_button(false, false).0, "Play");
         assert!(!play_button(true, true).2, "Replay is not a pressed toggle");
+    }
+
+    #[test]
+    fn the_clock_state_joins_the_models_phase_and_the_time_controls() {
+        // (animated, running, ended, animating)
+        assert_eq!(ClockState::of(true, true, false, true), ClockState::Running);
+        assert_eq!(ClockState::of(true, false, false, true), ClockState::Paused);
+        assert_eq!(
+            ClockState::of(true, false, false, false),
+            ClockState::Paused
+        );
+        assert_eq!(ClockState::of(true, true, false, false), ClockState::Held);
+        assert_eq!(ClockState::of(true, false, true, false), ClockState::Ended);
+        // Without time controls nothing is paused or held.
+        assert_eq!(
+            ClockState::of(false, true, false, false),
+            ClockState::Running
+        );
+        assert_eq!(step_text(0.05), "0.05");
+        assert_eq!(step_text(1.0 / 60.0), "0.017");
     }
 
     #[test]

@@ -874,6 +874,11 @@ impl Experiment for EkfExperiment {
         true
     }
 
+    /// One press of Step is one filter cycle (predict, then any update).
+    fn natural_step_s(&self) -> f64 {
+        FILTER_DT_S
+    }
+
     /// The same run again from the start; a consistency check restarts too.
     fn reset(&mut self) {
         self.restart();

@@ -277,10 +277,10 @@ fn a_setting_changed_under_a_check_is_a_notice_and_the_status_keeps_the_run() {
     assert_eq!(notice.text, STALE_CHECK_NOTICE);
     assert_eq!(notice.tone, Tone::Warning);
     let status = e.status();
-    assert_eq!(status.text, "EKF localisation running");
+    assert_eq!(status.text, "EKF localisation, known map");
     assert_eq!(status.phase, Phase::Live);
     run_for(&mut e, 2.0);
-    assert_eq!(e.status().text, "EKF localisation running");
+    assert_eq!(e.status().text, "EKF localisation, known map");
     // The mode shows through too.
     e.set_param("mode", 1.0).unwrap();
     assert!(

@@ -132,7 +132,7 @@ pub(super) fn scene(e: &EkfExperiment, out: &mut Scene) {
 }
 
 /// "Robot at (…) m heading 12.0°; the estimate is 0.057 m and -0.8° off,
-/// 6 landmarks (known map); EKF localisation running."
+/// 6 landmarks (known map); EKF localisation, known map."
 pub(super) fn describe(e: &EkfExperiment) -> String {
     let truth = e.live.truth;
     let value = |key| crate::experiment::readout_value(e, key).unwrap_or_default();
@@ -224,7 +224,7 @@ pub(super) fn status(e: &EkfExperiment) -> Status {
         };
     }
     match &e.live.filter {
-        Filter::Localisation(_) => Status::new("EKF localisation running", Tone::Neutral),
+        Filter::Localisation(_) => Status::new("EKF localisation, known map", Tone::Neutral),
         Filter::Slam(s) => Status::new(
             format!(
                 "EKF-SLAM: {} of {} landmarks mapped",

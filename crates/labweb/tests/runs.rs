@@ -1,0 +1,410 @@
+//! A run in the real page, its frames driven by the test (issue 23): the
+//! browser's `requestAnimationFrame` is replaced by a queue that the test
+//! empties with a frame time of its choosing, so the app's own frame loop,
+//! routing and time bar run exactly as in the page, but no step depends on
+//! the wall clock. Tab switches are real clicks on the tab links (the
+//! browser routes them through `popstate` and `hashchange`) and real
+//! `history.back()`.
+
+use labcore::clock::Clock;
+use labcore::route::{self, Tab};
+use labcore::{Experiment, Phase};
+use std::cell::Cell;
+use wasm_bindgen::JsCast;
+use wasm_bindgen::JsValue;
+use wasm_bindgen_futures::JsFuture;
+use wasm_bindgen_test::*;
+use web_sys::{HtmlElement, KeyboardEvent, KeyboardEventInit};
+
+wasm_bindgen_test_configure!(run_in_browser);
+
+fn document() -> web_sys::Document {
+    web_sys::window().unwrap().document().unwrap()
+}
+
+fn js(body: &str) -> JsValue {
+    js_sys::Function::new_no_args(body)
+        .call0(&JsValue::NULL)
+        .unwrap()
+}
+
+/// Replaces `requestAnimationFrame` by a queue (once): `__frame(t)` runs the
+/// callbacks queued so far with frame time `t` (ms).
+const FRAME_QUEUE: &str = r#"
+if (!window.__frames) {
+  const queue = (window.__frames = new Map());
+  let next = 0;
+  window.requestAnimationFrame = (cb) => { queue.set(++next, cb); return next; };
+  window.cancelAnimationFrame = (id) => { queue.delete(id); };
+  window.__frame = (t) => {
+    const due = [...queue.values()];
+    queue.clear();
+    for (const cb of due) cb(t);
+  };
+}
+"#;
+
+thread_local! {
+    /// The test's frame time, ms: it only ever grows.
+    static NOW_MS: Cell<f64> = const { Cell::new(1000.0) };
+}
+
+/// One animation frame, `gap_ms` after the last.
+fn frame(gap_ms: f64) {
+    let t = NOW_MS.with(|n| {
+        n.set(n.get() + gap_ms);
+        n.get()
+    });
+    js_sys::Function::new_with_args("t", "window.__frame(t)")
+        .call1(&JsValue::NULL, &JsValue::from_f64(t))
+        .unwrap();
+}
+
+/// A frame gap that gives one fixed step per frame at 1× for hundreds of
+/// frames (the accumulator gains 0.033 ms a frame).
+const ONE_STEP_MS: f64 = 16.7;
+
+/// A minimal copy of the shell, booted on `hash` (written without an event,
+/// so no late `hashchange` reaches a later test).
+fn mount(hash: &str) {
+    js(FRAME_QUEUE);
+    labweb::unmount();
+    if let Some(old) = document().get_element_by_id("lab-under-test") {
+        old.remove();
+    }
+    let wrapper = document().create_element("div").unwrap();
+    wrapper.set_id("lab-under-test");
+    document().body().unwrap().append_child(&wrapper).unwrap();
+    // The site's own rules for the badge: its marks are CSS, as in the page
+    // (the rest of the style sheet is left out: it only slows the frames).
+    let badge_rules: String = include_str!("../../../web/style.css")
+        .lines()
+        .filter(|l| l.starts_with(".sim-status["))
+        .collect();
+    wrapper.set_inner_html(&format!(
+        "<nav id=\"lab-nav\"></nav>\
+         <div id=\"notice\" hidden><span class=\"notice-text\"></span></div>\
+         <div id=\"fatal\" hidden><span class=\"fatal-text\"></span></div>\
+         <main id=\"app\" style=\"width:600px\"></main>\
+         <style>{}</style>\
+         <style>.sim-canvas{{display:block;width:400px;height:400px}}</style>",
+        badge_rules
+    ));
+    web_sys::window()
+        .unwrap()
+        .history()
+        .unwrap()
+        .replace_state_with_url(&JsValue::NULL, "", Some(hash))
+        .unwrap();
+    labweb::boot();
+    labweb::paint_now();
+}
+
+/// Resolves at the next `hashchange` (after the app's own listener).
+fn next_hashchange() -> JsFuture {
+    let promise =
+        js("return new Promise((r) => addEventListener('hashchange', () => r(), { once: true }))");
+    JsFuture::from(js_sys::Promise::from(promise))
+}
+
+fn element(selector: &str) -> HtmlElement {
+    document()
+        .query_selector(selector)
+        .unwrap()
+        .unwrap_or_else(|| panic!("{selector} exists"))
+        .dyn_into()
+        .unwrap()
+}
+
+/// Clicks the tab link `slug` of the shown article, as a student does.
+async fn click_tab(slug: &str) {
+    let routed = next_hashchange();
+    element(&format!(
+        "article.exp:not([hidden]) [role=tab][data-tab={slug}]"
+    ))
+    .click();
+    routed.await.unwrap();
+}
+
+/// The browser's Back button.
+async fn back() {
+    let routed = next_hashchange();
+    web_sys::window()
+        .unwrap()
+        .history()
+        .unwrap()
+        .back()
+        .unwrap();
+    routed.await.unwrap();
+}
+
+fn hash() -> String {
+    web_sys::window().unwrap().location().hash().unwrap()
+}
+
+fn text(selector: &str) -> String {
+    element(selector).text_content().unwrap_or_default()
+}
+
+fn attr(selector: &str, name: &str) -> Option<String> {
+    element(selector).get_attribute(name)
+}
+
+/// What the page's run shows: steps counted, status, readouts, plots and
+/// the scene's description (Debug text, so a NaN equals a NaN).
+fn shown() -> (u64, String) {
+    labweb::inspect_sim(|exp, steps| (steps, snapshot(exp))).expect("a simulation is mounted")
+}
+
+fn snapshot(exp: &dyn Experiment) -> String {
+    format!(
+        "status {:?}\nreadouts {:?}\nplots {:?}\ndescribe {}",
+        exp.status(),
+        exp.readouts(),
+        exp.plots(),
+        exp.describe()
+    )
+}
+
+/// The experiment built fresh and left alone for `steps` fixed steps.
+fn left_alone(entry: &labcore::Entry, steps: u64) -> Box<dyn Experiment> {
+    let mut exp = (entry.make)();
+    for _ in 0..steps {
+        exp.step(Clock::DT_S);
+    }
+    exp
+}
+
+const OTHER_TABS: [&str; 5] = ["aim", "theory", "procedure", "quiz", "references"];
+
+/// Issue 23 §2: run N steps, switch to other tabs and back any number of
+/// times (by the tab links and by Back, in a seeded random order, with
+/// frames in between), and the state, the plots and the link equal those
+/// of the same run left alone at the same step.
+#[wasm_bindgen_test]
+async fn every_experiment_keeps_its_run_across_tab_switches() {
+    let mut rng = labcore::Lcg64::new(23);
+    for entry in labcore::registry() {
+        mount(&format!("#/{}/simulation", entry.id));
+        for _ in 0..rng.int(20, 120) {
+            frame(ONE_STEP_MS);
+        }
+        for _ in 0..rng.int(1, 5) {
+            let other = OTHER_TABS[rng.int(0, OTHER_TABS.len() as i64 - 1) as usize];
+            let (steps_before, _) = shown();
+            click_tab(other).await;
+            // Frames while the tab is away: the run keeps its place.
+            for _ in 0..rng.int(0, 4) {
+                frame(ONE_STEP_MS);
+            }
+            assert_eq!(
+                shown().0,
+                steps_before,
+                "{}: no step away from the tab",
+                entry.id
+            );
+            if rng.next_f64() < 0.5 {
+                click_tab("simulation").await;
+            } else {
+                back().await;
+            }
+            assert_eq!(
+                attr("article.exp:not([hidden])", "data-tab").as_deref(),
+                Some("simulation"),
+                "{}",
+                entry.id
+            );
+            for _ in 0..rng.int(0, 40) {
+                frame(ONE_STEP_MS);
+            }
+        }
+        labweb::paint_now();
+        let (steps, state) = shown();
+        let alone = left_alone(entry, steps);
+        assert_eq!(
+            state,
+            snapshot(alone.as_ref()),
+            "{} at step {steps}",
+            entry.id
+        );
+        assert_eq!(
+            hash(),
+            route::format(alone.as_ref(), Tab::Simulation),
+            "{}: the link",
+            entry.id
+        );
+    }
+}
+
+/// Issue 23 §3, ekf: paused, the badge no longer reads "EKF localisation
+/// running"; the status strip says the run is paused, for every experiment
+/// with time controls (the model says what the run is, the shell whether
+/// time goes on).
+#[wasm_bindgen_test]
+fn ekf_paused_the_badge_still_reads_running_no_more_it_says_paused() {
+    mount("#/ekf/simulation");
+    frame(ONE_STEP_MS);
+    frame(ONE_STEP_MS);
+    element(".tb-play").click();
+    labweb::paint_now();
+    let badge = text(".sim-status");
+    assert!(!badge.contains("running"), "{badge}");
+    for entry in labcore::registry() {
+        if !(entry.make)().animated() {
+            continue;
+        }
+        mount(&format!("#/{}/simulation", entry.id));
+        frame(ONE_STEP_MS);
+        assert_ne!(attr(".sim-status", "data-clock").as_deref(), Some("paused"));
+        element(".tb-play").click();
+        frame(ONE_STEP_MS);
+        let phase = attr(".sim-status", "data-phase");
+        if phase.as_deref() == Some("ended") {
+            continue;
+        }
+        assert_eq!(
+            attr(".sim-status", "data-clock").as_deref(),
+            Some("paused"),
+            "{}",
+            entry.id
+        );
+        let mark = js(
+            "return getComputedStyle(document.querySelector('.sim-status'), '::before').content",
+        )
+        .as_string()
+        .unwrap_or_default();
+        assert!(mark.contains("paused · "), "{}: {mark}", entry.id);
+        // Play again: the mark goes.
+        element(".tb-play").click();
+        frame(ONE_STEP_MS);
+        assert_ne!(attr(".sim-status", "data-clock").as_deref(), Some("paused"));
+    }
+}
+
+fn press_key_on_canvas(key: &str) {
+    let init = KeyboardEventInit::new();
+    init.set_key(key);
+    init.set_bubbles(true);
+    let event = KeyboardEvent::new_with_keyboard_event_init_dict("keydown", &init).unwrap();
+    element("canvas.sim-canvas").dispatch_event(&event).unwrap();
+}
+
+/// Issue 23 §3, ekf: one press of Step (and of `.`) takes one filter cycle,
+/// t moving by the filter step the Procedure speaks of.
+#[wasm_bindgen_test]
+fn ekf_step_advances_t_by_one_filter_step_not_one_frame() {
+    use labcore::experiments::ekf::FILTER_DT_S;
+    mount("#/ekf/simulation?run=0");
+    let t = |presses: f64| format!("t = {:.2} s", presses * FILTER_DT_S);
+    assert_eq!(text(".tb-time"), t(0.0));
+    element("[data-time=step]").click();
+    labweb::paint_now();
+    assert_eq!(text(".tb-time"), t(1.0));
+    assert!((shown().0 as f64 * Clock::DT_S - FILTER_DT_S).abs() < 1e-9);
+    press_key_on_canvas(".");
+    labweb::paint_now();
+    assert_eq!(text(".tb-time"), t(2.0));
+    assert!((shown().0 as f64 * Clock::DT_S - 2.0 * FILTER_DT_S).abs() < 1e-9);
+    // The time bar says what a step is.
+    let title = attr("[data-time=step]", "title").unwrap_or_default();
+    assert!(title.contains("0.05 s"), "{title}");
+    // Each press was one filter cycle: the run equals that many cycles.
+    let entry = labcore::find("ekf").unwrap();
+    let mut alone = (entry.make)();
+    for _ in 0..2 {
+        for _ in 0..(FILTER_DT_S / Clock::DT_S).round() as u32 {
+            alone.step(Clock::DT_S);
+        }
+    }
+    assert_eq!(shown().1, snapshot(alone.as_ref()));
+}
+
+/// Issue 23 §3, cartpole: at "balanced" t stops while the time bar offered
+/// Pause, and looked frozen; the time bar now says t is held.
+#[wasm_bindgen_test]
+fn cartpole_at_balanced_the_time_bar_shows_t_held_not_a_frozen_clock() {
+    mount("#/cartpole/simulation");
+    let mut frames = 0;
+    while labweb::inspect_sim(|exp, _| exp.animating()).unwrap() {
+        frame(250.0);
+        frames += 1;
+        assert!(frames < 1000, "the pole comes to rest");
+    }
+    frame(250.0);
+    labweb::paint_now();
+    assert_eq!(text(".sim-status"), "balanced");
+    let held = text(".tb-time");
+    assert!(held.ends_with(" · held"), "{held}");
+    assert_eq!(attr(".timebar", "data-clock").as_deref(), Some("held"));
+    // t holds: more frames change nothing.
+    frame(250.0);
+    labweb::paint_now();
+    assert_eq!(text(".tb-time"), held);
+    // Paused, it is paused, not held.
+    element(".tb-play").click();
+    labweb::paint_now();
+    assert_eq!(attr(".timebar", "data-clock").as_deref(), Some("paused"));
+    assert!(!text(".tb-time").contains("held"));
+}
+
+/// Issue 23 §3, numbers: "Replay of a PID run ends at 1.43 s; the first run
+/// ended at 1.42 s". The steps a frame took after the run's end counted:
+/// how many depended on how the frames fell. The same run now ends at the
+/// same step, however many steps each frame takes.
+#[wasm_bindgen_test]
+fn pid_replay_of_a_run_ends_at_the_same_step_as_the_first_run() {
+    mount("#/pid/simulation?kp=1&ki=5&kd=0&c=0");
+    let ended =
+        || labweb::inspect_sim(|exp, steps| (exp.status().phase == Phase::Ended, steps)).unwrap();
+    let run_to_end = |gap_ms: f64| {
+        let mut frames = 0;
+        while !ended().0 {
+            frame(gap_ms);
+            frames += 1;
+            assert!(frames < 5000, "the run ends");
+        }
+        labweb::paint_now();
+        (ended().1, text(".tb-time"))
+    };
+    let first = run_to_end(ONE_STEP_MS);
+    for steps_a_frame in [2.0, 3.0, 5.0, 7.0] {
+        assert_eq!(attr(".tb-play", "data-offer").as_deref(), Some("replay"));
+        element(".tb-play").click();
+        let replay = run_to_end(ONE_STEP_MS * steps_a_frame);
+        assert_eq!(replay, first, "replayed with {steps_a_frame} steps a frame");
+    }
+}
+
+/// Issue 23 §2: the link is written at a pace while a run goes; a change
+/// made just before leaving the tab is written as the tab is left, so Back
+/// returns to the state left (not a link up to 250 ms old, which rebuilt
+/// the run from it).
+#[wasm_bindgen_test]
+async fn a_change_just_before_leaving_the_tab_survives_back() {
+    mount("#/pid/simulation");
+    for _ in 0..30 {
+        frame(ONE_STEP_MS);
+    }
+    let slider: web_sys::HtmlInputElement = element("input[type=range][data-param=kp]")
+        .dyn_into()
+        .unwrap();
+    let set_kp = |value: &str| {
+        slider.set_value(value);
+        let init = web_sys::EventInit::new();
+        init.set_bubbles(true);
+        let input = web_sys::Event::new_with_event_init_dict("input", &init).unwrap();
+        slider.dispatch_event(&input).unwrap();
+        // One frame: the change shows; its link is written unless one was
+        // written less than the pace before.
+        frame(ONE_STEP_MS);
+    };
+    set_kp("30");
+    assert!(hash().contains("kp=30"), "{}", hash());
+    set_kp("40");
+    let (steps, state) = shown();
+    click_tab("theory").await;
+    back().await;
+    labweb::paint_now();
+    assert_eq!(shown(), (steps, state));
+    assert!(hash().contains("kp=40"), "{}", hash());
+}
