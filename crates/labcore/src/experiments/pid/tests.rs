@@ -523,6 +523,47 @@ fn extreme_gains_print_every_quantity_in_a_few_characters() {
     assert_eq!(view::percent(776_555_891.3), "7.8 × 10⁸%");
 }
 
+/// Issue 23 §5: values under about 10⁻³⁰⁸ printed as "inf × 10⁻³⁰⁹" in
+/// the poles readout, the force readout and a pinned run's legend. The three
+/// ways the issue reached it, from a link or a setting.
+#[test]
+fn format_magnitude_prints_no_inf_for_the_three_links_of_the_issue() {
+    let no_inf = |e: &PidControl, case: &str| {
+        for text in all_texts(e) {
+            assert!(
+                !text.contains("inf") && !text.contains("NaN"),
+                "{case}: {text}"
+            );
+        }
+    };
+    let (mut e, _) = restore(
+        "#/pid/simulation?ki=2.2250738585072014e-308",
+        PidControl::default(),
+    );
+    for _ in 0..30 {
+        e.step(1.0 / 60.0);
+    }
+    assert!(
+        readout(&e, "poles").starts_with("-1.9 × 10⁻³⁰⁹"),
+        "{}",
+        readout(&e, "poles")
+    );
+    no_inf(&e, "ki link");
+    let mut e = PidControl::default();
+    e.set_param("r", 2.225_073_858_507_201e-308).unwrap();
+    for _ in 0..30 {
+        e.step(1.0 / 60.0);
+    }
+    no_inf(&e, "r");
+    let (mut e, _) = restore("#/pid/simulation?kd=5e-324", PidControl::default());
+    e.action("pin").unwrap();
+    assert_eq!(
+        e.plots()[0].series[1].label,
+        "A: Kp 12, Ki 2, Kd 4.9 × 10⁻³²⁴"
+    );
+    no_inf(&e, "kd link, pinned");
+}
+
 /// Issue 13 §1 (step 8) and §4: the run stops where the drawn track ends,
 /// the cart stays in view, and the status says the run is over.
 #[test]
