@@ -810,6 +810,13 @@ fn set(e: &mut PidControl, pairs: &[(&str, f64)]) {
     }
 }
 
+/// The Procedure's step `k` as the content file states it.
+fn procedure_step(k: usize) -> String {
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/pid.json")).unwrap();
+    content.procedure[k - 1].clone()
+}
+
 /// The state the student has after doing steps 1..=k.
 fn after_step(k: usize) -> PidControl {
     let mut e = PidControl::default();
@@ -970,11 +977,24 @@ fn pid_step_4_a_push_leaves_an_offset_that_integral_action_removes() {
     let mut e = after_step(3);
     set(&mut e, &[("d", -3.0), ("ki", 0.0)]);
     run_to_end(&mut e);
-    let kp = e.param("kp").unwrap();
-    // d/Kp = 3/25 = 0.12 m short.
-    assert_eq!(readout(&e, "sse"), format_metres(3.0 / kp));
+    let (kp, d) = (e.param("kp").unwrap(), e.param("d").unwrap());
+    // The text's formula, read from the step: "compare it with −d/Kp".
+    let text = procedure_step(4);
+    let formula = text
+        .split_once("compare it with ")
+        .and_then(|(_, rest)| rest.split_once('.'))
+        .map(|(f, _)| f)
+        .unwrap();
+    let (sign, rest) = match formula.strip_prefix('−') {
+        Some(rest) => (-1.0, rest),
+        None => (1.0, formula),
+    };
+    assert_eq!(rest, "d/Kp", "the step names {formula}");
+    let offset = sign * d / kp;
+    // −d/Kp = 3/25 = 0.12 m: the cart stops 0.12 m short of the setpoint.
+    assert_eq!(readout(&e, "sse"), format_metres(offset));
     assert!(
-        (e.position_m() - (1.0 - 3.0 / kp)).abs() < 2e-3,
+        (e.position_m() - (1.0 - offset)).abs() < 2e-3,
         "{}",
         e.position_m()
     );
