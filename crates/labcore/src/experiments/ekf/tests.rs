@@ -653,11 +653,42 @@ fn step_1(e: &mut EkfExperiment) {
     assert_eq!(e.live.observations.len(), seen);
 }
 
-/// Step 2: on the left side of the loop no landmark is in reach: the
-/// ellipse stretches across the direction of travel and σx² + σy² climbs,
-/// then snaps back when the lone landmark at the bottom left comes into
-/// view. After the loop the EKF's error is far below dead reckoning's.
+/// Step 2: on the left side of the loop no landmark is in view (one is
+/// within range there, behind the sensor's field of view): the ellipse
+/// stretches across the direction of travel and σx² + σy² climbs, then
+/// snaps back when the lone landmark at the bottom left comes into view.
+/// After the loop the EKF's error is far below dead reckoning's.
 fn step_2(e: &mut EkfExperiment) {
+    let text = &crate::content::Content::parse(include_str!("../../../../../assets/ekf.json"))
+        .unwrap()
+        .procedure[1];
+    assert!(
+        text.contains("no landmark is in view")
+            && text.contains("lone landmark at the bottom left comes into view"),
+        "{text}"
+    );
+    let sensor = e.settings().sensor;
+    // Which landmarks the sensor has in view (range and field of view), and
+    // which are only within range, from the true pose.
+    let in_view = |truth: DVec3| -> Vec<usize> {
+        (0..LANDMARKS.len())
+            .filter(|&k| sensor.sees(observation_model(truth, LANDMARKS[k])))
+            .collect()
+    };
+    let in_range = |truth: DVec3| -> Vec<usize> {
+        (0..LANDMARKS.len())
+            .filter(|&k| observation_model(truth, LANDMARKS[k]).x <= sensor.max_range_m)
+            .collect()
+    };
+    let bottom_left = LANDMARKS
+        .iter()
+        .position(|m| m.x < 0.0 && m.y < 0.0)
+        .unwrap();
+    assert_eq!(
+        LANDMARKS.iter().filter(|m| m.x < 0.0 && m.y < 0.0).count(),
+        1,
+        "the lone landmark at the bottom left"
+    );
     let start = e.clone();
     let lap = one_loop(e);
     // The longest stretch without a sighting.
@@ -672,6 +703,36 @@ fn step_2(e: &mut EkfExperiment) {
     let (a, b) = best;
     assert!(lap[b - 1].0 - lap[a].0 > 8.0, "a long blind stretch");
     assert!(lap[a..b].iter().all(|s| s.3.x < 0.0), "on the left side");
+    // No landmark in view at any filter step of the stretch, although
+    // landmark (−1.8, 3.6) is within range for part of it: "in view", not
+    // "within reach".
+    // (The last landmark seen may stay in view until the next reading, a
+    // few filter steps into the stretch.)
+    let blind = a + lap[a..b]
+        .iter()
+        .position(|s| in_view(s.3).is_empty())
+        .unwrap();
+    assert!(blind - a < SENSOR_EVERY as usize, "{} steps", blind - a);
+    // The first landmark to come into view after it: the bottom-left one,
+    // seen at the next reading.
+    let enter = blind
+        + lap[blind..=b]
+            .iter()
+            .position(|s| !in_view(s.3).is_empty())
+            .unwrap();
+    assert!(b - enter < SENSOR_EVERY as usize, "{} steps", b - enter);
+    assert_eq!(in_view(lap[enter].3), [bottom_left]);
+    assert!(
+        lap[enter].0 - lap[blind].0 > 8.0,
+        "a long stretch with none in view"
+    );
+    let top_left = LANDMARKS.iter().position(|m| *m == DVec2::new(-1.8, 3.6));
+    assert!(
+        lap[blind..enter]
+            .iter()
+            .any(|s| in_range(s.3).contains(&top_left.unwrap())),
+        "a landmark within range but out of view"
+    );
     let peak = lap[b - 1].1;
     assert!(
         peak > 10.0 * lap[a].1,
@@ -688,6 +749,13 @@ fn step_2(e: &mut EkfExperiment) {
     while f.live.time_s() < lap[b - 1].0 - 1e-9 {
         filter_step(&mut f);
     }
+    // The reading that ends the stretch sees the bottom-left landmark alone.
+    let mut next = f.clone();
+    filter_step(&mut next);
+    assert_eq!(next.live.reading_step, Some(next.live.steps));
+    let seen: Vec<usize> = next.live.observations.iter().map(|o| o.id).collect();
+    assert_eq!(seen, [bottom_left], "the lone landmark at the bottom left");
+    assert_eq!(in_view(next.live.truth), [bottom_left]);
     let (major, minor, phi) = covariance_ellipse(position_block(f.live.pose_cov()), 3.0);
     let heading = f.live.estimate().z;
     let angle = wrap_angle(phi - heading).abs();
