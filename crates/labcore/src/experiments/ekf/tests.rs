@@ -80,8 +80,8 @@ fn first_predict_matches_a_hand_computed_step() {
     // Issue 15: the readout is the position block's trace, in m² only (the
     // whole pose block would add 0.0012 rad² of heading variance to it).
     let tr = cov.x_axis.x + cov.y_axis.y;
-    assert_eq!(readout(&e, "trace"), format!("{} m²", format_magnitude(tr)));
-    assert_eq!(readout(&e, "trace"), "0.005 m²");
+    assert_eq!(readout(&e, "trace"), view::trace_text(tr));
+    assert_eq!(readout(&e, "trace"), "0.005026 m²");
     assert_eq!(
         readout(&e, "error"),
         format_metres((e.live.truth.truncate() - mean.truncate()).length())
@@ -124,7 +124,7 @@ fn first_update_matches_the_information_form() {
     }
     let tr = position_trace(post);
     assert!(tr < position_trace(pbar), "the update shrinks P");
-    assert_eq!(readout(&e, "trace"), format!("{} m²", format_magnitude(tr)));
+    assert_eq!(readout(&e, "trace"), view::trace_text(tr));
     assert_eq!(
         readout(&e, "error"),
         format_metres((e.live.truth.truncate() - mean.truncate()).length())
@@ -777,7 +777,7 @@ fn step_2(e: &mut EkfExperiment) {
 fn step_3(e: &mut EkfExperiment) {
     let shown = |e: &EkfExperiment| *e.plots[PLOT_TRACE].series[0].y.last().unwrap();
     let (mut rises, mut predicts, mut drops, mut readings) = (0, 0, 0, 0);
-    let mut shown_rises = 0;
+    let (mut shown_rises, mut readout_rises) = (0, 0);
     for _ in 0..200 {
         let before = position_trace(e.live.pose_cov());
         let (steps, shown_before) = (e.live.steps, shown(e));
@@ -789,10 +789,7 @@ fn step_3(e: &mut EkfExperiment) {
         assert_eq!(e.live.steps, steps + 1, "the third frame is");
         let after = position_trace(e.live.pose_cov());
         assert_eq!(shown(e), after, "the plot's last sample is the new trace");
-        assert_eq!(
-            readout(e, "trace"),
-            format!("{} m²", format_magnitude(after))
-        );
+        assert_eq!(readout(e, "trace"), view::trace_text(after));
         let read = (e.live.steps - 1).is_multiple_of(SENSOR_EVERY);
         assert_eq!(e.live.reading_step == Some(e.live.steps), read);
         if read && !e.live.observations.is_empty() {
@@ -802,6 +799,11 @@ fn step_3(e: &mut EkfExperiment) {
             predicts += 1;
             rises += usize::from(after > before);
             shown_rises += usize::from(shown(e) > shown_before);
+            // The readout's number, as the student reads it, rises too.
+            let read_back = |t: String| t.trim_end_matches(" m²").parse::<f64>().unwrap();
+            readout_rises += usize::from(
+                read_back(view::trace_text(after)) > read_back(view::trace_text(before)),
+            );
         }
     }
     assert_eq!(readings, drops, "every reading with a landmark lowers it");
@@ -810,6 +812,10 @@ fn step_3(e: &mut EkfExperiment) {
     assert!(
         shown_rises * 10 >= predicts * 9,
         "the plot rose on {shown_rises} of {predicts} predicts"
+    );
+    assert!(
+        readout_rises * 10 >= predicts * 9,
+        "the readout rose on {readout_rises} of {predicts} predicts"
     );
 }
 
@@ -1183,4 +1189,40 @@ fn the_correct_option_is_seldom_the_longest() {
         .length_tells();
     assert!(tells.choices >= 6, "{tells:?}");
     assert!(4 * tells.longest <= tells.choices, "{tells:?}");
+}
+
+/// Issue 23 §3: "Position uncertainty" showed 0.010 m², three decimals, so
+/// the rise on each predict step that step 3 speaks of could not be seen.
+/// Four significant digits show it: along the blind stretch of the first
+/// loop, the readout's text changes on every filter step.
+#[test]
+fn ekf_position_uncertainty_shows_the_rise_of_every_predict_step() {
+    let mut e = after_step(1);
+    let mut shown = Vec::new();
+    let end = e.live.time_s() + 38.0;
+    while e.live.time_s() < end {
+        filter_step(&mut e);
+        let sighting = e.live.reading_step == Some(e.live.steps) && !e.live.observations.is_empty();
+        shown.push((sighting, e.live.truth.x, readout(&e, "trace")));
+    }
+    // The longest run of filter steps without a sighting, on the left side.
+    let (mut best, mut from) = ((0, 0), 0);
+    for (k, s) in shown.iter().enumerate() {
+        if s.0 {
+            from = k + 1;
+        } else if k + 1 - from > best.1 - best.0 {
+            best = (from, k + 1);
+        }
+    }
+    let stretch = &shown[best.0..best.1];
+    assert!(stretch.len() > 160 && stretch.iter().all(|s| s.1 < 0.0));
+    for w in stretch.windows(2) {
+        assert_ne!(w[0].2, w[1].2, "a predict step the readout does not show");
+    }
+    assert!(stretch[0].2.ends_with(" m²"));
+    // Four significant digits in the everyday range, the magnitude form beyond.
+    assert_eq!(view::trace_text(0.010_344), "0.01034 m²");
+    assert_eq!(view::trace_text(0.004_587_03), "0.004587 m²");
+    assert_eq!(view::trace_text(1.5), "1.500 m²");
+    assert_eq!(view::trace_text(2.0e-5), "2.0 × 10⁻⁵ m²");
 }
