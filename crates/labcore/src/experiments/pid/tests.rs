@@ -37,7 +37,7 @@ fn readouts_by_hand_at_the_start() {
     assert_eq!(readout(&e, "poles"), "-3.000 ± 4.000i");
     assert_eq!(readout(&e, "stability"), "stable");
     assert_eq!(readout(&e, "second_order"), "ωn 5.000 rad/s · ζ 0.600");
-    assert_eq!(readout(&e, "sse"), "0.000 m");
+    assert_eq!(readout(&e, "sse"), "0.000 m (predicted)");
     // Default gains: m s³ + (c + Kd) s² + Kp s + Ki = s³ + 7 s² + 12 s + 2,
     // three real poles, the slowest near −0.187.
     let d = PidControl::default();
@@ -222,7 +222,8 @@ fn unstable_gains_diverge_and_say_so() {
     run_to_end(&mut e);
     assert_eq!(e.status().tone, Tone::Bad);
     assert!(e.position_m().abs() > TRACK_END_M);
-    assert_eq!(readout(&e, "overshoot"), "--");
+    // Issue 23: what it reached, against the setpoint (it has no final value).
+    assert!(readout(&e, "overshoot").ends_with("% past the setpoint"));
     let mut scene = Scene::default();
     e.scene(&mut scene);
     assert!(scene.is_finite());
@@ -1135,6 +1136,23 @@ fn pid_step_8_an_unstable_tuning_runs_off_the_track_and_the_run_ends() {
     assert!((c + kd) * kp <= m * ki);
     run_to_end(&mut e);
     assert!(e.time_s() < RECORD_S);
+    // "The cart's motion grows": each swing past the setpoint reaches
+    // further than the last one on the same side, over several swings.
+    let y = &e.plots()[0].series[0].y;
+    let mut swings = Vec::new();
+    let mut widest: f64 = 0.0;
+    for k in 1..y.len() {
+        if (y[k] - 1.0).signum() != (y[k - 1] - 1.0).signum() {
+            swings.push(widest);
+            widest = 0.0;
+        }
+        widest = widest.max((y[k] - 1.0).abs());
+    }
+    swings.push(widest);
+    let swings = &swings[1..];
+    assert!(swings.len() >= 4, "{swings:?}");
+    assert!(swings.windows(3).all(|w| w[2] > w[0]), "{swings:?}");
+    assert!(readout(&e, "overshoot").ends_with("% past the setpoint"));
     let x = e.position_m();
     assert!(x.abs() > TRACK_END_M && x.abs() < TRACK_END_M + 0.05, "{x}");
     let status = e.status();
@@ -1195,4 +1213,122 @@ fn the_correct_option_is_seldom_the_longest() {
         .length_tells();
     assert!(tells.choices >= 6, "{tells:?}");
     assert!(4 * tells.longest <= tells.choices, "{tells:?}");
+}
+
+/// Issue 23 §3: with a push of −3 N and no integral action the badge said
+/// "settled within 2 % after 1.39 s" while the band sat around 0.88 m and
+/// Error read 0.120 m. The badge, the band and the settling readout now say
+/// what the settling is measured against.
+#[test]
+fn pid_settling_and_its_band_name_the_value_they_are_measured_against() {
+    let (mut e, _) = restore(
+        "#/pid/simulation?kp=25&ki=0&kd=10&d=-3",
+        PidControl::default(),
+    );
+    run_to_end(&mut e);
+    let status = e.status();
+    assert_eq!(
+        status.text,
+        "settled at 0.880 m, 12 % short of the setpoint (within 2 % after 1.39 s)"
+    );
+    assert_eq!((status.tone, status.phase), (Tone::Good, Phase::Ended));
+    let band = &e.plots()[0].bands[0];
+    assert_eq!(band.label, "±2 % band around 0.880 m");
+    assert!((0.5 * (band.lo + band.hi) - 0.88).abs() < 1e-9);
+    assert_eq!(readout(&e, "settling"), "1.39 s (around 0.880 m)");
+    assert_eq!(readout(&e, "error"), "0.120 m");
+    assert_eq!(readout(&e, "sse"), "0.120 m");
+    // A push forward leaves the cart past the setpoint; none at all, at it.
+    let (mut e, _) = restore(
+        "#/pid/simulation?kp=20&ki=0&kd=6&d=5",
+        PidControl::default(),
+    );
+    run_to_end(&mut e);
+    assert!(
+        e.status()
+            .text
+            .starts_with("settled at 1.250 m, 25 % past the setpoint"),
+        "{}",
+        e.status().text
+    );
+    let mut e = PidControl::default();
+    run_to_end(&mut e);
+    assert!(e.status().text.starts_with("settled within 2 % after "));
+    assert_eq!(e.plots()[0].bands[0].label, "±2 % band");
+}
+
+/// Issue 23 §3: with Ki = 2 and the cart at 0.966 m, still moving, the
+/// steady-state error read 0.000 m: a prediction, now labelled as one until
+/// the run has settled.
+#[test]
+fn pid_steady_state_error_is_labelled_predicted_until_the_run_settles() {
+    let mut e = PidControl::default();
+    while e.position_m() < 0.966 {
+        e.step(1.0 / 60.0);
+    }
+    assert!(e.run.state.v_m_s.abs() > 1e-3, "still moving");
+    assert_eq!(readout(&e, "sse"), "0.000 m (predicted)");
+    run_to_end(&mut e);
+    assert_eq!(readout(&e, "sse"), "0.000 m");
+}
+
+/// Issue 23 §3: the default run kept "stepping to 1.000 m" after Settling
+/// read 10.20 s. Once the settling readout has a time, the badge says the
+/// run has settled (the run itself goes on until the cart is at rest). Both
+/// wait until the response has stayed in its band for [`SETTLE_DWELL_S`]:
+/// it crosses the band at 1.2 s on its way to the overshoot.
+#[test]
+fn pid_the_badge_follows_the_default_run_to_settled() {
+    let mut e = PidControl::default();
+    while readout(&e, "settling") == "--" {
+        assert!(e.status().text.starts_with("stepping to 1.000 m"));
+        e.step(1.0 / 60.0);
+    }
+    let ts = readout(&e, "settling");
+    assert_eq!(ts, "10.20 s");
+    assert!(e.time_s() >= 10.2 + SETTLE_DWELL_S - 1e-9 && e.time_s() < 11.25);
+    let status = e.status();
+    assert_eq!(status.phase, Phase::Live, "still running");
+    assert_eq!(status.text, format!("settled within 2 % after {ts}"));
+    assert_eq!(status.tone, Tone::Good);
+    run_to_end(&mut e);
+    assert_eq!(e.status().text, format!("settled within 2 % after {ts}"));
+    assert_eq!(e.status().phase, Phase::Ended);
+}
+
+/// Issue 23 §3, step 8: from the link `kp=1&ki=5&kd=0&c=0` the cart left
+/// the track in 1.4 s with Overshoot and Peak at "--", although it went
+/// 150 % past the setpoint. The ended run keeps its whole response on the
+/// plot and reports what it reached, against the setpoint.
+#[test]
+fn pid_step_8_an_unstable_run_reports_the_overshoot_and_peak_it_reached() {
+    let (mut e, _) = restore("#/pid/simulation?kp=1&ki=5&kd=0&c=0", PidControl::default());
+    run_to_end(&mut e);
+    assert_eq!(e.status().phase, Phase::Ended);
+    let s = &e.plots()[0].series[0];
+    let (k, peak) = s.y.iter().enumerate().fold(
+        (0, f64::MIN),
+        |a, (k, y)| if *y > a.1 { (k, *y) } else { a },
+    );
+    assert!(peak > 2.4, "{peak}");
+    // The whole run stays on the plot, from the start to the end stop.
+    assert_eq!((s.x[0], s.y[0]), (0.0, 0.0));
+    assert!((s.x[s.x.len() - 1] - e.time_s()).abs() < 0.011);
+    let overshoot = 100.0 * (peak - 1.0);
+    assert_eq!(
+        readout(&e, "overshoot"),
+        format!("{} past the setpoint", percent(overshoot))
+    );
+    assert!(overshoot > 140.0);
+    assert_eq!(
+        readout(&e, "peak"),
+        format!("{} at {} s", format_metres(peak), format_fixed(s.x[k], 2))
+    );
+    let markers = &e.plots()[0].markers;
+    assert!(markers
+        .iter()
+        .any(|m| m.label == format!("peak {}", percent(overshoot))));
+    assert_ne!(readout(&e, "rise"), "--");
+    assert_eq!(readout(&e, "settling"), "--");
+    assert_eq!(readout(&e, "sse"), "--");
 }
