@@ -329,6 +329,9 @@ pub struct Handle {
     /// The keyboard's step for it when it moves on a lattice (a grid cell,
     /// metres); `None`: the page's step, a fraction of the view.
     pub step_m: Option<f64>,
+    /// It moves along x only (a setpoint on a track): the Move form offers
+    /// x alone and the up and down keys leave it where it is.
+    pub x_only: bool,
 }
 
 impl Handle {
@@ -340,6 +343,16 @@ impl Handle {
             label: label.into(),
             at,
             step_m: None,
+            x_only: false,
+        }
+    }
+
+    /// A handle that moves along x only, at height `at.y`.
+    #[must_use]
+    pub fn along_x(id: impl Into<String>, label: impl Into<String>, at: DVec2) -> Self {
+        Self {
+            x_only: true,
+            ..Self::new(id, label, at)
         }
     }
 

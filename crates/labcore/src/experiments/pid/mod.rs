@@ -885,7 +885,7 @@ impl Experiment for PidControl {
 
     /// The setpoint marker (it moves along x only).
     fn handles(&self) -> Vec<crate::experiment::Handle> {
-        vec![crate::experiment::Handle::new(
+        vec![crate::experiment::Handle::along_x(
             "setpoint",
             "Setpoint",
             DVec2::new(self.setpoint_m, MARKER_TOP_M),

@@ -1332,3 +1332,16 @@ fn pid_step_8_an_unstable_run_reports_the_overshoot_and_peak_it_reached() {
     assert_eq!(readout(&e, "settling"), "--");
     assert_eq!(readout(&e, "sse"), "--");
 }
+
+/// Issue 23 §3: "Move a point" offered "Setpoint y" in a one-dimensional
+/// experiment. The setpoint handle moves along x only.
+#[test]
+fn pid_the_setpoint_handle_moves_along_x_only() {
+    let mut e = PidControl::default();
+    let handles = e.handles();
+    assert_eq!(handles.len(), 1);
+    assert!(handles[0].x_only, "{:?}", handles[0]);
+    e.move_handle("setpoint", DVec2::new(0.5, 3.0));
+    assert_eq!(e.param("r"), Some(0.5));
+    assert_eq!(e.handles()[0].at.y, handles[0].at.y);
+}
