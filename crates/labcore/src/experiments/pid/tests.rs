@@ -1234,6 +1234,8 @@ fn pid_settling_and_its_band_name_the_value_they_are_measured_against() {
     assert_eq!((status.tone, status.phase), (Tone::Good, Phase::Ended));
     let band = &e.plots()[0].bands[0];
     assert_eq!(band.label, "±2 % band around 0.880 m");
+    // The scene names the band on the track too.
+    assert!(all_texts(&e).contains(&"±2 % band around 0.880 m".to_owned()));
     assert!((0.5 * (band.lo + band.hi) - 0.88).abs() < 1e-9);
     assert_eq!(readout(&e, "settling"), "1.39 s (around 0.880 m)");
     assert_eq!(readout(&e, "error"), "0.120 m");

@@ -129,7 +129,8 @@ pub(super) fn scene(e: &PidControl, out: &mut Scene) {
             });
         }
     }
-    // The ±2 % band around the final value, on the track.
+    // The ±2 % band around the final value, on the track; named below the
+    // track's metre labels when it is not around the setpoint.
     if let Some(band) = e.plots[0].bands.first() {
         out.push(Item::Rect {
             min: DVec2::new(band.lo, -0.02),
@@ -137,6 +138,14 @@ pub(super) fn scene(e: &PidControl, out: &mut Scene) {
             role: Role::Accent,
             fill: true,
         });
+        if band.label != "±2 % band" {
+            out.push(Item::Label {
+                pos: DVec2::new(0.5 * (band.lo + band.hi), -0.08),
+                text: band.label.clone(),
+                role: Role::Accent,
+                offset_px: DVec2::new(-60.0, 30.0),
+            });
+        }
     }
     // Setpoint marker (the draggable handle).
     let r = e.setpoint_m;
