@@ -114,7 +114,7 @@ impl SimState {
             self.say(&format!(
                 "{lead}{} at x = {} m.",
                 h.label,
-                format_number(h.at.x, 2)
+                labcore::experiment::format_fixed(h.at.x, 2)
             ));
         } else {
             self.say(&format!("{lead}{} at {}.", h.label, format_point(h.at)));
