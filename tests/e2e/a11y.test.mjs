@@ -113,6 +113,28 @@ test("ik: the target moves by keyboard and by typed coordinates", () =>
     assert.equal(Number((await linkParams(page)).get("tx")), 1.2);
   }));
 
+// Issue 23 §3: "Move a point" offered "Setpoint y" in a one-dimensional
+// experiment. The setpoint moves along the track only: no y box, no y in what
+// is said, and ↑ ↓ leave it where it is.
+test("pid: the setpoint moves along x only, the Move form offers no y", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/pid/simulation?r=0.5");
+    const form = "article.exp:not([hidden]) .sim-move";
+    assert.equal(await page.inputValue(`${form} #move-handle`), "setpoint");
+    assert.equal(await page.isVisible(`${form} #move-x`), true);
+    assert.equal(await page.isVisible(`${form} #move-y`), false);
+    await page.focus(CANVAS);
+    await press(page, "]");
+    assert.equal(await live(page), "Chosen: Setpoint at x = 0.50 m.");
+    await press(page, "ArrowUp");
+    assert.equal(Number((await linkParams(page)).get("r")), 0.5);
+    await page.fill(`${form} #move-x`, "1.2");
+    await page.click(`${form} button[type=submit]`);
+    assert.equal(Number((await linkParams(page)).get("r")), 1.2);
+    assert.equal(await live(page), "Setpoint at x = 1.20 m.");
+    assert.equal((await page.textContent("article.exp:not([hidden]) .sim-message") || "").trim(), "");
+  }));
+
 test("potential: an obstacle moves by keyboard", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/potential/simulation");

@@ -329,6 +329,9 @@ pub struct Handle {
     /// The keyboard's step for it when it moves on a lattice (a grid cell,
     /// metres); `None`: the page's step, a fraction of the view.
     pub step_m: Option<f64>,
+    /// It moves along x only (a setpoint on a track): the Move form offers
+    /// x alone and the up and down keys leave it where it is.
+    pub x_only: bool,
 }
 
 impl Handle {
@@ -340,6 +343,16 @@ impl Handle {
             label: label.into(),
             at,
             step_m: None,
+            x_only: false,
+        }
+    }
+
+    /// A handle that moves along x only, at height `at.y`.
+    #[must_use]
+    pub fn along_x(id: impl Into<String>, label: impl Into<String>, at: DVec2) -> Self {
+        Self {
+            x_only: true,
+            ..Self::new(id, label, at)
         }
     }
 
@@ -548,14 +561,13 @@ pub fn format_magnitude(value: f64) -> String {
     if magnitude == 0.0 || (1e-3..1e3).contains(&magnitude) {
         return format_fixed(value, if magnitude < 1.0 { 3 } else { 1 });
     }
-    // Mantissa in [1, 10) after rounding to one decimal.
-    let mut exponent = magnitude.log10().floor() as i32;
-    let mut mantissa = value / 10f64.powi(exponent);
-    if format!("{:.1}", mantissa.abs()) == "10.0" {
-        exponent += 1;
-        mantissa = value / 10f64.powi(exponent);
-    }
-    format!("{mantissa:.1} × 10{}", superscript(exponent))
+    // The standard library's scientific form rounds the decimal digits
+    // exactly over the whole range, subnormals included (`4.9e-324`); a
+    // division by `10^exponent` does not (it is 0 below 10⁻³⁰⁸).
+    let scientific = format!("{value:.1e}");
+    let (mantissa, exponent) = scientific.split_once('e').unwrap_or((&scientific, "0"));
+    let exponent: i32 = exponent.parse().unwrap_or(0);
+    format!("{mantissa} × 10{}", superscript(exponent))
 }
 
 /// `-7` → `⁻⁷`.
@@ -868,6 +880,91 @@ mod tests {
         assert_eq!(format_magnitude(3.14e-7), "3.1 × 10⁻⁷");
         assert_eq!(format_magnitude(12.34), "12.3");
         assert_eq!(format_magnitude(0.0123), "0.012");
+    }
+
+    /// Reads `format_magnitude`'s text back against `v`: the shown mantissa
+    /// (or fixed number) and `v` in the same power of ten, with the half unit
+    /// of the last shown digit. `2.4 × 10⁻⁷` → `(2.4, v·10⁷, 0.05)`; scaling
+    /// by the decimal exponent in text keeps 1.8 × 10³⁰⁸ from overflowing.
+    fn read_magnitude(text: &str, v: f64) -> (f64, f64, f64) {
+        match text.split_once(" × 10") {
+            Some((mantissa, power)) => {
+                let exponent: i32 = power
+                    .chars()
+                    .map(|c| match c {
+                        '⁻' => '-',
+                        c => char::from_digit(
+                            "⁰¹²³⁴⁵⁶⁷⁸⁹".chars().position(|d| d == c).unwrap() as u32,
+                            10,
+                        )
+                        .unwrap(),
+                    })
+                    .collect::<String>()
+                    .parse()
+                    .unwrap();
+                let exact = format!("{v:.20e}");
+                let (digits, own) = exact.split_once('e').unwrap();
+                let own: i32 = own.parse().unwrap();
+                let scaled: f64 = format!("{digits}e{}", own - exponent).parse().unwrap();
+                (mantissa.parse().unwrap(), scaled, 0.05)
+            }
+            None => {
+                let decimals = text.split_once('.').map_or(0, |(_, d)| d.len());
+                let half_unit = 0.5 * 10f64.powi(-(decimals as i32));
+                (text.parse().unwrap(), v, half_unit)
+            }
+        }
+    }
+
+    /// Issue 23 §5: below about 10⁻³⁰⁸ the old division by `10^exponent`
+    /// gave "inf × 10⁻³⁰⁹". Every finite value, subnormals and the extremes
+    /// included, prints a finite number that reads back within its rounding.
+    #[test]
+    fn format_magnitude_reads_back_over_the_whole_f64_range() {
+        let mut rng = crate::rng::Lcg64::new(23);
+        let mut values = vec![
+            2.225_073_858_507_201_4e-308,
+            2.225_073_858_507_201e-308,
+            5e-324,
+            -5e-324,
+            f64::MIN_POSITIVE,
+            f64::MAX,
+            f64::MIN,
+            9.96e-309,
+            9.95e-324,
+            1e-3,
+            999.96,
+        ];
+        for _ in 0..20_000 {
+            // Any bit pattern (most of them are huge or tiny), and values
+            // spread evenly over the decimal exponents.
+            values.push(f64::from_bits(rng.next_u64()));
+            let v = 10f64.powf(rng.range(-330.0, 309.0)) * rng.range(-10.0, 10.0);
+            values.push(v);
+        }
+        for v in values.into_iter().filter(|v| v.is_finite()) {
+            let text = format_magnitude(v);
+            assert!(
+                !text.contains("inf") && !text.contains("NaN") && !text.contains('∞'),
+                "{v:e} → {text}"
+            );
+            let (shown, exact, half_unit) = read_magnitude(&text, v);
+            assert!(
+                (shown - exact).abs() <= half_unit * (1.0 + 1e-9),
+                "{v:e} → {text}: {shown} against {exact}"
+            );
+            assert!(shown.abs() < 10.0 || !text.contains('×'), "{v:e} → {text}");
+        }
+        // The three links of the issue.
+        assert_eq!(
+            format_magnitude(2.225_073_858_507_201_4e-308),
+            "2.2 × 10⁻³⁰⁸"
+        );
+        assert_eq!(
+            format_magnitude(-2.225_073_858_507_201e-308),
+            "-2.2 × 10⁻³⁰⁸"
+        );
+        assert_eq!(format_magnitude(5e-324), "4.9 × 10⁻³²⁴");
     }
 
     #[test]

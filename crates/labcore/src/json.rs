@@ -274,8 +274,15 @@ impl Parser<'_> {
         let Some(hex) = self.bytes.get(self.at..self.at + 4) else {
             return Err(self.error("EOF while parsing a string"));
         };
-        let hex = std::str::from_utf8(hex).map_err(|_| self.error("invalid escape"))?;
-        let n = u32::from_str_radix(hex, 16).map_err(|_| self.error("invalid escape"))?;
+        // Exactly four hex digits (RFC 8259 §7): `u32::from_str_radix` alone
+        // would also take a sign, `\u+041`.
+        let mut n = 0;
+        for b in hex {
+            let digit = char::from(*b)
+                .to_digit(16)
+                .ok_or_else(|| self.error("invalid escape"))?;
+            n = n * 16 + digit;
+        }
         self.at += 4;
         Ok(n)
     }
@@ -528,6 +535,101 @@ mod tests {
         }
         let e = Json::parse("{\n  \"a\": [1,\n  2,,]\n}").unwrap_err();
         assert!(e.ends_with("line 3 column 5"), "{e}");
+    }
+
+    /// A short random text, biased toward what a JSON reader must judge
+    /// carefully: escapes (`\u` with signs, hex digits of either case,
+    /// surrogates), numbers (signs, leading zeros, fractions, exponents),
+    /// literals, brackets and edge characters (controls, DEL, non-ASCII).
+    fn random_text(rng: &mut crate::rng::Lcg64) -> String {
+        const PIECES: &[&str] = &[
+            "\"", "\"", "\"", "\\", "\\u", "\\u", "\\u", "\\u00", "\\ud83d", "\\ude00", "\\udc00",
+            "\\ud800", "\\n", "\\/", "\\x", "+", "+", "-", "-", "0", "0", "1", "9", "00", "12",
+            ".", ".5", "e", "E", "e+", "e-", "1e999", "1e-400", "a", "A", "f", "F", "g", "41",
+            "0041", "{", "}", "[", "]", ":", ",", "true", "false", "null", "nul", " ", "\n", "\t",
+            "\r", "\u{1}", "\u{1f}", "\u{7f}", "é", "😀", "\u{a0}", "\u{feff}", "{\"a\":", "[1,",
+            "\"k\"",
+        ];
+        let n = rng.int(1, 8);
+        let mut text = String::new();
+        for _ in 0..n {
+            text.push_str(PIECES[rng.int(0, PIECES.len() as i64 - 1) as usize]);
+        }
+        match rng.int(0, 3) {
+            // A string around it, the most common home of an escape.
+            0 => format!("\"{text}\""),
+            // A value in an array.
+            1 => format!("[{text}]"),
+            _ => text,
+        }
+    }
+
+    /// Our reader's value against serde_json's (numbers to the last bit or
+    /// two: serde_json's fast float parser may round differently).
+    fn same_value(ours: &Json, theirs: &serde_json::Value) -> bool {
+        use serde_json::Value;
+        match (ours, theirs) {
+            (Json::Null, Value::Null) => true,
+            (Json::Bool(a), Value::Bool(b)) => a == b,
+            (Json::Number(a), Value::Number(b)) => b
+                .as_f64()
+                .is_some_and(|b| (a - b).abs() <= 1e-15 * a.abs().max(b.abs())),
+            (Json::String(a), Value::String(b)) => a == b,
+            (Json::Array(a), Value::Array(b)) => {
+                a.len() == b.len() && a.iter().zip(b).all(|(x, y)| same_value(x, y))
+            }
+            (Json::Object(a), Value::Object(b)) => {
+                a.len() == b.len()
+                    && a.iter()
+                        .all(|(k, v)| b.get(k).is_some_and(|w| same_value(v, w)))
+            }
+            _ => false,
+        }
+    }
+
+    /// Issue 23 §5: `"\u+041"` was read as "A". On many random short texts
+    /// the reader accepts exactly what serde_json accepts, and reads the
+    /// same value. The one difference by design: a repeated key, which
+    /// serde_json keeps the last of and this reader refuses.
+    #[test]
+    fn hex4_and_the_whole_reader_accept_what_serde_json_accepts() {
+        for bad in [
+            "\"\\u+041\"",
+            "\"\\u-041\"",
+            "\"\\u 041\"",
+            "\"\\ud83d\\u+e00\"",
+        ] {
+            assert!(Json::parse(bad).is_err(), "{bad}");
+            assert!(
+                serde_json::from_str::<serde_json::Value>(bad).is_err(),
+                "{bad}"
+            );
+        }
+        let mut rng = crate::rng::Lcg64::new(2023);
+        let (mut accepted, mut escapes) = (0, 0);
+        for _ in 0..200_000 {
+            let text = random_text(&mut rng);
+            let ours = Json::parse(&text);
+            let theirs = serde_json::from_str::<serde_json::Value>(&text);
+            match (&ours, &theirs) {
+                (Ok(a), Ok(b)) => {
+                    assert!(same_value(a, b), "{text:?}: {a:?} vs {b}");
+                    accepted += 1;
+                    escapes += usize::from(text.contains("\\u"));
+                }
+                (Err(e), Ok(_)) if e.contains("duplicate field") => {}
+                _ => assert_eq!(
+                    ours.is_ok(),
+                    theirs.is_ok(),
+                    "{text:?}: {ours:?} vs {theirs:?}"
+                ),
+            }
+        }
+        // The generator reaches both sides, \u escapes among the accepted.
+        assert!(
+            accepted > 5_000 && escapes > 100,
+            "{accepted} accepted, {escapes} with \\u"
+        );
     }
 
     #[test]

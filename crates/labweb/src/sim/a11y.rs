@@ -110,7 +110,15 @@ impl SimState {
     }
 
     fn say_handle(&self, h: &Handle, lead: &str) {
-        self.say(&format!("{lead}{} at {}.", h.label, format_point(h.at)));
+        if h.x_only {
+            self.say(&format!(
+                "{lead}{} at x = {} m.",
+                h.label,
+                labcore::experiment::format_fixed(h.at.x, 2)
+            ));
+        } else {
+            self.say(&format!("{lead}{} at {}.", h.label, format_point(h.at)));
+        }
     }
 
     /// The focus ring of the chosen handle, after the experiment's scene; a
@@ -158,6 +166,9 @@ impl SimState {
                 let Some(h) = self.focused() else {
                     return false;
                 };
+                if h.x_only && matches!(key.as_str(), "ArrowUp" | "ArrowDown") {
+                    return true;
+                }
                 let dir = match key.as_str() {
                     "ArrowLeft" => DVec2::NEG_X,
                     "ArrowRight" => DVec2::X,
@@ -247,6 +258,13 @@ impl SimState {
         if let Some(select) = &select {
             select.set_value(&h.id);
         }
+        // A handle on a track has no y to type.
+        if let Some(y_box) = query(&form, "input[data-move=y]")
+            .and_then(|i| i.closest(".ctl").ok())
+            .flatten()
+        {
+            dom::set_hidden(&y_box, h.x_only);
+        }
         let active = dom::document().active_element();
         for (axis, v) in [("x", h.at.x), ("y", h.at.y)] {
             if let Some(input) = query(&form, &format!("input[data-move={axis}]")) {
@@ -285,7 +303,18 @@ impl SimState {
                 .map_err(|e| format!("{axis}: {e}"))
         };
         self.student_acted();
-        match (read("x"), read("y")) {
+        let x_only = self
+            .exp
+            .handles()
+            .into_iter()
+            .find(|h| h.id == id)
+            .filter(|h| h.x_only)
+            .map(|h| h.at.y);
+        let y = match x_only {
+            Some(y) => Ok(y),
+            None => read("y"),
+        };
+        match (read("x"), y) {
             (Ok(x), Ok(y)) => {
                 let to = DVec2::new(x, y);
                 self.focused_handle = Some(id.clone());

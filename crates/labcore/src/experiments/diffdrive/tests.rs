@@ -698,18 +698,14 @@ fn diffdrive_step_3_queued_waypoints_are_numbered_and_each_gets_a_run_card() {
 /// Step 4: Kω = 1 drives the same route in wider arcs (a longer path on the
 /// cards, different largest heading errors); Kω = 10 is shorter than Kω = 1
 /// and about the default's length, as the turn limit sets the early turns.
-#[test]
-fn diffdrive_step_4_a_low_k_omega_drives_wider_arcs() {
-    let mut d = DiffDrive::default();
-    step_1(&mut d);
-    step_2(&mut d);
-    step_3(&mut d);
-    let default_path = total_path(&d);
+/// Leaves Kω = 10 and the route driven.
+fn step_4(d: &mut DiffDrive) {
+    let default_path = total_path(d);
     let default_cards = d.run_cards().to_vec();
     d.set_param("kw", 1.0).unwrap();
-    replay(&mut d);
+    replay(d);
     assert_eq!(d.reached(), 4);
-    let lazy_path = total_path(&d);
+    let lazy_path = total_path(d);
     assert!(
         lazy_path > default_path + 0.3,
         "{lazy_path} vs {default_path}"
@@ -721,8 +717,8 @@ fn diffdrive_step_4_a_low_k_omega_drives_wider_arcs() {
         .zip(&default_cards)
         .any(|(a, b)| (a.max_heading_error_rad - b.max_heading_error_rad).abs() > 0.5));
     d.set_param("kw", 10.0).unwrap();
-    replay(&mut d);
-    let brisk_path = total_path(&d);
+    replay(d);
+    let brisk_path = total_path(d);
     assert!(brisk_path < lazy_path - 0.3);
     // "Hardly shorter than at 3.5": not longer, and within 5 cm.
     assert!(
@@ -733,18 +729,13 @@ fn diffdrive_step_4_a_low_k_omega_drives_wider_arcs() {
 }
 
 /// Step 5: with Max v = 0.6 the shaded "at a limit" time of each leg lies
-/// between the larger of the card's two percentages and their sum; a lower
-/// Max ω makes the first turn slower; a wider track changes the wheel
-/// speeds and not the path.
-#[test]
-fn diffdrive_step_5_limits_shade_the_plot_and_the_track_changes_only_wheel_speeds() {
-    let mut d = DiffDrive::default();
-    step_1(&mut d);
-    step_2(&mut d);
-    step_3(&mut d);
-    d.set_param("kw", 10.0).unwrap();
+/// between the larger of the card's two percentages and their sum; halving
+/// Max ω makes the first turn on the spot twice as long; a wider track
+/// changes the wheel speeds and not the path. Leaves Max v = 0.6, Max ω
+/// halved to 0.7 rad/s and the track raised to 0.6 m, the route driven.
+fn step_5(d: &mut DiffDrive) {
     d.set_param("vmax", 0.6).unwrap();
-    replay(&mut d);
+    replay(d);
     let plot = &d.plots()[0];
     assert_eq!(plot.markers.len(), 4);
     let mut start = 0.0;
@@ -774,14 +765,14 @@ fn diffdrive_step_5_limits_shade_the_plot_and_the_track_changes_only_wheel_speed
         }
         frames
     };
-    let fast = spin(&mut d);
-    d.set_param("wmax", 0.7).unwrap();
-    let slow = spin(&mut d);
+    let fast = spin(d);
+    let half = 0.5 * d.param("wmax").unwrap();
+    d.set_param("wmax", half).unwrap();
+    let slow = spin(d);
     assert!(
         slow >= 2 * fast - 2 && slow <= 2 * fast + 2,
         "{fast} → {slow}"
     );
-    d.set_param("wmax", 1.4).unwrap();
     // Track 0.3 m → 0.6 m: the same path, twice the wheel-speed difference.
     let mut wide = d.clone();
     wide.set_param("track", 0.6).unwrap();
@@ -795,22 +786,17 @@ fn diffdrive_step_5_limits_shade_the_plot_and_the_track_changes_only_wheel_speed
         assert!(((wr - wl) - 2.0 * (r - l)).abs() < 1e-12);
     }
     assert_eq!(d.trail, wide.trail);
+    *d = wide;
 }
 
-/// Step 6: RK4 against Euler on the same route: the cards agree within a
-/// centimetre and a frame or two.
-#[test]
-fn diffdrive_step_6_rk4_and_euler_cards_agree_closely() {
-    let mut d = DiffDrive::default();
-    step_1(&mut d);
-    step_2(&mut d);
-    step_3(&mut d);
-    d.set_param("kw", 10.0).unwrap();
-    d.set_param("vmax", 0.6).unwrap();
-    replay(&mut d);
+/// Step 6: RK4 against the Euler run step 5 left: the cards agree within a
+/// centimetre and a frame or two. Leaves RK4 on, the route driven.
+fn step_6(d: &mut DiffDrive) {
+    assert_eq!(d.param("integ"), Some(0.0), "Euler until now");
     let euler = d.run_cards().to_vec();
+    assert_eq!(euler.len(), 4, "step 5 left the route driven");
     d.set_param("integ", 1.0).unwrap();
-    replay(&mut d);
+    replay(d);
     assert_eq!(d.run_cards().len(), euler.len());
     for (a, b) in euler.iter().zip(d.run_cards()) {
         assert!(
@@ -826,17 +812,8 @@ fn diffdrive_step_6_rk4_and_euler_cards_agree_closely() {
 /// Step 7: the link holds the gains and every waypoint; opened fresh it
 /// replays exactly the same run. Clear waypoints and Reset robot return to
 /// the start with an empty route.
-#[test]
-fn diffdrive_step_7_the_link_replays_the_run_and_clear_returns_to_the_start() {
-    let mut d = DiffDrive::default();
-    step_1(&mut d);
-    step_2(&mut d);
-    step_3(&mut d);
-    d.set_param("kw", 10.0).unwrap();
-    d.set_param("vmax", 0.6).unwrap();
-    d.set_param("integ", 1.0).unwrap();
-    replay(&mut d);
-    let link = format(&d, Tab::Simulation);
+fn step_7(d: &mut DiffDrive) {
+    let link = format(d, Tab::Simulation);
     let (mut opened, notices) = restore(&link, DiffDrive::default());
     assert!(notices.is_empty(), "{notices:?}");
     assert_eq!(format(&opened, Tab::Simulation), link);
@@ -853,7 +830,87 @@ fn diffdrive_step_7_the_link_replays_the_run_and_clear_returns_to_the_start() {
     assert_eq!(d.pose(), START);
     assert!(d.waypoints().is_empty());
     assert_eq!(d.status().text, "idle: click to drop a goal");
-    assert!(!format(&d, Tab::Simulation).contains("w1x"));
+    assert!(!format(d, Tab::Simulation).contains("w1x"));
+}
+
+/// The state after Procedure steps 1..=k, each step's actions (and checks)
+/// replayed on the state the previous ones left.
+fn after_step(k: usize) -> DiffDrive {
+    let steps: [fn(&mut DiffDrive); 7] = [step_1, step_2, step_3, step_4, step_5, step_6, step_7];
+    let mut d = DiffDrive::default();
+    for step in &steps[..k] {
+        step(&mut d);
+    }
+    d
+}
+
+#[test]
+fn diffdrive_step_4_a_low_k_omega_drives_wider_arcs() {
+    step_4(&mut after_step(3));
+}
+
+#[test]
+fn diffdrive_step_5_limits_shade_the_plot_and_the_track_changes_only_wheel_speeds() {
+    step_5(&mut after_step(4));
+}
+
+/// Issue 23 §4: step 6 is tried on the state step 5 left (Max ω halved, a
+/// wider track), not on a route set up again without them.
+#[test]
+fn diffdrive_step_6_rk4_and_euler_cards_agree_closely() {
+    let mut d = after_step(5);
+    assert_eq!(
+        (d.param("vmax"), d.param("wmax"), d.param("track")),
+        (Some(0.6), Some(0.7), Some(0.6)),
+        "what step 5 left"
+    );
+    step_6(&mut d);
+}
+
+#[test]
+fn diffdrive_step_7_the_link_replays_the_run_and_clear_returns_to_the_start() {
+    step_7(&mut after_step(6));
+}
+
+/// Issue 23 §4: Theory ("Gains, limits and what you see") says a coarse
+/// update would make the heading overshoot and the robot wobble, and that
+/// it cannot happen here: Kω·Δt ≤ 0.17, so at the largest Kω and turn
+/// limit the heading error shrinks without changing sign.
+#[test]
+fn diffdrive_theory_says_no_wobble_in_this_lab_and_k_omega_dt_is_at_most_0_17() {
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/diffdrive.json"))
+            .unwrap();
+    let paragraph = content
+        .theory
+        .iter()
+        .find_map(|b| match b {
+            crate::content::Block::Paragraph(p) if p.contains("wobble") => Some(p.clone()),
+            _ => None,
+        })
+        .unwrap();
+    assert!(paragraph.contains("not in this lab"), "{paragraph}");
+    assert!(paragraph.contains("<mn>0.17</mn>"), "{paragraph}");
+    let kw = crate::experiment::find_spec(PARAMS, "kw").unwrap().max;
+    assert!(kw * DT <= 0.17, "Kω·Δt = {}", kw * DT);
+    let mut d = DiffDrive::default();
+    let wmax = crate::experiment::find_spec(PARAMS, "wmax").unwrap().max;
+    d.set_param("kw", kw).unwrap();
+    d.set_param("wmax", wmax).unwrap();
+    // Goals behind, to the side and ahead: no sign change on any leg.
+    for goal in [STEP_1_GOAL, DVec2::new(7.5, 5.5), DVec2::new(6.0, 0.5)] {
+        click(&mut d, goal);
+        let mut first: Option<f64> = None;
+        while d.animating() {
+            d.step(DT);
+            let e = d.command().heading_error_rad;
+            if e.abs() > 1e-9 {
+                let sign = *first.get_or_insert(e.signum());
+                assert_eq!(e.signum(), sign, "the heading error changed sign: {e}");
+            }
+        }
+        assert_eq!(d.status().phase, Phase::Ended);
+    }
 }
 
 /// Issue 15: every generated question can be set up on the Simulation tab —

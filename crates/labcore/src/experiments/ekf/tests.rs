@@ -80,8 +80,8 @@ fn first_predict_matches_a_hand_computed_step() {
     // Issue 15: the readout is the position block's trace, in m² only (the
     // whole pose block would add 0.0012 rad² of heading variance to it).
     let tr = cov.x_axis.x + cov.y_axis.y;
-    assert_eq!(readout(&e, "trace"), format!("{} m²", format_magnitude(tr)));
-    assert_eq!(readout(&e, "trace"), "0.005 m²");
+    assert_eq!(readout(&e, "trace"), view::trace_text(tr));
+    assert_eq!(readout(&e, "trace"), "0.005026 m²");
     assert_eq!(
         readout(&e, "error"),
         format_metres((e.live.truth.truncate() - mean.truncate()).length())
@@ -124,7 +124,7 @@ fn first_update_matches_the_information_form() {
     }
     let tr = position_trace(post);
     assert!(tr < position_trace(pbar), "the update shrinks P");
-    assert_eq!(readout(&e, "trace"), format!("{} m²", format_magnitude(tr)));
+    assert_eq!(readout(&e, "trace"), view::trace_text(tr));
     assert_eq!(
         readout(&e, "error"),
         format_metres((e.live.truth.truncate() - mean.truncate()).length())
@@ -653,11 +653,42 @@ fn step_1(e: &mut EkfExperiment) {
     assert_eq!(e.live.observations.len(), seen);
 }
 
-/// Step 2: on the left side of the loop no landmark is in reach: the
-/// ellipse stretches across the direction of travel and σx² + σy² climbs,
-/// then snaps back when the lone landmark at the bottom left comes into
-/// view. After the loop the EKF's error is far below dead reckoning's.
+/// Step 2: on the left side of the loop no landmark is in view (one is
+/// within range there, behind the sensor's field of view): the ellipse
+/// stretches across the direction of travel and σx² + σy² climbs, then
+/// snaps back when the lone landmark at the bottom left comes into view.
+/// After the loop the EKF's error is far below dead reckoning's.
 fn step_2(e: &mut EkfExperiment) {
+    let text = &crate::content::Content::parse(include_str!("../../../../../assets/ekf.json"))
+        .unwrap()
+        .procedure[1];
+    assert!(
+        text.contains("no landmark is in view")
+            && text.contains("lone landmark at the bottom left comes into view"),
+        "{text}"
+    );
+    let sensor = e.settings().sensor;
+    // Which landmarks the sensor has in view (range and field of view), and
+    // which are only within range, from the true pose.
+    let in_view = |truth: DVec3| -> Vec<usize> {
+        (0..LANDMARKS.len())
+            .filter(|&k| sensor.sees(observation_model(truth, LANDMARKS[k])))
+            .collect()
+    };
+    let in_range = |truth: DVec3| -> Vec<usize> {
+        (0..LANDMARKS.len())
+            .filter(|&k| observation_model(truth, LANDMARKS[k]).x <= sensor.max_range_m)
+            .collect()
+    };
+    let bottom_left = LANDMARKS
+        .iter()
+        .position(|m| m.x < 0.0 && m.y < 0.0)
+        .unwrap();
+    assert_eq!(
+        LANDMARKS.iter().filter(|m| m.x < 0.0 && m.y < 0.0).count(),
+        1,
+        "the lone landmark at the bottom left"
+    );
     let start = e.clone();
     let lap = one_loop(e);
     // The longest stretch without a sighting.
@@ -672,6 +703,36 @@ fn step_2(e: &mut EkfExperiment) {
     let (a, b) = best;
     assert!(lap[b - 1].0 - lap[a].0 > 8.0, "a long blind stretch");
     assert!(lap[a..b].iter().all(|s| s.3.x < 0.0), "on the left side");
+    // No landmark in view at any filter step of the stretch, although
+    // landmark (−1.8, 3.6) is within range for part of it: "in view", not
+    // "within reach".
+    // (The last landmark seen may stay in view until the next reading, a
+    // few filter steps into the stretch.)
+    let blind = a + lap[a..b]
+        .iter()
+        .position(|s| in_view(s.3).is_empty())
+        .unwrap();
+    assert!(blind - a < SENSOR_EVERY as usize, "{} steps", blind - a);
+    // The first landmark to come into view after it: the bottom-left one,
+    // seen at the next reading.
+    let enter = blind
+        + lap[blind..=b]
+            .iter()
+            .position(|s| !in_view(s.3).is_empty())
+            .unwrap();
+    assert!(b - enter < SENSOR_EVERY as usize, "{} steps", b - enter);
+    assert_eq!(in_view(lap[enter].3), [bottom_left]);
+    assert!(
+        lap[enter].0 - lap[blind].0 > 8.0,
+        "a long stretch with none in view"
+    );
+    let top_left = LANDMARKS.iter().position(|m| *m == DVec2::new(-1.8, 3.6));
+    assert!(
+        lap[blind..enter]
+            .iter()
+            .any(|s| in_range(s.3).contains(&top_left.unwrap())),
+        "a landmark within range but out of view"
+    );
     let peak = lap[b - 1].1;
     assert!(
         peak > 10.0 * lap[a].1,
@@ -688,6 +749,13 @@ fn step_2(e: &mut EkfExperiment) {
     while f.live.time_s() < lap[b - 1].0 - 1e-9 {
         filter_step(&mut f);
     }
+    // The reading that ends the stretch sees the bottom-left landmark alone.
+    let mut next = f.clone();
+    filter_step(&mut next);
+    assert_eq!(next.live.reading_step, Some(next.live.steps));
+    let seen: Vec<usize> = next.live.observations.iter().map(|o| o.id).collect();
+    assert_eq!(seen, [bottom_left], "the lone landmark at the bottom left");
+    assert_eq!(in_view(next.live.truth), [bottom_left]);
     let (major, minor, phi) = covariance_ellipse(position_block(f.live.pose_cov()), 3.0);
     let heading = f.live.estimate().z;
     let angle = wrap_angle(phi - heading).abs();
@@ -709,7 +777,7 @@ fn step_2(e: &mut EkfExperiment) {
 fn step_3(e: &mut EkfExperiment) {
     let shown = |e: &EkfExperiment| *e.plots[PLOT_TRACE].series[0].y.last().unwrap();
     let (mut rises, mut predicts, mut drops, mut readings) = (0, 0, 0, 0);
-    let mut shown_rises = 0;
+    let (mut shown_rises, mut readout_rises) = (0, 0);
     for _ in 0..200 {
         let before = position_trace(e.live.pose_cov());
         let (steps, shown_before) = (e.live.steps, shown(e));
@@ -721,10 +789,7 @@ fn step_3(e: &mut EkfExperiment) {
         assert_eq!(e.live.steps, steps + 1, "the third frame is");
         let after = position_trace(e.live.pose_cov());
         assert_eq!(shown(e), after, "the plot's last sample is the new trace");
-        assert_eq!(
-            readout(e, "trace"),
-            format!("{} m²", format_magnitude(after))
-        );
+        assert_eq!(readout(e, "trace"), view::trace_text(after));
         let read = (e.live.steps - 1).is_multiple_of(SENSOR_EVERY);
         assert_eq!(e.live.reading_step == Some(e.live.steps), read);
         if read && !e.live.observations.is_empty() {
@@ -734,6 +799,11 @@ fn step_3(e: &mut EkfExperiment) {
             predicts += 1;
             rises += usize::from(after > before);
             shown_rises += usize::from(shown(e) > shown_before);
+            // The readout's number, as the student reads it, rises too.
+            let read_back = |t: String| t.trim_end_matches(" m²").parse::<f64>().unwrap();
+            readout_rises += usize::from(
+                read_back(view::trace_text(after)) > read_back(view::trace_text(before)),
+            );
         }
     }
     assert_eq!(readings, drops, "every reading with a landmark lowers it");
@@ -742,6 +812,10 @@ fn step_3(e: &mut EkfExperiment) {
     assert!(
         shown_rises * 10 >= predicts * 9,
         "the plot rose on {shown_rises} of {predicts} predicts"
+    );
+    assert!(
+        readout_rises * 10 >= predicts * 9,
+        "the readout rose on {readout_rises} of {predicts} predicts"
     );
 }
 
@@ -1115,4 +1189,40 @@ fn the_correct_option_is_seldom_the_longest() {
         .length_tells();
     assert!(tells.choices >= 6, "{tells:?}");
     assert!(4 * tells.longest <= tells.choices, "{tells:?}");
+}
+
+/// Issue 23 §3: "Position uncertainty" showed 0.010 m², three decimals, so
+/// the rise on each predict step that step 3 speaks of could not be seen.
+/// Four significant digits show it: along the blind stretch of the first
+/// loop, the readout's text changes on every filter step.
+#[test]
+fn ekf_position_uncertainty_shows_the_rise_of_every_predict_step() {
+    let mut e = after_step(1);
+    let mut shown = Vec::new();
+    let end = e.live.time_s() + 38.0;
+    while e.live.time_s() < end {
+        filter_step(&mut e);
+        let sighting = e.live.reading_step == Some(e.live.steps) && !e.live.observations.is_empty();
+        shown.push((sighting, e.live.truth.x, readout(&e, "trace")));
+    }
+    // The longest run of filter steps without a sighting, on the left side.
+    let (mut best, mut from) = ((0, 0), 0);
+    for (k, s) in shown.iter().enumerate() {
+        if s.0 {
+            from = k + 1;
+        } else if k + 1 - from > best.1 - best.0 {
+            best = (from, k + 1);
+        }
+    }
+    let stretch = &shown[best.0..best.1];
+    assert!(stretch.len() > 160 && stretch.iter().all(|s| s.1 < 0.0));
+    for w in stretch.windows(2) {
+        assert_ne!(w[0].2, w[1].2, "a predict step the readout does not show");
+    }
+    assert!(stretch[0].2.ends_with(" m²"));
+    // Four significant digits in the everyday range, the magnitude form beyond.
+    assert_eq!(view::trace_text(0.010_344), "0.01034 m²");
+    assert_eq!(view::trace_text(0.004_587_03), "0.004587 m²");
+    assert_eq!(view::trace_text(1.5), "1.500 m²");
+    assert_eq!(view::trace_text(2.0e-5), "2.0 × 10⁻⁵ m²");
 }

@@ -150,6 +150,18 @@ pub(super) fn describe(e: &EkfExperiment) -> String {
     )
 }
 
+/// The position uncertainty σx² + σy² with four significant digits
+/// (`0.01034 m²`), enough to show the rise of one predict step (step 3 of
+/// the Procedure); the magnitude form outside 10⁻³…10³ m².
+pub(super) fn trace_text(trace_m2: f64) -> String {
+    if (1e-3..1e3).contains(&trace_m2) {
+        let decimals = (3 - trace_m2.log10().floor() as i32).max(0) as usize;
+        format!("{} m²", format_fixed(trace_m2, decimals))
+    } else {
+        format!("{} m²", format_magnitude(trace_m2))
+    }
+}
+
 pub(super) fn readouts(e: &EkfExperiment) -> Vec<Readout> {
     let run = &e.live;
     let (truth, est, cov) = (run.truth, run.estimate(), run.pose_cov());
@@ -174,7 +186,7 @@ pub(super) fn readouts(e: &EkfExperiment) -> Vec<Readout> {
         Readout::new(
             "trace",
             "Position uncertainty σx² + σy²",
-            format!("{} m²", format_magnitude(position_trace(cov))),
+            trace_text(position_trace(cov)),
         ),
         Readout::new(
             "nees",

@@ -118,6 +118,11 @@ pub const RECORD_S: f64 = 30.0;
 const QUIET_FRACTION: f64 = 1e-3;
 const QUIET_MIN_M: f64 = 1e-4;
 const QUIET_S: f64 = 1.0;
+/// While the run goes on, a settling time is shown (readout, marker, badge)
+/// only once the response has stayed inside its ±2 % band this long
+/// (seconds): a response that crosses the band on its way to an overshoot
+/// is inside it for a moment and has not settled.
+pub const SETTLE_DWELL_S: f64 = 1.0;
 /// The track runs from `−TRACK_END_M` to `+TRACK_END_M` (metres); the run
 /// stops when the cart's centre passes an end.
 pub const TRACK_END_M: f64 = 2.5;
@@ -277,6 +282,10 @@ pub struct PidControl {
     state: RunState,
     quiet_samples: u32,
     info: Result<StepInfo, NoMetrics>,
+    /// When the loop has no final value: the response measured against the
+    /// setpoint instead (how far it went past it, its peak), so an unstable
+    /// run reports what it reached.
+    setpoint_info: Option<StepInfo>,
     notices: Notices,
     pins: Vec<Pin>,
     pins_made: usize,
@@ -349,6 +358,7 @@ impl Default for PidControl {
             state: RunState::Running,
             quiet_samples: 0,
             info: Err(NoMetrics::NotYet),
+            setpoint_info: None,
             notices: Notices::default(),
             pins: Vec::new(),
             pins_made: 0,
@@ -468,6 +478,7 @@ impl PidControl {
         self.state = RunState::Running;
         self.quiet_samples = 0;
         self.info = Err(NoMetrics::NotYet);
+        self.setpoint_info = None;
         let y_final = self.measurable_final_value().ok();
         let [response, effort] = &mut self.plots;
         let position = &mut response.series[0];
@@ -486,7 +497,11 @@ impl PidControl {
                 axis: Axis::Y,
                 lo: y - SETTLING_THRESHOLD * span,
                 hi: y + SETTLING_THRESHOLD * span,
-                label: "±2 % band".into(),
+                label: if view::at_setpoint(y, self.setpoint_m) {
+                    "±2 % band".into()
+                } else {
+                    format!("±2 % band around {}", format_metres(y))
+                },
             }],
             _ => Vec::new(),
         };
@@ -580,12 +595,36 @@ impl PidControl {
     /// Recomputes the metrics and the markers on the response curve.
     fn update_metrics(&mut self) {
         let y_final = self.measurable_final_value();
+        let (running, now_s) = (self.state == RunState::Running, self.time_s());
         let response = &mut self.plots[0];
         let series = &response.series[0];
         self.info = y_final.and_then(|y| {
             step_info(&series.x, &series.y, 0.0, self.setpoint_m, Some(y)).ok_or(NoMetrics::NotYet)
         });
+        if let Ok(info) = &mut self.info {
+            if running
+                && info
+                    .settling_time_s
+                    .is_some_and(|ts| now_s - ts < SETTLE_DWELL_S - 1e-9)
+            {
+                info.settling_time_s = None;
+            }
+        }
+        let r = self.setpoint_m;
+        self.setpoint_info = match y_final {
+            Err(NoMetrics::NoFinalValue) if r.abs() >= MIN_STEP_M => {
+                step_info(&series.x, &series.y, 0.0, r, Some(r))
+            }
+            _ => None,
+        };
         response.markers.clear();
+        if let Some(info) = self.setpoint_info.filter(|i| i.overshoot_pct > 0.0) {
+            response.markers.push(Marker {
+                x: info.peak_time_s,
+                y: info.peak,
+                label: format!("peak {}", view::percent(info.overshoot_pct)),
+            });
+        }
         let (Ok(info), Ok(y_inf)) = (self.info, y_final) else {
             return;
         };
@@ -846,7 +885,7 @@ impl Experiment for PidControl {
 
     /// The setpoint marker (it moves along x only).
     fn handles(&self) -> Vec<crate::experiment::Handle> {
-        vec![crate::experiment::Handle::new(
+        vec![crate::experiment::Handle::along_x(
             "setpoint",
             "Setpoint",
             DVec2::new(self.setpoint_m, MARKER_TOP_M),

@@ -37,7 +37,7 @@ fn readouts_by_hand_at_the_start() {
     assert_eq!(readout(&e, "poles"), "-3.000 ± 4.000i");
     assert_eq!(readout(&e, "stability"), "stable");
     assert_eq!(readout(&e, "second_order"), "ωn 5.000 rad/s · ζ 0.600");
-    assert_eq!(readout(&e, "sse"), "0.000 m");
+    assert_eq!(readout(&e, "sse"), "0.000 m (predicted)");
     // Default gains: m s³ + (c + Kd) s² + Kp s + Ki = s³ + 7 s² + 12 s + 2,
     // three real poles, the slowest near −0.187.
     let d = PidControl::default();
@@ -222,7 +222,8 @@ fn unstable_gains_diverge_and_say_so() {
     run_to_end(&mut e);
     assert_eq!(e.status().tone, Tone::Bad);
     assert!(e.position_m().abs() > TRACK_END_M);
-    assert_eq!(readout(&e, "overshoot"), "--");
+    // Issue 23: what it reached, against the setpoint (it has no final value).
+    assert!(readout(&e, "overshoot").ends_with("% past the setpoint"));
     let mut scene = Scene::default();
     e.scene(&mut scene);
     assert!(scene.is_finite());
@@ -523,6 +524,47 @@ fn extreme_gains_print_every_quantity_in_a_few_characters() {
     assert_eq!(view::percent(776_555_891.3), "7.8 × 10⁸%");
 }
 
+/// Issue 23 §5: values under about 10⁻³⁰⁸ printed as "inf × 10⁻³⁰⁹" in
+/// the poles readout, the force readout and a pinned run's legend. The three
+/// ways the issue reached it, from a link or a setting.
+#[test]
+fn format_magnitude_prints_no_inf_for_the_three_links_of_the_issue() {
+    let no_inf = |e: &PidControl, case: &str| {
+        for text in all_texts(e) {
+            assert!(
+                !text.contains("inf") && !text.contains("NaN"),
+                "{case}: {text}"
+            );
+        }
+    };
+    let (mut e, _) = restore(
+        "#/pid/simulation?ki=2.2250738585072014e-308",
+        PidControl::default(),
+    );
+    for _ in 0..30 {
+        e.step(1.0 / 60.0);
+    }
+    assert!(
+        readout(&e, "poles").starts_with("-1.9 × 10⁻³⁰⁹"),
+        "{}",
+        readout(&e, "poles")
+    );
+    no_inf(&e, "ki link");
+    let mut e = PidControl::default();
+    e.set_param("r", 2.225_073_858_507_201e-308).unwrap();
+    for _ in 0..30 {
+        e.step(1.0 / 60.0);
+    }
+    no_inf(&e, "r");
+    let (mut e, _) = restore("#/pid/simulation?kd=5e-324", PidControl::default());
+    e.action("pin").unwrap();
+    assert_eq!(
+        e.plots()[0].series[1].label,
+        "A: Kp 12, Ki 2, Kd 4.9 × 10⁻³²⁴"
+    );
+    no_inf(&e, "kd link, pinned");
+}
+
 /// Issue 13 §1 (step 8) and §4: the run stops where the drawn track ends,
 /// the cart stays in view, and the status says the run is over.
 #[test]
@@ -769,6 +811,13 @@ fn set(e: &mut PidControl, pairs: &[(&str, f64)]) {
     }
 }
 
+/// The Procedure's step `k` as the content file states it.
+fn procedure_step(k: usize) -> String {
+    let content =
+        crate::content::Content::parse(include_str!("../../../../../assets/pid.json")).unwrap();
+    content.procedure[k - 1].clone()
+}
+
 /// The state the student has after doing steps 1..=k.
 fn after_step(k: usize) -> PidControl {
     let mut e = PidControl::default();
@@ -929,11 +978,24 @@ fn pid_step_4_a_push_leaves_an_offset_that_integral_action_removes() {
     let mut e = after_step(3);
     set(&mut e, &[("d", -3.0), ("ki", 0.0)]);
     run_to_end(&mut e);
-    let kp = e.param("kp").unwrap();
-    // d/Kp = 3/25 = 0.12 m short.
-    assert_eq!(readout(&e, "sse"), format_metres(3.0 / kp));
+    let (kp, d) = (e.param("kp").unwrap(), e.param("d").unwrap());
+    // The text's formula, read from the step: "compare it with −d/Kp".
+    let text = procedure_step(4);
+    let formula = text
+        .split_once("compare it with ")
+        .and_then(|(_, rest)| rest.split_once('.'))
+        .map(|(f, _)| f)
+        .unwrap();
+    let (sign, rest) = match formula.strip_prefix('−') {
+        Some(rest) => (-1.0, rest),
+        None => (1.0, formula),
+    };
+    assert_eq!(rest, "d/Kp", "the step names {formula}");
+    let offset = sign * d / kp;
+    // −d/Kp = 3/25 = 0.12 m: the cart stops 0.12 m short of the setpoint.
+    assert_eq!(readout(&e, "sse"), format_metres(offset));
     assert!(
-        (e.position_m() - (1.0 - 3.0 / kp)).abs() < 2e-3,
+        (e.position_m() - (1.0 - offset)).abs() < 2e-3,
         "{}",
         e.position_m()
     );
@@ -1074,6 +1136,23 @@ fn pid_step_8_an_unstable_tuning_runs_off_the_track_and_the_run_ends() {
     assert!((c + kd) * kp <= m * ki);
     run_to_end(&mut e);
     assert!(e.time_s() < RECORD_S);
+    // "The cart's motion grows": each swing past the setpoint reaches
+    // further than the last one on the same side, over several swings.
+    let y = &e.plots()[0].series[0].y;
+    let mut swings = Vec::new();
+    let mut widest: f64 = 0.0;
+    for k in 1..y.len() {
+        if (y[k] - 1.0).signum() != (y[k - 1] - 1.0).signum() {
+            swings.push(widest);
+            widest = 0.0;
+        }
+        widest = widest.max((y[k] - 1.0).abs());
+    }
+    swings.push(widest);
+    let swings = &swings[1..];
+    assert!(swings.len() >= 4, "{swings:?}");
+    assert!(swings.windows(3).all(|w| w[2] > w[0]), "{swings:?}");
+    assert!(readout(&e, "overshoot").ends_with("% past the setpoint"));
     let x = e.position_m();
     assert!(x.abs() > TRACK_END_M && x.abs() < TRACK_END_M + 0.05, "{x}");
     let status = e.status();
@@ -1134,4 +1213,137 @@ fn the_correct_option_is_seldom_the_longest() {
         .length_tells();
     assert!(tells.choices >= 6, "{tells:?}");
     assert!(4 * tells.longest <= tells.choices, "{tells:?}");
+}
+
+/// Issue 23 §3: with a push of −3 N and no integral action the badge said
+/// "settled within 2 % after 1.39 s" while the band sat around 0.88 m and
+/// Error read 0.120 m. The badge, the band and the settling readout now say
+/// what the settling is measured against.
+#[test]
+fn pid_settling_and_its_band_name_the_value_they_are_measured_against() {
+    let (mut e, _) = restore(
+        "#/pid/simulation?kp=25&ki=0&kd=10&d=-3",
+        PidControl::default(),
+    );
+    run_to_end(&mut e);
+    let status = e.status();
+    assert_eq!(
+        status.text,
+        "settled at 0.880 m, 12 % short of the setpoint (within 2 % after 1.39 s)"
+    );
+    assert_eq!((status.tone, status.phase), (Tone::Good, Phase::Ended));
+    let band = &e.plots()[0].bands[0];
+    assert_eq!(band.label, "±2 % band around 0.880 m");
+    // The scene names the band on the track too.
+    assert!(all_texts(&e).contains(&"±2 % band around 0.880 m".to_owned()));
+    assert!((0.5 * (band.lo + band.hi) - 0.88).abs() < 1e-9);
+    assert_eq!(readout(&e, "settling"), "1.39 s (around 0.880 m)");
+    assert_eq!(readout(&e, "error"), "0.120 m");
+    assert_eq!(readout(&e, "sse"), "0.120 m");
+    // A push forward leaves the cart past the setpoint; none at all, at it.
+    let (mut e, _) = restore(
+        "#/pid/simulation?kp=20&ki=0&kd=6&d=5",
+        PidControl::default(),
+    );
+    run_to_end(&mut e);
+    assert!(
+        e.status()
+            .text
+            .starts_with("settled at 1.250 m, 25 % past the setpoint"),
+        "{}",
+        e.status().text
+    );
+    let mut e = PidControl::default();
+    run_to_end(&mut e);
+    assert!(e.status().text.starts_with("settled within 2 % after "));
+    assert_eq!(e.plots()[0].bands[0].label, "±2 % band");
+}
+
+/// Issue 23 §3: with Ki = 2 and the cart at 0.966 m, still moving, the
+/// steady-state error read 0.000 m: a prediction, now labelled as one until
+/// the run has settled.
+#[test]
+fn pid_steady_state_error_is_labelled_predicted_until_the_run_settles() {
+    let mut e = PidControl::default();
+    while e.position_m() < 0.966 {
+        e.step(1.0 / 60.0);
+    }
+    assert!(e.run.state.v_m_s.abs() > 1e-3, "still moving");
+    assert_eq!(readout(&e, "sse"), "0.000 m (predicted)");
+    run_to_end(&mut e);
+    assert_eq!(readout(&e, "sse"), "0.000 m");
+}
+
+/// Issue 23 §3: the default run kept "stepping to 1.000 m" after Settling
+/// read 10.20 s. Once the settling readout has a time, the badge says the
+/// run has settled (the run itself goes on until the cart is at rest). Both
+/// wait until the response has stayed in its band for [`SETTLE_DWELL_S`]:
+/// it crosses the band at 1.2 s on its way to the overshoot.
+#[test]
+fn pid_the_badge_follows_the_default_run_to_settled() {
+    let mut e = PidControl::default();
+    while readout(&e, "settling") == "--" {
+        assert!(e.status().text.starts_with("stepping to 1.000 m"));
+        e.step(1.0 / 60.0);
+    }
+    let ts = readout(&e, "settling");
+    assert_eq!(ts, "10.20 s");
+    assert!(e.time_s() >= 10.2 + SETTLE_DWELL_S - 1e-9 && e.time_s() < 11.25);
+    let status = e.status();
+    assert_eq!(status.phase, Phase::Live, "still running");
+    assert_eq!(status.text, format!("settled within 2 % after {ts}"));
+    assert_eq!(status.tone, Tone::Good);
+    run_to_end(&mut e);
+    assert_eq!(e.status().text, format!("settled within 2 % after {ts}"));
+    assert_eq!(e.status().phase, Phase::Ended);
+}
+
+/// Issue 23 §3, step 8: from the link `kp=1&ki=5&kd=0&c=0` the cart left
+/// the track in 1.4 s with Overshoot and Peak at "--", although it went
+/// 150 % past the setpoint. The ended run keeps its whole response on the
+/// plot and reports what it reached, against the setpoint.
+#[test]
+fn pid_step_8_an_unstable_run_reports_the_overshoot_and_peak_it_reached() {
+    let (mut e, _) = restore("#/pid/simulation?kp=1&ki=5&kd=0&c=0", PidControl::default());
+    run_to_end(&mut e);
+    assert_eq!(e.status().phase, Phase::Ended);
+    let s = &e.plots()[0].series[0];
+    let (k, peak) = s.y.iter().enumerate().fold(
+        (0, f64::MIN),
+        |a, (k, y)| if *y > a.1 { (k, *y) } else { a },
+    );
+    assert!(peak > 2.4, "{peak}");
+    // The whole run stays on the plot, from the start to the end stop.
+    assert_eq!((s.x[0], s.y[0]), (0.0, 0.0));
+    assert!((s.x[s.x.len() - 1] - e.time_s()).abs() < 0.011);
+    let overshoot = 100.0 * (peak - 1.0);
+    assert_eq!(
+        readout(&e, "overshoot"),
+        format!("{} past the setpoint", percent(overshoot))
+    );
+    assert!(overshoot > 140.0);
+    assert_eq!(
+        readout(&e, "peak"),
+        format!("{} at {} s", format_metres(peak), format_fixed(s.x[k], 2))
+    );
+    let markers = &e.plots()[0].markers;
+    assert!(markers
+        .iter()
+        .any(|m| m.label == format!("peak {}", percent(overshoot))));
+    assert_ne!(readout(&e, "rise"), "--");
+    assert_eq!(readout(&e, "settling"), "--");
+    assert_eq!(readout(&e, "sse"), "--");
+}
+
+/// Issue 23 §3: "Move a point" offered "Setpoint y" in a one-dimensional
+/// experiment. The setpoint handle moves along x only.
+#[test]
+fn pid_the_setpoint_handle_moves_along_x_only() {
+    let mut e = PidControl::default();
+    let handles = e.handles();
+    assert_eq!(handles.len(), 1);
+    assert!(handles[0].x_only, "{:?}", handles[0]);
+    e.move_handle("setpoint", DVec2::new(0.5, 3.0));
+    assert_eq!(e.param("r"), Some(0.5));
+    assert_eq!(e.handles()[0].at.y, handles[0].at.y);
 }

@@ -46,6 +46,46 @@ pub(super) fn seconds(v: Option<f64>) -> String {
     v.map_or("--".into(), |t| format!("{} s", format_fixed(t, 2)))
 }
 
+/// Whether the final value `y` reads as the setpoint `r` at the readouts'
+/// millimetre.
+pub(super) fn at_setpoint(y: f64, r: f64) -> bool {
+    format_metres(y) == format_metres(r)
+}
+
+/// Where the run settles against the setpoint: `None` at the setpoint,
+/// else `0.880 m, 12 % short of the setpoint` (or `past`).
+fn final_against_setpoint(e: &PidControl, y: f64) -> Option<String> {
+    let r = e.setpoint_m;
+    if at_setpoint(y, r) {
+        return None;
+    }
+    // Short: the cart stopped between the start (0) and the setpoint.
+    let short = (r - y) * r.signum() > 0.0 && r != 0.0;
+    let off = if r.abs() >= MIN_STEP_M {
+        format!("{} %", format_number(100.0 * (y - r).abs() / r.abs(), 1))
+    } else {
+        metres((y - r).abs())
+    };
+    Some(format!(
+        "{}, {off} {} the setpoint",
+        metres(y),
+        if short { "short of" } else { "past" }
+    ))
+}
+
+/// The badge of a settled run, or `None` while it is not (yet) inside its
+/// ±2 % band: "settled within 2 % after 10.20 s" when it settles at the
+/// setpoint, "settled at 0.880 m, 12 % short of the setpoint (within 2 %
+/// after 1.39 s)" when a push leaves an offset.
+fn settled_text(e: &PidControl) -> Option<String> {
+    let ts = e.info.ok()?.settling_time_s?;
+    let y = e.final_value_m()?;
+    Some(match final_against_setpoint(e, y) {
+        None => format!("settled within 2 % after {}", seconds(Some(ts))),
+        Some(at) => format!("settled at {at} (within 2 % after {})", seconds(Some(ts))),
+    })
+}
+
 /// An overshoot, `9.5%`.
 pub(super) fn percent(v: f64) -> String {
     format!("{}%", quantity(v, 1))
@@ -89,7 +129,8 @@ pub(super) fn scene(e: &PidControl, out: &mut Scene) {
             });
         }
     }
-    // The ±2 % band around the final value, on the track.
+    // The ±2 % band around the final value, on the track; named below the
+    // track's metre labels when it is not around the setpoint.
     if let Some(band) = e.plots[0].bands.first() {
         out.push(Item::Rect {
             min: DVec2::new(band.lo, -0.02),
@@ -97,6 +138,14 @@ pub(super) fn scene(e: &PidControl, out: &mut Scene) {
             role: Role::Accent,
             fill: true,
         });
+        if band.label != "±2 % band" {
+            out.push(Item::Label {
+                pos: DVec2::new(0.5 * (band.lo + band.hi), -0.08),
+                text: band.label.clone(),
+                role: Role::Accent,
+                offset_px: DVec2::new(-60.0, 30.0),
+            });
+        }
     }
     // Setpoint marker (the draggable handle).
     let r = e.setpoint_m;
@@ -200,26 +249,35 @@ pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
         Readout::new(
             "overshoot",
             "Overshoot",
-            match e.info {
-                Ok(i) => percent(i.overshoot_pct),
-                Err(NoMetrics::StepTooSmall) => STEP_TOO_SMALL.into(),
-                Err(_) => "--".into(),
+            match (e.info, e.setpoint_info) {
+                (Ok(i), _) => percent(i.overshoot_pct),
+                (Err(NoMetrics::StepTooSmall), _) => STEP_TOO_SMALL.into(),
+                // No final value: how far the cart went past the setpoint.
+                (Err(NoMetrics::NoFinalValue), Some(i)) if i.overshoot_pct > 0.0 => {
+                    format!("{} past the setpoint", percent(i.overshoot_pct))
+                }
+                (Err(_), _) => "--".into(),
             },
         ),
         Readout::new(
             "rise",
             "Rise time (10–90 %)",
-            seconds(info.and_then(|i| i.rise_time_s)),
+            seconds(info.or(e.setpoint_info).and_then(|i| i.rise_time_s)),
         ),
         Readout::new(
             "settling",
             "Settling time (±2 %)",
-            seconds(info.and_then(|i| i.settling_time_s)),
+            match (info.and_then(|i| i.settling_time_s), y_final) {
+                (Some(ts), Some(y)) if !at_setpoint(y, e.setpoint_m) => {
+                    format!("{} (around {})", seconds(Some(ts)), metres(y))
+                }
+                (ts, _) => seconds(ts),
+            },
         ),
         Readout::new(
             "peak",
             "Peak",
-            info.map_or("--".into(), |i| {
+            info.or(e.setpoint_info).map_or("--".into(), |i| {
                 format!(
                     "{} at {} s",
                     format_metres(i.peak),
@@ -230,7 +288,16 @@ pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
         Readout::new(
             "sse",
             "Steady-state error",
-            y_final.map_or("--".into(), |y| metres(e.setpoint_m - y)),
+            y_final.map_or("--".into(), |y| {
+                // The linear loop's prediction until the run has settled.
+                let reached =
+                    e.state == RunState::Quiet || info.is_some_and(|i| i.settling_time_s.is_some());
+                if reached {
+                    metres(e.setpoint_m - y)
+                } else {
+                    format!("{} (predicted)", metres(e.setpoint_m - y))
+                }
+            }),
         ),
         Readout::new("poles", "Closed-loop poles (1/s)", poles),
         Readout::new("stability", "Linear loop", stability),
@@ -297,10 +364,13 @@ pub(super) fn status(e: &PidControl) -> Status {
         _ => "the overshoot carried it past the end",
     };
     match e.state {
-        RunState::Running => Status::new(
-            format!("stepping to {}", format_metres(e.setpoint_m)),
-            Tone::Neutral,
-        ),
+        RunState::Running => match settled_text(e) {
+            Some(text) => Status::new(text, Tone::Good),
+            None => Status::new(
+                format!("stepping to {}", format_metres(e.setpoint_m)),
+                Tone::Neutral,
+            ),
+        },
         RunState::OffTrack => Status::ended(
             format!(
                 "off the track at {}: {}",
@@ -313,14 +383,11 @@ pub(super) fn status(e: &PidControl) -> Status {
         RunState::Quiet | RunState::Complete => match (e.info, e.final_value_m()) {
             (
                 Ok(StepInfo {
-                    settling_time_s: Some(ts),
+                    settling_time_s: Some(_),
                     ..
                 }),
                 Some(_),
-            ) => Status::ended(
-                format!("settled within 2 % after {}", seconds(Some(ts))),
-                Tone::Good,
-            ),
+            ) => Status::ended(settled_text(e).unwrap_or_default(), Tone::Good),
             (Err(NoMetrics::StepTooSmall), Some(_)) => {
                 Status::ended("at rest: the step is under 1 mm", Tone::Neutral)
             }
@@ -328,7 +395,18 @@ pub(super) fn status(e: &PidControl) -> Status {
                 format!("not settled after {} s", format_fixed(e.time_s(), 0)),
                 Tone::Warning,
             ),
-            (_, None) => Status::ended("at rest", Tone::Neutral),
+            // Recorded in full with no final value to settle at: the cart
+            // may still be swinging, so no "at rest".
+            (_, None) if e.run.state.v_m_s.abs() < QUIET_MIN_M => {
+                Status::ended("at rest", Tone::Neutral)
+            }
+            (_, None) => Status::ended(
+                format!(
+                    "{} s recorded: the loop has no final value",
+                    format_fixed(e.time_s(), 0)
+                ),
+                Tone::Warning,
+            ),
         },
     }
 }
