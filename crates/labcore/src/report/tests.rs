@@ -602,3 +602,160 @@ fn scene_maps_world_to_picture_with_y_up() {
     );
     well_formed_svg(&svg).unwrap();
 }
+
+/// Whether the canvas paints something for `item` (labweb's `draw.rs`):
+/// batches with members, lines with enough points, grids with a lit cell. The
+/// focus ring is the page's own and not part of an experiment's scene.
+fn screen_draws(item: &crate::scene::Item, view: ViewBox) -> bool {
+    use crate::scene::Item;
+    match item {
+        Item::Points { points, .. } => !points.is_empty(),
+        Item::Segments { segments, .. } => !segments.is_empty(),
+        Item::SegmentLayer { layer, .. } => !layer.is_empty(),
+        Item::Arrows { arrows, .. } => !arrows.is_empty(),
+        Item::Arrow { from, to, .. } => (*to - *from).length() > 1e-9,
+        Item::Polyline { points, .. } => points.len() >= 2,
+        Item::Polygon { points, .. } => points.len() >= 3,
+        Item::Heatmap { values, .. } => values.iter().any(|v| *v > 0.0),
+        Item::Raster { cells, palette, .. } | Item::VersionedRaster { cells, palette, .. } => cells
+            .iter()
+            .any(|&c| c > 0 && usize::from(c) <= palette.len()),
+        Item::OffView { at, .. } => {
+            !(at.x >= view.min.x && at.x <= view.max.x && at.y >= view.min.y && at.y <= view.max.y)
+        }
+        Item::FocusRing { .. } => false,
+        _ => true,
+    }
+}
+
+/// The picture of one item alone: the SVG elements drawn for it (the
+/// picture's own background and frame left out) and the segments of its
+/// batch paths (`M` commands of `l`-segment paths).
+fn drawn_alone(item: &crate::scene::Item, view: ViewBox) -> (usize, usize) {
+    let mut scene = Scene::default();
+    scene.items.push(item.clone());
+    let (svg, _) = scene_svg::scene_svg(&scene, view);
+    let elements = svg.matches('<').count() - svg.matches("</").count() - 3;
+    let segments = svg
+        .split("<path d=\"")
+        .skip(1)
+        .map(|p| &p[..p.find('"').unwrap()])
+        .filter(|d| d.contains('l'))
+        .map(|d| d.matches('M').count())
+        .sum();
+    (elements, segments)
+}
+
+/// Segments a batch item holds (a tree's edges), 0 for other items.
+fn batch_len(item: &crate::scene::Item) -> usize {
+    use crate::scene::Item;
+    match item {
+        Item::Segments { segments, .. } => segments.len(),
+        Item::SegmentLayer { layer, .. } => layer.len(),
+        _ => 0,
+    }
+}
+
+/// Every experiment, in its preview after a minute's run and after each of
+/// its actions and a ten-second run: every item the canvas paints is drawn in
+/// the report's picture, and every batch of segments with as many segments as
+/// the live scene holds (up to the stated limit).
+#[test]
+fn report_scene_draws_every_item_the_live_scene_draws_for_every_experiment() {
+    let mut kinds_seen = std::collections::BTreeSet::new();
+    for entry in crate::registry() {
+        let id = entry.id;
+        let mut states: Vec<Box<dyn Experiment>> = Vec::new();
+        let mut exp = (entry.make)();
+        exp.preview();
+        for _ in 0..if exp.animated() { 3600 } else { 0 } {
+            exp.step(Clock::DT_S);
+        }
+        states.push(exp);
+        let probe = (entry.make)();
+        for action in probe.actions() {
+            let mut exp = (entry.make)();
+            exp.preview();
+            if exp.action(action.key).is_err() {
+                continue;
+            }
+            for _ in 0..600 {
+                exp.step(Clock::DT_S);
+            }
+            states.push(exp);
+        }
+        for exp in &states {
+            let view = exp.view();
+            let mut scene = Scene::default();
+            exp.scene(&mut scene);
+            for item in &scene.items {
+                if !screen_draws(item, view) {
+                    continue;
+                }
+                let kind = format!("{item:?}");
+                let kind = kind[..kind.find([' ', '{']).unwrap_or(kind.len())].to_owned();
+                let (elements, segments) = drawn_alone(item, view);
+                assert!(elements > 0, "{id}: the report leaves out a {kind}");
+                let live = batch_len(item);
+                if live > 0 {
+                    assert_eq!(
+                        segments,
+                        live.min(scene_svg::MAX_SEGMENTS),
+                        "{id}: {kind} of {live} segments"
+                    );
+                }
+                kinds_seen.insert(kind);
+            }
+        }
+    }
+    // The kept kinds are among those checked.
+    for kind in ["SegmentLayer", "VersionedRaster"] {
+        assert!(kinds_seen.contains(kind), "{kind} seen in {kinds_seen:?}");
+    }
+}
+
+/// The RRT* run of the issue: `iters=20000&batch=400`, Grow tree, stepped to
+/// "done". The report draws every edge of the tree the screen shows (nodes − 1).
+#[test]
+fn rrtstar_report_draws_the_whole_tree_after_the_longest_run() {
+    let entry = crate::find("rrtstar").unwrap();
+    let mut exp = (entry.make)();
+    exp.set_param("iters", 20_000.0).unwrap();
+    exp.set_param("batch", 400.0).unwrap();
+    exp.action("grow").unwrap();
+    let mut steps = 0;
+    while !exp.status().text.starts_with("done") {
+        exp.step(Clock::DT_S);
+        steps += 1;
+        assert!(steps < 1000, "done after 50 batches");
+    }
+    let nodes: usize = exp
+        .readouts()
+        .iter()
+        .find(|r| r.key == "nodes")
+        .unwrap()
+        .value
+        .replace(',', "")
+        .parse()
+        .unwrap();
+    assert!(nodes > 10_000, "{nodes} nodes");
+    let html = render(&Report {
+        experiment: exp.as_ref(),
+        content: entry.content().unwrap(),
+        link: "http://localhost/#/rrtstar/simulation",
+        date: "today",
+        quiz: None,
+        note: None,
+    });
+    let scene = svgs(&html)[0];
+    // The tree is the one path in the Visited colour.
+    let tree = scene
+        .split("<path d=\"")
+        .skip(1)
+        .find(|p| p.contains("stroke=\"#56B4E9\""))
+        .expect("the tree is drawn");
+    assert_eq!(
+        tree[..tree.find('"').unwrap()].matches('M').count(),
+        nodes - 1
+    );
+}
