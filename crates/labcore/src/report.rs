@@ -1029,11 +1029,10 @@ fn quiz_section(h: &mut String, quiz: Option<&QuizResult<'_>>, key: AnswerKey) {
         let _ = write!(
             h,
             "<p class=\"score\"><strong>Score: {correct} / {total} ({}%)</strong> · attempt seed <code>{}</code></p>\
-             <p class=\"muted integrity\">The score was computed in the student's browser. This file keeps the \
-             answers and the seed in machine-readable form, so the lab's \u{201c}Check a report\u{201d} page \
-             (<code>check.html</code>) can grade them again and show whether this score matches them. It cannot \
-             show whether the answers themselves were edited: a file whose answers and score were changed together \
-             passes. The score the LMS recorded is the authority.</p>",
+             <p class=\"muted integrity\">Graded in the student's browser. This file keeps the answers and the \
+             seed, so the lab's \u{201c}Check a report\u{201d} page (<code>check.html</code>) can grade them again and \
+             show whether this score matches them. It cannot show whether the answers were edited: a file whose \
+             answers and score were changed together passes. The score the LMS recorded is the authority.</p>",
             score_percent(correct, total),
             q.seed
         );

@@ -123,9 +123,10 @@ impl App {
                         notices.extend(page.apply_params(&params));
                     }
                     // An instructor's locks, hidden controls and note come
-                    // with a whole state (or alone); a bare link (a tab
-                    // switch) keeps those already set.
-                    if !params.is_empty() || !instructor.is_empty() {
+                    // with a whole state (or alone, or with a quiz seed, which
+                    // the Simulation tab's link and lab report keep); a bare
+                    // link (a tab switch) keeps those already set.
+                    if !params.is_empty() || !instructor.is_empty() || quiz_seed.is_some() {
                         notices.extend(page.set_instructor(instructor, quiz_seed));
                     }
                     // An instructor's link fixes the attempt (`?quiz=123`): the

@@ -441,7 +441,9 @@ fn hostile_text_everywhere_is_escaped() {
     // The one script element is the data record (JSON, never run).
     assert_eq!(lower.matches("<script").count(), 1, "script injected");
     assert_eq!(
-        lower.matches("<script type=\"application/json\" id=\"lab-report-data\">").count(),
+        lower
+            .matches("<script type=\"application/json\" id=\"lab-report-data\">")
+            .count(),
         1
     );
     assert!(!lower.contains("<img"), "img injected");

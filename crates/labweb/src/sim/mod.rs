@@ -140,6 +140,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
              </div>{statusbar}{touch_note}\
              {timebar}\
              <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button>{report}{describe}</div>\
+             {report_fields}\
            </div>\
            <div class=\"sim-side\">{main_plot}\
              <dl class=\"readouts\">{readouts}</dl>\
@@ -152,6 +153,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
          </div>{instructor_panel}",
         touch = if exp.captures_touch() { "all" } else { "handles" },
         report = crate::report_view::BUTTON_HTML,
+        report_fields = crate::report_view::fields_html(exp.id()),
         keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
         describe = a11y::describe_button_html(),
         move_form = a11y::move_form_html(),
