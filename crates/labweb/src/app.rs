@@ -123,11 +123,15 @@ impl App {
                         notices.extend(page.apply_params(&params));
                     }
                     // An instructor's locks, hidden controls and note come
-                    // with a whole state (or alone, or with a quiz seed, which
-                    // the Simulation tab's link and lab report keep); a bare
-                    // link (a tab switch) keeps those already set.
-                    if !params.is_empty() || !instructor.is_empty() || quiz_seed.is_some() {
+                    // with a whole state (or alone); a bare link (a tab
+                    // switch) keeps those already set. A quiz seed alone
+                    // (`?quiz=123`, also the Self-assessment tab's own link)
+                    // keeps them too, and reaches the Simulation tab's link
+                    // and lab report.
+                    if !params.is_empty() || !instructor.is_empty() {
                         notices.extend(page.set_instructor(instructor, quiz_seed));
+                    } else if quiz_seed.is_some() {
+                        page.set_quiz_seed(quiz_seed);
                     }
                     // An instructor's link fixes the attempt (`?quiz=123`): the
                     // whole class gets the same numbers.
@@ -467,6 +471,12 @@ impl ExperimentPage {
         match &self.inner.borrow().sim {
             Some(sim) => sim.set_instructor(instructor, quiz_seed),
             None => Vec::new(),
+        }
+    }
+
+    fn set_quiz_seed(&mut self, quiz_seed: Option<u64>) {
+        if let Some(sim) = &self.inner.borrow().sim {
+            sim.set_quiz_seed(quiz_seed);
         }
     }
 

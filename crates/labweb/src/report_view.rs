@@ -206,18 +206,19 @@ pub fn report_quiz_score(id: &str, seed: &str, answers: js_sys::Array) -> Vec<u3
     if questions.len() != answers.length() as usize {
         return Vec::new();
     }
-    let answers: Vec<Response> = answers
-        .iter()
-        .map(|a| match (a.as_f64(), a.as_string()) {
+    let mut responses = Vec::with_capacity(questions.len());
+    for i in 0..answers.length() {
+        let a = answers.get(i);
+        responses.push(match (a.as_f64(), a.as_string()) {
             (Some(k), _) if k >= 0.0 && k.fract() == 0.0 => Response::Choice(Some(k as usize)),
             (_, Some(text)) => Response::Text(text),
             _ => Response::Choice(None),
-        })
-        .collect();
+        });
+    }
     let (correct, total) = QuizResult {
         seed,
         questions: &questions,
-        answers: &answers,
+        answers: &responses,
         submitted: true,
     }
     .score();

@@ -778,6 +778,12 @@ impl SimView {
         notices
     }
 
+    /// Sets the quiz seed a link fixes (`?quiz=123`), keeping the
+    /// instructor's locks, hidden controls, note and answer-key choice.
+    pub fn set_quiz_seed(&self, quiz_seed: Option<u64>) {
+        self.state.borrow_mut().quiz_seed = quiz_seed;
+    }
+
     /// The URL hash of the current state on `tab`.
     pub fn hash(&self, tab: Tab) -> String {
         let st = self.state.borrow();
