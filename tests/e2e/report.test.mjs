@@ -207,6 +207,8 @@ test("pid: after a run and a submitted quiz, the report holds the run, every plo
     const facts = await pageFacts(page);
     const html = await downloadReport(page, "pid");
     assert.match(html, /Pinned run A/);
+    // No class-wide seed in the link: the expected answers once submitted.
+    assert.equal(expectedCells(html), quiz.total, "the student's own seed is not a class seed");
     await inspect(html, "pid", facts, { quiz, letter: true });
   }));
 

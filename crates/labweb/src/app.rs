@@ -124,13 +124,14 @@ impl App {
                     }
                     // An instructor's locks, hidden controls and note come
                     // with a whole state (or alone); a bare link (a tab
-                    // switch) keeps those already set. A quiz seed alone
-                    // (`?quiz=123`, also the Self-assessment tab's own link)
-                    // keeps them too, and reaches the Simulation tab's link
-                    // and lab report.
+                    // switch) keeps those already set. A quiz seed alone on
+                    // another tab than the Self-assessment (whose own link
+                    // carries the student's seed) is an instructor's class
+                    // seed: it keeps them too, and reaches the Simulation
+                    // tab's link and the lab report's answer-key default.
                     if !params.is_empty() || !instructor.is_empty() {
                         notices.extend(page.set_instructor(instructor, quiz_seed));
-                    } else if quiz_seed.is_some() {
+                    } else if quiz_seed.is_some() && tab != Tab::Quiz {
                         page.set_quiz_seed(quiz_seed);
                     }
                     // An instructor's link fixes the attempt (`?quiz=123`): the
