@@ -12,7 +12,7 @@ import { mkdirSync } from "node:fs";
 import { readFile, writeFile } from "node:fs/promises";
 import { join } from "node:path";
 import { pathToFileURL } from "node:url";
-import { SHOTS, open, settle, useLab, withPage } from "./helpers.mjs";
+import { SHOTS, open, screenshot, settle, useLab, waitReady, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 const ART = "article.exp:not([hidden])";
@@ -74,8 +74,11 @@ async function inspect(html, id, facts, { quiz = null, letter = false } = {}) {
   const file = join(SHOTS, `${id}-report.html`);
   await writeFile(file, html);
   sizes[id] = html.length;
-  // Raw-text checks: the file carries no address but the link back.
-  assert.doesNotMatch(html, /\bsrc=|<script|<link|<img|@import|@font-face/i);
+  // Raw-text checks: the file carries no address but the link back, and
+  // its one script element is the JSON record (a type no browser runs).
+  assert.doesNotMatch(html, /\bsrc=|<link|<img|@import|@font-face/i);
+  assert.equal(html.match(/<script/gi).length, 1);
+  assert.match(html, /<script type="application\/json" id="lab-report-data">\{"report":1,/);
   const addresses = html.match(/https?:\/\/[^\s"<]+/g) ?? [];
   const link = facts.href.replaceAll("&", "&amp;");
   assert.ok(
@@ -204,6 +207,8 @@ test("pid: after a run and a submitted quiz, the report holds the run, every plo
     const facts = await pageFacts(page);
     const html = await downloadReport(page, "pid");
     assert.match(html, /Pinned run A/);
+    // No class-wide seed in the link: the expected answers once submitted.
+    assert.equal(expectedCells(html), quiz.total, "the student's own seed is not a class seed");
     await inspect(html, "pid", facts, { quiz, letter: true });
   }));
 
@@ -234,16 +239,174 @@ test("ekf: after a run the report holds every plot and no quiz", () =>
     await inspect(html, "ekf", facts);
   }));
 
-test("rrtstar: the report after the longest run (20,000 iterations) stays small", () =>
+test("rrtstar: the report after the longest run (20,000 iterations) draws the whole tree the screen shows and stays small", () =>
   withPage(lab, {}, async (page) => {
-    // The largest budget: 20,000 iterations, the biggest tree and cost curve.
+    // The largest budget: 20,000 iterations, the biggest tree and cost curve,
+    // reached by stepping (one step is one batch of 400 iterations).
     await open(lab, page, "#/rrtstar/simulation?iters=20000&batch=400");
     await page.click(`${ART} button[data-action=grow]`);
-    await waitStatus(page, /^done/, 90_000);
     await pause(page);
+    const step = page.locator(`${ART} button[data-time=step]`);
+    for (let i = 0; i < 60; i += 1) {
+      if (/^done/.test(await page.locator(`${ART} .sim-status`).textContent())) break;
+      await step.click();
+    }
+    await waitStatus(page, /^done/);
+    const nodes = Number((await page.locator(`${ART} [data-readout=nodes]`).textContent()).replace(/[^\d]/g, ""));
+    assert.ok(nodes > 10_000, `${nodes} nodes on screen`);
     const facts = await pageFacts(page);
     const html = await downloadReport(page, "rrtstar");
+    // The tree is the scene's path in the Visited colour: one move per edge.
+    const scene = html.slice(html.indexOf('<svg class="scene"'), html.indexOf("</svg>"));
+    const tree = [...scene.matchAll(/<path d="([^"]*)"[^>]*stroke="#56B4E9"/g)].map((m) => m[1]);
+    assert.equal(tree.length, 1, "the tree is drawn");
+    assert.equal(tree[0].split("M").length - 1, nodes - 1, "every edge of the tree on screen");
     await inspect(html, "rrtstar", facts);
     console.log(`report sizes (bytes): ${JSON.stringify(sizes)}`);
     for (const [id, n] of Object.entries(sizes)) assert.ok(n < 400_000, `${id}: ${n} bytes`);
+  }));
+
+
+/** The text of a saved report file as the browser shows it in print. */
+async function printedText(html, name, edit = null) {
+  mkdirSync(SHOTS, { recursive: true });
+  const file = join(SHOTS, name);
+  await writeFile(file, html);
+  const context = await lab.browser.newContext({ viewport: { width: 900, height: 1200 }, offline: true });
+  try {
+    const page = await context.newPage();
+    await page.goto(pathToFileURL(file).href);
+    if (edit) await edit(page);
+    await page.emulateMedia({ media: "print" });
+    const pdf = await page.pdf({ format: "A4" });
+    assert.equal(pdf.subarray(0, 5).toString(), "%PDF-");
+    return await page.evaluate(() => ({
+      name: document.querySelector("[data-field=name]").innerText,
+      group: document.querySelector("[data-field=group]").innerText,
+      observations: document.querySelector("[data-field=observations]").innerText,
+      visible: ["name", "group", "observations"].every((f) => {
+        const r = document.querySelector(`[data-field=${f}]`).getBoundingClientRect();
+        return r.width > 0 && r.height > 0;
+      }),
+    }));
+  } finally {
+    await context.close();
+  }
+}
+
+test("report fields: Name, Group and Observations typed on the page are kept after a reload, printed in the report, and editable in the file", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/simulation");
+    const fields = page.locator(`${ART} details.report-fields`);
+    await fields.locator("summary").click();
+    await fields.locator("[data-report-field=name]").fill("Ada Lovelace");
+    await fields.locator("[data-report-field=group]").fill("B2 <lab>");
+    await fields.locator("[data-report-field=observations]").fill("The reach is l1 + l2.\nThe tip follows θ1.");
+    await fields.locator("[data-report-field=observations]").blur();
+    await page.reload();
+    await waitReady(page);
+    await page.locator(`${ART} button[data-export=report]`).waitFor();
+    await page.locator(`${ART} details.report-fields summary`).click();
+    assert.equal(await page.locator(`${ART} [data-report-field=name]`).inputValue(), "Ada Lovelace", "kept after a reload");
+    assert.equal(await page.locator(`${ART} [data-report-field=group]`).inputValue(), "B2 <lab>");
+    const html = await downloadReport(page, "fk");
+    const shown = await printedText(html, "fk-fields-report.html");
+    assert.equal(shown.name, "Ada Lovelace");
+    assert.equal(shown.group, "B2 <lab>");
+    assert.equal(shown.observations, "The reach is l1 + l2.\nThe tip follows θ1.");
+    assert.ok(shown.visible, "the fields are printed");
+    // Typed into the saved file before printing: the print shows it.
+    const edited = await printedText(html, "fk-fields-report.html", async (p) => {
+      await p.locator("[data-field=name]").click();
+      await p.keyboard.press("End");
+      await p.keyboard.type(" (edited)");
+    });
+    assert.equal(edited.name, "Ada Lovelace (edited)");
+  }));
+
+/** The expected-answer cells of a report. */
+const expectedCells = (html) => (html.match(/<td class="expected">/g) ?? []).length;
+
+test("answer key: a class quiz seed hides the expected answers by default", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/simulation?quiz=123");
+    const quiz = await submitQuiz(page, "fk");
+    const html = await downloadReport(page, "fk");
+    assert.match(html, new RegExp(`Score: ${quiz.right} / ${quiz.total}`));
+    assert.match(html, /attempt seed <code>123<\/code>/);
+    assert.equal(expectedCells(html), 0, "no key with a class-wide seed");
+    assert.match(html, /Expected answers are not shown/);
+  }));
+
+test("answer key: key=submitted shows the expected answers once submitted, key=never never", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/simulation?quiz=123&key=submitted");
+    assert.equal(expectedCells(await downloadReport(page, "fk")), 0, "nothing before submission");
+    const quiz = await submitQuiz(page, "fk");
+    assert.equal(expectedCells(await downloadReport(page, "fk")), quiz.total);
+  }).then(() =>
+    withPage(lab, {}, async (page) => {
+      await open(lab, page, "#/fk/simulation?key=never");
+      await submitQuiz(page, "fk");
+      const html = await downloadReport(page, "fk");
+      assert.match(html, /Score: \d+ \/ \d+/);
+      assert.equal(expectedCells(html), 0);
+    }),
+  ));
+
+test("answer key: key=always shows them before submission; the Instructor panel offers the choice", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/ik/simulation?key=always");
+    const always = await downloadReport(page, "ik");
+    assert.doesNotMatch(always, /Score:/, "not submitted");
+    assert.ok(expectedCells(always) > 0, "key=always shows the questions' expected answers");
+    // The Instructor panel writes the choice into its link.
+    await page.locator(`${ART} details.instructor-panel summary`).click();
+    assert.equal(await page.locator(`${ART} select.instructor-key`).inputValue(), "always", "from the link");
+    await page.selectOption(`${ART} select.instructor-key`, "never");
+    await page.waitForFunction(
+      (art) => /[?&]key=never(&|$)/.test(document.querySelector(`${art} .instructor-link`).value),
+      ART,
+    );
+  }));
+
+test("check a report: the check page passes an untampered report and catches an edited score", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/pid/simulation");
+    const quiz = await submitQuiz(page, "pid");
+    await pause(page);
+    const html = await downloadReport(page, "pid");
+    const requests = [];
+    page.on("request", (r) => requests.push(new URL(r.url()).pathname));
+    await page.goto(`${lab.server.base}check.html`);
+    const verdict = async (text, name) => {
+      await page.evaluate(() => document.getElementById("check-result").replaceChildren());
+      await page.setInputFiles("#check-file", { name, mimeType: "text/html", buffer: Buffer.from(text) });
+      await page.waitForFunction(() => ["good", "bad"].includes(document.getElementById("check-result").dataset.verdict)
+        && !/Checking/.test(document.getElementById("check-result").textContent));
+      return page.evaluate(() => {
+        const r = document.getElementById("check-result");
+        return { verdict: r.dataset.verdict, text: r.textContent };
+      });
+    };
+    const good = await verdict(html, "pid-report.html");
+    assert.equal(good.verdict, "good", good.text);
+    assert.match(good.text, new RegExp(`✓ The printed score, ${quiz.right} / ${quiz.total}, matches`));
+    await screenshot(page, "check-page-pass");
+
+    // The printed score raised by hand: caught.
+    const raised = quiz.right === quiz.total ? quiz.right - 1 : quiz.total;
+    const tampered = html.replace(/Score: \d+ \/ (\d+) \(\d+%\)/, `Score: ${raised} / $1 (100%)`);
+    assert.notEqual(tampered, html);
+    const bad = await verdict(tampered, "pid-report.html");
+    assert.equal(bad.verdict, "bad", bad.text);
+    assert.match(bad.text, new RegExp(`does not match: the answers in the file score ${quiz.right} / ${quiz.total}`));
+    await screenshot(page, "check-page-caught");
+    // Score edited in both places but not the answers: caught too.
+    const both = tampered.replace(/"score":\[\d+,/, `"score":[${raised},`);
+    assert.equal((await verdict(both, "pid-report.html")).verdict, "bad");
+
+    // The page loaded only pid's module, no other experiment's.
+    const wasm = requests.filter((p) => p.endsWith(".wasm"));
+    assert.equal(wasm.length, 1, JSON.stringify(wasm));
   }));

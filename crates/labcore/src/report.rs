@@ -13,7 +13,14 @@
 //! are no fonts, images or scripts, and the file carries its own
 //! `Content-Security-Policy` (`default-src 'none'`) so even a browser that
 //! opens it from disk fetches nothing. The only address in the file is the
-//! link back to the lab, as text and as a link.
+//! link back to the lab, as text and as a link. The one `<script>` element
+//! is data: a `type="application/json"` record of the quiz (see
+//! [`DATA_ID`]) that no browser runs, for the lab's "Check a report" page.
+//!
+//! The student's name, group and observations (typed on the page, see
+//! [`Student`]) are printed, and stay editable in the file. Whether the
+//! quiz table shows expected answers is the instructor link's choice
+//! ([`AnswerKey`]).
 //!
 //! Everything that comes from the student or a link (the note, text state,
 //! quiz answers, the link itself) is escaped with
@@ -26,6 +33,7 @@ use crate::content_html::escape;
 use crate::experiment::{Experiment, ParamKind, ParamSpec, Tone};
 use crate::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, Series, SeriesRole};
 use crate::quiz::{format_number, grade, score_percent, Prepared, PreparedKind, Response};
+pub use crate::route::AnswerKey;
 use crate::scene::Scene;
 use crate::table::Table;
 use std::fmt::Write as _;
@@ -55,13 +63,16 @@ const DRAW_BUCKETS: usize = 300;
 /// Longest text value (a wall code) copied into the parameter table.
 const TEXT_STATE_MAX: usize = 120;
 
-/// A submitted Self-assessment attempt: the questions as the student saw
-/// them (drawn from `seed`) and the answers given, one per question.
+/// A Self-assessment attempt: the questions as the student saw them (drawn
+/// from `seed`) and the answers given, one per question. `submitted` is
+/// false for an attempt not yet graded, which a report shows only when the
+/// instructor's link asks for the answer key always ([`AnswerKey::Always`]).
 #[derive(Clone, Copy, Debug)]
 pub struct QuizResult<'a> {
     pub seed: u64,
     pub questions: &'a [Prepared],
     pub answers: &'a [Response],
+    pub submitted: bool,
 }
 
 impl QuizResult<'_> {
@@ -99,7 +110,36 @@ pub struct Report<'a> {
     pub quiz: Option<QuizResult<'a>>,
     /// An instructor's note from the link (`note=`), shown as text.
     pub note: Option<&'a str>,
+    /// What the student typed for the report: name, group, observations.
+    pub student: Student<'a>,
+    /// Whether the quiz table shows each question's expected answer (the
+    /// link's `key=`, see [`AnswerKey::in_force`]).
+    pub answer_key: AnswerKey,
 }
+
+/// The student's own entries, typed on the Simulation tab before the report
+/// is made (the page keeps them per experiment) and printed in it; empty
+/// ones print as blank lines to write on. In the file they stay editable
+/// (no script: `contenteditable`), so a student can still type into them
+/// before printing.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Student<'a> {
+    pub name: &'a str,
+    pub group: &'a str,
+    pub observations: &'a str,
+}
+
+/// The `id` of the report's machine-readable record: a
+/// `<script type="application/json">` (data, never run; the file's policy
+/// allows no script) holding `{"report":1,"id","date","quiz":{"seed",
+/// "answers","score":[correct,total]}|null}`. Seeds are strings (a `u64`
+/// does not fit a JavaScript number); an answer is an option index, `null`
+/// (none) or the text typed. The lab's "Check a report" page reads it.
+pub const DATA_ID: &str = "lab-report-data";
+
+/// Longest typed answer kept in the record, in characters (longer is cut;
+/// the form's own limit is far below).
+const ANSWER_MAX_CHARS: usize = 400;
 
 /// The file name of an experiment's report: `pid-report.html`.
 #[must_use]
@@ -148,11 +188,14 @@ pub fn render(r: &Report<'_>) -> String {
         h,
         "<header><p class=\"eyebrow\">Robotics virtual lab · Experiment {} · Lab report</p>\
          <h1>{}</h1><dl class=\"meta\"><div><dt>Date</dt><dd class=\"date\">{}</dd></div>\
-         <div><dt>Name</dt><dd class=\"blank\"></dd></div><div><dt>Group</dt><dd class=\"blank\"></dd></div></dl>\
+         <div><dt>Name</dt><dd class=\"field\" contenteditable=\"true\" data-field=\"name\">{}</dd></div>\
+         <div><dt>Group</dt><dd class=\"field\" contenteditable=\"true\" data-field=\"group\">{}</dd></div></dl>\
          <p class=\"link\">Reproduce this run: <a href=\"{link}\">{link}</a></p></header>",
         c.number,
         escape(&c.title),
         escape(r.date),
+        escape(r.student.name.trim()),
+        escape(r.student.group.trim()),
         link = escape(r.link),
     );
     if let Some(note) = r.note.filter(|n| !n.trim().is_empty()) {
@@ -172,20 +215,85 @@ pub fn render(r: &Report<'_>) -> String {
     parameters_section(&mut h, exp);
     results_section(&mut h, exp);
     plots_section(&mut h, exp.plots());
-    quiz_section(&mut h, r.quiz.as_ref());
+    quiz_section(&mut h, r.quiz.as_ref(), r.answer_key);
 
-    let lines = "<div class=\"line\"></div>".repeat(OBSERVATION_LINES);
+    let typed = r.student.observations.trim();
+    let lines = "<div class=\"line\"></div>".repeat(if typed.is_empty() {
+        OBSERVATION_LINES
+    } else {
+        OBSERVATION_LINES / 3
+    });
     let _ = write!(
         h,
         "<section class=\"observations\"><h2>Observations and conclusions</h2>\
          <p class=\"muted\">What did you see? Compare it with the theory, explain any difference, \
-         and say what you would change next.</p><div class=\"lines\">{lines}</div></section>\
+         and say what you would change next. (Type on the Simulation tab before making the report, \
+         or into this box and the Name and Group fields before printing.)</p><div class=\"lines\">\
+         <div class=\"obs-text\" contenteditable=\"true\" data-field=\"observations\">{}</div>{lines}</div></section>\
          <footer><p>Made by the Robotics virtual lab on {}. This file is self-contained: it needs no \
          network and makes no request. Open the link above to see the run again.</p></footer>",
+        escape(typed),
         escape(r.date)
     );
+    data_record(&mut h, r);
     h.push_str("</main></body></html>\n");
     h
+}
+
+/// A string as a JSON string literal that is also safe inside a `<script>`
+/// element: `<`, `>` and `&` are written as `\u` escapes, so no text can
+/// close the element.
+fn json_string(out: &mut String, text: &str) {
+    out.push('"');
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '<' | '>' | '&' | '\u{2028}' | '\u{2029}' => {
+                let _ = write!(out, "\\u{:04x}", c as u32);
+            }
+            c if c.is_control() => {
+                let _ = write!(out, "\\u{:04x}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+}
+
+/// The machine-readable record of the report (see [`DATA_ID`]).
+fn data_record(h: &mut String, r: &Report<'_>) {
+    let _ = write!(
+        h,
+        "<script type=\"application/json\" id=\"{DATA_ID}\">{{\"report\":1,\"id\":"
+    );
+    json_string(h, r.experiment.id());
+    h.push_str(",\"date\":");
+    json_string(h, r.date);
+    h.push_str(",\"quiz\":");
+    match r.quiz.filter(|q| q.submitted) {
+        None => h.push_str("null"),
+        Some(q) => {
+            let _ = write!(h, "{{\"seed\":\"{}\",\"answers\":[", q.seed);
+            for (i, question) in q.questions.iter().enumerate() {
+                if i > 0 {
+                    h.push(',');
+                }
+                match q.answer(i, question) {
+                    Response::Choice(Some(k)) => {
+                        let _ = write!(h, "{k}");
+                    }
+                    Response::Choice(None) => h.push_str("null"),
+                    Response::Text(t) => {
+                        json_string(h, &t.chars().take(ANSWER_MAX_CHARS).collect::<String>());
+                    }
+                }
+            }
+            let (correct, total) = q.score();
+            let _ = write!(h, "],\"score\":[{correct},{total}]}}");
+        }
+    }
+    h.push_str("}</script>");
 }
 
 /// The parameter table: every parameter (grouped ones under their group's
@@ -901,20 +1009,48 @@ fn data_table(h: &mut String, plot: &Plot, figure: usize) {
     }
 }
 
-fn quiz_section(h: &mut String, quiz: Option<&QuizResult<'_>>) {
+fn quiz_section(h: &mut String, quiz: Option<&QuizResult<'_>>, key: AnswerKey) {
     h.push_str("<section class=\"quiz\"><h2>Self-assessment</h2>");
-    let Some(q) = quiz else {
-        h.push_str("<p class=\"muted\">The self-assessment had not been submitted when this report was made.</p></section>");
-        return;
+    let q = match quiz {
+        Some(q) if q.submitted || key == AnswerKey::Always => q,
+        _ => {
+            h.push_str("<p class=\"muted\">The self-assessment had not been submitted when this report was made.</p></section>");
+            return;
+        }
     };
-    let (correct, total) = q.score();
+    let expected_shown = key != AnswerKey::Never;
+    let expected_head = if expected_shown {
+        "<th scope=\"col\">Expected</th>"
+    } else {
+        ""
+    };
+    if q.submitted {
+        let (correct, total) = q.score();
+        let _ = write!(
+            h,
+            "<p class=\"score\"><strong>Score: {correct} / {total} ({}%)</strong> · attempt seed <code>{}</code></p>\
+             <p class=\"muted integrity\">Graded in the student's browser. This file keeps the answers and the \
+             seed, so the lab's \u{201c}Check a report\u{201d} page (<code>check.html</code>) can grade them again and \
+             show whether this score matches them. It cannot show whether the answers were edited: a file whose \
+             answers and score were changed together passes. The score the LMS recorded is the authority.</p>",
+            score_percent(correct, total),
+            q.seed
+        );
+    } else {
+        let _ = write!(
+            h,
+            "<p class=\"muted\">Not submitted when this report was made. The questions of attempt seed \
+             <code>{}</code> with their expected answers, as the instructor's link asks:</p>",
+            q.seed
+        );
+    }
+    if !expected_shown {
+        h.push_str("<p class=\"muted\">Expected answers are not shown in this report (the instructor's link).</p>");
+    }
     let _ = write!(
         h,
-        "<p class=\"score\"><strong>Score: {correct} / {total} ({}%)</strong> · attempt seed <code>{}</code></p>\
-         <table class=\"data answers\"><thead><tr><th scope=\"col\">#</th><th scope=\"col\">Question</th>\
-         <th scope=\"col\">Answer given</th><th scope=\"col\">Expected</th><th scope=\"col\">Result</th></tr></thead><tbody>",
-        score_percent(correct, total),
-        q.seed
+        "<table class=\"data answers\"><thead><tr><th scope=\"col\">#</th><th scope=\"col\">Question</th>\
+         <th scope=\"col\">Answer given</th>{expected_head}<th scope=\"col\">Result</th></tr></thead><tbody>"
     );
     for (i, question) in q.questions.iter().enumerate() {
         let answer = q.answer(i, question);
@@ -938,18 +1074,25 @@ fn quiz_section(h: &mut String, quiz: Option<&QuizResult<'_>>) {
             }
             _ => "<span class=\"muted\">(no answer)</span>".into(),
         };
-        let expected = match question.kind {
-            PreparedKind::Choice { .. } => verdict.expected.clone(),
-            PreparedKind::Numeric { .. } => escape(&verdict.expected),
+        let expected = if !expected_shown {
+            String::new()
+        } else {
+            let text = match question.kind {
+                PreparedKind::Choice { .. } => verdict.expected.clone(),
+                PreparedKind::Numeric { .. } => escape(&verdict.expected),
+            };
+            format!("<td class=\"expected\">{text}</td>")
         };
-        let (class, mark) = if verdict.correct {
+        let (class, mark) = if !q.submitted {
+            ("open", "")
+        } else if verdict.correct {
             ("right", "✓ correct")
         } else {
             ("wrong", "✗ wrong")
         };
         let _ = write!(
             h,
-            "<tr class=\"{class}\"><td>{}</td><td>{}</td><td>{given}</td><td>{expected}</td><td>{mark}</td></tr>",
+            "<tr class=\"{class}\"><td>{}</td><td>{}</td><td>{given}</td>{expected}<td>{mark}</td></tr>",
             i + 1,
             question.prompt
         );
@@ -969,7 +1112,7 @@ h2{font-size:14pt;margin:1.4em 0 .5em;padding-bottom:.15em;border-bottom:1.5px s
 .meta{display:flex;flex-wrap:wrap;gap:.4em 2em;margin:.4em 0}\
 .meta div{display:flex;gap:.5em;align-items:baseline}\
 .meta dt{font-weight:600}.meta dd{margin:0}\
-.meta dd.blank{min-width:38mm;border-bottom:1px solid #1b1f24;height:1.2em}\
+.meta dd.field{min-width:38mm;border-bottom:1px solid #1b1f24;min-height:1.2em;padding:0 .2em}\
 .link{font-size:9.5pt;overflow-wrap:anywhere;word-break:break-all;margin:.4em 0}\
 a{color:#0057a0}\
 .note{border-left:4px solid #B36B00;background:#fdf5e8;padding:.4em .8em;margin:1em 0}\
@@ -993,6 +1136,9 @@ tr.right td:last-child{color:#007a5a;font-weight:600}tr.wrong td:last-child{colo
 .observations{break-inside:avoid;page-break-inside:avoid}\
 .lines{border:1px solid #8c97a3;border-radius:4px;padding:0 4mm}\
 .line{height:9mm;border-bottom:1px solid #c9d0d8}\
+.obs-text{white-space:pre-wrap;overflow-wrap:anywhere;line-height:9mm;min-height:9mm;border-bottom:1px solid #c9d0d8}\
+[contenteditable]:focus{outline:2px solid #0072B2;outline-offset:1px}\
+.integrity{font-size:8.5pt}\
 .line:last-child{border-bottom:0}\
 footer{margin-top:2em;font-size:8.5pt;color:#5a6470;border-top:1px solid #d8dde3}\
 code{font-family:ui-monospace,Menlo,Consolas,monospace;font-size:.92em}\

@@ -170,6 +170,15 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
             },
             Some((k, v)) if decode(k) == LOCK_KEY => instructor.locked.extend(key_list(v)),
             Some((k, v)) if decode(k) == HIDE_KEY => instructor.hidden.extend(key_list(v)),
+            Some((k, v)) if decode(k) == ANSWER_KEY_KEY => {
+                match AnswerKey::from_slug(decode(v).trim()) {
+                    Some(choice) => instructor.answer_key = Some(choice),
+                    None => notices.push(format!(
+                        "Answer key “{}” is not never, submitted or always; ignored.",
+                        truncate(&decode(v), 30)
+                    )),
+                }
+            }
             Some((k, v)) if decode(k) == NOTE_KEY => {
                 let (note, notice) = clean_note(&decode(v));
                 instructor.note = note;
@@ -478,6 +487,56 @@ impl QuizRules {
     }
 }
 
+/// The query key choosing whether a lab report shows each question's
+/// expected answer (`key=never|submitted|always`, see [`AnswerKey`]).
+pub const ANSWER_KEY_KEY: &str = "key";
+
+/// Whether a lab report prints the expected answer beside each question.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AnswerKey {
+    /// Never: the report shows the answers given and whether each was right.
+    Never,
+    /// Once the Self-assessment was submitted (the report then shows it).
+    Submitted,
+    /// Always: a report made before submitting lists the questions with
+    /// their expected answers too (a worked example).
+    Always,
+}
+
+impl AnswerKey {
+    /// Every choice, in the order the Instructor panel offers them.
+    pub const ALL: [AnswerKey; 3] = [AnswerKey::Never, AnswerKey::Submitted, AnswerKey::Always];
+
+    /// The value in a link: `never`, `submitted` or `always`.
+    #[must_use]
+    pub fn slug(self) -> &'static str {
+        match self {
+            AnswerKey::Never => "never",
+            AnswerKey::Submitted => "submitted",
+            AnswerKey::Always => "always",
+        }
+    }
+
+    /// The choice a link's value names, if any.
+    #[must_use]
+    pub fn from_slug(slug: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.slug() == slug)
+    }
+
+    /// The choice in force: the link's, else [`AnswerKey::Never`] when the
+    /// link fixes a quiz seed (the whole class draws the same questions, so
+    /// one report would hand everyone the key), else
+    /// [`AnswerKey::Submitted`].
+    #[must_use]
+    pub fn in_force(chosen: Option<Self>, quiz_seed: Option<u64>) -> Self {
+        chosen.unwrap_or(if quiz_seed.is_some() {
+            AnswerKey::Never
+        } else {
+            AnswerKey::Submitted
+        })
+    }
+}
+
 /// What an instructor's link adds to a state: parameters shown but not
 /// changeable (**locked**), parameters not shown (**hidden**), a short
 /// **note** shown above the simulation and the quiz's grading **rules**
@@ -495,6 +554,9 @@ pub struct Instructor {
     pub note: Option<String>,
     /// Attempts allowed and which score counts (`attempts=2&score=best`).
     pub quiz: QuizRules,
+    /// Whether a lab report shows the expected answers (`key=`); `None`
+    /// takes the default of [`AnswerKey::in_force`].
+    pub answer_key: Option<AnswerKey>,
 }
 
 impl Instructor {
@@ -505,6 +567,7 @@ impl Instructor {
             && self.hidden.is_empty()
             && self.note.is_none()
             && self.quiz == QuizRules::default()
+            && self.answer_key.is_none()
     }
 
     #[must_use]
@@ -539,9 +602,9 @@ impl Instructor {
         notices
     }
 
-    /// The link's `lock=…&hide=…&note=…&attempts=…&score=…` pairs (only
-    /// those in use, a default rule left out), in that order, each already
-    /// encoded.
+    /// The link's `lock=…&hide=…&note=…&attempts=…&score=…&key=…` pairs
+    /// (only those in use, a default rule left out), in that order, each
+    /// already encoded.
     #[must_use]
     pub fn query(&self) -> Vec<String> {
         let list = |keys: &[String]| keys.iter().map(|k| encode(k)).collect::<Vec<_>>().join(",");
@@ -560,6 +623,9 @@ impl Instructor {
         }
         if self.quiz.score != ScoreRule::Best {
             out.push(format!("{SCORE_KEY}={}", self.quiz.score.slug()));
+        }
+        if let Some(choice) = self.answer_key {
+            out.push(format!("{ANSWER_KEY_KEY}={}", choice.slug()));
         }
         out
     }

@@ -392,7 +392,9 @@ fn permalinks_reproduce_every_state_reachable_by_pointer_and_keyboard() {
 /// and state, without a notice.
 #[test]
 fn instructor_links_round_trip_locks_hides_notes_and_the_quiz_seed() {
-    use labcore::route::{apply_params, format, format_instructor, parse, Instructor, Page, Tab};
+    use labcore::route::{
+        apply_params, format, format_instructor, parse, AnswerKey, Instructor, Page, Tab,
+    };
     let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
     // Characters a note may hold, those a URL must escape among them.
     const NOTE_CHARS: &[char] = &[
@@ -423,11 +425,13 @@ fn instructor_links_round_trip_locks_hides_notes_and_the_quiz_seed() {
                 attempts: (rng.next_f64() < 0.5).then(|| rng.int(1, 20) as u32),
                 score: labcore::route::ScoreRule::ALL[rng.int(0, 2) as usize],
             };
+            let answer_key = (rng.next_f64() < 0.5).then(|| AnswerKey::ALL[rng.int(0, 2) as usize]);
             let instructor = Instructor {
                 locked,
                 hidden,
                 note,
                 quiz: rules,
+                answer_key,
             };
             let link = format_instructor(exp.as_ref(), Tab::Simulation, &instructor, quiz);
             let route = parse(&link, &ids);

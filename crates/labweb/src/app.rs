@@ -132,10 +132,16 @@ impl App {
                     }
                     // An instructor's locks, hidden controls and note come
                     // with a whole state (or alone); a bare link (a tab
-                    // switch) keeps those already set.
+                    // switch) keeps those already set. A quiz seed alone on
+                    // another tab than the Self-assessment (whose own link
+                    // carries the student's seed) is an instructor's class
+                    // seed: it keeps them too, and reaches the Simulation
+                    // tab's link and the lab report's answer-key default.
                     if new_state || (params.is_empty() && !instructor.is_empty()) {
                         notices.extend(page.set_instructor(instructor, quiz_seed));
                         page.set_quiz_rules(quiz_rules);
+                    } else if params.is_empty() && quiz_seed.is_some() && tab != Tab::Quiz {
+                        page.set_quiz_seed(quiz_seed);
                     }
                     // An instructor's link fixes the attempt (`?quiz=123`): the
                     // whole class gets the same numbers.
@@ -514,6 +520,12 @@ impl ExperimentPage {
         let mut p = self.inner.borrow_mut();
         if p.grading.rules != rules {
             p.grading = quiz_view::Grading::load(p.id, rules);
+        }
+    }
+
+    fn set_quiz_seed(&mut self, quiz_seed: Option<u64>) {
+        if let Some(sim) = &self.inner.borrow().sim {
+            sim.set_quiz_seed(quiz_seed);
         }
     }
 

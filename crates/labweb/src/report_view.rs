@@ -1,25 +1,98 @@
 //! The "Lab report" button of the Simulation tab: gathers what the report
 //! needs from the page (the absolute link of the run, the student's clock,
-//! the quiz attempt if it was submitted, an instructor's note from the link),
+//! the quiz attempt if it was submitted, an instructor's note and answer-key
+//! choice from the link, the name, group and observations the student typed)
 //! has [`labcore::report::render`] build the file and offers it as a
 //! download made in the page from a Blob (nothing leaves the browser).
+//!
+//! The typed fields are kept in local storage per experiment
+//! (`labreport:<id>`), so they survive a reload and fill the next report.
+//! [`report_quiz_score`] serves the site's "Check a report" page.
 
-use crate::dom::{self, query};
+use crate::dom::{self, escape, query};
 use crate::plot_view;
 use crate::quiz_view::{self, Attempt};
 use labcore::quiz::Response;
-use labcore::report::{self, QuizResult, Report};
+use labcore::report::{self, AnswerKey, QuizResult, Report, Student};
 use labcore::route::{self, Page};
 use labcore::Experiment;
+use wasm_bindgen::prelude::*;
 use web_sys::Element;
 
 /// The button, placed among the Simulation tab's actions.
 pub const BUTTON_HTML: &str =
     "<button type=\"button\" class=\"mini\" data-export=\"report\">Lab report</button>";
 
+/// The fields of the report a student fills in, in the order stored.
+const FIELDS: [&str; 3] = ["name", "group", "observations"];
+/// Separates the stored fields (a character no one types).
+const SEPARATOR: char = '\u{1f}';
+
+fn storage_key(id: &str) -> String {
+    format!("labreport:{id}")
+}
+
+/// The fields kept for experiment `id`, joined by [`SEPARATOR`] in
+/// [`FIELDS`] order (empty when none or no storage).
+fn stored(id: &str) -> String {
+    dom::window()
+        .local_storage()
+        .ok()
+        .flatten()
+        .and_then(|s| s.get_item(&storage_key(id)).ok().flatten())
+        .unwrap_or_default()
+}
+
+/// The Name, Group and Observations fields under the actions, filled with
+/// what was kept for this experiment.
+#[must_use]
+pub fn fields_html(id: &str) -> String {
+    let kept = stored(id);
+    let mut kept = kept.split(SEPARATOR);
+    let mut next = || escape(kept.next().unwrap_or(""));
+    let (name, group, observations) = (next(), next(), next());
+    format!(
+        "<details class=\"report-fields\"><summary>Name, group and observations for the lab report \
+         (kept in this browser, printed in the report)</summary>\
+         <label class=\"instructor-field\">Name<input data-report-field=\"name\" maxlength=\"120\" value=\"{}\"></label>\
+         <label class=\"instructor-field\">Group<input data-report-field=\"group\" maxlength=\"60\" value=\"{}\"></label>\
+         <label class=\"instructor-field\">Observations and conclusions<textarea data-report-field=\"observations\" rows=\"5\" maxlength=\"4000\">{}</textarea></label></details>",
+        name, group, observations
+    )
+}
+
+/// What the fields in `panel` say now, joined by [`SEPARATOR`] in
+/// [`FIELDS`] order (a separator typed becomes a space).
+fn typed(panel: &Element) -> String {
+    let mut out = String::new();
+    for (i, f) in FIELDS.iter().enumerate() {
+        if i > 0 {
+            out.push(SEPARATOR);
+        }
+        // An input's or a textarea's `value` (one binding for both).
+        let value = query(panel, &format!("[data-report-field={f}]"))
+            .and_then(|el| js_sys::Reflect::get(&el, &JsValue::from_str("value")).ok())
+            .and_then(|v| v.as_string())
+            .unwrap_or_default();
+        out.push_str(&value.replace(SEPARATOR, " "));
+    }
+    out
+}
+
+/// Keeps the fields of `panel` for experiment `id` (a field's `change`);
+/// returns them as [`typed`] does.
+pub fn remember(panel: &Element, id: &str) -> String {
+    let text = typed(panel);
+    if let Some(storage) = dom::window().local_storage().ok().flatten() {
+        let _ = storage.set_item(&storage_key(id), &text);
+    }
+    text
+}
+
 /// Builds `<id>-report.html` from the experiment's current state and offers
 /// it as a download. `panel` is the Simulation panel (its article holds the
-/// quiz); `hash` is the link of the state shown (`#/pid/simulation?…`).
+/// quiz); `hash` is the link of the state shown (`#/pid/simulation?…`, with
+/// the instructor's keys).
 pub fn download(panel: &Element, exp: &dyn Experiment, hash: &str) {
     let Some(entry) = labcore::find(exp.id()) else {
         return;
@@ -32,19 +105,38 @@ pub fn download(panel: &Element, exp: &dyn Experiment, hash: &str) {
     let page = href.split('#').next().unwrap_or_default();
     let link = format!("{page}{hash}");
     let date = now_text();
-    let quiz = submitted_quiz(panel, entry, content);
-    let note = note_in_link(&location.hash().unwrap_or_default());
+    let ids: Vec<&str> = labcore::registry().iter().map(|e| e.id).collect();
+    let parsed = route::parse(hash, &ids);
+    let answer_key = AnswerKey::in_force(parsed.instructor.answer_key, parsed.quiz_seed);
+    let quiz = attempt_on_page(panel, entry, content, answer_key == AnswerKey::Always);
+    let fields = remember(panel, exp.id());
+    let mut fields = fields.split(SEPARATOR);
+    let mut next = || fields.next().unwrap_or("");
+    let (name, group, observations) = (next(), next(), next());
+    let note = match parsed.page {
+        Page::Experiment { .. } => parsed.instructor.note,
+        Page::Home => None,
+    };
     let html = report::render(&Report {
         experiment: exp,
         content,
         link: &link,
         date: &date,
-        quiz: quiz.as_ref().map(|(attempt, answers)| QuizResult {
-            seed: attempt.seed,
-            questions: &attempt.questions,
-            answers,
-        }),
+        quiz: quiz
+            .as_ref()
+            .map(|(attempt, answers, submitted)| QuizResult {
+                seed: attempt.seed,
+                questions: &attempt.questions,
+                answers,
+                submitted: *submitted,
+            }),
         note: note.as_deref(),
+        student: Student {
+            name,
+            group,
+            observations,
+        },
+        answer_key,
     });
     plot_view::download(
         &report::file_name(exp.id()),
@@ -68,18 +160,20 @@ fn now_text() -> String {
     )
 }
 
-/// The attempt on the Self-assessment tab and the answers in its form, when
-/// it has been graded (the score line is shown only then). The questions are
-/// drawn again from the seed the form shows, exactly as the tab drew them.
-fn submitted_quiz(
+/// The attempt on the Self-assessment tab, the answers in its form and
+/// whether it was graded (the score line is shown only then); an attempt
+/// not yet graded only when `unsubmitted_too`. The questions are drawn
+/// again from the seed the form shows, exactly as the tab drew them.
+fn attempt_on_page(
     panel: &Element,
     entry: &labcore::Entry,
     content: &labcore::Content,
-) -> Option<(Attempt, Vec<Response>)> {
+    unsubmitted_too: bool,
+) -> Option<(Attempt, Vec<Response>, bool)> {
     let article = panel.closest("article.exp").ok().flatten()?;
     let form = query(&article, "form.quiz")?;
-    let score = query(&form, ".quiz-score")?;
-    if score.has_attribute("hidden") {
+    let submitted = !query(&form, ".quiz-score")?.has_attribute("hidden");
+    if !(submitted || unsubmitted_too) {
         return None;
     }
     let seed: u64 = query(&form, ".quiz-seed")?
@@ -90,17 +184,43 @@ fn submitted_quiz(
     let questions = labcore::quiz::prepare(content, entry.generators, seed).ok()?;
     let attempt = Attempt { seed, questions };
     let answers = quiz_view::responses(&form, &attempt);
-    Some((attempt, answers))
+    Some((attempt, answers, submitted))
 }
 
-/// An instructor's note (`note=…`) in the page's link, if any.
-fn note_in_link(hash: &str) -> Option<String> {
-    let ids: Vec<&str> = labcore::registry().iter().map(|e| e.id).collect();
-    match route::parse(hash, &ids).page {
-        Page::Experiment { params, .. } => params
-            .into_iter()
-            .find(|(k, _)| k == "note")
-            .map(|(_, v)| v),
-        Page::Home => None,
+/// The "Check a report" page's grader: the score of `answers` (one per
+/// question: an option's index, `null` for none, or the text typed) to the
+/// questions experiment `id` draws from `seed` (a whole number as text),
+/// as `[correct, total]`. Empty when `id` is not in this module, the seed
+/// is not a whole number or the number of answers differs.
+#[wasm_bindgen]
+pub fn report_quiz_score(id: &str, seed: &str, answers: js_sys::Array) -> Vec<u32> {
+    let Some(entry) = labcore::find(id) else {
+        return Vec::new();
+    };
+    let (Ok(content), Ok(seed)) = (entry.content(), seed.trim().parse::<u64>()) else {
+        return Vec::new();
+    };
+    let Ok(questions) = labcore::quiz::prepare(content, entry.generators, seed) else {
+        return Vec::new();
+    };
+    if questions.len() != answers.length() as usize {
+        return Vec::new();
     }
+    let mut responses = Vec::with_capacity(questions.len());
+    for i in 0..answers.length() {
+        let a = answers.get(i);
+        responses.push(match (a.as_f64(), a.as_string()) {
+            (Some(k), _) if k >= 0.0 && k.fract() == 0.0 => Response::Choice(Some(k as usize)),
+            (_, Some(text)) => Response::Text(text),
+            _ => Response::Choice(None),
+        });
+    }
+    let (correct, total) = QuizResult {
+        seed,
+        questions: &questions,
+        answers: &responses,
+        submitted: true,
+    }
+    .score();
+    vec![correct as u32, total as u32]
 }

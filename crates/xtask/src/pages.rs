@@ -95,8 +95,9 @@ pub fn render_site(dist: &Path, modules: &[crate::modules::Shipped]) -> Result<(
             "<meta name=\"lab-page\" content=\"{id}\" data-href=\"pages/{name}\">\n"
         ));
     }
+    let mut module_metas = String::new();
     for m in modules {
-        metas.push_str(&format!(
+        module_metas.push_str(&format!(
             "<meta name=\"lab-module\" content=\"{}\" data-experiments=\"{}\" data-js=\"{}\" \
              data-wasm=\"{}\" data-bytes=\"{}\">\n",
             m.key,
@@ -105,6 +106,23 @@ pub fn render_site(dist: &Path, modules: &[crate::modules::Shipped]) -> Result<(
             m.wasm,
             m.wasm_bytes
         ));
+    }
+    metas.push_str(&module_metas);
+    // The "Check a report" page: the same policy, and the module list (it
+    // loads only the module of the report's experiment).
+    let check = dist.join("check.html");
+    if check.is_file() {
+        let template = fs::read_to_string(&check)
+            .map_err(|e| format!("cannot read {}: {e}", check.display()))?;
+        for slot in [CSP_SLOT, MODULES_SLOT] {
+            if !template.contains(slot) {
+                return Err(format!("web/check.html has no {slot} slot"));
+            }
+        }
+        let html = template
+            .replace(MODULES_SLOT, module_metas.trim_end())
+            .replace(CSP_SLOT, &csp_meta());
+        fs::write(&check, html).map_err(|e| format!("cannot write {}: {e}", check.display()))?;
     }
     let index = dist.join("index.html");
     let template =

@@ -11,7 +11,7 @@
 use super::n;
 use crate::content_html::escape;
 use crate::quiz::format_number;
-use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
 use glam::DVec2;
 use std::fmt::Write as _;
 
@@ -404,38 +404,13 @@ fn item_svg(s: &mut String, item: &Item, m: &Map, (w, h): (f64, f64), notes: &mu
             segments,
             width_px,
             role,
-        } => {
-            if segments.len() > MAX_SEGMENTS {
-                notes.push(format!(
-                    "the first {MAX_SEGMENTS} of {} edges drawn",
-                    segments.len()
-                ));
-            }
-            // Whole units and a relative end point: about ten bytes an edge.
-            let mut d = String::new();
-            for (a, b) in segments.iter().take(MAX_SEGMENTS) {
-                if finite(a) && finite(b) {
-                    let (pa, pb) = (m.p(*a), m.p(*b));
-                    let (ax, ay) = (pa.0.round(), pa.1.round());
-                    let _ = write!(
-                        d,
-                        "M{} {}l{} {}",
-                        format_number(ax, 0),
-                        format_number(ay, 0),
-                        format_number(pb.0 - ax, 1),
-                        format_number(pb.1 - ay, 1)
-                    );
-                }
-            }
-            if !d.is_empty() {
-                let _ = write!(
-                    s,
-                    "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
-                    colour(*role),
-                    n1(*width_px)
-                );
-            }
-        }
+        } => segments_svg(s, segments, *width_px, *role, m, notes),
+        // A kept tree is drawn in full, as the canvas shows it.
+        Item::SegmentLayer {
+            layer,
+            width_px,
+            role,
+        } => segments_svg(s, layer.segments(), *width_px, *role, m, notes),
         Item::ScaleBar => scale_bar(s, m.scale, h),
         Item::Raster {
             min,
@@ -444,68 +419,168 @@ fn item_svg(s: &mut String, item: &Item, m: &Map, (w, h): (f64, f64), notes: &mu
             rows,
             cells,
             palette,
-        } => {
-            if *cols == 0 || *rows == 0 || cells.len() < cols * rows {
-                return;
-            }
-            // Horizontal runs of one state, one path per state.
-            let mut paths: Vec<String> = vec![String::new(); palette.len()];
-            let c = m.scale * cell_m;
-            let mut runs = 0usize;
-            let mut skipped = false;
-            'rows: for row in 0..*rows {
-                let line = &cells[row * cols..(row + 1) * cols];
-                let mut col = 0;
-                while col < *cols {
-                    let state = line[col];
-                    let start = col;
-                    while col < *cols && line[col] == state {
-                        col += 1;
-                    }
-                    let Some(path) = (state as usize)
-                        .checked_sub(1)
-                        .and_then(|i| paths.get_mut(i))
-                    else {
-                        continue;
-                    };
-                    if runs >= MAX_RASTER_RUNS {
-                        skipped = true;
-                        break 'rows;
-                    }
-                    runs += 1;
-                    let corner = *min + DVec2::new(start as f64, (row + 1) as f64) * *cell_m;
-                    let (x, y) = m.p(corner);
-                    let _ = write!(
-                        path,
-                        "M{},{}h{}v{}h-{}z",
-                        n1(x),
-                        n1(y),
-                        n1(c * (col - start) as f64),
-                        n1(c),
-                        n1(c * (col - start) as f64)
-                    );
-                }
-            }
-            for (path, state) in paths.iter().zip(palette) {
-                if !path.is_empty() {
-                    let _ = write!(
-                        s,
-                        "<path d=\"{path}\" fill=\"{}\" fill-opacity=\"{}\"/>",
-                        colour(state.role),
-                        format_number(f64::from(state.alpha.clamp(0.0, 1.0)), 2)
-                    );
-                }
-            }
-            if skipped {
-                notes.push(format!(
-                    "the grid ({cols} × {rows} cells) is too detailed to draw here in full: open the link to see it"
-                ));
-            }
         }
-        // Marks at the canvas edge for something out of view, and items
-        // with non-finite or too few points, are left out.
+        | Item::VersionedRaster {
+            min,
+            cell_m,
+            cols,
+            rows,
+            cells,
+            palette,
+            ..
+        } => raster_svg(s, *min, *cell_m, (*cols, *rows), cells, palette, m, notes),
+        Item::OffView { at, label, role } => off_view_svg(s, m, (w, h), *at, label, *role),
+        // The keyboard's focus ring (the page adds it), and items with
+        // non-finite or too few points, are left out.
         _ => {}
     }
+}
+
+/// A batch of segments as one path: at most the first [`MAX_SEGMENTS`].
+fn segments_svg(
+    s: &mut String,
+    segments: &[(DVec2, DVec2)],
+    width_px: f64,
+    role: Role,
+    m: &Map,
+    notes: &mut Vec<String>,
+) {
+    if segments.len() > MAX_SEGMENTS {
+        notes.push(format!(
+            "the first {MAX_SEGMENTS} of {} edges drawn",
+            segments.len()
+        ));
+    }
+    // Whole units and a relative end point: about ten bytes an edge.
+    let mut d = String::new();
+    for (a, b) in segments.iter().take(MAX_SEGMENTS) {
+        if finite(a) && finite(b) {
+            let (pa, pb) = (m.p(*a), m.p(*b));
+            let (ax, ay) = (pa.0.round(), pa.1.round());
+            let _ = write!(
+                d,
+                "M{} {}l{} {}",
+                format_number(ax, 0),
+                format_number(ay, 0),
+                format_number(pb.0 - ax, 1),
+                format_number(pb.1 - ay, 1)
+            );
+        }
+    }
+    if !d.is_empty() {
+        let _ = write!(
+            s,
+            "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
+            colour(role),
+            n1(width_px)
+        );
+    }
+}
+
+/// A grid of cells as horizontal runs of one state, one path per state; at
+/// most [`MAX_RASTER_RUNS`] runs.
+#[allow(clippy::too_many_arguments)]
+fn raster_svg(
+    s: &mut String,
+    min: DVec2,
+    cell_m: f64,
+    (cols, rows): (usize, usize),
+    cells: &[u8],
+    palette: &[RasterColour],
+    m: &Map,
+    notes: &mut Vec<String>,
+) {
+    if cols == 0 || rows == 0 || cells.len() < cols * rows {
+        return;
+    }
+    let mut paths: Vec<String> = vec![String::new(); palette.len()];
+    let c = m.scale * cell_m;
+    let mut runs = 0usize;
+    let mut skipped = false;
+    'rows: for row in 0..rows {
+        let line = &cells[row * cols..(row + 1) * cols];
+        let mut col = 0;
+        while col < cols {
+            let state = line[col];
+            let start = col;
+            while col < cols && line[col] == state {
+                col += 1;
+            }
+            let Some(path) = (state as usize)
+                .checked_sub(1)
+                .and_then(|i| paths.get_mut(i))
+            else {
+                continue;
+            };
+            if runs >= MAX_RASTER_RUNS {
+                skipped = true;
+                break 'rows;
+            }
+            runs += 1;
+            let corner = min + DVec2::new(start as f64, (row + 1) as f64) * cell_m;
+            let (x, y) = m.p(corner);
+            let _ = write!(
+                path,
+                "M{},{}h{}v{}h-{}z",
+                n1(x),
+                n1(y),
+                n1(c * (col - start) as f64),
+                n1(c),
+                n1(c * (col - start) as f64)
+            );
+        }
+    }
+    for (path, state) in paths.iter().zip(palette) {
+        if !path.is_empty() {
+            let _ = write!(
+                s,
+                "<path d=\"{path}\" fill=\"{}\" fill-opacity=\"{}\"/>",
+                colour(state.role),
+                format_number(f64::from(state.alpha.clamp(0.0, 1.0)), 2)
+            );
+        }
+    }
+    if skipped {
+        notes.push(format!(
+            "the grid ({cols} × {rows} cells) is too detailed to draw here in full: open the link to see it"
+        ));
+    }
+}
+
+/// A point outside the picture: an arrowhead on the edge pointing at it,
+/// with its label toward the inside (as on the canvas).
+fn off_view_svg(s: &mut String, m: &Map, (w, h): (f64, f64), at: DVec2, label: &str, role: Role) {
+    let (px, py) = m.p(at);
+    let p = DVec2::new(px, py);
+    if !p.is_finite() || (px >= 0.0 && px <= w && py >= 0.0 && py <= h) {
+        return;
+    }
+    let c = DVec2::new(w, h) * 0.5;
+    let d = p - c;
+    let half = (c - DVec2::splat(6.0)).max(DVec2::splat(1.0));
+    let t = (half.x / d.x.abs()).min(half.y / d.y.abs());
+    let tip = c + d * t;
+    let u = d.normalize_or_zero();
+    let nrm = DVec2::new(-u.y, u.x) * 8.0;
+    let back = tip - u * 14.0;
+    let (l, r) = (back + nrm, back - nrm);
+    let at_text = back - u * 6.0;
+    let _ = write!(
+        s,
+        "<path d=\"M{},{}L{},{}L{},{}z\" fill=\"{c}\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>\
+         <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" dominant-baseline=\"middle\" font-weight=\"600\" \
+         fill=\"{c}\" stroke=\"#ffffff\" stroke-width=\"4\" paint-order=\"stroke\">{}</text>",
+        n1(tip.x),
+        n1(tip.y),
+        n1(l.x),
+        n1(l.y),
+        n1(r.x),
+        n1(r.y),
+        n1(at_text.x.clamp(40.0, (w - 40.0).max(40.0))),
+        n1(at_text.y.clamp(14.0, (h - 6.0).max(14.0))),
+        escape(label),
+        c = colour(role)
+    );
 }
 
 /// A shaft and a two-stroke head sized in pixels (as on the canvas).

@@ -102,6 +102,17 @@ fn well_formed_svg(svg: &str) -> Result<(), String> {
 /// No request can leave the file: no script, image, frame, style sheet or
 /// font reference, and no address but the link back to the lab.
 fn self_contained(html: &str, link: &str) -> Result<(), String> {
+    // The one script element is the data record, a type no browser runs.
+    let html = &match html.split_once("<script type=\"application/json\" id=\"lab-report-data\">") {
+        Some((before, after)) => {
+            let (data, rest) = after.split_once("</script>").ok_or("unclosed record")?;
+            if data.contains('<') {
+                return Err("markup in the record".into());
+            }
+            format!("{before}{rest}")
+        }
+        None => return Err("no data record".into()),
+    };
     let lower = html.to_lowercase();
     for bad in [
         "src=",
@@ -203,8 +214,11 @@ fn every_experiment_reports_every_parameter_and_plot_self_contained() {
                 seed: 42,
                 questions: &questions,
                 answers: &answers,
+                submitted: true,
             }),
             note: None,
+            student: Student::default(),
+            answer_key: AnswerKey::Submitted,
         });
         let id = entry.id;
         balanced(&html).unwrap_or_else(|e| panic!("{id}: {e}"));
@@ -270,6 +284,7 @@ fn every_experiment_reports_every_parameter_and_plot_self_contained() {
             seed: 42,
             questions: &questions,
             answers: &answers,
+            submitted: true,
         }
         .score();
         assert!(
@@ -412,11 +427,25 @@ fn hostile_text_everywhere_is_escaped() {
             seed: 1,
             questions: &questions,
             answers: &answers,
+            submitted: true,
         }),
         note: Some(EVIL),
+        student: Student {
+            name: EVIL,
+            group: EVIL,
+            observations: EVIL,
+        },
+        answer_key: AnswerKey::Submitted,
     });
     let lower = html.to_lowercase();
-    assert!(!lower.contains("<script"), "script injected");
+    // The one script element is the data record (JSON, never run).
+    assert_eq!(lower.matches("<script").count(), 1, "script injected");
+    assert_eq!(
+        lower
+            .matches("<script type=\"application/json\" id=\"lab-report-data\">")
+            .count(),
+        1
+    );
     assert!(!lower.contains("<img"), "img injected");
     assert!(!lower.contains("<b>k"), "label markup");
     assert!(!lower.contains("<th>\""), "table header markup");
@@ -507,6 +536,8 @@ fn an_empty_plot_and_an_unsubmitted_quiz_say_so() {
         date: "today",
         quiz: None,
         note: None,
+        student: Student::default(),
+        answer_key: AnswerKey::Submitted,
     });
     assert!(html.contains("No data yet: run the simulation first."));
     assert!(html.contains("No samples yet."));
@@ -601,4 +632,366 @@ fn scene_maps_world_to_picture_with_y_up() {
         )]
     );
     well_formed_svg(&svg).unwrap();
+}
+
+/// Whether the canvas paints something for `item` (labweb's `draw.rs`):
+/// batches with members, lines with enough points, grids with a lit cell. The
+/// focus ring is the page's own and not part of an experiment's scene.
+fn screen_draws(item: &crate::scene::Item, view: ViewBox) -> bool {
+    use crate::scene::Item;
+    match item {
+        Item::Points { points, .. } => !points.is_empty(),
+        Item::Segments { segments, .. } => !segments.is_empty(),
+        Item::SegmentLayer { layer, .. } => !layer.is_empty(),
+        Item::Arrows { arrows, .. } => !arrows.is_empty(),
+        Item::Arrow { from, to, .. } => (*to - *from).length() > 1e-9,
+        Item::Polyline { points, .. } => points.len() >= 2,
+        Item::Polygon { points, .. } => points.len() >= 3,
+        Item::Heatmap { values, .. } => values.iter().any(|v| *v > 0.0),
+        Item::Raster { cells, palette, .. } | Item::VersionedRaster { cells, palette, .. } => cells
+            .iter()
+            .any(|&c| c > 0 && usize::from(c) <= palette.len()),
+        Item::OffView { at, .. } => {
+            !(at.x >= view.min.x && at.x <= view.max.x && at.y >= view.min.y && at.y <= view.max.y)
+        }
+        Item::FocusRing { .. } => false,
+        _ => true,
+    }
+}
+
+/// The picture of one item alone: the SVG elements drawn for it (the
+/// picture's own background and frame left out) and the segments of its
+/// batch paths (`M` commands of `l`-segment paths).
+fn drawn_alone(item: &crate::scene::Item, view: ViewBox) -> (usize, usize) {
+    let mut scene = Scene::default();
+    scene.items.push(item.clone());
+    let (svg, _) = scene_svg::scene_svg(&scene, view);
+    let elements = svg.matches('<').count() - svg.matches("</").count() - 3;
+    let segments = svg
+        .split("<path d=\"")
+        .skip(1)
+        .map(|p| &p[..p.find('"').unwrap()])
+        .filter(|d| d.contains('l'))
+        .map(|d| d.matches('M').count())
+        .sum();
+    (elements, segments)
+}
+
+/// Segments a batch item holds (a tree's edges), 0 for other items.
+fn batch_len(item: &crate::scene::Item) -> usize {
+    use crate::scene::Item;
+    match item {
+        Item::Segments { segments, .. } => segments.len(),
+        Item::SegmentLayer { layer, .. } => layer.len(),
+        _ => 0,
+    }
+}
+
+/// Every experiment, in its preview after a minute's run and after each of
+/// its actions and a ten-second run: every item the canvas paints is drawn in
+/// the report's picture, and every batch of segments with as many segments as
+/// the live scene holds (up to the stated limit).
+#[test]
+fn report_scene_draws_every_item_the_live_scene_draws_for_every_experiment() {
+    let mut kinds_seen = std::collections::BTreeSet::new();
+    for entry in crate::registry() {
+        let id = entry.id;
+        let mut states: Vec<Box<dyn Experiment>> = Vec::new();
+        let mut exp = (entry.make)();
+        exp.preview();
+        for _ in 0..if exp.animated() { 3600 } else { 0 } {
+            exp.step(Clock::DT_S);
+        }
+        states.push(exp);
+        let probe = (entry.make)();
+        for action in probe.actions() {
+            let mut exp = (entry.make)();
+            exp.preview();
+            if exp.action(action.key).is_err() {
+                continue;
+            }
+            for _ in 0..600 {
+                exp.step(Clock::DT_S);
+            }
+            states.push(exp);
+        }
+        for exp in &states {
+            let view = exp.view();
+            let mut scene = Scene::default();
+            exp.scene(&mut scene);
+            for item in &scene.items {
+                if !screen_draws(item, view) {
+                    continue;
+                }
+                let kind = format!("{item:?}");
+                let kind = kind[..kind.find([' ', '{']).unwrap_or(kind.len())].to_owned();
+                let (elements, segments) = drawn_alone(item, view);
+                assert!(elements > 0, "{id}: the report leaves out a {kind}");
+                let live = batch_len(item);
+                if live > 0 {
+                    assert_eq!(
+                        segments,
+                        live.min(scene_svg::MAX_SEGMENTS),
+                        "{id}: {kind} of {live} segments"
+                    );
+                }
+                kinds_seen.insert(kind);
+            }
+        }
+    }
+    // The kept kinds are among those checked.
+    for kind in ["SegmentLayer", "VersionedRaster"] {
+        assert!(kinds_seen.contains(kind), "{kind} seen in {kinds_seen:?}");
+    }
+}
+
+/// The RRT* run of the issue: `iters=20000&batch=400`, Grow tree, stepped to
+/// "done". The report draws every edge of the tree the screen shows (nodes − 1).
+#[test]
+fn rrtstar_report_draws_the_whole_tree_after_the_longest_run() {
+    let entry = crate::find("rrtstar").unwrap();
+    let mut exp = (entry.make)();
+    exp.set_param("iters", 20_000.0).unwrap();
+    exp.set_param("batch", 400.0).unwrap();
+    exp.action("grow").unwrap();
+    let mut steps = 0;
+    while !exp.status().text.starts_with("done") {
+        exp.step(Clock::DT_S);
+        steps += 1;
+        assert!(steps < 1000, "done after 50 batches");
+    }
+    let nodes: usize = exp
+        .readouts()
+        .iter()
+        .find(|r| r.key == "nodes")
+        .unwrap()
+        .value
+        .replace(',', "")
+        .parse()
+        .unwrap();
+    assert!(nodes > 10_000, "{nodes} nodes");
+    let html = render(&Report {
+        experiment: exp.as_ref(),
+        content: entry.content().unwrap(),
+        link: "http://localhost/#/rrtstar/simulation",
+        date: "today",
+        quiz: None,
+        note: None,
+        student: Student::default(),
+        answer_key: AnswerKey::Submitted,
+    });
+    let scene = svgs(&html)[0];
+    // The tree is the one path in the Visited colour.
+    let tree = scene
+        .split("<path d=\"")
+        .skip(1)
+        .find(|p| p.contains("stroke=\"#56B4E9\""))
+        .expect("the tree is drawn");
+    assert_eq!(
+        tree[..tree.find('"').unwrap()].matches('M').count(),
+        nodes - 1
+    );
+}
+
+/// A report of experiment `id` with every answer the first option (or "1"),
+/// drawn from `seed`, `submitted` or not, with `key` and `student`.
+fn quiz_report(
+    id: &str,
+    seed: u64,
+    submitted: bool,
+    key: AnswerKey,
+    student: Student<'_>,
+) -> (String, usize, usize) {
+    let entry = crate::find(id).unwrap();
+    let exp = (entry.make)();
+    let content = entry.content().unwrap();
+    let questions = crate::quiz::prepare(content, entry.generators, seed).unwrap();
+    let answers: Vec<Response> = questions
+        .iter()
+        .map(|q| match &q.kind {
+            PreparedKind::Choice { .. } => Response::Choice(Some(0)),
+            PreparedKind::Numeric { .. } => Response::Text("1".into()),
+        })
+        .collect();
+    let quiz = QuizResult {
+        seed,
+        questions: &questions,
+        answers: &answers,
+        submitted,
+    };
+    let (right, total) = quiz.score();
+    let html = render(&Report {
+        experiment: exp.as_ref(),
+        content,
+        link: "http://localhost/#/pid/simulation",
+        date: "today",
+        quiz: Some(quiz),
+        note: None,
+        student,
+        answer_key: key,
+    });
+    (html, right, total)
+}
+
+/// Name, Group and Observations typed before the report are printed in it
+/// (escaped, line breaks kept), in fields the file keeps editable.
+#[test]
+fn report_fields_print_the_typed_name_group_and_observations() {
+    let student = Student {
+        name: "  Ada <Lovelace> ",
+        group: "B-2 & co",
+        observations: "The overshoot grew with Kp.\nKd damped it.",
+    };
+    let (html, _, _) = quiz_report("pid", 7, true, AnswerKey::Submitted, student);
+    assert!(html.contains(
+        "<dd class=\"field\" contenteditable=\"true\" data-field=\"name\">Ada &lt;Lovelace&gt;</dd>"
+    ));
+    assert!(html.contains(
+        "<dd class=\"field\" contenteditable=\"true\" data-field=\"group\">B-2 &amp; co</dd>"
+    ));
+    assert!(html
+        .contains("data-field=\"observations\">The overshoot grew with Kp.\nKd damped it.</div>"));
+    balanced(&html).unwrap();
+    // Left empty: blank fields to write on, and the full lined box.
+    let (blank, _, _) = quiz_report("pid", 7, true, AnswerKey::Submitted, Student::default());
+    assert!(blank.contains("data-field=\"name\"></dd>"));
+    assert_eq!(
+        blank.matches("<div class=\"line\"></div>").count(),
+        OBSERVATION_LINES
+    );
+}
+
+fn expected_cells(html: &str) -> usize {
+    html.matches("<td class=\"expected\">").count()
+}
+
+/// `key=never`: a submitted quiz is shown with its answers and marks but no
+/// expected answer anywhere.
+#[test]
+fn answer_key_never_hides_the_expected_answers() {
+    let (html, right, total) = quiz_report("fk", 3, true, AnswerKey::Never, Student::default());
+    assert!(html.contains(&format!("Score: {right} / {total}")));
+    assert_eq!(expected_cells(&html), 0);
+    assert!(!html.contains(">Expected<"));
+    assert!(html.contains("Expected answers are not shown"));
+    assert_eq!(
+        html.matches("<tr class=\"right\">").count() + html.matches("<tr class=\"wrong\">").count(),
+        total
+    );
+}
+
+/// `key=submitted`: expected answers once submitted, nothing before.
+#[test]
+fn answer_key_submitted_shows_them_after_submission_only() {
+    let (html, _, total) = quiz_report("fk", 3, true, AnswerKey::Submitted, Student::default());
+    assert_eq!(expected_cells(&html), total);
+    let (before, _, _) = quiz_report("fk", 3, false, AnswerKey::Submitted, Student::default());
+    assert_eq!(expected_cells(&before), 0);
+    assert!(before.contains("had not been submitted"));
+}
+
+/// `key=always`: the questions with their expected answers even before
+/// submission (no score), and after it.
+#[test]
+fn answer_key_always_shows_them_before_submission_too() {
+    let (before, _, total) = quiz_report("fk", 3, false, AnswerKey::Always, Student::default());
+    assert_eq!(expected_cells(&before), total);
+    assert!(!before.contains("Score:"));
+    assert!(before.contains("\"quiz\":null"), "no score to check");
+    let (after, _, _) = quiz_report("fk", 3, true, AnswerKey::Always, Student::default());
+    assert_eq!(expected_cells(&after), total);
+}
+
+/// The default: never when the link fixes a class-wide quiz seed, else after
+/// submission; a link's own choice wins, and round-trips.
+#[test]
+fn answer_key_defaults_to_never_when_the_link_fixes_a_quiz_seed() {
+    use crate::route::{parse, Page};
+    let ids = ["fk"];
+    let class = parse("#/fk/simulation?quiz=123", &ids);
+    assert_eq!(
+        AnswerKey::in_force(class.instructor.answer_key, class.quiz_seed),
+        AnswerKey::Never
+    );
+    let own = parse("#/fk/simulation", &ids);
+    assert_eq!(
+        AnswerKey::in_force(own.instructor.answer_key, own.quiz_seed),
+        AnswerKey::Submitted
+    );
+    for choice in AnswerKey::ALL {
+        let r = parse(
+            &format!("#/fk/simulation?quiz=123&key={}", choice.slug()),
+            &ids,
+        );
+        assert!(r.notices.is_empty(), "{:?}", r.notices);
+        assert_eq!(
+            AnswerKey::in_force(r.instructor.answer_key, r.quiz_seed),
+            choice
+        );
+        assert!(r
+            .instructor
+            .query()
+            .contains(&format!("key={}", choice.slug())));
+        assert!(matches!(r.page, Page::Experiment { ref params, .. } if params.is_empty()));
+    }
+    let bad = parse("#/fk/simulation?key=sometimes", &ids);
+    assert_eq!(bad.instructor.answer_key, None);
+    assert_eq!(
+        bad.notices,
+        vec!["Answer key “sometimes” is not never, submitted or always; ignored.".to_owned()]
+    );
+}
+
+/// The record a checker reads: the report's id, seed, answers and score as
+/// JSON, which grades again to the printed score; hostile typed answers
+/// cannot close the element.
+#[test]
+fn report_data_record_holds_id_seed_answers_and_the_printed_score() {
+    let (html, right, total) =
+        quiz_report("ik", u64::MAX, true, AnswerKey::Never, Student::default());
+    let start = html
+        .find("<script type=\"application/json\" id=\"lab-report-data\">")
+        .unwrap();
+    let body = &html[start..];
+    let json = &body[body.find('>').unwrap() + 1..body.find("</script>").unwrap()];
+    let v: serde_json::Value = serde_json::from_str(json).unwrap();
+    assert_eq!(v["report"], 1);
+    assert_eq!(v["id"], "ik");
+    let quiz = &v["quiz"];
+    assert_eq!(quiz["seed"], u64::MAX.to_string());
+    assert_eq!(quiz["score"], serde_json::json!([right, total]));
+    assert!(html.contains(&format!("Score: {right} / {total}")));
+    // Grading the record's answers again gives the printed score.
+    let entry = crate::find("ik").unwrap();
+    let questions =
+        crate::quiz::prepare(entry.content().unwrap(), entry.generators, u64::MAX).unwrap();
+    let answers: Vec<Response> = quiz["answers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| match a {
+            serde_json::Value::Number(k) => Response::Choice(Some(k.as_u64().unwrap() as usize)),
+            serde_json::Value::String(t) => Response::Text(t.clone()),
+            _ => Response::Choice(None),
+        })
+        .collect();
+    assert_eq!(answers.len(), total);
+    let again = QuizResult {
+        seed: u64::MAX,
+        questions: &questions,
+        answers: &answers,
+        submitted: true,
+    };
+    assert_eq!(again.score(), (right, total));
+    // Typed text that tries to end the element stays inside it.
+    let mut out = String::new();
+    json_string(&mut out, "</script><b>\"\\\n\u{2028}");
+    assert_eq!(
+        out,
+        "\"\\u003c/script\\u003e\\u003cb\\u003e\\\"\\\\\\u000a\\u2028\""
+    );
+    assert_eq!(
+        serde_json::from_str::<String>(&out).unwrap(),
+        "</script><b>\"\\\n\u{2028}"
+    );
 }

@@ -13,7 +13,7 @@ use labcore::{Experiment, ParamSpec};
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::{JsCast, JsValue};
-use web_sys::{Element, Event, HtmlInputElement};
+use web_sys::{Element, Event, HtmlInputElement, HtmlSelectElement};
 
 /// A small padlock drawn inline (no image request), hidden from screen
 /// readers: the text beside it says "locked".
@@ -88,6 +88,10 @@ pub(super) fn panel_html(specs: &[ParamSpec]) -> String {
          <input type=\"text\" class=\"instructor-note-input\" maxlength=\"{NOTE_MAX_CHARS}\" autocomplete=\"off\"></label>\
          <label class=\"instructor-field\">Quiz seed (the same questions for the whole class; empty: each student draws their own)\
          <input type=\"text\" class=\"instructor-quiz\" inputmode=\"numeric\" autocomplete=\"off\" spellcheck=\"false\"></label>\
+         <label class=\"instructor-field\">Expected answers in a student's lab report\
+         <select class=\"instructor-key\"><option value=\"\">Default: never with a quiz seed, else after submission</option>\
+         <option value=\"never\">Never</option><option value=\"submitted\">After submission</option>\
+         <option value=\"always\">Always</option></select></label>\
          <label class=\"instructor-field\">Link\
          <input type=\"text\" class=\"instructor-link\" readonly></label>\
          <p class=\"instructor-actions\"><button type=\"button\" class=\"mini\" data-instructor=\"copy\">Copy link</button> \
@@ -201,11 +205,15 @@ fn read_panel(panel: &Element) -> (Instructor, Option<u64>) {
     let quiz = query(panel, ".instructor-quiz")
         .and_then(|n| n.dyn_into::<HtmlInputElement>().ok())
         .and_then(|n| n.value().trim().parse::<u64>().ok());
+    let answer_key = query(panel, ".instructor-key")
+        .and_then(|n| n.dyn_into::<HtmlSelectElement>().ok())
+        .and_then(|n| route::AnswerKey::from_slug(&n.value()));
     (
         Instructor {
             locked: checked("data-lock"),
             hidden: checked("data-hide"),
             note: route::clean_note(&note).0,
+            answer_key,
             ..Instructor::default()
         },
         quiz,
@@ -307,6 +315,15 @@ impl SimState {
             query(panel, ".instructor-quiz").and_then(|n| n.dyn_into::<HtmlInputElement>().ok())
         {
             q.set_value(&self.quiz_seed.map(|s| s.to_string()).unwrap_or_default());
+        }
+        if let Some(k) =
+            query(panel, ".instructor-key").and_then(|n| n.dyn_into::<HtmlSelectElement>().ok())
+        {
+            k.set_value(
+                self.instructor
+                    .answer_key
+                    .map_or("", route::AnswerKey::slug),
+            );
         }
         self.sync_instructor_link();
     }

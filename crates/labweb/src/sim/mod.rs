@@ -140,6 +140,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
              </div>{statusbar}{touch_note}\
              {timebar}\
              <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button>{report}{describe}</div>\
+             {report_fields}\
            </div>\
            <div class=\"sim-side\">{main_plot}\
              <dl class=\"readouts\">{readouts}</dl>\
@@ -152,6 +153,7 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
          </div>{instructor_panel}",
         touch = if exp.captures_touch() { "all" } else { "handles" },
         report = crate::report_view::BUTTON_HTML,
+        report_fields = crate::report_view::fields_html(exp.id()),
         keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
         describe = a11y::describe_button_html(),
         move_form = a11y::move_form_html(),
@@ -782,6 +784,12 @@ impl SimView {
         st.shown_values.iter_mut().for_each(|v| *v = None);
         st.needs_paint = true;
         notices
+    }
+
+    /// Sets the quiz seed a link fixes (`?quiz=123`), keeping the
+    /// instructor's locks, hidden controls, note and answer-key choice.
+    pub fn set_quiz_seed(&self, quiz_seed: Option<u64>) {
+        self.state.borrow_mut().quiz_seed = quiz_seed;
     }
 
     /// The URL hash of the current state on `tab`.

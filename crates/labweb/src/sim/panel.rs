@@ -184,6 +184,12 @@ pub(super) fn listen(
         }));
         let s = state.clone();
         listeners.push(Listener::new(sim.as_ref(), "change", move |e: Event| {
+            let target = e.target().and_then(|t| t.dyn_into::<Element>().ok());
+            if target.is_some_and(|t| t.has_attribute("data-report-field")) {
+                let st = s.borrow();
+                let _ = crate::report_view::remember(&st.panel, st.exp.id());
+                return;
+            }
             if let Some(input) = e
                 .target()
                 .and_then(|t| t.dyn_into::<HtmlInputElement>().ok())
