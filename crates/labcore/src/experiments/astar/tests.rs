@@ -145,14 +145,38 @@ fn start_or_goal_inside_a_wall_is_refused_with_a_clear_status() {
     assert!(b.status().text.contains("goal (1, 1) is in a wall"));
 }
 
+/// Issue 23 §1: at the default Speed and the default clock (1×), the
+/// default search takes several seconds of simulated time, so the frontier
+/// can be watched; before, "path found" came within a second.
+#[test]
+fn the_default_search_takes_several_seconds_at_the_default_speed() {
+    let mut a = AStarGrid::default();
+    a.action("plan").unwrap();
+    let mut steps = 0;
+    while a.phase == Phase::Searching {
+        a.step(DT);
+        steps += 1;
+        assert!(steps < 100_000, "the search ends");
+    }
+    let seconds = steps as f64 * DT;
+    assert!(
+        (3.0..=10.0).contains(&seconds),
+        "the default search took {seconds:.2} s"
+    );
+}
+
 #[test]
 fn plan_animates_expansions_then_drives_to_the_goal() {
     let mut a = AStarGrid::default();
     a.action("plan").unwrap();
     assert!(a.animating());
     a.step(DT);
-    let per_step = a.expansions_per_step();
-    assert_eq!(a.search.as_ref().unwrap().expanded(), per_step);
+    assert_eq!(a.search.as_ref().unwrap().expanded(), a.expansions_due(1));
+    assert_eq!(
+        a.expansions_due(1),
+        1,
+        "the first step already expands a cell"
+    );
     // The open list panel: the expanded cell highlighted, then cells by f.
     let tables = a.tables();
     let open = tables.iter().find(|t| t.key == "open").unwrap();
@@ -1037,9 +1061,9 @@ fn step_6(a: &mut AStarGrid) {
     a.set_param("size", 3.0).unwrap();
     a.action("maze").unwrap();
     assert_eq!((a.grid().width(), a.grid().height()), (128, 96));
-    let slow = a.expansions_per_step();
+    let slow = a.expansions_due(60);
     a.set_param("rate", 20.0).unwrap();
-    assert!(a.expansions_per_step() > slow);
+    assert!(a.expansions_due(60) > slow);
     a.action("plan").unwrap();
     settle(a);
     assert_eq!(a.phase, Phase::Arrived);
