@@ -1475,3 +1475,44 @@ fn the_arena_scenario_is_the_files_last() {
         .iter()
         .all(|s| s.bucket <= arena_scenario().unwrap().bucket));
 }
+
+/// Issue 23 §3 (A* on a phone): a start or a goal out of the zoomed view
+/// is named once, by its edge mark; its own label, pulled onto the canvas's
+/// edge, overlapped the mark's.
+#[test]
+fn astar_on_a_phone_a_marker_out_of_view_has_one_label_not_two() {
+    let mut a = AStarGrid::default();
+    // A 390 px phone's canvas.
+    a.viewport_px(366.0, 227.0);
+    assert!(a.zoomed());
+    let v = a.view();
+    let in_view = |p: DVec2| p.cmpge(v.min).all() && p.cmple(v.max).all();
+    assert!(
+        in_view(a.cell_center(a.start())),
+        "the view frames the start"
+    );
+    assert!(!in_view(a.cell_center(a.goal())), "the goal is out of view");
+    for (sx, gx) in [(3.0, 28.0), (28.0, 3.0)] {
+        a.set_param("sx", sx).unwrap();
+        a.set_param("gx", gx).unwrap();
+        let mut scene = Scene::default();
+        a.scene(&mut scene);
+        for name in ["start", "goal"] {
+            let labels = scene
+                .items
+                .iter()
+                .filter(|i| matches!(i, Item::Label { text, .. } if text.as_str() == name))
+                .count();
+            let marks = scene
+                .items
+                .iter()
+                .filter(|i| matches!(i, Item::OffView { label, .. } if label.as_str() == name))
+                .count();
+            assert_eq!(
+                labels + marks,
+                1,
+                "{name} (start column {sx}, goal column {gx}): {labels} labels, {marks} edge marks"
+            );
+        }
+    }
+}
