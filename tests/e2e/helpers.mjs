@@ -133,7 +133,7 @@ export function useLab() {
  * Opens a fresh browser context + page and runs `fn(page, ctx)`. Afterwards
  * the test fails on anything that went wrong in the page.
  *
- * options: viewport, hasTouch, colorScheme, allowConsoleErrors, initScript,
+ * options: viewport, hasTouch, isMobile, colorScheme, allowConsoleErrors, initScript,
  * serviceWorkers ("block" by default: a test that routes or counts requests
  * must see them all; the offline tests pass "allow"), bypassCSP (to inject a
  * test's own script, e.g. axe-core, with addScriptTag).
@@ -142,11 +142,12 @@ export async function withPage(lab, options, fn) {
   const {
     viewport = DESKTOP,
     hasTouch = false,
+    isMobile = false,
     colorScheme = "light",
     serviceWorkers = "block",
     bypassCSP = false,
   } = options;
-  const context = await lab.browser.newContext({ viewport, hasTouch, colorScheme, serviceWorkers, bypassCSP });
+  const context = await lab.browser.newContext({ viewport, hasTouch, isMobile, colorScheme, serviceWorkers, bypassCSP });
   context.setDefaultTimeout(10_000);
   const problems = [];
   const origin = lab.server.origin;

@@ -97,9 +97,11 @@ const DRIVE_TIME_S: f64 = 6.0;
 const MIN_DRIVE_SPEED: f64 = 4.0; // m/s (cells per second)
 /// The smallest cell a finger can hit, CSS px (issue 13 §6).
 pub const MIN_CELL_PX: f64 = 24.0;
-/// Canvases at most this wide (a phone) zoom to [`MIN_CELL_PX`] cells by
-/// themselves; wider ones only when the student presses *Zoom*.
-pub const PHONE_WIDTH_PX: f64 = 600.0;
+/// Canvases at most this wide (a phone held upright: the widest are 430 CSS
+/// px) zoom to [`MIN_CELL_PX`] cells by themselves; wider ones only when the
+/// student presses *Zoom*. A laptop's canvas beside the plots and the
+/// controls is about 500 px wide (issue 23 §1) and shows the whole grid.
+pub const PHONE_WIDTH_PX: f64 = 460.0;
 
 const PARAMS: &[ParamSpec] = &[
     ParamSpec::choice("h", "Heuristic", HEURISTICS, 1),

@@ -1516,3 +1516,15 @@ fn astar_on_a_phone_a_marker_out_of_view_has_one_label_not_two() {
         }
     }
 }
+
+/// Issue 23 §1: the canvas of a 1280 × 800 laptop, beside the plots and the
+/// controls (about 508 × 440 CSS px), shows the whole grid; a phone's
+/// (366 × 227) zooms to finger-sized cells.
+#[test]
+fn a_laptop_canvas_beside_plots_and_controls_shows_the_whole_grid() {
+    let mut a = AStarGrid::default();
+    a.viewport_px(508.0, 440.0);
+    assert!(!a.zoomed(), "a laptop's canvas is not zoomed");
+    a.viewport_px(366.0, 227.0);
+    assert!(a.zoomed(), "a phone's canvas is");
+}
