@@ -142,7 +142,7 @@ export function useLab() {
  * Opens a fresh browser context + page and runs `fn(page, ctx)`. Afterwards
  * the test fails on anything that went wrong in the page.
  *
- * options: viewport, hasTouch, colorScheme, allowConsoleErrors, initScript,
+ * options: viewport, hasTouch, isMobile, colorScheme, allowConsoleErrors, initScript,
  * clock (Playwright's clock, stopped from the start: see `runFor` and `runUntil`),
  * serviceWorkers ("block" by default: a test that routes or counts requests
  * must see them all; the offline tests pass "allow"), bypassCSP (to inject a
@@ -155,12 +155,13 @@ export async function withPage(lab, options, fn) {
   const {
     viewport = DESKTOP,
     hasTouch = false,
+    isMobile = false,
     colorScheme = "light",
     serviceWorkers = "block",
     bypassCSP = false,
     clock = false,
   } = options;
-  const context = await lab.browser.newContext({ viewport, hasTouch, colorScheme, serviceWorkers, bypassCSP });
+  const context = await lab.browser.newContext({ viewport, hasTouch, isMobile, colorScheme, serviceWorkers, bypassCSP });
   context.setDefaultTimeout(10_000);
   // The page's clock is Playwright's, stopped before the page loads: no
   // animation frame or timer fires unless the test advances time (`runFor`,

@@ -86,7 +86,7 @@ const simBoxes = (page) =>
       canvas: box("canvas.sim-canvas"),
       status: box(".sim-status"),
       timebar: box(".timebar"),
-      actions: box(".sim-actions button"),
+      actions: box(".sim-actions button, .sim-tools button"),
       plot: box(".sim-mainplot canvas.plot-canvas"),
       side: box(".sim-side"),
     };
@@ -121,7 +121,7 @@ for (const viewport of [{ width: 1280, height: 800 }, { width: 1440, height: 900
   });
 }
 
-test("on a phone (390×844) the main plot comes right under the canvas, its status strip and time bar", async (t) => {
+test("on a phone (390×844) the canvas, its status strip, time bar, the actions that start a run and the main plot come in this order", async (t) => {
   const ids = await experimentIds(lab);
   await withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true }, async (page) => {
     for (const id of ids) {
@@ -132,11 +132,13 @@ test("on a phone (390×844) the main plot comes right under the canvas, its stat
         if (!b.plot) return; // an experiment without plots (fk, ik)
         const under = b.timebar ?? b.status;
         assert.ok(b.plot.top >= under.bottom, `${id}: plot below the time bar`);
-        // Nothing but the plot's own caption and legend between them.
+        // Nothing but the actions that start a run, and the plot's own
+        // caption and legend, between them (issue 23 §1: the action sits
+        // right under the canvas).
         const between = await page.evaluate((art) => {
           const plot = document.querySelector(`${art} .sim-mainplot`).getBoundingClientRect();
           const bar = (document.querySelector(`${art} .timebar`) ?? document.querySelector(`${art} .sim-statusbar`)).getBoundingClientRect();
-          const others = [".sim-actions", ".readouts", ".sim-controls", ".tables:not(:empty)"]
+          const others = [".sim-actions", ".sim-tools", ".readouts", ".sim-controls", ".tables:not(:empty)"]
             .map((s) => document.querySelector(`${art} ${s}`))
             .filter((el) => el && el.getBoundingClientRect().height > 0)
             .filter((el) => {
@@ -145,7 +147,8 @@ test("on a phone (390×844) the main plot comes right under the canvas, its stat
             });
           return others.map((el) => el.className);
         }, ART);
-        assert.deepEqual(between, [], `${id}: nothing between the time bar and the main plot`);
+        const actions = (await page.locator(`${ART} .sim-actions button`).count()) > 0;
+        assert.deepEqual(between, actions ? ["sim-actions"] : [], `${id}: only the actions between the time bar and the main plot`);
         if (["pid", "diffdrive", "astar", "ekf"].includes(id)) await screenshot(page, `${id}-simulation-390`);
       });
     }

@@ -45,7 +45,7 @@ const walls = async (page) => Number((await readouts(page)).grid.match(/(\d+) wa
 
 test("astar: drag paints walls, Shift-click moves the start, Plan & drive finds the path; open list and Compare tables render", () =>
   withPage(lab, { clock: true }, async (page) => {
-    await open(lab, page, "#/astar/simulation");
+    await open(lab, page, "#/astar/simulation?rate=18");
     assert.equal(await page.locator(`${ART} canvas.sim-canvas`).getAttribute("data-touch"), "all");
     const before = await walls(page);
     // Paint a wall down column 25, rows 16 to 22 (free in the default grid).
@@ -127,7 +127,7 @@ test("astar: a finger paints walls too: the canvas takes the touch and the page 
 
 test("astar step 1: on a 390 px phone the grid's cells are at least 24 CSS px under a finger", () =>
   withPage(lab, { viewport: PHONE_390, hasTouch: true, clock: true }, async (page) => {
-    await open(lab, page, "#/astar/simulation");
+    await open(lab, page, "#/astar/simulation?rate=18");
     const canvas = page.locator(`${ART} canvas.sim-canvas`);
     const box = await canvas.boundingBox();
     const [minX, minY, maxX, maxY] = await viewBox(page);

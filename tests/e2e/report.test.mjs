@@ -214,7 +214,7 @@ test("pid: after a run and a submitted quiz, the report holds the run, every plo
 
 test("astar: after Plan & drive the report holds the search's tables and plots", () =>
   withPage(lab, {}, async (page) => {
-    await open(lab, page, "#/astar/simulation");
+    await open(lab, page, "#/astar/simulation?rate=18");
     await page.click(`${ART} button[data-action=plan]`);
     await waitStatus(page, /^arrived: path cost/);
     await pause(page);

@@ -10,8 +10,9 @@
 //! - The "Move a point" form beside the canvas takes typed coordinates for
 //!   the same handles.
 //! - `D` on the canvas and the Describe button put
-//!   [`labcore::Experiment::describe`] into the polite live region; so does
-//!   the end of a run (the status phase turning [`labcore::Phase::Ended`]).
+//!   [`labcore::Experiment::describe`] into the polite live region and show
+//!   it on the page under the button, for sighted students too; the end of
+//!   a run (the status phase turning [`labcore::Phase::Ended`]) announces it.
 
 use super::SimState;
 use crate::dom::{self, escape, query, Listener};
@@ -33,6 +34,11 @@ const STEP_FRACTION: f64 = 0.02;
 pub(super) fn describe_button_html() -> &'static str {
     "<button type=\"button\" class=\"mini\" data-a11y=\"describe\" aria-keyshortcuts=\"D\">Describe</button>"
 }
+
+/// Where Describe shows its text on the page (under the tools), besides
+/// announcing it: a sighted student who presses it sees what it said. Not a
+/// live region itself (the polite one announces the text once).
+pub(super) const DESCRIPTION_HTML: &str = "<p class=\"sim-description\" hidden></p>";
 
 /// The "Move a point" form: which handle, and its x and y typed. Hidden while
 /// there is nothing to move.
@@ -109,6 +115,20 @@ impl SimState {
         self.say(&self.exp.describe());
     }
 
+    /// Describe (the button or `D`): announces the description and shows it
+    /// on the page, scrolled into view if it is not.
+    pub(super) fn describe_on_request(&self) {
+        let text = self.exp.describe();
+        self.say(&text);
+        if let Some(shown) = query(&self.panel, ".sim-description") {
+            shown.set_text_content(Some(&text));
+            dom::set_hidden(&shown, false);
+            let options = web_sys::ScrollIntoViewOptions::new();
+            options.set_block(web_sys::ScrollLogicalPosition::Nearest);
+            shown.scroll_into_view_with_scroll_into_view_options(&options);
+        }
+    }
+
     fn say_handle(&self, h: &Handle, lead: &str) {
         if h.x_only {
             self.say(&format!(
@@ -159,7 +179,7 @@ impl SimState {
                 true
             }
             "d" | "D" => {
-                self.describe_scene();
+                self.describe_on_request();
                 true
             }
             "ArrowLeft" | "ArrowRight" | "ArrowUp" | "ArrowDown" => {
@@ -371,7 +391,7 @@ pub(super) fn listen(
     if let Some(button) = query(panel, "[data-a11y=describe]") {
         let s = state.clone();
         listeners.push(Listener::new(button.as_ref(), "click", move |_| {
-            s.borrow().describe_scene();
+            s.borrow().describe_on_request();
         }));
     }
 }

@@ -65,12 +65,15 @@ pub struct SimError(pub String);
 
 /// The HTML of the Simulation tab for an experiment.
 ///
-/// The stage holds the canvas, the status strip under it, the time bar and
-/// the actions; the side panel the experiment's main plot (its first), the
-/// readouts, tables and controls; further plots follow below. On a wide
-/// screen the main plot is thus beside the canvas; on a phone the two
-/// columns dissolve into one ordered list with the main plot right under
-/// the canvas and its time bar (see `style.css`).
+/// Three parts side by side on a laptop (see `style.css`): the stage (the
+/// canvas, the status strip under it, the time bar, the actions that start
+/// a run, then the tools: files, Save PNG, report, Describe and the
+/// description it shows), the plots (the experiment's main plot, its first,
+/// on top, then the others) and the side (the caption, readouts, tables and
+/// controls). The stage and the plots stay put while the page scrolls the
+/// side, so the scene and its plots stay in view while any control is used.
+/// On a phone the parts dissolve into one ordered column: the canvas, its
+/// status and time bar, the actions, the main plot, then the rest.
 pub fn render(exp: &dyn Experiment, caption: &str) -> String {
     let controls = panel::controls_html(exp.params());
     let actions: String = exp
@@ -98,11 +101,16 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
             plot_view::render(p)
         )
     });
-    let plots: String = all_plots.iter().skip(1).map(plot_view::render).collect();
-    let plots = if plots.is_empty() {
+    let more_plots: String = all_plots.iter().skip(1).map(plot_view::render).collect();
+    let more_plots = if more_plots.is_empty() {
+        more_plots
+    } else {
+        format!("<section class=\"plots\" aria-label=\"Plots\">{more_plots}</section>")
+    };
+    let plots = if all_plots.is_empty() {
         String::new()
     } else {
-        format!("<section class=\"plots\" aria-label=\"Plots\">{plots}</section>")
+        format!("<div class=\"sim-plots\">{main_plot}{more_plots}</div>")
     };
     let files = if exp.file_types().is_empty() {
         String::new()
@@ -133,29 +141,31 @@ pub fn render(exp: &dyn Experiment, caption: &str) -> String {
     format!(
         "{note}<div class=\"sim\">\
            <div class=\"sim-stage\">\
-             <p class=\"sim-caption\">{caption}</p>\
              <div class=\"sim-frame\">\
                <canvas class=\"sim-canvas\" data-touch=\"{touch}\" tabindex=\"0\" role=\"application\" aria-roledescription=\"simulation\" \
                  aria-label=\"Simulation canvas. Drag or tap to interact; with the canvas focused, arrow keys move the point (Shift for fine steps), [ and ] choose a point to move{keys}, D describes the scene, question mark lists every key.\"></canvas>\
              </div>{statusbar}{touch_note}\
              {timebar}\
-             <div class=\"sim-actions\">{actions}{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button>{report}{describe}</div>\
-             {report_fields}\
-           </div>\
-           <div class=\"sim-side\">{main_plot}\
+             <div class=\"sim-actions\">{actions}</div>\
+             <div class=\"sim-tools\">{files}{save}<button type=\"button\" class=\"mini\" data-export=\"png\">Save PNG</button>{report}{describe}</div>\
+             {description}\
+           </div>{plots}\
+           <div class=\"sim-side\">\
+             <p class=\"sim-caption\">{caption}</p>\
              <dl class=\"readouts\">{readouts}</dl>\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
              <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
              {presets}<form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>{move_form}\
+             {report_fields}\
              <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\
            </div>\
-           {plots}\
          </div>{instructor_panel}",
         touch = if exp.captures_touch() { "all" } else { "handles" },
         report = crate::report_view::BUTTON_HTML,
         report_fields = crate::report_view::fields_html(exp.id()),
         keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
         describe = a11y::describe_button_html(),
+        description = a11y::DESCRIPTION_HTML,
         move_form = a11y::move_form_html(),
     )
 }

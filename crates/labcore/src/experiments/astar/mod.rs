@@ -80,9 +80,15 @@ pub const MAX_SIDE: usize = 1024;
 /// leaves the walls out (about 2 kB keeps every link well inside what
 /// browsers and chat programs pass on).
 pub const LINK_WALLS_MAX: usize = 2000;
-/// Expansions per fixed step at speed 1 on a grid of this many cells; larger
-/// grids expand proportionally more, so every search takes a similar time.
+/// At Speed 1 a grid of up to this many cells expands one cell every
+/// [`STEPS_PER_EXPANSION`] fixed steps; larger grids expand proportionally
+/// more, so every search takes a similar time.
 const CELLS_PER_EXPANSION: usize = 768;
+/// Fixed steps (1/60 s each) per expanded cell at Speed 1 on a small grid:
+/// 10 cells a second, so at the default Speed 3 the default search (about
+/// 150 expansions) takes some five seconds and the frontier can be watched
+/// as it grows (issue 23 §1).
+const STEPS_PER_EXPANSION: usize = 6;
 /// Rows of the open-list panel (the expanded cell and the next open cells).
 pub const OPEN_ROWS: usize = 8;
 /// The robot drives a path in at most this many seconds (and at least
@@ -91,9 +97,11 @@ const DRIVE_TIME_S: f64 = 6.0;
 const MIN_DRIVE_SPEED: f64 = 4.0; // m/s (cells per second)
 /// The smallest cell a finger can hit, CSS px (issue 13 §6).
 pub const MIN_CELL_PX: f64 = 24.0;
-/// Canvases at most this wide (a phone) zoom to [`MIN_CELL_PX`] cells by
-/// themselves; wider ones only when the student presses *Zoom*.
-pub const PHONE_WIDTH_PX: f64 = 600.0;
+/// Canvases at most this wide (a phone held upright: the widest are 430 CSS
+/// px) zoom to [`MIN_CELL_PX`] cells by themselves; wider ones only when the
+/// student presses *Zoom*. A laptop's canvas beside the plots and the
+/// controls is about 500 px wide (issue 23 §1) and shows the whole grid.
+pub const PHONE_WIDTH_PX: f64 = 460.0;
 
 const PARAMS: &[ParamSpec] = &[
     ParamSpec::choice("h", "Heuristic", HEURISTICS, 1),
@@ -682,10 +690,12 @@ impl AStarGrid {
         }
     }
 
-    /// Expansions per fixed step: `rate · max(1, cells / 768)`.
-    fn expansions_per_step(&self) -> usize {
+    /// Expansions due after `steps` fixed steps of search:
+    /// `⌈steps · rate · max(1, cells / 768) / 6⌉`, so the first step
+    /// already expands a cell and the pace holds whatever the rate.
+    fn expansions_due(&self, steps: usize) -> usize {
         let cells = self.grid.width() * self.grid.height();
-        self.rate * (cells / CELLS_PER_EXPANSION).max(1)
+        (steps * self.rate * (cells / CELLS_PER_EXPANSION).max(1)).div_ceil(STEPS_PER_EXPANSION)
     }
 
     /// The path of a finished search as world points.
@@ -1376,7 +1386,8 @@ impl Experiment for AStarGrid {
         match self.phase {
             Phase::Comparing => self.compare_step(),
             Phase::Searching => {
-                let n = self.expansions_per_step();
+                let n = self.expansions_due(self.search_steps + 1)
+                    - self.expansions_due(self.search_steps);
                 let Some(search) = self.search.as_mut() else {
                     self.phase = Phase::Idle;
                     return;

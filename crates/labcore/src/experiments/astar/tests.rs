@@ -145,14 +145,38 @@ fn start_or_goal_inside_a_wall_is_refused_with_a_clear_status() {
     assert!(b.status().text.contains("goal (1, 1) is in a wall"));
 }
 
+/// Issue 23 §1: at the default Speed and the default clock (1×), the
+/// default search takes several seconds of simulated time, so the frontier
+/// can be watched; before, "path found" came within a second.
+#[test]
+fn the_default_search_takes_several_seconds_at_the_default_speed() {
+    let mut a = AStarGrid::default();
+    a.action("plan").unwrap();
+    let mut steps = 0;
+    while a.phase == Phase::Searching {
+        a.step(DT);
+        steps += 1;
+        assert!(steps < 100_000, "the search ends");
+    }
+    let seconds = steps as f64 * DT;
+    assert!(
+        (3.0..=10.0).contains(&seconds),
+        "the default search took {seconds:.2} s"
+    );
+}
+
 #[test]
 fn plan_animates_expansions_then_drives_to_the_goal() {
     let mut a = AStarGrid::default();
     a.action("plan").unwrap();
     assert!(a.animating());
     a.step(DT);
-    let per_step = a.expansions_per_step();
-    assert_eq!(a.search.as_ref().unwrap().expanded(), per_step);
+    assert_eq!(a.search.as_ref().unwrap().expanded(), a.expansions_due(1));
+    assert_eq!(
+        a.expansions_due(1),
+        1,
+        "the first step already expands a cell"
+    );
     // The open list panel: the expanded cell highlighted, then cells by f.
     let tables = a.tables();
     let open = tables.iter().find(|t| t.key == "open").unwrap();
@@ -1037,9 +1061,9 @@ fn step_6(a: &mut AStarGrid) {
     a.set_param("size", 3.0).unwrap();
     a.action("maze").unwrap();
     assert_eq!((a.grid().width(), a.grid().height()), (128, 96));
-    let slow = a.expansions_per_step();
+    let slow = a.expansions_due(60);
     a.set_param("rate", 20.0).unwrap();
-    assert!(a.expansions_per_step() > slow);
+    assert!(a.expansions_due(60) > slow);
     a.action("plan").unwrap();
     settle(a);
     assert_eq!(a.phase, Phase::Arrived);
@@ -1450,4 +1474,57 @@ fn the_arena_scenario_is_the_files_last() {
     assert!(all
         .iter()
         .all(|s| s.bucket <= arena_scenario().unwrap().bucket));
+}
+
+/// Issue 23 §3 (A* on a phone): a start or a goal out of the zoomed view
+/// is named once, by its edge mark; its own label, pulled onto the canvas's
+/// edge, overlapped the mark's.
+#[test]
+fn astar_on_a_phone_a_marker_out_of_view_has_one_label_not_two() {
+    let mut a = AStarGrid::default();
+    // A 390 px phone's canvas.
+    a.viewport_px(366.0, 227.0);
+    assert!(a.zoomed());
+    let v = a.view();
+    let in_view = |p: DVec2| p.cmpge(v.min).all() && p.cmple(v.max).all();
+    assert!(
+        in_view(a.cell_center(a.start())),
+        "the view frames the start"
+    );
+    assert!(!in_view(a.cell_center(a.goal())), "the goal is out of view");
+    for (sx, gx) in [(3.0, 28.0), (28.0, 3.0)] {
+        a.set_param("sx", sx).unwrap();
+        a.set_param("gx", gx).unwrap();
+        let mut scene = Scene::default();
+        a.scene(&mut scene);
+        for name in ["start", "goal"] {
+            let labels = scene
+                .items
+                .iter()
+                .filter(|i| matches!(i, Item::Label { text, .. } if text.as_str() == name))
+                .count();
+            let marks = scene
+                .items
+                .iter()
+                .filter(|i| matches!(i, Item::OffView { label, .. } if label.as_str() == name))
+                .count();
+            assert_eq!(
+                labels + marks,
+                1,
+                "{name} (start column {sx}, goal column {gx}): {labels} labels, {marks} edge marks"
+            );
+        }
+    }
+}
+
+/// Issue 23 §1: the canvas of a 1280 × 800 laptop, beside the plots and the
+/// controls (about 508 × 440 CSS px), shows the whole grid; a phone's
+/// (366 × 227) zooms to finger-sized cells.
+#[test]
+fn a_laptop_canvas_beside_plots_and_controls_shows_the_whole_grid() {
+    let mut a = AStarGrid::default();
+    a.viewport_px(508.0, 440.0);
+    assert!(!a.zoomed(), "a laptop's canvas is not zoomed");
+    a.viewport_px(366.0, 227.0);
+    assert!(a.zoomed(), "a phone's canvas is");
 }

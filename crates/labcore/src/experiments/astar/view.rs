@@ -189,18 +189,21 @@ pub(super) fn scene(a: &AStarGrid, out: &mut Scene) {
         radius_px: marker,
         role: Role::Tip,
     });
-    out.push(Item::Label {
-        pos: start,
-        text: "start".into(),
-        role: Role::Text,
-        offset_px: DVec2::new(8.0, -10.0),
-    });
-    out.push(Item::Label {
-        pos: goal,
-        text: "goal".into(),
-        role: Role::Text,
-        offset_px: DVec2::new(8.0, -10.0),
-    });
+    // A marker out of the zoomed view is named by its edge mark (see
+    // `pan_band`) alone: its own label, kept on the canvas, would sit on
+    // the mark's.
+    let view = a.view();
+    let zoomed = a.zoomed();
+    for (pos, text) in [(start, "start"), (goal, "goal")] {
+        if !zoomed || (pos.cmpge(view.min).all() && pos.cmple(view.max).all()) {
+            out.push(Item::Label {
+                pos,
+                text: text.into(),
+                role: Role::Text,
+                offset_px: DVec2::new(8.0, -10.0),
+            });
+        }
+    }
     if let Some(p) = a.robot() {
         out.push(Item::Circle {
             center: p,
