@@ -331,6 +331,16 @@ export function settle(page) {
   );
 }
 
+/**
+ * Waits until `predicate(arg)` holds in the page: on a stopped clock
+ * (`withPage`'s `clock`) by running page time (`runUntil`), else as
+ * `page.waitForFunction` does. For helpers shared by tests of both kinds.
+ */
+export function until(page, predicate, arg, options = {}) {
+  if (stoppedClocks.has(page.context())) return runUntil(page, predicate, arg, options);
+  return page.waitForFunction(predicate, arg, options);
+}
+
 /** Advances a frozen clock by `ms` of page time, one 60 Hz frame at a time. */
 export async function runFor(page, ms) {
   await page.clock.runFor(ms);

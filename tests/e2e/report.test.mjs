@@ -12,7 +12,7 @@ import { mkdirSync } from "node:fs";
 import { readFile, writeFile } from "node:fs/promises";
 import { join } from "node:path";
 import { pathToFileURL } from "node:url";
-import { SHOTS, open, screenshot, settle, useLab, waitReady, withPage } from "./helpers.mjs";
+import { SHOTS, open, runUntil, screenshot, settle, until, useLab, waitReady, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 const ART = "article.exp:not([hidden])";
@@ -21,7 +21,8 @@ const ART = "article.exp:not([hidden])";
 const sizes = {};
 
 function waitStatus(page, pattern, timeout = 20_000) {
-  return page.waitForFunction(
+  return until(
+    page,
     ([sel, source]) => new RegExp(source).test(document.querySelector(sel)?.textContent ?? ""),
     [`${ART} .sim-status`, pattern.source],
     { timeout },
@@ -33,7 +34,7 @@ async function pause(page) {
   const play = page.locator(`${ART} button[data-time=play]`);
   if ((await play.count()) && (await play.getAttribute("aria-pressed")) === "true") {
     await play.click();
-    await page.waitForFunction(() => /[?&]run=0(&|$)/.test(location.hash));
+    await until(page, () => /[?&]run=0(&|$)/.test(location.hash));
   }
   await settle(page);
 }
@@ -197,11 +198,11 @@ async function submitQuiz(page, id) {
 }
 
 test("pid: after a run and a submitted quiz, the report holds the run, every plot and the score; prints on A4 and Letter", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation");
-    await page.waitForFunction(() => Number.parseFloat(document.querySelector("[data-readout=x]").textContent) > 0.9);
+    await runUntil(page, () => Number.parseFloat(document.querySelector("[data-readout=x]").textContent) > 0.9);
     await page.locator(`${ART} button[data-action=pin]`).click();
-    await page.waitForSelector("[data-readout=pinA]");
+    await until(page, () => Boolean(document.querySelector("[data-readout=pinA]")));
     const quiz = await submitQuiz(page, "pid");
     await pause(page);
     const facts = await pageFacts(page);
@@ -213,7 +214,7 @@ test("pid: after a run and a submitted quiz, the report holds the run, every plo
   }));
 
 test("astar: after Plan & drive the report holds the search's tables and plots", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation?rate=18");
     await page.click(`${ART} button[data-action=plan]`);
     await waitStatus(page, /^arrived: path cost/);
@@ -224,12 +225,12 @@ test("astar: after Plan & drive the report holds the search's tables and plots",
   }));
 
 test("ekf: after a run the report holds every plot and no quiz", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/ekf/simulation");
     await waitStatus(page, /^EKF localisation, known map$/);
     // Run at 4× for a while: many samples, so the tables are decimated.
     await page.selectOption(`${ART} select[data-time=speed]`, "4");
-    await page.waitForFunction(() => Number(document.querySelector("canvas.sim-canvas").dataset.steps) > 4000, null, {
+    await runUntil(page, () => Number(document.querySelector("canvas.sim-canvas").dataset.steps) > 4000, null, {
       timeout: 60_000,
     });
     await pause(page);
@@ -240,7 +241,7 @@ test("ekf: after a run the report holds every plot and no quiz", () =>
   }));
 
 test("rrtstar: the report after the longest run (20,000 iterations) draws the whole tree the screen shows and stays small", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     // The largest budget: 20,000 iterations, the biggest tree and cost curve,
     // reached by stepping (one step is one batch of 400 iterations).
     await open(lab, page, "#/rrtstar/simulation?iters=20000&batch=400");
