@@ -16,7 +16,6 @@
 use super::SimState;
 use crate::dom::{self, escape, query, Listener};
 use glam::DVec2;
-use labcore::experiment::format_point;
 use labcore::quiz::format_number;
 use labcore::{Handle, Item};
 use std::cell::RefCell;
@@ -41,13 +40,14 @@ pub(super) fn move_form_html() -> String {
         format!(
             "<div class=\"ctl ctl-number\"><label for=\"move-{axis}\">{axis}</label>\
              <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" \
-             id=\"move-{axis}\" data-move=\"{axis}\" aria-label=\"{axis} in m\"><span class=\"unit\" aria-hidden=\"true\">m</span></span></div>"
+             id=\"move-{axis}\" data-move=\"{axis}\" aria-label=\"{axis} in m\"><span class=\"unit\" aria-hidden=\"true\" data-move-unit>m</span></span></div>"
         )
     };
     format!(
         "<form class=\"sim-move\" aria-labelledby=\"move-title\" hidden>\
            <h3 class=\"sim-move-title\" id=\"move-title\">Move a point</h3>\
-           <p class=\"sim-move-help\">Or, on the canvas: <kbd>[</kbd> <kbd>]</kbd> choose, arrow keys move.</p>\
+           <p class=\"sim-move-help\"><span data-for=\"keys\">Or, on the canvas: <kbd>[</kbd> <kbd>]</kbd> choose, arrow keys move.</span>\
+           <span data-for=\"touch\" hidden>Or drag the point on the canvas.</span></p>\
            <div class=\"ctl ctl-choice\"><label for=\"move-handle\">Point</label>\
            <select id=\"move-handle\" data-move=\"handle\"></select></div>\
            {x}{y}\
@@ -110,7 +110,11 @@ impl SimState {
     }
 
     fn say_handle(&self, h: &Handle, lead: &str) {
-        self.say(&format!("{lead}{} at {}.", h.label, format_point(h.at)));
+        self.say(&format!(
+            "{lead}{} at {}.",
+            h.label,
+            h.typed_text(h.typed().1)
+        ));
     }
 
     /// The focus ring of the chosen handle, after the experiment's scene; a
@@ -180,8 +184,9 @@ impl SimState {
     /// Moves handle `id` to `to` (keyboard or typed), through the
     /// instructor's locks like a pointer drag, and says where it went. A key
     /// move is `paced` like a drag (keys repeat); a typed one is not.
-    fn move_to(&mut self, id: &str, to: DVec2, paced: bool) {
-        self.guarded(|exp| {
+    /// Returns whether a lock held the point (the message says so).
+    fn move_to(&mut self, id: &str, to: DVec2, paced: bool) -> bool {
+        let locked = self.guarded(|exp| {
             exp.move_handle(id, to);
         });
         self.needs_paint = true;
@@ -195,6 +200,7 @@ impl SimState {
                 self.say("That point is gone.");
             }
         }
+        locked
     }
 
     /// Brings the Move form up to date: the handles listed, the chosen one
@@ -248,8 +254,23 @@ impl SimState {
             select.set_value(&h.id);
         }
         let active = dom::document().active_element();
-        for (axis, v) in [("x", h.at.x), ("y", h.at.y)] {
+        // Metres, or a grid cell's column and row (the controls' numbers).
+        let (names, typed) = h.typed();
+        let unit = if h.grid_rows.is_some() { "" } else { "m" };
+        for ((axis, v), name) in [("x", typed.x), ("y", typed.y)].into_iter().zip(names) {
+            if let Some(label) = query(&form, &format!("label[for=move-{axis}]")) {
+                label.set_text_content(Some(name));
+            }
             if let Some(input) = query(&form, &format!("input[data-move={axis}]")) {
+                if let Some(u) = input.next_element_sibling() {
+                    u.set_text_content(Some(unit));
+                }
+                let aria = if unit.is_empty() {
+                    name.to_owned()
+                } else {
+                    format!("{name} in {unit}")
+                };
+                let _ = input.set_attribute("aria-label", &aria);
                 if active.as_ref() != Some(&input) {
                     if let Some(input) = input.dyn_ref::<HtmlInputElement>() {
                         input.set_value(&format_number(v, 2));
@@ -275,27 +296,38 @@ impl SimState {
         else {
             return;
         };
-        let read = |axis: &str| {
+        let Some(handle) = self.exp.handles().into_iter().find(|h| h.id == id) else {
+            return;
+        };
+        let (names, _) = handle.typed();
+        let unit = if handle.grid_rows.is_some() { "" } else { "m" };
+        let read = |axis: &str, name: &str| {
             let raw = value(&format!("input[data-move={axis}]"));
             if raw.trim().is_empty() {
-                return Err(format!("{axis}: nothing was typed"));
+                return Err(format!("{name}: nothing was typed"));
             }
-            labcore::quiz::read_answer(&raw, "m")
+            labcore::quiz::read_answer(&raw, unit)
                 .map(|r| r.value)
-                .map_err(|e| format!("{axis}: {e}"))
+                .map_err(|e| format!("{name}: {e}"))
         };
         self.student_acted();
-        match (read("x"), read("y")) {
+        match (read("x", names[0]), read("y", names[1])) {
             (Ok(x), Ok(y)) => {
-                let to = DVec2::new(x, y);
+                let typed = DVec2::new(x, y);
+                let to = handle.from_typed(typed);
                 self.focused_handle = Some(id.clone());
-                self.move_to(&id, to, false);
+                let locked = self.move_to(&id, to, false);
                 match self.focused() {
+                    Some(h) if locked => self.show_message(Some(&format!(
+                        "{} is locked by your instructor; it stays at {}.",
+                        h.label,
+                        h.typed_text(h.typed().1)
+                    ))),
                     Some(h) if (h.at - to).length() > 0.006 => self.show_message(Some(&format!(
                         "{} could not go to {}; it is at {}.",
                         h.label,
-                        format_point(to),
-                        format_point(h.at)
+                        h.typed_text(typed),
+                        h.typed_text(h.typed().1)
                     ))),
                     _ => self.show_message(None),
                 }

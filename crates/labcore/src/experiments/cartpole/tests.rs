@@ -1055,7 +1055,7 @@ fn ghost_legend(e: &CartPoleBalance) -> Option<DVec2> {
     let mut scene = Scene::default();
     e.scene(&mut scene);
     scene.items.iter().find_map(|item| match item {
-        Item::Label { pos, text, .. } if text == view::GHOST_LEGEND => Some(*pos),
+        Item::Label { pos, text, .. } if text == "linear model (dashed)" => Some(*pos),
         _ => None,
     })
 }
