@@ -40,7 +40,7 @@ pub(super) fn move_form_html() -> String {
         format!(
             "<div class=\"ctl ctl-number\"><label for=\"move-{axis}\">{axis}</label>\
              <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" \
-             id=\"move-{axis}\" data-move=\"{axis}\" aria-label=\"{axis} in m\"><span class=\"unit\" aria-hidden=\"true\" data-move-unit>m</span></span></div>"
+             id=\"move-{axis}\" data-move=\"{axis}\"><span class=\"unit\" data-move-unit>m</span></span></div>"
         )
     };
     format!(
@@ -257,21 +257,18 @@ impl SimState {
         // Metres, or a grid cell's column and row (the controls' numbers).
         let (names, typed) = h.typed();
         let unit = if h.grid_rows.is_some() { "" } else { "m" };
-        for ((axis, v), name) in [("x", typed.x), ("y", typed.y)].into_iter().zip(names) {
-            if let Some(label) = query(&form, &format!("label[for=move-{axis}]")) {
-                label.set_text_content(Some(name));
+        let labels = dom::query_all(&form, ".ctl-number label");
+        let units = dom::query_all(&form, "[data-move-unit]");
+        let inputs = dom::query_all(&form, "input[data-move]");
+        for (i, v) in [typed.x, typed.y].into_iter().enumerate() {
+            if let Some(label) = labels.get(i) {
+                label.set_text_content(Some(names[i]));
             }
-            if let Some(input) = query(&form, &format!("input[data-move={axis}]")) {
-                if let Some(u) = input.next_element_sibling() {
-                    u.set_text_content(Some(unit));
-                }
-                let aria = if unit.is_empty() {
-                    name.to_owned()
-                } else {
-                    format!("{name} in {unit}")
-                };
-                let _ = input.set_attribute("aria-label", &aria);
-                if active.as_ref() != Some(&input) {
+            if let Some(u) = units.get(i) {
+                u.set_text_content(Some(unit));
+            }
+            if let Some(input) = inputs.get(i) {
+                if active.as_ref() != Some(input) {
                     if let Some(input) = input.dyn_ref::<HtmlInputElement>() {
                         input.set_value(&format_number(v, 2));
                     }

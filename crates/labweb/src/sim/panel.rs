@@ -283,16 +283,10 @@ pub(super) fn controls_html(specs: &[ParamSpec]) -> String {
             .filter(|s| s.group == Some(g))
             .map(control_html)
             .collect();
-        // What the heading counts: points, not fields (an unset optional
-        // field holds no point yet).
-        let count = labcore::experiment::group_count(specs, g, &|k| {
-            specs
-                .iter()
-                .find(|s| s.key == k && s.kind != ParamKind::OptionalNumber)
-                .map(|s| s.default)
-        });
+        // What the heading counts (points, not fields) comes with the
+        // values, at the first sync and on every change.
         html.push_str(&format!(
-            "<details class=\"ctl-group\"><summary>{g} <span class=\"ctl-count\" data-group=\"{g}\">({count})</span></summary>\
+            "<details class=\"ctl-group\"><summary>{g} <span class=\"ctl-count\" data-group=\"{g}\"></span></summary>\
              <div class=\"ctl-group-body\">{body}</div></details>",
             g = escape(g),
         ));
@@ -542,8 +536,9 @@ mod tests {
         );
         assert!(html.find("id=\"p-w1x\"").unwrap() > details);
         assert!(html.find("id=\"p-w1y\"").unwrap() > details);
-        // It counts points set, not fields: no waypoint yet.
-        assert!(html
-            .contains("Waypoints <span class=\"ctl-count\" data-group=\"Waypoints\">(0)</span>"));
+        // The count (points set, not fields) comes with the values.
+        assert!(
+            html.contains("Waypoints <span class=\"ctl-count\" data-group=\"Waypoints\"></span>")
+        );
     }
 }
