@@ -47,7 +47,7 @@ pub(super) fn move_form_html() -> String {
         "<form class=\"sim-move\" aria-labelledby=\"move-title\" hidden>\
            <h3 class=\"sim-move-title\" id=\"move-title\">Move a point</h3>\
            <p class=\"sim-move-help\"><span data-for=\"keys\">Or, on the canvas: <kbd>[</kbd> <kbd>]</kbd> choose, arrow keys move.</span>\
-           <span data-for=\"touch\" hidden>Or drag the point on the canvas.</span></p>\
+           <span data-for=\"touch\">Or drag the point on the canvas.</span></p>\
            <div class=\"ctl ctl-choice\"><label for=\"move-handle\">Point</label>\
            <select id=\"move-handle\" data-move=\"handle\"></select></div>\
            {x}{y}\
@@ -315,11 +315,8 @@ impl SimState {
                 self.focused_handle = Some(id.clone());
                 let locked = self.move_to(&id, to, false);
                 match self.focused() {
-                    Some(h) if locked => self.show_message(Some(&format!(
-                        "{} is locked by your instructor; it stays at {}.",
-                        h.label,
-                        h.typed_text(h.typed().1)
-                    ))),
+                    // The lock's own message stays: it says why.
+                    Some(_) if locked => {}
                     Some(h) if (h.at - to).length() > 0.006 => self.show_message(Some(&format!(
                         "{} could not go to {}; it is at {}.",
                         h.label,

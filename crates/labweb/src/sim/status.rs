@@ -127,11 +127,12 @@ impl SimState {
                     "data-input",
                     if self.touch_input { "touch" } else { "mouse" },
                 );
-                // Texts for keys or for a finger (the Move form's help).
-                for el in crate::dom::query_all(&self.panel, "[data-for]") {
-                    let keys = el.get_attribute("data-for").as_deref() == Some("keys");
-                    crate::dom::set_hidden(&el, keys == self.touch_input);
-                }
+                // Texts for keys or for a finger (the Move form's help):
+                // the style sheet shows the ones for the input in use.
+                let _ = self.panel.set_attribute(
+                    "data-input",
+                    if self.touch_input { "touch" } else { "mouse" },
+                );
             }
             self.shown_hint = Some((hint, self.touch_input));
         }
