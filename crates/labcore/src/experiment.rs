@@ -399,10 +399,11 @@ pub fn format_point(p: DVec2) -> String {
 }
 
 /// A status or notice in a finger's words, shown while the student uses
-/// touch: "click" becomes "tap" (hints have [`Experiment::touch_hint`]).
+/// touch: "click" becomes "tap" (statuses and notices start in lower case;
+/// hints have [`Experiment::touch_hint`]).
 #[must_use]
 pub fn for_touch(text: &str) -> String {
-    text.replace("click", "tap").replace("Click", "Tap")
+    text.replace("click", "tap")
 }
 
 /// What a group heading counts ([`ParamSpec::group`]): its points, an

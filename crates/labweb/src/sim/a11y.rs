@@ -293,7 +293,8 @@ impl SimState {
         else {
             return;
         };
-        let Some(handle) = self.exp.handles().into_iter().find(|h| h.id == id) else {
+        self.focused_handle = Some(id.clone());
+        let Some(handle) = self.focused() else {
             return;
         };
         let (names, _) = handle.typed();
