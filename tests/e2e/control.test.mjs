@@ -147,7 +147,9 @@ test("cartpole: the pole is caught, nudged, dropped and caught again; LQR gains 
     await page.locator("button[data-action=drop]").click();
     await runUntil(page, () => /control off/.test(document.querySelector(".sim-status").textContent));
     await waitReadout(page, "theta", ">", 3, { abs: true });
-    await page.locator("button[data-action=catch]").click();
+    // The Control toggle shows the drop: off is checked. Switching it on catches the pole.
+    assert.ok(await page.locator("input[data-param=ctl][value='0']").isChecked(), "the toggle shows control off");
+    await page.locator("input[data-param=ctl][value='1']").check();
     await waitReadout(page, "theta", "<", 1, { abs: true });
     // The status judges the recent swing, so it may still name the drop's
     // peak when θ first reads under 1°; the catch shows once that passes.

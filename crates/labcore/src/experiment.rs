@@ -332,6 +332,12 @@ pub struct Handle {
     /// It moves along x only (a setpoint on a track): the Move form offers
     /// x alone and the up and down keys leave it where it is.
     pub x_only: bool,
+    /// A cell of a grid of this many rows (1 m cells from the world's
+    /// origin), numbered as its experiment's controls number cells: column
+    /// from the left, row 0 at the top. The Move form then shows and takes
+    /// the column and row, not metres: one system for one point. `None`:
+    /// metres.
+    pub grid_rows: Option<usize>,
 }
 
 impl Handle {
@@ -344,6 +350,7 @@ impl Handle {
             at,
             step_m: None,
             x_only: false,
+            grid_rows: None,
         }
     }
 
@@ -353,6 +360,40 @@ impl Handle {
         Self {
             x_only: true,
             ..Self::new(id, label, at)
+        }
+    }
+
+    /// The names of the two numbers the Move form shows for this handle and
+    /// their values now: `x`, `y` in metres, or a grid cell's `column` and
+    /// `row` (see [`Handle::grid_rows`]).
+    #[must_use]
+    pub fn typed(&self) -> ([&'static str; 2], DVec2) {
+        match self.grid_rows {
+            Some(rows) => (
+                ["column", "row"],
+                DVec2::new(self.at.x.floor(), rows as f64 - 1.0 - self.at.y.floor()),
+            ),
+            None => (["x", "y"], self.at),
+        }
+    }
+
+    /// The world point for two typed numbers (the inverse of
+    /// [`Handle::typed`]): a cell's centre, or the point itself.
+    #[must_use]
+    pub fn from_typed(&self, v: DVec2) -> DVec2 {
+        match self.grid_rows {
+            Some(rows) => DVec2::new(v.x.floor() + 0.5, rows as f64 - v.y.floor() - 0.5),
+            None => v,
+        }
+    }
+
+    /// Typed numbers in words: `(2.10, 3.40) m` or `column 3, row 12`.
+    #[must_use]
+    pub fn typed_text(&self, v: DVec2) -> String {
+        match self.grid_rows {
+            // Whole numbers (an f64's `{}` would pull in the shortest-float printer).
+            Some(_) => format!("column {}, row {}", v.x.floor() as i64, v.y.floor() as i64),
+            None => format_point(v),
         }
     }
 
@@ -368,6 +409,33 @@ impl Handle {
 #[must_use]
 pub fn format_point(p: DVec2) -> String {
     format!("({}, {}) m", format_fixed(p.x, 2), format_fixed(p.y, 2))
+}
+
+/// A status or notice in a finger's words, shown while the student uses
+/// touch: "click" becomes "tap" (statuses and notices start in lower case;
+/// hints have [`Experiment::touch_hint`]).
+#[must_use]
+pub fn for_touch(text: &str) -> String {
+    text.replace("click", "tap")
+}
+
+/// What a group heading counts ([`ParamSpec::group`]): its points, an
+/// `…x`/`…y` pair of keys counting once, and of optional fields only those
+/// set (`value` gives a key's value, as [`Experiment::param`]): "Waypoints
+/// (2)" for two waypoints, not for four coordinate fields.
+#[must_use]
+pub fn group_count(specs: &[ParamSpec], group: &str, value: &dyn Fn(&str) -> Option<f64>) -> usize {
+    let members = || specs.iter().filter(|s| s.group == Some(group));
+    members()
+        .filter(|s| {
+            // `w1y` counts with its `w1x`.
+            let stem = |k: &'static str, end: u8| {
+                (k.as_bytes().last() == Some(&end)).then(|| &k[..k.len() - 1])
+            };
+            stem(s.key, b'y').is_none_or(|y| !members().any(|o| stem(o.key, b'x') == Some(y)))
+        })
+        .filter(|s| s.kind != ParamKind::OptionalNumber || value(s.key).is_some())
+        .count()
 }
 
 /// Keys held while a pointer input happened (Shift-click, Ctrl-click).

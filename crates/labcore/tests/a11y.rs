@@ -379,3 +379,80 @@ fn ekf_describes_the_robot_and_the_estimate_error() {
     assert!(text.starts_with("Robot at ("), "{text}");
     assert!(text.contains("landmarks 6 (known map)"), "{text}");
 }
+
+/// Words a phone has no use for: keys, clicks, modifiers.
+const KEY_WORDS: &[&str] = &[
+    "click",
+    "Click",
+    "Shift",
+    "Ctrl",
+    "arrow key",
+    "←",
+    "→",
+    "↑",
+    "↓",
+    "[ ]",
+    "keyboard",
+    "has focus",
+];
+
+fn assert_touch_words(id: &str, when: &str, exp: &dyn Experiment) {
+    let texts = [
+        exp.touch_hint().to_owned(),
+        labcore::experiment::for_touch(&exp.status().text),
+        exp.notice()
+            .map_or(String::new(), |n| labcore::experiment::for_touch(&n.text)),
+    ];
+    for text in texts {
+        for word in KEY_WORDS {
+            assert!(
+                !text.contains(word),
+                "{id} {when}: a phone shows “{text}” ({word})"
+            );
+        }
+    }
+}
+
+/// Issue 23 §3 (phone hints): on a touch screen the hint, the badge and the
+/// notice name no key, no click and no modifier, as built, as previewed and
+/// after each action (the native half of the end-to-end phone test).
+#[test]
+fn phone_hints_name_no_key_a_phone_lacks_in_any_status_hint_or_notice() {
+    for entry in registry() {
+        for (k, mut exp) in states(entry).into_iter().enumerate() {
+            let when = if k == 0 { "as built" } else { "previewed" };
+            assert_touch_words(entry.id, when, exp.as_ref());
+            for action in exp.actions() {
+                let _ = exp.action(action.key);
+                for _ in 0..3 {
+                    exp.step(1.0 / 60.0);
+                }
+                assert_touch_words(
+                    entry.id,
+                    &format!("{when}, after {}", action.key),
+                    exp.as_ref(),
+                );
+            }
+        }
+    }
+}
+
+/// Issue 23 §3: one system for one point. The numbers the Move form shows
+/// for a handle take it back to where it is.
+#[test]
+fn every_handle_reads_back_the_numbers_the_move_form_shows() {
+    for entry in registry() {
+        let mut exp = (entry.make)();
+        exp.preview();
+        for h in exp.handles() {
+            let back = h.from_typed(h.typed().1);
+            assert!(
+                (back - h.at).length() < 1e-9,
+                "{} {}: {:?} → {back:?}",
+                entry.id,
+                h.id,
+                h.at
+            );
+        }
+    }
+}

@@ -319,6 +319,10 @@ pub fn grade_form(form: &Element, attempt: &Attempt, grading: &mut Grading, reco
     for control in query_all(form, "input, button[type=submit]") {
         let _ = control.set_attribute("disabled", "");
     }
+    // The button says what happened, not "Submit anyway" any more.
+    if let Some(button) = query(form, "button[type=submit]") {
+        button.set_text_content(Some("Submitted"));
+    }
     if let Some(confirm) = query(form, ".quiz-confirm") {
         crate::dom::set_hidden(&confirm, true);
     }

@@ -214,7 +214,12 @@ impl Experiment for ForwardKinematics {
         let tip = pose.tip();
         out.push(Item::Label {
             pos: tip,
-            text: format!("({}, {})", format_number(tip.x, 2), format_number(tip.y, 2)),
+            // The readouts' digits and unit: one format for the tip's position.
+            text: format!(
+                "({}, {}) m",
+                format_fixed(tip.x, Readout::METRE_DECIMALS),
+                format_fixed(tip.y, Readout::METRE_DECIMALS)
+            ),
             role: Role::Tip,
             offset_px: DVec2::new(12.0, -12.0),
         });
@@ -251,6 +256,10 @@ impl Experiment for ForwardKinematics {
 
     fn hint(&self) -> &'static str {
         "Move the sliders, or drag the orange tip (arrow keys move it when the canvas has focus)."
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        "Move the sliders, or drag the orange tip."
     }
 
     fn animating(&self) -> bool {
@@ -734,5 +743,35 @@ mod tests {
             assert!(tells.choices >= 4, "{id}: {tells:?}");
             assert!(tells.at_most_one_in(4), "{id}: {tells:?}");
         }
+    }
+
+    /// Issue 23 §3 (numbers): the tip label "(1.4, 0.96)" mixed digit counts
+    /// and had no unit. It shows the readouts' X and Y, digits and unit.
+    #[test]
+    fn fk_tip_label_has_one_digit_count_and_a_unit() {
+        let mut fk = ForwardKinematics::default();
+        fk.input(Input::PointerDown(DVec2::new(1.4, 0.96)));
+        fk.input(Input::PointerUp(DVec2::new(1.4, 0.96)));
+        let mut scene = Scene::default();
+        fk.scene(&mut scene);
+        let label = scene
+            .items
+            .iter()
+            .find_map(|item| match item {
+                Item::Label {
+                    text,
+                    role: Role::Tip,
+                    ..
+                } => Some(text.clone()),
+                _ => None,
+            })
+            .expect("the tip label");
+        let r = fk.readouts();
+        let number = |v: &str| v.strip_suffix(" m").unwrap().to_owned();
+        assert_eq!(
+            label,
+            format!("({}, {}) m", number(&r[0].value), number(&r[1].value))
+        );
+        assert_eq!(label, "(1.400, 0.960) m");
     }
 }

@@ -512,6 +512,10 @@ impl Experiment for InverseKinematics {
         "Click or tap a target, or type its x and y; the arm moves to the closed-form solution."
     }
 
+    fn touch_hint(&self) -> &'static str {
+        "Tap a target, or type its x and y; the arm moves to the closed-form solution."
+    }
+
     fn preview(&mut self) {
         self.set_target(DVec2::new(1.1, 0.9));
         while self.animating() {

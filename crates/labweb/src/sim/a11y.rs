@@ -17,7 +17,6 @@
 use super::SimState;
 use crate::dom::{self, escape, query, Listener};
 use glam::DVec2;
-use labcore::experiment::format_point;
 use labcore::quiz::format_number;
 use labcore::{Handle, Item};
 use std::cell::RefCell;
@@ -47,13 +46,14 @@ pub(super) fn move_form_html() -> String {
         format!(
             "<div class=\"ctl ctl-number\"><label for=\"move-{axis}\">{axis}</label>\
              <span class=\"ctl-num\"><input type=\"text\" inputmode=\"decimal\" autocomplete=\"off\" spellcheck=\"false\" \
-             id=\"move-{axis}\" data-move=\"{axis}\" aria-label=\"{axis} in m\"><span class=\"unit\" aria-hidden=\"true\">m</span></span></div>"
+             id=\"move-{axis}\" data-move=\"{axis}\"><span class=\"unit\" data-move-unit>m</span></span></div>"
         )
     };
     format!(
         "<form class=\"sim-move\" aria-labelledby=\"move-title\" hidden>\
            <h3 class=\"sim-move-title\" id=\"move-title\">Move a point</h3>\
-           <p class=\"sim-move-help\">Or, on the canvas: <kbd>[</kbd> <kbd>]</kbd> choose, arrow keys move.</p>\
+           <p class=\"sim-move-help\"><span data-for=\"keys\">Or, on the canvas: <kbd>[</kbd> <kbd>]</kbd> choose, arrow keys move.</span>\
+           <span data-for=\"touch\">Or drag the point on the canvas.</span></p>\
            <div class=\"ctl ctl-choice\"><label for=\"move-handle\">Point</label>\
            <select id=\"move-handle\" data-move=\"handle\"></select></div>\
            {x}{y}\
@@ -137,7 +137,11 @@ impl SimState {
                 labcore::experiment::format_fixed(h.at.x, 2)
             ));
         } else {
-            self.say(&format!("{lead}{} at {}.", h.label, format_point(h.at)));
+            self.say(&format!(
+                "{lead}{} at {}.",
+                h.label,
+                h.typed_text(h.typed().1)
+            ));
         }
     }
 
@@ -211,8 +215,9 @@ impl SimState {
     /// Moves handle `id` to `to` (keyboard or typed), through the
     /// instructor's locks like a pointer drag, and says where it went. A key
     /// move is `paced` like a drag (keys repeat); a typed one is not.
-    fn move_to(&mut self, id: &str, to: DVec2, paced: bool) {
-        self.guarded(|exp| {
+    /// Returns whether a lock held the point (the message says so).
+    fn move_to(&mut self, id: &str, to: DVec2, paced: bool) -> bool {
+        let locked = self.guarded(|exp| {
             exp.move_handle(id, to);
         });
         self.needs_paint = true;
@@ -226,6 +231,7 @@ impl SimState {
                 self.say("That point is gone.");
             }
         }
+        locked
     }
 
     /// Brings the Move form up to date: the handles listed, the chosen one
@@ -286,9 +292,21 @@ impl SimState {
             dom::set_hidden(&y_box, h.x_only);
         }
         let active = dom::document().active_element();
-        for (axis, v) in [("x", h.at.x), ("y", h.at.y)] {
-            if let Some(input) = query(&form, &format!("input[data-move={axis}]")) {
-                if active.as_ref() != Some(&input) {
+        // Metres, or a grid cell's column and row (the controls' numbers).
+        let (names, typed) = h.typed();
+        let unit = if h.grid_rows.is_some() { "" } else { "m" };
+        let labels = dom::query_all(&form, ".ctl-number label");
+        let units = dom::query_all(&form, "[data-move-unit]");
+        let inputs = dom::query_all(&form, "input[data-move]");
+        for (i, v) in [typed.x, typed.y].into_iter().enumerate() {
+            if let Some(label) = labels.get(i) {
+                label.set_text_content(Some(names[i]));
+            }
+            if let Some(u) = units.get(i) {
+                u.set_text_content(Some(unit));
+            }
+            if let Some(input) = inputs.get(i) {
+                if active.as_ref() != Some(input) {
                     if let Some(input) = input.dyn_ref::<HtmlInputElement>() {
                         input.set_value(&format_number(v, 2));
                     }
@@ -313,38 +331,42 @@ impl SimState {
         else {
             return;
         };
-        let read = |axis: &str| {
+        self.focused_handle = Some(id.clone());
+        let Some(handle) = self.focused() else {
+            return;
+        };
+        let (names, _) = handle.typed();
+        let unit = if handle.grid_rows.is_some() { "" } else { "m" };
+        let read = |axis: &str, name: &str| {
             let raw = value(&format!("input[data-move={axis}]"));
             if raw.trim().is_empty() {
-                return Err(format!("{axis}: nothing was typed"));
+                return Err(format!("{name}: nothing was typed"));
             }
-            labcore::quiz::read_answer(&raw, "m")
+            labcore::quiz::read_answer(&raw, unit)
                 .map(|r| r.value)
-                .map_err(|e| format!("{axis}: {e}"))
+                .map_err(|e| format!("{name}: {e}"))
         };
         self.student_acted();
-        let x_only = self
-            .exp
-            .handles()
-            .into_iter()
-            .find(|h| h.id == id)
-            .filter(|h| h.x_only)
-            .map(|h| h.at.y);
-        let y = match x_only {
-            Some(y) => Ok(y),
-            None => read("y"),
+        // A handle on a track keeps its height: only x is read.
+        let y = if handle.x_only {
+            Ok(handle.typed().1.y)
+        } else {
+            read("y", names[1])
         };
-        match (read("x"), y) {
+        match (read("x", names[0]), y) {
             (Ok(x), Ok(y)) => {
-                let to = DVec2::new(x, y);
+                let typed = DVec2::new(x, y);
+                let to = handle.from_typed(typed);
                 self.focused_handle = Some(id.clone());
-                self.move_to(&id, to, false);
+                let locked = self.move_to(&id, to, false);
                 match self.focused() {
+                    // The lock's own message stays: it says why.
+                    Some(_) if locked => {}
                     Some(h) if (h.at - to).length() > 0.006 => self.show_message(Some(&format!(
                         "{} could not go to {}; it is at {}.",
                         h.label,
-                        format_point(to),
-                        format_point(h.at)
+                        h.typed_text(typed),
+                        h.typed_text(h.typed().1)
                     ))),
                     _ => self.show_message(None),
                 }

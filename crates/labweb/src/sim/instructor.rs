@@ -363,12 +363,13 @@ impl SimState {
 
     /// Runs a student's input through the locks (see
     /// [`route::keep_locked`]) and says which locked control it would have
-    /// changed.
-    pub(super) fn guarded(&mut self, op: impl FnOnce(&mut dyn Experiment)) {
+    /// changed. Returns whether a lock put something back.
+    pub(super) fn guarded(&mut self, op: impl FnOnce(&mut dyn Experiment)) -> bool {
         let put_back = route::keep_locked(self.exp.as_mut(), &self.instructor, op);
         if let Some(label) = put_back.first() {
             self.show_message(Some(&format!("{label} is locked by your instructor.")));
             self.shown_values.iter_mut().for_each(|v| *v = None);
         }
+        !put_back.is_empty()
     }
 }

@@ -226,6 +226,8 @@ pub(super) fn listen(
                         if st.touch_input != touch {
                             st.touch_input = touch;
                             st.sync_hint();
+                            st.sync_status();
+                            st.shown_notice = None;
                         }
                     }
                 }
@@ -282,13 +284,17 @@ pub(super) fn controls_html(specs: &[ParamSpec]) -> String {
         }
     }
     for g in groups {
-        let members: Vec<&ParamSpec> = specs.iter().filter(|s| s.group == Some(g)).collect();
-        let body: String = members.iter().map(|s| control_html(s)).collect();
+        let body: String = specs
+            .iter()
+            .filter(|s| s.group == Some(g))
+            .map(control_html)
+            .collect();
+        // What the heading counts (points, not fields) comes with the
+        // values, at the first sync and on every change.
         html.push_str(&format!(
-            "<details class=\"ctl-group\"><summary>{} <span class=\"ctl-count\">({})</span></summary>\
+            "<details class=\"ctl-group\"><summary>{g} <span class=\"ctl-count\" data-group=\"{g}\"></span></summary>\
              <div class=\"ctl-group-body\">{body}</div></details>",
-            escape(g),
-            members.len()
+            g = escape(g),
         ));
     }
     html
@@ -419,14 +425,26 @@ impl SimState {
     /// Brings controls, readouts and the status badge up to date with the state.
     pub(super) fn sync_dom(&mut self) {
         let active = dom::document().active_element();
+        let mut changed = false;
         for (i, spec) in self.exp.params().iter().enumerate() {
             let value = self.exp.param(spec.key);
             if self.shown_values.get(i) == Some(&Some(value)) {
                 continue;
             }
+            changed = true;
             set_control_value(&self.panel, spec, value, active.as_ref());
             if let Some(slot) = self.shown_values.get_mut(i) {
                 *slot = Some(value);
+            }
+        }
+        if changed {
+            // A group heading counts its points ("Waypoints (2)").
+            for span in query_all(&self.panel, ".ctl-count[data-group]") {
+                if let Some(g) = span.get_attribute("data-group") {
+                    let exp = &self.exp;
+                    let n = labcore::experiment::group_count(exp.params(), &g, &|k| exp.param(k));
+                    span.set_text_content(Some(&format!("({n})")));
+                }
             }
         }
         let readouts = self.exp.readouts();
@@ -524,6 +542,9 @@ mod tests {
         );
         assert!(html.find("id=\"p-w1x\"").unwrap() > details);
         assert!(html.find("id=\"p-w1y\"").unwrap() > details);
-        assert!(html.contains("Waypoints <span class=\"ctl-count\">(2)</span>"));
+        // The count (points set, not fields) comes with the values.
+        assert!(
+            html.contains("Waypoints <span class=\"ctl-count\" data-group=\"Waypoints\"></span>")
+        );
     }
 }

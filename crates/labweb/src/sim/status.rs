@@ -86,7 +86,10 @@ pub(super) fn tone_name(tone: labcore::Tone) -> &'static str {
 impl SimState {
     /// Brings the status badge up to date with the run's state.
     pub(super) fn sync_status(&mut self) {
-        let status = self.exp.status();
+        let mut status = self.exp.status();
+        if self.touch_input {
+            status.text = labcore::experiment::for_touch(&status.text);
+        }
         if Some(&status) != self.shown_status.as_ref() {
             if let Some(badge) = query(&self.panel, ".sim-status") {
                 badge.set_text_content(Some(&status.text));
@@ -124,6 +127,12 @@ impl SimState {
                     "data-input",
                     if self.touch_input { "touch" } else { "mouse" },
                 );
+                // Texts for keys or for a finger (the Move form's help):
+                // the style sheet shows the ones for the input in use.
+                let _ = self.panel.set_attribute(
+                    "data-input",
+                    if self.touch_input { "touch" } else { "mouse" },
+                );
             }
             self.shown_hint = Some((hint, self.touch_input));
         }
@@ -141,7 +150,12 @@ impl SimState {
         if let Some(line) = query(&self.panel, ".sim-notice") {
             match shown {
                 Some(n) => {
-                    line.set_text_content(Some(&n.text));
+                    let text = if self.touch_input {
+                        labcore::experiment::for_touch(&n.text)
+                    } else {
+                        n.text.clone()
+                    };
+                    line.set_text_content(Some(&text));
                     let _ = line.set_attribute("data-tone", tone_name(n.tone));
                     let _ = line.set_attribute("data-serial", &n.serial.to_string());
                     dom::set_hidden(&line, false);

@@ -1437,12 +1437,14 @@ impl Experiment for AStarGrid {
         &self.plots
     }
 
-    /// The start and the goal; the keyboard moves them one cell at a time.
+    /// The start and the goal; the keyboard moves them one cell at a time,
+    /// and the Move form names them by column and row, as the controls do.
     fn handles(&self) -> Vec<crate::experiment::Handle> {
         [("start", "Start", self.start), ("goal", "Goal", self.goal)]
             .into_iter()
             .map(|(id, label, cell)| crate::experiment::Handle {
                 step_m: Some(1.0),
+                grid_rows: Some(self.grid.height()),
                 ..crate::experiment::Handle::new(id, label, self.cell_center(cell))
             })
             .collect()

@@ -1528,3 +1528,30 @@ fn a_laptop_canvas_beside_plots_and_controls_shows_the_whole_grid() {
     a.viewport_px(366.0, 227.0);
     assert!(a.zoomed(), "a phone's canvas is");
 }
+
+/// Issue 23 §3: the start was "column 3, row 12" in the controls and
+/// "x 3.5 m, y 11.5 m" in Move a point, rows counting down and y up. One
+/// system for one point: the handle names its column and row, the controls'
+/// numbers, and typed column and row move it there.
+#[test]
+fn astar_start_is_one_point_in_one_system_column_and_row_in_controls_and_move_a_point() {
+    let mut a = AStarGrid::default();
+    for h in a.handles() {
+        let (names, typed) = h.typed();
+        assert_eq!(names, ["column", "row"]);
+        let (cx, cy) = if h.id == "start" {
+            ("sx", "sy")
+        } else {
+            ("gx", "gy")
+        };
+        assert_eq!(
+            typed,
+            DVec2::new(a.param(cx).unwrap(), a.param(cy).unwrap())
+        );
+    }
+    let start = a.handles().into_iter().find(|h| h.id == "start").unwrap();
+    assert_eq!(start.typed().1, DVec2::new(3.0, 12.0));
+    assert_eq!(start.typed_text(start.typed().1), "column 3, row 12");
+    assert!(a.move_handle("start", start.from_typed(DVec2::new(5.0, 10.0))));
+    assert_eq!((a.param("sx"), a.param("sy")), (Some(5.0), Some(10.0)));
+}

@@ -93,10 +93,6 @@ const ACTIONS: &[ActionSpec] = &[
         label: "Drop pole (control off)",
     },
     ActionSpec {
-        key: "catch",
-        label: "Control on",
-    },
-    ActionSpec {
         key: "lqr",
         label: "LQR gains",
     },
@@ -125,9 +121,11 @@ const ENERGY_MIN_SPAN_PCT: f64 = 0.1;
 const CART_HALF_W_M: f64 = 0.25;
 const CART_BOTTOM_M: f64 = 0.06;
 const PIVOT_Y_M: f64 = 0.3;
-/// Low enough for a pole hanging below the rail (the "never" fall rule).
-const VIEW_MIN: DVec2 = DVec2::new(-3.0, -0.8);
-const VIEW_MAX: DVec2 = DVec2::new(3.0, 1.5);
+/// Low enough for a pole hanging below the rail (the "never" fall rule), and
+/// wide enough for a pole lying flat from a cart at an end stop
+/// (2.4 m + 1 m pole + its tip's dot).
+const VIEW_MIN: DVec2 = DVec2::new(-3.6, -0.8);
+const VIEW_MAX: DVec2 = DVec2::new(3.6, 1.5);
 /// Force arrow length per newton (m).
 const ARROW_M_PER_N: f64 = 0.02;
 /// A pointer this close to the pole tip grabs it (m).
@@ -685,7 +683,6 @@ impl Experiment for CartPoleBalance {
         match key {
             "nudge" => self.nudge(1.0),
             "drop" => self.sim.control_enabled = false,
-            "catch" => self.sim.control_enabled = true,
             "lqr" => match self.lqr_proposal() {
                 Some(k) => {
                     self.sim.gains = k;
@@ -794,7 +791,11 @@ impl Experiment for CartPoleBalance {
     }
 
     fn hint(&self) -> &'static str {
-        "Tap beside the pole (or use ← →) to nudge it; drag its tip to set the start angle. Drop pole switches control off."
+        "Click beside the pole (or press ← → on the canvas) to nudge it; drag its tip to set the start angle. Drop pole switches control off."
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        "Tap beside the pole to nudge it; drag its tip to set the start angle. Drop pole switches control off."
     }
 
     /// A pole caught from its start angle, a second into the run.

@@ -146,7 +146,7 @@ fn drop_and_catch() {
         e.linear_state().theta_rad > 4f64.to_radians(),
         "the linear model falls too"
     );
-    e.action("catch").unwrap();
+    e.set_param("ctl", 1.0).unwrap();
     run(&mut e, 8.0);
     assert_eq!(readout(&e, "status"), "balancing");
     assert!(e.state().theta_rad.abs() < 1f64.to_radians());
@@ -397,7 +397,7 @@ fn do_step_4(e: &mut CartPoleBalance) {
     e.action("drop").unwrap();
     e.action("nudge").unwrap();
     run(e, 0.3);
-    e.action("catch").unwrap();
+    e.set_param("ctl", 1.0).unwrap();
     assert!(run_to_rest(e, 60.0).is_some(), "step 4 ends caught");
 }
 
@@ -553,7 +553,7 @@ fn cartpole_step_3_lower_k_theta_swings_more_and_below_23_the_pole_is_lost() {
     );
 }
 
-/// Step 4: Drop pole: the status says the pole is falling; Control on within
+/// Step 4: Drop pole: the status says the pole is falling; Control switched on within
 /// 0.3 s of a nudge catches it; after half a second it is lost.
 #[test]
 fn cartpole_step_4_a_dropped_pole_falls_and_only_a_quick_catch_saves_it() {
@@ -583,13 +583,13 @@ fn cartpole_step_4_a_dropped_pole_falls_and_only_a_quick_catch_saves_it() {
     e.action("nudge").unwrap();
     run(&mut e, 0.3);
     assert!(e.state().theta_rad.to_degrees() > 4.0);
-    e.action("catch").unwrap();
+    e.set_param("ctl", 1.0).unwrap();
     let (_, seen) = watch(&mut e, 10.0);
     assert!(!seen.iter().any(|t| t.contains("fallen")), "{seen:?}");
     assert!(run_to_rest(&mut e, 60.0).is_some());
     late.action("nudge").unwrap();
     run(&mut late, 0.5);
-    late.action("catch").unwrap();
+    late.set_param("ctl", 1.0).unwrap();
     run(&mut late, 10.0);
     assert!(late.status().text.starts_with("pole fallen at t = "));
     assert_eq!(late.status().phase, crate::experiment::Phase::Ended);
@@ -876,7 +876,7 @@ fn a_cart_outside_the_view_is_marked_at_the_edge() {
     assert_eq!(found.len(), 1);
     assert_eq!(found[0].0.x, 4.5);
     assert_eq!(found[0].1, "linear model at x = 4.500 m");
-    e.sim.state.x_m = -3.2;
+    e.sim.state.x_m = -3.9;
     assert_eq!(marks(&e).len(), 2);
 }
 
@@ -1018,4 +1018,139 @@ fn a_pole_caught_from_20_degrees_is_caught_not_swinging() {
     let (peak, seen) = watch(&mut e, 3.0);
     assert!(peak > 20.0, "{peak}");
     assert!(seen.iter().any(|t| t.starts_with("swinging")), "{seen:?}");
+}
+
+/// Issue 23 §3: "Control on" was an action button that read like a state.
+/// Control is one toggle that shows whether it is on; Drop pole switches it
+/// off and the toggle says so; switching it on catches the pole.
+#[test]
+fn cartpole_control_is_a_toggle_that_shows_its_state_not_a_control_on_button() {
+    let mut e = CartPoleBalance::default();
+    assert!(
+        e.actions()
+            .iter()
+            .all(|a| a.key != "catch" && !a.label.contains("Control on")),
+        "{:?}",
+        e.actions()
+    );
+    let spec = e.params().iter().find(|p| p.key == "ctl").unwrap();
+    assert!(matches!(
+        spec.kind,
+        crate::experiment::ParamKind::Toggle {
+            off: "off",
+            on: "on"
+        }
+    ));
+    assert_eq!(e.param("ctl"), Some(1.0));
+    e.action("drop").unwrap();
+    assert_eq!(e.param("ctl"), Some(0.0), "the toggle shows control off");
+    run(&mut e, 0.2);
+    e.set_param("ctl", 1.0).unwrap();
+    assert_eq!(e.param("ctl"), Some(1.0));
+    assert!(run_to_rest(&mut e, 60.0).is_some(), "caught again");
+}
+
+/// The canvas legend of the grey dashed pole, if the scene has one, and where.
+fn ghost_legend(e: &CartPoleBalance) -> Option<DVec2> {
+    let mut scene = Scene::default();
+    e.scene(&mut scene);
+    scene.items.iter().find_map(|item| match item {
+        Item::Label { pos, text, .. } if text == "linear model (dashed)" => Some(*pos),
+        _ => None,
+    })
+}
+
+/// Issue 23 §3: when the pole falls, a grey dashed pole (the linear model)
+/// stands apart from it: the canvas names it beside its tip. While the two
+/// agree it hides behind the real pole and needs no legend.
+#[test]
+fn cartpole_the_grey_dashed_pole_has_a_legend_when_the_pole_falls() {
+    let mut e = CartPoleBalance::default();
+    assert_eq!(ghost_legend(&e), None, "one pole on screen: no legend");
+    e.set_param("th0", 60.0).unwrap();
+    run(&mut e, 3.0);
+    assert!(
+        e.status().text.starts_with("pole fallen"),
+        "{:?}",
+        e.status()
+    );
+    let at = ghost_legend(&e).expect("the dashed pole is named on the canvas");
+    let lin = e.linear_state();
+    assert!(
+        (at - e.tip_of(&lin)).length() < 1e-9,
+        "at the dashed pole's tip"
+    );
+}
+
+/// Issue 23 §3: the fallen pole poked out of the canvas. Whatever the angle,
+/// with the cart anywhere on its track (up to the end stops), the pole, its
+/// tip's dot (8 px, 0.08 m here) and the force arrow stay inside the view.
+#[test]
+fn cartpole_the_fallen_pole_stays_inside_the_view() {
+    let view = CartPoleBalance::default().view();
+    let inside = |p: DVec2| {
+        p.x - 0.08 >= view.min.x
+            && p.x + 0.08 <= view.max.x
+            && p.y - 0.08 >= view.min.y
+            && p.y + 0.08 <= view.max.y
+    };
+    let limit = CartPoleParams::default().track_limit_m;
+    for x_m in [-limit, -1.0, 0.0, 1.0, limit] {
+        for deg in (-180..=180).step_by(5) {
+            let mut e = CartPoleBalance::default();
+            e.sim.state = CartPoleState {
+                x_m,
+                theta_rad: f64::from(deg).to_radians(),
+                ..CartPoleState::default()
+            };
+            e.linear = e.sim.state;
+            e.run = Run::Ended {
+                status: PoleStatus::Fallen,
+                time_s: 1.0,
+            };
+            let mut scene = Scene::default();
+            e.scene(&mut scene);
+            for item in &scene.items {
+                let points = match item {
+                    // The rail spans the view on purpose.
+                    Item::Line { from, to, role, .. } if *role != Role::Bound => vec![*from, *to],
+                    Item::Dot { center, .. } => vec![*center],
+                    Item::Arrow { from, to, .. } => vec![*from, *to],
+                    _ => vec![],
+                };
+                for p in points {
+                    assert!(
+                        inside(p),
+                        "x {x_m} m, θ {deg}°: {item:?} leaves the view {view:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// Issue 23 §3 (numbers): the force has one format, in the readout and on
+/// the canvas: two decimals and N.
+#[test]
+fn cartpole_force_has_one_format_in_the_readout_and_on_the_canvas() {
+    let mut e = CartPoleBalance::default();
+    for seconds in [0.05, 0.5, 5.0, 40.0] {
+        run(&mut e, seconds);
+        let readout = readout(&e, "force");
+        let mut scene = Scene::default();
+        e.scene(&mut scene);
+        let label = scene
+            .items
+            .iter()
+            .find_map(|item| match item {
+                Item::Label { text, .. } => text.strip_prefix("F = ").map(str::to_owned),
+                _ => None,
+            })
+            .expect("the force label");
+        assert_eq!(label, readout);
+        assert_eq!(
+            readout,
+            format!("{} N", format_fixed(e.sim.last_force_n(), 2))
+        );
+    }
 }

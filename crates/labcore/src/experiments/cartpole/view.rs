@@ -30,6 +30,16 @@ pub(super) fn gains_text(k: &StateFeedback) -> String {
     )
 }
 
+/// The canvas's legend for the grey dashed pole: the linearised model.
+pub(super) const GHOST_LEGEND: &str = "linear model (dashed)";
+/// The legend shows once the two tips are this far apart (m).
+const GHOST_APART_M: f64 = 0.15;
+
+/// The force as every readout and label shows it: `-9.10 N`, `0.00 N`.
+pub(super) fn force_text(force_n: f64) -> String {
+    format!("{} N", format_fixed(force_n, 2))
+}
+
 pub(super) fn scene(e: &CartPoleBalance, out: &mut Scene) {
     let track = e.sim.params.track_limit_m;
     out.push(Item::Line {
@@ -83,6 +93,16 @@ pub(super) fn scene(e: &CartPoleBalance, out: &mut Scene) {
         role: Role::Ghost,
         dashed: true,
     });
+    // Its legend, once it stands apart from the real pole (it hides behind
+    // the real one while the two agree).
+    if (lin_tip - e.tip_of(&e.sim.state)).length() > GHOST_APART_M {
+        out.push(Item::Label {
+            pos: lin_tip,
+            text: GHOST_LEGEND.into(),
+            role: Role::Ghost,
+            offset_px: DVec2::new(8.0, -12.0),
+        });
+    }
     // A cart whose centre is outside the view gets a mark at the canvas edge.
     for (x, what, role) in [
         (lin.x_m, "linear model", Role::Ghost),
@@ -153,14 +173,15 @@ pub(super) fn scene(e: &CartPoleBalance, out: &mut Scene) {
         let start = x + CART_HALF_W_M.copysign(f);
         out.push(Item::Arrow {
             from: DVec2::new(start, y),
-            to: DVec2::new(start + f * ARROW_M_PER_N, y),
+            // Inside the view even from a cart at an end stop.
+            to: DVec2::new((start + f * ARROW_M_PER_N).clamp(VIEW_MIN.x, VIEW_MAX.x), y),
             width_px: 3.0,
             role: Role::Accent,
         });
     }
     out.push(Item::Label {
         pos: DVec2::new(x, 0.0),
-        text: format!("F = {} N", format_fixed(f, 1)),
+        text: format!("F = {}", force_text(f)),
         role: Role::Text,
         offset_px: DVec2::new(-24.0, 44.0),
     });
@@ -195,11 +216,7 @@ pub(super) fn readouts(e: &CartPoleBalance) -> Vec<Readout> {
             format!("{}°/s", format_fixed(s.omega_rad_s.to_degrees(), 1)),
         ),
         Readout::metres("x", "Cart position x", s.x_m),
-        Readout::new(
-            "force",
-            "Force F",
-            format!("{} N", format_fixed(e.sim.last_force_n(), 2)),
-        ),
+        Readout::new("force", "Force F", force_text(e.sim.last_force_n())),
         Readout::new("status", "Status", status),
         Readout::new(
             "energy",

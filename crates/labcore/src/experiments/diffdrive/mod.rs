@@ -187,6 +187,10 @@ pub struct DiffDrive {
     notices: Notices,
     /// v, ω, vL, vR against time.
     plots: [Plot; 1],
+    /// The canvas's size (CSS px) as the page last told it: the run cards'
+    /// labels are placed clear of the robot and the waypoints at its scale.
+    /// View state, never in the link.
+    viewport_px: Option<DVec2>,
 }
 
 fn new_plots() -> [Plot; 1] {
@@ -226,6 +230,7 @@ impl Default for DiffDrive {
             selected: None,
             notices: Notices::default(),
             plots: new_plots(),
+            viewport_px: None,
         };
         d.restart();
         d
@@ -695,6 +700,13 @@ impl Experiment for DiffDrive {
         view::view()
     }
 
+    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
+        let size = DVec2::new(width_px, height_px);
+        if size.is_finite() && size.min_element() > 0.0 {
+            self.viewport_px = Some(size);
+        }
+    }
+
     fn scene(&self, out: &mut Scene) {
         view::scene(self, out);
     }
@@ -713,6 +725,10 @@ impl Experiment for DiffDrive {
 
     fn hint(&self) -> &'static str {
         view::hint()
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        "Tap to drop a goal; tap again to queue more waypoints. Drag a waypoint to move it, tap it to remove it."
     }
 
     fn preview(&mut self) {

@@ -1069,3 +1069,118 @@ fn the_default_link_in_a_used_tab_gives_no_waypoints() {
     );
     assert_eq!(format(tab.as_ref(), Tab::Simulation), default_link);
 }
+
+/// Issue 23 §3: "Waypoints (12)" counted the input fields. The heading
+/// counts the waypoints set: none at first, two after two clicks.
+#[test]
+fn diffdrive_waypoints_heading_counts_waypoints_not_fields() {
+    use crate::experiment::group_count;
+    let mut d = DiffDrive::default();
+    let count = |d: &DiffDrive| group_count(d.params(), "Waypoints", &|k| d.param(k));
+    assert_eq!(count(&d), 0);
+    for p in [DVec2::new(2.0, 2.0), DVec2::new(6.0, 4.0)] {
+        d.input(Input::PointerDown(p));
+        d.input(Input::PointerUp(p));
+    }
+    assert_eq!(d.waypoints().len(), 2);
+    assert_eq!(count(&d), 2);
+    assert_eq!(
+        d.params()
+            .iter()
+            .filter(|s| s.group == Some("Waypoints"))
+            .count(),
+        12
+    );
+}
+
+/// Issue 23 §3: on a phone the badge said "click to drop a goal"; in a
+/// finger's words it says tap.
+#[test]
+fn diffdrive_the_idle_badge_in_touch_words_says_tap_not_click() {
+    let d = DiffDrive::default();
+    assert_eq!(d.status().text, "idle: click to drop a goal");
+    assert_eq!(
+        crate::experiment::for_touch(&d.status().text),
+        "idle: tap to drop a goal"
+    );
+}
+
+/// Issue 23 §3: the "3.90 m · 6.3 s" label covered the robot and waypoint 1.
+/// On a laptop's and a phone's canvas, along routes with waypoints near the
+/// field's edges and close together, every run card's label box (13 px bold,
+/// at most 7 px a character here, 14 px tall) clears the robot's body and
+/// nose, every waypoint's dot and number, and the other cards.
+#[test]
+fn diffdrive_run_card_label_covers_neither_the_robot_nor_a_waypoint() {
+    let routes: &[&[(f64, f64)]] = &[
+        &[(0.3, 3.0)],
+        &[(0.3, 3.0), (1.2, 3.4)],
+        &[(7.6, 5.6), (6.8, 5.0), (7.5, 0.4)],
+        &[(2.0, 1.0), (3.0, 1.5), (2.2, 2.2), (1.0, 1.6)],
+    ];
+    for &(w, h) in &[(760.0, 570.0), (358.0, 268.5)] {
+        for route in routes {
+            let mut d = DiffDrive::default();
+            d.viewport_px(w, h);
+            for &(x, y) in *route {
+                let p = DVec2::new(x, y);
+                d.input(Input::PointerDown(p));
+                d.input(Input::PointerUp(p));
+            }
+            let scale = (w / FIELD_W_M).min(h / FIELD_H_M);
+            let px = |p: DVec2| DVec2::new(p.x, FIELD_H_M - p.y) * scale;
+            for frame in 0..(60 * 40) {
+                d.step(1.0 / 60.0);
+                if frame % 15 != 0 {
+                    continue;
+                }
+                let mut scene = Scene::default();
+                d.scene(&mut scene);
+                let boxes: Vec<(String, DVec2, DVec2)> = scene
+                    .items
+                    .iter()
+                    .filter_map(|item| match item {
+                        Item::Label {
+                            pos,
+                            text,
+                            offset_px,
+                            ..
+                        } if text.contains(" m · ") => {
+                            let left = px(*pos) + *offset_px;
+                            let n = text.chars().count() as f64;
+                            Some((
+                                text.clone(),
+                                left - DVec2::new(0.0, 7.0),
+                                left + DVec2::new(7.0 * n, 7.0),
+                            ))
+                        }
+                        _ => None,
+                    })
+                    .collect();
+                let near =
+                    |lo: DVec2, hi: DVec2, c: DVec2, r: f64| (c.clamp(lo, hi) - c).length() < r;
+                let robot = px(d.pose().position());
+                for (text, lo, hi) in &boxes {
+                    let at = format!("{w}×{h} px, route {route:?}, t {:.2} s: “{text}”", d.time_s);
+                    assert!(
+                        !near(*lo, *hi, robot, BODY_RADIUS_M * 1.35 * scale),
+                        "{at} covers the robot"
+                    );
+                    for p in d.waypoints() {
+                        assert!(!near(*lo, *hi, px(p), 6.0), "{at} covers waypoint {p}");
+                        assert!(
+                            !near(*lo, *hi, px(p) + DVec2::new(0.0, 18.0), 5.0),
+                            "{at} covers the number of {p}"
+                        );
+                    }
+                    for (other, olo, ohi) in &boxes {
+                        let apart =
+                            hi.x <= olo.x || lo.x >= ohi.x || hi.y <= olo.y || lo.y >= ohi.y;
+                        assert!(other == text || apart, "{at} covers “{other}”");
+                    }
+                }
+            }
+            assert_eq!(d.reached(), route.len(), "{route:?} driven");
+        }
+    }
+}

@@ -71,6 +71,85 @@ pub(crate) fn draw_field(out: &mut Scene, w: f64, h: f64) {
     });
 }
 
+/// Scene labels are 13 px bold: a character is at most this wide, and a
+/// label this tall (CSS px).
+pub(super) const LABEL_CHAR_PX: f64 = 8.0;
+pub(super) const LABEL_HEIGHT_PX: f64 = 16.0;
+/// A waypoint's number label sits this far from it (px), as drawn.
+pub(super) const NUMBER_OFFSET_PX: DVec2 = DVec2::new(-4.0, 18.0);
+
+/// CSS px per metre on the canvas the page told (the field fitted to it),
+/// or a laptop's scale before it tells one.
+pub(super) fn scale_px_per_m(d: &DiffDrive) -> f64 {
+    d.viewport_px
+        .map_or(90.0, |v| (v.x / FIELD_W_M).min(v.y / FIELD_H_M))
+}
+
+/// A world point on the canvas (px, y down; the field's origin at the
+/// bottom left, so only differences and the field's edges matter).
+fn to_px(d: &DiffDrive, p: DVec2) -> DVec2 {
+    DVec2::new(p.x, FIELD_H_M - p.y) * scale_px_per_m(d)
+}
+
+/// The box (px, min and max corners) of a label of `chars` characters
+/// anchored at world point `at` with `offset_px` (its left end, middle).
+pub(super) fn label_box(d: &DiffDrive, at: DVec2, offset_px: DVec2, chars: usize) -> [DVec2; 2] {
+    let left_mid = to_px(d, at) + offset_px;
+    let half = DVec2::new(0.0, 0.5 * LABEL_HEIGHT_PX);
+    [
+        left_mid - half,
+        left_mid + half + DVec2::new(chars as f64 * LABEL_CHAR_PX, 0.0),
+    ]
+}
+
+/// Whether box `b` comes within `r` of `c` (px).
+pub(super) fn box_near(b: [DVec2; 2], c: DVec2, r: f64) -> bool {
+    (c.clamp(b[0], b[1]) - c).length() < r
+}
+
+/// Where a run card's label goes beside waypoint `w` (px offset): the first
+/// place, nearest first, whose box stays on the field and clears the robot's
+/// body and nose, every waypoint's dot and number, and the cards placed
+/// before (`cards`). The robot stands on a waypoint it has just reached.
+fn card_offset(d: &DiffDrive, w: DVec2, chars: usize, cards: &[[DVec2; 2]]) -> DVec2 {
+    let width = chars as f64 * LABEL_CHAR_PX;
+    let robot = to_px(d, d.pose().position());
+    let robot_r = BODY_RADIUS_M * 1.35 * scale_px_per_m(d) + 3.0;
+    let field = to_px(d, DVec2::new(FIELD_W_M, 0.0));
+    let clear = |offset: DVec2| {
+        let b = label_box(d, w, offset, chars);
+        b[0].min_element() >= 0.0
+            && b[1].x <= field.x
+            && b[1].y <= field.y
+            && !box_near(b, robot, robot_r)
+            && d.waypoints().iter().all(|p| {
+                !box_near(b, to_px(d, *p), 10.0)
+                    && !box_near(
+                        b,
+                        to_px(d, *p) + NUMBER_OFFSET_PX + DVec2::new(4.0, 0.0),
+                        9.0,
+                    )
+            })
+            && cards.iter().all(|c| {
+                b[1].x <= c[0].x || b[0].x >= c[1].x || b[1].y <= c[0].y || b[0].y >= c[1].y
+            })
+    };
+    (0..8)
+        .flat_map(|ring| {
+            let g = 12.0 + 10.0 * f64::from(ring);
+            [
+                DVec2::new(g, -g),
+                DVec2::new(g, g),
+                DVec2::new(-g - width, -g),
+                DVec2::new(-g - width, g),
+                DVec2::new(-0.5 * width, -g - 8.0),
+                DVec2::new(-0.5 * width, g + 8.0),
+            ]
+        })
+        .find(|o| clear(*o))
+        .unwrap_or(DVec2::new(10.0, -10.0))
+}
+
 /// The run card shown in the readouts: the active run, else the last one
 /// finished; with its 1-based waypoint number and whether it is done.
 pub(super) fn shown_card(d: &DiffDrive) -> Option<(usize, RunStats, bool)> {
@@ -122,6 +201,8 @@ pub(super) fn scene(d: &DiffDrive, out: &mut Scene) {
         });
     }
     let reached = d.reached();
+    // The run cards' label boxes placed so far (canvas px).
+    let mut cards: Vec<[DVec2; 2]> = Vec::new();
     for (k, (slot, w)) in d
         .slots
         .iter()
@@ -143,15 +224,18 @@ pub(super) fn scene(d: &DiffDrive, out: &mut Scene) {
             offset_px: DVec2::new(-4.0, 18.0),
         });
         if let Some(card) = d.follower.completed.get(k) {
+            let text = format!(
+                "{} m · {} s",
+                format_fixed(card.path_length_m, 2),
+                format_fixed(card.time_to_goal_s.unwrap_or(card.elapsed_s), 1)
+            );
+            let offset_px = card_offset(d, w, text.chars().count(), &cards);
+            cards.push(label_box(d, w, offset_px, text.chars().count()));
             out.push(Item::Label {
                 pos: w,
-                text: format!(
-                    "{} m · {} s",
-                    format_fixed(card.path_length_m, 2),
-                    format_fixed(card.time_to_goal_s.unwrap_or(card.elapsed_s), 1)
-                ),
+                text,
                 role: Role::Text,
-                offset_px: DVec2::new(10.0, -10.0),
+                offset_px,
             });
         }
     }

@@ -592,6 +592,10 @@ impl Experiment for DampedLeastSquares {
         "Click or tap a target (or type its x and y) and watch each damped least-squares iteration."
     }
 
+    fn touch_hint(&self) -> &'static str {
+        "Tap a target (or type its x and y) and watch each damped least-squares iteration."
+    }
+
     fn preview(&mut self) {
         self.set_target(DVec2::new(1.3, 1.1));
         while self.animating() {

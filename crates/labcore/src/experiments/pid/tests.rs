@@ -1347,3 +1347,29 @@ fn pid_the_setpoint_handle_moves_along_x_only() {
     assert_eq!(e.param("r"), Some(0.5));
     assert_eq!(e.handles()[0].at.y, handles[0].at.y);
 }
+
+/// Issue 23 §3 (numbers): "Force u = −9.1 × 10⁻⁵ N" showed where the other
+/// readouts show "0.00 N". The force has one format all run long, in the
+/// readout and on the canvas: two decimals and N.
+#[test]
+fn pid_force_u_has_one_format_a_tiny_force_reads_0_00_n() {
+    let mut e = PidControl::default();
+    let mut tiny = 0;
+    for _ in 0..(40 * 60) {
+        e.step(1.0 / 60.0);
+        let u = e.run.last_terms().output;
+        let shown = readout(&e, "force");
+        assert_eq!(shown, format!("{} N", format_fixed(u, 2)), "u = {u}");
+        let mut scene = Scene::default();
+        e.scene(&mut scene);
+        let label = scene.items.iter().find_map(|item| match item {
+            Item::Label { text, .. } => text.strip_prefix("u = ").map(str::to_owned),
+            _ => None,
+        });
+        assert_eq!(label.as_deref(), Some(shown.as_str()));
+        if u != 0.0 && u.abs() < 1e-3 {
+            tiny += 1;
+        }
+    }
+    assert!(tiny > 0, "the run passes through tiny forces");
+}

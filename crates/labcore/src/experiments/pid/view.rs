@@ -16,6 +16,17 @@ pub(super) fn quantity(v: f64, decimals: usize) -> String {
     }
 }
 
+/// The force as the readout and the canvas show it: two decimals in newtons
+/// (a tiny force reads `0.00 N`, as at rest), the magnitude form only beyond
+/// the everyday range (`3.5 × 10¹⁵⁰ N`, from an extreme link).
+pub(super) fn force_text(u_n: f64) -> String {
+    if u_n.abs() < 1e3 || !u_n.is_finite() {
+        format!("{} N", format_fixed(u_n, 2))
+    } else {
+        format!("{} N", format_magnitude(u_n))
+    }
+}
+
 /// A length: [`format_metres`] in the everyday range, the magnitude form beyond.
 fn metres(v: f64) -> String {
     if v.abs() < 1e3 || !v.is_finite() {
@@ -209,7 +220,7 @@ pub(super) fn scene(e: &PidControl, out: &mut Scene) {
     }
     out.push(Item::Label {
         pos: DVec2::new(x, CART_TOP_M),
-        text: format!("u = {} N", quantity(u, 1)),
+        text: format!("u = {}", force_text(u)),
         role: Role::Text,
         offset_px: DVec2::new(-24.0, -14.0),
     });
@@ -241,11 +252,7 @@ pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
     let mut out = vec![
         Readout::metres("x", "Position x", x),
         Readout::metres("error", "Error e = r − x", e.setpoint_m - x),
-        Readout::new(
-            "force",
-            "Force u",
-            format!("{} N", quantity(e.run.last_terms().output, 2)),
-        ),
+        Readout::new("force", "Force u", force_text(e.run.last_terms().output)),
         Readout::new(
             "overshoot",
             "Overshoot",

@@ -833,6 +833,10 @@ impl Experiment for PotentialFieldLab {
         "Click or tap to set the goal; drag obstacles, the goal or the start. Add obstacle, then click to place it."
     }
 
+    fn touch_hint(&self) -> &'static str {
+        "Tap to set the goal; drag obstacles, the goal or the start. Add obstacle, then tap to place it."
+    }
+
     /// The default field with the default goal, run to its end. Bounded:
     /// at most [`MAX_PREVIEW_STEPS`] steps, since a run that cannot move (a
     /// goal inside an obstacle) never ends by itself.
