@@ -6,6 +6,7 @@
 import { after, before } from "node:test";
 import assert from "node:assert/strict";
 import { createServer } from "node:http";
+import { createServer as createTcpServer } from "node:net";
 import { existsSync, mkdirSync } from "node:fs";
 import { readFile, stat } from "node:fs/promises";
 import { dirname, extname, join, resolve, sep } from "node:path";
@@ -353,7 +354,9 @@ export async function runFor(page, ms) {
  * lab is wrong. Returns the page time it took, in ms.
  */
 export async function runUntil(page, predicate, arg, { sliceMs = 50, maxMs, timeout, what = "the condition" } = {}) {
-  // `timeout` (page.waitForFunction's word) is page time here too.
+  // `timeout` (page.waitForFunction's word, a wall-clock bound in the tests
+  // this replaced) is page time here, and never under 60 s of it: a bound
+  // in simulated time costs a busy machine nothing.
   maxMs = maxMs ?? Math.max(timeout ?? 0, 60_000);
   for (let t = 0; ; t += sliceMs) {
     if (await page.evaluate(predicate, arg)) return t;
@@ -380,4 +383,33 @@ export async function runUntilReadout(page, key, op, bound, { abs = false, maxMs
     { maxMs, what: `readout ${key} ${op} ${bound}` },
   );
   return (await readouts(page))[key];
+}
+
+/** A free TCP port on 127.0.0.1. */
+export function freePort() {
+  return new Promise((ok, fail) => {
+    const s = createTcpServer();
+    s.on("error", fail);
+    s.listen(0, "127.0.0.1", () => {
+      const { port } = s.address();
+      s.close(() => ok(port));
+    });
+  });
+}
+
+/**
+ * Waits until the service worker controls the page and holds its cache;
+ * returns its scope and how many files the cache holds (the worker fills
+ * its cache while it installs: once it controls the page, the cache is whole).
+ */
+export function workerReady(page) {
+  return page.evaluate(async () => {
+    const reg = await navigator.serviceWorker.ready;
+    if (!navigator.serviceWorker.controller) {
+      await new Promise((ok) => navigator.serviceWorker.addEventListener("controllerchange", ok, { once: true }));
+    }
+    const names = await caches.keys();
+    const cache = await caches.open(names.find((n) => n.startsWith("lab-")));
+    return { scope: reg.scope, cached: (await cache.keys()).length };
+  });
 }

@@ -207,3 +207,22 @@ test("attempts= and score= in a link stay in the simulation's link and in the In
     await page.click('article.exp[data-experiment="pid"] [role=tab][data-tab="quiz"]');
     await page.waitForFunction(() => /^#\/pid\/quiz\?attempts=2&score=first&quiz=\d+$/.test(location.hash));
   }));
+
+test("the Self-assessment tab's link (grading rules and the student's seed) keeps the instructor's lock and note when routed again", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/pid/simulation?kp=30&lock=kp&note=Hello&attempts=2&score=first");
+    await page.click('article.exp[data-experiment="pid"] [role=tab][data-tab="quiz"]');
+    await page.waitForFunction(() => /^#\/pid\/quiz\?attempts=2&score=first&quiz=\d+$/.test(location.hash));
+    // Routed once more (as Back and Forward do), then back to the simulation.
+    await page.goBack();
+    await page.waitForFunction(() => /^#\/pid\/simulation/.test(location.hash));
+    await page.goForward();
+    await page.waitForFunction(() => /^#\/pid\/quiz/.test(location.hash));
+    await page.click('article.exp[data-experiment="pid"] [role=tab][data-tab="simulation"]');
+    await page.waitForFunction(() => /^#\/pid\/simulation\?/.test(location.hash));
+    const q = new URLSearchParams(await page.evaluate(() => location.hash.split("?")[1]));
+    assert.equal(q.get("lock"), "kp", `link: ${await page.evaluate(() => location.hash)}`);
+    assert.equal(q.get("note"), "Hello");
+    assert.equal(q.get("attempts"), "2");
+    assert.equal(await page.$eval('input[type=range][data-param="kp"]', (el) => el.disabled), true, "kp stays locked");
+  }));

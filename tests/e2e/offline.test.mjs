@@ -4,21 +4,9 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { experimentIds, open, useLab, waitReady, withPage } from "./helpers.mjs";
+import { experimentIds, open, useLab, waitReady, withPage, workerReady } from "./helpers.mjs";
 
 const lab = useLab();
-
-/** Waits until the service worker controls the page and holds its cache. */
-const workerReady = (page) =>
-  page.evaluate(async () => {
-    const reg = await navigator.serviceWorker.ready;
-    if (!navigator.serviceWorker.controller) {
-      await new Promise((ok) => navigator.serviceWorker.addEventListener("controllerchange", ok, { once: true }));
-    }
-    const names = await caches.keys();
-    const cache = await caches.open(names.find((n) => n.startsWith("lab-")));
-    return { scope: reg.scope, cached: (await cache.keys()).length };
-  });
 
 /** The Simulation tab of `id` is mounted, drawn, and one step advances it. */
 async function drawsAndSteps(page, id) {

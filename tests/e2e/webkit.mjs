@@ -9,10 +9,9 @@
 
 import { spawn } from "node:child_process";
 import { existsSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
-import { createServer } from "node:net";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { SHOTS } from "./helpers.mjs";
+import { SHOTS, freePort } from "./helpers.mjs";
 import { crop, decodePng, encodePng } from "./png.mjs";
 
 export const WEBKIT_DRIVER = process.env.WEBKIT_DRIVER || "/usr/bin/WebKitWebDriver";
@@ -22,17 +21,6 @@ const ELEMENT = "element-6066-11e4-a52e-4f735466cecf";
 
 /** True when Debian's webkit2gtk-driver and xvfb are installed. */
 export const webkitAvailable = () => existsSync(WEBKIT_DRIVER) && existsSync(XVFB);
-
-function freePort() {
-  return new Promise((ok, fail) => {
-    const s = createServer();
-    s.on("error", fail);
-    s.listen(0, "127.0.0.1", () => {
-      const { port } = s.address();
-      s.close(() => ok(port));
-    });
-  });
-}
 
 /** Starts Xvfb on a free display (it reports the number on fd 3). */
 function startXvfb() {

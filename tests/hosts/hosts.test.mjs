@@ -37,18 +37,19 @@ import {
   writeFileSync,
 } from "node:fs";
 import { request } from "node:http";
-import { createServer } from "node:net";
 import { tmpdir } from "node:os";
 import { dirname, extname, join, relative, resolve } from "node:path";
 import { fileURLToPath } from "node:url";
 import { brotliDecompressSync, gunzipSync } from "node:zlib";
 import {
   DIST,
+  freePort,
   isContentHashed,
   launchBrowser,
   open,
   waitReady,
   withPage,
+  workerReady,
 } from "../e2e/helpers.mjs";
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), "..", "..");
@@ -123,18 +124,6 @@ function ensurePackages() {
     const r = spawnSync("apt-get", ["-o", "DPkg::Lock::Timeout=600", ...args], { stdio: "inherit", env });
     assert.equal(r.status, 0, `apt-get ${args.join(" ")} failed`);
   }
-}
-
-/** A free TCP port on 127.0.0.1. */
-function freePort() {
-  return new Promise((ok, fail) => {
-    const s = createServer();
-    s.on("error", fail);
-    s.listen(0, "127.0.0.1", () => {
-      const { port } = s.address();
-      s.close(() => ok(port));
-    });
-  });
 }
 
 /** GET (no redirects followed): status, headers and the raw body bytes. */
@@ -590,16 +579,7 @@ for (const key of ["nginx", "apache"]) {
         await open(lab, page, "#/");
         const ids = await page.$$eval("a.card[data-experiment]", (cards) => cards.map((c) => c.dataset.experiment));
         await open(lab, page, `#/${ids[0]}/simulation`);
-        const { scope, cached } = await page.evaluate(async () => {
-          const reg = await navigator.serviceWorker.ready;
-          if (!navigator.serviceWorker.controller) {
-            await new Promise((ok) => navigator.serviceWorker.addEventListener("controllerchange", ok, { once: true }));
-          }
-          // The worker fills its cache while it installs: once it controls the page, the cache is whole.
-          const names = await caches.keys();
-          const cache = await caches.open(names.find((n) => n.startsWith("lab-")));
-          return { scope: reg.scope, cached: (await cache.keys()).length };
-        });
+        const { scope, cached } = await workerReady(page);
         assert.equal(scope, server.base, "the worker's scope is the lab's folder");
         assert.ok(cached > 20, `the whole site is cached (${cached} files)`);
         await context.setOffline(true);

@@ -149,9 +149,10 @@ impl Suspended {
             answers: answers_from_json(field("answers")?)?,
             submitted,
             tally: match (whole("graded"), whole("counted")) {
-                (Some(graded), counted @ Some(_)) => Tally {
+                // A percentage: an edited `suspend_data` cannot count more.
+                (Some(graded), Some(counted)) => Tally {
                     graded: graded.min(u32::MAX as usize) as u32,
-                    counted,
+                    counted: Some(counted.min(100)),
                 },
                 _ => Tally::default(),
             },
@@ -237,6 +238,9 @@ mod tests {
         assert_eq!(Suspended::decode(odd).unwrap().tally, Tally::default());
         let odd = r#"{"id":"fk","seed":7,"answers":[],"graded":2}"#;
         assert_eq!(Suspended::decode(odd).unwrap().tally, Tally::default());
+        // A percentage counts at most 100, whatever an edited text says.
+        let odd = r#"{"id":"fk","seed":7,"answers":[],"graded":1,"counted":1e300}"#;
+        assert_eq!(Suspended::decode(odd).unwrap().tally.counted, Some(100));
     }
 
     /// Issue 24 §2: with attempts=2 the third attempt is refused with a

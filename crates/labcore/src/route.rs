@@ -563,10 +563,16 @@ impl Instructor {
     /// Nothing locked, hidden or noted.
     #[must_use]
     pub fn is_empty(&self) -> bool {
+        self.quiz == QuizRules::default() && self.holds_only_quiz_rules()
+    }
+
+    /// Nothing locked, hidden, noted or chosen for the report: at most the
+    /// quiz's grading rules, as the Self-assessment tab's own link carries.
+    #[must_use]
+    pub fn holds_only_quiz_rules(&self) -> bool {
         self.locked.is_empty()
             && self.hidden.is_empty()
             && self.note.is_none()
-            && self.quiz == QuizRules::default()
             && self.answer_key.is_none()
     }
 

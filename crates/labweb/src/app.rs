@@ -137,7 +137,15 @@ impl App {
                     // carries the student's seed) is an instructor's class
                     // seed: it keeps them too, and reaches the Simulation
                     // tab's link and the lab report's answer-key default.
-                    if new_state || (params.is_empty() && !instructor.is_empty()) {
+                    // The Self-assessment tab's own link carries the grading
+                    // rules and the student's seed, nothing else: routed again
+                    // (Back, or a tab link's second routing) it keeps the
+                    // instructor's locks, note and report choice.
+                    let quiz_tab_link =
+                        params.is_empty() && tab == Tab::Quiz && instructor.holds_only_quiz_rules();
+                    if quiz_tab_link {
+                        page.set_quiz_rules(quiz_rules);
+                    } else if new_state || (params.is_empty() && !instructor.is_empty()) {
                         notices.extend(page.set_instructor(instructor, quiz_seed));
                         page.set_quiz_rules(quiz_rules);
                     } else if params.is_empty() && quiz_seed.is_some() && tab != Tab::Quiz {

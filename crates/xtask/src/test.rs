@@ -272,14 +272,29 @@ pub fn ensure_other_browsers() -> Result<(), String> {
 /// Installs `packages` with apt-get when any of `paths` is missing (as root),
 /// or fails with `hint`.
 fn ensure_debian_packages(paths: &[&str], packages: &[&str], hint: &str) -> Result<(), String> {
+    if install_debian_packages(paths, packages, &["--no-install-recommends"])? {
+        Ok(())
+    } else {
+        println!("{hint}");
+        Err(hint.into())
+    }
+}
+
+/// Installs `packages` with apt-get (`apt_args` added) when any of `paths`
+/// is missing. `Ok(false)` when they are missing and this is not root, so
+/// nothing could be installed.
+fn install_debian_packages(
+    paths: &[&str],
+    packages: &[&str],
+    apt_args: &[&str],
+) -> Result<bool, String> {
     let present = || paths.iter().all(|p| Path::new(p).exists());
     if present() {
-        return Ok(());
+        return Ok(true);
     }
     let uid = util::output(Command::new("id").arg("-u"))?;
     if uid.trim() != "0" {
-        println!("{hint}");
-        return Err(hint.into());
+        return Ok(false);
     }
     util::run(
         Command::new("apt-get")
@@ -288,12 +303,13 @@ fn ensure_debian_packages(paths: &[&str], packages: &[&str], hint: &str) -> Resu
     )?;
     util::run(
         Command::new("apt-get")
-            .args(["install", "-y", "--no-install-recommends"])
+            .args(["install", "-y"])
+            .args(apt_args)
             .args(packages)
             .env("DEBIAN_FRONTEND", "noninteractive"),
     )?;
     if present() {
-        Ok(())
+        Ok(true)
     } else {
         Err(format!(
             "apt-get finished but one of {} is still missing",
@@ -315,32 +331,9 @@ fn servers_hint() -> String {
 /// (as root). `Ok(false)` when they are missing and this is not root: the
 /// caller skips the suite and says why.
 pub fn ensure_servers() -> Result<bool, String> {
-    let present = || SERVER_FILES.iter().all(|f| Path::new(f).exists());
-    if present() {
-        return Ok(true);
-    }
-    let uid = util::output(Command::new("id").arg("-u"))?;
-    if uid.trim() != "0" {
+    let installed = install_debian_packages(&SERVER_FILES, &SERVER_PACKAGES, &[])?;
+    if !installed {
         println!("SKIPPING: {}", servers_hint());
-        return Ok(false);
     }
-    util::run(
-        Command::new("apt-get")
-            .arg("update")
-            .env("DEBIAN_FRONTEND", "noninteractive"),
-    )?;
-    util::run(
-        Command::new("apt-get")
-            .args(["install", "-y"])
-            .args(SERVER_PACKAGES)
-            .env("DEBIAN_FRONTEND", "noninteractive"),
-    )?;
-    if present() {
-        Ok(true)
-    } else {
-        Err(format!(
-            "apt-get finished but one of {} is still missing",
-            SERVER_FILES.join(", ")
-        ))
-    }
+    Ok(installed)
 }
