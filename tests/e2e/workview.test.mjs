@@ -82,7 +82,11 @@ function controlSelectors(page) {
     }
     const move = document.querySelector(`${sim} .sim-move`);
     if (move && shown(move)) {
-      for (const id of ["move-handle", "move-x", "move-y"]) out.push({ sel: `${sim} .sim-move #${id}`, kind: "move" });
+      // A handle on a track (PID's setpoint) has no y box to type in.
+      for (const id of ["move-handle", "move-x", "move-y"]) {
+        const box = move.querySelector(`#${id}`);
+        if (box && shown(box)) out.push({ sel: `${sim} .sim-move #${id}`, kind: "move" });
+      }
       out.push({ sel: `${sim} .sim-move button[type=submit]`, kind: "move" });
     }
     for (const b of document.querySelectorAll(`${sim} .sim-actions button[data-action]`)) {

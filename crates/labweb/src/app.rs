@@ -141,8 +141,10 @@ impl App {
                     // rules and the student's seed, nothing else: routed again
                     // (Back, or a tab link's second routing) it keeps the
                     // instructor's locks, note and report choice.
-                    let quiz_tab_link =
-                        params.is_empty() && tab == Tab::Quiz && instructor.holds_only_quiz_rules();
+                    let quiz_tab_link = params.is_empty()
+                        && tab == Tab::Quiz
+                        && !instructor.is_empty()
+                        && instructor.holds_only_quiz_rules();
                     if quiz_tab_link {
                         page.set_quiz_rules(quiz_rules);
                     } else if new_state || (params.is_empty() && !instructor.is_empty()) {

@@ -88,8 +88,8 @@ pub(super) fn panel_html(specs: &[ParamSpec]) -> String {
          <input type=\"text\" class=\"instructor-note-input\" maxlength=\"{NOTE_MAX_CHARS}\" autocomplete=\"off\"></label>\
          <label class=\"instructor-field\">Quiz seed (the same questions for the whole class; empty: each student draws their own)\
          <input type=\"text\" class=\"instructor-quiz\" inputmode=\"numeric\" autocomplete=\"off\" spellcheck=\"false\"></label>\
-         <label class=\"instructor-field\">Expected answers in a student's lab report\
-         <select class=\"instructor-key\"><option value=\"\">Default: never with a quiz seed, else after submission</option>\
+         <label class=\"instructor-field\">Expected answers in a student's lab report (by default never with a quiz seed, else after submission)\
+         <select class=\"instructor-key\"><option value=\"\">Default</option>\
          <option value=\"never\">Never</option><option value=\"submitted\">After submission</option>\
          <option value=\"always\">Always</option></select></label>\
          <label class=\"instructor-field\">Link\
