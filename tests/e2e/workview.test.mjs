@@ -294,99 +294,95 @@ for (const viewport of LAPTOPS) {
   });
 }
 
-test("on a phone (390×844) the action that starts a run sits right under the canvas, in its first screen, and tapping it keeps 80 % of the canvas in view", async (t) => {
-  const ids = await experimentIds(lab);
-  for (const id of ids) {
+/**
+ * Runs `body(page, id)` as a subtest of `t` for every experiment, on a
+ * touch phone, with its Simulation tab open and settled.
+ */
+async function onEveryPhoneSim(t, body) {
+  for (const id of await experimentIds(lab)) {
     await t.test(id, () =>
       withPage(lab, TOUCH_PHONE, async (page) => {
         await open(lab, page, `#/${id}/simulation`);
         await settle(page);
-        const action = page.locator(`${SIM} .sim-actions button[data-action]`).first();
-        if ((await action.count()) === 0) return; // fk and ik: the canvas is the action
-        const [canvas, button, plot] = await page.evaluate((sim) => {
-          const box = (sel) => document.querySelector(sel)?.getBoundingClientRect().toJSON() ?? null;
-          return [box(`${sim} canvas.sim-canvas`), box(`${sim} .sim-actions button`), box(`${sim} .sim-mainplot`)];
-        }, SIM);
-        assert.ok(button.bottom <= PHONE.height, `${id}: the main action ends at ${button.bottom} px, inside the first screen`);
-        assert.ok(button.top >= canvas.bottom, `${id}: the main action is under the canvas`);
-        if (plot) assert.ok(button.bottom <= plot.top, `${id}: the main action comes before the main plot`);
-        await action.tap();
-        await settle(page);
-        await assertSceneInView(page, `${id}: after tapping ${await action.textContent()}`, 0);
-        const share = await seenShare(page, CANVAS);
-        assert.ok(share >= 0.8, `${id}: ${(share * 100).toFixed(0)} % of the canvas in view after the tap`);
+        await body(page, id);
       }),
     );
   }
+}
+
+test("on a phone (390×844) the action that starts a run sits right under the canvas, in its first screen, and tapping it keeps 80 % of the canvas in view", async (t) => {
+  await onEveryPhoneSim(t, async (page, id) => {
+    const action = page.locator(`${SIM} .sim-actions button[data-action]`).first();
+    if ((await action.count()) === 0) return; // fk and ik: the canvas is the action
+    const [canvas, button, plot] = await page.evaluate((sim) => {
+      const box = (sel) => document.querySelector(sel)?.getBoundingClientRect().toJSON() ?? null;
+      return [box(`${sim} canvas.sim-canvas`), box(`${sim} .sim-actions button`), box(`${sim} .sim-mainplot`)];
+    }, SIM);
+    assert.ok(button.bottom <= PHONE.height, `${id}: the main action ends at ${button.bottom} px, inside the first screen`);
+    assert.ok(button.top >= canvas.bottom, `${id}: the main action is under the canvas`);
+    if (plot) assert.ok(button.bottom <= plot.top, `${id}: the main action comes before the main plot`);
+    await action.tap();
+    await settle(page);
+    await assertSceneInView(page, `${id}: after tapping ${await action.textContent()}`, 0);
+    const share = await seenShare(page, CANVAS);
+    assert.ok(share >= 0.8, `${id}: ${(share * 100).toFixed(0)} % of the canvas in view after the tap`);
+  });
 });
 
 test("touch targets: on a touch screen every visible button, field, choice and slider of the Simulation tab is at least 44 CSS px tall", async (t) => {
-  const ids = await experimentIds(lab);
-  for (const id of ids) {
-    await t.test(id, () =>
-      withPage(lab, TOUCH_PHONE, async (page) => {
-        await open(lab, page, `#/${id}/simulation`);
-        await settle(page);
-        assert.ok(await page.evaluate(() => matchMedia("(pointer: coarse)").matches), "a coarse pointer");
-        await openGroups(page);
-        await page.$$eval(`${ART} details.instructor-panel`, (ds) => ds.forEach((d) => { d.open = true; }));
-        const small = await page.evaluate((art) => {
-          const els = document.querySelectorAll(
-            `.top summary, ${art} [role=tab], ${art} [data-panel=simulation] :is(button, input, select, summary)`,
-          );
-          return [...els]
-            .filter((el) => {
-              const r = el.getBoundingClientRect();
-              const cs = getComputedStyle(el);
-              // Skipped: not shown, and the visually hidden file input.
-              return r.width > 1 && r.height > 1 && cs.visibility !== "hidden" && !el.closest("[hidden]");
-            })
-            .map((el) => ({ el, h: el.getBoundingClientRect().height }))
-            .filter(({ h }) => h < 44 - 0.01)
-            .map(({ el, h }) => `${el.tagName.toLowerCase()}${el.type ? `[${el.type}]` : ""} “${(el.textContent || el.getAttribute("aria-label") || el.id || "").trim().slice(0, 30)}” ${h.toFixed(1)} px`);
-        }, ART);
-        assert.deepEqual(small, [], `${id}: controls under 44 px`);
-        if (id === "pid") await screenshot(page, "pid-touch-390");
-      }),
-    );
-  }
+  await onEveryPhoneSim(t, async (page, id) => {
+    assert.ok(await page.evaluate(() => matchMedia("(pointer: coarse)").matches), "a coarse pointer");
+    await openGroups(page);
+    await page.$$eval(`${ART} details.instructor-panel`, (ds) => ds.forEach((d) => { d.open = true; }));
+    const small = await page.evaluate((art) => {
+      const els = document.querySelectorAll(
+        `.top summary, ${art} [role=tab], ${art} [data-panel=simulation] :is(button, input, select, summary)`,
+      );
+      return [...els]
+        .filter((el) => {
+          const r = el.getBoundingClientRect();
+          const cs = getComputedStyle(el);
+          // Skipped: not shown, and the visually hidden file input.
+          return r.width > 1 && r.height > 1 && cs.visibility !== "hidden" && !el.closest("[hidden]");
+        })
+        .map((el) => ({ el, h: el.getBoundingClientRect().height }))
+        .filter(({ h }) => h < 44 - 0.01)
+        .map(({ el, h }) => `${el.tagName.toLowerCase()}${el.type ? `[${el.type}]` : ""} “${(el.textContent || el.getAttribute("aria-label") || el.id || "").trim().slice(0, 30)}” ${h.toFixed(1)} px`);
+    }, ART);
+    assert.deepEqual(small, [], `${id}: controls under 44 px`);
+    if (id === "pid") await screenshot(page, "pid-touch-390");
+  });
 });
 
 test("astar on a phone: the Moves select shows its whole choice (“8-connected”), and so does every select of every experiment", async (t) => {
-  const ids = await experimentIds(lab);
-  for (const id of ids) {
-    await t.test(id, () =>
-      withPage(lab, TOUCH_PHONE, async (page) => {
-        await open(lab, page, `#/${id}/simulation`);
-        await openGroups(page);
-        await settle(page);
-        const cut = await page.evaluate((sim) =>
-          [...document.querySelectorAll(`${sim} select`)]
-            .filter((s) => s.getClientRects().length > 0)
-            .map((s) => {
-              // The width the select takes to show its chosen option where
-              // nothing squeezes it.
-              const free = s.cloneNode(true);
-              [...free.options].filter((o) => o.value !== s.value).forEach((o) => o.remove());
-              free.style.cssText = "position:absolute;left:0;top:0;width:auto;min-width:0;max-width:none;visibility:hidden";
-              s.parentElement.append(free);
-              const natural = free.getBoundingClientRect().width;
-              free.remove();
-              const shown = s.getBoundingClientRect();
-              return { id: s.id, natural, width: shown.width, right: shown.right };
-            })
-            .filter((s) => s.width < s.natural - 0.5 || s.right > innerWidth),
-        SIM);
-        assert.deepEqual(cut, [], `${id}: selects narrower than their choice or past the screen's edge`);
-        if (id === "astar") {
-          const moves = await page.locator(`${SIM} #p-conn`).boundingBox();
-          assert.ok(moves.x + moves.width <= PHONE.width, "the Moves select ends on the screen");
-          await page.locator(`${SIM} #p-conn`).scrollIntoViewIfNeeded();
-          await screenshot(page, "astar-moves-390");
-        }
-      }),
-    );
-  }
+  await onEveryPhoneSim(t, async (page, id) => {
+    await openGroups(page);
+    await settle(page);
+    const cut = await page.evaluate((sim) =>
+      [...document.querySelectorAll(`${sim} select`)]
+        .filter((s) => s.getClientRects().length > 0)
+        .map((s) => {
+          // The width the select takes to show its chosen option where
+          // nothing squeezes it.
+          const free = s.cloneNode(true);
+          [...free.options].filter((o) => o.value !== s.value).forEach((o) => o.remove());
+          free.style.cssText = "position:absolute;left:0;top:0;width:auto;min-width:0;max-width:none;visibility:hidden";
+          s.parentElement.append(free);
+          const natural = free.getBoundingClientRect().width;
+          free.remove();
+          const shown = s.getBoundingClientRect();
+          return { id: s.id, natural, width: shown.width, right: shown.right };
+        })
+        .filter((s) => s.width < s.natural - 0.5 || s.right > innerWidth),
+    SIM);
+    assert.deepEqual(cut, [], `${id}: selects narrower than their choice or past the screen's edge`);
+    if (id === "astar") {
+      const moves = await page.locator(`${SIM} #p-conn`).boundingBox();
+      assert.ok(moves.x + moves.width <= PHONE.width, "the Moves select ends on the screen");
+      await page.locator(`${SIM} #p-conn`).scrollIntoViewIfNeeded();
+      await screenshot(page, "astar-moves-390");
+    }
+  });
 });
 
 for (const [name, options] of [["1280×800", { viewport: LAPTOPS[0] }], ["390×844", TOUCH_PHONE]]) {
