@@ -12,13 +12,22 @@ const lab = useLab();
 async function drawsAndSteps(page, id) {
   const canvas = page.locator(`article.exp[data-experiment=${id}]:not([hidden]) canvas.sim-canvas`);
   await canvas.waitFor({ state: "visible" });
-  const inked = await canvas.evaluate((c) => {
-    const data = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
-    let n = 0;
-    for (let i = 3; i < data.length; i += 4 * 97) if (data[i] > 0) n++;
-    return n;
-  });
-  assert.ok(inked > 0, `${id}: the canvas is drawn`);
+  // A resize (the tab shown, the layout settling) clears the canvas until
+  // the next frame paints it: wait for ink rather than sample one moment.
+  const inked = await page
+    .waitForFunction(
+      (sel) => {
+        const c = document.querySelector(sel);
+        if (!c || c.width === 0 || c.height === 0) return false;
+        const data = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+        for (let i = 3; i < data.length; i += 4 * 97) if (data[i] > 0) return true;
+        return false;
+      },
+      `article.exp[data-experiment=${id}]:not([hidden]) canvas.sim-canvas`,
+      { timeout: 20_000 },
+    )
+    .then(() => true, () => false);
+  assert.ok(inked, `${id}: the canvas is drawn`);
   const steps = () => canvas.evaluate((c) => Number(c.dataset.steps ?? 0));
   const before = await steps();
   const step = page.locator(`article.exp[data-experiment=${id}]:not([hidden]) button[data-time=step]`);

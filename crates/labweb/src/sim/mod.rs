@@ -775,6 +775,10 @@ impl SimView {
         }
         st.needs_paint = true;
         st.shown_values.iter_mut().for_each(|v| *v = None);
+        // The controls and readouts say the link's state at once, not after
+        // the next frame: until then they would show (and announce) the
+        // constructor's state the page was mounted with.
+        st.sync_dom();
         notices
     }
 
