@@ -221,3 +221,18 @@ for (const [name, viewport] of [
       await fullPage(page, `cartpole-full-${name}`);
     }));
 }
+
+// Issue 23 §3, pid step 8: the unstable tuning's growth is the step's lesson.
+// Opened from its own link, the cart is still on the track two simulated
+// seconds after the page is ready, swinging past the setpoint on both sides,
+// and then runs off the track with the status saying so.
+test("pid step 8: from its link the unstable run swings visibly before it leaves the track", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, "#/pid/simulation?kp=20&ki=5&kd=0&c=0&d=0&sat=0");
+    await runUntil(page, () => Number.parseFloat(document.querySelector("article.exp:not([hidden]) .tb-time").textContent.replace("t = ", "")) > 2);
+    const status = await page.locator("article.exp:not([hidden]) .sim-status").textContent();
+    assert.doesNotMatch(status, /off the track/, "still swinging after 2 s");
+    await screenshot(page, "pid-step-8-swinging");
+    await runUntil(page, () => /off the track at/.test(document.querySelector("article.exp:not([hidden]) .sim-status").textContent));
+    await screenshot(page, "pid-step-8-off-the-track");
+  }));

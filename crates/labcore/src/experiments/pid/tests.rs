@@ -1119,26 +1119,9 @@ fn pid_step_7_noise_roughens_the_d_term_the_filter_calms_it_and_the_seed_repeats
     assert_ne!(again.position_m(), x, "another seed, another run");
 }
 
-#[test]
-fn pid_step_8_an_unstable_tuning_runs_off_the_track_and_the_run_ends() {
-    let mut e = after_step(7);
-    set(&mut e, &[("c", 0.0), ("kd", 0.0), ("kp", 1.0), ("ki", 5.0)]);
-    assert_eq!(readout(&e, "stability"), "unstable");
-    let (poles, _) = e.poles().unwrap();
-    assert!(poles.iter().any(|p| p.re > 0.0));
-    assert!(
-        readout(&e, "poles").starts_with("0.758 ± 1.650i"),
-        "{}",
-        readout(&e, "poles")
-    );
-    // (c + Kd)·Kp = 0 is not greater than m·Ki = 5.
-    let (c, kd, kp, m, ki) = (0.0, 0.0, 1.0, 1.0, 5.0);
-    assert!((c + kd) * kp <= m * ki);
-    run_to_end(&mut e);
-    assert!(e.time_s() < RECORD_S);
-    // "The cart's motion grows": each swing past the setpoint reaches
-    // further than the last one on the same side, over several swings.
-    let y = &e.plots()[0].series[0].y;
+/// The swings of `y` past the setpoint at 1 m: the widest distance from it
+/// between two crossings, in order (the first and the last are partial).
+fn swings_past_setpoint(y: &[f64]) -> Vec<f64> {
     let mut swings = Vec::new();
     let mut widest: f64 = 0.0;
     for k in 1..y.len() {
@@ -1149,9 +1132,63 @@ fn pid_step_8_an_unstable_tuning_runs_off_the_track_and_the_run_ends() {
         widest = widest.max((y[k] - 1.0).abs());
     }
     swings.push(widest);
-    let swings = &swings[1..];
-    assert!(swings.len() >= 4, "{swings:?}");
-    assert!(swings.windows(3).all(|w| w[2] > w[0]), "{swings:?}");
+    swings
+}
+
+#[test]
+fn pid_step_8_an_unstable_tuning_swings_wider_each_time_and_runs_off_the_track() {
+    let text = procedure_step(8);
+    for said in [
+        "Actuator limit</em> off",
+        "d = 0, c = 0, Kd = 0, Kp = 20 and Ki = 5",
+        "0.125 ± 4.477i",
+        "about 9 %",
+        "(±2.5 m)",
+    ] {
+        assert!(text.contains(said), "step 8 says {said:?}: {text}");
+    }
+    let mut e = after_step(7);
+    set(
+        &mut e,
+        &[
+            ("sat", 0.0),
+            ("d", 0.0),
+            ("c", 0.0),
+            ("kd", 0.0),
+            ("kp", 20.0),
+            ("ki", 5.0),
+        ],
+    );
+    assert_eq!(readout(&e, "stability"), "unstable");
+    let (poles, _) = e.poles().unwrap();
+    let growing = poles
+        .iter()
+        .find(|p| p.re > 0.0 && p.im > 0.0)
+        .expect("a pair with a positive real part");
+    assert!(
+        readout(&e, "poles").starts_with("0.125 ± 4.477i"),
+        "{}",
+        readout(&e, "poles")
+    );
+    // (c + Kd)·Kp = 0 is not greater than m·Ki = 5.
+    let (c, kd, kp, m, ki) = (0.0, 0.0, 20.0, 1.0, 5.0);
+    assert!((c + kd) * kp <= m * ki);
+    run_to_end(&mut e);
+    assert!(e.time_s() < RECORD_S);
+    // Each swing is wider than the one before by the factor a half period
+    // of the growing pair gives, e^(σ·π/ω) ≈ 1.09 ("about 9 %").
+    let ratio = (growing.re * std::f64::consts::PI / growing.im).exp();
+    assert!((ratio - 1.09).abs() < 0.005, "{ratio}");
+    let swings = swings_past_setpoint(&e.plots()[0].series[0].y);
+    let whole = &swings[1..swings.len() - 1];
+    assert!(whole.len() >= 4, "{swings:?}");
+    for w in whole.windows(2) {
+        let r = w[1] / w[0];
+        assert!(
+            (r - ratio).abs() < 0.02,
+            "swing ratio {r} vs {ratio}: {swings:?}"
+        );
+    }
     assert!(readout(&e, "overshoot").ends_with("% past the setpoint"));
     let x = e.position_m();
     assert!(x.abs() > TRACK_END_M && x.abs() < TRACK_END_M + 0.05, "{x}");
@@ -1164,6 +1201,25 @@ fn pid_step_8_an_unstable_tuning_runs_off_the_track_and_the_run_ends() {
     );
     assert!(status.text.ends_with("the loop is unstable"));
     assert!(!e.animating());
+}
+
+/// Issue 23 §3, step 8: from the link `kp=1&ki=5&kd=0&c=0` the cart left
+/// the track in 1.4 s, one and a half swings, before a student could see
+/// anything grow. The step's tuning (Kp = 20, Ki = 5) opened from its bare
+/// link swings at least four whole times, each wider, before it leaves.
+#[test]
+fn pid_step_8_from_its_own_link_the_growth_takes_several_visible_swings() {
+    let (mut e, _) = restore(
+        "#/pid/simulation?kp=20&ki=5&kd=0&c=0",
+        PidControl::default(),
+    );
+    run_to_end(&mut e);
+    let swings = swings_past_setpoint(&e.plots()[0].series[0].y);
+    let whole = &swings[1..swings.len() - 1];
+    assert!(whole.len() >= 4, "{swings:?}");
+    assert!(whole.windows(2).all(|w| w[1] > w[0]), "{swings:?}");
+    assert!(e.time_s() > 3.0, "{}", e.time_s());
+    assert!(e.status().text.starts_with("off the track at "));
 }
 
 // ---------------------------------------------------------------------------
@@ -1298,13 +1354,16 @@ fn pid_the_badge_follows_the_default_run_to_settled() {
     assert_eq!(e.status().phase, Phase::Ended);
 }
 
-/// Issue 23 §3, step 8: from the link `kp=1&ki=5&kd=0&c=0` the cart left
-/// the track in 1.4 s with Overshoot and Peak at "--", although it went
+/// Issue 23 §3, step 8: from the step's link the cart left the track with
+/// Overshoot and Peak at "--", although it went
 /// 150 % past the setpoint. The ended run keeps its whole response on the
 /// plot and reports what it reached, against the setpoint.
 #[test]
 fn pid_step_8_an_unstable_run_reports_the_overshoot_and_peak_it_reached() {
-    let (mut e, _) = restore("#/pid/simulation?kp=1&ki=5&kd=0&c=0", PidControl::default());
+    let (mut e, _) = restore(
+        "#/pid/simulation?kp=20&ki=5&kd=0&c=0",
+        PidControl::default(),
+    );
     run_to_end(&mut e);
     assert_eq!(e.status().phase, Phase::Ended);
     let s = &e.plots()[0].series[0];
