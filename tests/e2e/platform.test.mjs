@@ -231,15 +231,16 @@ test("exports: a plot's CSV holds every sample with units in the header; the can
     assert.equal(head, "Samples drawn,outer radius (measured) (m),inner hole (measured) (m)");
   }));
 
-/** Waits (real time) until the page's scroll position has held still for 200 ms. */
-async function scrollSettled(page) {
-  let last = await page.evaluate(() => scrollY);
-  let stillSince = Date.now();
-  while (Date.now() - stillSince < 200) {
-    await new Promise((ok) => setTimeout(ok, 25));
-    const now = await page.evaluate(() => scrollY);
-    if (now !== last) [last, stillSince] = [now, Date.now()];
-  }
+/**
+ * Arms a wait for the end of the next scroll of the page: `scrollend`, which
+ * Chromium fires once a scroll, the fling after a swipe included, has
+ * finished. Await the returned function to wait for it.
+ */
+async function nextScrollEnd(page) {
+  await page.evaluate(() => {
+    window.__scrollEnd = new Promise((ok) => document.addEventListener("scrollend", ok, { once: true }));
+  });
+  return () => page.evaluate(() => window.__scrollEnd.then(() => true));
 }
 
 test("touch: a swipe from empty canvas scrolls the page, a drag from the target moves it, a tap still acts", () =>
@@ -261,18 +262,21 @@ test("touch: a swipe from empty canvas scrolls the page, a drag from the target 
     // A vertical swipe starting far from any handle: the page scrolls.
     const start = await world(-2.2, -1.2);
     const scroll0 = await page.evaluate(() => scrollY);
+    const scrollEnded = await nextScrollEnd(page);
     await touch("touchStart", start);
     for (let i = 1; i <= 10; i++) await touch("touchMove", { x: start.x, y: start.y - 18 * i });
     await touch("touchEnd");
-    // The browser's fling runs on its own (real) clock: wait until the
-    // page has held still for 200 ms before reading where it stopped.
-    await scrollSettled(page);
+    // The swipe goes on as a fling, on the browser's own clock, well past
+    // the last touch (the flaky test's cause: it read the scroll 300 ms
+    // after the swipe, then waited for the link, and the fling's tail moved
+    // the page under "dragging a handle does not scroll"; a touch that
+    // lands during a fling cannot stop the scroll either). Wait for its end.
+    await scrollEnded();
     assert.ok((await page.evaluate(() => scrollY)) > scroll0, "the page scrolled");
     assert.equal(await target(), before, "the target did not move");
     // The swipe may have taken the target under the sticky header: bring
-    // the canvas back to the middle of the screen first.
-    await page.locator(`${ART} canvas.sim-canvas`).evaluate((c) => c.scrollIntoView({ block: "center" }));
-    await scrollSettled(page);
+    // the canvas back to the middle of the screen (at once, no animation).
+    await page.locator(`${ART} canvas.sim-canvas`).evaluate((c) => c.scrollIntoView({ block: "center", behavior: "instant" }));
     // A drag that starts on the target moves it and does not scroll.
     const from = await world(1, 0.8);
     const scroll1 = await page.evaluate(() => scrollY);
@@ -281,9 +285,8 @@ test("touch: a swipe from empty canvas scrolls the page, a drag from the target 
     await touch("touchEnd");
     await runUntil(page, (b) => new URLSearchParams(location.hash.split("?")[1]).get("tx") !== b, before);
     assert.equal(await page.evaluate(() => scrollY), scroll1, "dragging a handle does not scroll");
-    // A tap on empty canvas still sets a target there (aimed once the page
-    // holds still, so the canvas is where its box says).
-    await scrollSettled(page);
+    // A tap on empty canvas still sets a target there (the page has not
+    // moved since the drag: the canvas is where its box says).
     const tapAt = await world(-0.8, 0.9);
     // Start and end sent back to back, not one round trip apart: on a busy
     // machine the gap between two awaited commands outlasted the browser's
@@ -304,16 +307,23 @@ test("while the engine downloads, the Simulation tab shows its progress", async 
   const context = await lab.browser.newContext({ serviceWorkers: "block" });
   try {
     const page = await context.newPage();
-    // Hold the wasm back a moment, as a slow network would.
+    // Hold the wasm back, as a slow network would, until the progress has
+    // been seen (not for a guessed time).
+    let release;
+    const seen = new Promise((ok) => { release = ok; });
     await page.route(/\.wasm(\?|$)/, async (route) => {
-      await new Promise((ok) => setTimeout(ok, 1200));
+      await seen;
       await route.continue();
     });
     await page.goto(`${lab.server.base}index.html#/fk/simulation`);
     const wait = page.locator(`${ART} [data-panel=simulation] .wasm-wait`);
-    await wait.waitFor({ state: "visible" });
-    assert.match(await wait.innerText(), /Loading the simulation engine/);
-    assert.equal(await wait.locator("progress").count(), 1);
+    try {
+      await wait.waitFor({ state: "visible" });
+      assert.match(await wait.innerText(), /Loading the simulation engine/);
+      assert.equal(await wait.locator("progress").count(), 1);
+    } finally {
+      release();
+    }
     await waitReady(page);
     await page.locator(`${ART} canvas.sim-canvas`).waitFor({ state: "visible" });
   } finally {
