@@ -58,6 +58,49 @@ test("on a phone the six tabs stay on one row", () =>
     assert.match(boxes[4].name, /Self-assessment/);
   }));
 
+test("a tab is shown in one place: main.js's labShowArticle, before the wasm runs and by the wasm once it does", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    // Before any module: the link's tab comes from main.js.
+    let release;
+    const held = new Promise((ok) => { release = ok; });
+    await page.route(/\.wasm(\?|$)/, async (route) => {
+      await held;
+      await route.continue();
+    });
+    await page.goto(`${lab.server.base}index.html#/fk/theory`);
+    try {
+      await page.locator(`${ART} [data-panel=theory]`).waitFor({ state: "visible" });
+      assert.equal(await page.evaluate(() => typeof window.labShowArticle), "function");
+      assert.equal(await page.getAttribute(`${ART} [role=tab][data-tab=theory]`, "aria-selected"), "true");
+    } finally {
+      release();
+    }
+    await waitReady(page);
+    // Once the wasm runs, a tab click goes through the same function.
+    const shown = await page.evaluate(() => {
+      window.__shown = [];
+      const show = window.labShowArticle;
+      window.labShowArticle = (article, tab) => {
+        window.__shown.push([article?.dataset.experiment ?? null, tab]);
+        show(article, tab);
+      };
+      return window.__shown.length;
+    });
+    assert.equal(shown, 0);
+    await page.click(`${ART} [role=tab][data-tab=procedure]`);
+    await page.locator(`${ART} [data-panel=procedure]`).waitFor({ state: "visible" });
+    assert.deepEqual(await page.evaluate(() => window.__shown.at(-1)), ["fk", "procedure"]);
+    assert.equal(await page.getAttribute(`${ART} [role=tab][data-tab=procedure]`, "aria-selected"), "true");
+    assert.equal(await page.getAttribute(`${ART} [role=tab][data-tab=theory]`, "aria-selected"), "false");
+    assert.equal(await page.getAttribute(ART, "data-tab"), "procedure");
+    assert.match(await page.title(), / — Robotics virtual lab$/);
+    // The home page too.
+    await page.evaluate(() => { location.hash = "#/"; });
+    await page.locator("[data-page=home]:not([hidden])").waitFor();
+    assert.deepEqual(await page.evaluate(() => window.__shown.at(-1)), [null, ""]);
+    assert.equal(await page.title(), "Robotics virtual lab");
+  }));
+
 test("Back returns to the tab and page seen before; parameter changes add no history entries", () =>
   withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/fk/aim");
