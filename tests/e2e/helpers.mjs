@@ -89,11 +89,12 @@ export async function startServer({ compress = true, probe = false } = {}) {
   const child = spawn(xtaskBinary(), args, { cwd: ROOT, stdio: ["ignore", "pipe", "pipe"] });
   running.add(child);
   const hits = [];
+  const said = [];
   // Every request is logged as `GET /path?query`: the log must be read (a
   // full pipe would stop the server), and it says what was requested.
   createInterface({ input: child.stderr }).on("line", (line) => {
     const m = line.match(/^[A-Z]+ (\S+)$/);
-    if (!m) return;
+    if (!m) return said.push(line);
     try {
       hits.push(decodeURIComponent(new URL(m[1], "http://x").pathname));
     } catch {
@@ -106,7 +107,10 @@ export async function startServer({ compress = true, probe = false } = {}) {
       const m = line.match(/ at (http:\/\/[^/\s]+)\//);
       if (m) ok(m[1]);
     });
-    child.on("exit", (code) => fail(new Error(`xtask serve exited (${code}) before it served`)));
+    child.on("exit", (code) =>
+      // An old binary without --dir says so here: `cargo xtask dist` builds it anew.
+      setImmediate(() => fail(new Error(`xtask serve exited (${code}) before it served: ${said.join(" ")}`))),
+    );
     child.on("error", fail);
   });
   return {
