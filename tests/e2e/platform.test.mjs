@@ -58,15 +58,25 @@ test("on a phone the six tabs stay on one row", () =>
     assert.match(boxes[4].name, /Self-assessment/);
   }));
 
+/**
+ * Holds back every wasm request of `page` (as a slow network would) until
+ * the returned function is called: a test looks at the page before the
+ * engine runs, for as long as it needs, not for a guessed time.
+ */
+async function holdWasm(page) {
+  let release;
+  const held = new Promise((ok) => { release = ok; });
+  await page.route(/\.wasm(\?|$)/, async (route) => {
+    await held;
+    await route.continue();
+  });
+  return release;
+}
+
 test("a tab is shown in one place: main.js's labShowArticle, before the wasm runs and by the wasm once it does", () =>
   withPage(lab, { clock: true }, async (page) => {
     // Before any module: the link's tab comes from main.js.
-    let release;
-    const held = new Promise((ok) => { release = ok; });
-    await page.route(/\.wasm(\?|$)/, async (route) => {
-      await held;
-      await route.continue();
-    });
+    const release = await holdWasm(page);
     await page.goto(`${lab.server.base}index.html#/fk/theory`);
     try {
       await page.locator(`${ART} [data-panel=theory]`).waitFor({ state: "visible" });
@@ -357,12 +367,7 @@ test("while the engine downloads, the Simulation tab shows its progress", async 
     const page = await context.newPage();
     // Hold the wasm back, as a slow network would, until the progress has
     // been seen (not for a guessed time).
-    let release;
-    const seen = new Promise((ok) => { release = ok; });
-    await page.route(/\.wasm(\?|$)/, async (route) => {
-      await seen;
-      await route.continue();
-    });
+    const release = await holdWasm(page);
     await page.goto(`${lab.server.base}index.html#/fk/simulation`);
     const wait = page.locator(`${ART} [data-panel=simulation] .wasm-wait`);
     try {
