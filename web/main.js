@@ -9,7 +9,6 @@
 
 const app = document.getElementById("app");
 const nav = document.getElementById("lab-nav");
-const TABS = ["aim", "theory", "procedure", "simulation", "quiz", "references"];
 const PAGES = new Map([...document.querySelectorAll("meta[name=lab-page]")].map((m) => [m.content, m.dataset.href]));
 const MODULES = [...document.querySelectorAll("meta[name=lab-module]")].map((m) => ({
   key: m.content,
@@ -148,13 +147,18 @@ function ensurePage(id) {
   return articles.get(id);
 }
 
-// Shows the home page, or the article and tab the hash names (before its
-// module runs, and while another module hands over).
-function showStatic(article, tab) {
+// labShowArticle: begin
+// Shows the home page (`article` null), or `article` on `tab`: the one place
+// a page or a tab is shown. Used here before a module runs (and while another
+// module hands over), and by the wasm once it runs (labweb's
+// `dom::show_article`), so the two cannot drift. Self-contained: the wasm's
+// test pages run this very text (between the begin and end lines).
+window.labShowArticle = function showArticle(article, tab) {
+  const app = document.getElementById("app");
   const home = app.querySelector("[data-page=home]");
   if (home) home.hidden = Boolean(article);
   for (const a of app.querySelectorAll("article.exp")) a.hidden = a !== article;
-  for (const a of nav?.querySelectorAll("a[data-experiment]") ?? []) {
+  for (const a of document.querySelectorAll("#lab-nav a[data-experiment]")) {
     if (article && a.dataset.experiment === article.dataset.experiment) a.setAttribute("aria-current", "page");
     else a.removeAttribute("aria-current");
   }
@@ -162,7 +166,8 @@ function showStatic(article, tab) {
     document.title = "Robotics virtual lab";
     return;
   }
-  tab = TABS.includes(tab) ? tab : "aim";
+  const tabs = ["aim", "theory", "procedure", "simulation", "quiz", "references"];
+  tab = tabs.includes(tab) ? tab : "aim";
   article.dataset.tab = tab;
   for (const t of article.querySelectorAll("[role=tab]")) {
     const on = t.dataset.tab === tab;
@@ -171,7 +176,9 @@ function showStatic(article, tab) {
   }
   for (const p of article.querySelectorAll("[role=tabpanel]")) p.hidden = p.dataset.panel !== tab;
   document.title = `${article.querySelector("h1")?.textContent ?? ""} — Robotics virtual lab`;
-}
+};
+// labShowArticle: end
+const showStatic = window.labShowArticle;
 
 const pageFailed = (error) =>
   fatal(`This page could not be loaded (${error.message ?? error}). Check the connection and reload.`);

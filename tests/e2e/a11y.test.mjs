@@ -5,25 +5,21 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { open, screenshot, settle, useLab, withPage, PHONE } from "./helpers.mjs";
+import { open, runFor, runUntil, screenshot, settle, useLab, withPage, PHONE } from "./helpers.mjs";
 
 const lab = useLab();
 const CANVAS = "article.exp:not([hidden]) canvas.sim-canvas";
 const LIVE = "article.exp:not([hidden]) .sim-live";
 
-/** The link's parameters now (the page writes the hash a moment after an input). */
+/**
+ * The link's parameters once the page has written it. The tests run on a
+ * stopped clock: the link is written a frame after a key or a drag has been
+ * still for 250 ms of page time (HASH_INTERVAL_MS in sim/mod.rs), so running
+ * twice that reaches it however busy the machine is.
+ */
 async function linkParams(page) {
-  // The link is written once a key or a drag has been still for 250 ms:
-  // wait past that, then until it holds still (a busy machine runs late).
-  await page.waitForTimeout(400);
-  let hash = await page.evaluate(() => location.hash);
-  for (let tries = 0; tries < 10; tries++) {
-    await page.waitForTimeout(300);
-    const now = await page.evaluate(() => location.hash);
-    if (now === hash) break;
-    hash = now;
-  }
-  return new URLSearchParams(hash.split("?")[1] || "");
+  await runFor(page, 500);
+  return new URLSearchParams((await page.evaluate(() => location.hash)).split("?")[1] || "");
 }
 
 /** The 2 % keyboard step of the canvas's world view (`data-view` = min x, min y, max x, max y). */
@@ -42,7 +38,7 @@ async function press(page, key) {
 }
 
 test("diffdrive: [ ] choose a waypoint, arrows move it, the link and the form follow", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/diffdrive/simulation?w1x=3&w1y=2&w2x=6&w2y=4&run=0");
     await page.focus(CANVAS);
     await press(page, "]");
@@ -70,7 +66,7 @@ test("diffdrive: [ ] choose a waypoint, arrows move it, the link and the form fo
   }));
 
 test("astar: the start and the goal move one cell per arrow key", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     const before = await linkParams(page);
     const sx = Number(before.get("sx") ?? 3);
@@ -89,7 +85,7 @@ test("astar: the start and the goal move one cell per arrow key", () =>
   }));
 
 test("ik: the target moves by keyboard and by typed coordinates", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/ik/simulation?tx=1.1&ty=0.9");
     await page.focus(CANVAS);
     await press(page, "]");
@@ -117,7 +113,7 @@ test("ik: the target moves by keyboard and by typed coordinates", () =>
 // experiment. The setpoint moves along the track only: no y box, no y in what
 // is said, and ↑ ↓ leave it where it is.
 test("pid: the setpoint moves along x only, the Move form offers no y", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation?r=0.5");
     const form = "article.exp:not([hidden]) .sim-move";
     assert.equal(await page.inputValue(`${form} #move-handle`), "setpoint");
@@ -136,7 +132,7 @@ test("pid: the setpoint moves along x only, the Move form offers no y", () =>
   }));
 
 test("potential: an obstacle moves by keyboard", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/potential/simulation");
     const before = await linkParams(page);
     await page.focus(CANVAS);
@@ -156,7 +152,7 @@ test("potential: an obstacle moves by keyboard", () =>
   }));
 
 test("Describe: the button and D announce the scene; the end of a run does too", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/diffdrive/simulation");
     await page.click("article.exp:not([hidden]) [data-a11y=describe]");
     assert.equal(
@@ -169,8 +165,9 @@ test("Describe: the button and D announce the scene; the end of a run does too",
     assert.match(await live(page), /^Robot at \(4\.00, 3\.00\) m heading 0\.0°/);
     // The IK arm moving to a linked target: once it arrives the run has
     // ended and the description is read.
-    await page.goto(`${lab.server.base}index.html#/ik/simulation?tx=1.1&ty=0.9`);
-    await page.waitForFunction(
+    await open(lab, page, "#/ik/simulation?tx=1.1&ty=0.9");
+    await runUntil(
+      page,
       (sel) => document.querySelector(sel)?.textContent.startsWith("Target at (1.10, 0.90) m: in reach. Arm at"),
       LIVE,
     );
@@ -178,7 +175,7 @@ test("Describe: the button and D announce the scene; the end of a run does too",
   }));
 
 test("? opens the keyboard help; Escape closes it and focus goes back; not while typing", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation");
     // Typing a question mark into a number box is just typing.
     const box = "article.exp:not([hidden]) .sim-controls input[type=text]";
@@ -201,7 +198,7 @@ test("? opens the keyboard help; Escape closes it and focus goes back; not while
   }));
 
 test("the help fits a phone", () =>
-  withPage(lab, { viewport: PHONE, colorScheme: "dark" }, async (page) => {
+  withPage(lab, { viewport: PHONE, colorScheme: "dark", clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     await page.focus(CANVAS);
     await page.keyboard.press("?");
@@ -232,7 +229,7 @@ for (const [name, media, scheme] of [
   ["more contrast, dark", { contrast: "more" }, "dark"],
 ]) {
   test(`${name}: the scene is drawn, not blank`, () =>
-    withPage(lab, { colorScheme: scheme }, async (page) => {
+    withPage(lab, { colorScheme: scheme, clock: true }, async (page) => {
       await page.emulateMedia({ ...media, colorScheme: scheme });
       for (const [id, hash] of [
         ["diffdrive", "#/diffdrive/simulation?w1x=3&w1y=2&w2x=6&w2y=4&run=0"],

@@ -254,7 +254,9 @@ async function accentInk(b, id) {
       k,
     );
     if (!scrolled) break;
-    // The page may still move (a new page's focus): measure once it stands still.
+    // The page may still move (a new page's focus): measure once it stands
+    // still. A stays-still wait of two frames and 150 ms, on purpose: the
+    // drivers of Firefox and WebKit offer no scroll-end event to await.
     await b.evaluate(() => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(() => ok(1), 150)))));
     const movers = await b.evaluate(
       (x, i) => {
@@ -296,7 +298,9 @@ async function accentInk(b, id) {
           const keep = p === "base" ? m.firstElementChild : p === "accent" ? m.lastElementChild : null;
           if (keep) for (const el of [keep, ...keep.querySelectorAll("*")]) el.style.visibility = "visible";
         }
-        // Two frames and a little more: WebKitGTK's screenshot can show the frame before.
+        // Two frames and a little more (a stays-still wait, on purpose):
+        // WebKitGTK's screenshot can show the frame before, and nothing in
+        // the page says when the screenshot has caught up.
         return new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(() => ok(1), 150))));
       }, id, k, part);
     await hide("none");

@@ -70,8 +70,11 @@ test("the listener sees a violation when there is one (the policy is in force)",
     await page.evaluate(() => {
       document.body.insertAdjacentHTML("beforeend", '<p id="csp-probe" style="color: red">x</p>');
     });
+    // One violation, reported once per copy of the policy in force: the
+    // <meta> and the header `cargo xtask serve` sends (a host may send none).
     const seen = await violations(page);
-    assert.equal(seen.length, 1, seen.join("\n"));
+    assert.ok(seen.length >= 1 && seen.length <= 2, seen.join("\n"));
+    assert.equal(new Set(seen).size, 1, seen.join("\n"));
     assert.match(seen[0], /^style-src/);
     assert.notEqual(
       await page.$eval("#csp-probe", (p) => getComputedStyle(p).color),

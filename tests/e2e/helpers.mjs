@@ -1,15 +1,16 @@
-// Shared plumbing for the end-to-end tests: a static server for dist/ under a
-// sub-path, Debian's headless Chromium through playwright-core, and pages that
+// Shared plumbing for the end-to-end tests: the lab's own server
+// (`cargo xtask serve`) for dist/ under a sub-path, Debian's headless Chromium through playwright-core, and pages that
 // fail their test on console errors, uncaught exceptions, failed requests and
 // any request that leaves the test server's origin.
 
 import { after, before } from "node:test";
 import assert from "node:assert/strict";
-import { createServer } from "node:http";
+import { spawn, spawnSync } from "node:child_process";
 import { createServer as createTcpServer } from "node:net";
-import { existsSync, mkdirSync } from "node:fs";
-import { readFile, stat } from "node:fs/promises";
-import { dirname, extname, join, resolve, sep } from "node:path";
+import { cpSync, existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { dirname, join, resolve } from "node:path";
+import { createInterface } from "node:readline";
 import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
 
@@ -19,91 +20,112 @@ export const SHOTS = join(ROOT, "target", "e2e-shots");
 /** The lab is served below this prefix, as on a host that puts it in a sub-folder. */
 export const BASE_PATH = "/some/sub/path/";
 /** Where `startServer({ probe: true })` serves tests/e2e/error-probe.js. */
-export const PROBE_PATH = "/__test__/error-probe.js";
+export const PROBE_PATH = `${BASE_PATH}__test__/error-probe.js`;
 export const TABS = ["aim", "theory", "procedure", "simulation", "quiz", "references"];
 export const DESKTOP = { width: 1280, height: 800 };
 export const PHONE = { width: 360, height: 740 };
 const CHROMIUM = process.env.CHROMIUM || "/usr/bin/chromium";
 
-const MIME = {
-  ".html": "text/html; charset=utf-8",
-  ".js": "text/javascript; charset=utf-8",
-  ".mjs": "text/javascript; charset=utf-8",
-  ".css": "text/css; charset=utf-8",
-  ".json": "application/json; charset=utf-8",
-  ".wasm": "application/wasm",
-  ".svg": "image/svg+xml; charset=utf-8",
-  ".webmanifest": "application/manifest+json; charset=utf-8",
-  ".png": "image/png",
-  ".ico": "image/x-icon",
-  ".txt": "text/plain; charset=utf-8",
-};
-
 /** A content-hashed file name (`control.0a1b2c3d.wasm`): it never changes. */
 export const isContentHashed = (path) => /[^/]\.[0-9a-f]{8}\.[a-z]+$/.test(path);
 
 /**
- * Serves dist/ under BASE_PATH on 127.0.0.1 and a free port, with the cache
- * headers `cargo xtask serve` sends (hashed names for a year, the rest
- * revalidated). `compress: true` serves the `.br`/`.gz` siblings that
- * `cargo xtask dist` writes, as nginx `brotli_static`/`gzip_static` would.
- * `server.hits` lists the paths requested. `probe: true` puts
- * tests/e2e/error-probe.js first in `index.html`'s <head> (served at
- * PROBE_PATH), for a browser whose driver reports no console errors.
+ * The `cargo xtask` binary: the one running `cargo xtask test` (it says so in
+ * LAB_XTASK), else the one `cargo xtask` builds (profile `tool`), built here
+ * once if it is missing.
  */
-export async function startServer({ compress = false, probe = false } = {}) {
-  const hits = [];
+function xtaskBinary() {
+  if (process.env.LAB_XTASK) return process.env.LAB_XTASK;
+  const target = process.env.CARGO_TARGET_DIR ? resolve(ROOT, process.env.CARGO_TARGET_DIR) : join(ROOT, "target");
+  const bin = join(target, "tool", process.platform === "win32" ? "xtask.exe" : "xtask");
+  if (!existsSync(bin)) {
+    const built = spawnSync("cargo", ["build", "--quiet", "--profile", "tool", "-p", "xtask", "--bin", "xtask"], {
+      cwd: ROOT,
+      stdio: "inherit",
+    });
+    if (built.status !== 0 || !existsSync(bin)) throw new Error(`could not build ${bin}`);
+  }
+  return bin;
+}
+
+/** Servers still running when the test process ends are stopped with it. */
+const running = new Set();
+process.on("exit", () => {
+  for (const child of running) child.kill();
+});
+
+/**
+ * Serves dist/ under BASE_PATH on 127.0.0.1 and a free port with the lab's
+ * own server, `cargo xtask serve --dir dist` (crates/xtask/src/serve.rs): its
+ * media types, cache headers (hashed names for a year, the rest
+ * revalidated), Content-Security-Policy header and compression (dist/'s
+ * `.br`/`.gz` siblings, as nginx `brotli_static`/`gzip_static` would) are
+ * what the tests see. `compress: false` serves every file as it is
+ * (`--no-compression`), as a host that does not compress. `server.hits`
+ * lists the paths requested (from the server's log, written before each
+ * answer). `probe: true` serves a copy of dist/ whose `index.html` loads
+ * tests/e2e/error-probe.js (at PROBE_PATH) first in its <head>, for a
+ * browser whose driver reports no console errors.
+ */
+export async function startServer({ compress = true, probe = false } = {}) {
   if (!existsSync(join(DIST, "index.html"))) {
     throw new Error("dist/index.html is missing: run `cargo xtask dist` first");
   }
-  const server = createServer(async (req, res) => {
-    const send = (code, body, type = "text/plain; charset=utf-8", headers = {}) => {
-      res.writeHead(code, { "Content-Type": type, "Cache-Control": "no-cache", ...headers });
-      res.end(req.method === "HEAD" ? undefined : body);
-    };
+  let dir = DIST;
+  if (probe) {
+    dir = mkdtempSync(join(tmpdir(), "lab-probe-"));
+    cpSync(DIST, dir, { recursive: true });
+    const index = join(dir, "index.html");
+    const probed = readFileSync(index, "utf8").replace("<head>", `<head>\n<script src="${PROBE_PATH}"></script>`);
+    writeFileSync(index, probed);
+    // The precompressed copies would be sent instead of the probed page.
+    for (const ext of [".br", ".gz"]) rmSync(index + ext, { force: true });
+    const probeFile = join(dir, PROBE_PATH.slice(BASE_PATH.length));
+    mkdirSync(dirname(probeFile), { recursive: true });
+    cpSync(join(ROOT, "tests", "e2e", "error-probe.js"), probeFile);
+  }
+  const args = ["serve", "--dir", dir, "--port", "0", "--host", "127.0.0.1", "--base", BASE_PATH];
+  if (!compress) args.push("--no-compression");
+  const child = spawn(xtaskBinary(), args, { cwd: ROOT, stdio: ["ignore", "pipe", "pipe"] });
+  running.add(child);
+  const hits = [];
+  const said = [];
+  // Every request is logged as `GET /path?query`: the log must be read (a
+  // full pipe would stop the server), and it says what was requested.
+  createInterface({ input: child.stderr }).on("line", (line) => {
+    const m = line.match(/^[A-Z]+ (\S+)$/);
+    if (!m) return said.push(line);
     try {
-      if (req.method !== "GET" && req.method !== "HEAD") return send(405, "GET or HEAD only\n");
-      const path = decodeURIComponent(new URL(req.url, "http://x").pathname);
-      hits.push(path);
-      if (path === BASE_PATH.slice(0, -1)) return send(301, "", undefined, { Location: BASE_PATH });
-      if (probe && path === PROBE_PATH) {
-        return send(200, await readFile(join(ROOT, "tests", "e2e", "error-probe.js")), MIME[".js"]);
-      }
-      if (!path.startsWith(BASE_PATH) || path.includes("\0")) return send(404, "not found\n");
-      let file = resolve(DIST, "." + sep + path.slice(BASE_PATH.length));
-      if (file !== DIST && !file.startsWith(DIST + sep)) return send(403, "forbidden\n");
-      if ((await stat(file).catch(() => null))?.isDirectory()) file = join(file, "index.html");
-      let body = await readFile(file).catch(() => null);
-      if (!body) return send(404, "not found\n");
-      const probed = probe && file === join(DIST, "index.html");
-      if (probed) body = String(body).replace("<head>", `<head>\n<script src="${PROBE_PATH}"></script>`);
-      const headers = isContentHashed(file) ? { "Cache-Control": "public, max-age=31536000, immutable" } : {};
-      if (compress && !probed) {
-        const accepted = String(req.headers["accept-encoding"] ?? "");
-        for (const [coding, ext] of [["br", ".br"], ["gzip", ".gz"]]) {
-          if (!accepted.includes(coding)) continue;
-          const packed = await readFile(file + ext).catch(() => null);
-          if (packed) {
-            return send(200, packed, MIME[extname(file)] || "application/octet-stream", {
-              ...headers,
-              "Content-Encoding": coding,
-              Vary: "Accept-Encoding",
-            });
-          }
-        }
-      }
-      send(200, body, MIME[extname(file)] || "application/octet-stream", headers);
+      hits.push(decodeURIComponent(new URL(m[1], "http://x").pathname));
     } catch {
-      send(400, "bad request\n");
+      hits.push(m[1]);
     }
   });
-  await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
-  const origin = `http://127.0.0.1:${server.address().port}`;
+  const origin = await new Promise((ok, fail) => {
+    const lines = createInterface({ input: child.stdout });
+    lines.on("line", (line) => {
+      const m = line.match(/ at (http:\/\/[^/\s]+)\//);
+      if (m) ok(m[1]);
+    });
+    child.on("exit", (code) =>
+      // An old binary without --dir says so here: `cargo xtask dist` builds it anew.
+      setImmediate(() => fail(new Error(`xtask serve exited (${code}) before it served: ${said.join(" ")}`))),
+    );
+    child.on("error", fail);
+  });
   return {
     origin,
     hits,
     base: origin + BASE_PATH,
-    close: () => new Promise((ok) => server.close(ok)),
+    close: async () => {
+      running.delete(child);
+      if (child.exitCode === null && child.signalCode === null) {
+        const exited = new Promise((ok) => child.once("exit", ok));
+        child.kill();
+        await exited;
+      }
+      if (dir !== DIST) rmSync(dir, { recursive: true, force: true });
+    },
   };
 }
 

@@ -3,7 +3,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { DESKTOP, PHONE, open, readouts, screenshot, useLab, withPage } from "./helpers.mjs";
+import { DESKTOP, PHONE, open, readouts, runFor, runUntilReadout, screenshot, until, useLab, waitReady, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 
@@ -13,7 +13,7 @@ const hashParam = (page, key) =>
   page.evaluate((k) => new URLSearchParams(location.hash.split("?")[1] ?? "").get(k), key);
 
 test("#/pid/simulation?kp=5&lock=kp disables both Kp controls and neither keys nor typing change it", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation?kp=5&lock=kp");
     for (const sel of [kpSlider, kpBox]) {
       assert.equal(await page.$eval(sel, (el) => el.disabled), true, `${sel} is disabled`);
@@ -33,7 +33,8 @@ test("#/pid/simulation?kp=5&lock=kp disables both Kp controls and neither keys n
     // Typing into the box is refused; a forced click as well.
     await page.locator(kpBox).fill("50", { force: true, timeout: 1000 }).catch(() => {});
     await page.locator(kpSlider).click({ force: true, timeout: 1000 }).catch(() => {});
-    await page.waitForTimeout(400);
+    // Stays still: the page time a paced write (link, controls) takes, and more.
+    await runFor(page, 500);
     assert.equal(await page.$eval(kpSlider, (el) => Number(el.value)), 5);
     assert.equal(await hashParam(page, "kp"), "5");
     assert.equal(await hashParam(page, "lock"), "kp", "the link keeps the lock");
@@ -46,7 +47,7 @@ test("#/pid/simulation?kp=5&lock=kp disables both Kp controls and neither keys n
   }));
 
 test("a canvas drag or arrow key that would move a locked setpoint is refused (and moves it when unlocked)", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     const r = () => page.$eval('input[type=range][data-param="r"]', (el) => Number(el.value));
     // A click on the canvas at world x = −1 m (PID sets the setpoint where the pointer is).
     const clickAtMinusOne = async () => {
@@ -58,21 +59,23 @@ test("a canvas drag or arrow key that would move a locked setpoint is refused (a
     };
     await open(lab, page, "#/pid/simulation?r=1");
     await clickAtMinusOne();
-    await page.waitForFunction(() => Number(document.querySelector('input[type=range][data-param="r"]').value) < 0);
+    await until(page, () => Number(document.querySelector('input[type=range][data-param="r"]').value) < 0);
     await open(lab, page, "#/pid/simulation?r=1&lock=r");
     await page.reload();
-    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    await waitReady(page);
+    await runFor(page, 17);
     await clickAtMinusOne();
     await page.focus("canvas.sim-canvas");
     for (let i = 0; i < 4; i++) await page.keyboard.press("ArrowLeft");
-    await page.waitForTimeout(300);
+    // Stays still: the page time a paced write (link, controls) takes, and more.
+    await runFor(page, 500);
     assert.equal(await r(), 1);
     assert.match(await page.textContent(".sim-message"), /Setpoint r is locked by your instructor/);
     assert.equal(await hashParam(page, "r"), "1");
   }));
 
 test("a hidden parameter is absent, the note shows as text, an unknown key gives a notice", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     const note = "Find the smallest Kp that <b>overshoots</b> & settles";
     await open(
       lab,
@@ -98,15 +101,15 @@ test("a hidden parameter is absent, the note shows as text, an unknown key gives
   }));
 
 test("a preset from the menu applies, and its link reproduces it in a fresh page", () =>
-  withPage(lab, {}, async (page, context) => {
+  withPage(lab, { clock: true }, async (page, context) => {
     await open(lab, page, "#/pid/simulation");
     await page.click("details.presets > summary");
     await page.click('a[data-preset="Overshoot vs damping: little damping"]');
-    await page.waitForFunction(() => location.hash.includes("kd=1"));
+    await until(page, () => location.hash.includes("kd=1"));
     assert.equal(await page.$eval('input[type=range][data-param="kd"]', (el) => Number(el.value)), 1);
     assert.equal(await page.$eval(kpSlider, (el) => Number(el.value)), 40);
     assert.equal(await page.locator("#notice").isVisible(), false, "no notice");
-    await page.waitForFunction(() => location.hash.includes("kp=40"));
+    await until(page, () => location.hash.includes("kp=40"));
     const hash = await page.evaluate(() => location.hash);
     const second = await context.newPage();
     await open(lab, second, hash);
@@ -119,18 +122,14 @@ test("a preset from the menu applies, and its link reproduces it in a fresh page
       );
     }
     // The story: let it run and the overshoot is large.
-    await second.waitForFunction(
-      () => parseFloat(document.querySelector('[data-readout="overshoot"]')?.textContent) > 50,
-      null,
-      { timeout: 15_000 },
-    );
+    await runUntilReadout(second, "overshoot", ">", 50);
     await page.click("details.presets > summary");
     await page.locator("details.presets").scrollIntoViewIfNeeded();
     await screenshot(page, "instructor-presets-desktop");
   }));
 
 test("the Instructor panel's link opened in a fresh page gives the same locks, hides, note and state", () =>
-  withPage(lab, {}, async (page, context) => {
+  withPage(lab, { clock: true }, async (page, context) => {
     await open(lab, page, "#/pid/simulation?kp=30&kd=2");
     await page.click("details.instructor-panel > summary");
     await page.check('input[data-lock="kp"]');
@@ -152,7 +151,8 @@ test("the Instructor panel's link opened in a fresh page gives the same locks, h
 
     const second = await context.newPage();
     await second.goto(link);
-    await second.waitForFunction(() => document.body.dataset.ready === "1");
+    await waitReady(second);
+    await runFor(second, 17);
     for (const key of ["kp", "kd"]) {
       assert.equal(await second.$eval(`input[type=range][data-param="${key}"]`, (el) => el.disabled), true, key);
     }
@@ -165,11 +165,11 @@ test("the Instructor panel's link opened in a fresh page gives the same locks, h
     assert.equal(b.poles, a.poles, "the same loop");
     // The quiz seed reaches the quiz.
     await second.click('article.exp[data-experiment="pid"] [role=tab][data-tab="quiz"]');
-    await second.waitForFunction(() => location.hash.includes("quiz=123"));
+    await until(second, () => location.hash.includes("quiz=123"));
   }));
 
 test("instructor UI screenshots: phone and dark", () =>
-  withPage(lab, { viewport: PHONE, colorScheme: "dark" }, async (page) => {
+  withPage(lab, { viewport: PHONE, colorScheme: "dark", clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation?kp=5&lock=kp&hide=noise&note=Find%20the%20smallest%20Kp%20that%20overshoots.");
     await screenshot(page, "instructor-note-phone-dark");
     await page.locator('[data-ctl="kp"]').scrollIntoViewIfNeeded();
@@ -181,7 +181,7 @@ test("instructor UI screenshots: phone and dark", () =>
   }));
 
 test("presets menu screenshot: phone, dark", () =>
-  withPage(lab, { viewport: PHONE, colorScheme: "dark" }, async (page) => {
+  withPage(lab, { viewport: PHONE, colorScheme: "dark", clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     await page.click("details.presets > summary");
     await page.locator("details.presets").scrollIntoViewIfNeeded();
@@ -193,7 +193,7 @@ test("presets menu screenshot: phone, dark", () =>
   }));
 
 test("attempts= and score= in a link stay in the simulation's link and in the Instructor panel's link (issue 24)", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation?kp=30&attempts=2&score=first");
     assert.match(await page.evaluate(() => location.hash), /&attempts=2&score=first/);
     await page.click("details.instructor-panel > summary");
@@ -205,21 +205,21 @@ test("attempts= and score= in a link stay in the simulation's link and in the In
     assert.equal(q.get("lock"), "kp");
     // The quiz tab's link keeps them too.
     await page.click('article.exp[data-experiment="pid"] [role=tab][data-tab="quiz"]');
-    await page.waitForFunction(() => /^#\/pid\/quiz\?attempts=2&score=first&quiz=\d+$/.test(location.hash));
+    await until(page, () => /^#\/pid\/quiz\?attempts=2&score=first&quiz=\d+$/.test(location.hash));
   }));
 
 test("the Self-assessment tab's link (grading rules and the student's seed) keeps the instructor's lock and note when routed again", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation?kp=30&lock=kp&note=Hello&attempts=2&score=first");
     await page.click('article.exp[data-experiment="pid"] [role=tab][data-tab="quiz"]');
-    await page.waitForFunction(() => /^#\/pid\/quiz\?attempts=2&score=first&quiz=\d+$/.test(location.hash));
+    await until(page, () => /^#\/pid\/quiz\?attempts=2&score=first&quiz=\d+$/.test(location.hash));
     // Routed once more (as Back and Forward do), then back to the simulation.
     await page.goBack();
-    await page.waitForFunction(() => /^#\/pid\/simulation/.test(location.hash));
+    await until(page, () => /^#\/pid\/simulation/.test(location.hash));
     await page.goForward();
-    await page.waitForFunction(() => /^#\/pid\/quiz/.test(location.hash));
+    await until(page, () => /^#\/pid\/quiz/.test(location.hash));
     await page.click('article.exp[data-experiment="pid"] [role=tab][data-tab="simulation"]');
-    await page.waitForFunction(() => /^#\/pid\/simulation\?/.test(location.hash));
+    await until(page, () => /^#\/pid\/simulation\?/.test(location.hash));
     const q = new URLSearchParams(await page.evaluate(() => location.hash.split("?")[1]));
     assert.equal(q.get("lock"), "kp", `link: ${await page.evaluate(() => location.hash)}`);
     assert.equal(q.get("note"), "Hello");

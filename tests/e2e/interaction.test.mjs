@@ -2,7 +2,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { experimentIds, open, readouts, settle, useLab, withPage } from "./helpers.mjs";
+import { experimentIds, open, readouts, runUntil, settle, until, useLab, waitReady, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 
@@ -16,6 +16,20 @@ async function dragPath(page) {
     from: { x: box.x + box.width * 0.75, y: box.y + box.height * 0.4 },
     to: { x: box.x + box.width * 0.3, y: box.y + box.height * 0.25 },
   };
+}
+
+/**
+ * Runs page time until the tip's readouts leave `before` (a drag is a stream:
+ * its text follows at the pace of a run, 250 ms of page time), then checks.
+ */
+async function assertTipMovesFrom(page, before) {
+  await runUntil(
+    page,
+    (b) => ["x", "y"].some((k) => document.querySelector(`article.exp:not([hidden]) [data-readout="${k}"]`).textContent.trim() !== b[k]),
+    before,
+    { maxMs: 2000, what: "the tip's readouts to change" },
+  ).catch(() => {});
+  assertTipMoved(before, await readouts(page));
 }
 
 function assertTipMoved(before, after) {
@@ -33,7 +47,7 @@ const recordPointerTypes = (page) =>
   });
 
 test("dragging on the fk canvas with a mouse moves the arm's tip", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/fk/simulation");
     await recordPointerTypes(page);
     const { from, to } = await dragPath(page);
@@ -44,13 +58,12 @@ test("dragging on the fk canvas with a mouse moves the arm's tip", () =>
       await page.mouse.move(from.x + ((to.x - from.x) * i) / 8, from.y + ((to.y - from.y) * i) / 8);
     }
     await page.mouse.up();
-    await settle(page);
-    assertTipMoved(before, await readouts(page));
+    await assertTipMovesFrom(page, before);
     assert.deepEqual(await page.evaluate(() => window.__pointerTypes), ["mouse"]);
   }));
 
 test("dragging on the fk canvas with a finger (touch) moves the arm's tip", () =>
-  withPage(lab, { hasTouch: true, viewport: { width: 412, height: 900 } }, async (page, context) => {
+  withPage(lab, { hasTouch: true, viewport: { width: 412, height: 900 }, clock: true }, async (page, context) => {
     await open(lab, page, "#/fk/simulation");
     await recordPointerTypes(page);
     const { from, to } = await dragPath(page);
@@ -71,15 +84,14 @@ test("dragging on the fk canvas with a finger (touch) moves the arm's tip", () =
       });
     }
     await touch("touchEnd");
-    await settle(page);
-    assertTipMoved(before, await readouts(page));
+    await assertTipMovesFrom(page, before);
     assert.deepEqual(await page.evaluate(() => window.__pointerTypes), ["touch"]);
   }));
 
 test("quiz: submitting with no answers scores 0 / N, and a new attempt draws new questions", async (t) => {
   for (const id of await experimentIds(lab)) {
     await t.test(`experiment ${id}`, () =>
-      withPage(lab, {}, async (page) => {
+      withPage(lab, { clock: true }, async (page) => {
         await open(lab, page, `#/${id}/quiz`);
         const questions = page.locator("form.quiz .quiz-q");
         const n = await questions.count();
@@ -126,7 +138,7 @@ test("quiz: submitting with no answers scores 0 / N, and a new attempt draws new
 });
 
 test("quiz: an instructor's link fixes the attempt, and answers survive a reload", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/ik/quiz?quiz=123");
     assert.equal(await page.locator("form.quiz .quiz-seed").innerText(), "123");
     const prompts = await page.locator("form.quiz .quiz-q").evaluateAll((qs) => qs.map((q) => q.innerText));
@@ -135,7 +147,7 @@ test("quiz: an instructor's link fixes the attempt, and answers survive a reload
     await field.fill("0.5");
     await field.dispatchEvent("input");
     await page.reload();
-    await page.waitForFunction(() => document.body.dataset.ready === "1");
+    await waitReady(page);
     assert.equal(await page.locator("form.quiz .quiz-seed").innerText(), "123");
     assert.equal(await page.locator("form.quiz .quiz-numeric input").first().inputValue(), "0.5");
     const again = await page.locator("form.quiz .quiz-q").evaluateAll((qs) => qs.map((q) => q.innerText));
@@ -143,7 +155,7 @@ test("quiz: an instructor's link fixes the attempt, and answers survive a reload
   }));
 
 test("a number field says what it read: '1,5' is refused with a reason, '0.5 rad' converts to degrees", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/fk/simulation?t1=35");
     const box = page.locator("article.exp:not([hidden]) input[type=text][data-param=t1]");
     await box.fill("1,5");
@@ -154,20 +166,20 @@ test("a number field says what it read: '1,5' is refused with a reason, '0.5 rad
     assert.equal(await page.locator("article.exp:not([hidden]) input[type=range][data-param=t1]").inputValue(), "35", "kept");
     await box.fill("0.5 rad");
     await box.press("Enter");
-    await page.waitForFunction(() => /Read “0\.5 rad” as 28\.6/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
+    await until(page, () => /Read “0\.5 rad” as 28\.6/.test(document.querySelector("article.exp:not([hidden]) .sim-message").textContent));
     // The link keeps the value exactly as read (0.5 rad = 28.64788975654116°).
-    await page.waitForFunction(() => /t1=28\.647889756541/.test(location.hash));
+    await until(page, () => /t1=28\.647889756541/.test(location.hash));
   }));
 
 test("the caption follows the input in use: a touch on the canvas shows the touch hint", () =>
-  withPage(lab, { hasTouch: true, viewport: { width: 390, height: 844 } }, async (page) => {
+  withPage(lab, { hasTouch: true, viewport: { width: 390, height: 844 }, clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     const caption = page.locator("article.exp:not([hidden]) .sim-caption");
     const canvas = page.locator("article.exp:not([hidden]) canvas.sim-canvas");
     const box = await canvas.boundingBox();
     await page.touchscreen.tap(box.x + box.width * 0.5, box.y + box.height * 0.5);
-    await page.waitForFunction(() => document.querySelector("article.exp:not([hidden]) .sim-caption").dataset.input === "touch");
+    await until(page, () => document.querySelector("article.exp:not([hidden]) .sim-caption").dataset.input === "touch");
     assert.ok((await caption.innerText()).trim().length > 0);
     await page.mouse.click(box.x + box.width * 0.5, box.y + box.height * 0.5);
-    await page.waitForFunction(() => document.querySelector("article.exp:not([hidden]) .sim-caption").dataset.input === "mouse");
+    await until(page, () => document.querySelector("article.exp:not([hidden]) .sim-caption").dataset.input === "mouse");
   }));

@@ -2,7 +2,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { PHONE, TABS, experimentIds, open, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+import { PHONE, TABS, experimentIds, open, runUntil, screenshot, settle, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 
@@ -188,10 +188,10 @@ test("controls: number boxes line up in one column, grouped controls sit under c
   }));
 
 test("astar on a phone: open-list numbers never wrap mid-number", () =>
-  withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true }, async (page) => {
+  withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true, clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     await page.click(`${ART} button[data-action=plan]`);
-    await page.waitForFunction((art) => document.querySelectorAll(`${art} .live-table td`).length > 4, ART);
+    await runUntil(page, (art) => document.querySelectorAll(`${art} .live-table td`).length > 4, ART);
     await settle(page);
     // One synchronous look (the table is rebuilt while the search runs).
     const { cells, wrapped, style } = await page.evaluate((art) => {

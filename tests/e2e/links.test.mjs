@@ -2,7 +2,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { open, readouts, settle, useLab, withPage } from "./helpers.mjs";
+import { open, readouts, settle, until, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 
@@ -11,7 +11,7 @@ const rangeValue = (page, key) =>
   page.$eval(`input[type=range][data-param="${key}"]`, (el) => Number(el.value));
 
 test("a shared fk link restores its parameters and readouts in a fresh page", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/fk/simulation?t1=10&t2=20&l1=1.2&l2=0.8");
     assert.equal(await rangeValue(page, "t1"), 10);
     assert.equal(await rangeValue(page, "t2"), 20);
@@ -25,14 +25,14 @@ test("a shared fk link restores its parameters and readouts in a fresh page", ()
   }));
 
 test("after moving a slider, the page's own link reproduces the same state in a new page", () =>
-  withPage(lab, {}, async (page, context) => {
+  withPage(lab, { clock: true }, async (page, context) => {
     await open(lab, page, "#/fk/simulation?t1=10&t2=20&l1=1.2&l2=0.8");
     await page.focus('input[type=range][data-param="t2"]');
     for (let i = 0; i < 5; i++) await page.keyboard.press("ArrowRight");
     const t2 = await rangeValue(page, "t2");
     assert.ok(t2 > 20, `t2 moved up (now ${t2})`);
     // The hash is rewritten (throttled) once the value settles.
-    await page.waitForFunction(
+    await until(page, 
       (v) => new URLSearchParams(location.hash.split("?")[1] ?? "").get("t2") === String(v),
       t2,
     );
@@ -61,7 +61,7 @@ const MALFORMED = [
 test("malformed links show a notice and leave the lab usable", async (t) => {
   for (const hash of MALFORMED) {
     await t.test(`link ${hash}`, () =>
-      withPage(lab, {}, async (page) => {
+      withPage(lab, { clock: true }, async (page) => {
         await open(lab, page, hash);
         const notice = page.locator("#notice");
         await notice.waitFor({ state: "visible" });
@@ -105,9 +105,9 @@ const linkParams = (hash) => {
 };
 
 test("diffdrive: pasting the default link again after three waypoints gives what a fresh page gives (no waypoints)", () =>
-  withPage(lab, {}, async (page, context) => {
+  withPage(lab, { clock: true }, async (page, context) => {
     await open(lab, page, "#/diffdrive/simulation");
-    await page.waitForFunction(() => location.hash.includes("?"));
+    await until(page, () => location.hash.includes("?"));
     const defaultLink = await page.evaluate(() => location.hash);
     const fresh = await context.newPage();
     await open(lab, fresh, defaultLink);
@@ -119,21 +119,21 @@ test("diffdrive: pasting the default link again after three waypoints gives what
     for (const [fx, fy] of [[0.3, 0.8], [0.6, 0.25], [0.8, 0.7]]) await clickWorld(page, ...at(fx, fy));
     await settle(page);
     assert.notEqual((await readouts(page)).waypoints, freshWaypoints, "the clicks added waypoints");
-    await page.waitForFunction((d) => location.hash !== d, defaultLink);
+    await until(page, (d) => location.hash !== d, defaultLink);
 
     // Paste the default link into the same tab.
     await page.evaluate((h) => { location.hash = h; }, defaultLink);
-    await page.waitForFunction((fw) => document.querySelector('[data-readout="waypoints"]').textContent.trim() === fw, freshWaypoints);
+    await until(page, (fw) => document.querySelector('[data-readout="waypoints"]').textContent.trim() === fw, freshWaypoints);
     await settle(page);
     assert.equal((await readouts(page)).waypoints, freshWaypoints);
     assert.equal(linkParams(await page.evaluate(() => location.hash)), linkParams(defaultLink), "the link is the default one again");
   }));
 
 test("a link changes only what it names relative to the defaults, not relative to the tab's state", () =>
-  withPage(lab, {}, async (page, context) => {
+  withPage(lab, { clock: true }, async (page, context) => {
     await open(lab, page, "#/fk/simulation?t1=10&t2=20");
     await page.evaluate(() => { location.hash = "#/fk/simulation?t1=40"; });
-    await page.waitForFunction(() => Number(document.querySelector('input[type=range][data-param="t1"]').value) === 40);
+    await until(page, () => Number(document.querySelector('input[type=range][data-param="t1"]').value) === 40);
     const second = await context.newPage();
     await open(lab, second, "#/fk/simulation?t1=40");
     assert.equal(await rangeValue(page, "t2"), await rangeValue(second, "t2"), "t2 took its default, as in a fresh page");
@@ -141,7 +141,7 @@ test("a link changes only what it names relative to the defaults, not relative t
   }));
 
 test("a tab link without parameters keeps the state", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/fk/simulation?t1=10&t2=20");
     await page.click('article.exp:not([hidden]) [role=tab][data-tab="theory"]');
     await page.click('article.exp:not([hidden]) [role=tab][data-tab="simulation"]');
@@ -150,13 +150,13 @@ test("a tab link without parameters keeps the state", () =>
   }));
 
 test("the shell's own state comes from the link too: a link without speed or pause opened in the tab plays at 1×", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation?kp=12&speed=2&run=0");
     const art = "article.exp:not([hidden])";
     assert.equal(await page.locator(`${art} select[data-time=speed]`).inputValue(), "2");
     assert.equal(await page.locator(`${art} button[data-time=play]`).getAttribute("aria-pressed"), "false");
     const plain = "#/pid/simulation?kp=12";
     await page.evaluate((h) => { location.hash = h; }, plain);
-    await page.waitForFunction((a) => document.querySelector(`${a} select[data-time=speed]`).value === "1", art);
+    await until(page, (a) => document.querySelector(`${a} select[data-time=speed]`).value === "1", art);
     assert.equal(await page.locator(`${art} button[data-time=play]`).getAttribute("aria-pressed"), "true", "playing, as a fresh page");
   }));

@@ -4,7 +4,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { experimentIds, open, settle, useLab, withPage } from "./helpers.mjs";
+import { experimentIds, open, settle, until, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 const SIM = 'article.exp:not([hidden]) [data-panel="simulation"]';
@@ -19,7 +19,7 @@ async function useTouch(page) {
   await caption.scrollIntoViewIfNeeded();
   const box = await caption.boundingBox();
   await page.touchscreen.tap(box.x + 4, box.y + box.height / 2);
-  await page.waitForFunction(
+  await until(page, 
     (sel) => document.querySelector(`${sel} .sim-caption`).dataset.input === "touch",
     SIM,
   );
@@ -38,7 +38,7 @@ function assertNoKeyWords(text, where) {
 test("phone hints: on a touch screen no text of the Simulation tab names a key, a click or a modifier, before or after each action", async (t) => {
   for (const id of await experimentIds(lab)) {
     await t.test(`experiment ${id}`, () =>
-      withPage(lab, { hasTouch: true, viewport: PHONE_TALL }, async (page) => {
+      withPage(lab, { hasTouch: true, viewport: PHONE_TALL, clock: true }, async (page) => {
         await open(lab, page, `#/${id}/simulation`);
         await useTouch(page);
         assertNoKeyWords(await shownText(page), `${id} at load`);
@@ -59,19 +59,19 @@ test("phone hints: on a touch screen no text of the Simulation tab names a key, 
 });
 
 test("diffdrive: on a phone the badge says tap to drop a goal, not click", () =>
-  withPage(lab, { hasTouch: true, viewport: PHONE_TALL }, async (page) => {
+  withPage(lab, { hasTouch: true, viewport: PHONE_TALL, clock: true }, async (page) => {
     await open(lab, page, "#/diffdrive/simulation");
     await useTouch(page);
-    await page.waitForFunction((sel) => /^idle: tap to drop a goal$/.test(document.querySelector(`${sel} .sim-status`).textContent), SIM);
+    await until(page, (sel) => /^idle: tap to drop a goal$/.test(document.querySelector(`${sel} .sim-status`).textContent), SIM);
   }));
 
 test("diffdrive: the Waypoints heading counts waypoints, not input fields", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/diffdrive/simulation?w1x=2&w1y=2&w2x=6&w2y=4");
     const heading = page.locator(`${SIM} details.ctl-group summary`);
-    await page.waitForFunction((sel) => /^Waypoints \(2\)$/.test(document.querySelector(`${sel} details.ctl-group summary`).textContent.trim()), SIM);
+    await until(page, (sel) => /^Waypoints \(2\)$/.test(document.querySelector(`${sel} details.ctl-group summary`).textContent.trim()), SIM);
     await page.locator(`${SIM} button[data-action=clear]`).click();
-    await page.waitForFunction((sel) => /^Waypoints \(0\)$/.test(document.querySelector(`${sel} details.ctl-group summary`).textContent.trim()), SIM);
+    await until(page, (sel) => /^Waypoints \(0\)$/.test(document.querySelector(`${sel} details.ctl-group summary`).textContent.trim()), SIM);
     assert.match((await heading.innerText()).trim(), /^Waypoints \(0\)$/);
   }));
 
@@ -85,7 +85,7 @@ const moveForm = (page) =>
   }, SIM);
 
 test("astar: the start is one point in one system: Move a point shows and takes its column and row, as the controls do", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     const control = (key) => page.locator(`${SIM} input[data-param=${key}]`).inputValue();
     const shown = await moveForm(page);
@@ -96,19 +96,19 @@ test("astar: the start is one point in one system: Move a point shows and takes 
     await page.fill(`${SIM} input[data-move=x]`, "5");
     await page.fill(`${SIM} input[data-move=y]`, "10");
     await page.click(`${SIM} .sim-move button[type=submit]`);
-    await page.waitForFunction((sel) => document.querySelector(`${sel} input[data-param=sx]`).value === "5", SIM);
+    await until(page, (sel) => document.querySelector(`${sel} input[data-param=sx]`).value === "5", SIM);
     assert.equal(await control("sy"), "10");
     assert.deepEqual((await moveForm(page)).values, ["5", "10"]);
     assert.equal(await page.locator(`${SIM} .sim-message`).innerText(), "");
   }));
 
 test("astar: a Move a point refused because the point is locked says that it is locked", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation?lock=sx,sy");
     await page.fill(`${SIM} input[data-move=x]`, "5");
     await page.fill(`${SIM} input[data-move=y]`, "10");
     await page.click(`${SIM} .sim-move button[type=submit]`);
-    await page.waitForFunction((sel) => /locked/.test(document.querySelector(`${sel} .sim-message`).textContent), SIM);
+    await until(page, (sel) => /locked/.test(document.querySelector(`${sel} .sim-message`).textContent), SIM);
     const message = await page.locator(`${SIM} .sim-message`).innerText();
     assert.match(message, /^Start .*is locked by your instructor/);
     assert.doesNotMatch(message, /could not go/);
@@ -116,7 +116,7 @@ test("astar: a Move a point refused because the point is locked says that it is 
   }));
 
 test("quiz: “Submit anyway” goes once the quiz is submitted", () =>
-  withPage(lab, {}, async (page) => {
+  withPage(lab, { clock: true }, async (page) => {
     await open(lab, page, "#/fk/quiz");
     const submit = page.locator("form.quiz button[type=submit]");
     await submit.click();

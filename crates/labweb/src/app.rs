@@ -86,7 +86,6 @@ impl App {
                     self.page = Some(Mounted::Home);
                 }
                 mark_nav(None);
-                dom::document().set_title("Robotics virtual lab");
                 if !notices.is_empty() {
                     replace_hash("#/");
                 }
@@ -246,15 +245,12 @@ fn mark_nav(current: Option<&str>) {
 /// Shows the home page (once `main.js` has added it) and hides every
 /// experiment article.
 fn show_home(root: &Element) {
-    for article in query_all(root, "article.exp") {
-        dom::set_hidden(&article, true);
-    }
+    dom::show_article(None, "");
     // The home page is a reading page of its own: `main.js` fetches it and
     // adds it (a module holds only its group's content, too little for it).
     let Some(home) = query(root, "[data-page=home]") else {
         return;
     };
-    dom::set_hidden(&home, false);
     // Cards without a picture get one painted from the experiment's preview
     // state, one task per picture (each preview computes a little).
     for pic in query_all(&home, ".card-pic:empty") {
@@ -365,16 +361,11 @@ fn find_or_render_article(app_root: &Element, entry: &'static Entry) -> Element 
 impl ExperimentPage {
     fn mount(app_root: &Element, entry: &'static Entry) -> Self {
         let content = entry.content();
-        if let Some(home) = query(app_root, "[data-page=home]") {
-            dom::set_hidden(&home, true);
-        }
-        for other in query_all(app_root, "article.exp") {
-            dom::set_hidden(&other, true);
-        }
         let root = find_or_render_article(app_root, entry);
-        dom::set_hidden(&root, false);
-        let title = content.as_ref().map_or(entry.id, |c| c.title.as_str());
-        dom::document().set_title(&format!("{title} — Robotics virtual lab"));
+        // Shown on the tab it shows already (main.js showed the link's tab
+        // before the module ran); `select` then shows the routed one.
+        let shown_tab = root.get_attribute("data-tab").unwrap_or_default();
+        dom::show_article(Some(&root), &shown_tab);
 
         let sim = mount_sim(&root, entry);
 
@@ -592,17 +583,7 @@ impl Drop for ExperimentPage {
 impl PageInner {
     fn select(&mut self, tab: Tab, scroll_top: bool) {
         self.tab = tab;
-        let _ = self.root.set_attribute("data-tab", tab.slug());
-        for t in Tab::ALL {
-            let on = t == tab;
-            if let Some(btn) = query(&self.root, &format!("[role=tab][data-tab={}]", t.slug())) {
-                let _ = btn.set_attribute("aria-selected", if on { "true" } else { "false" });
-                let _ = btn.set_attribute("tabindex", if on { "0" } else { "-1" });
-            }
-            if let Some(panel) = query(&self.root, &format!("[data-panel={}]", t.slug())) {
-                dom::set_hidden(&panel, !on);
-            }
-        }
+        dom::show_article(Some(&self.root), tab.slug());
         if let Some(sim) = &mut self.sim {
             sim.set_active(tab == Tab::Simulation);
         }

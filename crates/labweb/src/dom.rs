@@ -41,6 +41,47 @@ pub fn set_hidden(el: &Element, hidden: bool) {
     }
 }
 
+#[wasm_bindgen]
+extern "C" {
+    /// `window.labShowArticle`, defined in `web/main.js`: the one place a
+    /// page or a tab is shown (main.js shows it before the wasm runs).
+    #[wasm_bindgen(catch, js_namespace = window, js_name = labShowArticle)]
+    fn show_article_js(article: Option<&Element>, tab: &str) -> Result<(), JsValue>;
+}
+
+/// Shows the home page (`article` `None`), or `article` on the tab `tab`
+/// (its slug): hides the other pages and panels, marks the tab selected and
+/// the experiment current in the menu, and titles the document. The code is
+/// `web/main.js`'s `labShowArticle`, which the page shows tabs with before
+/// any wasm runs; the test pages (every experiment's content built in) take
+/// it from main.js's text.
+pub fn show_article(article: Option<&Element>, tab: &str) {
+    #[cfg(feature = "all-experiments")]
+    install_show_article();
+    if let Err(e) = show_article_js(article, tab) {
+        web_sys::console::error_2(&"labShowArticle (web/main.js) failed:".into(), &e);
+    }
+}
+
+/// On a test page (no main.js): defines `window.labShowArticle` from
+/// main.js's own text, so the tests run the code the site ships.
+#[cfg(feature = "all-experiments")]
+fn install_show_article() {
+    const MAIN_JS: &str = include_str!("../../../web/main.js");
+    let present =
+        js_sys::Reflect::get(&window(), &"labShowArticle".into()).is_ok_and(|f| f.is_function());
+    if present {
+        return;
+    }
+    let begin = MAIN_JS
+        .find("// labShowArticle: begin")
+        .expect("main.js marks labShowArticle");
+    let end = MAIN_JS
+        .find("// labShowArticle: end")
+        .expect("main.js marks labShowArticle");
+    let _ = js_sys::Function::new_no_args(&MAIN_JS[begin..end]).call0(&JsValue::NULL);
+}
+
 /// Runs `f` in a task of its own (after the current one), so long work is
 /// split below the 50 ms long-task budget. The callback frees itself once run.
 pub fn defer(f: impl FnOnce() + 'static) {

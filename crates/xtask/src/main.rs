@@ -31,8 +31,10 @@ commands:
                             (a SCORM 1.2 package, one SCO per experiment), its
                             quizzes graded N times at most (default unlimited),
                             the best, last or first attempt counting (default best)
-  serve [--port N] [--host H] [--base /prefix/]
-                            build dist/, then serve it (default http://127.0.0.1:8000/)
+  serve [--port N] [--host H] [--base /prefix/] [--dir PATH] [--no-compression]
+                            build dist/, then serve it (default http://127.0.0.1:8000/);
+                            --dir serves that folder as it is (no build), --port 0
+                            a free port, --no-compression every file as it is
   size                      raw and gzip -9 size of every file in dist/
   test [--quick]            every check and test, stopping at the first failure
                             (--quick skips cargo fmt and clippy)

@@ -1,5 +1,8 @@
 //! `cargo xtask serve`: builds dist/ and serves it with a small std-only,
-//! thread-per-connection static file server (GET and HEAD only).
+//! thread-per-connection static file server (GET and HEAD only). The
+//! end-to-end tests serve the built site with this same server
+//! (`--dir dist --port 0`, see tests/e2e/helpers.mjs), so its media types,
+//! cache headers and compression are what they test.
 
 use crate::dist;
 use std::io::{BufRead, BufReader, Read, Write};
@@ -13,6 +16,11 @@ pub struct Options {
     pub port: u16,
     /// Always starts and ends with `/`.
     pub base: String,
+    /// Serve this folder as it is instead of building dist/ first.
+    pub dir: Option<PathBuf>,
+    /// Send every file as it is, as a host that does not compress does
+    /// (no `.br`/`.gz` sibling, no gzip on the fly).
+    pub compress: bool,
 }
 
 pub fn parse_args(args: &[String]) -> Result<Options, String> {
@@ -20,6 +28,8 @@ pub fn parse_args(args: &[String]) -> Result<Options, String> {
         host: "127.0.0.1".into(),
         port: 8000,
         base: "/".into(),
+        dir: None,
+        compress: true,
     };
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -42,9 +52,12 @@ pub fn parse_args(args: &[String]) -> Result<Options, String> {
             }
             "--host" => opts.host = value()?,
             "--base" => opts.base = normalise_base(&value()?)?,
+            "--dir" => opts.dir = Some(PathBuf::from(value()?)),
+            "--no-compression" if inline.is_none() => opts.compress = false,
             other => {
                 return Err(format!(
-                    "unknown option `{other}` (serve takes --port N, --host H, --base /prefix/)"
+                    "unknown option `{other}` (serve takes --port N, --host H, --base /prefix/, \
+                     --dir PATH, --no-compression)"
                 ))
             }
         }
@@ -68,7 +81,10 @@ fn normalise_base(b: &str) -> Result<String, String> {
 }
 
 pub fn serve(opts: Options) -> Result<(), String> {
-    let dist = dist::dist()?;
+    let dist = match opts.dir {
+        Some(dir) => dir,
+        None => dist::dist()?,
+    };
     let root = dist
         .canonicalize()
         .map_err(|e| format!("cannot open {}: {e}", dist.display()))?;
@@ -88,11 +104,12 @@ pub fn serve(opts: Options) -> Result<(), String> {
     );
     let base: &'static str = Box::leak(opts.base.into_boxed_str());
     let root: &'static Path = Box::leak(root.into_boxed_path());
+    let compress = opts.compress;
     for stream in listener.incoming() {
         match stream {
             Ok(stream) => {
                 std::thread::spawn(move || {
-                    let _ = handle(stream, root, base);
+                    let _ = handle(stream, root, base, compress);
                 });
             }
             Err(e) => eprintln!("accept failed: {e}"),
@@ -102,7 +119,8 @@ pub fn serve(opts: Options) -> Result<(), String> {
 }
 
 /// Serves requests on one connection (keep-alive) until the client closes it.
-fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
+/// `compress: false` sends every file as it is.
+fn handle(stream: TcpStream, root: &Path, base: &str, compress: bool) -> std::io::Result<()> {
     stream.set_read_timeout(Some(Duration::from_secs(30)))?;
     let mut reader = BufReader::new(stream.try_clone()?);
     let mut out = stream;
@@ -132,7 +150,7 @@ fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
                     "connection" if value == "close" => keep_alive = false,
                     "connection" if value == "keep-alive" => keep_alive = true,
                     "content-length" => body_len = value.parse().unwrap_or(0),
-                    "accept-encoding" => {
+                    "accept-encoding" if compress => {
                         encodings = Encodings {
                             gzip: accepts(&value, "gzip"),
                             br: accepts(&value, "br"),
@@ -149,6 +167,9 @@ fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
             return Ok(());
         };
         let head = method == "HEAD";
+        // Logged before the answer: whoever reads the log (the end-to-end
+        // tests count requests) sees a request before its response arrives.
+        eprintln!("{method} {target}");
         if method != "GET" && !head {
             respond_text(
                 &mut out,
@@ -182,7 +203,6 @@ fn handle(stream: TcpStream, root: &Path, base: &str) -> std::io::Result<()> {
                     respond_text(&mut out, 404, "Not Found", "not found\n", head, keep_alive)?
                 }
             }
-            eprintln!("{method} {target}");
         }
         out.flush()?;
         if !keep_alive {
@@ -429,13 +449,29 @@ mod tests {
             Options {
                 host: "0.0.0.0".into(),
                 port: 9000,
-                base: "/lab/x/".into()
+                base: "/lab/x/".into(),
+                dir: None,
+                compress: true,
             }
         );
         assert_eq!(parse_args(&[]).unwrap().port, 8000);
+        assert_eq!(parse_args(&[]).unwrap().dir, None);
+        assert!(parse_args(&[]).unwrap().compress);
         assert!(parse_args(&args(&["--port", "x"])).is_err());
         assert!(parse_args(&args(&["--base", "/a/../b"])).is_err());
         assert!(parse_args(&args(&["--bogus"])).is_err());
+    }
+
+    /// The end-to-end tests serve dist/ as it is (no build) on a free port,
+    /// and compare a host that compresses with one that does not.
+    #[test]
+    fn serves_a_folder_as_it_is_on_any_port_with_or_without_compression() {
+        let o = parse_args(&args(&["--dir", "dist", "--port", "0", "--no-compression"])).unwrap();
+        assert_eq!(o.dir, Some(PathBuf::from("dist")));
+        assert_eq!(o.port, 0);
+        assert!(!o.compress);
+        assert!(parse_args(&args(&["--no-compression=1"])).is_err());
+        assert!(parse_args(&args(&["--dir"])).is_err());
     }
 
     #[test]
@@ -527,7 +563,7 @@ mod tests {
         let addr = listener.local_addr().unwrap();
         let server = std::thread::spawn(move || {
             let (stream, _) = listener.accept().unwrap();
-            handle(stream, &root, "/sub/").unwrap();
+            handle(stream, &root, "/sub/", true).unwrap();
         });
         let mut client = TcpStream::connect(addr).unwrap();
         client

@@ -155,9 +155,12 @@ pub fn test(opts: Options) -> Result<(), String> {
             // Two files at a time: one alone leaves about a third of two cores
             // idle (process and browser start-up, round trips); two keep them
             // busy (8 min 18 s -> 5 min 30 s here). No test asserts a time.
+            // The suite serves dist/ with this very binary (`serve --dir`):
+            // one server, one table of media types and cache headers.
             util::run(
                 Command::new("node")
                     .args(["--test", "--test-concurrency=2", "tests/e2e/"])
+                    .env("LAB_XTASK", xtask_binary()?)
                     .current_dir(util::root()),
             )
         }),
@@ -224,6 +227,12 @@ pub fn test(opts: Options) -> Result<(), String> {
         );
     }
     Ok(())
+}
+
+/// This `cargo xtask` binary, which tests/e2e/helpers.mjs starts as the
+/// suite's server (`serve --dir dist --port 0`).
+fn xtask_binary() -> Result<std::path::PathBuf, String> {
+    std::env::current_exe().map_err(|e| format!("cannot find the xtask binary: {e}"))
 }
 
 fn secs(d: Duration) -> f64 {
