@@ -272,13 +272,20 @@ fn question(value: &Value, index: usize) -> Result<String, String> {
         Value::String(s) => s.clone(),
         _ => return Err(f.wrong("kind", "a string")),
     };
-    // An absent or `null` unit is no unit.
-    let unit = |f: &mut Fields| -> Result<String, String> {
-        match f.optional("unit") {
-            None | Some(Value::Null) => Ok("String::new()".into()),
-            Some(Value::String(s)) => Ok(string(s)),
-            Some(_) => Err(f.wrong("unit", "a string")),
-        }
+    // What a numeric and a generated question share, after their own fields;
+    // an absent or `null` unit is no unit.
+    let measured = |f: &mut Fields| -> Result<String, String> {
+        let tolerance = f.number("tolerance")?;
+        let unit = match f.optional("unit") {
+            None | Some(Value::Null) => "String::new()".into(),
+            Some(Value::String(s)) => string(s),
+            Some(_) => return Err(f.wrong("unit", "a string")),
+        };
+        Ok(format!(
+            "tolerance: {tolerance}, unit: {unit}, angle_degrees: {}, explanation: {} }}",
+            f.flag("angle_degrees")?,
+            f.string("explanation")?
+        ))
     };
     let code = match kind.as_str() {
         "choice" => format!(
@@ -288,24 +295,20 @@ fn question(value: &Value, index: usize) -> Result<String, String> {
             f.count("answer")?,
             f.string("explanation")?,
         ),
-        "numeric" => format!(
-            "Question::Numeric {{ prompt: {}, answer: {}, tolerance: {}, unit: {}, angle_degrees: {}, explanation: {} }}",
-            f.string("prompt")?,
-            f.number("answer")?,
-            f.number("tolerance")?,
-            unit(&mut f)?,
-            f.flag("angle_degrees")?,
-            f.string("explanation")?,
-        ),
-        "generated" => format!(
-            "Question::Generated {{ generator: {}, prompt: {}, tolerance: {}, unit: {}, angle_degrees: {}, explanation: {} }}",
-            f.string("generator")?,
-            f.string("prompt")?,
-            f.number("tolerance")?,
-            unit(&mut f)?,
-            f.flag("angle_degrees")?,
-            f.string("explanation")?,
-        ),
+        "numeric" => {
+            let (prompt, answer) = (f.string("prompt")?, f.number("answer")?);
+            format!(
+                "Question::Numeric {{ prompt: {prompt}, answer: {answer}, {}",
+                measured(&mut f)?
+            )
+        }
+        "generated" => {
+            let (generator, prompt) = (f.string("generator")?, f.string("prompt")?);
+            format!(
+                "Question::Generated {{ generator: {generator}, prompt: {prompt}, {}",
+                measured(&mut f)?
+            )
+        }
         other => {
             return Err(format!(
                 "question {}: unknown kind `{other}`, expected choice, numeric or generated",
