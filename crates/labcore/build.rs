@@ -1,55 +1,338 @@
-//! Writes, for every content file `assets/<id>.json` (every `.json` there),
-//! the part a wasm module needs at run time into `$OUT_DIR/<id>.quiz.json`:
-//! the id, number, title, summary, aim (the lab report quotes it) and quiz,
-//! with the other reading sections (theory, procedure, references) emptied.
-//! The reading tabs are rendered at build time into their own pages, so a
-//! module built without the `reading` feature carries only this (see
-//! `experiments/mod.rs`).
+//! Reads every content file `assets/<id>.json` once, at build time, and writes
+//! it as Rust into `$OUT_DIR/content.rs`: one function per experiment this
+//! build holds (its feature `<id>` is on) that builds its
+//! [`Content`](src/content.rs) from string literals, and `compiled(id)`,
+//! which [`crate::Entry::content`] calls. So no content is parsed at run time,
+//! in the browser or natively.
+//!
+//! Without the `reading` feature (the shipped wasm modules, whose reading
+//! tabs are pages of their own) the reading sections (theory, procedure,
+//! references) come out empty: only the id, number, title, summary, aim (the
+//! lab report quotes it) and quiz are compiled in.
+//!
+//! serde_json is a build-dependency only: nothing of it reaches the crate.
+//! The fields are read as strictly as `Content::from_json` reads them (no
+//! field missing, none unknown, each of its type); a file that fails is
+//! compiled in as its error, which `Entry::content` returns.
 
-#[allow(dead_code)]
-#[path = "src/json.rs"]
-mod json;
-
-use json::Json;
+use serde_json::{Map, Value};
+use std::fmt::Write as _;
 use std::path::Path;
-
-const READING: [&str; 3] = ["theory", "procedure", "references"];
 
 fn main() {
     let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
     let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
-    println!("cargo:rerun-if-changed=src/json.rs");
     println!("cargo:rerun-if-changed={}", assets.display());
+    let reading = std::env::var_os("CARGO_FEATURE_READING").is_some();
     let mut files: Vec<_> = std::fs::read_dir(&assets)
         .map(|dir| dir.filter_map(Result::ok).map(|e| e.path()).collect())
         .unwrap_or_default();
     files.retain(|p| p.extension().is_some_and(|e| e == "json"));
     files.sort();
+    let mut arms = String::new();
+    let mut bodies = String::new();
     for path in files {
         let Some(id) = path.file_stem().and_then(|s| s.to_str()) else {
             continue;
         };
         println!("cargo:rerun-if-changed={}", path.display());
+        // An experiment left out of this build leaves its content out too.
+        let feature = format!("CARGO_FEATURE_{}", id.to_uppercase().replace('-', "_"));
+        if std::env::var_os(feature).is_none() || !is_identifier(id) {
+            continue;
+        }
         let text = std::fs::read_to_string(&path).unwrap_or_default();
-        // A file that does not parse is passed on as it is: the crate's own
-        // parser reports it, with its line and column.
-        let quiz_only = match Json::parse(&text) {
-            Ok(Json::Object(fields)) => Json::Object(
-                fields
-                    .into_iter()
-                    .map(|(k, v)| {
-                        if READING.contains(&k.as_str()) {
-                            (k, Json::Array(Vec::new()))
-                        } else {
-                            (k, v)
-                        }
-                    })
-                    .collect(),
-            )
-            .to_text(),
-            _ => text,
-        };
-        std::fs::write(Path::new(&out).join(format!("{id}.quiz.json")), quiz_only)
-            .expect("OUT_DIR is writable");
+        let body = serde_json::from_str::<Value>(&text)
+            .map_err(|e| e.to_string())
+            .and_then(|v| content(&v, reading))
+            .unwrap_or_else(|e| {
+                format!(
+                    "Err(ContentError::Parse(String::from({:?})))",
+                    format!("assets/{id}.json: {e}")
+                )
+            });
+        writeln!(arms, "        {id:?} => Some(content_{id}()),").unwrap();
+        writeln!(
+            bodies,
+            "\nfn content_{id}() -> Result<Content, ContentError> {{\n    {body}\n}}"
+        )
+        .unwrap();
     }
+    let code = format!(
+        "// Written by build.rs from assets/*.json; do not edit.\n\n\
+         /// The content file of experiment `id` as compiled into this build, or\n\
+         /// `None` when the build does not hold that experiment.\n\
+         pub(crate) fn compiled(id: &str) -> Option<Result<Content, ContentError>> {{\n    \
+         match id {{\n{arms}        _ => None,\n    }}\n}}\n{bodies}"
+    );
+    std::fs::write(Path::new(&out).join("content.rs"), code).expect("OUT_DIR is writable");
+}
+
+/// The id names a Rust function (`content_<id>`).
+fn is_identifier(id: &str) -> bool {
+    !id.is_empty() && id.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// The fields of one JSON object, taken by name; any left over is an error.
+struct Fields<'a> {
+    map: &'a Map<String, Value>,
+    taken: Vec<&'a str>,
+    place: String,
+}
+
+impl<'a> Fields<'a> {
+    fn of(value: &'a Value, place: String) -> Result<Self, String> {
+        match value {
+            Value::Object(map) => Ok(Fields {
+                map,
+                taken: Vec::new(),
+                place,
+            }),
+            _ => Err(format!("{place}: expected an object")),
+        }
+    }
+
+    fn optional(&mut self, name: &'a str) -> Option<&'a Value> {
+        self.taken.push(name);
+        self.map.get(name)
+    }
+
+    fn required(&mut self, name: &'a str) -> Result<&'a Value, String> {
+        self.optional(name)
+            .ok_or_else(|| format!("{}: missing field `{name}`", self.place))
+    }
+
+    fn wrong(&self, name: &str, wanted: &str) -> String {
+        format!("{}: field `{name}` should be {wanted}", self.place)
+    }
+
+    /// A string, as a Rust expression of type `String`.
+    fn string(&mut self, name: &'a str) -> Result<String, String> {
+        match self.required(name)? {
+            Value::String(s) => Ok(string(s)),
+            _ => Err(self.wrong(name, "a string")),
+        }
+    }
+
+    /// An optional string (absent or `null` is `None`), as `Option<String>`.
+    fn opt_string(&mut self, name: &'a str) -> Result<String, String> {
+        match self.optional(name) {
+            None | Some(Value::Null) => Ok("None".into()),
+            Some(Value::String(s)) => Ok(format!("Some({})", string(s))),
+            Some(_) => Err(self.wrong(name, "a string")),
+        }
+    }
+
+    /// A number, as an `f64` literal that reads back to the same value.
+    fn number(&mut self, name: &'a str) -> Result<String, String> {
+        match self.required(name)?.as_f64() {
+            Some(x) if x.is_finite() => Ok(format!("{x:?}")),
+            _ => Err(self.wrong(name, "a number")),
+        }
+    }
+
+    /// A non-negative whole number that fits in `u32`.
+    fn count(&mut self, name: &'a str) -> Result<String, String> {
+        let v = self.required(name)?;
+        self.as_count(name, v)
+    }
+
+    fn opt_count(&mut self, name: &'a str) -> Result<String, String> {
+        match self.optional(name) {
+            None | Some(Value::Null) => Ok("None".into()),
+            Some(v) => Ok(format!("Some({})", self.as_count(name, v)?)),
+        }
+    }
+
+    fn as_count(&self, name: &str, v: &Value) -> Result<String, String> {
+        match v.as_f64() {
+            Some(n) if n.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&n) => {
+                Ok(format!("{}", n as u32))
+            }
+            _ => Err(self.wrong(name, "a whole number")),
+        }
+    }
+
+    /// An optional boolean, `false` when absent.
+    fn flag(&mut self, name: &'a str) -> Result<String, String> {
+        match self.optional(name) {
+            None => Ok("false".into()),
+            Some(Value::Bool(b)) => Ok(b.to_string()),
+            Some(_) => Err(self.wrong(name, "a boolean")),
+        }
+    }
+
+    fn array(&mut self, name: &'a str) -> Result<&'a [Value], String> {
+        match self.required(name)? {
+            Value::Array(items) => Ok(items),
+            _ => Err(self.wrong(name, "an array")),
+        }
+    }
+
+    /// An array of strings, as a `Vec<String>` expression.
+    fn strings(&mut self, name: &'a str) -> Result<String, String> {
+        let items = self.array(name)?;
+        let mut parts = Vec::new();
+        for item in items {
+            match item {
+                Value::String(s) => parts.push(format!("{s:?}")),
+                _ => return Err(self.wrong(name, "an array of strings")),
+            }
+        }
+        Ok(format!("strings(&[{}])", parts.join(", ")))
+    }
+
+    fn done(self) -> Result<(), String> {
+        match self.map.keys().find(|k| !self.taken.contains(&k.as_str())) {
+            Some(k) => Err(format!("{}: unknown field `{k}`", self.place)),
+            None => Ok(()),
+        }
+    }
+}
+
+/// A string literal turned into a `String`.
+fn string(s: &str) -> String {
+    format!("String::from({s:?})")
+}
+
+/// The whole file as an `Ok(Content { … })` expression.
+fn content(value: &Value, reading: bool) -> Result<String, String> {
+    let mut f = Fields::of(value, "content".into())?;
+    let id = f.string("id")?;
+    let number = f.count("number")?;
+    let title = f.string("title")?;
+    let summary = f.string("summary")?;
+    let aim = f.strings("aim")?;
+    let theory = list(f.array("theory")?, block)?;
+    let procedure = f.strings("procedure")?;
+    let quiz = list(f.array("quiz")?, question)?;
+    let references = list(f.array("references")?, reference)?;
+    f.done()?;
+    let (theory, procedure, references) = if reading {
+        (theory, procedure, references)
+    } else {
+        (
+            "Vec::new()".into(),
+            "Vec::new()".into(),
+            "Vec::new()".into(),
+        )
+    };
+    Ok(format!(
+        "Ok(Content {{\n        id: {id},\n        number: {number},\n        title: {title},\n        \
+         summary: {summary},\n        aim: {aim},\n        theory: {theory},\n        \
+         procedure: {procedure},\n        quiz: {quiz},\n        references: {references},\n    }})"
+    ))
+}
+
+/// `vec![…]` of each item read by `read` (given the item and its index).
+fn list(
+    items: &[Value],
+    read: fn(&Value, usize) -> Result<String, String>,
+) -> Result<String, String> {
+    let parts = items
+        .iter()
+        .enumerate()
+        .map(|(i, v)| read(v, i))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(format!(
+        "vec![\n            {}\n        ]",
+        parts.join(",\n            ")
+    ))
+}
+
+/// One theory block: one key (`heading`, `paragraph`, `formula`, `note`)
+/// holding a string.
+fn block(value: &Value, index: usize) -> Result<String, String> {
+    let place = format!("theory block {}", index + 1);
+    let Value::Object(map) = value else {
+        return Err(format!("{place}: expected an object"));
+    };
+    let mut fields = map.iter();
+    let (Some((kind, Value::String(text))), None) = (fields.next(), fields.next()) else {
+        return Err(format!("{place}: expected one key holding a string"));
+    };
+    let variant = match kind.as_str() {
+        "heading" => "Heading",
+        "paragraph" => "Paragraph",
+        "formula" => "Formula",
+        "note" => "Note",
+        other => {
+            return Err(format!(
+                "{place}: unknown variant `{other}`, expected heading, paragraph, formula or note"
+            ))
+        }
+    };
+    Ok(format!("Block::{variant}({})", string(text)))
+}
+
+/// One quiz question, tagged by its `kind`.
+fn question(value: &Value, index: usize) -> Result<String, String> {
+    let mut f = Fields::of(value, format!("question {}", index + 1))?;
+    let kind = match f.required("kind")? {
+        Value::String(s) => s.clone(),
+        _ => return Err(f.wrong("kind", "a string")),
+    };
+    // What a numeric and a generated question share, after their own fields;
+    // an absent or `null` unit is no unit.
+    let measured = |f: &mut Fields| -> Result<String, String> {
+        let tolerance = f.number("tolerance")?;
+        let unit = match f.optional("unit") {
+            None | Some(Value::Null) => "String::new()".into(),
+            Some(Value::String(s)) => string(s),
+            Some(_) => return Err(f.wrong("unit", "a string")),
+        };
+        Ok(format!(
+            "tolerance: {tolerance}, unit: {unit}, angle_degrees: {}, explanation: {} }}",
+            f.flag("angle_degrees")?,
+            f.string("explanation")?
+        ))
+    };
+    let code = match kind.as_str() {
+        "choice" => format!(
+            "Question::Choice {{ prompt: {}, options: {}, answer: {}, explanation: {} }}",
+            f.string("prompt")?,
+            f.strings("options")?,
+            f.count("answer")?,
+            f.string("explanation")?,
+        ),
+        "numeric" => {
+            let (prompt, answer) = (f.string("prompt")?, f.number("answer")?);
+            format!(
+                "Question::Numeric {{ prompt: {prompt}, answer: {answer}, {}",
+                measured(&mut f)?
+            )
+        }
+        "generated" => {
+            let (generator, prompt) = (f.string("generator")?, f.string("prompt")?);
+            format!(
+                "Question::Generated {{ generator: {generator}, prompt: {prompt}, {}",
+                measured(&mut f)?
+            )
+        }
+        other => {
+            return Err(format!(
+                "question {}: unknown kind `{other}`, expected choice, numeric or generated",
+                index + 1
+            ))
+        }
+    };
+    f.done()?;
+    Ok(code)
+}
+
+/// One bibliographic reference.
+fn reference(value: &Value, index: usize) -> Result<String, String> {
+    let mut f = Fields::of(value, format!("reference {}", index + 1))?;
+    let code = format!(
+        "Reference {{ authors: {}, title: {}, venue: {}, year: {}, detail: {}, doi: {}, url: {} }}",
+        f.string("authors")?,
+        f.string("title")?,
+        f.string("venue")?,
+        f.opt_count("year")?,
+        f.opt_string("detail")?,
+        f.opt_string("doi")?,
+        f.opt_string("url")?,
+    );
+    f.done()?;
+    Ok(code)
 }

@@ -6,10 +6,10 @@
 
 import { after, test } from "node:test";
 import assert from "node:assert/strict";
-import { mkdirSync, writeFileSync } from "node:fs";
+import { mkdirSync, readdirSync, readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import { gzipSync } from "node:zlib";
-import { experimentIds, open, useLab, withPage } from "./helpers.mjs";
+import { DIST, experimentIds, open, useLab, withPage } from "./helpers.mjs";
 
 /** Budgets of issue 16, in bytes, with 1 KB = 1,024 bytes as `cargo xtask
  * size` and the README count (the table prints both units). */
@@ -106,5 +106,19 @@ test("a module already downloaded is not downloaded again for another experiment
     assert.deepEqual(errors, []);
   } finally {
     await context.close();
+  }
+});
+
+// Issue 25 step 9: the content files are read at build time (labcore's
+// build.rs writes them as Rust data), so a module carries the quiz's words
+// but no JSON text of them to parse in the browser.
+test("content is parsed at build time: no wasm module carries a content file's JSON", () => {
+  const modules = readdirSync(join(DIST, "pkg")).filter((name) => name.endsWith(".wasm"));
+  assert.ok(modules.length > 0, "dist/pkg holds the wasm modules");
+  for (const name of modules) {
+    const bytes = readFileSync(join(DIST, "pkg", name)).toString("latin1");
+    for (const key of ['"explanation":', '"kind":"choice"', '"prompt":']) {
+      assert.ok(!bytes.includes(key), `${name} holds content JSON (${key})`);
+    }
   }
 });

@@ -4,6 +4,7 @@
 //! `<strong>`, `<code>`, `<sub>`, `<sup>`) and MathML (`<math>…</math>`); the
 //! files are ours and are compiled into the bundle, never user input.
 
+#[cfg(feature = "reading")]
 use crate::json::{Fields, Json};
 use std::fmt;
 
@@ -49,6 +50,7 @@ pub enum Block {
 impl Block {
     /// One theory block: an object with exactly one of the keys `heading`,
     /// `paragraph`, `formula`, `note`, holding a string.
+    #[cfg(feature = "reading")]
     fn from_json(value: &Json, index: usize) -> Result<Self, String> {
         let place = format!("theory block {}", index + 1);
         let Json::Object(fields) = value else {
@@ -90,6 +92,7 @@ pub struct Reference {
 }
 
 impl Reference {
+    #[cfg(feature = "reading")]
     fn from_json(value: &Json, index: usize) -> Result<Self, String> {
         let mut f = Fields::of(value, format!("reference {}", index + 1))?;
         let reference = Reference {
@@ -156,6 +159,7 @@ pub enum Question {
 impl Question {
     /// One quiz question, tagged by its `kind`: `choice`, `numeric` or
     /// `generated`.
+    #[cfg(feature = "reading")]
     fn from_json(value: &Json, index: usize) -> Result<Self, String> {
         let mut f = Fields::of(value, format!("question {}", index + 1))?;
         let kind = f.string("kind")?;
@@ -332,6 +336,9 @@ pub const MIN_REFERENCES: usize = 3;
 impl Content {
     /// Reads the fields of a content file's JSON (no field missing, none
     /// unknown, each of its type); [`Content::validate`] then checks the rest.
+    /// Only with the `reading` feature: the compiled-in files were read at
+    /// build time (`build.rs`); this reads other texts (edited files, tests).
+    #[cfg(feature = "reading")]
     pub fn from_json(value: &Json) -> Result<Self, String> {
         let mut f = Fields::of(value, "content")?;
         let content = Content {
@@ -365,6 +372,7 @@ impl Content {
     }
 
     /// Parses a content file and checks it is complete (see [`Content::validate`]).
+    #[cfg(feature = "reading")]
     pub fn parse(json: &str) -> Result<Self, ContentError> {
         let value = Json::parse(json).map_err(ContentError::Parse)?;
         let content = Content::from_json(&value).map_err(ContentError::Parse)?;
@@ -663,9 +671,38 @@ pub fn tags_balanced(s: &str) -> bool {
     stack.is_empty()
 }
 
+// The content files, read at build time: `compiled(id)` (see build.rs).
+include!(concat!(env!("OUT_DIR"), "/content.rs"));
+
+/// The strings of a compiled-in list (aim, procedure, a choice's options).
+#[allow(dead_code)] // a build without experiments calls it nowhere
+fn strings(texts: &[&str]) -> Vec<String> {
+    texts.iter().map(|t| String::from(*t)).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 25 step 9: every content file is compiled in at build time
+    /// (`build.rs`) as exactly what the crate's own reader reads from its
+    /// text, so the entries' content is data, with nothing left to parse.
+    #[test]
+    fn content_is_parsed_once_at_build_time_into_the_same_content() {
+        for entry in crate::registry() {
+            let compiled = compiled(entry.id)
+                .expect("every built experiment has its content compiled in")
+                .expect("compiles");
+            assert_eq!(
+                compiled,
+                Content::parse(entry.content_json).unwrap(),
+                "{}",
+                entry.id
+            );
+            assert_eq!(entry.content().unwrap(), &compiled, "{}", entry.id);
+        }
+        assert!(compiled("no-such-experiment").is_none());
+    }
 
     #[test]
     fn references_link_to_their_doi_or_url() {

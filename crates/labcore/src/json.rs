@@ -1,5 +1,9 @@
 //! A small, strict JSON reader and writer (RFC 8259) for the lab's own data:
-//! the content files and the saved quiz attempt.
+//! in the wasm modules, the saved quiz attempt (local storage) and the
+//! attempt an LMS keeps (`lms::Suspended`, SCORM `suspend_data`); natively
+//! (the `reading` feature), content files being checked ([`Fields`]). The
+//! content compiled into a build is read at build time instead (`build.rs`,
+//! with serde_json as a build-dependency).
 //!
 //! Why not serde: serde's derived deserializers and `serde_json` were about
 //! 90 KB of each wasm module (twiggy, Rust 1.95) for two small formats; this

@@ -56,7 +56,6 @@
 pub mod catalogue;
 pub mod clock;
 pub mod content;
-pub mod content_html;
 pub mod control;
 pub mod estimation;
 pub mod experiment;
@@ -70,7 +69,6 @@ pub mod mobile;
 pub mod planning;
 pub mod plot;
 pub mod quiz;
-pub mod report;
 pub mod rng;
 pub mod route;
 pub mod scene;

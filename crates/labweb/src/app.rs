@@ -9,15 +9,15 @@
 //! keeps the link complete; a link to an experiment of another group is left
 //! to `main.js`, which starts that group's module. Articles missing from the
 //! document (test pages, a link followed before its reading page arrived) are
-//! rendered from the same [`labcore::content_html`] functions.
+//! rendered from the same [`labpage::content_html`] functions.
 
 use crate::dom::{self, escape, query, query_all, Listener};
 use crate::quiz_view::{self, Attempt};
 use crate::sim::{self, SimView};
 use labcore::content::Content;
-use labcore::content_html;
 use labcore::route::{self, Page, Tab};
 use labcore::Entry;
+use labpage::content_html;
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::JsCast;

@@ -33,7 +33,7 @@ pub fn query_all(root: &Element, selector: &str) -> Vec<Element> {
         .collect()
 }
 
-pub use labcore::content_html::escape;
+pub use labpage::content_html::escape;
 
 pub fn set_hidden(el: &Element, hidden: bool) {
     if let Some(h) = el.dyn_ref::<HtmlElement>() {

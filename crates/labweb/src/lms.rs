@@ -10,7 +10,7 @@
 //!   with `score` right answers of `max` questions, `percent` their rounded
 //!   percentage, `counted` the percentage the instructor's rule makes count
 //!   (best, last or first graded attempt) and `questions` one
-//!   `[choice, given, correct, expected]` per question (see [`questions`]);
+//!   `[choice, given, correct, expected]` per question (see [`interactions`]);
 //! - `window.labLms.suspendData(id)`, set by `scorm.js` only inside an LMS:
 //!   the attempt the LMS kept for experiment `id` (a
 //!   [`labcore::lms::Suspended`] text), or `null`.
@@ -21,10 +21,9 @@
 //! A package's launch (`index.html?sco=pid&attempts=2&score=first`) also
 //! fixes the quiz's grading rules for the whole session: [`launch_rules`].
 
-use crate::quiz_view::{responses, saved, Attempt};
 use labcore::content::Question;
 use labcore::lms::{Suspended, Tally};
-use labcore::quiz::{grade, read_answer, PreparedKind, Response};
+use labcore::quiz::{grade, read_answer, Prepared, PreparedKind, Response, SavedAttempt};
 use labcore::route::QuizRules;
 use wasm_bindgen::{JsCast, JsValue};
 use web_sys::{CustomEvent, CustomEventInit, Element};
@@ -75,10 +74,10 @@ pub fn suspended(id: &str) -> Option<Suspended> {
     Suspended::decode(&text).filter(|s| s.id == id)
 }
 
-/// The form's attempt, with the quiz's graded attempts, as an LMS keeps it.
+/// The form's attempt (`kept`: its seed and the answers in the form), with
+/// the quiz's graded attempts, as an LMS keeps it.
 #[must_use]
-pub fn suspend_data(id: &str, form: &Element, attempt: &Attempt, tally: Tally) -> String {
-    let kept = saved(form, attempt);
+pub fn suspend_data(id: &str, form: &Element, kept: SavedAttempt, tally: Tally) -> String {
     Suspended {
         id: id.to_owned(),
         seed: kept.seed,
@@ -89,12 +88,13 @@ pub fn suspend_data(id: &str, form: &Element, attempt: &Attempt, tally: Tally) -
     .encode()
 }
 
-/// Announces that the attempt's answers changed (`lab-quiz-progress`).
-pub fn progress(form: &Element, attempt: &Attempt, tally: Tally) {
+/// Announces that the attempt's answers changed (`lab-quiz-progress`);
+/// `kept` is the attempt's seed and the answers in the form.
+pub fn progress(form: &Element, kept: SavedAttempt, tally: Tally) {
     let Some(id) = experiment_of(form) else {
         return;
     };
-    let data = suspend_data(&id, form, attempt, tally);
+    let data = suspend_data(&id, form, kept, tally);
     dispatch(
         "lab-quiz-progress",
         &[
@@ -105,14 +105,23 @@ pub fn progress(form: &Element, attempt: &Attempt, tally: Tally) {
 }
 
 /// Announces a graded attempt (`lab-quiz-submitted`): `score` right of the
-/// attempt's questions, `tally` already counting it; `quiz` is the content's
-/// questions (for option numbers in content order).
-pub fn submitted(form: &Element, attempt: &Attempt, score: usize, tally: Tally, quiz: &[Question]) {
+/// attempt's `questions`, whose seed and answers are `kept`, `tally` already
+/// counting it; `quiz` is the content's questions (for option numbers in
+/// content order).
+pub fn submitted(
+    form: &Element,
+    questions: &[Prepared],
+    kept: SavedAttempt,
+    score: usize,
+    tally: Tally,
+    quiz: &[Question],
+) {
     let Some(id) = experiment_of(form) else {
         return;
     };
-    let max = attempt.questions.len();
-    let data = suspend_data(&id, form, attempt, tally);
+    let max = questions.len();
+    let record = interactions(questions, &kept.answers, quiz);
+    let data = suspend_data(&id, form, kept, tally);
     let percent = labcore::quiz::score_percent(score, max);
     dispatch(
         "lab-quiz-submitted",
@@ -125,7 +134,7 @@ pub fn submitted(form: &Element, attempt: &Attempt, score: usize, tally: Tally, 
                 "counted",
                 JsValue::from_f64(tally.counted.unwrap_or(percent) as f64),
             ),
-            ("questions", questions(form, attempt, quiz).into()),
+            ("questions", record.into()),
             ("suspendData", JsValue::from_str(&data)),
         ],
     );
@@ -137,15 +146,10 @@ pub fn submitted(form: &Element, attempt: &Attempt, score: usize, tally: Tally, 
 /// order, so every student's letters mean the same option whatever the
 /// shuffle; a numeric question's are the value read in its unit and the
 /// answer. `given` is null when blank or unreadable.
-fn questions(form: &Element, attempt: &Attempt, quiz: &[Question]) -> js_sys::Array {
+fn interactions(questions: &[Prepared], answers: &[Response], quiz: &[Question]) -> js_sys::Array {
     let out = js_sys::Array::new();
-    for (i, (q, r)) in attempt
-        .questions
-        .iter()
-        .zip(responses(form, attempt))
-        .enumerate()
-    {
-        let (given, expected) = match (&q.kind, &r) {
+    for (i, (q, r)) in questions.iter().zip(answers).enumerate() {
+        let (given, expected) = match (&q.kind, r) {
             (PreparedKind::Choice { options, answer }, _) => {
                 let in_content = |k: usize| {
                     let at = match quiz.get(i) {
@@ -157,7 +161,7 @@ fn questions(form: &Element, attempt: &Attempt, quiz: &[Question]) -> js_sys::Ar
                     at.unwrap_or(k) as f64
                 };
                 let picked = match r {
-                    Response::Choice(Some(k)) => Some(in_content(k)),
+                    Response::Choice(Some(k)) => Some(in_content(*k)),
                     _ => None,
                 };
                 (picked, in_content(*answer))
@@ -170,7 +174,7 @@ fn questions(form: &Element, attempt: &Attempt, quiz: &[Question]) -> js_sys::Ar
         out.push(&js_sys::Array::of4(
             &JsValue::from_bool(matches!(q.kind, PreparedKind::Choice { .. })),
             &given.map_or(JsValue::NULL, JsValue::from_f64),
-            &JsValue::from_bool(grade(q, &r).correct),
+            &JsValue::from_bool(grade(q, r).correct),
             &JsValue::from_f64(expected),
         ));
     }

@@ -251,7 +251,14 @@ pub fn submit(form: &Element, attempt: &Attempt, grading: &mut Grading, quiz: &[
         return false;
     }
     let score = grade_form(form, attempt, grading, true);
-    crate::lms::submitted(form, attempt, score, grading.tally, quiz);
+    crate::lms::submitted(
+        form,
+        &attempt.questions,
+        saved(form, attempt),
+        score,
+        grading.tally,
+        quiz,
+    );
     true
 }
 
@@ -367,5 +374,5 @@ pub fn store(experiment_id: &str, form: &Element, attempt: &Attempt, tally: Tall
     if let Some(Ok(Some(storage))) = web_sys::window().map(|w| w.local_storage()) {
         let _ = storage.set_item(&storage_key(experiment_id), &saved(form, attempt).encode());
     }
-    crate::lms::progress(form, attempt, tally);
+    crate::lms::progress(form, saved(form, attempt), tally);
 }

@@ -2,7 +2,7 @@
 //! needs from the page (the absolute link of the run, the student's clock,
 //! the quiz attempt if it was submitted, an instructor's note and answer-key
 //! choice from the link, the name, group and observations the student typed)
-//! has [`labcore::report::render`] build the file and offers it as a
+//! has [`labpage::report::render`] build the file and offers it as a
 //! download made in the page from a Blob (nothing leaves the browser).
 //!
 //! The typed fields are kept in local storage per experiment
@@ -13,9 +13,9 @@ use crate::dom::{self, escape, query};
 use crate::plot_view;
 use crate::quiz_view::{self, Attempt};
 use labcore::quiz::Response;
-use labcore::report::{self, AnswerKey, QuizResult, Report, Student};
 use labcore::route::{self, Page};
 use labcore::Experiment;
+use labpage::report::{self, AnswerKey, QuizResult, Report, Student};
 use wasm_bindgen::prelude::*;
 use web_sys::Element;
 

@@ -4,7 +4,8 @@
 //! 2. runs `npm ci` when `node_modules/` is missing or older than `package-lock.json`;
 //! 3. builds `labweb` for wasm (release);
 //! 4. generates the JS glue with the wasm-bindgen library (target `web`);
-//! 5. optimises the module with npm binaryen's `wasm-opt` (see [`WASM_OPT_LEVEL`]);
+//! 5. optimises the module with npm binaryen's `wasm-opt` (see
+//!    [`crate::modules::WASM_OPT_LEVEL`]);
 //! 6. copies `web/` into `dist/` and the glue + module into `dist/pkg/`, and
 //!    writes the navigation, home page and reading tabs into `index.html`
 //!    (after validating every content file);
@@ -21,43 +22,6 @@ use std::time::Instant;
 
 use crate::modules::{build_modules, ship_modules, WASM_TARGET};
 use crate::util::{remove_dir, step};
-
-/// `wasm-opt` level. Measured on labweb's wasm-bindgen output (fk + ik
-/// experiments, Rust 1.95, binaryen 132, 2-core machine):
-///
-/// | level | wasm bytes | gzip -9 bytes | wasm-opt time |
-/// | ----- | ---------- | ------------- | ------------- |
-/// | none  | 540,688    | 189,180       | –             |
-/// | -O2   | 431,004    | 162,993       | 6.4 s         |
-/// | -O3   | 429,875    | 162,983       | 8.3 s         |
-/// | -Os   | 427,886    | 162,680       | 6.8 s         |
-/// | -Oz   | 427,204    | 162,665       | 7.4 s         |
-///
-/// Both shave about 20 % (14 % gzipped) off the module; `-Oz` beats `-O3` by
-/// only 0.6 % raw and 0.2 % (318 bytes) gzipped. For that little, `-O3` keeps
-/// binaryen's inlining and speed-oriented passes, which the solvers running
-/// every frame benefit from (rustc builds them at opt-level 3 for the same
-/// reason). Re-measure with `XTASK_WASM_OPT=-Oz cargo xtask dist && cargo
-/// xtask size` if the bundle's character changes.
-pub const WASM_OPT_LEVEL: &str = "-O3";
-
-/// Features of the Rust 1.95 `wasm32-unknown-unknown` output: exactly those
-/// LLVM's default "generic" CPU enables (and lists in the module's
-/// `target_features` section). Validation without them fails today on
-/// bulk memory (`memory.copy`/`fill`), non-trapping float-to-int
-/// (`trunc_sat`), sign-ext and reference types (wasm-bindgen's externref
-/// table); the rest are listed so that wasm-opt may keep whatever rustc emits.
-/// Every current browser supports all of them.
-const WASM_FEATURES: &[&str] = &[
-    "--enable-bulk-memory",
-    "--enable-bulk-memory-opt",
-    "--enable-call-indirect-overlong",
-    "--enable-multivalue",
-    "--enable-mutable-globals",
-    "--enable-nontrapping-float-to-int",
-    "--enable-reference-types",
-    "--enable-sign-ext",
-];
 
 /// Builds `dist/` and returns its path.
 pub fn dist() -> Result<PathBuf, String> {
@@ -170,26 +134,6 @@ pub fn ensure_node_modules(root: &Path) -> Result<(), String> {
         Command::new("npm")
             .args(["ci", "--no-audit", "--no-fund"])
             .current_dir(root),
-    )
-}
-
-pub fn wasm_opt(root: &Path, input: &Path, output: &Path, level: &str) -> Result<(), String> {
-    let bin = root.join("node_modules/.bin/wasm-opt");
-    if !bin.exists() {
-        return Err(format!(
-            "{} is missing: run `npm ci` (binaryen is pinned in package.json)",
-            bin.display()
-        ));
-    }
-    util::run(
-        Command::new(&bin)
-            // One level (`-O3`), or several flags (`-O3 -g` keeps the names,
-            // for a profile).
-            .args(level.split_whitespace())
-            .args(WASM_FEATURES)
-            .arg(input)
-            .arg("-o")
-            .arg(output),
     )
 }
 

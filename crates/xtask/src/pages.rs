@@ -58,7 +58,7 @@ fn check_one(entry: &labcore::Entry, text: &str) -> Result<(), String> {
 /// The home page's HTML (what `index.html` carries besides the navigation).
 #[must_use]
 pub fn home_html() -> String {
-    labcore::content_html::home(crate::thumbs::thumbnail)
+    labpage::content_html::home(crate::thumbs::thumbnail)
 }
 
 /// One experiment's article (six tabs, reading tabs filled in), as its
@@ -67,7 +67,7 @@ pub fn home_html() -> String {
 /// letter (see [`crate::accents`]).
 #[must_use]
 pub fn article_html(entry: &labcore::Entry) -> String {
-    crate::accents::portable(&labcore::content_html::article(
+    crate::accents::portable(&labpage::content_html::article(
         entry.id,
         entry.content().map_err(|e| e.to_string()),
     ))
@@ -133,7 +133,7 @@ pub fn render_site(dist: &Path, modules: &[crate::modules::Shipped]) -> Result<(
         }
     }
     let html = template
-        .replace(NAV_SLOT, &labcore::content_html::nav())
+        .replace(NAV_SLOT, &labpage::content_html::nav())
         .replace(PAGES_SLOT, LOADING)
         .replace(MODULES_SLOT, metas.trim_end())
         .replace(CSP_SLOT, &csp_meta());

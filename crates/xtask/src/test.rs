@@ -96,7 +96,7 @@ pub fn test(opts: Options) -> Result<(), String> {
                 for features in configs {
                     util::run(
                         util::cargo()
-                            .args(["clippy", "-p", "labweb", "-p", "labcore"])
+                            .args(["clippy", "-p", "labweb", "-p", "labpage", "-p", "labcore"])
                             .args(["--target", "wasm32-unknown-unknown"])
                             .args(features)
                             .args(["--", "-D", "warnings"]),

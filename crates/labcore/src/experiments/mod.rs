@@ -17,11 +17,11 @@ pub mod potential;
 pub mod rrtstar;
 pub mod workspace;
 
-/// The content file compiled into this build: the whole of
-/// `assets/<id>.json` with the `reading` feature (native builds, tests, the
-/// build tool); without it (the shipped wasm modules, whose reading tabs are
-/// pages of their own) only the part the quiz and the page title need, which
-/// `build.rs` writes.
+/// The content file's text, for the build tool and the tests, which check
+/// edited and broken texts against the compiled-in one (the `reading`
+/// feature: native builds). The content itself is compiled in as data
+/// (`build.rs`, [`Entry::content`]); the shipped wasm modules carry no text
+/// of it to parse.
 #[cfg(feature = "reading")]
 macro_rules! content_file {
     ($id:literal) => {
@@ -31,7 +31,7 @@ macro_rules! content_file {
 #[cfg(not(feature = "reading"))]
 macro_rules! content_file {
     ($id:literal) => {
-        include_str!(concat!(env!("OUT_DIR"), "/", $id, ".quiz.json"))
+        ""
     };
 }
 
@@ -39,8 +39,8 @@ macro_rules! content_file {
 pub struct Entry {
     /// Same as [`Experiment::id`] and the content file's `id`.
     pub id: &'static str,
-    /// The content file (`assets/<id>.json`), compiled in (without the
-    /// `reading` feature, its quiz part only: see `content_file!`).
+    /// The content file's text (`assets/<id>.json`) with the `reading`
+    /// feature; empty without it (see `content_file!`).
     pub content_json: &'static str,
     /// A fresh experiment at default parameters.
     pub make: fn() -> Box<dyn Experiment>,
@@ -51,7 +51,8 @@ pub struct Entry {
 }
 
 impl Entry {
-    /// The content file, parsed and validated on first use and kept.
+    /// The content file, as `build.rs` compiled it in, checked on first use
+    /// and kept.
     pub fn content(&self) -> Result<&Content, ContentError> {
         self.parsed
             .get_or_init(|| self.parse_content())
@@ -59,22 +60,31 @@ impl Entry {
             .map_err(Clone::clone)
     }
 
-    /// Parses and validates the content file, checking that it belongs to this
-    /// experiment and that every generator it names exists.
+    /// The compiled-in content file (read at build time: nothing is parsed
+    /// here), checked: it belongs to this experiment and every generator it
+    /// names exists; with the `reading` feature also complete
+    /// ([`Content::validate`]).
     pub fn parse_content(&self) -> Result<Content, ContentError> {
-        self.parse_content_text(self.content_json)
+        let content = crate::content::compiled(self.id).unwrap_or_else(|| {
+            Err(ContentError::Parse(format!(
+                "no content file assets/{}.json was compiled in",
+                self.id
+            )))
+        })?;
+        #[cfg(feature = "reading")]
+        content.validate()?;
+        self.check(content)
     }
 
     /// [`Entry::parse_content`] for another text in place of the compiled-in
     /// file (the build tool checks edited files with it; tests feed it broken ones).
+    #[cfg(feature = "reading")]
     pub fn parse_content_text(&self, json: &str) -> Result<Content, ContentError> {
-        #[cfg(feature = "reading")]
-        let content = Content::parse(json)?;
-        // The quiz part of a file the build tool validated whole.
-        #[cfg(not(feature = "reading"))]
-        let content = crate::json::Json::parse(json)
-            .and_then(|v| Content::from_json(&v))
-            .map_err(ContentError::Parse)?;
+        self.check(Content::parse(json)?)
+    }
+
+    /// The content belongs to this experiment, and its quiz can be prepared.
+    fn check(&self, content: Content) -> Result<Content, ContentError> {
         if content.id != self.id {
             return Err(ContentError::WrongId {
                 expected: self.id.into(),
