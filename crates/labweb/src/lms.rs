@@ -24,8 +24,9 @@
 use crate::quiz_view::{responses, saved, Attempt};
 use labcore::content::Question;
 use labcore::lms::{Suspended, Tally};
-use labcore::quiz::{grade, read_answer, PreparedKind, Response};
+use labcore::quiz::{grade, PreparedKind, Response};
 use labcore::route::QuizRules;
+use labcore::units::read_answer;
 use wasm_bindgen::{JsCast, JsValue};
 use web_sys::{CustomEvent, CustomEventInit, Element};
 

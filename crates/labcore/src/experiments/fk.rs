@@ -8,14 +8,16 @@
 //! reachable point.
 
 use crate::experiment::{
-    check_param, format_degrees, format_fixed, format_magnitude, format_metres, format_point,
-    Experiment, Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, Experiment, Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{
+    format_degrees, format_fixed, format_magnitude, format_metres, format_number, format_point,
+};
 use glam::DVec2;
 
 const PARAMS: &[ParamSpec] = &[

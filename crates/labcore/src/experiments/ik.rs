@@ -11,16 +11,17 @@
 //! is what the two links solve for.
 
 use crate::experiment::{
-    check_param, clamp_to_params, format_degrees, format_point, with_coordinate, Experiment,
-    Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, clamp_to_params, with_coordinate, Experiment, Handle, Input, ParamError,
+    ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
     lerp_angle, solve, Elbow, IkError, Singularity, TwoLinkAngles, TwoLinkSolution,
 };
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_degrees, format_number, format_point};
 use glam::DVec2;
 
 const PARAMS: &[ParamSpec] = &[
@@ -766,7 +767,7 @@ mod tests {
         assert!((d.answer - c).abs() < 1e-12);
     }
 
-    use crate::experiment::format_degrees;
+    use crate::units::format_degrees;
 
     fn readout(ik: &InverseKinematics, key: &str) -> String {
         crate::experiment::readout_value(ik, key).unwrap()
@@ -951,8 +952,8 @@ mod tests {
         )
         .tip();
         assert!((ik.tip() - fk).length() < 1e-12);
-        assert_eq!(readout(&ik, "x"), crate::experiment::format_metres(fk.x));
-        assert_eq!(readout(&ik, "y"), crate::experiment::format_metres(fk.y));
+        assert_eq!(readout(&ik, "x"), crate::units::format_metres(fk.x));
+        assert_eq!(readout(&ik, "y"), crate::units::format_metres(fk.y));
     }
 
     #[test]

@@ -203,10 +203,7 @@ fn plan_animates_expansions_then_drives_to_the_goal() {
     assert_eq!(a.path_cost, expected.cost);
     let r = a.readouts();
     let get = |k: &str| r.iter().find(|x| x.key == k).unwrap().value.clone();
-    assert_eq!(
-        get("path_cost"),
-        crate::experiment::format_metres(expected.cost)
-    );
+    assert_eq!(get("path_cost"), crate::units::format_metres(expected.cost));
     assert_eq!(get("path_cells"), expected.path.len().to_string());
     assert_eq!(get("expanded"), expected.expanded.to_string());
     assert!((a.robot().unwrap() - a.cell_center(a.goal)).length() < 1e-9);

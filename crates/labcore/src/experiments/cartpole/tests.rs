@@ -2,8 +2,8 @@ use super::quiz::*;
 use super::view::gains_text;
 use super::*;
 use crate::control::count_right_half_plane;
-use crate::experiment::format_degrees;
 use crate::route::{format, restore, Tab};
+use crate::units::format_degrees;
 use std::f64::consts::FRAC_PI_2;
 
 fn run(e: &mut CartPoleBalance, seconds: f64) {

@@ -2,10 +2,11 @@
 
 use super::quiz::*;
 use super::*;
-use crate::experiment::{format_degrees, format_fixed, format_metres, Phase, Tone};
+use crate::experiment::{Phase, Tone};
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};
 use crate::scene::{Item, Role, Scene};
+use crate::units::{format_degrees, format_fixed, format_metres};
 use std::f64::consts::PI;
 
 const DT: f64 = crate::clock::Clock::DT_S;

@@ -1,7 +1,7 @@
 use super::quiz::*;
 use super::view::robot_outline;
 use super::*;
-use crate::experiment::format_metres;
+use crate::units::format_metres;
 
 const DT: f64 = 1.0 / 60.0;
 
