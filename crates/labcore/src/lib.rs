@@ -75,6 +75,7 @@ pub mod rng;
 pub mod route;
 pub mod scene;
 pub mod table;
+pub mod testkit;
 pub mod units;
 
 pub use clock::Clock;

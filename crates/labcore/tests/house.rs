@@ -88,3 +88,48 @@ fn one_home_for_numbers_every_number_formatter_and_reader_lives_in_units() {
         misplaced.join("\n")
     );
 }
+
+/// Step 7, "a test kit": every experiment's tests use `labcore::testkit`
+/// and none writes its own copy of the kit's helpers (step, read a
+/// readout, click, draw the scene, read a Procedure step, …).
+#[test]
+fn a_test_kit_every_experiments_tests_use_it_and_copy_none_of_its_helpers() {
+    const COPIES: [&str; 10] = [
+        "fn run(",
+        "fn run_for(",
+        "fn readout(",
+        "fn click(",
+        "fn scene_of(",
+        "fn scene_of_field(",
+        "fn procedure_step(",
+        "fn notice(",
+        "fn set(",
+        "readout_value(",
+    ];
+    let experiments = crates_dir().join("labcore/src/experiments");
+    let mut test_files: Vec<PathBuf> = ["fk.rs", "ik.rs", "workspace.rs"]
+        .iter()
+        .map(|f| experiments.join(f))
+        .collect();
+    for entry in fs::read_dir(&experiments).expect("experiments/").flatten() {
+        let tests = entry.path().join("tests.rs");
+        if tests.is_file() {
+            test_files.push(tests);
+        }
+    }
+    assert!(test_files.len() >= 11, "{test_files:?}");
+    let mut problems = Vec::new();
+    for file in &test_files {
+        let text = fs::read_to_string(file).expect("readable");
+        let tests = text.split("#[cfg(test)]").last().unwrap_or(&text);
+        if !tests.contains("crate::testkit") {
+            problems.push(format!("{}: does not use crate::testkit", file.display()));
+        }
+        for copy in COPIES {
+            if tests.contains(copy) {
+                problems.push(format!("{}: has its own `{copy}`", file.display()));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}

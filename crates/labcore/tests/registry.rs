@@ -929,12 +929,7 @@ fn an_ended_run_has_nothing_left_to_show() {
     let ended_session = |entry: &labcore::Entry, seed: u64, action: Option<&str>| {
         let mut exp = (entry.make)();
         random_session(exp.as_mut(), 7000 + seed);
-        for _ in 0..600 {
-            if exp.status().phase == labcore::Phase::Ended {
-                break;
-            }
-            exp.step(1.0 / 60.0);
-        }
+        labcore::testkit::run_until_phase(exp.as_mut(), labcore::Phase::Ended, 600);
         let ended = exp.status().phase == labcore::Phase::Ended;
         if let Some(key) = action {
             let _ = exp.action(key);

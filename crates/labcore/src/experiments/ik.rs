@@ -600,11 +600,11 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testkit::{readout, scene_of, steps};
 
+    /// Two simulated seconds: longer than any move of the arm.
     fn settle(ik: &mut InverseKinematics) {
-        for _ in 0..120 {
-            ik.step(1.0 / 60.0);
-        }
+        steps(ik, 120);
     }
 
     #[test]
@@ -642,8 +642,7 @@ mod tests {
             (ik.tip() - DVec2::new(1.7, 0.0)).length() < 1e-9,
             "stretched"
         );
-        let mut scene = Scene::default();
-        ik.scene(&mut scene);
+        let scene = scene_of(&ik);
         assert!(!scene.items.iter().any(|i| matches!(
             i,
             Item::Line {
@@ -769,13 +768,8 @@ mod tests {
 
     use crate::units::format_degrees;
 
-    fn readout(ik: &InverseKinematics, key: &str) -> String {
-        crate::experiment::readout_value(ik, key).unwrap()
-    }
-
     fn dashed_circles(ik: &InverseKinematics) -> Vec<(DVec2, f64)> {
-        let mut scene = Scene::default();
-        ik.scene(&mut scene);
+        let scene = scene_of(ik);
         scene
             .items
             .iter()
@@ -793,8 +787,7 @@ mod tests {
 
     /// The ghost's elbow, when a ghost is drawn.
     fn ghost_elbow(ik: &InverseKinematics) -> Option<DVec2> {
-        let mut scene = Scene::default();
-        ik.scene(&mut scene);
+        let scene = scene_of(ik);
         scene.items.iter().find_map(|i| match i {
             Item::Line {
                 to,

@@ -565,15 +565,12 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testkit::{press, readout, scene_of, settle};
 
     fn sweep(ws: &mut Workspace) -> usize {
-        ws.action("sweep").unwrap();
-        let mut frames = 0;
-        while ws.animating() {
-            ws.step(1.0 / 60.0);
-            frames += 1;
-            assert!(frames < 1000);
-        }
+        press(ws, "sweep");
+        let frames = settle(ws);
+        assert!(frames < 1000);
         frames
     }
 
@@ -710,10 +707,6 @@ mod tests {
         let mut mc = Workspace::default();
         sweep(&mut mc);
         assert_eq!(mc.status().text, "swept 20000 samples");
-    }
-
-    fn readout(ws: &Workspace, key: &str) -> String {
-        crate::experiment::readout_value(ws, key).unwrap()
     }
 
     fn measured(ws: &Workspace) -> crate::kinematics::workspace::MeasuredRadii {
@@ -924,8 +917,7 @@ mod tests {
         assert_eq!(counts[1], "100 / 10000");
         assert_eq!(counts.last().unwrap(), "10000 / 10000");
         assert!(counts.len() > 50, "over {} frames", counts.len());
-        let mut scene = Scene::default();
-        ws.scene(&mut scene);
+        let scene = scene_of(&ws);
         assert!(scene
             .items
             .iter()

@@ -1,9 +1,8 @@
 use super::quiz::*;
 use super::*;
 use crate::planning::astar::{astar_path, SearchStatus};
-use crate::route::{apply_params, format, parse, restore, Page, Tab};
-
-const DT: f64 = 1.0 / 60.0;
+use crate::route::{apply_params, format, restore, Tab};
+use crate::testkit::{self, readout, scene_of, settle, steps, DT_S as DT};
 
 fn shift() -> Modifiers {
     Modifiers {
@@ -17,17 +16,6 @@ fn ctrl() -> Modifiers {
         shift: false,
         ctrl: true,
     }
-}
-
-/// Runs until nothing moves; returns the steps taken.
-fn settle(a: &mut AStarGrid) -> usize {
-    let mut n = 0;
-    while a.animating() {
-        a.step(DT);
-        n += 1;
-        assert!(n < 100_000, "never settles");
-    }
-    n
 }
 
 fn empty(w: usize, h: usize) -> AStarGrid {
@@ -132,8 +120,7 @@ fn start_or_goal_inside_a_wall_is_refused_with_a_clear_status() {
     a.action("compare").unwrap();
     assert!(a.comparison().is_empty());
     settle(&mut a);
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(&a);
     assert!(scene.is_finite());
     // The goal likewise, via the link.
     let mut b = empty(20, 15);
@@ -286,8 +273,7 @@ fn compare_table_equals_the_solvers_results() {
     assert!(rows[0].expanded <= rows[1].expanded);
     assert!(rows[3].cost.unwrap() <= 1.5 * optimum + 1e-9);
     // Every path is drawn.
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(&a);
     let polylines = scene
         .items
         .iter()
@@ -345,11 +331,8 @@ fn load_file_reads_a_map_and_refuses_a_malformed_one_unchanged() {
 
 fn round_trip(a: &AStarGrid) -> (AStarGrid, String, Vec<String>) {
     let link = format(a, Tab::Simulation);
-    let Page::Experiment { params, .. } = parse(&link, &["astar"]).page else {
-        panic!("{link}");
-    };
     let mut fresh = AStarGrid::default();
-    let notices = apply_params(&mut fresh, &params);
+    let notices = testkit::apply_link(&mut fresh, &link);
     (fresh, link, notices)
 }
 
@@ -456,15 +439,11 @@ fn a_start_out_of_the_linked_grid_is_clamped_with_a_notice() {
 fn reset_replays_the_search_and_size_choice_makes_new_grids() {
     let mut a = AStarGrid::default();
     a.action("plan").unwrap();
-    for _ in 0..5 {
-        a.step(DT);
-    }
+    steps(&mut a, 5);
     let expanded = a.search.as_ref().unwrap().expanded();
     a.reset();
     assert_eq!(a.search.as_ref().unwrap().expanded(), 0);
-    for _ in 0..5 {
-        a.step(DT);
-    }
+    steps(&mut a, 5);
     assert_eq!(a.search.as_ref().unwrap().expanded(), expanded);
     a.set_param("size", 0.0).unwrap();
     assert_eq!((a.grid().width(), a.grid().height()), (20, 15));
@@ -570,9 +549,7 @@ fn quiz_answers_match_the_solvers() {
 
 /// The link's state and its notices after opening it on a fresh experiment.
 fn reopen(a: &AStarGrid) -> (AStarGrid, String, Vec<String>) {
-    let link = format(a, Tab::Simulation);
-    let (fresh, notices) = restore(&link, AStarGrid::default());
-    (fresh, link, notices)
+    testkit::through_link(a)
 }
 
 /// Everything a link must reproduce: the walls, the ends and every parameter.
@@ -792,10 +769,6 @@ fn issue14_property_random_inputs_reload_exactly_from_the_link() {
 
 // ---- Procedure steps (assets/astar.json), each on the state the previous left ----
 
-fn readout(a: &AStarGrid, key: &str) -> String {
-    crate::experiment::readout_value(a, key).unwrap()
-}
-
 fn count_state(a: &AStarGrid, state: crate::planning::astar::CellState) -> usize {
     a.raster.iter().filter(|&&v| v == state as u8).count()
 }
@@ -804,12 +777,7 @@ fn count_state(a: &AStarGrid, state: crate::planning::astar::CellState) -> usize
 /// checks) replayed on the state the previous steps left, so the test of
 /// step k starts from `after_step(k - 1)`.
 fn after_step(k: usize) -> AStarGrid {
-    let steps: [fn(&mut AStarGrid); 6] = [step_1, step_2, step_3, step_4, step_5, step_6];
-    let mut a = AStarGrid::default();
-    for step in &steps[..k] {
-        step(&mut a);
-    }
-    a
+    testkit::after_step(&[step_1, step_2, step_3, step_4, step_5, step_6], k)
 }
 
 /// Step 1: the green start on the left, the red goal on the right, walls
@@ -818,8 +786,7 @@ fn after_step(k: usize) -> AStarGrid {
 fn step_1(a: &mut AStarGrid) {
     let (s, g) = (a.start(), a.goal());
     assert!(s.x < a.grid().width() / 2 && g.x >= a.grid().width() / 2);
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(a);
     let dot = |role: Role| {
         scene.items.iter().find_map(|i| match i {
             Item::Dot {
@@ -893,9 +860,7 @@ fn step_2(a: &mut AStarGrid) {
         count_state(a, CellState::Open),
         count_state(a, CellState::Closed),
     );
-    for _ in 0..5 {
-        a.step(DT);
-    }
+    steps(a, 5);
     assert!(
         count_state(a, CellState::Closed) > closed1,
         "the closed set fills in"
@@ -923,8 +888,7 @@ fn step_2(a: &mut AStarGrid) {
         "the robot drives"
     );
     settle(a);
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(a);
     assert!(scene
         .items
         .iter()
@@ -1009,8 +973,7 @@ fn step_5(a: &mut AStarGrid) {
         "{names:?}"
     );
     assert_eq!(t.columns[..4], ["planner", "expanded", "cost", "ratio"]);
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(a);
     let paths = scene
         .items
         .iter()
@@ -1326,8 +1289,7 @@ fn issue13_a_phone_view_shows_cells_of_at_least_24_px_and_every_cell_is_reachabl
     tap(&mut a, p);
     assert!(a.grid().is_blocked(free));
     // Off-view ends are marked at the canvas edge.
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(&a);
     let off: Vec<&str> = scene
         .items
         .iter()
@@ -1418,8 +1380,7 @@ fn issue15_content_heuristics_quiz_wording_and_option_lengths() {
 
 /// The grid's raster version, from `a`'s scene.
 fn raster_version_of(a: &AStarGrid) -> u64 {
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(a);
     scene
         .items
         .iter()
@@ -1492,8 +1453,7 @@ fn astar_on_a_phone_a_marker_out_of_view_has_one_label_not_two() {
     for (sx, gx) in [(3.0, 28.0), (28.0, 3.0)] {
         a.set_param("sx", sx).unwrap();
         a.set_param("gx", gx).unwrap();
-        let mut scene = Scene::default();
-        a.scene(&mut scene);
+        let scene = scene_of(&a);
         for name in ["start", "goal"] {
             let labels = scene
                 .items
