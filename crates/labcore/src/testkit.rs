@@ -10,13 +10,25 @@
 //! what a test asks for: a test kit's failure is a failed test.
 
 use crate::clock::Clock;
-use crate::experiment::{Experiment, Input, Phase, Status};
+use crate::experiment::{Experiment, Input, Modifiers, Phase, Status};
 use crate::route::{self, Page, Tab};
 use crate::scene::Scene;
 use glam::DVec2;
 
 /// The page's fixed step, in seconds (60 steps a simulated second).
 pub const DT_S: f64 = Clock::DT_S;
+
+/// Shift held: with a click, moves a start marker (A*, RRT*).
+pub const SHIFT: Modifiers = Modifiers {
+    shift: true,
+    ctrl: false,
+};
+
+/// Ctrl (or Cmd) held: with a click, moves a goal marker (A*, RRT*).
+pub const CTRL: Modifiers = Modifiers {
+    shift: false,
+    ctrl: true,
+};
 
 /// Replays `n` fixed steps of [`DT_S`].
 pub fn steps<E: Experiment + ?Sized>(e: &mut E, n: usize) {

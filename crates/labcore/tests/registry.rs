@@ -1015,14 +1015,7 @@ fn permalinks_reproduce_the_issue_14_astar_sequences() {
     use labcore::planning::grid::Cell;
     use labcore::route::{format, restore, Tab};
     use labcore::{Experiment, Modifiers};
-    let ctrl = Modifiers {
-        shift: false,
-        ctrl: true,
-    };
-    let shift = Modifiers {
-        shift: true,
-        ctrl: false,
-    };
+    let (ctrl, shift) = (labcore::testkit::CTRL, labcore::testkit::SHIFT);
     let drag = |a: &mut AStarGrid, from: Cell, to: Cell| {
         a.input(Input::PointerDown(a.cell_center(from)));
         a.input(Input::PointerMove {

@@ -2,21 +2,7 @@ use super::quiz::*;
 use super::*;
 use crate::planning::astar::{astar_path, SearchStatus};
 use crate::route::{apply_params, format, restore, Tab};
-use crate::testkit::{self, readout, scene_of, settle, steps, DT_S as DT};
-
-fn shift() -> Modifiers {
-    Modifiers {
-        shift: true,
-        ctrl: false,
-    }
-}
-
-fn ctrl() -> Modifiers {
-    Modifiers {
-        shift: false,
-        ctrl: true,
-    }
-}
+use crate::testkit::{self, readout, scene_of, settle, steps, CTRL, DT_S as DT, SHIFT};
 
 fn empty(w: usize, h: usize) -> AStarGrid {
     let mut a = AStarGrid::default();
@@ -79,12 +65,12 @@ fn walls_are_never_painted_over_the_start_or_goal() {
 #[test]
 fn shift_click_sets_the_start_and_ctrl_click_the_goal_and_drags_move_them() {
     let mut a = empty(20, 15);
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), shift());
-    a.input_with(Input::PointerUp(DVec2::ZERO), shift());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), SHIFT);
+    a.input_with(Input::PointerUp(DVec2::ZERO), SHIFT);
     assert_eq!(a.start(), Cell::new(4, 5));
     assert_eq!(a.param("sx"), Some(4.0));
     assert_eq!(a.param("sy"), Some(5.0));
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(15, 9))), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(15, 9))), CTRL);
     assert_eq!(a.goal(), Cell::new(15, 9));
     assert_eq!(a.grid().blocked_count(), 0, "no paint with modifiers");
     // Plain drag of the goal marker moves it; off the grid it stops at the edge.
@@ -100,7 +86,7 @@ fn shift_click_sets_the_start_and_ctrl_click_the_goal_and_drags_move_them() {
     a.input(Input::Nudge(DVec2::new(0.0, 0.3)));
     assert_eq!(a.goal(), Cell::new(19, 13));
     // The start and goal never share a cell.
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), CTRL);
     assert_eq!(a.goal(), Cell::new(19, 13));
 }
 
@@ -109,7 +95,7 @@ fn start_or_goal_inside_a_wall_is_refused_with_a_clear_status() {
     let mut a = empty(20, 15);
     a.grid.set_blocked(Cell::new(9, 9), true);
     a.grid_changed();
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(9, 9))), shift());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(9, 9))), SHIFT);
     assert_eq!(a.start(), Cell::new(9, 9));
     let st = a.status();
     assert_eq!(st.tone, Tone::Bad);
@@ -340,7 +326,7 @@ fn round_trip(a: &AStarGrid) -> (AStarGrid, String, Vec<String>) {
 fn the_link_holds_the_walls_and_ends_and_leaves_out_large_grids() {
     let mut a = AStarGrid::default();
     a.action("maze").unwrap();
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 3))), shift());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 3))), SHIFT);
     a.set_param("h", 2.0).unwrap();
     a.set_param("w", 1.7).unwrap();
     let (fresh, link, notices) = round_trip(&a);
@@ -564,7 +550,7 @@ fn link_state(a: &AStarGrid) -> (OccupancyGrid, Cell, Cell, Vec<Option<f64>>) {
 #[test]
 fn issue14_a_link_applies_the_start_and_goal_as_whole_points() {
     let mut a = AStarGrid::default();
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 5))), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 5))), CTRL);
     a.input(Input::PointerUp(DVec2::ZERO));
     assert_eq!(a.goal(), Cell::new(5, 5));
     a.input(Input::PointerDown(a.cell_center(a.start())));
@@ -583,8 +569,8 @@ fn issue14_a_link_applies_the_start_and_goal_as_whole_points() {
     );
     // The mirror case: the goal dragged onto the default start's cell.
     let mut b = AStarGrid::default();
-    b.input_with(Input::PointerDown(b.cell_center(Cell::new(9, 2))), shift());
-    b.input_with(Input::PointerDown(b.cell_center(Cell::new(3, 12))), ctrl());
+    b.input_with(Input::PointerDown(b.cell_center(Cell::new(9, 2))), SHIFT);
+    b.input_with(Input::PointerDown(b.cell_center(Cell::new(3, 12))), CTRL);
     assert_eq!((b.start(), b.goal()), (Cell::new(9, 2), Cell::new(3, 12)));
     let (fresh, _, notices) = reopen(&b);
     assert!(notices.is_empty(), "{notices:?}");
@@ -706,8 +692,8 @@ fn issue14_property_random_inputs_reload_exactly_from_the_link() {
                 )
             };
             let m = match rng.int(0, 5) {
-                0 => shift(),
-                1 => ctrl(),
+                0 => SHIFT,
+                1 => CTRL,
                 _ => Modifiers::default(),
             };
             match rng.int(-3, 12) {
@@ -817,11 +803,11 @@ fn step_1(a: &mut AStarGrid) {
     a.input(Input::PointerUp(DVec2::ZERO));
     assert_eq!(a.grid().blocked_count(), walls + 4);
     // Shift-click, Ctrl-click, and drags of the markers.
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(2, 20))), shift());
-    a.input_with(Input::PointerUp(DVec2::ZERO), shift());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(2, 20))), SHIFT);
+    a.input_with(Input::PointerUp(DVec2::ZERO), SHIFT);
     assert_eq!(a.start(), Cell::new(2, 20));
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(30, 2))), ctrl());
-    a.input_with(Input::PointerUp(DVec2::ZERO), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(30, 2))), CTRL);
+    a.input_with(Input::PointerUp(DVec2::ZERO), CTRL);
     assert_eq!(a.goal(), Cell::new(30, 2));
     a.input(Input::PointerDown(a.cell_center(Cell::new(2, 20))));
     a.input(Input::PointerMove {
@@ -933,8 +919,8 @@ fn step_4(a: &mut AStarGrid) {
     settle(a);
     assert_eq!(a.status().tone, Tone::Good, "{:?}", a.status());
     a.set_param("conn", 1.0).unwrap();
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(18, 11))), ctrl());
-    a.input_with(Input::PointerUp(DVec2::ZERO), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(18, 11))), CTRL);
+    a.input_with(Input::PointerUp(DVec2::ZERO), CTRL);
     assert_eq!(a.goal(), Cell::new(18, 11));
     a.action("plan").unwrap();
     settle(a);

@@ -4,7 +4,7 @@ use crate::planning::rrt_star::NO_PARENT;
 use crate::route::{apply_params, format, restore, Tab};
 use crate::scene::LayerPlan;
 
-use crate::testkit::{self, readout, scene_of, settle, steps, DT_S as DT};
+use crate::testkit::{self, readout, scene_of, settle, steps, CTRL, DT_S as DT, SHIFT};
 
 #[test]
 fn grow_tree_animates_a_fixed_batch_per_step_and_finds_a_short_path() {
@@ -187,20 +187,12 @@ fn obstacles_are_added_dragged_and_removed_by_pointer() {
 #[test]
 fn shift_and_ctrl_click_move_the_ends_and_a_blocked_start_is_explained() {
     let mut f = RrtStarField::default();
-    let shift = Modifiers {
-        shift: true,
-        ctrl: false,
-    };
-    let ctrl = Modifiers {
-        shift: false,
-        ctrl: true,
-    };
-    f.input_with(Input::PointerDown(DVec2::new(0.5, 0.512)), shift);
+    f.input_with(Input::PointerDown(DVec2::new(0.5, 0.512)), SHIFT);
     assert_eq!(f.start, DVec2::new(0.5, 0.51));
-    f.input_with(Input::PointerDown(DVec2::new(20.0, 5.0)), ctrl);
+    f.input_with(Input::PointerDown(DVec2::new(20.0, 5.0)), CTRL);
     assert_eq!(f.goal, DVec2::new(10.0, 5.0));
     // Into an obstacle: growing is refused with a clear status, no panic.
-    f.input_with(Input::PointerDown(DVec2::new(2.8, 3.6)), shift);
+    f.input_with(Input::PointerDown(DVec2::new(2.8, 3.6)), SHIFT);
     f.action("grow").unwrap();
     assert!(!f.animating());
     let st = f.status();
@@ -577,18 +569,10 @@ fn step_6(f: &mut RrtStarField) {
     f.input(Input::PointerUp(DVec2::new(6.0, 7.5)));
     assert_eq!(f.obstacles.len(), n);
     // Shift-click and Ctrl-click.
-    let shift = Modifiers {
-        shift: true,
-        ctrl: false,
-    };
-    let ctrl = Modifiers {
-        shift: false,
-        ctrl: true,
-    };
-    f.input_with(Input::PointerDown(DVec2::new(0.5, 1.0)), shift);
-    f.input_with(Input::PointerUp(DVec2::new(0.5, 1.0)), shift);
-    f.input_with(Input::PointerDown(DVec2::new(9.5, 5.0)), ctrl);
-    f.input_with(Input::PointerUp(DVec2::new(9.5, 5.0)), ctrl);
+    f.input_with(Input::PointerDown(DVec2::new(0.5, 1.0)), SHIFT);
+    f.input_with(Input::PointerUp(DVec2::new(0.5, 1.0)), SHIFT);
+    f.input_with(Input::PointerDown(DVec2::new(9.5, 5.0)), CTRL);
+    f.input_with(Input::PointerUp(DVec2::new(9.5, 5.0)), CTRL);
     assert_eq!(
         (f.start, f.goal),
         (DVec2::new(0.5, 1.0), DVec2::new(9.5, 5.0))
