@@ -89,7 +89,7 @@ pub struct Grade {
     /// How a numeric answer was read, in the question's unit (`8000 m` for
     /// “8 km” or “8,000 m”), so the student sees what was graded.
     pub read_as: Option<String>,
-    /// Why a numeric answer could not be read (see [`ReadError`]).
+    /// Why a numeric answer could not be read (see [`ReadError`](crate::units::ReadError)).
     pub problem: Option<String>,
 }
 

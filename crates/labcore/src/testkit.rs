@@ -4,8 +4,8 @@
 //! action, click, and replay the Procedure up to a step.
 //!
 //! For tests only (the unit tests of `experiments/*` and the integration
-//! tests in `tests/`); nothing in the lab calls it, so no shipped module
-//! carries it (the wasm linker drops what is never called). Its functions
+//! tests in `tests/`), so it is compiled natively only: no wasm module
+//! carries it, not even as a shift of the optimiser's choices. Its functions
 //! panic with a message that names the key or the link when the lab lacks
 //! what a test asks for: a test kit's failure is a failed test.
 
