@@ -7,6 +7,7 @@
 use crate::plot::Plot;
 use crate::scene::{Scene, ViewBox};
 use crate::table::Table;
+use crate::units::{format_degrees, format_metres, format_point};
 use glam::DVec2;
 use std::fmt;
 
@@ -405,12 +406,6 @@ impl Handle {
     }
 }
 
-/// `(2.10, 3.40) m`: a point as the scene descriptions say it.
-#[must_use]
-pub fn format_point(p: DVec2) -> String {
-    format!("({}, {}) m", format_fixed(p.x, 2), format_fixed(p.y, 2))
-}
-
 /// A status or notice in a finger's words, shown while the student uses
 /// touch: "click" becomes "tap" (statuses and notices start in lower case;
 /// hints have [`Experiment::touch_hint`]).
@@ -578,77 +573,9 @@ impl Readout {
     }
 
     /// Decimals of every length readout, in every experiment (1 mm).
-    pub const METRE_DECIMALS: usize = 3;
+    pub const METRE_DECIMALS: usize = crate::units::METRE_DECIMALS;
     /// Decimals of every angle readout, in every experiment (0.1°).
-    pub const DEGREE_DECIMALS: usize = 1;
-}
-
-/// A length as every readout shows it: `1.500 m`.
-#[must_use]
-pub fn format_metres(value_m: f64) -> String {
-    if value_m.is_finite() {
-        format!("{} m", format_fixed(value_m, Readout::METRE_DECIMALS))
-    } else {
-        "--".into()
-    }
-}
-
-/// An angle as every readout shows it: `-35.0°`.
-#[must_use]
-pub fn format_degrees(value_deg: f64) -> String {
-    if value_deg.is_finite() {
-        format!("{}°", format_fixed(value_deg, Readout::DEGREE_DECIMALS))
-    } else {
-        "--".into()
-    }
-}
-
-/// Exactly `decimals` places, and no `-0.000` (a tiny negative shows as zero).
-#[must_use]
-pub fn format_fixed(value: f64, decimals: usize) -> String {
-    let s = format!("{value:.decimals$}");
-    match s.strip_prefix('-') {
-        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_owned(),
-        _ => s,
-    }
-}
-
-/// A positive quantity that spans many orders of magnitude (a condition
-/// number, a tiny error), readable at a glance: `12.3` below 1000, else one
-/// decimal times a power of ten, `2.4 × 10⁵` or `3.1 × 10⁻⁷`; infinity as
-/// `∞ (singular)`.
-#[must_use]
-pub fn format_magnitude(value: f64) -> String {
-    if value.is_nan() {
-        return "--".into();
-    }
-    if value.is_infinite() {
-        return "∞ (singular)".into();
-    }
-    let magnitude = value.abs();
-    if magnitude == 0.0 || (1e-3..1e3).contains(&magnitude) {
-        return format_fixed(value, if magnitude < 1.0 { 3 } else { 1 });
-    }
-    // The standard library's scientific form rounds the decimal digits
-    // exactly over the whole range, subnormals included (`4.9e-324`); a
-    // division by `10^exponent` does not (it is 0 below 10⁻³⁰⁸).
-    let scientific = format!("{value:.1e}");
-    let (mantissa, exponent) = scientific.split_once('e').unwrap_or((&scientific, "0"));
-    let exponent: i32 = exponent.parse().unwrap_or(0);
-    format!("{mantissa} × 10{}", superscript(exponent))
-}
-
-/// `-7` → `⁻⁷`.
-fn superscript(n: i32) -> String {
-    const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
-    let mut s = String::new();
-    if n < 0 {
-        s.push('⁻');
-    }
-    for c in n.unsigned_abs().to_string().chars() {
-        s.push(DIGITS[c.to_digit(10).unwrap_or(0) as usize]);
-    }
-    s
+    pub const DEGREE_DECIMALS: usize = crate::units::DEGREE_DECIMALS;
 }
 
 /// One experiment: parameters, state, a fixed-step simulation and a display list.
@@ -935,104 +862,6 @@ mod tests {
         assert_eq!(n.sanitize(4.49), Ok(Sanitized::InRange(4.0)));
         assert_eq!(n.sanitize(8.6), Ok(Sanitized::Clamped(8.0)));
         assert_eq!(SPEC.sanitize(10.5), Ok(Sanitized::InRange(10.5)));
-    }
-
-    #[test]
-    fn readout_formats() {
-        assert_eq!(format_metres(1.5), "1.500 m");
-        assert_eq!(format_metres(-0.0001), "0.000 m");
-        assert_eq!(format_degrees(-35.0), "-35.0°");
-        assert_eq!(format_magnitude(f64::INFINITY), "∞ (singular)");
-        assert_eq!(format_magnitude(2.4e5), "2.4 × 10⁵");
-        assert_eq!(format_magnitude(99_960.0), "1.0 × 10⁵");
-        assert_eq!(format_magnitude(3.14e-7), "3.1 × 10⁻⁷");
-        assert_eq!(format_magnitude(12.34), "12.3");
-        assert_eq!(format_magnitude(0.0123), "0.012");
-    }
-
-    /// Reads `format_magnitude`'s text back against `v`: the shown mantissa
-    /// (or fixed number) and `v` in the same power of ten, with the half unit
-    /// of the last shown digit. `2.4 × 10⁻⁷` → `(2.4, v·10⁷, 0.05)`; scaling
-    /// by the decimal exponent in text keeps 1.8 × 10³⁰⁸ from overflowing.
-    fn read_magnitude(text: &str, v: f64) -> (f64, f64, f64) {
-        match text.split_once(" × 10") {
-            Some((mantissa, power)) => {
-                let exponent: i32 = power
-                    .chars()
-                    .map(|c| match c {
-                        '⁻' => '-',
-                        c => char::from_digit(
-                            "⁰¹²³⁴⁵⁶⁷⁸⁹".chars().position(|d| d == c).unwrap() as u32,
-                            10,
-                        )
-                        .unwrap(),
-                    })
-                    .collect::<String>()
-                    .parse()
-                    .unwrap();
-                let exact = format!("{v:.20e}");
-                let (digits, own) = exact.split_once('e').unwrap();
-                let own: i32 = own.parse().unwrap();
-                let scaled: f64 = format!("{digits}e{}", own - exponent).parse().unwrap();
-                (mantissa.parse().unwrap(), scaled, 0.05)
-            }
-            None => {
-                let decimals = text.split_once('.').map_or(0, |(_, d)| d.len());
-                let half_unit = 0.5 * 10f64.powi(-(decimals as i32));
-                (text.parse().unwrap(), v, half_unit)
-            }
-        }
-    }
-
-    /// Issue 23 §5: below about 10⁻³⁰⁸ the old division by `10^exponent`
-    /// gave "inf × 10⁻³⁰⁹". Every finite value, subnormals and the extremes
-    /// included, prints a finite number that reads back within its rounding.
-    #[test]
-    fn format_magnitude_reads_back_over_the_whole_f64_range() {
-        let mut rng = crate::rng::Lcg64::new(23);
-        let mut values = vec![
-            2.225_073_858_507_201_4e-308,
-            2.225_073_858_507_201e-308,
-            5e-324,
-            -5e-324,
-            f64::MIN_POSITIVE,
-            f64::MAX,
-            f64::MIN,
-            9.96e-309,
-            9.95e-324,
-            1e-3,
-            999.96,
-        ];
-        for _ in 0..20_000 {
-            // Any bit pattern (most of them are huge or tiny), and values
-            // spread evenly over the decimal exponents.
-            values.push(f64::from_bits(rng.next_u64()));
-            let v = 10f64.powf(rng.range(-330.0, 309.0)) * rng.range(-10.0, 10.0);
-            values.push(v);
-        }
-        for v in values.into_iter().filter(|v| v.is_finite()) {
-            let text = format_magnitude(v);
-            assert!(
-                !text.contains("inf") && !text.contains("NaN") && !text.contains('∞'),
-                "{v:e} → {text}"
-            );
-            let (shown, exact, half_unit) = read_magnitude(&text, v);
-            assert!(
-                (shown - exact).abs() <= half_unit * (1.0 + 1e-9),
-                "{v:e} → {text}: {shown} against {exact}"
-            );
-            assert!(shown.abs() < 10.0 || !text.contains('×'), "{v:e} → {text}");
-        }
-        // The three links of the issue.
-        assert_eq!(
-            format_magnitude(2.225_073_858_507_201_4e-308),
-            "2.2 × 10⁻³⁰⁸"
-        );
-        assert_eq!(
-            format_magnitude(-2.225_073_858_507_201e-308),
-            "-2.2 × 10⁻³⁰⁸"
-        );
-        assert_eq!(format_magnitude(5e-324), "4.9 × 10⁻³²⁴");
     }
 
     #[test]

@@ -6,7 +6,7 @@
 //! page draws at most a few points per pixel column with [`decimate_min_max`]
 //! and exports everything with [`Plot::to_csv`].
 
-use crate::quiz::format_number;
+use crate::units::format_number;
 
 /// What a series means; the page maps each role to a theme colour *and* a
 /// dash pattern, so two series differ even without colour.

@@ -4,7 +4,7 @@
 //! short notice for the page to show.
 
 use crate::experiment::{Experiment, ParamError, Sanitized};
-use crate::quiz::format_number;
+use crate::units::format_number;
 
 /// The six tabs of an experiment page, in order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

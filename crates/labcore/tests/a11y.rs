@@ -10,7 +10,7 @@
 
 use labcore::glam::DVec2;
 use labcore::route::{apply_params, format, parse, Page, Tab};
-use labcore::{registry, Experiment, Input};
+use labcore::{registry, Experiment};
 
 /// The page's keyboard step: 2 % of the view's width (see labweb's canvas input).
 fn keyboard_step(exp: &dyn Experiment) -> f64 {
@@ -20,12 +20,7 @@ fn keyboard_step(exp: &dyn Experiment) -> f64 {
 
 /// A drag with the pointer from `from` to `to`.
 fn drag(exp: &mut dyn Experiment, from: DVec2, to: DVec2) {
-    exp.input(Input::PointerDown(from));
-    exp.input(Input::PointerMove {
-        pos: to,
-        pressed: true,
-    });
-    exp.input(Input::PointerUp(to));
+    labcore::testkit::drag_through(exp, &[from, to]);
 }
 
 /// The two states every experiment is checked in: as built, and as its

@@ -1,10 +1,9 @@
 //! Every experiment's presets: each link parses and applies without a
 //! notice, and each produces the state its description tells.
 
-use labcore::route::{self, Page, Tab};
+use labcore::route::{self, Tab};
+use labcore::testkit::{self, readout, readout_number, run_for};
 use labcore::{registry, Experiment};
-
-const DT_S: f64 = 1.0 / 60.0;
 
 /// The experiment `id` opened from its preset `name`'s link, as the
 /// Presets menu opens it; panics on any notice.
@@ -23,37 +22,9 @@ fn open(id: &str, name: &str) -> Box<dyn Experiment> {
 /// A fresh experiment `id` with `link` applied (locks, hides and note
 /// checked too), and every notice.
 fn apply(id: &str, link: &str) -> (Box<dyn Experiment>, Vec<String>) {
-    let mut exp = (labcore::find(id).expect(id).make)();
-    let parsed = route::parse(link, &[id]);
-    let mut notices = parsed.notices;
-    let mut instructor = parsed.instructor;
-    notices.extend(instructor.resolve(exp.params()));
-    let Page::Experiment { params, .. } = parsed.page else {
-        panic!("{link}");
-    };
-    notices.extend(route::apply_params(exp.as_mut(), &params));
+    let mut exp = testkit::open(id);
+    let notices = testkit::apply_link(exp.as_mut(), link);
     (exp, notices)
-}
-
-fn run(exp: &mut dyn Experiment, seconds: f64) {
-    for _ in 0..(seconds / DT_S).round() as usize {
-        exp.step(DT_S);
-    }
-}
-
-fn readout(exp: &dyn Experiment, key: &str) -> String {
-    labcore::experiment::readout_value(exp, key).unwrap_or_else(|| panic!("no readout {key}"))
-}
-
-/// The leading number of a readout (`61.0%` → 61, `0.250 m` → 0.25).
-fn number(exp: &dyn Experiment, key: &str) -> f64 {
-    let text = readout(exp, key);
-    let end = text
-        .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
-        .unwrap_or(text.len());
-    text[..end]
-        .parse()
-        .unwrap_or_else(|_| panic!("{key}: “{text}”"))
 }
 
 #[test]
@@ -87,7 +58,7 @@ fn every_experiment_ships_two_or_three_presets_that_apply_cleanly_and_reload_exa
 
 #[test]
 fn fk_presets_put_the_tip_on_the_outer_circle_the_inner_rim_and_the_base() {
-    let tip = |e: &dyn Experiment| number(e, "x").hypot(number(e, "y"));
+    let tip = |e: &dyn Experiment| readout_number(e, "x").hypot(readout_number(e, "y"));
     let e = open("fk", "Full stretch");
     assert!((tip(e.as_ref()) - 1.7).abs() < 1e-3, "L₁ + L₂");
     assert_eq!(readout(e.as_ref(), "reach"), "100.0%");
@@ -100,14 +71,14 @@ fn fk_presets_put_the_tip_on_the_outer_circle_the_inner_rim_and_the_base() {
 #[test]
 fn ik_presets_miss_an_outside_target_flip_the_elbow_and_keep_the_wrist() {
     let mut e = open("ik", "Out of reach");
-    run(e.as_mut(), 2.0);
+    run_for(e.as_mut(), 2.0);
     assert!(
         e.status().text.starts_with("out of reach"),
         "{:?}",
         e.status()
     );
     let mut up = open("ik", "Elbow down");
-    run(up.as_mut(), 2.0);
+    run_for(up.as_mut(), 2.0);
     assert_eq!(up.status().text, "in reach");
     assert_eq!(
         (readout(up.as_ref(), "x"), readout(up.as_ref(), "y")),
@@ -115,10 +86,13 @@ fn ik_presets_miss_an_outside_target_flip_the_elbow_and_keep_the_wrist() {
     );
     // The elbow-up solution of the same target has the opposite θ₂.
     let (mut other, _) = apply("ik", "#/ik/simulation?elbow=1&tx=0.5&ty=1");
-    run(other.as_mut(), 2.0);
-    assert!((number(up.as_ref(), "theta2") + number(other.as_ref(), "theta2")).abs() < 0.2);
+    run_for(other.as_mut(), 2.0);
+    assert!(
+        (readout_number(up.as_ref(), "theta2") + readout_number(other.as_ref(), "theta2")).abs()
+            < 0.2
+    );
     let mut w = open("ik", "Wrist keeps its angle");
-    run(w.as_mut(), 2.0);
+    run_for(w.as_mut(), 2.0);
     assert_eq!(w.status().text, "in reach");
     assert_eq!(
         (readout(w.as_ref(), "x"), readout(w.as_ref(), "y")),
@@ -134,11 +108,11 @@ fn workspace_presets_open_and_close_the_hole_and_few_samples_fake_one() {
     assert_eq!(readout(e.as_ref(), "inner_theory"), "0.000 m");
     let mut e = open("workspace", "Few samples fake a hole");
     e.action("sweep").unwrap();
-    run(e.as_mut(), 5.0);
+    run_for(e.as_mut(), 5.0);
     assert_eq!(readout(e.as_ref(), "samples"), "1000 / 1000");
     let (outer, theory) = (
-        number(e.as_ref(), "outer"),
-        number(e.as_ref(), "outer_theory"),
+        readout_number(e.as_ref(), "outer"),
+        readout_number(e.as_ref(), "outer_theory"),
     );
     assert!(
         theory - outer < 0.01,
@@ -146,7 +120,7 @@ fn workspace_presets_open_and_close_the_hole_and_few_samples_fake_one() {
     );
     assert_eq!(readout(e.as_ref(), "inner_theory"), "0.000 m");
     assert!(
-        number(e.as_ref(), "inner") > 0.02,
+        readout_number(e.as_ref(), "inner") > 0.02,
         "a hole that is not there"
     );
 }
@@ -154,22 +128,22 @@ fn workspace_presets_open_and_close_the_hole_and_few_samples_fake_one() {
 #[test]
 fn dls_presets_oscillate_without_damping_settle_with_adaptive_damping_and_stretch_outside() {
     let mut e = open("dls", "The bare update oscillates");
-    run(e.as_mut(), 20.0);
+    run_for(e.as_mut(), 20.0);
     assert!(
         e.status().text.starts_with("not converging"),
         "{:?}",
         e.status()
     );
     let mut e = open("dls", "Adaptive damping settles");
-    run(e.as_mut(), 20.0);
+    run_for(e.as_mut(), 20.0);
     assert_eq!(e.status().text, "closest reachable pose");
     assert_eq!(readout(e.as_ref(), "error"), "0.050 m");
     let mut e = open("dls", "Far outside the reach");
-    run(e.as_mut(), 20.0);
+    run_for(e.as_mut(), 20.0);
     assert_eq!(e.status().text, "closest reachable pose");
     // Four links of 0.6 m stretched towards (2, 2): the gap is |t| − 2.4 m.
     let gap = 2.0f64.hypot(2.0) - 2.4;
-    assert!((number(e.as_ref(), "error") - gap).abs() < 1e-3);
+    assert!((readout_number(e.as_ref(), "error") - gap).abs() < 1e-3);
 }
 
 /// The trap maze: the start sits in a cup open away from the goal, so a
@@ -179,11 +153,11 @@ fn astar_trap_maze_makes_a_star_and_greedy_search_expand_the_whole_cup() {
     let planned = |mut e: Box<dyn Experiment>| {
         e.set_param("rate", 50.0).unwrap();
         e.action("plan").unwrap();
-        run(e.as_mut(), 30.0);
+        run_for(e.as_mut(), 30.0);
         assert!(e.status().text.starts_with("arrived"), "{:?}", e.status());
         (
-            number(e.as_ref(), "expanded"),
-            number(e.as_ref(), "path_cells"),
+            readout_number(e.as_ref(), "expanded"),
+            readout_number(e.as_ref(), "path_cells"),
         )
     };
     let (trap, path) = planned(open("astar", "The trap maze"));
@@ -212,7 +186,7 @@ fn astar_trap_maze_makes_a_star_and_greedy_search_expand_the_whole_cup() {
     let mut m = manhattan;
     m.set_param("rate", 50.0).unwrap();
     m.action("plan").unwrap();
-    run(m.as_mut(), 30.0);
+    run_for(m.as_mut(), 30.0);
     assert!(
         m.status().text.contains("Manhattan overestimates"),
         "{:?}",
@@ -224,19 +198,19 @@ fn astar_trap_maze_makes_a_star_and_greedy_search_expand_the_whole_cup() {
 #[test]
 fn pid_overshoot_vs_damping_and_the_offset_of_a_push() {
     let mut little = open("pid", "Overshoot vs damping: little damping");
-    run(little.as_mut(), 10.0);
-    let overshoot = number(little.as_ref(), "overshoot");
+    run_for(little.as_mut(), 10.0);
+    let overshoot = readout_number(little.as_ref(), "overshoot");
     assert!(overshoot > 50.0, "{overshoot} %");
     let mut plenty = open("pid", "Overshoot vs damping: plenty of damping");
-    run(plenty.as_mut(), 10.0);
-    assert!(number(plenty.as_ref(), "overshoot") < 1.0);
+    run_for(plenty.as_mut(), 10.0);
+    assert!(readout_number(plenty.as_ref(), "overshoot") < 1.0);
     assert_eq!(
         little.param("kp"),
         plenty.param("kp"),
         "only the damping differs"
     );
     let mut push = open("pid", "A push leaves an offset");
-    run(push.as_mut(), 15.0);
+    run_for(push.as_mut(), 15.0);
     // Steady state: Kp · e = −d, so e = −5 / 20.
     assert_eq!(readout(push.as_ref(), "sse"), "-0.250 m");
 }
@@ -245,7 +219,7 @@ fn pid_overshoot_vs_damping_and_the_offset_of_a_push() {
 fn cartpole_presets_lose_the_pole() {
     for name in ["Too soft: the pole is lost", "Control off"] {
         let mut e = open("cartpole", name);
-        run(e.as_mut(), 12.0);
+        run_for(e.as_mut(), 12.0);
         assert!(
             e.status().text.starts_with("pole fallen"),
             "{name}: {:?}",
@@ -257,7 +231,7 @@ fn cartpole_presets_lose_the_pole() {
 #[test]
 fn diffdrive_presets_turn_to_a_goal_behind_and_a_low_gain_drives_wider() {
     let mut e = open("diffdrive", "A goal behind the robot");
-    run(e.as_mut(), 20.0);
+    run_for(e.as_mut(), 20.0);
     assert_eq!(e.status().text, "reached the goal");
     assert_eq!(
         readout(e.as_ref(), "max_error"),
@@ -265,29 +239,29 @@ fn diffdrive_presets_turn_to_a_goal_behind_and_a_low_gain_drives_wider() {
         "it started facing away"
     );
     let mut lazy = open("diffdrive", "Lazy steering: wide arcs");
-    run(lazy.as_mut(), 40.0);
+    run_for(lazy.as_mut(), 40.0);
     assert_eq!(lazy.status().text, "reached all 2 waypoints");
     let (mut brisk, _) = apply(
         "diffdrive",
         "#/diffdrive/simulation?w1x=7&w1y=5&w2x=1&w2y=5",
     );
-    run(brisk.as_mut(), 40.0);
-    assert!(number(lazy.as_ref(), "path") > number(brisk.as_ref(), "path") + 0.3);
+    run_for(brisk.as_mut(), 40.0);
+    assert!(readout_number(lazy.as_ref(), "path") > readout_number(brisk.as_ref(), "path") + 0.3);
 }
 
 #[test]
 fn ekf_no_landmarks_in_view_only_predicts_and_good_sensing_beats_bad_odometry() {
     let mut e = open("ekf", "No landmarks in view");
-    run(e.as_mut(), 2.0);
-    let early = number(e.as_ref(), "trace");
-    run(e.as_mut(), 8.0);
+    run_for(e.as_mut(), 2.0);
+    let early = readout_number(e.as_ref(), "trace");
+    run_for(e.as_mut(), 8.0);
     assert_eq!(
         readout(e.as_ref(), "obs_per_loop"),
         "0 so far",
         "no landmark ever in view"
     );
     assert!(
-        number(e.as_ref(), "trace") > 3.0 * early,
+        readout_number(e.as_ref(), "trace") > 3.0 * early,
         "the ellipse keeps growing"
     );
     assert_eq!(
@@ -296,12 +270,12 @@ fn ekf_no_landmarks_in_view_only_predicts_and_good_sensing_beats_bad_odometry() 
         "the estimate is dead reckoning"
     );
     let mut e = open("ekf", "Sloppy odometry, good sensor");
-    run(e.as_mut(), 20.0);
-    assert!(number(e.as_ref(), "dr_error") > 5.0 * number(e.as_ref(), "error"));
+    run_for(e.as_mut(), 20.0);
+    assert!(readout_number(e.as_ref(), "dr_error") > 5.0 * readout_number(e.as_ref(), "error"));
     let mut e = open("ekf", "EKF-SLAM builds the map");
-    run(e.as_mut(), 20.0);
+    run_for(e.as_mut(), 20.0);
     assert!(
-        e.status().text.starts_with("EKF-SLAM:") && number(e.as_ref(), "landmarks") >= 3.0,
+        e.status().text.starts_with("EKF-SLAM:") && readout_number(e.as_ref(), "landmarks") >= 3.0,
         "{:?}",
         e.status()
     );
@@ -310,20 +284,23 @@ fn ekf_no_landmarks_in_view_only_predicts_and_good_sensing_beats_bad_odometry() 
 #[test]
 fn potential_presets_trap_collide_and_keep_clear() {
     let mut e = open("potential", "Two obstacles trap the robot");
-    run(e.as_mut(), 60.0);
+    run_for(e.as_mut(), 60.0);
     assert!(
         e.status().text.starts_with("trapped in a local minimum"),
         "{:?}",
         e.status()
     );
     let mut e = open("potential", "The pull beats the push");
-    run(e.as_mut(), 60.0);
+    run_for(e.as_mut(), 60.0);
     assert_eq!(e.status().text, "collided with an obstacle");
     let mut wide = open("potential", "A wide berth");
-    run(wide.as_mut(), 60.0);
+    run_for(wide.as_mut(), 60.0);
     let (mut plain, _) = apply("potential", "#/potential/simulation?gx=7.2&gy=3");
-    run(plain.as_mut(), 60.0);
-    assert!(number(wide.as_ref(), "clearance") > number(plain.as_ref(), "clearance") + 0.2);
+    run_for(plain.as_mut(), 60.0);
+    assert!(
+        readout_number(wide.as_ref(), "clearance")
+            > readout_number(plain.as_ref(), "clearance") + 0.2
+    );
 }
 
 #[test]
@@ -331,7 +308,7 @@ fn rrtstar_keeps_its_first_path_and_rrt_star_shortens_it() {
     let grown = |name: &str| {
         let mut e = open("rrtstar", name);
         e.action("grow").unwrap();
-        run(e.as_mut(), 30.0);
+        run_for(e.as_mut(), 30.0);
         assert!(
             e.status().text.starts_with("done: best path"),
             "{:?}",
@@ -342,6 +319,6 @@ fn rrtstar_keeps_its_first_path_and_rrt_star_shortens_it() {
     let rrt = grown("RRT keeps its first path");
     let star = grown("RRT* straightens it");
     assert_eq!(readout(rrt.as_ref(), "rewires"), "0");
-    assert!(number(star.as_ref(), "rewires") > 0.0);
-    assert!(number(rrt.as_ref(), "best") > 1.1 * number(star.as_ref(), "best"));
+    assert!(readout_number(star.as_ref(), "rewires") > 0.0);
+    assert!(readout_number(rrt.as_ref(), "best") > 1.1 * readout_number(star.as_ref(), "best"));
 }

@@ -929,12 +929,7 @@ fn an_ended_run_has_nothing_left_to_show() {
     let ended_session = |entry: &labcore::Entry, seed: u64, action: Option<&str>| {
         let mut exp = (entry.make)();
         random_session(exp.as_mut(), 7000 + seed);
-        for _ in 0..600 {
-            if exp.status().phase == labcore::Phase::Ended {
-                break;
-            }
-            exp.step(1.0 / 60.0);
-        }
+        labcore::testkit::run_until_phase(exp.as_mut(), labcore::Phase::Ended, 600);
         let ended = exp.status().phase == labcore::Phase::Ended;
         if let Some(key) = action {
             let _ = exp.action(key);
@@ -1020,14 +1015,7 @@ fn permalinks_reproduce_the_issue_14_astar_sequences() {
     use labcore::planning::grid::Cell;
     use labcore::route::{format, restore, Tab};
     use labcore::{Experiment, Modifiers};
-    let ctrl = Modifiers {
-        shift: false,
-        ctrl: true,
-    };
-    let shift = Modifiers {
-        shift: true,
-        ctrl: false,
-    };
+    let (ctrl, shift) = (labcore::testkit::CTRL, labcore::testkit::SHIFT);
     let drag = |a: &mut AStarGrid, from: Cell, to: Cell| {
         a.input(Input::PointerDown(a.cell_center(from)));
         a.input(Input::PointerMove {

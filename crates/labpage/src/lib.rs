@@ -16,4 +16,5 @@ pub mod report;
 #[allow(unused_imports)]
 pub(crate) use labcore::{
     catalogue, clock, content, experiment, find, math, plot, quiz, registry, route, scene, table,
+    units,
 };

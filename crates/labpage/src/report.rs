@@ -32,10 +32,11 @@ use crate::content::Content;
 use crate::content_html::escape;
 use crate::experiment::{Experiment, ParamKind, ParamSpec, Tone};
 use crate::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, Series, SeriesRole};
-use crate::quiz::{format_number, grade, score_percent, Prepared, PreparedKind, Response};
+use crate::quiz::{grade, score_percent, Prepared, PreparedKind, Response};
 pub use crate::route::AnswerKey;
 use crate::scene::Scene;
 use crate::table::Table;
+use crate::units::format_number;
 use std::fmt::Write as _;
 
 mod scene_svg;

@@ -648,7 +648,7 @@ pub fn scale_bar_m(scale_px_per_m: f64, max_px: f64) -> f64 {
 /// The scale bar's label: "1 m", "0.5 m", "20 m".
 #[must_use]
 pub fn scale_bar_label(length_m: f64) -> String {
-    format!("{} m", labcore::quiz::format_number(length_m, 3))
+    format!("{} m", labcore::units::format_number(length_m, 3))
 }
 
 /// A metre scale bar in the lower-left corner, on a plate of the background.

@@ -23,8 +23,9 @@
 
 use labcore::content::Question;
 use labcore::lms::{Suspended, Tally};
-use labcore::quiz::{grade, read_answer, Prepared, PreparedKind, Response, SavedAttempt};
+use labcore::quiz::{grade, Prepared, PreparedKind, Response, SavedAttempt};
 use labcore::route::QuizRules;
+use labcore::units::read_answer;
 use wasm_bindgen::{JsCast, JsValue};
 use web_sys::{CustomEvent, CustomEventInit, Element};
 

@@ -6,7 +6,7 @@
 use crate::dom::{self, escape, query, query_all};
 use crate::draw::Palette;
 use labcore::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, SeriesRole};
-use labcore::quiz::format_number;
+use labcore::units::format_number;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 use web_sys::{

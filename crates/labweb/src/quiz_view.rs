@@ -84,7 +84,7 @@ pub fn render(attempt: &Attempt) -> String {
                 };
                 let tolerance_text = format!(
                     "accepted within ±{}{}",
-                    labcore::quiz::format_number(*tolerance, 4),
+                    labcore::units::format_number(*tolerance, 4),
                     if unit.is_empty() {
                         String::new()
                     } else {

@@ -8,14 +8,16 @@
 //! reachable point.
 
 use crate::experiment::{
-    check_param, format_degrees, format_fixed, format_magnitude, format_metres, format_point,
-    Experiment, Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, Experiment, Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{
+    format_degrees, format_fixed, format_magnitude, format_metres, format_number, format_point,
+};
 use glam::DVec2;
 
 const PARAMS: &[ParamSpec] = &[
@@ -353,6 +355,7 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testkit::{readout, scene_of};
 
     #[test]
     fn default_readouts_match_hand_values() {
@@ -417,13 +420,8 @@ mod tests {
         assert!(fk.tip().is_finite());
     }
 
-    fn readout(fk: &ForwardKinematics, key: &str) -> Option<String> {
-        crate::experiment::readout_value(fk, key)
-    }
-
     fn circles(fk: &ForwardKinematics) -> Vec<f64> {
-        let mut scene = Scene::default();
-        fk.scene(&mut scene);
+        let scene = scene_of(fk);
         scene
             .items
             .iter()
@@ -444,13 +442,13 @@ mod tests {
     fn a_far_pointer_distance_reads_as_a_power_of_ten() {
         let mut fk = ForwardKinematics::default();
         fk.input(Input::PointerDown(DVec2::new(6.85e33, 0.0)));
-        let gap = readout(&fk, "target").unwrap();
+        let gap = readout(&fk, "target");
         assert!(gap.ends_with("× 10³³ m"), "{gap}");
         assert!(gap.chars().count() <= 14, "{gap}");
         fk.input(Input::PointerDown(DVec2::new(3.0, 0.0)));
-        assert_eq!(readout(&fk, "target").unwrap(), "1.300 m");
+        assert_eq!(readout(&fk, "target"), "1.300 m");
         fk.input(Input::PointerDown(DVec2::new(1001.7, 0.0)));
-        assert_eq!(readout(&fk, "target").unwrap(), "1.0 × 10³ m");
+        assert_eq!(readout(&fk, "target"), "1.0 × 10³ m");
     }
 
     /// Issue 15: quizzes 9–12 drew L₁ up to 2.0 m, beyond the 1.2 m slider,
@@ -563,8 +561,8 @@ mod tests {
             ],
             [Some(35.0), Some(60.0), Some(1.0), Some(0.7)]
         );
-        assert_eq!(readout(&fk, "x").unwrap(), "0.758 m");
-        assert_eq!(readout(&fk, "y").unwrap(), "1.271 m");
+        assert_eq!(readout(&fk, "x"), "0.758 m");
+        assert_eq!(readout(&fk, "y"), "1.271 m");
         let theory = format!(
             "{:?}",
             crate::content::Content::parse(include_str!("../../../../assets/fk.json"))
@@ -579,7 +577,7 @@ mod tests {
         let mut fk = after_step(1);
         let start_t1 = fk.param("t1").unwrap();
         let before = forward(&fk.lengths(), &fk.angles_rad());
-        let (x, reach) = (readout(&fk, "x").unwrap(), readout(&fk, "reach").unwrap());
+        let (x, reach) = (readout(&fk, "x"), readout(&fk, "reach"));
         for t1 in STEP_2_THETA1 {
             fk.set_param("t1", t1).unwrap();
             let after = forward(&fk.lengths(), &fk.angles_rad());
@@ -591,8 +589,8 @@ mod tests {
                     "rigid turn about the base"
                 );
             }
-            assert_eq!(readout(&fk, "reach").unwrap(), reach);
-            assert_ne!(readout(&fk, "x").unwrap(), x);
+            assert_eq!(readout(&fk, "reach"), reach);
+            assert_ne!(readout(&fk, "x"), x);
         }
     }
 
@@ -605,7 +603,7 @@ mod tests {
             fk.set_param("t2", f64::from(t2)).unwrap();
             let points = forward(&fk.lengths(), &fk.angles_rad()).points;
             assert!((points[1] - elbow).length() < 1e-12, "the elbow stays put");
-            reach.push((readout(&fk, "reach").unwrap(), t2));
+            reach.push((readout(&fk, "reach"), t2));
         }
         let pct = |s: &str| s.trim_end_matches('%').parse::<f64>().unwrap();
         let at = |t2: i32| reach.iter().find(|r| r.1 == t2).unwrap().0.clone();
@@ -677,7 +675,7 @@ mod tests {
         let nearest = STEP_6_OUTSIDE.normalize() * 2.4;
         assert!((fk.tip() - nearest).length() < 1e-9);
         assert_eq!(
-            readout(&fk, "target").unwrap(),
+            readout(&fk, "target"),
             format_metres(STEP_6_OUTSIDE.length() - 2.4)
         );
         // Equal links have no hole: the base is in reach.
@@ -697,7 +695,7 @@ mod tests {
         assert_eq!(fk.status().text, "out of reach");
         assert!((fk.tip().length() - 0.5).abs() < 1e-9);
         assert_eq!(
-            readout(&fk, "target").unwrap(),
+            readout(&fk, "target"),
             format_metres(0.5 - STEP_6_HOLE.length())
         );
     }
@@ -752,8 +750,7 @@ mod tests {
         let mut fk = ForwardKinematics::default();
         fk.input(Input::PointerDown(DVec2::new(1.4, 0.96)));
         fk.input(Input::PointerUp(DVec2::new(1.4, 0.96)));
-        let mut scene = Scene::default();
-        fk.scene(&mut scene);
+        let scene = scene_of(&fk);
         let label = scene
             .items
             .iter()

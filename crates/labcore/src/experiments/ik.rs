@@ -11,16 +11,17 @@
 //! is what the two links solve for.
 
 use crate::experiment::{
-    check_param, clamp_to_params, format_degrees, format_point, with_coordinate, Experiment,
-    Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, clamp_to_params, with_coordinate, Experiment, Handle, Input, ParamError,
+    ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
     lerp_angle, solve, Elbow, IkError, Singularity, TwoLinkAngles, TwoLinkSolution,
 };
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_degrees, format_number, format_point};
 use glam::DVec2;
 
 const PARAMS: &[ParamSpec] = &[
@@ -599,11 +600,11 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testkit::{readout, scene_of, steps};
 
+    /// Two simulated seconds: longer than any move of the arm.
     fn settle(ik: &mut InverseKinematics) {
-        for _ in 0..120 {
-            ik.step(1.0 / 60.0);
-        }
+        steps(ik, 120);
     }
 
     #[test]
@@ -641,8 +642,7 @@ mod tests {
             (ik.tip() - DVec2::new(1.7, 0.0)).length() < 1e-9,
             "stretched"
         );
-        let mut scene = Scene::default();
-        ik.scene(&mut scene);
+        let scene = scene_of(&ik);
         assert!(!scene.items.iter().any(|i| matches!(
             i,
             Item::Line {
@@ -766,15 +766,10 @@ mod tests {
         assert!((d.answer - c).abs() < 1e-12);
     }
 
-    use crate::experiment::format_degrees;
-
-    fn readout(ik: &InverseKinematics, key: &str) -> String {
-        crate::experiment::readout_value(ik, key).unwrap()
-    }
+    use crate::units::format_degrees;
 
     fn dashed_circles(ik: &InverseKinematics) -> Vec<(DVec2, f64)> {
-        let mut scene = Scene::default();
-        ik.scene(&mut scene);
+        let scene = scene_of(ik);
         scene
             .items
             .iter()
@@ -792,8 +787,7 @@ mod tests {
 
     /// The ghost's elbow, when a ghost is drawn.
     fn ghost_elbow(ik: &InverseKinematics) -> Option<DVec2> {
-        let mut scene = Scene::default();
-        ik.scene(&mut scene);
+        let scene = scene_of(ik);
         scene.items.iter().find_map(|i| match i {
             Item::Line {
                 to,
@@ -951,8 +945,8 @@ mod tests {
         )
         .tip();
         assert!((ik.tip() - fk).length() < 1e-12);
-        assert_eq!(readout(&ik, "x"), crate::experiment::format_metres(fk.x));
-        assert_eq!(readout(&ik, "y"), crate::experiment::format_metres(fk.y));
+        assert_eq!(readout(&ik, "x"), crate::units::format_metres(fk.x));
+        assert_eq!(readout(&ik, "y"), crate::units::format_metres(fk.y));
     }
 
     #[test]

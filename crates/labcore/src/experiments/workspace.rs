@@ -9,17 +9,18 @@
 //! `r = max(0, L_max − (R − L_max))`.
 
 use crate::experiment::{
-    check_param, format_point, ActionSpec, Experiment, Handle, Input, Notice, Notices, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, ActionSpec, Experiment, Handle, Input, Notice, Notices, ParamError, ParamSpec,
+    Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, tip, Annulus};
 use crate::kinematics::dls::DlsSolver;
 use crate::kinematics::two_link_ik::wrap_pi;
 use crate::kinematics::workspace::{DensityGrid, SamplingMode, WorkspaceSampler};
 use crate::plot::{Axis, Plot, RefLine, Series, SeriesRole};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_number, format_point};
 use glam::DVec2;
 
 const MODES: &[&str] = &["Monte-Carlo", "Grid"];
@@ -411,7 +412,7 @@ impl Experiment for Workspace {
         let measured = self.sampler.as_ref().and_then(WorkspaceSampler::measured);
         // The same 3 decimals (1 mm) as every length readout: with the
         // default 20,000 samples the measured radii stay a few mm inside theory.
-        let metres = crate::experiment::format_metres;
+        let metres = crate::units::format_metres;
         let (outer, inner) = measured.map_or(("--".into(), "--".into()), |m| {
             (metres(m.outer_m), metres(m.inner_m))
         });
@@ -564,15 +565,12 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testkit::{press, readout, scene_of, settle};
 
     fn sweep(ws: &mut Workspace) -> usize {
-        ws.action("sweep").unwrap();
-        let mut frames = 0;
-        while ws.animating() {
-            ws.step(1.0 / 60.0);
-            frames += 1;
-            assert!(frames < 1000);
-        }
+        press(ws, "sweep");
+        let frames = settle(ws);
+        assert!(frames < 1000);
         frames
     }
 
@@ -709,10 +707,6 @@ mod tests {
         let mut mc = Workspace::default();
         sweep(&mut mc);
         assert_eq!(mc.status().text, "swept 20000 samples");
-    }
-
-    fn readout(ws: &Workspace, key: &str) -> String {
-        crate::experiment::readout_value(ws, key).unwrap()
     }
 
     fn measured(ws: &Workspace) -> crate::kinematics::workspace::MeasuredRadii {
@@ -923,8 +917,7 @@ mod tests {
         assert_eq!(counts[1], "100 / 10000");
         assert_eq!(counts.last().unwrap(), "10000 / 10000");
         assert!(counts.len() > 50, "over {} frames", counts.len());
-        let mut scene = Scene::default();
-        ws.scene(&mut scene);
+        let scene = scene_of(&ws);
         assert!(scene
             .items
             .iter()

@@ -10,8 +10,8 @@
 
 use super::n;
 use crate::content_html::escape;
-use crate::quiz::format_number;
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
+use crate::units::format_number;
 use glam::DVec2;
 use std::fmt::Write as _;
 

@@ -17,7 +17,7 @@
 use super::SimState;
 use crate::dom::{self, escape, query, Listener};
 use glam::DVec2;
-use labcore::quiz::format_number;
+use labcore::units::format_number;
 use labcore::{Handle, Item};
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -134,7 +134,7 @@ impl SimState {
             self.say(&format!(
                 "{lead}{} at x = {} m.",
                 h.label,
-                labcore::experiment::format_fixed(h.at.x, 2)
+                labcore::units::format_fixed(h.at.x, 2)
             ));
         } else {
             self.say(&format!(
@@ -342,7 +342,7 @@ impl SimState {
             if raw.trim().is_empty() {
                 return Err(format!("{name}: nothing was typed"));
             }
-            labcore::quiz::read_answer(&raw, unit)
+            labcore::units::read_answer(&raw, unit)
                 .map(|r| r.value)
                 .map_err(|e| format!("{name}: {e}"))
         };

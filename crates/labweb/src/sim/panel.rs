@@ -4,7 +4,7 @@
 use super::{export_png, read_file, SimState};
 use crate::dom::{self, escape, query, query_all, Listener};
 use crate::plot_view;
-use labcore::quiz::format_number;
+use labcore::units::format_number;
 use labcore::{ParamKind, ParamSpec, Sanitized};
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -77,11 +77,11 @@ pub(super) fn listen(
                             .find(|p| p.key == key)
                             .map_or("", |p| p.unit);
                         // One rule for commas and units everywhere (see
-                        // `labcore::quiz::read_answer`); say what was read.
+                        // `labcore::units::read_answer`); say what was read.
                         let reading = if raw.trim().is_empty() {
                             Err(None)
                         } else {
-                            labcore::quiz::read_answer(&raw, unit).map_err(Some)
+                            labcore::units::read_answer(&raw, unit).map_err(Some)
                         };
                         match reading {
                             Ok(r) => {

@@ -36,8 +36,8 @@
 //! it to move half a window). This is view state, never in the link.
 
 use crate::experiment::{
-    check_param, format_fixed, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
-    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamSpec,
+    Readout, Sanitized, Status, Tone,
 };
 use crate::planning::astar::{Search, SearchConfig, StepOutcome, Strategy};
 use crate::planning::grid::{Cell, Connectivity, OccupancyGrid};
@@ -46,10 +46,11 @@ use crate::planning::maze::recursive_backtracker;
 use crate::planning::movingai::{parse_map, parse_scen, write_map, ARENA_MAP};
 use crate::planning::wall_code::{decode_walls, encode_walls, encoded_len};
 use crate::plot::{Plot, Series, SeriesRole};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
 use crate::table::Table;
+use crate::units::{format_fixed, format_number};
 use glam::DVec2;
 
 const HEURISTICS: &[&str] = &["Manhattan", "Octile", "Euclidean", "None (Dijkstra)"];

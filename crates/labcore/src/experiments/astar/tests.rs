@@ -1,34 +1,8 @@
 use super::quiz::*;
 use super::*;
 use crate::planning::astar::{astar_path, SearchStatus};
-use crate::route::{apply_params, format, parse, restore, Page, Tab};
-
-const DT: f64 = 1.0 / 60.0;
-
-fn shift() -> Modifiers {
-    Modifiers {
-        shift: true,
-        ctrl: false,
-    }
-}
-
-fn ctrl() -> Modifiers {
-    Modifiers {
-        shift: false,
-        ctrl: true,
-    }
-}
-
-/// Runs until nothing moves; returns the steps taken.
-fn settle(a: &mut AStarGrid) -> usize {
-    let mut n = 0;
-    while a.animating() {
-        a.step(DT);
-        n += 1;
-        assert!(n < 100_000, "never settles");
-    }
-    n
-}
+use crate::route::{apply_params, format, restore, Tab};
+use crate::testkit::{self, readout, scene_of, settle, steps, CTRL, DT_S as DT, SHIFT};
 
 fn empty(w: usize, h: usize) -> AStarGrid {
     let mut a = AStarGrid::default();
@@ -91,12 +65,12 @@ fn walls_are_never_painted_over_the_start_or_goal() {
 #[test]
 fn shift_click_sets_the_start_and_ctrl_click_the_goal_and_drags_move_them() {
     let mut a = empty(20, 15);
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), shift());
-    a.input_with(Input::PointerUp(DVec2::ZERO), shift());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), SHIFT);
+    a.input_with(Input::PointerUp(DVec2::ZERO), SHIFT);
     assert_eq!(a.start(), Cell::new(4, 5));
     assert_eq!(a.param("sx"), Some(4.0));
     assert_eq!(a.param("sy"), Some(5.0));
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(15, 9))), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(15, 9))), CTRL);
     assert_eq!(a.goal(), Cell::new(15, 9));
     assert_eq!(a.grid().blocked_count(), 0, "no paint with modifiers");
     // Plain drag of the goal marker moves it; off the grid it stops at the edge.
@@ -112,7 +86,7 @@ fn shift_click_sets_the_start_and_ctrl_click_the_goal_and_drags_move_them() {
     a.input(Input::Nudge(DVec2::new(0.0, 0.3)));
     assert_eq!(a.goal(), Cell::new(19, 13));
     // The start and goal never share a cell.
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(4, 5))), CTRL);
     assert_eq!(a.goal(), Cell::new(19, 13));
 }
 
@@ -121,7 +95,7 @@ fn start_or_goal_inside_a_wall_is_refused_with_a_clear_status() {
     let mut a = empty(20, 15);
     a.grid.set_blocked(Cell::new(9, 9), true);
     a.grid_changed();
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(9, 9))), shift());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(9, 9))), SHIFT);
     assert_eq!(a.start(), Cell::new(9, 9));
     let st = a.status();
     assert_eq!(st.tone, Tone::Bad);
@@ -132,8 +106,7 @@ fn start_or_goal_inside_a_wall_is_refused_with_a_clear_status() {
     a.action("compare").unwrap();
     assert!(a.comparison().is_empty());
     settle(&mut a);
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(&a);
     assert!(scene.is_finite());
     // The goal likewise, via the link.
     let mut b = empty(20, 15);
@@ -203,10 +176,7 @@ fn plan_animates_expansions_then_drives_to_the_goal() {
     assert_eq!(a.path_cost, expected.cost);
     let r = a.readouts();
     let get = |k: &str| r.iter().find(|x| x.key == k).unwrap().value.clone();
-    assert_eq!(
-        get("path_cost"),
-        crate::experiment::format_metres(expected.cost)
-    );
+    assert_eq!(get("path_cost"), crate::units::format_metres(expected.cost));
     assert_eq!(get("path_cells"), expected.path.len().to_string());
     assert_eq!(get("expanded"), expected.expanded.to_string());
     assert!((a.robot().unwrap() - a.cell_center(a.goal)).length() < 1e-9);
@@ -289,8 +259,7 @@ fn compare_table_equals_the_solvers_results() {
     assert!(rows[0].expanded <= rows[1].expanded);
     assert!(rows[3].cost.unwrap() <= 1.5 * optimum + 1e-9);
     // Every path is drawn.
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(&a);
     let polylines = scene
         .items
         .iter()
@@ -348,11 +317,8 @@ fn load_file_reads_a_map_and_refuses_a_malformed_one_unchanged() {
 
 fn round_trip(a: &AStarGrid) -> (AStarGrid, String, Vec<String>) {
     let link = format(a, Tab::Simulation);
-    let Page::Experiment { params, .. } = parse(&link, &["astar"]).page else {
-        panic!("{link}");
-    };
     let mut fresh = AStarGrid::default();
-    let notices = apply_params(&mut fresh, &params);
+    let notices = testkit::apply_link(&mut fresh, &link);
     (fresh, link, notices)
 }
 
@@ -360,7 +326,7 @@ fn round_trip(a: &AStarGrid) -> (AStarGrid, String, Vec<String>) {
 fn the_link_holds_the_walls_and_ends_and_leaves_out_large_grids() {
     let mut a = AStarGrid::default();
     a.action("maze").unwrap();
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 3))), shift());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 3))), SHIFT);
     a.set_param("h", 2.0).unwrap();
     a.set_param("w", 1.7).unwrap();
     let (fresh, link, notices) = round_trip(&a);
@@ -459,15 +425,11 @@ fn a_start_out_of_the_linked_grid_is_clamped_with_a_notice() {
 fn reset_replays_the_search_and_size_choice_makes_new_grids() {
     let mut a = AStarGrid::default();
     a.action("plan").unwrap();
-    for _ in 0..5 {
-        a.step(DT);
-    }
+    steps(&mut a, 5);
     let expanded = a.search.as_ref().unwrap().expanded();
     a.reset();
     assert_eq!(a.search.as_ref().unwrap().expanded(), 0);
-    for _ in 0..5 {
-        a.step(DT);
-    }
+    steps(&mut a, 5);
     assert_eq!(a.search.as_ref().unwrap().expanded(), expanded);
     a.set_param("size", 0.0).unwrap();
     assert_eq!((a.grid().width(), a.grid().height()), (20, 15));
@@ -573,9 +535,7 @@ fn quiz_answers_match_the_solvers() {
 
 /// The link's state and its notices after opening it on a fresh experiment.
 fn reopen(a: &AStarGrid) -> (AStarGrid, String, Vec<String>) {
-    let link = format(a, Tab::Simulation);
-    let (fresh, notices) = restore(&link, AStarGrid::default());
-    (fresh, link, notices)
+    testkit::through_link(a)
 }
 
 /// Everything a link must reproduce: the walls, the ends and every parameter.
@@ -590,7 +550,7 @@ fn link_state(a: &AStarGrid) -> (OccupancyGrid, Cell, Cell, Vec<Option<f64>>) {
 #[test]
 fn issue14_a_link_applies_the_start_and_goal_as_whole_points() {
     let mut a = AStarGrid::default();
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 5))), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(5, 5))), CTRL);
     a.input(Input::PointerUp(DVec2::ZERO));
     assert_eq!(a.goal(), Cell::new(5, 5));
     a.input(Input::PointerDown(a.cell_center(a.start())));
@@ -609,8 +569,8 @@ fn issue14_a_link_applies_the_start_and_goal_as_whole_points() {
     );
     // The mirror case: the goal dragged onto the default start's cell.
     let mut b = AStarGrid::default();
-    b.input_with(Input::PointerDown(b.cell_center(Cell::new(9, 2))), shift());
-    b.input_with(Input::PointerDown(b.cell_center(Cell::new(3, 12))), ctrl());
+    b.input_with(Input::PointerDown(b.cell_center(Cell::new(9, 2))), SHIFT);
+    b.input_with(Input::PointerDown(b.cell_center(Cell::new(3, 12))), CTRL);
     assert_eq!((b.start(), b.goal()), (Cell::new(9, 2), Cell::new(3, 12)));
     let (fresh, _, notices) = reopen(&b);
     assert!(notices.is_empty(), "{notices:?}");
@@ -732,8 +692,8 @@ fn issue14_property_random_inputs_reload_exactly_from_the_link() {
                 )
             };
             let m = match rng.int(0, 5) {
-                0 => shift(),
-                1 => ctrl(),
+                0 => SHIFT,
+                1 => CTRL,
                 _ => Modifiers::default(),
             };
             match rng.int(-3, 12) {
@@ -795,10 +755,6 @@ fn issue14_property_random_inputs_reload_exactly_from_the_link() {
 
 // ---- Procedure steps (assets/astar.json), each on the state the previous left ----
 
-fn readout(a: &AStarGrid, key: &str) -> String {
-    crate::experiment::readout_value(a, key).unwrap()
-}
-
 fn count_state(a: &AStarGrid, state: crate::planning::astar::CellState) -> usize {
     a.raster.iter().filter(|&&v| v == state as u8).count()
 }
@@ -807,12 +763,7 @@ fn count_state(a: &AStarGrid, state: crate::planning::astar::CellState) -> usize
 /// checks) replayed on the state the previous steps left, so the test of
 /// step k starts from `after_step(k - 1)`.
 fn after_step(k: usize) -> AStarGrid {
-    let steps: [fn(&mut AStarGrid); 6] = [step_1, step_2, step_3, step_4, step_5, step_6];
-    let mut a = AStarGrid::default();
-    for step in &steps[..k] {
-        step(&mut a);
-    }
-    a
+    testkit::after_step(&[step_1, step_2, step_3, step_4, step_5, step_6], k)
 }
 
 /// Step 1: the green start on the left, the red goal on the right, walls
@@ -821,8 +772,7 @@ fn after_step(k: usize) -> AStarGrid {
 fn step_1(a: &mut AStarGrid) {
     let (s, g) = (a.start(), a.goal());
     assert!(s.x < a.grid().width() / 2 && g.x >= a.grid().width() / 2);
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(a);
     let dot = |role: Role| {
         scene.items.iter().find_map(|i| match i {
             Item::Dot {
@@ -853,11 +803,11 @@ fn step_1(a: &mut AStarGrid) {
     a.input(Input::PointerUp(DVec2::ZERO));
     assert_eq!(a.grid().blocked_count(), walls + 4);
     // Shift-click, Ctrl-click, and drags of the markers.
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(2, 20))), shift());
-    a.input_with(Input::PointerUp(DVec2::ZERO), shift());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(2, 20))), SHIFT);
+    a.input_with(Input::PointerUp(DVec2::ZERO), SHIFT);
     assert_eq!(a.start(), Cell::new(2, 20));
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(30, 2))), ctrl());
-    a.input_with(Input::PointerUp(DVec2::ZERO), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(30, 2))), CTRL);
+    a.input_with(Input::PointerUp(DVec2::ZERO), CTRL);
     assert_eq!(a.goal(), Cell::new(30, 2));
     a.input(Input::PointerDown(a.cell_center(Cell::new(2, 20))));
     a.input(Input::PointerMove {
@@ -896,9 +846,7 @@ fn step_2(a: &mut AStarGrid) {
         count_state(a, CellState::Open),
         count_state(a, CellState::Closed),
     );
-    for _ in 0..5 {
-        a.step(DT);
-    }
+    steps(a, 5);
     assert!(
         count_state(a, CellState::Closed) > closed1,
         "the closed set fills in"
@@ -926,8 +874,7 @@ fn step_2(a: &mut AStarGrid) {
         "the robot drives"
     );
     settle(a);
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(a);
     assert!(scene
         .items
         .iter()
@@ -972,8 +919,8 @@ fn step_4(a: &mut AStarGrid) {
     settle(a);
     assert_eq!(a.status().tone, Tone::Good, "{:?}", a.status());
     a.set_param("conn", 1.0).unwrap();
-    a.input_with(Input::PointerDown(a.cell_center(Cell::new(18, 11))), ctrl());
-    a.input_with(Input::PointerUp(DVec2::ZERO), ctrl());
+    a.input_with(Input::PointerDown(a.cell_center(Cell::new(18, 11))), CTRL);
+    a.input_with(Input::PointerUp(DVec2::ZERO), CTRL);
     assert_eq!(a.goal(), Cell::new(18, 11));
     a.action("plan").unwrap();
     settle(a);
@@ -1012,8 +959,7 @@ fn step_5(a: &mut AStarGrid) {
         "{names:?}"
     );
     assert_eq!(t.columns[..4], ["planner", "expanded", "cost", "ratio"]);
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(a);
     let paths = scene
         .items
         .iter()
@@ -1329,8 +1275,7 @@ fn issue13_a_phone_view_shows_cells_of_at_least_24_px_and_every_cell_is_reachabl
     tap(&mut a, p);
     assert!(a.grid().is_blocked(free));
     // Off-view ends are marked at the canvas edge.
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(&a);
     let off: Vec<&str> = scene
         .items
         .iter()
@@ -1421,8 +1366,7 @@ fn issue15_content_heuristics_quiz_wording_and_option_lengths() {
 
 /// The grid's raster version, from `a`'s scene.
 fn raster_version_of(a: &AStarGrid) -> u64 {
-    let mut scene = Scene::default();
-    a.scene(&mut scene);
+    let scene = scene_of(a);
     scene
         .items
         .iter()
@@ -1495,8 +1439,7 @@ fn astar_on_a_phone_a_marker_out_of_view_has_one_label_not_two() {
     for (sx, gx) in [(3.0, 28.0), (28.0, 3.0)] {
         a.set_param("sx", sx).unwrap();
         a.set_param("gx", gx).unwrap();
-        let mut scene = Scene::default();
-        a.scene(&mut scene);
+        let scene = scene_of(&a);
         for name in ["start", "goal"] {
             let labels = scene
                 .items

@@ -423,7 +423,7 @@ pub(super) fn status(a: &AStarGrid) -> Status {
 pub(super) fn describe(a: &AStarGrid) -> String {
     let robot = match (a.phase, a.robot()) {
         (Phase::Driving | Phase::Arrived, Some(p)) => {
-            format!(" Robot at {}.", crate::experiment::format_point(p))
+            format!(" Robot at {}.", crate::units::format_point(p))
         }
         _ => String::new(),
     };

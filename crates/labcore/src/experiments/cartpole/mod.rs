@@ -48,13 +48,14 @@ use crate::control::cartpole::{
 };
 use crate::control::{Complex, Stability};
 use crate::experiment::{
-    check_param, format_fixed, ActionSpec, Experiment, Input, Notice, Notices, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Readout,
+    Sanitized, Status, Tone,
 };
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_fixed, format_number};
 use glam::DVec2;
 
 const INTEGRATORS: &[&str] = &["Euler (4 sub-steps)", "RK4 (4 sub-steps)"];

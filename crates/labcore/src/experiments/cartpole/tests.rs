@@ -2,19 +2,9 @@ use super::quiz::*;
 use super::view::gains_text;
 use super::*;
 use crate::control::count_right_half_plane;
-use crate::experiment::format_degrees;
-use crate::route::{format, restore, Tab};
+use crate::testkit::{readout, reopen, run_for, scene_of, steps};
+use crate::units::format_degrees;
 use std::f64::consts::FRAC_PI_2;
-
-fn run(e: &mut CartPoleBalance, seconds: f64) {
-    for _ in 0..(seconds * 60.0).round() as usize {
-        e.step(1.0 / 60.0);
-    }
-}
-
-fn readout(e: &CartPoleBalance, key: &str) -> String {
-    crate::experiment::readout_value(e, key).unwrap_or_else(|| panic!("no readout {key}"))
-}
 
 #[test]
 fn readouts_by_hand_at_the_start() {
@@ -46,11 +36,11 @@ fn readouts_by_hand_at_the_start() {
 #[test]
 fn the_default_gains_catch_the_pole_and_recover_from_a_nudge() {
     let mut e = CartPoleBalance::default();
-    run(&mut e, 2.0);
+    run_for(&mut e, 2.0);
     assert!(e.state().theta_rad.abs() < 1f64.to_radians());
     e.action("nudge").unwrap();
     assert!(e.state().omega_rad_s > 0.4);
-    run(&mut e, 10.0);
+    run_for(&mut e, 10.0);
     assert_eq!(e.status().tone, Tone::Neutral, "{:?}", e.status());
     assert!(
         e.state().theta_rad.abs() < 0.2f64.to_radians(),
@@ -85,7 +75,7 @@ fn lqr_gains_give_a_stable_closed_loop() {
     e.set_param("qth", 100.0).unwrap();
     assert!(e.lqr_proposal().unwrap().k_theta > proposal.k_theta);
     e.restart();
-    run(&mut e, 20.0);
+    run_for(&mut e, 20.0);
     assert_eq!(e.status().text, "balanced");
     assert!(!e.animating(), "a balanced pole lets the page idle");
 }
@@ -109,7 +99,7 @@ fn the_linear_model_agrees_at_2_degrees_and_parts_at_30() {
     let relative_gap = |deg: f64| {
         let mut e = CartPoleBalance::default();
         e.set_param("th0", deg).unwrap();
-        run(&mut e, 5.0);
+        run_for(&mut e, 5.0);
         let angle = &e.plots()[0];
         assert_eq!(angle.series[0].len(), angle.series[1].len());
         let gap = angle.series[0]
@@ -135,11 +125,11 @@ fn the_linear_model_agrees_at_2_degrees_and_parts_at_30() {
 #[test]
 fn drop_and_catch() {
     let mut e = CartPoleBalance::default();
-    run(&mut e, 3.0);
+    run_for(&mut e, 3.0);
     e.action("drop").unwrap();
     assert_eq!(e.status().tone, Tone::Warning);
     e.action("nudge").unwrap();
-    run(&mut e, 0.3);
+    run_for(&mut e, 0.3);
     let leaning = e.state().theta_rad;
     assert!(leaning > 4f64.to_radians(), "{leaning}");
     assert!(
@@ -147,7 +137,7 @@ fn drop_and_catch() {
         "the linear model falls too"
     );
     e.set_param("ctl", 1.0).unwrap();
-    run(&mut e, 8.0);
+    run_for(&mut e, 8.0);
     assert_eq!(readout(&e, "status"), "balancing");
     assert!(e.state().theta_rad.abs() < 1f64.to_radians());
 }
@@ -158,14 +148,14 @@ fn the_fall_criterion_is_selectable_and_ends_the_run() {
         let mut e = CartPoleBalance::default();
         e.set_param("fall", choice).unwrap();
         e.action("drop").unwrap();
-        run(&mut e, 5.0);
+        run_for(&mut e, 5.0);
         assert!(!e.animating());
         let Run::Ended { status, time_s } = e.run else {
             panic!("still going")
         };
         assert_eq!(status, PoleStatus::Fallen);
         let frozen = e.state();
-        run(&mut e, 1.0);
+        run_for(&mut e, 1.0);
         assert_eq!(e.state(), frozen, "a fallen run stays put");
         (time_s, e.state().theta_rad.to_degrees())
     };
@@ -177,7 +167,7 @@ fn the_fall_criterion_is_selectable_and_ends_the_run() {
     let mut e = CartPoleBalance::default();
     e.set_param("fall", 1.0).unwrap();
     e.action("drop").unwrap();
-    run(&mut e, 5.0);
+    run_for(&mut e, 5.0);
     assert!(readout(&e, "status").starts_with("fallen at "));
     assert!(e.status().text.starts_with("pole fallen at t = "));
 }
@@ -187,7 +177,7 @@ fn force_is_limited_and_shaded() {
     let mut e = CartPoleBalance::default();
     e.set_param("flim", 5.0).unwrap();
     e.set_param("th0", 8.0).unwrap();
-    run(&mut e, 2.0);
+    run_for(&mut e, 2.0);
     let force = &e.plots()[2];
     assert!(force.series[0].y.iter().all(|f| f.abs() <= 5.0 + 1e-12));
     assert!(!force.bands.is_empty());
@@ -264,22 +254,16 @@ fn every_parameter_round_trips_through_the_link() {
     ] {
         e.set_param(k, v).unwrap();
     }
-    let link = format(&e, Tab::Simulation);
-    let (mut fresh, notices) = restore(&link, CartPoleBalance::default());
-    assert!(notices.is_empty(), "{notices:?}");
-    assert_eq!(format(&fresh, Tab::Simulation), link);
-    for spec in PARAMS {
-        assert_eq!(fresh.param(spec.key), e.param(spec.key), "{}", spec.key);
-    }
-    run(&mut e, 1.0);
-    run(&mut fresh, 1.0);
+    let mut fresh = reopen(&e);
+    run_for(&mut e, 1.0);
+    run_for(&mut fresh, 1.0);
     assert_eq!(e.state(), fresh.state());
 }
 
 #[test]
 fn bad_steps_and_inputs_change_nothing() {
     let mut e = CartPoleBalance::default();
-    run(&mut e, 0.5);
+    run_for(&mut e, 0.5);
     let before = (e.state(), e.time_s(), e.plots()[0].series[0].clone());
     for dt in [f64::NAN, -1.0, 0.0, 0.5, f64::INFINITY] {
         e.step(dt);
@@ -374,21 +358,21 @@ fn do_step_3(e: &mut CartPoleBalance) {
     for k in [60.0, 40.0, 30.0, 25.0] {
         e.set_param("kth", k).unwrap();
         e.action("nudge").unwrap();
-        run(e, 20.0);
+        run_for(e, 20.0);
     }
     e.set_param("kth", 22.0).unwrap();
     e.set_param("kth", 15.0).unwrap();
     e.reset();
-    run(e, 12.0);
+    run_for(e, 12.0);
     e.set_param("kth", 120.0).unwrap();
     e.reset();
     e.set_param("kom", 8.0).unwrap();
     e.action("nudge").unwrap();
-    run(e, 10.0);
+    run_for(e, 10.0);
     e.set_param("kom", 18.0).unwrap();
     e.set_param("kx", 10.0).unwrap();
     e.action("nudge").unwrap();
-    run(e, 10.0);
+    run_for(e, 10.0);
     e.set_param("kx", 3.0).unwrap();
     assert!(run_to_rest(e, 60.0).is_some(), "step 3 ends at rest");
 }
@@ -396,7 +380,7 @@ fn do_step_3(e: &mut CartPoleBalance) {
 fn do_step_4(e: &mut CartPoleBalance) {
     e.action("drop").unwrap();
     e.action("nudge").unwrap();
-    run(e, 0.3);
+    run_for(e, 0.3);
     e.set_param("ctl", 1.0).unwrap();
     assert!(run_to_rest(e, 60.0).is_some(), "step 4 ends caught");
 }
@@ -406,7 +390,7 @@ fn do_step_5(e: &mut CartPoleBalance) {
         e.set_param("r", r).unwrap();
         e.action("lqr").unwrap();
         e.action("nudge").unwrap();
-        run(e, 10.0);
+        run_for(e, 10.0);
     }
 }
 
@@ -415,9 +399,9 @@ fn do_step_6(e: &mut CartPoleBalance) {
     e.set_param("integ", 1.0).unwrap();
     e.set_param("th0", 10.0).unwrap();
     e.set_param("ctl", 0.0).unwrap();
-    run(e, 20.0);
+    run_for(e, 20.0);
     e.set_param("integ", 0.0).unwrap();
-    run(e, 20.0);
+    run_for(e, 20.0);
 }
 
 fn after_steps(n: usize) -> CartPoleBalance {
@@ -561,7 +545,7 @@ fn cartpole_step_4_a_dropped_pole_falls_and_only_a_quick_catch_saves_it() {
     assert!(!e.animating());
     e.action("drop").unwrap();
     assert!(e.animating(), "a dropped pole moves even from rest");
-    run(&mut e, 0.1);
+    run_for(&mut e, 0.1);
     assert_eq!(e.status().text, "control off: the pole is falling");
     assert_eq!(e.status().tone, Tone::Warning);
     // Left alone, it soon tips over: past 90° within a few seconds. From the
@@ -581,16 +565,16 @@ fn cartpole_step_4_a_dropped_pole_falls_and_only_a_quick_catch_saves_it() {
     assert!(tipped_at < 4.0, "tipped over {tipped_at} s after the drop");
     let mut late = e.clone();
     e.action("nudge").unwrap();
-    run(&mut e, 0.3);
+    run_for(&mut e, 0.3);
     assert!(e.state().theta_rad.to_degrees() > 4.0);
     e.set_param("ctl", 1.0).unwrap();
     let (_, seen) = watch(&mut e, 10.0);
     assert!(!seen.iter().any(|t| t.contains("fallen")), "{seen:?}");
     assert!(run_to_rest(&mut e, 60.0).is_some());
     late.action("nudge").unwrap();
-    run(&mut late, 0.5);
+    run_for(&mut late, 0.5);
     late.set_param("ctl", 1.0).unwrap();
-    run(&mut late, 10.0);
+    run_for(&mut late, 10.0);
     assert!(late.status().text.starts_with("pole fallen at t = "));
     assert_eq!(late.status().phase, crate::experiment::Phase::Ended);
 }
@@ -674,7 +658,7 @@ fn cartpole_step_6_energy_stays_flat_under_rk4_and_climbs_under_euler() {
     );
     e.set_param("integ", 0.0).unwrap();
     assert_eq!(e.time_s(), 0.0, "the integrator restarts the run");
-    run(&mut e, 5.0);
+    run_for(&mut e, 5.0);
     let climbed = *e.plots()[3].series[0].y.last().unwrap();
     assert!(climbed > 5.0, "Euler {climbed} %");
     assert!(
@@ -695,7 +679,7 @@ fn cartpole_step_7_the_linear_model_parts_from_the_nonlinear_as_the_angle_grows(
     let mut gaps = Vec::new();
     for deg in [2.0, 15.0, 30.0, 45.0] {
         e.set_param("th0", deg).unwrap();
-        run(&mut e, 5.0);
+        run_for(&mut e, 5.0);
         gaps.push(e.max_gap_rad().to_degrees());
         assert_eq!(
             readout(&e, "gap"),
@@ -710,7 +694,7 @@ fn cartpole_step_7_the_linear_model_parts_from_the_nonlinear_as_the_angle_grows(
         "45° is still caught"
     );
     e.set_param("th0", 60.0).unwrap();
-    run(&mut e, 5.0);
+    run_for(&mut e, 5.0);
     let Run::Ended { time_s, .. } = e.run else {
         panic!("60° is lost")
     };
@@ -738,9 +722,7 @@ fn play(e: &mut CartPoleBalance, frames: usize) {
 }
 
 fn single_steps(e: &mut CartPoleBalance, n: usize) {
-    for _ in 0..n {
-        e.step(crate::clock::Clock::DT_S);
-    }
+    steps(e, n);
 }
 
 fn observable(e: &CartPoleBalance) -> (CartPoleState, CartPoleState, f64, Vec<usize>, Status) {
@@ -858,8 +840,7 @@ fn status_says_balancing_only_while_theta_and_x_stay_small() {
 #[test]
 fn a_cart_outside_the_view_is_marked_at_the_edge() {
     let marks = |e: &CartPoleBalance| {
-        let mut scene = Scene::default();
-        e.scene(&mut scene);
+        let scene = scene_of(e);
         scene
             .items
             .iter()
@@ -955,7 +936,7 @@ fn e_substeps() -> u32 {
 fn a_nudge_after_the_end_is_refused_with_a_notice() {
     let mut e = CartPoleBalance::default();
     e.action("drop").unwrap();
-    run(&mut e, 5.0);
+    run_for(&mut e, 5.0);
     let before = e.state();
     e.action("nudge").unwrap();
     assert_eq!(e.state(), before);
@@ -1044,7 +1025,7 @@ fn cartpole_control_is_a_toggle_that_shows_its_state_not_a_control_on_button() {
     assert_eq!(e.param("ctl"), Some(1.0));
     e.action("drop").unwrap();
     assert_eq!(e.param("ctl"), Some(0.0), "the toggle shows control off");
-    run(&mut e, 0.2);
+    run_for(&mut e, 0.2);
     e.set_param("ctl", 1.0).unwrap();
     assert_eq!(e.param("ctl"), Some(1.0));
     assert!(run_to_rest(&mut e, 60.0).is_some(), "caught again");
@@ -1052,8 +1033,7 @@ fn cartpole_control_is_a_toggle_that_shows_its_state_not_a_control_on_button() {
 
 /// The canvas legend of the grey dashed pole, if the scene has one, and where.
 fn ghost_legend(e: &CartPoleBalance) -> Option<DVec2> {
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(e);
     scene.items.iter().find_map(|item| match item {
         Item::Label { pos, text, .. } if text == "linear model (dashed)" => Some(*pos),
         _ => None,
@@ -1068,7 +1048,7 @@ fn cartpole_the_grey_dashed_pole_has_a_legend_when_the_pole_falls() {
     let mut e = CartPoleBalance::default();
     assert_eq!(ghost_legend(&e), None, "one pole on screen: no legend");
     e.set_param("th0", 60.0).unwrap();
-    run(&mut e, 3.0);
+    run_for(&mut e, 3.0);
     assert!(
         e.status().text.starts_with("pole fallen"),
         "{:?}",
@@ -1108,8 +1088,7 @@ fn cartpole_the_fallen_pole_stays_inside_the_view() {
                 status: PoleStatus::Fallen,
                 time_s: 1.0,
             };
-            let mut scene = Scene::default();
-            e.scene(&mut scene);
+            let scene = scene_of(&e);
             for item in &scene.items {
                 let points = match item {
                     // The rail spans the view on purpose.
@@ -1135,10 +1114,9 @@ fn cartpole_the_fallen_pole_stays_inside_the_view() {
 fn cartpole_force_has_one_format_in_the_readout_and_on_the_canvas() {
     let mut e = CartPoleBalance::default();
     for seconds in [0.05, 0.5, 5.0, 40.0] {
-        run(&mut e, seconds);
+        run_for(&mut e, seconds);
         let readout = readout(&e, "force");
-        let mut scene = Scene::default();
-        e.scene(&mut scene);
+        let scene = scene_of(&e);
         let label = scene
             .items
             .iter()

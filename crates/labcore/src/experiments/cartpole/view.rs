@@ -1,7 +1,7 @@
 //! What experiment 8 shows: the scene, the readouts, the status badge.
 
 use super::*;
-use crate::experiment::{format_degrees, format_metres};
+use crate::units::{format_degrees, format_metres};
 
 /// `3.972, -3.972, 0, 0` or `-1.234 ± 5.678i`, slowest first.
 pub(super) fn format_eigenvalues(z: &[Complex]) -> String {

@@ -2,8 +2,9 @@
 
 use crate::mobile::go_to_goal::GoToGoal;
 use crate::mobile::unicycle::{wheel_speeds, Pose};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
+use crate::units::format_number;
 use glam::DVec2;
 
 /// A random speed in m/s with two decimals.

@@ -2,31 +2,16 @@
 
 use super::quiz::*;
 use super::*;
-use crate::experiment::{format_degrees, format_fixed, format_metres, Phase, Tone};
+use crate::experiment::{Phase, Tone};
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};
-use crate::scene::{Item, Role, Scene};
+use crate::scene::{Item, Role};
+use crate::units::{format_degrees, format_fixed, format_metres};
 use std::f64::consts::PI;
 
-const DT: f64 = crate::clock::Clock::DT_S;
-
-fn run(d: &mut DiffDrive, max_s: f64) -> f64 {
-    let mut t = 0.0;
-    while d.animating() && t < max_s {
-        d.step(DT);
-        t += DT;
-    }
-    t
-}
-
-fn readout(d: &DiffDrive, key: &str) -> String {
-    crate::experiment::readout_value(d, key).unwrap_or_else(|| panic!("no readout {key}"))
-}
-
-fn click(d: &mut DiffDrive, p: DVec2) {
-    d.input(Input::PointerDown(p));
-    d.input(Input::PointerUp(p));
-}
+use crate::testkit::{
+    self, click, procedure_step, readout, run_while_animating, scene_of, settle, steps, DT_S as DT,
+};
 
 #[test]
 fn idle_robot_waits_in_the_middle_facing_right() {
@@ -59,9 +44,7 @@ fn readouts_and_wheel_speeds_match_a_hand_computation() {
     // The badge agrees with the readouts of the step just taken.
     assert_eq!(d.status().text, "waypoint 1 of 1: turning on the spot");
     // Once aligned it drives at the speed limit: 1.2 · 3 m > 1.1 m/s.
-    for _ in 0..90 {
-        d.step(DT);
-    }
+    steps(&mut d, 90);
     assert_eq!(readout(&d, "v"), "1.100 m/s");
     let (vl, vr) = d.wheels();
     let c = d.command();
@@ -82,7 +65,7 @@ fn reaches_each_waypoint_in_order_with_a_run_card_each() {
     }
     assert_eq!(d.waypoints(), goals.to_vec());
     assert_eq!(d.param("w3x"), Some(4.4));
-    let t = run(&mut d, 60.0);
+    let t = run_while_animating(&mut d, 60.0);
     assert!(!d.animating(), "arrived after {t} s");
     assert_eq!(d.reached(), 3);
     assert!((d.pose().position() - goals[2]).length() <= TOLERANCE_M);
@@ -190,7 +173,7 @@ fn removing_a_reached_waypoint_drops_its_card() {
     let mut d = DiffDrive::default();
     click(&mut d, DVec2::new(2.0, 0.6));
     click(&mut d, DVec2::new(3.0, 0.6));
-    run(&mut d, 30.0);
+    run_while_animating(&mut d, 30.0);
     assert_eq!(d.reached(), 2);
     let second = d.run_cards()[1];
     click(&mut d, DVec2::new(2.0, 0.6));
@@ -201,7 +184,7 @@ fn removing_a_reached_waypoint_drops_its_card() {
     click(&mut d, DVec2::new(3.0, 2.0));
     assert!(d.animating());
     assert_eq!(readout(&d, "card"), "waypoint 2 (driving)");
-    run(&mut d, 30.0);
+    run_while_animating(&mut d, 30.0);
     assert_eq!(d.reached(), 2);
 }
 
@@ -229,7 +212,7 @@ fn a_full_queue_posts_a_notice_that_goes_when_a_waypoint_is_reached() {
     }
     assert_eq!(d.notice(), None);
     // The last one reached ends the run, with no warning left over.
-    run(&mut d, 120.0);
+    run_while_animating(&mut d, 120.0);
     assert_eq!(d.reached(), MAX_WAYPOINTS);
     assert_eq!(
         d.status(),
@@ -298,7 +281,7 @@ fn rk4_and_euler_both_arrive_and_differ_slightly() {
     b.set_param("integ", 1.0).unwrap();
     for d in [&mut a, &mut b] {
         click(d, DVec2::new(5.0, 5.0));
-        run(d, 30.0);
+        run_while_animating(d, 30.0);
         assert_eq!(d.reached(), 1);
     }
     let (ca, cb) = (a.run_cards()[0], b.run_cards()[0]);
@@ -314,10 +297,9 @@ fn hostile_values_keep_the_state_finite() {
     d.input(Input::Nudge(DVec2::new(f64::INFINITY, 0.0)));
     d.set_param("kw", 1e9).unwrap();
     d.set_param("wmax", 1e9).unwrap();
-    run(&mut d, 60.0);
+    run_while_animating(&mut d, 60.0);
     assert!(d.pose().is_finite());
-    let mut scene = Scene::default();
-    d.scene(&mut scene);
+    let scene = scene_of(&d);
     assert!(scene.is_finite());
 }
 
@@ -327,9 +309,7 @@ fn plots_and_trail_stay_bounded() {
     d.set_param("vmax", 0.1).unwrap();
     click(&mut d, DVec2::new(7.9, 5.9));
     click(&mut d, DVec2::new(0.1, 0.1));
-    for _ in 0..60 * 400 {
-        d.step(DT);
-    }
+    steps(&mut d, 60 * 400);
     assert!(d.plots[0]
         .series
         .iter()
@@ -397,8 +377,7 @@ fn the_waypoint_fields_are_grouped_under_waypoints() {
 #[test]
 fn the_scene_has_a_scale_bar_and_marks_the_robot_when_it_leaves_the_field() {
     let off_view = |d: &DiffDrive| {
-        let mut scene = Scene::default();
-        d.scene(&mut scene);
+        let scene = scene_of(d);
         assert!(scene.items.iter().any(|i| matches!(i, Item::ScaleBar)));
         scene.items.iter().find_map(|i| match i {
             Item::OffView { at, label, role } => Some((*at, label.clone(), *role)),
@@ -444,12 +423,8 @@ const STEP_3_CLICKS: [DVec2; 4] = [
 
 /// Steps until the run ends (bounded), returning the steps taken.
 fn run_to_end(d: &mut DiffDrive) -> usize {
-    let mut n = 0;
-    while d.animating() && n < 60 * 120 {
-        d.step(DT);
-        n += 1;
-    }
-    assert!(!d.animating(), "the route is driven within two minutes");
+    let n = settle(d);
+    assert!(n <= 60 * 120, "the route is driven within two minutes");
     n
 }
 
@@ -461,9 +436,7 @@ fn step_1(d: &mut DiffDrive) {
 /// Step 2 leaves the robot replaying step 1's goal, half a second in.
 fn step_2(d: &mut DiffDrive) {
     d.action("reset").unwrap();
-    for _ in 0..30 {
-        d.step(DT);
-    }
+    steps(d, 30);
 }
 
 /// Step 3: four more waypoints, the third of them (waypoint 4) tapped away,
@@ -495,27 +468,14 @@ fn replay(d: &mut DiffDrive) {
     run_to_end(d);
 }
 
-/// The Procedure's steps as the content file states them.
-fn procedure_step(k: usize) -> String {
-    let content =
-        crate::content::Content::parse(include_str!("../../../../../assets/diffdrive.json"))
-            .unwrap();
-    content.procedure[k - 1].clone()
-}
-
-fn scene_of(d: &DiffDrive) -> Scene {
-    let mut scene = Scene::default();
-    d.scene(&mut scene);
-    scene
-}
-
 /// Step 1: the robot waits in the middle facing right, with a scale bar; a
 /// goal near the left edge is turned to on the spot, then driven to, and
 /// the badge says so, ending at "reached the goal".
 #[test]
 fn diffdrive_step_1_a_goal_behind_is_turned_to_then_driven_to() {
-    assert!(procedure_step(1).contains("middle of the field, facing right"));
-    assert!(procedure_step(1).contains("near the left edge of the field, behind the robot"));
+    assert!(procedure_step("diffdrive", 1).contains("middle of the field, facing right"));
+    assert!(procedure_step("diffdrive", 1)
+        .contains("near the left edge of the field, behind the robot"));
     let mut d = DiffDrive::default();
     assert_eq!(d.pose(), START);
     assert_eq!(START.position(), DVec2::new(4.0, 3.0));
@@ -565,7 +525,7 @@ fn diffdrive_step_1_a_goal_behind_is_turned_to_then_driven_to() {
 /// any goal near the left edge, the (0.7, 4.5) among them.
 #[test]
 fn diffdrive_step_2_speed_stays_zero_while_the_robot_spins_at_its_turn_limit() {
-    assert!(procedure_step(2).contains("more than 90°"));
+    assert!(procedure_step("diffdrive", 2).contains("more than 90°"));
     let mut d = DiffDrive::default();
     step_1(&mut d);
     d.action("reset").unwrap();
@@ -586,9 +546,7 @@ fn diffdrive_step_2_speed_stays_zero_while_the_robot_spins_at_its_turn_limit() {
         assert!(spinning < 600);
     }
     assert!(spinning >= 30, "{spinning} frames of spinning");
-    for _ in 0..5 {
-        d.step(DT);
-    }
+    steps(&mut d, 5);
     assert!(d.command().v_mps > 0.01, "then it rolls");
     assert_eq!(d.status().text, "waypoint 1 of 1: driving");
     // Any goal near the left edge gives at least half a second of it.
@@ -836,12 +794,7 @@ fn step_7(d: &mut DiffDrive) {
 /// The state after Procedure steps 1..=k, each step's actions (and checks)
 /// replayed on the state the previous ones left.
 fn after_step(k: usize) -> DiffDrive {
-    let steps: [fn(&mut DiffDrive); 7] = [step_1, step_2, step_3, step_4, step_5, step_6, step_7];
-    let mut d = DiffDrive::default();
-    for step in &steps[..k] {
-        step(&mut d);
-    }
-    d
+    testkit::after_step(&[step_1, step_2, step_3, step_4, step_5, step_6, step_7], k)
 }
 
 #[test]
@@ -1006,9 +959,7 @@ fn waypoint_session(d: &mut DiffDrive, seed: u64) {
                 d.action(key).unwrap();
             }
             _ => {
-                for _ in 0..rng.int(0, 300) {
-                    d.step(DT);
-                }
+                steps(d, usize::try_from(rng.int(0, 300)).unwrap());
             }
         }
     }
@@ -1058,15 +1009,9 @@ fn the_default_link_in_a_used_tab_gives_no_waypoints() {
         tab.input(Input::PointerDown(p));
         tab.input(Input::PointerUp(p));
     }
-    assert_eq!(
-        crate::experiment::readout_value(tab.as_ref(), "waypoints").unwrap(),
-        "0 of 3"
-    );
+    assert_eq!(readout(tab.as_ref(), "waypoints"), "0 of 3");
     assert!(open_in_tab(&mut tab, make, &params).is_empty());
-    assert_eq!(
-        crate::experiment::readout_value(tab.as_ref(), "waypoints").unwrap(),
-        "0 of 0"
-    );
+    assert_eq!(readout(tab.as_ref(), "waypoints"), "0 of 0");
     assert_eq!(format(tab.as_ref(), Tab::Simulation), default_link);
 }
 
@@ -1134,8 +1079,7 @@ fn diffdrive_run_card_label_covers_neither_the_robot_nor_a_waypoint() {
                 if frame % 15 != 0 {
                     continue;
                 }
-                let mut scene = Scene::default();
-                d.scene(&mut scene);
+                let scene = scene_of(&d);
                 let boxes: Vec<(String, DVec2, DVec2)> = scene
                     .items
                     .iter()

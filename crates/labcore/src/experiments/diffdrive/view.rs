@@ -2,10 +2,11 @@
 //! and the status. Only reads the model.
 
 use super::{DiffDrive, BODY_RADIUS_M, FIELD_H_M, FIELD_W_M, START};
-use crate::experiment::{format_degrees, format_fixed, format_metres, Readout, Status, Tone};
+use crate::experiment::{Readout, Status, Tone};
 use crate::mobile::go_to_goal::RunStats;
 use crate::mobile::unicycle::Pose;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_degrees, format_fixed, format_metres};
 use glam::DVec2;
 
 /// Draws a differential-drive robot at `pose`: a round body with a nose
@@ -378,7 +379,7 @@ pub(super) fn describe(d: &DiffDrive) -> String {
     let heading = crate::kinematics::two_link_ik::wrap_pi(pose.theta_rad).to_degrees();
     let robot = format!(
         "Robot at {} heading {}",
-        crate::experiment::format_point(pose.position()),
+        crate::units::format_point(pose.position()),
         format_degrees(heading)
     );
     let total = d.waypoints().len();
@@ -386,7 +387,7 @@ pub(super) fn describe(d: &DiffDrive) -> String {
         return format!("{robot}, no waypoints yet; {}.", status(d).text);
     }
     let next = d.follower.goal().map_or(String::new(), |g| {
-        format!(", next at {}", crate::experiment::format_point(g))
+        format!(", next at {}", crate::units::format_point(g))
     });
     format!(
         "{robot}, {} of {total} waypoint{} reached{next}; {}.",

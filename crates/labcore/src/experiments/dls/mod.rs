@@ -6,17 +6,19 @@
 //! singular values and left singular vectors of the Jacobian.
 
 use crate::experiment::{
-    check_param, clamp_to_params, format_degrees, format_fixed, format_magnitude, format_metres,
-    format_point, with_coordinate, ActionSpec, Experiment, Handle, Input, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
+    check_param, clamp_to_params, with_coordinate, ActionSpec, Experiment, Handle, Input,
+    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::dls::{AdaptiveDamping, DlsSolver};
 use crate::kinematics::jacobian::{jacobian, manipulability, Manipulability};
 use crate::plot::{Plot, Series, SeriesRole};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{
+    format_degrees, format_fixed, format_magnitude, format_metres, format_number, format_point,
+};
 use glam::DVec2;
 
 const PARAMS: &[ParamSpec] = &[

@@ -1,15 +1,10 @@
 //! Tests of experiment 9, among them one per Procedure step.
 
 use super::*;
+use crate::testkit::{self, readout, run_while_animating, scene_of, steps};
 
-fn run(d: &mut DampedLeastSquares) {
-    for _ in 0..60 * 60 {
-        d.step(1.0 / 60.0);
-        if !d.animating() {
-            break;
-        }
-    }
-}
+/// The longest a run is stepped before a test looks at it, simulated seconds.
+const RUN_MAX_S: f64 = 60.0;
 
 #[test]
 fn reachable_target_converges_iteration_by_iteration() {
@@ -19,7 +14,7 @@ fn reachable_target_converges_iteration_by_iteration() {
     d.input(Input::PointerDown(target));
     d.step(1.0 / 60.0);
     assert_eq!(d.iterations, 1, "one iteration per 1/rate seconds");
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.run, Run::Converged);
     assert!((d.tip() - target).length() < 1e-6);
     assert!(d.status().text.starts_with("converged"));
@@ -30,7 +25,7 @@ fn unreachable_target_settles_at_the_boundary() {
     let mut d = DampedLeastSquares::default();
     d.set_param("rate", 60.0).unwrap();
     d.input(Input::PointerDown(DVec2::new(0.0, 2.6)));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert!(matches!(d.run, Run::Settled | Run::GaveUp));
     assert!((d.tip() - DVec2::new(0.0, TOTAL_REACH_M)).length() < 1e-3);
     assert!(d.angles_rad.iter().all(|a| a.is_finite()));
@@ -45,11 +40,10 @@ fn without_safeguards_the_bare_update_runs_and_stays_finite() {
     assert!(!d.solver().reject_uphill_steps);
     d.set_param("tx", 0.0).unwrap();
     d.set_param("ty", 2.39).unwrap();
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert!(d.angles_rad.iter().all(|a| a.is_finite()));
     assert!(d.iterations > 0);
-    let mut scene = Scene::default();
-    d.scene(&mut scene);
+    let scene = scene_of(&d);
     assert!(scene.is_finite());
 }
 
@@ -58,8 +52,7 @@ fn link_count_changes_the_chain_and_ellipse_uses_singular_values() {
     let mut d = DampedLeastSquares::default();
     d.set_param("n", 7.0).unwrap();
     assert_eq!(d.angles_rad.len(), 7);
-    let mut scene = Scene::default();
-    d.scene(&mut scene);
+    let scene = scene_of(&d);
     let m = d.manipulability();
     let ellipse = scene
         .items
@@ -123,14 +116,14 @@ fn iteration_limit_is_a_visible_setting() {
     d.set_param("lambda", 1.0).unwrap();
     d.set_param("rate", 60.0).unwrap();
     d.input(Input::PointerDown(DVec2::new(-1.0, -1.5)));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.iterations, 20);
     assert_eq!(d.run, Run::GaveUp);
     assert_eq!(d.status().text, "stopped: iteration limit (20)");
     // Raising the limit lets the run go on.
     d.set_param("maxit", 500.0).unwrap();
     assert!(d.animating());
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.run, Run::Converged);
 }
 
@@ -158,14 +151,6 @@ fn condition_number_readout_is_readable() {
     assert!(!cond(&d).contains('×'));
 }
 
-fn readout(d: &DampedLeastSquares, key: &str) -> String {
-    d.readouts()
-        .into_iter()
-        .find(|r| r.key == key)
-        .unwrap_or_else(|| panic!("no readout {key}"))
-        .value
-}
-
 /// Runs at the page's frame rate until the run ends (at most two minutes);
 /// returns the largest change of one joint angle between two frames, radians.
 fn run_measuring_jumps(d: &mut DampedLeastSquares) -> f64 {
@@ -188,8 +173,7 @@ fn run_measuring_jumps(d: &mut DampedLeastSquares) -> f64 {
 
 /// Everything the page shows of the run.
 fn shown(d: &DampedLeastSquares) -> String {
-    let mut scene = Scene::default();
-    d.scene(&mut scene);
+    let scene = scene_of(d);
     format!(
         "{:?}\n{:?}\n{:?}\n{:?}",
         d.readouts(),
@@ -204,8 +188,8 @@ fn shown(d: &DampedLeastSquares) -> String {
 
 /// The state a link of `d` rebuilds in a fresh page, with its notices.
 fn through_link(d: &DampedLeastSquares) -> (DampedLeastSquares, Vec<String>) {
-    let link = crate::route::format(d, crate::route::Tab::Simulation);
-    crate::route::restore(&link, DampedLeastSquares::default())
+    let (fresh, _, notices) = testkit::through_link(d);
+    (fresh, notices)
 }
 
 /// Issue 14: after `PointerDown(2.42, 0.41)`, stepping k times then
@@ -218,15 +202,11 @@ fn reset_restores_the_same_start_whatever_was_stepped_before() {
     for k in [0, 45, 90, 300] {
         let mut d = DampedLeastSquares::default();
         d.input(Input::PointerDown(DVec2::new(2.42, 0.41)));
-        for _ in 0..k {
-            d.step(crate::clock::Clock::DT_S);
-        }
+        steps(&mut d, k);
         d.reset();
         assert_eq!(readout(&d, "lambda_used"), "0.100 m", "k = {k}");
         starts.push(shown(&d));
-        for _ in 0..300 {
-            d.step(crate::clock::Clock::DT_S);
-        }
+        steps(&mut d, 300);
         replays.push(shown(&d));
     }
     assert!(starts.iter().all(|s| *s == starts[0]), "{starts:#?}");
@@ -242,7 +222,7 @@ fn a_link_rebuilds_the_run_target_and_start_pose_included() {
     d.set_param("n", 6.0).unwrap();
     d.set_param("lambda", 0.25).unwrap();
     d.input(Input::PointerDown(DVec2::new(-1.25, 0.75)));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     d.input(Input::PointerDown(DVec2::new(1.5, -0.5)));
     d.step(crate::clock::Clock::DT_S);
     let (mut fresh, notices) = through_link(&d);
@@ -253,8 +233,8 @@ fn a_link_rebuilds_the_run_target_and_start_pose_included() {
     // The page replays the run the link describes.
     d.reset();
     assert_eq!(shown(&fresh), shown(&d));
-    run(&mut d);
-    run(&mut fresh);
+    run_while_animating(&mut d, RUN_MAX_S);
+    run_while_animating(&mut fresh, RUN_MAX_S);
     assert_eq!(shown(&fresh), shown(&d));
     // A link that leaves the start pose out starts from the start pose.
     let (plain, notices) = crate::route::restore(
@@ -298,9 +278,7 @@ fn every_reachable_state_round_trips_through_the_link() {
                 5 => d.reset(),
                 _ => d.action("reset").unwrap(),
             }
-            for _ in 0..rng.int(0, 90) {
-                d.step(crate::clock::Clock::DT_S);
-            }
+            steps(&mut d, usize::try_from(rng.int(0, 90)).unwrap());
         }
         let (fresh, notices) = through_link(&d);
         assert!(notices.is_empty(), "seed {seed}: {notices:?}");
@@ -327,17 +305,17 @@ fn a_finished_solve_is_an_ended_phase() {
     assert_eq!(d.status().phase, Phase::Live);
     d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
     assert_eq!(d.status().phase, Phase::Live);
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.run, Run::Converged);
     assert_eq!(d.status().phase, Phase::Ended);
     d.input(Input::PointerDown(DVec2::new(2.0, 2.0)));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.run, Run::Settled);
     assert_eq!(d.status().phase, Phase::Ended);
     d.set_param("maxit", 20.0).unwrap();
     d.set_param("lambda", 1.0).unwrap();
     d.input(Input::PointerDown(DVec2::new(-1.0, -1.5)));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.run, Run::GaveUp);
     assert_eq!(d.status().phase, Phase::Ended);
     d.action("reset").unwrap();
@@ -446,46 +424,46 @@ fn after_step(k: usize) -> DampedLeastSquares {
     let mut d = DampedLeastSquares::default();
     if k >= 1 {
         d.input(Input::PointerDown(STEP_2_TARGET));
-        run(&mut d);
+        run_while_animating(&mut d, RUN_MAX_S);
         d.action("reset").unwrap();
     }
     if k >= 2 {
         d.input(Input::PointerDown(STEP_2_TARGET));
-        run(&mut d);
+        run_while_animating(&mut d, RUN_MAX_S);
     }
     if k >= 3 {
         d.input(Input::PointerDown(NEAR_BOUNDARY));
-        run(&mut d);
+        run_while_animating(&mut d, RUN_MAX_S);
     }
     if k >= 4 {
         d.set_param("guard", 0.0).unwrap();
         d.set_param("lambda", 0.0).unwrap();
         for target in [NEAR_BOUNDARY, JUST_OUTSIDE] {
             d.input(Input::PointerDown(target));
-            run(&mut d);
+            run_while_animating(&mut d, RUN_MAX_S);
         }
         d.set_param("guard", 1.0).unwrap();
         d.set_param("lambda", 0.5).unwrap();
         d.input(Input::PointerDown(NEAR_BOUNDARY));
-        run(&mut d);
+        run_while_animating(&mut d, RUN_MAX_S);
         d.action("reset").unwrap();
         d.set_param("lambda", 1.0).unwrap();
         d.input(Input::PointerDown(NEAR_BOUNDARY));
-        run(&mut d);
+        run_while_animating(&mut d, RUN_MAX_S);
     }
     if k >= 5 {
         d.set_param("lambda", STEP_5_LAMBDA).unwrap();
         d.input(Input::PointerDown(STEP_5_TARGET));
-        run(&mut d);
+        run_while_animating(&mut d, RUN_MAX_S);
     }
     if k >= 6 {
         d.set_param("guard", 0.0).unwrap();
         d.set_param("lambda", 0.01).unwrap();
         type_target(&mut d, STEP_6_TARGET);
-        run(&mut d);
+        run_while_animating(&mut d, RUN_MAX_S);
         d.set_param("adaptive", 1.0).unwrap();
         type_target(&mut d, STEP_6_TARGET);
-        run(&mut d);
+        run_while_animating(&mut d, RUN_MAX_S);
         d.set_param("guard", 1.0).unwrap();
     }
     d
@@ -498,7 +476,7 @@ fn dls_step_1_starts_with_four_links_and_reset_pose_returns_to_the_start() {
     assert_eq!(d.param("lambda"), Some(0.1));
     let start = shown(&d);
     d.input(Input::PointerDown(STEP_2_TARGET));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_ne!(shown(&d), start);
     d.action("reset").unwrap();
     assert_eq!(shown(&d), start);
@@ -538,7 +516,7 @@ fn dls_step_3_near_the_outer_circle_the_ellipse_flattens_and_the_condition_grows
     let inside = d.manipulability();
     let (w_inside, cond_inside) = (readout(&d, "w"), readout(&d, "cond"));
     d.input(Input::PointerDown(NEAR_BOUNDARY));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.run, Run::Converged);
     let near = d.manipulability();
     assert!(near.w < inside.w / 5.0, "w {} → {}", inside.w, near.w);
@@ -578,7 +556,7 @@ fn dls_step_4_the_bare_update_jumps_and_stops_and_large_damping_is_slow() {
     d.set_param("guard", 1.0).unwrap();
     d.set_param("lambda", 0.5).unwrap();
     d.input(Input::PointerDown(NEAR_BOUNDARY));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.run, Run::Converged);
     assert!(
         d.iterations > 4 * step_3_iterations,
@@ -589,7 +567,7 @@ fn dls_step_4_the_bare_update_jumps_and_stops_and_large_damping_is_slow() {
     d.action("reset").unwrap();
     d.set_param("lambda", 1.0).unwrap();
     d.input(Input::PointerDown(NEAR_BOUNDARY));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(
         (d.iterations, d.status().text),
         (500, "stopped: iteration limit (500)".to_string()),
@@ -602,7 +580,7 @@ fn dls_step_5_far_outside_the_arm_settles_stretched_with_the_gap_as_error() {
     let mut d = after_step(4);
     d.set_param("lambda", STEP_5_LAMBDA).unwrap();
     d.input(Input::PointerDown(STEP_5_TARGET));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.status().text, "closest reachable pose");
     let gap = STEP_5_TARGET.length() - TOTAL_REACH_M;
     assert_eq!(readout(&d, "error"), format_metres(gap));
@@ -642,7 +620,7 @@ fn dls_step_7_two_links_find_a_closed_form_branch_and_more_links_depend_on_the_s
     let mut d = after_step(6);
     d.set_param("n", 2.0).unwrap();
     d.input(Input::PointerDown(target));
-    run(&mut d);
+    run_while_animating(&mut d, RUN_MAX_S);
     assert_eq!(d.run, Run::Converged);
     let sol = solve(1.2, 1.2, target).unwrap();
     let found = [wrap_pi(d.angles_rad[0]), wrap_pi(d.angles_rad[1])];
@@ -669,10 +647,10 @@ fn dls_step_7_two_links_find_a_closed_form_branch_and_more_links_depend_on_the_s
         d.action("reset").unwrap();
         if let Some(p) = detour {
             d.input(Input::PointerDown(p));
-            run(&mut d);
+            run_while_animating(&mut d, RUN_MAX_S);
         }
         d.input(Input::PointerDown(target));
-        run(&mut d);
+        run_while_animating(&mut d, RUN_MAX_S);
         assert_eq!(d.run, Run::Converged);
         d.angles_rad.clone()
     };

@@ -53,13 +53,14 @@ use crate::estimation::models::{
 use crate::estimation::slam::EkfSlam;
 use crate::estimation::wrap_angle;
 use crate::experiment::{
-    check_param, format_fixed, format_magnitude, ActionSpec, Experiment, Input, Notice, Notices,
-    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Readout,
+    Sanitized, Status, Tone,
 };
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_fixed, format_magnitude, format_number};
 use glam::{DMat2, DMat3, DVec2, DVec3};
 
 const MODES: &[&str] = &["Localisation", "EKF-SLAM"];

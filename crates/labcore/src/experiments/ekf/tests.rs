@@ -1,19 +1,9 @@
 use super::quiz::*;
 use super::view::robot_outline;
 use super::*;
-use crate::experiment::format_metres;
+use crate::units::format_metres;
 
-const DT: f64 = 1.0 / 60.0;
-
-fn run_for(e: &mut EkfExperiment, seconds: f64) {
-    for _ in 0..(seconds / DT).round() as usize {
-        e.step(DT);
-    }
-}
-
-fn readout(e: &EkfExperiment, key: &str) -> String {
-    crate::experiment::readout_value(e, key).unwrap_or_default()
-}
+use crate::testkit::{self, readout, reopen, run_for, scene_of, steps, DT_S as DT};
 
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-12 * (1.0 + a.abs().max(b.abs()))
@@ -97,9 +87,7 @@ fn first_predict_matches_a_hand_computed_step() {
 fn first_update_matches_the_information_form() {
     let landmark = DVec2::new(3.0, 2.0);
     let mut e = exact_start(vec![landmark]);
-    for _ in 0..3 {
-        e.step(DT);
-    }
+    steps(&mut e, 3);
     assert_eq!(e.live.observations.len(), 1, "the sensor reads on step 1");
     let z = e.live.observations[0];
     let (mbar, pbar) = hand_predict();
@@ -185,8 +173,7 @@ fn plots_and_trails_keep_only_the_last_minute() {
 fn observation_lines_flash_after_a_reading_only() {
     let mut e = EkfExperiment::default();
     let lines = |e: &EkfExperiment| {
-        let mut scene = Scene::default();
-        e.scene(&mut scene);
+        let scene = scene_of(e);
         scene
             .items
             .iter()
@@ -384,8 +371,7 @@ fn slam_mode_adds_landmarks_and_their_ellipses_shrink() {
             assert!(err.abs() < 0.15, "distance {i}–{j} off by {err} m");
         }
     }
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(&e);
     let ellipses = scene
         .items
         .iter()
@@ -397,7 +383,7 @@ fn slam_mode_adds_landmarks_and_their_ellipses_shrink() {
 
 #[test]
 fn every_parameter_round_trips_through_the_link() {
-    use crate::route::{format, restore, Tab};
+    use crate::route::{format, Tab};
     let mut e = EkfExperiment::default();
     for (key, v) in [
         ("sv", 0.23),
@@ -417,11 +403,7 @@ fn every_parameter_round_trips_through_the_link() {
         link.contains("fov=215") && link.contains("seed=4242"),
         "{link}"
     );
-    let (mut fresh, notices) = restore(&link, EkfExperiment::default());
-    assert!(notices.is_empty(), "{notices:?}");
-    for spec in PARAMS {
-        assert_eq!(fresh.param(spec.key), e.param(spec.key), "{}", spec.key);
-    }
+    let mut fresh = reopen(&e);
     // The link reproduces the run itself.
     e.reset();
     run_for(&mut e, 5.0);
@@ -464,8 +446,7 @@ fn extreme_settings_stay_finite() {
         e.set_param(key, v).unwrap();
     }
     run_for(&mut e, 300.0);
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(&e);
     assert!(scene.is_finite());
     assert!(e.live.estimate().is_finite() && e.live.pose_cov().is_finite());
     assert!(e.live.nees().is_some());
@@ -565,12 +546,6 @@ fn one_loop(e: &mut EkfExperiment) -> Vec<(f64, f64, usize, DVec3)> {
         ));
     }
     out
-}
-
-fn scene_of(e: &EkfExperiment) -> Scene {
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
-    scene
 }
 
 /// Step 1: the blue dart (truth), the pink dart with its 3σ ellipse
@@ -1068,14 +1043,10 @@ fn step_8(e: &mut EkfExperiment) {
 /// checks) replayed on the state the previous steps left, so the test of
 /// step k starts from `after_step(k - 1)`.
 fn after_step(k: usize) -> EkfExperiment {
-    let steps: [fn(&mut EkfExperiment); 8] = [
+    let procedure = [
         step_1, step_2, step_3, step_4, step_5, step_6, step_7, step_8,
     ];
-    let mut e = EkfExperiment::default();
-    for step in &steps[..k] {
-        step(&mut e);
-    }
-    e
+    testkit::after_step(&procedure, k)
 }
 
 #[test]
@@ -1182,13 +1153,7 @@ fn quiz_generators_draw_inside_the_sliders_and_the_view() {
 /// of the choice questions.
 #[test]
 fn the_correct_option_is_seldom_the_longest() {
-    let tells = crate::experiments::find("ekf")
-        .unwrap()
-        .content()
-        .unwrap()
-        .length_tells();
-    assert!(tells.choices >= 6, "{tells:?}");
-    assert!(4 * tells.longest <= tells.choices, "{tells:?}");
+    testkit::assert_the_correct_option_is_seldom_the_longest("ekf");
 }
 
 /// Issue 23 §3: "Position uncertainty" showed 0.010 m², three decimals, so

@@ -138,8 +138,8 @@ pub(super) fn describe(e: &EkfExperiment) -> String {
     let value = |key| crate::experiment::readout_value(e, key).unwrap_or_default();
     format!(
         "Robot at {} heading {}; the estimate is {} and {} off (dead reckoning alone: {}); landmarks {}; {}.",
-        crate::experiment::format_point(truth.truncate()),
-        crate::experiment::format_degrees(
+        crate::units::format_point(truth.truncate()),
+        crate::units::format_degrees(
             crate::kinematics::two_link_ik::wrap_pi(truth.z).to_degrees()
         ),
         value("error"),

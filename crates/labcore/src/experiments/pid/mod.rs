@@ -57,13 +57,14 @@ use crate::control::pid::{
 use crate::control::step_info::{step_info, StepInfo, SETTLING_THRESHOLD};
 use crate::control::{Complex, Stability};
 use crate::experiment::{
-    check_param, format_fixed, format_magnitude, format_metres, ActionSpec, Experiment, Input,
-    Notice, Notices, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Readout,
+    Sanitized, Status, Tone,
 };
 use crate::plot::{Axis, Band, Marker, Plot, RefLine, Series, SeriesRole, XWindow};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_fixed, format_magnitude, format_metres, format_number};
 use glam::DVec2;
 
 mod quiz;

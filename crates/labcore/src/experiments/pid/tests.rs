@@ -4,7 +4,8 @@ use super::quiz::*;
 use super::view::{percent, seconds};
 use super::*;
 use crate::experiment::Phase;
-use crate::route::{format, restore, Tab};
+use crate::route::restore;
+use crate::testkit::{self, procedure_step, readout, reopen, scene_of, set_params, steps};
 
 fn run_to_end(e: &mut PidControl) -> usize {
     let mut frames = 0;
@@ -13,10 +14,6 @@ fn run_to_end(e: &mut PidControl) -> usize {
         frames += 1;
     }
     frames
-}
-
-fn readout(e: &PidControl, key: &str) -> String {
-    crate::experiment::readout_value(e, key).unwrap_or_else(|| panic!("no readout {key}"))
 }
 
 /// `Kp = 25, Kd = 5, c = 1, m = 1, Ki = 0`: `s² + 6 s + 25`, poles
@@ -224,8 +221,7 @@ fn unstable_gains_diverge_and_say_so() {
     assert!(e.position_m().abs() > TRACK_END_M);
     // Issue 23: what it reached, against the setpoint (it has no final value).
     assert!(readout(&e, "overshoot").ends_with("% past the setpoint"));
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(&e);
     assert!(scene.is_finite());
 }
 
@@ -352,13 +348,7 @@ fn every_parameter_round_trips_through_the_link() {
     ] {
         e.set_param(k, v).unwrap();
     }
-    let link = format(&e, Tab::Simulation);
-    let (mut fresh, notices) = restore(&link, PidControl::default());
-    assert!(notices.is_empty(), "{notices:?}");
-    assert_eq!(format(&fresh, Tab::Simulation), link);
-    for spec in PARAMS {
-        assert_eq!(fresh.param(spec.key), e.param(spec.key), "{}", spec.key);
-    }
+    let mut fresh = reopen(&e);
     // The same settings replay the same (noisy) run.
     for _ in 0..120 {
         e.step(1.0 / 60.0);
@@ -374,9 +364,7 @@ fn noise_is_seeded_and_the_filter_calms_the_derivative() {
         e.set_param("noise", 0.005).unwrap();
         e.set_param("seed", seed).unwrap();
         e.set_param("tf", tf).unwrap();
-        for _ in 0..600 {
-            e.step(1.0 / 60.0);
-        }
+        steps(&mut e, 600);
         let d = &e.plots()[1].series[3].y;
         let tail = &d[d.len() - 300..];
         let mean = tail.iter().sum::<f64>() / tail.len() as f64;
@@ -439,8 +427,7 @@ fn all_texts(e: &PidControl) -> Vec<String> {
         texts.extend(plot.markers.iter().map(|m| m.label.clone()));
         texts.extend(plot.series.iter().map(|s| s.label.clone()));
     }
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(e);
     for item in &scene.items {
         if let Item::Label { text, .. } | Item::OffView { label: text, .. } = item {
             texts.push(text.clone());
@@ -458,9 +445,7 @@ fn the_overshoot_of_a_step_near_zero_reads_step_under_1_mm() {
         let mut e = PidControl::default();
         e.set_param("noise", 0.05).unwrap();
         e.set_param("r", r).unwrap();
-        for _ in 0..120 {
-            e.step(1.0 / 60.0);
-        }
+        steps(&mut e, 120);
         e.action("pin").unwrap();
         run_to_end(&mut e);
         e.action("pin").unwrap();
@@ -510,9 +495,7 @@ fn extreme_gains_print_every_quantity_in_a_few_characters() {
     run_to_end(&mut e);
     for (k, v) in [("kp", 1e-300), ("ki", 1e-300), ("kd", 40.0), ("m", 10.0)] {
         e.set_param(k, v).unwrap();
-        for _ in 0..60 {
-            e.step(1.0 / 60.0);
-        }
+        steps(&mut e, 60);
         for text in all_texts(&e) {
             assert!(text.chars().count() < 120, "{k}: {text}");
         }
@@ -541,9 +524,7 @@ fn format_magnitude_prints_no_inf_for_the_three_links_of_the_issue() {
         "#/pid/simulation?ki=2.2250738585072014e-308",
         PidControl::default(),
     );
-    for _ in 0..30 {
-        e.step(1.0 / 60.0);
-    }
+    steps(&mut e, 30);
     assert!(
         readout(&e, "poles").starts_with("-1.9 × 10⁻³⁰⁹"),
         "{}",
@@ -552,9 +533,7 @@ fn format_magnitude_prints_no_inf_for_the_three_links_of_the_issue() {
     no_inf(&e, "ki link");
     let mut e = PidControl::default();
     e.set_param("r", 2.225_073_858_507_201e-308).unwrap();
-    for _ in 0..30 {
-        e.step(1.0 / 60.0);
-    }
+    steps(&mut e, 30);
     no_inf(&e, "r");
     let (mut e, _) = restore("#/pid/simulation?kd=5e-324", PidControl::default());
     e.action("pin").unwrap();
@@ -590,8 +569,7 @@ fn the_track_the_view_and_the_stop_agree() {
         )
     );
     // The track drawn ends at ±TRACK_END_M.
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(&e);
     let track_ends: Vec<f64> = scene
         .items
         .iter()
@@ -615,8 +593,7 @@ fn the_track_the_view_and_the_stop_agree() {
 #[test]
 fn a_cart_beyond_the_view_is_marked_at_the_edge() {
     let off_view = |e: &PidControl| {
-        let mut scene = Scene::default();
-        e.scene(&mut scene);
+        let scene = scene_of(e);
         scene.items.iter().find_map(|i| match i {
             Item::OffView { at, label, .. } => Some((*at, label.clone())),
             _ => None,
@@ -805,33 +782,20 @@ fn tail_spread(e: &PidControl, k: usize, n: usize) -> f64 {
     (tail.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / tail.len() as f64).sqrt()
 }
 
-fn set(e: &mut PidControl, pairs: &[(&str, f64)]) {
-    for (k, v) in pairs {
-        e.set_param(k, *v).unwrap();
-    }
-}
-
-/// The Procedure's step `k` as the content file states it.
-fn procedure_step(k: usize) -> String {
-    let content =
-        crate::content::Content::parse(include_str!("../../../../../assets/pid.json")).unwrap();
-    content.procedure[k - 1].clone()
-}
-
 /// The state the student has after doing steps 1..=k.
 fn after_step(k: usize) -> PidControl {
     let mut e = PidControl::default();
     run_to_end(&mut e);
     e.action("pin").unwrap();
     if k >= 2 {
-        set(&mut e, &[("ki", 0.0), ("kd", 0.0)]);
+        set_params(&mut e, &[("ki", 0.0), ("kd", 0.0)]);
         for kp in [5.0, 20.0, 60.0] {
             e.set_param("kp", kp).unwrap();
             run_to_end(&mut e);
         }
     }
     if k >= 3 {
-        set(&mut e, &[("kp", 25.0), ("ki", 0.0)]);
+        set_params(&mut e, &[("kp", 25.0), ("ki", 0.0)]);
         for kd in [2.0, 5.0, 10.0] {
             e.set_param("kd", kd).unwrap();
             run_to_end(&mut e);
@@ -840,7 +804,7 @@ fn after_step(k: usize) -> PidControl {
         e.action("clear_pins").unwrap();
     }
     if k >= 4 {
-        set(&mut e, &[("d", -3.0), ("ki", 0.0)]);
+        set_params(&mut e, &[("d", -3.0), ("ki", 0.0)]);
         run_to_end(&mut e);
         e.set_param("ki", 2.0).unwrap();
         run_to_end(&mut e);
@@ -853,13 +817,13 @@ fn after_step(k: usize) -> PidControl {
         run_to_end(&mut e);
     }
     if k >= 6 {
-        set(&mut e, &[("sat", 1.0), ("umax", 5.0)]);
+        set_params(&mut e, &[("sat", 1.0), ("umax", 5.0)]);
         run_to_end(&mut e);
-        set(&mut e, &[("ki", 20.0), ("ilim", 0.5)]);
+        set_params(&mut e, &[("ki", 20.0), ("ilim", 0.5)]);
         run_to_end(&mut e);
     }
     if k >= 7 {
-        set(&mut e, &[("noise", 0.005), ("tf", 0.05), ("seed", 1.0)]);
+        set_params(&mut e, &[("noise", 0.005), ("tf", 0.05), ("seed", 1.0)]);
         run_to_end(&mut e);
     }
     e
@@ -880,9 +844,7 @@ fn pid_step_1_the_cart_chases_the_setpoint_and_the_markers_appear() {
         (response.bands[0].lo - 0.98).abs() < 1e-12 && (response.bands[0].hi - 1.02).abs() < 1e-12
     );
     // Early on, no marker yet: they appear as the step unfolds.
-    for _ in 0..6 {
-        e.step(1.0 / 60.0);
-    }
+    steps(&mut e, 6);
     assert!(e.position_m() > 0.0 && e.position_m() < 1.0);
     assert!(e.plots()[0].markers.is_empty());
     run_to_end(&mut e);
@@ -909,7 +871,7 @@ fn pid_step_1_the_cart_chases_the_setpoint_and_the_markers_appear() {
 #[test]
 fn pid_step_2_more_kp_rises_faster_overshoots_more_and_swings_more() {
     let mut e = after_step(1);
-    set(&mut e, &[("ki", 0.0), ("kd", 0.0)]);
+    set_params(&mut e, &[("ki", 0.0), ("kd", 0.0)]);
     let mut runs = Vec::new();
     for kp in [5.0, 20.0, 60.0] {
         run_to_end(&mut e);
@@ -946,7 +908,7 @@ fn pid_step_2_more_kp_rises_faster_overshoots_more_and_swings_more() {
 #[test]
 fn pid_step_3_damping_shrinks_the_overshoot_as_zeta_rises() {
     let mut e = after_step(2);
-    set(&mut e, &[("kp", 25.0), ("ki", 0.0)]);
+    set_params(&mut e, &[("kp", 25.0), ("ki", 0.0)]);
     let mut last = (f64::INFINITY, 0.0);
     for (k, kd) in [2.0, 5.0, 10.0].into_iter().enumerate() {
         e.set_param("kd", kd).unwrap();
@@ -976,11 +938,11 @@ fn pid_step_3_damping_shrinks_the_overshoot_as_zeta_rises() {
 #[test]
 fn pid_step_4_a_push_leaves_an_offset_that_integral_action_removes() {
     let mut e = after_step(3);
-    set(&mut e, &[("d", -3.0), ("ki", 0.0)]);
+    set_params(&mut e, &[("d", -3.0), ("ki", 0.0)]);
     run_to_end(&mut e);
     let (kp, d) = (e.param("kp").unwrap(), e.param("d").unwrap());
     // The text's formula, read from the step: "compare it with −d/Kp".
-    let text = procedure_step(4);
+    let text = procedure_step("pid", 4);
     let formula = text
         .split_once("compare it with ")
         .and_then(|(_, rest)| rest.split_once('.'))
@@ -1020,18 +982,14 @@ fn pid_step_5_the_derivative_on_the_error_kicks_and_on_the_measurement_does_not(
     let mut e = after_step(4);
     e.set_param("dmeas", 0.0).unwrap();
     e.action("step").unwrap();
-    for _ in 0..3 {
-        e.step(1.0 / 60.0);
-    }
+    steps(&mut e, 3);
     let spike = e.plots()[1].series[3].y[0];
     let lurch = e.position_m();
     // Kd·r = 10 N·s in the first 0.01 s.
     assert!(spike > 500.0, "{spike}");
     run_to_end(&mut e);
     e.set_param("dmeas", 1.0).unwrap();
-    for _ in 0..3 {
-        e.step(1.0 / 60.0);
-    }
+    steps(&mut e, 3);
     let d = &e.plots()[1].series[3].y;
     assert!(d[0].abs() < 5.0, "no kick: {}", d[0]);
     assert!(
@@ -1054,7 +1012,7 @@ fn pid_step_6_the_limit_is_shaded_and_slows_the_cart_and_the_clamp_cuts_the_over
         time_to_reach(&e, 0.5).unwrap(),
         time_to_reach(&e, 0.9).unwrap(),
     );
-    set(&mut e, &[("sat", 1.0), ("umax", 5.0)]);
+    set_params(&mut e, &[("sat", 1.0), ("umax", 5.0)]);
     run_to_end(&mut e);
     let effort = &e.plots()[1];
     assert!(!effort.bands.is_empty() && effort.bands[0].label == "saturated");
@@ -1137,7 +1095,7 @@ fn swings_past_setpoint(y: &[f64]) -> Vec<f64> {
 
 #[test]
 fn pid_step_8_an_unstable_tuning_swings_wider_each_time_and_runs_off_the_track() {
-    let text = procedure_step(8);
+    let text = procedure_step("pid", 8);
     for said in [
         "Actuator limit</em> off",
         "d = 0, c = 0, Kd = 0, Kp = 20 and Ki = 5",
@@ -1148,7 +1106,7 @@ fn pid_step_8_an_unstable_tuning_swings_wider_each_time_and_runs_off_the_track()
         assert!(text.contains(said), "step 8 says {said:?}: {text}");
     }
     let mut e = after_step(7);
-    set(
+    set_params(
         &mut e,
         &[
             ("sat", 0.0),
@@ -1262,13 +1220,7 @@ fn quiz_generators_draw_inside_the_sliders_ranges() {
 /// strictly longest option in at most a quarter of the choice questions.
 #[test]
 fn the_correct_option_is_seldom_the_longest() {
-    let tells = crate::experiments::find("pid")
-        .unwrap()
-        .content()
-        .unwrap()
-        .length_tells();
-    assert!(tells.choices >= 6, "{tells:?}");
-    assert!(4 * tells.longest <= tells.choices, "{tells:?}");
+    testkit::assert_the_correct_option_is_seldom_the_longest("pid");
 }
 
 /// Issue 23 §3: with a push of −3 N and no integral action the badge said
@@ -1419,8 +1371,7 @@ fn pid_force_u_has_one_format_a_tiny_force_reads_0_00_n() {
         let u = e.run.last_terms().output;
         let shown = readout(&e, "force");
         assert_eq!(shown, format!("{} N", format_fixed(u, 2)), "u = {u}");
-        let mut scene = Scene::default();
-        e.scene(&mut scene);
+        let scene = scene_of(&e);
         let label = scene.items.iter().find_map(|item| match item {
             Item::Label { text, .. } => text.strip_prefix("u = ").map(str::to_owned),
             _ => None,

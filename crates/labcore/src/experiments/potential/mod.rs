@@ -33,8 +33,8 @@
 //! is the run's state.
 
 use crate::experiment::{
-    check_param, format_fixed, format_metres, with_coordinate, ActionSpec, Experiment, Input,
-    Notice, Notices, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, with_coordinate, ActionSpec, Experiment, Input, Notice, Notices, ParamError,
+    ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::experiments::diffdrive::{draw_field, draw_robot, push_bounded, push_trail, snap_into};
 use crate::mobile::go_to_goal::GoToGoal;
@@ -45,6 +45,7 @@ use crate::mobile::potential_field::{
 use crate::mobile::unicycle::{Integrator, Pose};
 use crate::plot::{Marker, Plot, Series, SeriesRole, XWindow};
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
+use crate::units::{format_fixed, format_metres};
 use glam::DVec2;
 
 mod quiz;

@@ -2,8 +2,9 @@
 //! solver itself.
 
 use crate::mobile::potential_field::{CircleObstacle, PotentialField};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
+use crate::units::format_number;
 use glam::DVec2;
 
 /// `|F_rep| = k_r (d₀ − d)/d₀` at clearance `d < d₀` (linear law).

@@ -7,29 +7,10 @@ use crate::mobile::potential_field::run_to_end;
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};
 
-const DT: f64 = crate::clock::Clock::DT_S;
-
-fn run(e: &mut PotentialFieldLab, max_s: f64) -> f64 {
-    let mut t = 0.0;
-    while e.animating() && t < max_s {
-        e.step(DT);
-        t += DT;
-    }
-    t
-}
-
-fn readout(e: &PotentialFieldLab, key: &str) -> String {
-    crate::experiment::readout_value(e, key).unwrap_or_else(|| panic!("no readout {key}"))
-}
-
-fn notice(e: &PotentialFieldLab) -> String {
-    e.notice().map(|n| n.text).unwrap_or_default()
-}
-
-fn click(e: &mut PotentialFieldLab, p: DVec2) {
-    e.input(Input::PointerDown(p));
-    e.input(Input::PointerUp(p));
-}
+use crate::testkit::{
+    self, click, drag_through, notice_text, readout, run_until_phase, run_while_animating,
+    scene_of, set_params, steps, DT_S as DT,
+};
 
 /// Two obstacles 0.4 m apart (surface to surface) straddling the
 /// start–goal line: the classic symmetric trap.
@@ -70,7 +51,7 @@ fn reaches_a_goal_behind_an_obstacle_and_bows_around_it() {
     click(&mut e, DVec2::new(7.2, 3.0));
     assert_eq!(e.param("gx"), Some(7.2));
     assert!(e.animating());
-    let t = run(&mut e, 60.0);
+    let t = run_while_animating(&mut e, 60.0);
     let r = *e.run().unwrap();
     assert_eq!(r.status, RunStatus::Reached, "after {t} s: {r:?}");
     assert!(r.min_clearance_m > 0.05, "{r:?}");
@@ -97,7 +78,7 @@ fn reaches_a_goal_behind_an_obstacle_and_bows_around_it() {
 #[test]
 fn the_symmetric_trap_is_reported_in_bounded_time() {
     let mut e = trap();
-    let t = run(&mut e, 200.0);
+    let t = run_while_animating(&mut e, 200.0);
     let r = *e.run().unwrap();
     assert_eq!(r.status, RunStatus::Trapped, "{r:?}");
     assert!(t < 20.0, "took {t} s");
@@ -109,8 +90,7 @@ fn the_symmetric_trap_is_reported_in_bounded_time() {
     let pose = r.pose;
     e.step(DT);
     assert_eq!(e.run().unwrap().pose, pose);
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(&e);
     assert!(scene
         .items
         .iter()
@@ -152,8 +132,7 @@ fn an_obstacle_on_the_robot_start_says_so() {
     assert_eq!(e.run().unwrap().status, RunStatus::StartInsideObstacle);
     assert!(e.status().text.contains("start is inside an obstacle"));
     assert!(!e.animating());
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(&e);
     assert!(scene.is_finite());
 }
 
@@ -161,7 +140,7 @@ fn an_obstacle_on_the_robot_start_says_so() {
 fn add_drag_and_remove_obstacles() {
     let mut e = PotentialFieldLab::default();
     e.action("add").unwrap();
-    assert_eq!(notice(&e), "click where the new obstacle goes");
+    assert_eq!(notice_text(&e), "click where the new obstacle goes");
     assert_eq!(
         e.status().text,
         "click to set a goal",
@@ -212,7 +191,7 @@ fn add_drag_and_remove_obstacles() {
     e.action("remove").unwrap();
     click(&mut e, DVec2::new(7.5, 5.5));
     assert_eq!(e.obstacles().len(), 2);
-    assert!(notice(&e).contains("nothing removed"));
+    assert!(notice_text(&e).contains("nothing removed"));
     assert_eq!(e.status().text, "click to set a goal");
     assert!(e.goal.is_none());
 }
@@ -247,8 +226,8 @@ fn obstacles_and_goal_round_trip_through_the_link() {
     assert!(notices.is_empty(), "{notices:?}");
     assert!(fresh.obstacles().is_empty());
     // The same link drives the same run.
-    run(&mut e, 30.0);
-    run(&mut fresh, 30.0);
+    run_while_animating(&mut e, 30.0);
+    run_while_animating(&mut fresh, 30.0);
     assert_eq!(e.run(), fresh.run());
 }
 
@@ -305,10 +284,9 @@ fn basin_map_progresses_completes_and_agrees_with_runs() {
     let col = (e.start.x / 0.2) as usize;
     let row = (e.start.y / 0.2) as usize;
     assert_eq!(map.get(col, row), Some(BasinClass::Trapped));
-    run(&mut e, 60.0);
+    run_while_animating(&mut e, 60.0);
     assert_eq!(e.run().unwrap().status, RunStatus::Trapped);
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(&e);
     assert!(scene.items.iter().any(|i| matches!(i, Item::Raster { .. })));
     // Changing the field recomputes the map; hiding it stops the work.
     e.set_param("kr", 0.5).unwrap();
@@ -370,8 +348,7 @@ fn heat_map_and_arrows_follow_the_field_view() {
     let mut e = PotentialFieldLab::default();
     click(&mut e, DVec2::new(7.2, 3.0));
     let count = |e: &PotentialFieldLab, f: fn(&Item) -> bool| {
-        let mut scene = Scene::default();
-        e.scene(&mut scene);
+        let scene = scene_of(e);
         scene.items.iter().filter(|i| f(i)).count()
     };
     let heat = |i: &Item| matches!(i, Item::Heatmap { .. });
@@ -446,8 +423,7 @@ fn generators_agree_with_hand_formulas() {
 /// Everything observable: the link, the status, the notice, the readouts
 /// and the display list.
 fn observe(e: &PotentialFieldLab) -> (String, Status, Option<Notice>, Vec<Readout>, Scene) {
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(e);
     (
         format(e, Tab::Simulation),
         e.status(),
@@ -467,7 +443,7 @@ fn extreme_gains_push_the_robot_off_the_field_and_that_is_not_a_trap() {
     let link = "#/potential/simulation?ka=0.1&kr=5&d0=3&rad=1.2&view=2&nobs=2&sx=0.6&sy=3&o1x=3&o1y=3.4&o2x=5.2&o2y=2.2&gx=7.5&gy=3";
     let (mut e, notices) = restore(link, PotentialFieldLab::default());
     assert!(notices.is_empty(), "{notices:?}");
-    run(&mut e, 200.0);
+    run_while_animating(&mut e, 200.0);
     let r = *e.run().unwrap();
     assert_eq!(r.status, RunStatus::LeftField, "{r:?}");
     assert!(r.pose.x_m < 0.0, "off the left edge: {r:?}");
@@ -498,15 +474,13 @@ fn status_ends_when_the_goal_is_reached_or_a_trap_is_confirmed() {
     assert_eq!(e.status().phase, Phase::Live);
     click(&mut e, DVec2::new(7.2, 1.0));
     assert_eq!(e.status().phase, Phase::Live);
-    run(&mut e, 60.0);
+    run_while_animating(&mut e, 60.0);
     assert_eq!(e.run().unwrap().status, RunStatus::Reached);
     assert_eq!(e.status().phase, Phase::Ended);
     let mut t = trap();
-    for _ in 0..60 {
-        t.step(DT);
-    }
+    steps(&mut t, 60);
     assert_eq!(t.status().phase, Phase::Live, "{:?}", t.status());
-    run(&mut t, 60.0);
+    run_while_animating(&mut t, 60.0);
     assert_eq!(t.run().unwrap().status, RunStatus::Trapped);
     let r = *t.run().unwrap();
     assert!(r.time_s - r.anchor_s >= TrapDetection::default().window_s);
@@ -524,8 +498,7 @@ fn status_ends_when_the_goal_is_reached_or_a_trap_is_confirmed() {
 #[test]
 fn the_scene_has_a_scale_bar() {
     let e = PotentialFieldLab::default();
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
+    let scene = scene_of(&e);
     assert_eq!(
         scene
             .items
@@ -560,7 +533,7 @@ fn preview_returns_when_the_goal_is_inside_an_obstacle() {
 fn a_refused_action_changes_nothing_observable() {
     let mut e = PotentialFieldLab::default();
     e.action("basin").unwrap();
-    assert!(notice(&e).starts_with("set a goal first"));
+    assert!(notice_text(&e).starts_with("set a goal first"));
     let before = observe(&e);
     assert!(e.action("nope").is_err());
     assert_eq!(observe(&e), before);
@@ -693,28 +666,7 @@ fn generators_draw_inside_the_slider_ranges() {
 // each on the state the previous steps left. ----
 
 fn drag(e: &mut PotentialFieldLab, from: DVec2, to: DVec2) {
-    e.input(Input::PointerDown(from));
-    e.input(Input::PointerMove {
-        pos: (from + to) * 0.5,
-        pressed: true,
-    });
-    e.input(Input::PointerMove {
-        pos: to,
-        pressed: true,
-    });
-    e.input(Input::PointerUp(to));
-}
-
-fn scene_of(e: &PotentialFieldLab) -> Scene {
-    let mut scene = Scene::default();
-    e.scene(&mut scene);
-    scene
-}
-
-fn set(e: &mut PotentialFieldLab, pairs: &[(&str, f64)]) {
-    for (k, v) in pairs {
-        e.set_param(k, *v).unwrap();
-    }
+    drag_through(e, &[from, (from + to) * 0.5, to]);
 }
 
 /// The state after Procedure steps 1…k, as a student leaves it.
@@ -722,7 +674,7 @@ fn after_step(k: usize) -> PotentialFieldLab {
     let mut e = PotentialFieldLab::default();
     if k >= 2 {
         click(&mut e, DVec2::new(7.2, 3.0));
-        run(&mut e, 60.0);
+        run_while_animating(&mut e, 60.0);
     }
     if k >= 3 {
         e.action("add").unwrap();
@@ -730,29 +682,29 @@ fn after_step(k: usize) -> PotentialFieldLab {
         drag(&mut e, DVec2::new(2.0, 5.0), DVec2::new(1.8, 3.0));
         e.action("remove").unwrap();
         click(&mut e, DVec2::new(1.8, 3.0));
-        run(&mut e, 60.0);
+        run_while_animating(&mut e, 60.0);
     }
     if k >= 4 {
-        set(&mut e, &[("kr", 3.0), ("d0", 2.0), ("view", 2.0)]);
-        run(&mut e, 60.0);
+        set_params(&mut e, &[("kr", 3.0), ("d0", 2.0), ("view", 2.0)]);
+        run_while_animating(&mut e, 60.0);
     }
     if k >= 5 {
-        set(&mut e, &[("ka", 2.0), ("kr", 0.8), ("d0", 1.0)]);
+        set_params(&mut e, &[("ka", 2.0), ("kr", 0.8), ("d0", 1.0)]);
         drag(&mut e, DVec2::new(3.0, 3.4), DVec2::new(3.0, 3.0));
-        run(&mut e, 60.0);
+        run_while_animating(&mut e, 60.0);
     }
     if k >= 6 {
-        set(&mut e, &[("ka", 1.0), ("kr", 1.6), ("rad", 0.4)]);
+        set_params(&mut e, &[("ka", 1.0), ("kr", 1.6), ("rad", 0.4)]);
         drag(&mut e, DVec2::new(3.0, 3.0), DVec2::new(4.0, 3.6));
         drag(&mut e, DVec2::new(5.2, 2.2), DVec2::new(4.0, 2.4));
         drag(&mut e, DVec2::new(7.2, 3.0), DVec2::new(7.4, 3.0));
-        run(&mut e, 60.0);
+        run_while_animating(&mut e, 60.0);
     }
     if k >= 7 {
         e.action("basin").unwrap();
-        run(&mut e, 60.0);
+        run_while_animating(&mut e, 60.0);
         e.set_param("kr", 0.45).unwrap();
-        run(&mut e, 60.0);
+        run_while_animating(&mut e, 60.0);
     }
     e
 }
@@ -838,21 +790,19 @@ fn potential_step_3_adding_dragging_and_removing_restart_the_run() {
     click(&mut e, DVec2::new(2.0, 5.0));
     assert_eq!(e.obstacles().len(), 3);
     assert_eq!(e.run().unwrap().time_s, 0.0, "adding restarts the run");
-    for _ in 0..30 {
-        e.step(DT);
-    }
+    steps(&mut e, 30);
     drag(&mut e, DVec2::new(2.0, 5.0), DVec2::new(1.8, 3.0));
     assert_eq!(e.obstacles()[2].centre, DVec2::new(1.8, 3.0));
     assert_eq!(e.run().unwrap().time_s, 0.0, "dragging restarts the run");
     assert_eq!(e.trail, vec![e.start], "the trail starts again");
-    run(&mut e, 60.0);
+    run_while_animating(&mut e, 60.0);
     // In the robot's way: the run differs from step 2's.
     assert_ne!(e.run(), after_step(2).run());
     e.action("remove").unwrap();
     click(&mut e, DVec2::new(1.8, 3.0));
     assert_eq!(e.obstacles().len(), 2);
     assert_eq!(e.run().unwrap().time_s, 0.0);
-    run(&mut e, 60.0);
+    run_while_animating(&mut e, 60.0);
     assert_eq!(
         e.run(),
         after_step(2).run(),
@@ -865,8 +815,8 @@ fn potential_step_4_a_stronger_wider_push_gives_a_wider_berth() {
     let e = after_step(3);
     let before = e.run().unwrap().min_clearance_m;
     let mut e = e;
-    set(&mut e, &[("kr", 3.0), ("d0", 2.0)]);
-    run(&mut e, 60.0);
+    set_params(&mut e, &[("kr", 3.0), ("d0", 2.0)]);
+    run_while_animating(&mut e, 60.0);
     let after = *e.run().unwrap();
     assert_eq!(after.status, RunStatus::Reached);
     assert!(
@@ -888,29 +838,29 @@ fn potential_step_4_a_stronger_wider_push_gives_a_wider_berth() {
 #[test]
 fn potential_step_5_when_the_pull_beats_both_pushes_the_robot_hits_the_obstacle() {
     let mut e = after_step(4);
-    set(&mut e, &[("ka", 2.0), ("kr", 0.8), ("d0", 1.0)]);
+    set_params(&mut e, &[("ka", 2.0), ("kr", 0.8), ("d0", 1.0)]);
     assert!(e.field().params.trap_free(e.obstacles().len()));
     drag(&mut e, DVec2::new(3.0, 3.4), DVec2::new(3.0, 3.0));
     assert_eq!(e.obstacles()[0].centre, DVec2::new(3.0, 3.0));
-    run(&mut e, 60.0);
+    run_while_animating(&mut e, 60.0);
     assert_eq!(e.run().unwrap().status, RunStatus::Collided);
     assert_eq!(e.status().text, "collided with an obstacle");
     assert_eq!(readout(&e, "status"), "collided");
     // With the default gains the same line-up is no collision.
-    set(&mut e, &[("ka", 1.0), ("kr", 1.6)]);
-    run(&mut e, 60.0);
+    set_params(&mut e, &[("ka", 1.0), ("kr", 1.6)]);
+    run_while_animating(&mut e, 60.0);
     assert_ne!(e.run().unwrap().status, RunStatus::Collided);
 }
 
 #[test]
 fn potential_step_6_two_close_obstacles_trap_the_robot() {
     let mut e = after_step(5);
-    set(&mut e, &[("ka", 1.0), ("kr", 1.6), ("rad", 0.4)]);
+    set_params(&mut e, &[("ka", 1.0), ("kr", 1.6), ("rad", 0.4)]);
     drag(&mut e, DVec2::new(3.0, 3.0), DVec2::new(4.0, 3.6));
     drag(&mut e, DVec2::new(5.2, 2.2), DVec2::new(4.0, 2.4));
     drag(&mut e, DVec2::new(7.2, 3.0), DVec2::new(7.4, 3.0));
     assert_eq!(e.param("gx"), Some(7.4));
-    let t = run(&mut e, 60.0);
+    let t = run_while_animating(&mut e, 60.0);
     let r = *e.run().unwrap();
     assert_eq!(r.status, RunStatus::Trapped, "{r:?}");
     assert!(t < 8.0, "within a few seconds: {t}");
@@ -924,7 +874,7 @@ fn potential_step_7_the_basin_map_loses_its_trapped_cells_below_ka_over_n() {
     let mut e = after_step(6);
     e.action("basin").unwrap();
     assert!(readout(&e, "reach").starts_with("0.0% so far") || e.animating());
-    run(&mut e, 60.0);
+    run_while_animating(&mut e, 60.0);
     let c = e.basin().unwrap().counts();
     assert_eq!(c.pending, 0);
     assert!(c.trapped > 20 && c.reaches_goal > 0, "{c:?}");
@@ -932,7 +882,7 @@ fn potential_step_7_the_basin_map_loses_its_trapped_cells_below_ka_over_n() {
     e.set_param("kr", 0.45).unwrap();
     assert!(e.field().params.trap_free(2));
     assert_eq!(e.basin().unwrap().counts().pending, BASIN_COLS * BASIN_ROWS);
-    run(&mut e, 60.0);
+    run_while_animating(&mut e, 60.0);
     let c = e.basin().unwrap().counts();
     assert_eq!(c.pending, 0);
     assert_eq!(c.trapped, 0, "{c:?}");
@@ -946,7 +896,7 @@ fn potential_step_8_the_link_reproduces_the_arrangement_and_its_run() {
     assert!(link.contains("map=1"), "{link}");
     let (mut fresh, notices) = restore(&link, PotentialFieldLab::default());
     assert!(notices.is_empty(), "{notices:?}");
-    run(&mut fresh, 60.0);
+    run_while_animating(&mut fresh, 60.0);
     assert_eq!(observe(&fresh), observe(&e));
     e.action("clear").unwrap();
     assert!(e.basin().is_none());
@@ -961,13 +911,7 @@ fn potential_step_8_the_link_reproduces_the_arrangement_and_its_run() {
 /// (strictly) longest, so option length does not give the answer away.
 #[test]
 fn the_correct_option_is_seldom_the_longest() {
-    let tells = crate::experiments::find("potential")
-        .unwrap()
-        .content()
-        .unwrap()
-        .length_tells();
-    assert!(tells.choices >= 6, "{tells:?}");
-    assert!(4 * tells.longest <= tells.choices, "{tells:?}");
+    testkit::assert_the_correct_option_is_seldom_the_longest("potential");
 }
 
 /// The page stops time once a run has ended; a basin map started after a
@@ -975,12 +919,7 @@ fn the_correct_option_is_seldom_the_longest() {
 #[test]
 fn a_basin_map_after_an_ended_run_keeps_time_running_until_it_is_complete() {
     let mut e = trap();
-    let mut guard = 0;
-    while e.status().phase != crate::experiment::Phase::Ended && guard < 20_000 {
-        e.step(DT);
-        guard += 1;
-    }
-    assert_eq!(e.status().phase, crate::experiment::Phase::Ended);
+    assert!(run_until_phase(&mut e, Phase::Ended, 20_000).is_some());
     e.action("basin").unwrap();
     assert!(e.basin_computing());
     assert_eq!(e.status().phase, crate::experiment::Phase::Live);
@@ -1000,20 +939,13 @@ fn a_basin_map_after_an_ended_run_keeps_time_running_until_it_is_complete() {
 fn the_backdrop_holds_still_while_the_robot_runs() {
     let mut e = PotentialFieldLab::default();
     click(&mut e, DVec2::new(7.2, 3.0));
-    let scene = |e: &PotentialFieldLab| {
-        let mut scene = Scene::default();
-        e.scene(&mut scene);
-        scene
-    };
-    let before = scene(&e);
+    let before = scene_of(&e);
     assert!(before.items[..before.backdrop]
         .iter()
         .any(|i| matches!(i, Item::Arrows { .. })));
-    for _ in 0..60 {
-        e.step(DT);
-    }
+    steps(&mut e, 60);
     assert!(e.animating(), "still running after 1 s");
-    let after = scene(&e);
+    let after = scene_of(&e);
     assert_eq!(before.backdrop_key, after.backdrop_key);
     assert_eq!(
         before.items[..before.backdrop],
@@ -1058,8 +990,7 @@ fn equal_backdrop_keys_mean_equal_backdrop_items() {
         if rng.next_f64() < 0.1 {
             click(&mut e, DVec2::new(7.2, 3.0));
         }
-        let mut scene = Scene::default();
-        e.scene(&mut scene);
+        let scene = scene_of(&e);
         if scene.backdrop == 0 {
             continue;
         }

@@ -264,7 +264,7 @@ impl PotentialFieldLab {
 
     /// "Robot at (…) m, goal at (…) m, 2 obstacles; reached the goal in 8.7 s."
     pub(super) fn description(&self) -> String {
-        use crate::experiment::format_point;
+        use crate::units::format_point;
         let robot = self.run.map_or(self.start, |r| r.pose.position());
         let obstacles = match self.count {
             0 => "no obstacles".to_owned(),

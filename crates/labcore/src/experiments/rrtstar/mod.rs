@@ -26,16 +26,17 @@
 //! and the obstacles as text (key `obs`, see [`encode_obstacles`]).
 
 use crate::experiment::{
-    check_param, format_metres, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
-    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamSpec,
+    Readout, Sanitized, Status, Tone,
 };
 use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar};
 use crate::planning::world::{Obstacle, World};
 use crate::plot::{Plot, Series, SeriesRole};
-use crate::quiz::{format_number, Draw, Generator};
+use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, SegmentLayer, ViewBox};
 use crate::table::Table;
+use crate::units::{format_metres, format_number};
 use glam::DVec2;
 
 /// The field, metres.

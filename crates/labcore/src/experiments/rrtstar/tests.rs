@@ -4,17 +4,7 @@ use crate::planning::rrt_star::NO_PARENT;
 use crate::route::{apply_params, format, restore, Tab};
 use crate::scene::LayerPlan;
 
-const DT: f64 = 1.0 / 60.0;
-
-fn settle(f: &mut RrtStarField) -> usize {
-    let mut n = 0;
-    while f.animating() {
-        f.step(DT);
-        n += 1;
-        assert!(n < 100_000);
-    }
-    n
-}
+use crate::testkit::{self, readout, scene_of, settle, steps, CTRL, DT_S as DT, SHIFT};
 
 #[test]
 fn grow_tree_animates_a_fixed_batch_per_step_and_finds_a_short_path() {
@@ -49,11 +39,8 @@ fn grow_tree_animates_a_fixed_batch_per_step_and_finds_a_short_path() {
 fn the_tree_is_one_segments_item_and_rewired_edges_a_second() {
     let mut f = RrtStarField::default();
     f.action("grow").unwrap();
-    for _ in 0..60 {
-        f.step(DT);
-    }
-    let mut scene = Scene::default();
-    f.scene(&mut scene);
+    steps(&mut f, 60);
+    let scene = scene_of(&f);
     let batches: Vec<(Role, usize)> = scene
         .items
         .iter()
@@ -92,9 +79,7 @@ fn same_seed_same_tree_and_reset_replays_it() {
         let mut f = RrtStarField::default();
         f.set_param("seed", seed).unwrap();
         f.action("grow").unwrap();
-        for _ in 0..40 {
-            f.step(DT);
-        }
+        steps(&mut f, 40);
         f
     };
     let (a, b, c) = (grow(7.0), grow(7.0), grow(8.0));
@@ -105,9 +90,7 @@ fn same_seed_same_tree_and_reset_replays_it() {
     let nodes = a.shown().unwrap().nodes().to_vec();
     a.reset();
     assert_eq!(a.shown().unwrap().len(), 1);
-    for _ in 0..40 {
-        a.step(DT);
-    }
+    steps(&mut a, 40);
     assert_eq!(a.shown().unwrap().nodes(), &nodes[..]);
 }
 
@@ -150,8 +133,7 @@ fn compare_grows_three_planners_on_one_seed_with_one_curve_each() {
     assert!(star <= rrt, "RRT* {star} vs RRT {rrt}");
     assert_eq!(t.rows[1][4], format_metres(star));
     // Other planners' paths are drawn too.
-    let mut scene = Scene::default();
-    f.scene(&mut scene);
+    let scene = scene_of(&f);
     let paths = scene
         .items
         .iter()
@@ -205,20 +187,12 @@ fn obstacles_are_added_dragged_and_removed_by_pointer() {
 #[test]
 fn shift_and_ctrl_click_move_the_ends_and_a_blocked_start_is_explained() {
     let mut f = RrtStarField::default();
-    let shift = Modifiers {
-        shift: true,
-        ctrl: false,
-    };
-    let ctrl = Modifiers {
-        shift: false,
-        ctrl: true,
-    };
-    f.input_with(Input::PointerDown(DVec2::new(0.5, 0.512)), shift);
+    f.input_with(Input::PointerDown(DVec2::new(0.5, 0.512)), SHIFT);
     assert_eq!(f.start, DVec2::new(0.5, 0.51));
-    f.input_with(Input::PointerDown(DVec2::new(20.0, 5.0)), ctrl);
+    f.input_with(Input::PointerDown(DVec2::new(20.0, 5.0)), CTRL);
     assert_eq!(f.goal, DVec2::new(10.0, 5.0));
     // Into an obstacle: growing is refused with a clear status, no panic.
-    f.input_with(Input::PointerDown(DVec2::new(2.8, 3.6)), shift);
+    f.input_with(Input::PointerDown(DVec2::new(2.8, 3.6)), SHIFT);
     f.action("grow").unwrap();
     assert!(!f.animating());
     let st = f.status();
@@ -226,8 +200,7 @@ fn shift_and_ctrl_click_move_the_ends_and_a_blocked_start_is_explained() {
     assert!(st.text.contains("start is in an obstacle"), "{}", st.text);
     f.action("drive").unwrap();
     settle(&mut f);
-    let mut scene = Scene::default();
-    f.scene(&mut scene);
+    let scene = scene_of(&f);
     assert!(scene.is_finite());
 }
 
@@ -363,28 +336,16 @@ fn obstacle_codes_with_extreme_integers_are_refused_with_a_notice() {
 
 // ---- The Procedure, step by step (assets/rrtstar.json) ----
 
-/// All the scene's items of one kind.
-fn scene_of(f: &RrtStarField) -> Scene {
-    let mut scene = Scene::default();
-    f.scene(&mut scene);
-    scene
-}
-
 fn best_readout(f: &RrtStarField) -> String {
-    crate::experiment::readout_value(f, "best").unwrap()
+    readout(f, "best")
 }
 
 /// The state after Procedure steps 1..=k: each step's action (with its
 /// checks) replayed on the state the previous steps left, so the test of
 /// step k starts from `after_step(k - 1)`.
 fn after_step(k: usize) -> RrtStarField {
-    let steps: [fn(&mut RrtStarField); 7] =
-        [step_1, step_2, step_3, step_4, step_5, step_6, step_7];
-    let mut f = RrtStarField::default();
-    for step in &steps[..k] {
-        step(&mut f);
-    }
-    f
+    let procedure = [step_1, step_2, step_3, step_4, step_5, step_6, step_7];
+    testkit::after_step(&procedure, k)
 }
 
 /// Step 1: the start (green dot) and the goal (red dot with its dashed
@@ -608,18 +569,10 @@ fn step_6(f: &mut RrtStarField) {
     f.input(Input::PointerUp(DVec2::new(6.0, 7.5)));
     assert_eq!(f.obstacles.len(), n);
     // Shift-click and Ctrl-click.
-    let shift = Modifiers {
-        shift: true,
-        ctrl: false,
-    };
-    let ctrl = Modifiers {
-        shift: false,
-        ctrl: true,
-    };
-    f.input_with(Input::PointerDown(DVec2::new(0.5, 1.0)), shift);
-    f.input_with(Input::PointerUp(DVec2::new(0.5, 1.0)), shift);
-    f.input_with(Input::PointerDown(DVec2::new(9.5, 5.0)), ctrl);
-    f.input_with(Input::PointerUp(DVec2::new(9.5, 5.0)), ctrl);
+    f.input_with(Input::PointerDown(DVec2::new(0.5, 1.0)), SHIFT);
+    f.input_with(Input::PointerUp(DVec2::new(0.5, 1.0)), SHIFT);
+    f.input_with(Input::PointerDown(DVec2::new(9.5, 5.0)), CTRL);
+    f.input_with(Input::PointerUp(DVec2::new(9.5, 5.0)), CTRL);
     assert_eq!(
         (f.start, f.goal),
         (DVec2::new(0.5, 1.0), DVec2::new(9.5, 5.0))
@@ -825,13 +778,7 @@ fn quiz_generators_draw_inside_the_sliders_and_the_field() {
 /// strictly longest in at most a quarter of the choice questions.
 #[test]
 fn the_correct_option_is_seldom_the_longest() {
-    let tells = crate::experiments::find("rrtstar")
-        .unwrap()
-        .content()
-        .unwrap()
-        .length_tells();
-    assert!(tells.choices >= 6, "{tells:?}");
-    assert!(4 * tells.longest <= tells.choices, "{tells:?}");
+    testkit::assert_the_correct_option_is_seldom_the_longest("rrtstar");
 }
 
 /// Issue 13 §6: on touch the hint names no Shift- or Ctrl-click, and what it
@@ -870,10 +817,7 @@ fn the_radius_numbers_in_the_theory_hold() {
     let tree = f.shown().unwrap();
     let r = tree.radius(tree.len());
     assert!(r < 1.0, "{r}");
-    assert_eq!(
-        crate::experiment::readout_value(&f, "radius").unwrap(),
-        format_metres(r)
-    );
+    assert_eq!(readout(&f, "radius"), format_metres(r));
     let example = tree.gamma() * (crate::math::ln(1000.0) / 1000.0).sqrt();
     assert!((example - 0.98).abs() < 0.005, "{example}");
     let default = RrtStarField::default();
@@ -890,7 +834,7 @@ fn the_radius_numbers_in_the_theory_hold() {
 
 /// The tree's kept edge layer of `f`'s shown run, from its scene.
 fn edge_layer(f: &RrtStarField) -> SegmentLayer {
-    scene_of_field(f)
+    scene_of(f)
         .items
         .into_iter()
         .find_map(|i| match i {
@@ -898,12 +842,6 @@ fn edge_layer(f: &RrtStarField) -> SegmentLayer {
             _ => None,
         })
         .expect("the tree is a kept layer")
-}
-
-fn scene_of_field(f: &RrtStarField) -> Scene {
-    let mut scene = Scene::default();
-    f.scene(&mut scene);
-    scene
 }
 
 /// Property: after any sequence of batches (RRT, RRT*, Informed RRT*, random

@@ -203,7 +203,7 @@ pub(super) fn readouts(f: &RrtStarField) -> Vec<Readout> {
 
 /// "Start at (…) m, goal at (…) m, 4 obstacles; 1125 nodes; done: best path 8.655 m."
 pub(super) fn describe(f: &RrtStarField) -> String {
-    use crate::experiment::format_point;
+    use crate::units::format_point;
     let tree = f.shown().map_or(String::new(), |t| {
         format!(" {} nodes in the tree;", t.len())
     });

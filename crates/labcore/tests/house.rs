@@ -1,0 +1,135 @@
+//! Issue 25 ("The house"): where things live, checked on the source tree.
+//!
+//! These read the crates' source as text; they guard the layout, not
+//! behaviour (the other tests do that).
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// Every `.rs` file below `dir`, in a stable order.
+fn rust_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = fs::read_dir(&d) else {
+            continue;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// The workspace's `crates/` folder.
+fn crates_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("labcore sits in crates/")
+        .to_path_buf()
+}
+
+/// Step 4, "one home for numbers": the functions that write and read
+/// numbers with units are defined in `labcore::units` and nowhere else, and
+/// no caller reaches them through their old homes (`quiz`, `experiment`).
+#[test]
+fn one_home_for_numbers_every_number_formatter_and_reader_lives_in_units() {
+    const DEFINITIONS: [&str; 11] = [
+        "fn format_number(",
+        "fn format_fixed(",
+        "fn format_metres(",
+        "fn format_degrees(",
+        "fn format_magnitude(",
+        "fn format_point(",
+        "fn read_answer(",
+        "fn read_number(",
+        "fn parse_answer(",
+        "fn parse_number(",
+        "fn with_unit(number: &str",
+    ];
+    const OLD_PATHS: [&str; 6] = [
+        "quiz::format_number",
+        "quiz::read_answer",
+        "quiz::parse_",
+        "experiment::format_",
+        "quiz::{format_number",
+        "quiz::ReadError",
+    ];
+    let units = crates_dir().join("labcore/src/units.rs");
+    assert!(
+        units.is_file(),
+        "labcore/src/units.rs is the home of numbers"
+    );
+    let mut misplaced = Vec::new();
+    for file in rust_files(&crates_dir()) {
+        if file.ends_with("labcore/tests/house.rs") {
+            continue; // this file names the old paths to look for them
+        }
+        let text = fs::read_to_string(&file).unwrap_or_default();
+        for (n, line) in text.lines().enumerate() {
+            let here = format!("{}:{}", file.display(), n + 1);
+            if file != units && DEFINITIONS.iter().any(|d| line.contains(d)) {
+                misplaced.push(format!("{here}: {}", line.trim()));
+            }
+            if OLD_PATHS.iter().any(|p| line.contains(p)) {
+                misplaced.push(format!("{here}: {}", line.trim()));
+            }
+        }
+    }
+    assert!(
+        misplaced.is_empty(),
+        "outside units.rs:\n{}",
+        misplaced.join("\n")
+    );
+}
+
+/// Step 7, "a test kit": every experiment's tests use `labcore::testkit`
+/// and none writes its own copy of the kit's helpers (step, read a
+/// readout, click, draw the scene, read a Procedure step, …).
+#[test]
+fn a_test_kit_every_experiments_tests_use_it_and_copy_none_of_its_helpers() {
+    const COPIES: [&str; 10] = [
+        "fn run(",
+        "fn run_for(",
+        "fn readout(",
+        "fn click(",
+        "fn scene_of(",
+        "fn scene_of_field(",
+        "fn procedure_step(",
+        "fn notice(",
+        "fn set(",
+        "readout_value(",
+    ];
+    let experiments = crates_dir().join("labcore/src/experiments");
+    let mut test_files: Vec<PathBuf> = ["fk.rs", "ik.rs", "workspace.rs"]
+        .iter()
+        .map(|f| experiments.join(f))
+        .collect();
+    for entry in fs::read_dir(&experiments).expect("experiments/").flatten() {
+        let tests = entry.path().join("tests.rs");
+        if tests.is_file() {
+            test_files.push(tests);
+        }
+    }
+    assert!(test_files.len() >= 11, "{test_files:?}");
+    let mut problems = Vec::new();
+    for file in &test_files {
+        let text = fs::read_to_string(file).expect("readable");
+        let tests = text.split("#[cfg(test)]").last().unwrap_or(&text);
+        if !tests.contains("crate::testkit") {
+            problems.push(format!("{}: does not use crate::testkit", file.display()));
+        }
+        for copy in COPIES {
+            if tests.contains(copy) {
+                problems.push(format!("{}: has its own `{copy}`", file.display()));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
