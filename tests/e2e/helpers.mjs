@@ -7,7 +7,7 @@ import { after, before } from "node:test";
 import assert from "node:assert/strict";
 import { createServer } from "node:http";
 import { createServer as createTcpServer } from "node:net";
-import { existsSync, mkdirSync } from "node:fs";
+import { existsSync, mkdirSync, readFileSync } from "node:fs";
 import { readFile, stat } from "node:fs/promises";
 import { dirname, extname, join, resolve, sep } from "node:path";
 import { fileURLToPath } from "node:url";
@@ -306,6 +306,20 @@ export async function experimentIds(lab) {
   });
   assert.ok(ids.length > 0, "the home page lists at least one experiment card");
   return ids;
+}
+
+/**
+ * The experiments of the built site, in the lab's order: the reading pages
+ * `cargo xtask dist` lists in dist/index.html (`<meta name="lab-page">`),
+ * written from labcore's one list of experiments. Tests take the ids from
+ * here (or from the home page's cards), never from a list or a count of
+ * their own.
+ */
+export function builtExperimentIds() {
+  const html = readFileSync(join(DIST, "index.html"), "utf8");
+  return [...html.matchAll(/<meta name="lab-page" content="([a-z0-9]+)"/g)]
+    .map((m) => m[1])
+    .filter((id) => id !== "home");
 }
 
 /** Text of every `[data-readout]`, keyed by its name. */
