@@ -7,9 +7,9 @@
 // figure (see browser.bench.mjs).
 
 import { after, before, test } from "node:test";
-import { launchBrowser, startServer } from "../e2e/helpers.mjs";
+import { builtExperimentIds, launchBrowser, startServer } from "../e2e/helpers.mjs";
 
-const IDS = ["fk", "ik", "workspace", "diffdrive", "potential", "astar", "pid", "cartpole", "dls", "rrtstar", "ekf"];
+const IDS = builtExperimentIds();
 const TARGET_S = { compressed: 3.0, uncompressed: 5.0 };
 const rows = [];
 let browser;

@@ -12,24 +12,16 @@
 
 import { after, before, describe, test } from "node:test";
 import assert from "node:assert/strict";
-import { existsSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { existsSync, mkdirSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 import puppeteer from "puppeteer-core";
-import { DESKTOP, DIST, SHOTS, launchBrowser, startServer } from "./helpers.mjs";
+import { DESKTOP, DIST, SHOTS, builtExperimentIds, launchBrowser, startServer } from "./helpers.mjs";
 import { crop, decodePng, encodePng, sideBySide, stacked } from "./png.mjs";
 import { launchWebKit, webkitAvailable } from "./webkit.mjs";
 
 const FIREFOX = process.env.FIREFOX || "/usr/bin/firefox-esr";
 const MISSING =
   "install the Debian packages firefox-esr, webkit2gtk-driver and xvfb (cargo xtask test does it as root)";
-
-/** Experiment ids, from the reading pages `cargo xtask dist` listed in index.html. */
-function experimentIds() {
-  const html = readFileSync(join(DIST, "index.html"), "utf8");
-  return [...html.matchAll(/<meta name="lab-page" content="([a-z0-9]+)"/g)]
-    .map((m) => m[1])
-    .filter((id) => id !== "home");
-}
 
 // ---------------------------------------------------------------------------
 // What the tests ask the page; plain functions, run in any of the browsers.
@@ -186,7 +178,7 @@ async function chromium() {
 
 // ---------------------------------------------------------------------------
 
-const ids = existsSync(join(DIST, "index.html")) ? experimentIds() : [];
+const ids = existsSync(join(DIST, "index.html")) ? builtExperimentIds() : [];
 let server;
 before(async () => {
   // The probe records console errors where the driver cannot report them (WebKit).

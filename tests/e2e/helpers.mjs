@@ -330,6 +330,20 @@ export async function experimentIds(lab) {
   return ids;
 }
 
+/**
+ * The experiments of the built site, in the lab's order: the reading pages
+ * `cargo xtask dist` lists in dist/index.html (`<meta name="lab-page">`),
+ * written from labcore's one list of experiments. Tests take the ids from
+ * here (or from the home page's cards), never from a list or a count of
+ * their own.
+ */
+export function builtExperimentIds() {
+  const html = readFileSync(join(DIST, "index.html"), "utf8");
+  return [...html.matchAll(/<meta name="lab-page" content="([a-z0-9]+)"/g)]
+    .map((m) => m[1])
+    .filter((id) => id !== "home");
+}
+
 /** Text of every `[data-readout]`, keyed by its name. */
 export function readouts(page) {
   return page.$$eval("[data-readout]", (els) =>

@@ -4,7 +4,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { experimentIds, open, useLab, waitReady, withPage, workerReady } from "./helpers.mjs";
+import { builtExperimentIds, open, useLab, waitReady, withPage, workerReady } from "./helpers.mjs";
 
 const lab = useLab();
 
@@ -44,7 +44,7 @@ async function drawsAndSteps(page, id) {
 
 test("offline after one visit: every experiment's Simulation tab opens, draws, steps and reloads with the network off", () =>
   withPage(lab, { serviceWorkers: "allow" }, async (page, context) => {
-    const ids = ["fk", "ik", "workspace", "diffdrive", "potential", "astar", "pid", "cartpole", "dls", "rrtstar", "ekf"];
+    const ids = builtExperimentIds();
     await open(lab, page, "#/");
     await open(lab, page, "#/pid/simulation");
     const { scope, cached } = await workerReady(page);

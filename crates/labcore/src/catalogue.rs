@@ -1,5 +1,5 @@
-//! The lab's table of contents: all eleven experiments in the lab's
-//! numbering, grouped by topic, whether built yet or not.
+//! The lab's table of contents: every experiment in the lab's numbering,
+//! grouped by topic, whether in this build or not.
 
 /// A topic of the lab; the navigation and the home page group by it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -48,7 +48,7 @@ impl Group {
 /// One experiment of the lab's plan.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Planned {
-    /// The lab's number (1–11).
+    /// The lab's number (1, 2, …: its place in the list).
     pub number: u32,
     /// The registry id once the experiment is built (see [`crate::registry`]).
     pub id: &'static str,
@@ -57,75 +57,9 @@ pub struct Planned {
     pub group: Group,
 }
 
-/// All eleven experiments, in the lab's numbering.
-pub const CATALOGUE: [Planned; 11] = [
-    Planned {
-        number: 1,
-        id: "fk",
-        title: "2-link arm forward kinematics",
-        group: Group::Kinematics,
-    },
-    Planned {
-        number: 2,
-        id: "ik",
-        title: "2-link inverse kinematics",
-        group: Group::Kinematics,
-    },
-    Planned {
-        number: 3,
-        id: "workspace",
-        title: "3-link arm and its workspace",
-        group: Group::Kinematics,
-    },
-    Planned {
-        number: 4,
-        id: "diffdrive",
-        title: "Differential-drive robot to waypoints",
-        group: Group::MobileRobots,
-    },
-    Planned {
-        number: 5,
-        id: "potential",
-        title: "Potential-field obstacle avoidance",
-        group: Group::MobileRobots,
-    },
-    Planned {
-        number: 6,
-        id: "astar",
-        title: "A* and Dijkstra grid planning",
-        group: Group::Planning,
-    },
-    Planned {
-        number: 7,
-        id: "pid",
-        title: "PID control of a mass with drag",
-        group: Group::Control,
-    },
-    Planned {
-        number: 8,
-        id: "cartpole",
-        title: "Cart-pole balancing",
-        group: Group::Control,
-    },
-    Planned {
-        number: 9,
-        id: "dls",
-        title: "n-link Jacobian IK (damped least squares)",
-        group: Group::Kinematics,
-    },
-    Planned {
-        number: 10,
-        id: "rrtstar",
-        title: "RRT* sampling-based planning",
-        group: Group::Planning,
-    },
-    Planned {
-        number: 11,
-        id: "ekf",
-        title: "EKF localization and EKF-SLAM",
-        group: Group::Estimation,
-    },
-];
+/// Every experiment of the lab, in its numbering: written from the one list
+/// of experiments in `experiments/mod.rs`.
+pub const CATALOGUE: [Planned; crate::experiments::LISTED] = crate::experiments::CATALOGUE;
 
 /// The catalogue entry of an experiment id.
 #[must_use]
@@ -133,12 +67,23 @@ pub fn planned(id: &str) -> Option<&'static Planned> {
     CATALOGUE.iter().find(|p| p.id == id)
 }
 
+/// The key of the wasm module that ships experiment `id` (`cargo xtask
+/// dist` builds one module per key, with the features of its experiments):
+/// the one its line in `experiments/mod.rs` names, or its own id.
+#[must_use]
+pub fn wasm_module(id: &str) -> Option<&'static str> {
+    crate::experiments::WASM_MODULES
+        .iter()
+        .find(|(of, _)| *of == id)
+        .map(|(_, key)| *key)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn numbers_are_one_to_eleven_and_ids_unique() {
+    fn numbers_count_from_one_and_ids_are_unique() {
         for (i, p) in CATALOGUE.iter().enumerate() {
             assert_eq!(p.number as usize, i + 1);
             assert_eq!(CATALOGUE.iter().filter(|q| q.id == p.id).count(), 1);

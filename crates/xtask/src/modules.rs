@@ -1,5 +1,5 @@
 //! The shipped wasm modules: one per experiment or per few experiments of a
-//! group ([`MODULES`]).
+//! group ([`modules`]).
 //!
 //! A page downloads only the module of the experiment it shows: `labweb` is
 //! built once per module with `--no-default-features` and the features
@@ -12,9 +12,7 @@
 //! which `main.js` reads.
 
 use crate::util::{self, file_len, remove_dir, step};
-#[cfg(test)]
-use labcore::catalogue::Group;
-use labcore::catalogue::CATALOGUE;
+use labcore::catalogue::{wasm_module, Group, CATALOGUE};
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -64,7 +62,7 @@ const PROFILE: &str = "wasm-release";
 
 /// A built module before it is copied into dist/.
 pub struct Built {
-    /// The module's name ([`MODULES`], or with `XTASK_MODULES=per-experiment`
+    /// The module's name ([`modules`], or with `XTASK_MODULES=per-experiment`
     /// the experiment's id).
     pub key: &'static str,
     /// Experiment ids it holds, in the lab's order.
@@ -86,34 +84,23 @@ pub struct Shipped {
     pub wasm_bytes: u64,
 }
 
-/// The shipped modules and the experiments each holds. Experiments of one
-/// catalogue group that share their solvers share a module, as long as a
-/// first visit stays within its budget (700 KB raw, 250 KB gzip in all:
-/// `tests/e2e/weight.test.mjs`); the heavier ones have a module of their own.
-/// Measured as built (opt-level z, wasm-opt -O3, gzip -9), one module per
-/// catalogue group came to 469–561 KB raw, 210–244 KB gzip, too close to the
-/// budget or over it with the page's HTML, CSS and JS (about 23 KB gzip):
-/// kinematics 223 KB gzip, planning 244, control 231; one experiment alone,
-/// 189 (fk) to 217 KB gzip (astar).
-pub const MODULES: &[(&str, &[&str])] = &[
-    ("arms", &["fk", "ik"]),
-    ("chains", &["workspace", "dls"]),
-    ("mobile", &["diffdrive", "potential"]),
-    ("astar", &["astar"]),
-    ("rrtstar", &["rrtstar"]),
-    ("pid", &["pid"]),
-    ("cartpole", &["cartpole"]),
-    ("ekf", &["ekf"]),
-];
-
-/// The experiments of `group` that this build of labcore has, in lab order.
-#[cfg(test)]
-fn group_ids(group: Group) -> Vec<&'static str> {
-    CATALOGUE
-        .iter()
-        .filter(|p| p.group == group && labcore::find(p.id).is_some())
-        .map(|p| p.id)
-        .collect()
+/// The shipped modules and the experiments each holds, from labcore's list
+/// of experiments (`crates/labcore/src/experiments/mod.rs`, which says which
+/// experiments share a module and why): by catalogue group, then in the lab's
+/// order, each module where its first experiment comes.
+#[must_use]
+pub fn modules() -> Vec<(&'static str, Vec<&'static str>)> {
+    let mut modules: Vec<(&'static str, Vec<&'static str>)> = Vec::new();
+    for group in Group::ALL {
+        for plan in CATALOGUE.iter().filter(|p| p.group == group) {
+            let key = wasm_module(plan.id).unwrap_or(plan.id);
+            match modules.iter_mut().find(|(k, _)| *k == key) {
+                Some((_, ids)) => ids.push(plan.id),
+                None => modules.push((key, vec![plan.id])),
+            }
+        }
+    }
+    modules
 }
 
 /// Set (to anything) for modules with the paint benchmarks' exports.
@@ -147,7 +134,7 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
             .map(|p| (p.id, vec![p.id]))
             .collect()
     } else {
-        MODULES.iter().map(|(k, ids)| (*k, ids.to_vec())).collect()
+        modules()
     };
     let mut finishing = Vec::new();
     for (key, ids) in parts {
@@ -329,7 +316,8 @@ mod tests {
 
     #[test]
     fn every_experiment_is_in_exactly_one_module_of_its_own_group() {
-        let mut all: Vec<&str> = MODULES
+        let modules = modules();
+        let mut all: Vec<&str> = modules
             .iter()
             .flat_map(|(_, ids)| ids.iter().copied())
             .collect();
@@ -337,16 +325,12 @@ mod tests {
         all.sort_unstable();
         all.dedup();
         assert_eq!(all.len(), labcore::registry().len());
-        for (key, ids) in MODULES {
-            let group = labcore::catalogue::planned(ids[0])
-                .expect("catalogued")
-                .group;
+        let group = |id: &str| labcore::catalogue::planned(id).expect("catalogued").group;
+        for (key, ids) in &modules {
             assert!(
-                ids.iter()
-                    .all(|id| labcore::catalogue::planned(id).map(|p| p.group) == Some(group)),
+                ids.iter().all(|id| group(id) == group(ids[0])),
                 "module {key} mixes groups"
             );
-            assert!(group_ids(group).iter().any(|id| ids.contains(id)));
         }
     }
 

@@ -1,21 +1,10 @@
 //! One module per experiment, and the registry that lists them.
 
+use crate::catalogue::{Group, Planned};
 use crate::content::{Content, ContentError};
 use crate::experiment::Experiment;
 use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
-
-pub mod astar;
-pub mod cartpole;
-pub mod diffdrive;
-pub mod dls;
-pub mod ekf;
-pub mod fk;
-pub mod ik;
-pub mod pid;
-pub mod potential;
-pub mod rrtstar;
-pub mod workspace;
 
 /// The content file's text, for the build tool and the tests, which check
 /// edited and broken texts against the compiled-in one (the `reading`
@@ -96,112 +85,122 @@ impl Entry {
     }
 }
 
-/// How many experiments this build holds.
-const BUILT: usize = cfg!(feature = "fk") as usize
-    + cfg!(feature = "ik") as usize
-    + cfg!(feature = "workspace") as usize
-    + cfg!(feature = "diffdrive") as usize
-    + cfg!(feature = "potential") as usize
-    + cfg!(feature = "astar") as usize
-    + cfg!(feature = "pid") as usize
-    + cfg!(feature = "cartpole") as usize
-    + cfg!(feature = "dls") as usize
-    + cfg!(feature = "rrtstar") as usize
-    + cfg!(feature = "ekf") as usize;
+/// Writes, from the one list of experiments below: the experiment modules,
+/// the [`crate::catalogue::CATALOGUE`] (numbered in the list's order), the
+/// wasm module each ships in ([`crate::catalogue::wasm_module`]), and the
+/// registry of this build (one [`Entry`] for each experiment whose cargo
+/// feature is on). A line reads
+/// `"<id>" => <module>::<Type>, <Group>, "<short title>"` and, for an
+/// experiment that shares its wasm module with others, `, in "<module key>"`.
+macro_rules! experiments {
+    ($($id:literal => $module:ident :: $ty:ident, $group:ident, $title:literal $(, in $wasm:literal)?;)*) => {
+        $(pub mod $module;)*
 
-/// The experiments this build holds: every one by default; a wasm module
-/// of one group is built with only its group's features (`cargo xtask dist`),
-/// so the other experiments' code and content are not in it.
-static REGISTRY: [Entry; BUILT] = [
-    #[cfg(feature = "fk")]
-    Entry {
-        id: "fk",
-        content_json: content_file!("fk"),
-        make: || Box::new(fk::ForwardKinematics::default()),
-        generators: fk::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "ik")]
-    Entry {
-        id: "ik",
-        content_json: content_file!("ik"),
-        make: || Box::new(ik::InverseKinematics::default()),
-        generators: ik::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "workspace")]
-    Entry {
-        id: "workspace",
-        content_json: content_file!("workspace"),
-        make: || Box::new(workspace::Workspace::default()),
-        generators: workspace::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "diffdrive")]
-    Entry {
-        id: "diffdrive",
-        content_json: content_file!("diffdrive"),
-        make: || Box::new(diffdrive::DiffDrive::default()),
-        generators: diffdrive::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "potential")]
-    Entry {
-        id: "potential",
-        content_json: content_file!("potential"),
-        make: || Box::new(potential::PotentialFieldLab::default()),
-        generators: potential::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "astar")]
-    Entry {
-        id: "astar",
-        content_json: content_file!("astar"),
-        make: || Box::new(astar::AStarGrid::default()),
-        generators: astar::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "pid")]
-    Entry {
-        id: "pid",
-        content_json: content_file!("pid"),
-        make: || Box::new(pid::PidControl::default()),
-        generators: pid::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "cartpole")]
-    Entry {
-        id: "cartpole",
-        content_json: content_file!("cartpole"),
-        make: || Box::new(cartpole::CartPoleBalance::default()),
-        generators: cartpole::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "dls")]
-    Entry {
-        id: "dls",
-        content_json: content_file!("dls"),
-        make: || Box::new(dls::DampedLeastSquares::default()),
-        generators: dls::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "rrtstar")]
-    Entry {
-        id: "rrtstar",
-        content_json: content_file!("rrtstar"),
-        make: || Box::new(rrtstar::RrtStarField::default()),
-        generators: rrtstar::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-    #[cfg(feature = "ekf")]
-    Entry {
-        id: "ekf",
-        content_json: content_file!("ekf"),
-        make: || Box::new(ekf::EkfExperiment::default()),
-        generators: ekf::quiz_generator,
-        parsed: OnceLock::new(),
-    },
-];
+        // The module is named after the id (the procedure-test check and the
+        // content file find an experiment's files by its id).
+        const _: () = {
+            $(assert!(
+                same_text(stringify!($module), $id),
+                concat!("the module of experiment \"", $id, "\" must be named ", $id)
+            );)*
+        };
+
+        /// How many experiments the lab lists.
+        pub(crate) const LISTED: usize = [$($id),*].len();
+
+        /// The catalogue, numbered 1, 2, … in the list's order.
+        pub(crate) const CATALOGUE: [Planned; LISTED] = numbered([$(Planned {
+            number: 0,
+            id: $id,
+            title: $title,
+            group: Group::$group,
+        }),*]);
+
+        /// Each experiment's wasm module: a shared one, or its own (its id).
+        pub(crate) const WASM_MODULES: [(&str, &str); LISTED] =
+            [$(($id, wasm_module!($id $(, $wasm)?))),*];
+
+        /// How many experiments this build holds.
+        const BUILT: usize = 0 $(+ cfg!(feature = $id) as usize)*;
+
+        /// The experiments this build holds: every one by default; a wasm module
+        /// is built with only its experiments' features (`cargo xtask dist`),
+        /// so the other experiments' code and content are not in it.
+        static REGISTRY: [Entry; BUILT] = [$(
+            #[cfg(feature = $id)]
+            Entry {
+                id: $id,
+                content_json: content_file!($id),
+                make: || Box::new(<$module::$ty>::default()),
+                generators: $module::quiz_generator,
+                parsed: OnceLock::new(),
+            },
+        )*];
+    };
+}
+
+/// The wasm module key of an experiment line: the one it names, or the id.
+macro_rules! wasm_module {
+    ($id:literal) => {
+        $id
+    };
+    ($id:literal, $wasm:literal) => {
+        $wasm
+    };
+}
+
+// The lab's experiments, in its numbering; the only list of them. Adding an
+// experiment is its folder (or file) here, its content file
+// `assets/<id>.json` and one line below; the tests then ask for its cargo
+// feature in `crates/labcore/Cargo.toml` and its row in README's table.
+//
+// Wasm modules: experiments of one catalogue group that share their solvers
+// share a module, as long as a first visit stays within its budget (700 KB
+// raw, 250 KB gzip in all: `tests/e2e/weight.test.mjs`); the heavier ones
+// have a module of their own. Measured as built (opt-level z, wasm-opt -O3,
+// gzip -9), one module per catalogue group came to 469–561 KB raw, 210–244
+// KB gzip, too close to the budget or over it with the page's HTML, CSS and
+// JS (about 23 KB gzip): kinematics 223 KB gzip, planning 244, control 231;
+// one experiment alone, 189 (fk) to 217 KB gzip (astar).
+experiments! {
+    "fk" => fk::ForwardKinematics, Kinematics, "2-link arm forward kinematics", in "arms";
+    "ik" => ik::InverseKinematics, Kinematics, "2-link inverse kinematics", in "arms";
+    "workspace" => workspace::Workspace, Kinematics, "3-link arm and its workspace", in "chains";
+    "diffdrive" => diffdrive::DiffDrive, MobileRobots, "Differential-drive robot to waypoints", in "mobile";
+    "potential" => potential::PotentialFieldLab, MobileRobots, "Potential-field obstacle avoidance", in "mobile";
+    "astar" => astar::AStarGrid, Planning, "A* and Dijkstra grid planning";
+    "pid" => pid::PidControl, Control, "PID control of a mass with drag";
+    "cartpole" => cartpole::CartPoleBalance, Control, "Cart-pole balancing";
+    "dls" => dls::DampedLeastSquares, Kinematics, "n-link Jacobian IK (damped least squares)", in "chains";
+    "rrtstar" => rrtstar::RrtStarField, Planning, "RRT* sampling-based planning";
+    "ekf" => ekf::EkfExperiment, Estimation, "EKF localization and EKF-SLAM";
+}
+
+/// `plan` with `number` set to 1, 2, … in order.
+const fn numbered<const N: usize>(mut plan: [Planned; N]) -> [Planned; N] {
+    let mut i = 0;
+    while i < N {
+        plan[i].number = i as u32 + 1;
+        i += 1;
+    }
+    plan
+}
+
+/// Whether two texts are the same (`==` on `str` is not `const`).
+const fn same_text(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
 
 /// Every experiment, in lab order.
 #[must_use]
