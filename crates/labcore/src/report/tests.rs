@@ -995,3 +995,15 @@ fn report_data_record_holds_id_seed_answers_and_the_printed_score() {
         "</script><b>\"\\\n\u{2028}"
     );
 }
+
+#[test]
+fn the_report_scene_draws_the_grid_in_the_canvas_grid_colour() {
+    // The grid's colour had drifted: #d5dbe1 in the report, #e3e7ec on the
+    // canvas (web/style.css). Both come from the style table now.
+    let mut scene = Scene::default();
+    scene.axes(ViewBox::centered(1.0));
+    let (svg, _) = scene_svg::scene_svg(&scene, ViewBox::centered(1.0));
+    assert!(svg.contains("stroke=\"#e3e7ec\""), "{svg}");
+    assert!(!svg.contains("#d5dbe1"), "{svg}");
+    assert_eq!(crate::Role::Grid.style().light(), "#e3e7ec");
+}
