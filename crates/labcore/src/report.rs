@@ -34,7 +34,7 @@ use crate::experiment::{Experiment, ParamKind, ParamSpec, Tone};
 use crate::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, Series, SeriesRole};
 use crate::quiz::{format_number, grade, score_percent, Prepared, PreparedKind, Response};
 pub use crate::route::AnswerKey;
-use crate::scene::style::{CANVAS, PLOT_BAND};
+use crate::scene::style::{BAND_OPACITY, CANVAS, PLOT_BAND, REF_LINE_DASH_PX};
 use crate::scene::{Role, Scene};
 use crate::table::Table;
 use std::fmt::Write as _;
@@ -695,10 +695,10 @@ fn legend_entries(plot: &Plot) -> Vec<LegendEntry> {
         band: true,
         label: b.label.clone(),
     }));
-    let (reference, reference_dash) = role_style(SeriesRole::Reference);
+    let (reference, _) = role_style(SeriesRole::Reference);
     legend.extend(plot.ref_lines.iter().map(|l| LegendEntry {
         colour: reference,
-        dash: reference_dash,
+        dash: &REF_LINE_DASH_PX,
         band: false,
         label: l.label.clone(),
     }));
@@ -855,16 +855,17 @@ fn bands_and_lines_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
         if [bx, by, bw, bh].iter().all(|v| v.is_finite()) {
             let _ = write!(
                 s,
-                "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" fill-opacity=\"0.18\"/>",
+                "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" fill-opacity=\"{}\"/>",
                 n(bx),
                 n(by),
                 n(bw),
                 n(bh),
-                PLOT_BAND.light
+                PLOT_BAND.light,
+                n(BAND_OPACITY)
             );
         }
     }
-    let (reference, reference_dash) = role_style(SeriesRole::Reference);
+    let (reference, _) = role_style(SeriesRole::Reference);
     for l in &plot.ref_lines {
         let (xa, ya, xb, yb) = match l.axis {
             Axis::Y => (left, map.py(l.value), right, map.py(l.value)),
@@ -878,7 +879,7 @@ fn bands_and_lines_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
                 n(ya),
                 n(xb),
                 n(yb),
-                dash_attr(reference_dash)
+                dash_attr(&REF_LINE_DASH_PX)
             );
         }
     }

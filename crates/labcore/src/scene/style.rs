@@ -224,6 +224,12 @@ impl SeriesRole {
     }
 }
 
+/// A plot's reference lines: their dash, CSS pixels on and off (their
+/// colour is [`SeriesRole::Reference`]'s).
+pub const REF_LINE_DASH_PX: [f64; 2] = [6.0, 4.0];
+/// Opacity of a plot's shaded bands ([`PLOT_BAND`]).
+pub const BAND_OPACITY: f64 = 0.22;
+
 /// The dash of a dashed item (`dashed: true`), CSS pixels on and off.
 pub const DASH_PX: [f64; 2] = [6.0, 5.0];
 /// Stroke of outlines (circles, ellipses, polygons, rectangles) and of the
