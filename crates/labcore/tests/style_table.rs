@@ -15,7 +15,10 @@ fn stylesheet() -> String {
 
 /// The body of the first block that follows `opening` (braces balanced).
 fn block<'a>(css: &'a str, opening: &str) -> &'a str {
-    let start = css.find(opening).unwrap_or_else(|| panic!("no `{opening}`")) + opening.len();
+    let start = css
+        .find(opening)
+        .unwrap_or_else(|| panic!("no `{opening}`"))
+        + opening.len();
     let mut depth = 1;
     for (i, c) in css[start..].char_indices() {
         match c {

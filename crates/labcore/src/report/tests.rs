@@ -1007,3 +1007,19 @@ fn the_report_scene_draws_the_grid_in_the_canvas_grid_colour() {
     assert!(!svg.contains("#d5dbe1"), "{svg}");
     assert_eq!(crate::Role::Grid.style().light(), "#e3e7ec");
 }
+
+#[test]
+fn the_report_plot_draws_reference_lines_and_bands_as_the_canvas_plot_does() {
+    // The report's plots had drifted from the canvas's: reference lines
+    // dashed 5 5 (canvas 6 4), bands at opacity 0.18 (canvas 0.22).
+    let svg = plot_svg(&hostile_plot(), 0);
+    assert!(
+        svg.contains("stroke=\"#5f6a75\" stroke-width=\"1.2\" stroke-dasharray=\"6 4\""),
+        "{svg}"
+    );
+    assert!(
+        svg.contains("fill=\"#E69F00\" fill-opacity=\"0.22\""),
+        "{svg}"
+    );
+    assert!(!svg.contains("stroke-dasharray=\"5 5\""), "{svg}");
+}
