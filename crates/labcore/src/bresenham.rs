@@ -24,6 +24,7 @@
 /// labcore::bresenham::line((0, 0), (4, 2), |x, y| cells.push((x, y)));
 /// assert_eq!(cells, [(0, 0), (1, 0), (2, 1), (3, 1), (4, 2)]);
 /// ```
+#[inline]
 pub fn line(from: (i64, i64), to: (i64, i64), mut visit: impl FnMut(i64, i64)) {
     let (mut x, mut y) = from;
     let (x1, y1) = to;

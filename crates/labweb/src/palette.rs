@@ -42,17 +42,22 @@ impl Palette {
                 .map(|v| resolve_colour(&v))
                 .unwrap_or_else(|| fallback.to_owned())
         };
+        // Plain loops: iterator adaptors here cost the module bytes.
+        let mut colours = Vec::with_capacity(Role::ALL.len());
+        for role in Role::ALL {
+            colours.push(read(role.style().var(), "#888"));
+        }
+        let mut vars = Vec::with_capacity(SeriesRole::ALL.len() + PLOT_EXTRA_VARS.len());
+        for role in SeriesRole::ALL {
+            let var = role.style().colour.var;
+            vars.push((var, read(var, "#888")));
+        }
+        for var in PLOT_EXTRA_VARS {
+            vars.push((var, read(var, "#888")));
+        }
         Self {
-            colours: Role::ALL
-                .iter()
-                .map(|role| read(role.style().var(), "#888"))
-                .collect(),
-            vars: SeriesRole::ALL
-                .iter()
-                .map(|role| role.style().colour.var)
-                .chain(PLOT_EXTRA_VARS)
-                .map(|v| (v, read(v, "#888")))
-                .collect(),
+            colours,
+            vars,
             background: read(CANVAS.var, "#fff"),
             focus: read("--focus", "#E69F00"),
             reading: PALETTE_READINGS.with(|n| {
