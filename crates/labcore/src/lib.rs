@@ -53,6 +53,7 @@
 //! Every experiment implements [`Experiment`]; [`registry`] lists them with
 //! their content file and quiz generators.
 
+pub mod bresenham;
 pub mod catalogue;
 pub mod clock;
 pub mod content;

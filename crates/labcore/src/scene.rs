@@ -1,12 +1,15 @@
 //! A display list: what to draw this frame, in world coordinates (metres, y up).
 //!
-//! Colours are semantic [`Role`]s; the page maps each role to a theme colour
-//! (light/dark, colour-blind safe), so labcore never names a colour.
+//! Colours are semantic [`Role`]s; the style table ([`style`]) maps each
+//! role to a theme colour (light/dark, colour-blind safe) that every
+//! renderer shares, so an experiment never names a colour.
 
 use glam::DVec2;
 
 mod layer;
+pub mod style;
 pub use layer::{raster_version, LayerMark, LayerOp, LayerPlan, Rewrite, Segment, SegmentLayer};
+pub use style::Role;
 
 /// The world rectangle shown on the canvas (y points up).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,45 +36,6 @@ impl ViewBox {
             max: DVec2::splat(half_m),
         }
     }
-}
-
-/// What a shape means; the page picks its colour and weight.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Role {
-    /// Axes and grid lines.
-    Grid,
-    /// Reach circles and other theoretical bounds.
-    Bound,
-    /// The arm's links.
-    Link,
-    /// Joint markers.
-    Joint,
-    /// The fixed base.
-    Base,
-    /// The end-effector.
-    Tip,
-    /// A user target.
-    Target,
-    /// A ghost (the other IK branch, a previous pose).
-    Ghost,
-    /// Sampled points (workspace cloud).
-    Sample,
-    /// Manipulability ellipse, highlighted quantities.
-    Accent,
-    /// Something wrong: unreachable target, collision.
-    Warning,
-    /// Plain text labels.
-    Text,
-    /// The mobile robot's body.
-    Robot,
-    /// Obstacles and walls.
-    Obstacle,
-    /// A planned or best path.
-    Path,
-    /// An estimate (EKF mean and ellipse), a search frontier.
-    Estimate,
-    /// Visited or closed cells, tree edges.
-    Visited,
 }
 
 /// One item of the display list.

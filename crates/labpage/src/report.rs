@@ -34,7 +34,8 @@ use crate::experiment::{Experiment, ParamKind, ParamSpec, Tone};
 use crate::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, Series, SeriesRole};
 use crate::quiz::{grade, score_percent, Prepared, PreparedKind, Response};
 pub use crate::route::AnswerKey;
-use crate::scene::Scene;
+use crate::scene::style::{BAND_OPACITY, CANVAS, PLOT_BAND, REF_LINE_DASH_PX};
+use crate::scene::{Role, Scene};
 use crate::table::Table;
 use crate::units::format_number;
 use std::fmt::Write as _;
@@ -474,18 +475,17 @@ fn plots_section(h: &mut String, plots: &[Plot]) {
     h.push_str("</section>");
 }
 
-/// Colour (Okabe–Ito, as the site's light theme) and dash of each series
-/// role: every pair of roles differs in dash as well as colour, so the
-/// figure reads in grey print too.
-fn role_style(role: SeriesRole) -> (&'static str, &'static str) {
-    match role {
-        SeriesRole::Primary => ("#0072B2", ""),
-        SeriesRole::Secondary => ("#D55E00", "9 4"),
-        SeriesRole::Tertiary => ("#009E73", "2 3"),
-        SeriesRole::Quaternary => ("#CC79A7", "9 3 2 3"),
-        SeriesRole::Reference => ("#5f6a75", "5 5"),
-        SeriesRole::Bound => ("#B36B00", "2 2"),
-    }
+/// Colour (the site's light theme, from the style table) and dash of each
+/// series role: every pair of roles differs in dash as well as colour, so
+/// the figure reads in grey print too.
+fn role_style(role: SeriesRole) -> (&'static str, &'static [f64]) {
+    let style = role.style();
+    (style.colour.light, style.dash_px)
+}
+
+/// The light theme's colour of a scene role, for a plot's grid and text.
+fn ink(role: Role) -> &'static str {
+    role.style().light()
 }
 
 /// A number for an SVG attribute: two decimals are finer than print.
@@ -536,9 +536,40 @@ fn axis_title(label: &str, unit: &str) -> String {
 /// One legend entry: a swatch (line or band) and a label.
 struct LegendEntry {
     colour: &'static str,
-    dash: &'static str,
+    dash: &'static [f64],
     band: bool,
     label: String,
+}
+
+/// Where a plot's data go in the picture: the drawing rectangle and the
+/// axes' ranges (the y axis as log₁₀ when `log`).
+struct PlotMap {
+    left: f64,
+    right: f64,
+    top: f64,
+    bottom: f64,
+    x: (f64, f64),
+    y: (f64, f64),
+    log: bool,
+}
+
+impl PlotMap {
+    fn fy(&self, v: f64) -> f64 {
+        if self.log {
+            v.max(1e-300).log10()
+        } else {
+            v
+        }
+    }
+
+    fn px(&self, x: f64) -> f64 {
+        self.left + (x - self.x.0) / (self.x.1 - self.x.0) * (self.right - self.left)
+    }
+
+    fn py(&self, y: f64) -> f64 {
+        let (fy0, fy1) = (self.fy(self.y.0), self.fy(self.y.1));
+        self.bottom - (self.fy(y) - fy0) / (fy1 - fy0) * (self.bottom - self.top)
+    }
 }
 
 /// The plot as an SVG figure: axes with nice ticks (linear or log), bands,
@@ -546,49 +577,10 @@ struct LegendEntry {
 /// buckets, markers and a legend. `index` makes the clip path's id unique in
 /// the document.
 fn plot_svg(plot: &Plot, index: usize) -> String {
+    let mut s = String::new();
     // Legend first: its rows set the drawing's top.
-    let mut legend: Vec<LegendEntry> = plot
-        .series
-        .iter()
-        .map(|s| {
-            let (colour, dash) = role_style(s.role);
-            LegendEntry {
-                colour,
-                dash,
-                band: false,
-                label: if s.unit.is_empty() || s.unit == plot.y_unit {
-                    s.label.clone()
-                } else {
-                    format!("{} ({})", s.label, s.unit)
-                },
-            }
-        })
-        .collect();
-    legend.extend(plot.bands.iter().map(|b| LegendEntry {
-        colour: "#E69F00",
-        dash: "",
-        band: true,
-        label: b.label.clone(),
-    }));
-    legend.extend(plot.ref_lines.iter().map(|l| LegendEntry {
-        colour: "#5f6a75",
-        dash: "5 5",
-        band: false,
-        label: l.label.clone(),
-    }));
-    // Lay the legend out in rows (about 6.2 units per character at 11 px).
-    let mut placed: Vec<(f64, f64, &LegendEntry)> = Vec::new();
-    let (mut x, mut y) = (MARGIN.0, 14.0);
-    for e in &legend {
-        let w = 30.0 + 6.2 * e.label.chars().count() as f64 + 14.0;
-        if x + w > SVG_W && x > MARGIN.0 {
-            x = MARGIN.0;
-            y += 16.0;
-        }
-        placed.push((x, y, e));
-        x += w;
-    }
-    let legend_h = if legend.is_empty() { 0.0 } else { y + 8.0 };
+    let legend = legend_entries(plot);
+    let (placed, legend_h) = place_legend(&legend);
     let top = legend_h + MARGIN.2;
     let height = top + SVG_H;
     let (left, right, bottom) = (
@@ -596,8 +588,6 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
         SVG_W - MARGIN.1,
         top + SVG_H - MARGIN.3 - MARGIN.2,
     );
-
-    let mut s = String::new();
     let _ = write!(
         s,
         "<svg viewBox=\"0 0 {w} {hh}\" width=\"{w}\" height=\"{hh}\" \
@@ -607,36 +597,7 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
         w = n(SVG_W),
         hh = n(height),
     );
-    for (lx, ly, e) in &placed {
-        if e.band {
-            let _ = write!(
-                s,
-                "<rect x=\"{}\" y=\"{}\" width=\"24\" height=\"9\" fill=\"{}\" fill-opacity=\"0.25\" stroke=\"{}\" stroke-width=\"0.8\"/>",
-                n(*lx),
-                n(ly - 7.0),
-                e.colour,
-                e.colour
-            );
-        } else {
-            let _ = write!(
-                s,
-                "<line x1=\"{}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"{}\" stroke-width=\"2.5\"{}/>",
-                n(*lx),
-                n(lx + 24.0),
-                e.colour,
-                dash_attr(e.dash),
-                y = n(ly - 3.5)
-            );
-        }
-        let _ = write!(
-            s,
-            "<text x=\"{}\" y=\"{}\" fill=\"#1b1f24\">{}</text>",
-            n(lx + 30.0),
-            n(*ly),
-            escape(&e.label)
-        );
-    }
-
+    legend_svg(&mut s, &placed);
     let Some((x0, x1)) = plot.x_range() else {
         let _ = write!(
             s,
@@ -666,13 +627,148 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
         y0 = a - pad;
         y1 = b + pad;
     }
-    let fy = |v: f64| if log { v.max(1e-300).log10() } else { v };
-    let (fy0, fy1) = (fy(y0), fy(y1));
-    let px = |x: f64| left + (x - x0) / (x1 - x0) * (right - left);
-    let py = |y: f64| bottom - (fy(y) - fy0) / (fy1 - fy0) * (bottom - top);
+    let map = PlotMap {
+        left,
+        right,
+        top,
+        bottom,
+        x: (x0, x1),
+        y: (y0, y1),
+        log,
+    };
+    grid_svg(&mut s, plot, &map);
+    let _ = write!(
+        s,
+        "<defs><clipPath id=\"plot{index}-clip\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath></defs>\
+         <g clip-path=\"url(#plot{index}-clip)\">",
+        n(left),
+        n(top),
+        n(right - left),
+        n(bottom - top)
+    );
+    bands_and_lines_svg(&mut s, plot, &map);
+    // Comparison runs first, so the latest run is drawn on top.
+    let order = plot
+        .series
+        .iter()
+        .filter(|s| s.comparison)
+        .chain(plot.series.iter().filter(|s| !s.comparison));
+    for series in order {
+        series_path(&mut s, series, (x0, x1), log, &|x| map.px(x), &|y| {
+            map.py(y)
+        });
+    }
+    s.push_str("</g>");
+    markers_svg(&mut s, plot, &map);
+    let _ = write!(
+        s,
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#8c97a3\"/></svg>",
+        n(left),
+        n(top),
+        n(right - left),
+        n(bottom - top)
+    );
+    s
+}
 
-    // Grid and tick labels.
-    let x_ticks = nice_ticks(x0, x1, 8);
+/// The legend's entries: the series, then the bands, then the reference lines.
+fn legend_entries(plot: &Plot) -> Vec<LegendEntry> {
+    let mut legend: Vec<LegendEntry> = plot
+        .series
+        .iter()
+        .map(|s| {
+            let (colour, dash) = role_style(s.role);
+            LegendEntry {
+                colour,
+                dash,
+                band: false,
+                label: if s.unit.is_empty() || s.unit == plot.y_unit {
+                    s.label.clone()
+                } else {
+                    format!("{} ({})", s.label, s.unit)
+                },
+            }
+        })
+        .collect();
+    legend.extend(plot.bands.iter().map(|b| LegendEntry {
+        colour: PLOT_BAND.light,
+        dash: &[],
+        band: true,
+        label: b.label.clone(),
+    }));
+    let (reference, _) = role_style(SeriesRole::Reference);
+    legend.extend(plot.ref_lines.iter().map(|l| LegendEntry {
+        colour: reference,
+        dash: &REF_LINE_DASH_PX,
+        band: false,
+        label: l.label.clone(),
+    }));
+    legend
+}
+
+/// The legend laid out in rows (about 6.2 units per character at 11 px):
+/// each entry's corner, and the legend's height.
+fn place_legend(legend: &[LegendEntry]) -> (Vec<(f64, f64, &LegendEntry)>, f64) {
+    let mut placed: Vec<(f64, f64, &LegendEntry)> = Vec::new();
+    let (mut x, mut y) = (MARGIN.0, 14.0);
+    for e in legend {
+        let w = 30.0 + 6.2 * e.label.chars().count() as f64 + 14.0;
+        if x + w > SVG_W && x > MARGIN.0 {
+            x = MARGIN.0;
+            y += 16.0;
+        }
+        placed.push((x, y, e));
+        x += w;
+    }
+    let legend_h = if legend.is_empty() { 0.0 } else { y + 8.0 };
+    (placed, legend_h)
+}
+
+fn legend_svg(s: &mut String, placed: &[(f64, f64, &LegendEntry)]) {
+    for (lx, ly, e) in placed {
+        if e.band {
+            let _ = write!(
+                s,
+                "<rect x=\"{}\" y=\"{}\" width=\"24\" height=\"9\" fill=\"{}\" fill-opacity=\"0.25\" stroke=\"{}\" stroke-width=\"0.8\"/>",
+                n(*lx),
+                n(ly - 7.0),
+                e.colour,
+                e.colour
+            );
+        } else {
+            let _ = write!(
+                s,
+                "<line x1=\"{}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"{}\" stroke-width=\"2.5\"{}/>",
+                n(*lx),
+                n(lx + 24.0),
+                e.colour,
+                dash_attr(e.dash),
+                y = n(ly - 3.5)
+            );
+        }
+        let _ = write!(
+            s,
+            "<text x=\"{}\" y=\"{}\" fill=\"{}\">{}</text>",
+            n(lx + 30.0),
+            n(*ly),
+            ink(Role::Text),
+            escape(&e.label)
+        );
+    }
+}
+
+/// Grid lines with their tick labels, and the axis titles.
+fn grid_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
+    let (grid, text) = (ink(Role::Grid), ink(Role::Text));
+    let PlotMap {
+        left,
+        right,
+        top,
+        bottom,
+        log,
+        ..
+    } = *map;
+    let x_ticks = nice_ticks(map.x.0, map.x.1, 8);
     let x_dec = step_decimals(
         x_ticks
             .windows(2)
@@ -681,11 +777,11 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
             .unwrap_or(1.0),
     );
     for t in &x_ticks {
-        let x = px(*t);
+        let x = map.px(*t);
         let _ = write!(
             s,
-            "<line x1=\"{x}\" y1=\"{}\" x2=\"{x}\" y2=\"{}\" stroke=\"#e3e7ec\"/>\
-             <text x=\"{x}\" y=\"{}\" text-anchor=\"middle\" fill=\"#1b1f24\">{}</text>",
+            "<line x1=\"{x}\" y1=\"{}\" x2=\"{x}\" y2=\"{}\" stroke=\"{grid}\"/>\
+             <text x=\"{x}\" y=\"{}\" text-anchor=\"middle\" fill=\"{text}\">{}</text>",
             n(top),
             n(bottom),
             n(bottom + 14.0),
@@ -693,6 +789,7 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
             x = n(x)
         );
     }
+    let (y0, y1) = map.y;
     let y_ticks = if log {
         log_ticks(y0, y1, 7)
     } else {
@@ -706,7 +803,7 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
             .unwrap_or(1.0),
     );
     for t in &y_ticks {
-        let y = py(*t);
+        let y = map.py(*t);
         let label = if log {
             power_label(*t)
         } else {
@@ -714,8 +811,8 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
         };
         let _ = write!(
             s,
-            "<line x1=\"{}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"#e3e7ec\"/>\
-             <text x=\"{}\" y=\"{}\" text-anchor=\"end\" fill=\"#1b1f24\">{}</text>",
+            "<line x1=\"{}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"{grid}\"/>\
+             <text x=\"{}\" y=\"{}\" text-anchor=\"end\" fill=\"{text}\">{}</text>",
             n(left),
             n(right),
             n(left - 6.0),
@@ -724,102 +821,94 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
             y = n(y)
         );
     }
-    // Axis titles.
     let _ = write!(
         s,
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"#1b1f24\" font-size=\"12\">{}</text>\
-         <text transform=\"translate(14 {}) rotate(-90)\" text-anchor=\"middle\" fill=\"#1b1f24\" font-size=\"12\">{}</text>",
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{text}\" font-size=\"12\">{}</text>\
+         <text transform=\"translate(14 {}) rotate(-90)\" text-anchor=\"middle\" fill=\"{text}\" font-size=\"12\">{}</text>",
         n((left + right) / 2.0),
         n(bottom + 32.0),
         escape(&axis_title(plot.x_label, plot.x_unit)),
         n((top + bottom) / 2.0),
         escape(&axis_title(plot.y_label, plot.y_unit)),
     );
-    let _ = write!(
-        s,
-        "<defs><clipPath id=\"plot{index}-clip\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath></defs>\
-         <g clip-path=\"url(#plot{index}-clip)\">",
-        n(left),
-        n(top),
-        n(right - left),
-        n(bottom - top)
-    );
+}
+
+/// Shaded bands and dashed reference lines.
+fn bands_and_lines_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
+    let PlotMap {
+        left,
+        right,
+        top,
+        bottom,
+        ..
+    } = *map;
     for b in &plot.bands {
         let (bx, by, bw, bh) = match b.axis {
             Axis::Y => {
-                let (ya, yb) = (py(b.hi), py(b.lo));
+                let (ya, yb) = (map.py(b.hi), map.py(b.lo));
                 (left, ya.min(yb), right - left, (yb - ya).abs())
             }
             Axis::X => {
-                let (xa, xb) = (px(b.lo), px(b.hi));
+                let (xa, xb) = (map.px(b.lo), map.px(b.hi));
                 (xa.min(xb), top, (xb - xa).abs(), bottom - top)
             }
         };
         if [bx, by, bw, bh].iter().all(|v| v.is_finite()) {
             let _ = write!(
                 s,
-                "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#E69F00\" fill-opacity=\"0.18\"/>",
+                "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" fill-opacity=\"{}\"/>",
                 n(bx),
                 n(by),
                 n(bw),
-                n(bh)
+                n(bh),
+                PLOT_BAND.light,
+                n(BAND_OPACITY)
             );
         }
     }
+    let (reference, _) = role_style(SeriesRole::Reference);
     for l in &plot.ref_lines {
         let (xa, ya, xb, yb) = match l.axis {
-            Axis::Y => (left, py(l.value), right, py(l.value)),
-            Axis::X => (px(l.value), top, px(l.value), bottom),
+            Axis::Y => (left, map.py(l.value), right, map.py(l.value)),
+            Axis::X => (map.px(l.value), top, map.px(l.value), bottom),
         };
         if [xa, ya, xb, yb].iter().all(|v| v.is_finite()) {
             let _ = write!(
                 s,
-                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"#5f6a75\" stroke-width=\"1.2\" stroke-dasharray=\"5 5\"/>",
+                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{reference}\" stroke-width=\"1.2\"{}/>",
                 n(xa),
                 n(ya),
                 n(xb),
-                n(yb)
+                n(yb),
+                dash_attr(&REF_LINE_DASH_PX)
             );
         }
     }
-    // Comparison runs first, so the latest run is drawn on top.
-    let order = plot
-        .series
-        .iter()
-        .filter(|s| s.comparison)
-        .chain(plot.series.iter().filter(|s| !s.comparison));
-    for series in order {
-        series_path(&mut s, series, (x0, x1), log, &px, &py);
-    }
-    s.push_str("</g>");
+}
+
+/// Event markers: a ring and a label on the side with more room.
+fn markers_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
+    let (left, right, top) = (map.left, map.right, map.top);
+    let text = ink(Role::Text);
     for m in &plot.markers {
-        if !(m.x.is_finite() && m.y.is_finite()) || (log && m.y <= 0.0) {
+        if !(m.x.is_finite() && m.y.is_finite()) || (map.log && m.y <= 0.0) {
             continue;
         }
-        let (mx, my) = (px(m.x), py(m.y));
-        // Label on the side with more room.
+        let (mx, my) = (map.px(m.x), map.py(m.y));
         let anchor_end = mx > (left + right) / 2.0;
         let _ = write!(
             s,
-            "<circle cx=\"{}\" cy=\"{}\" r=\"4\" fill=\"#ffffff\" stroke=\"#1b1f24\" stroke-width=\"1.5\"/>\
-             <text x=\"{}\" y=\"{}\" text-anchor=\"{}\" fill=\"#1b1f24\">{}</text>",
+            "<circle cx=\"{}\" cy=\"{}\" r=\"4\" fill=\"{}\" stroke=\"{text}\" stroke-width=\"1.5\"/>\
+             <text x=\"{}\" y=\"{}\" text-anchor=\"{}\" fill=\"{text}\">{}</text>",
             n(mx),
             n(my),
+            CANVAS.light,
             n(if anchor_end { mx - 7.0 } else { mx + 7.0 }),
             n((my - 7.0).max(top + 10.0)),
             if anchor_end { "end" } else { "start" },
             escape(&m.label)
         );
     }
-    let _ = write!(
-        s,
-        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#8c97a3\"/></svg>",
-        n(left),
-        n(top),
-        n(right - left),
-        n(bottom - top)
-    );
-    s
 }
 
 /// A degenerate range widened around its value, so the axis has a width.
@@ -832,11 +921,12 @@ fn widen(lo: f64, hi: f64) -> (f64, f64) {
     }
 }
 
-fn dash_attr(dash: &str) -> String {
+fn dash_attr(dash: &[f64]) -> String {
     if dash.is_empty() {
         String::new()
     } else {
-        format!(" stroke-dasharray=\"{dash}\"")
+        let pattern: Vec<String> = dash.iter().map(|d| format_number(*d, 2)).collect();
+        format!(" stroke-dasharray=\"{}\"", pattern.join(" "))
     }
 }
 

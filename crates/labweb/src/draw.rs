@@ -4,183 +4,23 @@
 //! that fits the experiment's [`ViewBox`] into the canvas; the backing store
 //! is `devicePixelRatio` times larger so lines stay crisp.
 
+use crate::palette::hex_rgb;
+pub use crate::palette::Palette;
+pub use crate::viewport::Viewport;
+use crate::viewport::{clip_segment, round_px};
 use glam::DVec2;
-use labcore::{Item, RasterColour, Role, Scene, ViewBox};
+use labcore::scene::style;
+use labcore::{Item, RasterColour, Role, Scene};
 use std::f64::consts::TAU;
-use wasm_bindgen::{JsCast, JsValue};
-use web_sys::{CanvasRenderingContext2d, Element};
-
-/// Theme colours per role, read from CSS custom properties (`--c-link`, …).
-#[derive(Clone, Debug)]
-pub struct Palette {
-    colours: Vec<(Role, String)>,
-    vars: Vec<(&'static str, String)>,
-    pub background: String,
-    /// The focus ring's colour: the page's focus outline (`--focus`).
-    pub focus: String,
-    /// Which reading of the CSS this is (each [`Palette::from_css`] takes
-    /// the next number): kept pictures compare it instead of the colours.
-    pub(crate) reading: u64,
-}
-
-thread_local! {
-    static PALETTE_READINGS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
-}
-
-/// Other theme colours the plots use.
-const PLOT_VARS: &[&str] = &[
-    "--p-1", "--p-2", "--p-3", "--p-4", "--p-5", "--p-6", "--p-band", "--c-text", "--c-grid",
-    "--muted",
-];
-
-const ROLE_VARS: &[(Role, &str)] = &[
-    (Role::Grid, "--c-grid"),
-    (Role::Bound, "--c-bound"),
-    (Role::Link, "--c-link"),
-    (Role::Joint, "--c-joint"),
-    (Role::Base, "--c-base"),
-    (Role::Tip, "--c-tip"),
-    (Role::Target, "--c-target"),
-    (Role::Ghost, "--c-ghost"),
-    (Role::Sample, "--c-sample"),
-    (Role::Accent, "--c-accent"),
-    (Role::Warning, "--c-warning"),
-    (Role::Text, "--c-text"),
-    (Role::Robot, "--c-robot"),
-    (Role::Obstacle, "--c-obstacle"),
-    (Role::Path, "--c-path"),
-    (Role::Estimate, "--c-estimate"),
-    (Role::Visited, "--c-visited"),
-];
-
-impl Palette {
-    /// Reads the current theme from the computed style of `el`.
-    pub fn from_css(el: &Element) -> Self {
-        let style = crate::dom::window().get_computed_style(el).ok().flatten();
-        let read = |var: &str, fallback: &str| {
-            style
-                .as_ref()
-                .and_then(|s| s.get_property_value(var).ok())
-                .map(|v| v.trim().to_owned())
-                .filter(|v| !v.is_empty())
-                .map(|v| resolve_colour(&v))
-                .unwrap_or_else(|| fallback.to_owned())
-        };
-        Self {
-            colours: ROLE_VARS
-                .iter()
-                .map(|(role, var)| (*role, read(var, "#888")))
-                .collect(),
-            vars: PLOT_VARS.iter().map(|v| (*v, read(v, "#888"))).collect(),
-            background: read("--c-canvas", "#fff"),
-            focus: read("--focus", "#E69F00"),
-            reading: PALETTE_READINGS.with(|n| {
-                n.set(n.get() + 1);
-                n.get()
-            }),
-        }
-    }
-
-    /// A theme colour by its CSS custom property name (see [`PLOT_VARS`]).
-    pub fn var(&self, name: &str) -> String {
-        self.vars
-            .iter()
-            .find(|(v, _)| *v == name)
-            .map_or_else(|| "#888".to_owned(), |(_, c)| c.clone())
-    }
-
-    pub fn colour(&self, role: Role) -> &str {
-        self.colours
-            .iter()
-            .find(|(r, _)| *r == role)
-            .map_or("#888", |(_, c)| c.as_str())
-    }
-}
-
-/// A theme colour as `#rrggbb`: hex as it is; anything else (a system colour
-/// such as `CanvasText` under `forced-colors: active`, `rgb()`…) through a
-/// probe element's computed colour, so the canvas and the raster tables get
-/// the user's own colours.
-fn resolve_colour(value: &str) -> String {
-    if value.starts_with('#') {
-        return value.to_owned();
-    }
-    let resolved = (|| {
-        let doc = crate::dom::document();
-        let probe: web_sys::HtmlElement = doc.create_element("span").ok()?.dyn_into().ok()?;
-        let style = probe.style();
-        style.set_property("color", value).ok()?;
-        // The probe keeps the colour asked for (forced colours would repaint it).
-        let _ = style.set_property("forced-color-adjust", "none");
-        let _ = style.set_property("display", "none");
-        doc.body()?.append_child(&probe).ok()?;
-        let computed = crate::dom::window()
-            .get_computed_style(&probe)
-            .ok()
-            .flatten()
-            .and_then(|s| s.get_property_value("color").ok());
-        probe.remove();
-        rgb_to_hex(&computed?)
-    })();
-    resolved.unwrap_or_else(|| value.to_owned())
-}
-
-/// `rgb(12, 34, 56)` or `rgba(12, 34, 56, 1)` → `#0c2238`.
-fn rgb_to_hex(css: &str) -> Option<String> {
-    let inner = css.trim().split_once('(')?.1.strip_suffix(')')?;
-    let parts: Vec<u8> = inner
-        .split([',', ' ', '/'])
-        .filter(|p| !p.is_empty())
-        .take(3)
-        .map(|p| {
-            p.trim()
-                .parse::<f64>()
-                .ok()
-                .map(|v| v.round().clamp(0.0, 255.0) as u8)
-        })
-        .collect::<Option<_>>()?;
-    (parts.len() == 3).then(|| format!("#{:02x}{:02x}{:02x}", parts[0], parts[1], parts[2]))
-}
-
-/// The world → CSS-pixel mapping of one frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Viewport {
-    pub scale_px_per_m: f64,
-    pub center_world: DVec2,
-    pub center_px: DVec2,
-}
-
-impl Viewport {
-    /// Fits `view` into a `width_px` × `height_px` canvas, uniform scale.
-    #[must_use]
-    pub fn fit(view: ViewBox, width_px: f64, height_px: f64) -> Self {
-        let size = (view.max - view.min).max(DVec2::splat(1e-9));
-        let scale = (width_px / size.x).min(height_px / size.y).max(1e-9);
-        Self {
-            scale_px_per_m: scale,
-            center_world: (view.min + view.max) * 0.5,
-            center_px: DVec2::new(width_px, height_px) * 0.5,
-        }
-    }
-
-    #[must_use]
-    pub fn to_px(&self, p: DVec2) -> DVec2 {
-        let d = (p - self.center_world) * self.scale_px_per_m;
-        DVec2::new(self.center_px.x + d.x, self.center_px.y - d.y)
-    }
-
-    #[must_use]
-    pub fn to_world(&self, px: DVec2) -> DVec2 {
-        let d = px - self.center_px;
-        self.center_world + DVec2::new(d.x, -d.y) / self.scale_px_per_m
-    }
-}
+use wasm_bindgen::JsValue;
+use web_sys::CanvasRenderingContext2d;
 
 fn set_dash(ctx: &CanvasRenderingContext2d, dashed: bool) {
     let pattern = js_sys::Array::new();
     if dashed {
-        pattern.push(&JsValue::from_f64(6.0));
-        pattern.push(&JsValue::from_f64(5.0));
+        for d in style::DASH_PX {
+            pattern.push(&JsValue::from_f64(d));
+        }
     }
     let _ = ctx.set_line_dash(&pattern);
 }
@@ -264,7 +104,6 @@ fn paint_items(
     palette: &Palette,
     background: bool,
 ) {
-    let width_px_canvas = width_px;
     let _ = ctx.set_transform(dpr, 0.0, 0.0, dpr, 0.0, 0.0);
     if background {
         ctx.set_fill_style_str(&palette.background);
@@ -272,11 +111,43 @@ fn paint_items(
     }
     ctx.set_line_cap("round");
     ctx.set_line_join("round");
-    // Whether the context's font and baseline are the labels' (the scale
-    // bar and the off-view marks set their own).
-    let mut label_font = false;
+    let mut canvas = Canvas {
+        ctx,
+        viewport,
+        palette,
+        size: (width_px, height_px),
+        dpr,
+        label_font: false,
+    };
     for item in items {
         ctx.set_global_alpha(1.0);
+        canvas.item(item);
+    }
+    ctx.set_global_alpha(1.0);
+}
+
+/// One paint's canvas and what its items are drawn with.
+struct Canvas<'a> {
+    ctx: &'a CanvasRenderingContext2d,
+    viewport: &'a Viewport,
+    palette: &'a Palette,
+    /// CSS pixels.
+    size: (f64, f64),
+    /// Device pixels per CSS pixel.
+    dpr: f64,
+    /// Whether the context's font and baseline are the labels' (the scale
+    /// bar and the off-view marks set their own).
+    label_font: bool,
+}
+
+impl Canvas<'_> {
+    fn colour(&self, role: Role) -> &str {
+        self.palette.colour(role)
+    }
+
+    /// One item of the display list, by its kind.
+    fn item(&mut self, item: &Item) {
+        let (ctx, viewport, palette) = (self.ctx, self.viewport, self.palette);
         match item {
             Item::Line {
                 from,
@@ -284,83 +155,83 @@ fn paint_items(
                 width_px,
                 role,
                 dashed,
-            } => {
-                let (a, b) = (viewport.to_px(*from), viewport.to_px(*to));
-                ctx.set_stroke_style_str(palette.colour(*role));
-                ctx.set_line_width(*width_px);
-                set_dash(ctx, *dashed);
-                if *role == Role::Ghost {
-                    ctx.set_global_alpha(0.7);
-                }
-                ctx.begin_path();
-                ctx.move_to(a.x, a.y);
-                ctx.line_to(b.x, b.y);
-                ctx.stroke();
-            }
+            } => self.line(*from, *to, *width_px, *role, *dashed),
             Item::Circle {
                 center,
                 radius_m,
                 role,
                 fill,
                 dashed,
-            } => {
-                let c = viewport.to_px(*center);
-                let r = radius_m * viewport.scale_px_per_m;
-                ctx.begin_path();
-                let _ = ctx.arc(c.x, c.y, r.max(0.0), 0.0, TAU);
-                if *fill {
-                    ctx.set_fill_style_str(palette.colour(*role));
-                    ctx.set_global_alpha(0.18);
-                    ctx.fill();
-                } else {
-                    ctx.set_stroke_style_str(palette.colour(*role));
-                    ctx.set_line_width(2.0);
-                    set_dash(ctx, *dashed);
-                    ctx.stroke();
-                }
-            }
+            } => self.circle(*center, *radius_m, *role, *fill, *dashed),
             Item::Dot {
                 center,
                 radius_px,
                 role,
-            } => {
-                let c = viewport.to_px(*center);
-                ctx.begin_path();
-                let _ = ctx.arc(c.x, c.y, *radius_px, 0.0, TAU);
-                ctx.set_fill_style_str(palette.colour(*role));
-                ctx.fill();
-                ctx.set_line_width(2.0);
-                ctx.set_stroke_style_str(&palette.background);
-                set_dash(ctx, false);
-                ctx.stroke();
-            }
+            } => self.dot(*center, *radius_px, *role),
             Item::Points {
                 points,
                 radius_px,
                 role,
-            } if points.len() >= RASTER_SEGMENTS_MIN => paint_points_raster(
-                ctx,
-                viewport,
-                palette.colour(*role),
-                points,
-                *radius_px,
-                (width_px_canvas, height_px),
-            ),
-            Item::Points {
-                points,
-                radius_px,
+            } => self.points(points, *radius_px, *role),
+            Item::Ellipse {
+                center,
+                semi_axis_a,
+                semi_axis_b,
                 role,
-            } => {
-                ctx.set_fill_style_str(palette.colour(*role));
-                ctx.set_global_alpha(0.55);
-                ctx.begin_path();
-                let d = radius_px * 2.0;
-                for p in points {
-                    let c = viewport.to_px(*p);
-                    ctx.rect(c.x - radius_px, c.y - radius_px, d, d);
-                }
-                ctx.fill();
+            } => self.ellipse(*center, *semi_axis_a, *semi_axis_b, *role),
+            Item::Label {
+                pos,
+                text,
+                role,
+                offset_px,
+            } => self.label(*pos, *offset_px, text, *role),
+            Item::Polyline {
+                points,
+                width_px,
+                role,
+                dashed,
+                closed,
+            } => self.polyline(points, *width_px, *role, *dashed, *closed),
+            Item::Polygon { points, role } => self.polygon(points, *role),
+            Item::Rect {
+                min,
+                max,
+                role,
+                fill,
+            } => self.rect(*min, *max, *role, *fill),
+            Item::Arrow {
+                from,
+                to,
+                width_px,
+                role,
+            } => self.arrows(&[(*from, *to)], *width_px, *role),
+            Item::Arrows {
+                arrows,
+                width_px,
+                role,
+            } => self.arrows(arrows, *width_px, *role),
+            Item::Heatmap { .. }
+            | Item::Segments { .. }
+            | Item::SegmentLayer { .. }
+            | Item::VersionedRaster { .. }
+            | Item::Raster { .. } => self.image(item),
+            Item::ScaleBar => {
+                paint_scale_bar(ctx, viewport, palette, self.size.1);
+                self.label_font = false;
             }
+            Item::OffView { at, label, role } => {
+                paint_off_view(ctx, viewport, palette, self.size, *at, label, *role);
+                self.label_font = false;
+            }
+            Item::FocusRing { center, radius_px } => self.focus_ring(*center, *radius_px),
+        }
+    }
+
+    /// The items painted as images or pixel by pixel: heat maps, rasters
+    /// and segment batches (big ones in wasm, kept ones in their layer).
+    fn image(&self, item: &Item) {
+        let (ctx, viewport, palette, dpr) = (self.ctx, self.viewport, self.palette, self.dpr);
+        match item {
             Item::Heatmap {
                 min,
                 cell_m,
@@ -371,132 +242,13 @@ fn paint_items(
             } => paint_heatmap(
                 ctx,
                 viewport,
-                palette.colour(*role),
+                self.colour(*role),
                 *min,
                 *cell_m,
                 *cols,
                 *rows,
                 values,
             ),
-            Item::Ellipse {
-                center,
-                semi_axis_a,
-                semi_axis_b,
-                role,
-            } => {
-                let c = viewport.to_px(*center);
-                let ra = semi_axis_a.length() * viewport.scale_px_per_m;
-                let rb = semi_axis_b.length() * viewport.scale_px_per_m;
-                // Screen y is flipped, so the rotation angle changes sign.
-                let rotation = -semi_axis_a.y.atan2(semi_axis_a.x);
-                ctx.begin_path();
-                let _ = ctx.ellipse(c.x, c.y, ra.max(0.5), rb.max(0.5), rotation, 0.0, TAU);
-                ctx.set_fill_style_str(palette.colour(*role));
-                ctx.set_global_alpha(0.18);
-                ctx.fill();
-                ctx.set_global_alpha(1.0);
-                ctx.set_stroke_style_str(palette.colour(*role));
-                ctx.set_line_width(2.0);
-                set_dash(ctx, false);
-                ctx.stroke();
-            }
-            Item::Label {
-                pos,
-                text,
-                role,
-                offset_px,
-            } => {
-                let c = viewport.to_px(*pos) + *offset_px;
-                // The font is set once a paint (setting it parses it).
-                if !label_font {
-                    ctx.set_font(LABEL_FONT);
-                    ctx.set_text_baseline("middle");
-                    label_font = true;
-                }
-                let text_w = crate::text::width(ctx, LABEL_FONT, text);
-                // Keep labels inside the canvas.
-                let x = c.x.min(width_px - text_w - 4.0).max(4.0);
-                let y = c.y.clamp(10.0, height_px - 10.0);
-                ctx.set_line_width(4.0);
-                ctx.set_stroke_style_str(&palette.background);
-                set_dash(ctx, false);
-                let _ = ctx.stroke_text(text, x, y);
-                ctx.set_fill_style_str(palette.colour(*role));
-                let _ = ctx.fill_text(text, x, y);
-            }
-            Item::Polyline {
-                points,
-                width_px,
-                role,
-                dashed,
-                closed,
-            } => {
-                if points.len() < 2 {
-                    continue;
-                }
-                trace_polyline(ctx, viewport, points, *closed);
-                ctx.set_stroke_style_str(palette.colour(*role));
-                ctx.set_line_width(*width_px);
-                set_dash(ctx, *dashed);
-                ctx.stroke();
-            }
-            Item::Polygon { points, role } => {
-                if points.len() < 3 {
-                    continue;
-                }
-                trace_polyline(ctx, viewport, points, true);
-                fill_and_outline(ctx, palette.colour(*role));
-            }
-            Item::Rect {
-                min,
-                max,
-                role,
-                fill,
-            } => {
-                let (a, b) = (viewport.to_px(*min), viewport.to_px(*max));
-                ctx.begin_path();
-                ctx.rect(
-                    a.x.min(b.x),
-                    a.y.min(b.y),
-                    (b.x - a.x).abs(),
-                    (b.y - a.y).abs(),
-                );
-                if *fill {
-                    fill_and_outline(ctx, palette.colour(*role));
-                } else {
-                    ctx.set_stroke_style_str(palette.colour(*role));
-                    ctx.set_line_width(2.0);
-                    set_dash(ctx, false);
-                    ctx.stroke();
-                }
-            }
-            Item::Arrow {
-                from,
-                to,
-                width_px,
-                role,
-            } => {
-                ctx.begin_path();
-                trace_arrow(ctx, viewport.to_px(*from), viewport.to_px(*to), *width_px);
-                ctx.set_stroke_style_str(palette.colour(*role));
-                ctx.set_line_width(*width_px);
-                set_dash(ctx, false);
-                ctx.stroke();
-            }
-            Item::Arrows {
-                arrows,
-                width_px,
-                role,
-            } => {
-                ctx.begin_path();
-                for (from, to) in arrows {
-                    trace_arrow(ctx, viewport.to_px(*from), viewport.to_px(*to), *width_px);
-                }
-                ctx.set_stroke_style_str(palette.colour(*role));
-                ctx.set_line_width(*width_px);
-                set_dash(ctx, false);
-                ctx.stroke();
-            }
             Item::Segments {
                 segments,
                 width_px,
@@ -504,17 +256,17 @@ fn paint_items(
             } if segments.len() >= RASTER_SEGMENTS_MIN => paint_segments_raster(
                 ctx,
                 viewport,
-                palette.colour(*role),
+                self.colour(*role),
                 segments,
                 *width_px,
-                (width_px_canvas, height_px),
+                self.size,
                 dpr,
             ),
             Item::Segments {
                 segments,
                 width_px,
                 role,
-            } => stroke_segments(ctx, viewport, palette.colour(*role), segments, *width_px),
+            } => stroke_segments(ctx, viewport, self.colour(*role), segments, *width_px),
             // Kept whatever its size: a frame draws only the new and rewired
             // edges. Stroked as a path, a tree of 3,000 edges cost about 40 ms
             // of raster a frame on a 4x-throttled phone, and a tree grows
@@ -526,10 +278,10 @@ fn paint_items(
             } => crate::layers::paint_segment_layer(
                 ctx,
                 viewport,
-                palette.colour(*role),
+                self.colour(*role),
                 layer,
                 *width_px,
-                (width_px_canvas, height_px),
+                self.size,
                 dpr,
             ),
             Item::VersionedRaster {
@@ -552,39 +304,6 @@ fn paint_items(
                 cells,
                 states,
             ),
-            Item::ScaleBar => {
-                paint_scale_bar(ctx, viewport, palette, height_px);
-                label_font = false;
-            }
-            Item::OffView { at, label, role } => {
-                paint_off_view(
-                    ctx,
-                    viewport,
-                    palette,
-                    (width_px, height_px),
-                    *at,
-                    label,
-                    *role,
-                );
-                label_font = false;
-            }
-            Item::FocusRing { center, radius_px } => {
-                let c = viewport.to_px(*center);
-                set_dash(ctx, false);
-                // A 3 px ring in the focus colour between two thin lines of
-                // the background, so it shows on any colour under it.
-                for (colour, width, r) in [
-                    (palette.background.as_str(), 1.5, radius_px - 2.25),
-                    (palette.background.as_str(), 1.5, radius_px + 2.25),
-                    (palette.focus.as_str(), 3.0, *radius_px),
-                ] {
-                    ctx.set_stroke_style_str(colour);
-                    ctx.set_line_width(width);
-                    ctx.begin_path();
-                    let _ = ctx.arc(c.x, c.y, r, 0.0, std::f64::consts::TAU);
-                    ctx.stroke();
-                }
-            }
             Item::Raster {
                 min,
                 cell_m,
@@ -602,9 +321,194 @@ fn paint_items(
                 cells,
                 states,
             ),
+            _ => {}
         }
     }
-    ctx.set_global_alpha(1.0);
+
+    fn line(&self, from: DVec2, to: DVec2, width_px: f64, role: Role, dashed: bool) {
+        let ctx = self.ctx;
+        let (a, b) = (self.viewport.to_px(from), self.viewport.to_px(to));
+        ctx.set_stroke_style_str(self.colour(role));
+        ctx.set_line_width(width_px);
+        set_dash(ctx, dashed);
+        let opacity = role.style().line_opacity;
+        if opacity < 1.0 {
+            ctx.set_global_alpha(opacity);
+        }
+        ctx.begin_path();
+        ctx.move_to(a.x, a.y);
+        ctx.line_to(b.x, b.y);
+        ctx.stroke();
+    }
+
+    fn circle(&self, center: DVec2, radius_m: f64, role: Role, fill: bool, dashed: bool) {
+        let ctx = self.ctx;
+        let c = self.viewport.to_px(center);
+        let r = radius_m * self.viewport.scale_px_per_m;
+        ctx.begin_path();
+        let _ = ctx.arc(c.x, c.y, r.max(0.0), 0.0, TAU);
+        if fill {
+            ctx.set_fill_style_str(self.colour(role));
+            ctx.set_global_alpha(style::FILL_OPACITY_LIGHT);
+            ctx.fill();
+        } else {
+            ctx.set_stroke_style_str(self.colour(role));
+            ctx.set_line_width(style::OUTLINE_PX);
+            set_dash(ctx, dashed);
+            ctx.stroke();
+        }
+    }
+
+    fn dot(&self, center: DVec2, radius_px: f64, role: Role) {
+        let ctx = self.ctx;
+        let c = self.viewport.to_px(center);
+        ctx.begin_path();
+        let _ = ctx.arc(c.x, c.y, radius_px, 0.0, TAU);
+        ctx.set_fill_style_str(self.colour(role));
+        ctx.fill();
+        ctx.set_line_width(style::OUTLINE_PX);
+        ctx.set_stroke_style_str(&self.palette.background);
+        set_dash(ctx, false);
+        ctx.stroke();
+    }
+
+    fn points(&self, points: &[DVec2], radius_px: f64, role: Role) {
+        let ctx = self.ctx;
+        if points.len() >= RASTER_SEGMENTS_MIN {
+            paint_points_raster(
+                ctx,
+                self.viewport,
+                self.colour(role),
+                points,
+                radius_px,
+                self.size,
+            );
+            return;
+        }
+        ctx.set_fill_style_str(self.colour(role));
+        ctx.set_global_alpha(style::POINTS_OPACITY);
+        ctx.begin_path();
+        let d = radius_px * 2.0;
+        for p in points {
+            let c = self.viewport.to_px(*p);
+            ctx.rect(c.x - radius_px, c.y - radius_px, d, d);
+        }
+        ctx.fill();
+    }
+
+    fn ellipse(&self, center: DVec2, semi_axis_a: DVec2, semi_axis_b: DVec2, role: Role) {
+        let ctx = self.ctx;
+        let c = self.viewport.to_px(center);
+        let ra = semi_axis_a.length() * self.viewport.scale_px_per_m;
+        let rb = semi_axis_b.length() * self.viewport.scale_px_per_m;
+        // Screen y is flipped, so the rotation angle changes sign.
+        let rotation = -semi_axis_a.y.atan2(semi_axis_a.x);
+        ctx.begin_path();
+        let _ = ctx.ellipse(c.x, c.y, ra.max(0.5), rb.max(0.5), rotation, 0.0, TAU);
+        ctx.set_fill_style_str(self.colour(role));
+        ctx.set_global_alpha(style::FILL_OPACITY_LIGHT);
+        ctx.fill();
+        ctx.set_global_alpha(1.0);
+        ctx.set_stroke_style_str(self.colour(role));
+        ctx.set_line_width(style::OUTLINE_PX);
+        set_dash(ctx, false);
+        ctx.stroke();
+    }
+
+    fn label(&mut self, pos: DVec2, offset_px: DVec2, text: &str, role: Role) {
+        let ctx = self.ctx;
+        let (width_px, height_px) = self.size;
+        let c = self.viewport.to_px(pos) + offset_px;
+        // The font is set once a paint (setting it parses it).
+        if !self.label_font {
+            ctx.set_font(LABEL_FONT);
+            ctx.set_text_baseline("middle");
+            self.label_font = true;
+        }
+        let text_w = crate::text::width(ctx, LABEL_FONT, text);
+        // Keep labels inside the canvas.
+        let x = c.x.min(width_px - text_w - 4.0).max(4.0);
+        let y = c.y.clamp(10.0, height_px - 10.0);
+        ctx.set_line_width(style::LABEL_HALO_PX);
+        ctx.set_stroke_style_str(&self.palette.background);
+        set_dash(ctx, false);
+        let _ = ctx.stroke_text(text, x, y);
+        ctx.set_fill_style_str(self.colour(role));
+        let _ = ctx.fill_text(text, x, y);
+    }
+
+    fn polyline(&self, points: &[DVec2], width_px: f64, role: Role, dashed: bool, closed: bool) {
+        if points.len() < 2 {
+            return;
+        }
+        let ctx = self.ctx;
+        trace_polyline(ctx, self.viewport, points, closed);
+        ctx.set_stroke_style_str(self.colour(role));
+        ctx.set_line_width(width_px);
+        set_dash(ctx, dashed);
+        ctx.stroke();
+    }
+
+    fn polygon(&self, points: &[DVec2], role: Role) {
+        if points.len() < 3 {
+            return;
+        }
+        trace_polyline(self.ctx, self.viewport, points, true);
+        fill_and_outline(self.ctx, self.colour(role));
+    }
+
+    fn rect(&self, min: DVec2, max: DVec2, role: Role, fill: bool) {
+        let ctx = self.ctx;
+        let (a, b) = (self.viewport.to_px(min), self.viewport.to_px(max));
+        ctx.begin_path();
+        ctx.rect(
+            a.x.min(b.x),
+            a.y.min(b.y),
+            (b.x - a.x).abs(),
+            (b.y - a.y).abs(),
+        );
+        if fill {
+            fill_and_outline(ctx, self.colour(role));
+        } else {
+            ctx.set_stroke_style_str(self.colour(role));
+            ctx.set_line_width(style::OUTLINE_PX);
+            set_dash(ctx, false);
+            ctx.stroke();
+        }
+    }
+
+    /// Arrows of one role as one path, one stroke.
+    fn arrows(&self, arrows: &[(DVec2, DVec2)], width_px: f64, role: Role) {
+        let ctx = self.ctx;
+        ctx.begin_path();
+        for (from, to) in arrows {
+            let (a, b) = (self.viewport.to_px(*from), self.viewport.to_px(*to));
+            trace_arrow(ctx, a, b, width_px);
+        }
+        ctx.set_stroke_style_str(self.colour(role));
+        ctx.set_line_width(width_px);
+        set_dash(ctx, false);
+        ctx.stroke();
+    }
+
+    /// A 3 px ring in the focus colour between two thin lines of the
+    /// background, so it shows on any colour under it.
+    fn focus_ring(&self, center: DVec2, radius_px: f64) {
+        let ctx = self.ctx;
+        let c = self.viewport.to_px(center);
+        set_dash(ctx, false);
+        for (colour, width, r) in [
+            (self.palette.background.as_str(), 1.5, radius_px - 2.25),
+            (self.palette.background.as_str(), 1.5, radius_px + 2.25),
+            (self.palette.focus.as_str(), 3.0, radius_px),
+        ] {
+            ctx.set_stroke_style_str(colour);
+            ctx.set_line_width(width);
+            ctx.begin_path();
+            let _ = ctx.arc(c.x, c.y, r, 0.0, TAU);
+            ctx.stroke();
+        }
+    }
 }
 
 /// A small batch of segments as one anti-aliased path, one stroke.
@@ -783,11 +687,11 @@ fn trace_polyline(
 /// Fills the current path translucently and outlines it in the same colour.
 fn fill_and_outline(ctx: &CanvasRenderingContext2d, colour: &str) {
     ctx.set_fill_style_str(colour);
-    ctx.set_global_alpha(0.35);
+    ctx.set_global_alpha(style::FILL_OPACITY);
     ctx.fill();
     ctx.set_global_alpha(1.0);
     ctx.set_stroke_style_str(colour);
-    ctx.set_line_width(2.0);
+    ctx.set_line_width(style::OUTLINE_PX);
     set_dash(ctx, false);
     ctx.stroke();
 }
@@ -853,7 +757,7 @@ fn paint_segments_raster(
             let Some((a, b)) = clip_segment(a, b, w as f64 - 1.0, h as f64 - 1.0) else {
                 continue;
             };
-            bresenham(a, b, |x, y| {
+            labcore::bresenham::line(round_px(a), round_px(b), |x, y| {
                 plot(x, y);
                 if thick {
                     plot(x + 1, y);
@@ -930,62 +834,6 @@ fn paint_points_raster(
     });
 }
 
-/// Liang–Barsky clipping of segment `a`–`b` to `[0, max_x] × [0, max_y]`.
-pub(crate) fn clip_segment(a: DVec2, b: DVec2, max_x: f64, max_y: f64) -> Option<(DVec2, DVec2)> {
-    if !(a.is_finite() && b.is_finite()) {
-        return None;
-    }
-    let d = b - a;
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [
-        (-d.x, a.x),
-        (d.x, max_x - a.x),
-        (-d.y, a.y),
-        (d.y, max_y - a.y),
-    ] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return None;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-            if t0 > t1 {
-                return None;
-            }
-        }
-    }
-    Some((a + d * t0, a + d * t1))
-}
-
-/// Integer Bresenham line from `a` to `b` (both already clipped).
-pub(crate) fn bresenham(a: DVec2, b: DVec2, mut plot: impl FnMut(i64, i64)) {
-    let (mut x, mut y) = (a.x.round() as i64, a.y.round() as i64);
-    let (x1, y1) = (b.x.round() as i64, b.y.round() as i64);
-    let (dx, dy) = ((x1 - x).abs(), -(y1 - y).abs());
-    let (sx, sy) = (if x < x1 { 1 } else { -1 }, if y < y1 { 1 } else { -1 });
-    let mut err = dx + dy;
-    loop {
-        plot(x, y);
-        if x == x1 && y == y1 {
-            break;
-        }
-        let e2 = 2 * err;
-        if e2 >= dy {
-            err += dy;
-            x += sx;
-        }
-        if e2 <= dx {
-            err += dx;
-            y += sy;
-        }
-    }
-}
-
 /// Cell states as one RGBA image drawn by a single `drawImage`.
 #[allow(clippy::too_many_arguments)]
 fn paint_raster(
@@ -1005,19 +853,6 @@ fn paint_raster(
     let mut rgba = Vec::new();
     crate::layers::raster_rgba(cells, (cols, rows), &lut, &mut rgba);
     blit(ctx, viewport, &rgba, min, cell_m, cols, rows);
-}
-
-/// `#rrggbb` → RGB; anything else gives a mid grey.
-pub(crate) fn hex_rgb(colour: &str) -> [u8; 3] {
-    let hex = colour.trim().trim_start_matches('#');
-    let channel = |i: usize| {
-        hex.get(i..i + 2)
-            .and_then(|h| u8::from_str_radix(h, 16).ok())
-    };
-    match (hex.len(), channel(0), channel(2), channel(4)) {
-        (6, Some(r), Some(g), Some(b)) => [r, g, b],
-        _ => [136, 136, 136],
-    }
 }
 
 thread_local! {
@@ -1124,21 +959,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn computed_colours_become_hex_for_the_raster_tables() {
-        assert_eq!(rgb_to_hex("rgb(12, 34, 56)").as_deref(), Some("#0c2238"));
-        assert_eq!(
-            rgb_to_hex("rgba(255, 255, 255, 1)").as_deref(),
-            Some("#ffffff")
-        );
-        assert_eq!(
-            rgb_to_hex("rgb(0 128 255 / 0.5)").as_deref(),
-            Some("#0080ff")
-        );
-        assert_eq!(rgb_to_hex("CanvasText"), None);
-        assert_eq!(rgb_to_hex("rgb(1, 2)"), None);
-    }
-
-    #[test]
     fn the_scale_bar_takes_the_longest_round_length_that_fits() {
         // 100 px per metre, at most 120 px: 1 m.
         assert_eq!(scale_bar_m(100.0, 120.0), 1.0);
@@ -1168,43 +988,5 @@ mod tests {
         // Below and left: on the inset rectangle, inside the canvas.
         let (p, _) = off_view_mark(DVec2::new(-50.0, 900.0), size, 10.0).unwrap();
         assert!((p.y - 290.0).abs() < 1e-9 && p.x > 10.0 && p.x < 200.0);
-    }
-
-    #[test]
-    fn clipping_keeps_inside_parts_only() {
-        let c =
-            |a: (f64, f64), b: (f64, f64)| clip_segment(DVec2::from(a), DVec2::from(b), 10.0, 10.0);
-        assert_eq!(
-            c((1.0, 1.0), (5.0, 5.0)),
-            Some((DVec2::new(1.0, 1.0), DVec2::new(5.0, 5.0)))
-        );
-        assert_eq!(
-            c((-10.0, 5.0), (20.0, 5.0)),
-            Some((DVec2::new(0.0, 5.0), DVec2::new(10.0, 5.0)))
-        );
-        assert_eq!(c((-5.0, -5.0), (-1.0, 20.0)), None);
-        assert_eq!(c((f64::NAN, 0.0), (1.0, 1.0)), None);
-        // A far-away endpoint is clipped, not walked pixel by pixel.
-        let (a, b) = c((5.0, 5.0), (1e300, 5.0)).expect("crosses the canvas");
-        assert_eq!((a.x, b.x), (5.0, 10.0));
-    }
-
-    #[test]
-    fn bresenham_visits_every_pixel_once_from_end_to_end() {
-        let mut seen = Vec::new();
-        bresenham(DVec2::new(0.0, 0.0), DVec2::new(5.0, 2.0), |x, y| {
-            seen.push((x, y))
-        });
-        assert_eq!(seen.first(), Some(&(0, 0)));
-        assert_eq!(seen.last(), Some(&(5, 2)));
-        assert_eq!(seen.len(), 6, "one pixel per column of an x-major line");
-        let mut steep = Vec::new();
-        bresenham(DVec2::new(3.0, 7.0), DVec2::new(2.0, 0.0), |x, y| {
-            steep.push((x, y))
-        });
-        assert_eq!(steep.len(), 8);
-        assert!(steep
-            .windows(2)
-            .all(|w| (w[0].0 - w[1].0).abs() <= 1 && (w[0].1 - w[1].1).abs() == 1));
     }
 }

@@ -10,11 +10,13 @@ pub mod draw;
 pub mod help;
 pub mod layers;
 pub mod lms;
+pub mod palette;
 pub mod plot_view;
 pub mod quiz_view;
 pub mod report_view;
 pub mod sim;
 pub mod text;
+pub mod viewport;
 
 use std::cell::RefCell;
 use wasm_bindgen::prelude::*;

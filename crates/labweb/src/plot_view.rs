@@ -6,7 +6,9 @@
 use crate::dom::{self, escape, query, query_all};
 use crate::draw::Palette;
 use labcore::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, SeriesRole};
+use labcore::scene::style::{BAND_OPACITY, PLOT_BAND, REF_LINE_DASH_PX};
 use labcore::units::format_number;
+use labcore::Role;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 use web_sys::{
@@ -19,17 +21,11 @@ const TABLE_ROWS_MAX: usize = 500;
 /// Plot margins, CSS pixels: left (y tick labels), right, top, bottom (x ticks and label).
 const MARGIN: (f64, f64, f64, f64) = (58.0, 12.0, 10.0, 37.0);
 
-/// CSS custom property and dash pattern of each series role: every pair of
-/// roles differs in dash as well as colour.
+/// CSS custom property and dash pattern of each series role (the style
+/// table's): every pair of roles differs in dash as well as colour.
 fn role_style(role: SeriesRole) -> (&'static str, &'static [f64]) {
-    match role {
-        SeriesRole::Primary => ("--p-1", &[]),
-        SeriesRole::Secondary => ("--p-2", &[9.0, 4.0]),
-        SeriesRole::Tertiary => ("--p-3", &[2.0, 3.0]),
-        SeriesRole::Quaternary => ("--p-4", &[9.0, 3.0, 2.0, 3.0]),
-        SeriesRole::Reference => ("--p-5", &[5.0, 5.0]),
-        SeriesRole::Bound => ("--p-6", &[2.0, 2.0]),
-    }
+    let style = role.style();
+    (style.colour.var, style.dash_px)
 }
 
 fn dash_attr(dash: &[f64]) -> String {
@@ -117,7 +113,8 @@ pub fn legend_extra_html(plot: &Plot) -> String {
         seen.push(&line.label);
         html.push_str(&format!(
             "<span class=\"legend-item\" data-legend=\"line\"><svg width=\"26\" height=\"10\" aria-hidden=\"true\">\
-             <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" class=\"p-5\" stroke=\"currentColor\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/></svg>{}</span>",
+             <line x1=\"1\" y1=\"5\" x2=\"25\" y2=\"5\" class=\"p-5\" stroke=\"currentColor\" stroke-width=\"1.5\" stroke-dasharray=\"{}\"/></svg>{}</span>",
+            dash_attr(&REF_LINE_DASH_PX),
             escape(&line.label)
         ));
     }
@@ -1020,10 +1017,6 @@ fn set_dash(ctx: &CanvasRenderingContext2d, dash: &[f64]) {
     let _ = ctx.set_line_dash(&pattern);
 }
 
-fn css(palette: &Palette, var: &str) -> String {
-    palette.var(var)
-}
-
 /// Paints one plot; returns the mapping used.
 #[cfg(feature = "bench-exports")]
 pub(crate) fn paint_plot(
@@ -1062,7 +1055,6 @@ const TICK_H: f64 = 14.0;
 
 /// Paints one plot (x axis fitted to the latest run with `fit_latest`);
 /// returns the mapping used and where every label went.
-#[allow(clippy::too_many_lines)]
 pub(crate) fn paint_plot_layout(
     ctx: &CanvasRenderingContext2d,
     plot: &Plot,
@@ -1076,8 +1068,7 @@ pub(crate) fn paint_plot_layout(
     ctx.set_fill_style_str(&palette.background);
     ctx.fill_rect(0.0, 0.0, w, h);
     let (_, mr, mt, mb) = MARGIN;
-    let text = css(palette, "--c-text");
-    let grid = css(palette, "--c-grid");
+    let text = palette.colour(Role::Text).to_owned();
     ctx.set_font(PLOT_FONT);
     ctx.set_fill_style_str(&text);
     let Some(x_range) = x_range_for(plot, fit_latest) else {
@@ -1115,296 +1106,406 @@ pub(crate) fn paint_plot_layout(
         nice_ticks(y0, y1, max_y_ticks)
     };
     let y_labels = tick_labels(&y_ticks, log);
-    let measure = |t: &str| crate::text::width(ctx, PLOT_FONT, t);
-    let widest_y = y_labels.iter().map(|t| measure(t)).fold(0.0, f64::max);
+    let widest_y = y_labels.iter().map(|t| measure(ctx, t)).fold(0.0, f64::max);
     let ml = left_margin(widest_y);
-    let rect = (ml, mt, (w - ml - mr).max(10.0), ph);
     let frame = Frame {
         x: (x0, x1),
         y: (y0, y1),
         log,
-        rect,
+        rect: (ml, mt, (w - ml - mr).max(10.0), ph),
     };
-    let (l, t, pw, ph) = rect;
-    // Bands, then grid and ticks.
-    ctx.set_fill_style_str(&css(palette, "--p-band"));
-    ctx.set_global_alpha(0.22);
-    for band in &plot.bands {
-        match band.axis {
-            Axis::Y => {
-                let (a, b) = (frame.px_y(band.hi.min(y1)), frame.px_y(band.lo.max(y0)));
-                ctx.fill_rect(l, a, pw, (b - a).max(0.0));
-            }
-            Axis::X => {
-                let (a, b) = (frame.px_x(band.lo.max(x0)), frame.px_x(band.hi.min(x1)));
-                ctx.fill_rect(a, t, (b - a).max(0.0), ph);
-            }
-        }
-    }
-    ctx.set_global_alpha(1.0);
-    ctx.set_line_width(1.0);
-    set_dash(ctx, &[]);
-    ctx.set_stroke_style_str(&grid);
-    ctx.set_fill_style_str(&text);
-    // As many x ticks as fit side by side with a gap between their labels.
-    let mut max_x_ticks = ((pw / 70.0) as usize).clamp(2, 10);
-    let (x_ticks, x_labels) = loop {
-        let ticks = nice_ticks(x0, x1, max_x_ticks);
-        let labels = tick_labels(&ticks, false);
-        let widest = labels.iter().map(|t| measure(t)).fold(0.0, f64::max);
-        if max_x_ticks <= 2 || (widest + 12.0) * labels.len() as f64 <= pw {
-            break (ticks, labels);
-        }
-        max_x_ticks -= 1;
+    let paint = PlotPaint {
+        ctx,
+        plot,
+        palette,
+        frame,
+        text,
     };
-    ctx.set_text_align("center");
-    ctx.set_text_baseline("top");
-    for (x, label) in x_ticks.iter().zip(&x_labels) {
-        let px = frame.px_x(*x);
-        ctx.begin_path();
-        ctx.move_to(px, t);
-        ctx.line_to(px, t + ph);
-        ctx.stroke();
-        let _ = ctx.fill_text(label, px, t + ph + 4.0);
-        let lw = measure(label);
-        layout.x_ticks.push((
-            label.clone(),
-            Rect {
-                x: px - lw / 2.0,
-                y: t + ph + 4.0,
-                w: lw,
-                h: TICK_H,
-            },
-        ));
-    }
-    ctx.set_text_align("right");
-    ctx.set_text_baseline("middle");
-    for (y, label) in y_ticks.iter().zip(&y_labels) {
-        let py = frame.px_y(*y);
-        ctx.begin_path();
-        ctx.move_to(l, py);
-        ctx.line_to(l + pw, py);
-        ctx.stroke();
-        let _ = ctx.fill_text(label, l - 6.0, py);
-        let lw = measure(label);
-        layout.y_ticks.push((
-            label.clone(),
-            Rect {
-                x: l - 6.0 - lw,
-                y: py - TICK_H / 2.0,
-                w: lw,
-                h: TICK_H,
-            },
-        ));
-    }
-    ctx.set_stroke_style_str(&css(palette, "--muted"));
-    ctx.stroke_rect(l, t, pw, ph);
-    ctx.set_text_align("center");
-    ctx.set_text_baseline("bottom");
-    let x_title = axis_title(plot.x_label, plot.x_unit);
-    let _ = ctx.fill_text(&x_title, l + pw / 2.0, h - 1.0);
-    let xw = measure(&x_title);
-    layout.x_title = Some(Rect {
-        x: l + pw / 2.0 - xw / 2.0,
-        y: h - 1.0 - TICK_H,
-        w: xw,
-        h: TICK_H,
-    });
-    let y_title = axis_title(plot.y_label, plot.y_unit);
-    ctx.save();
-    let _ = ctx.translate(Y_TITLE_BAND / 2.0 + 1.0, t + ph / 2.0);
-    let _ = ctx.rotate(-std::f64::consts::FRAC_PI_2);
-    ctx.set_text_baseline("middle");
-    let _ = ctx.fill_text(&y_title, 0.0, 0.0);
-    ctx.restore();
-    let yw = measure(&y_title);
-    layout.y_title = Some(Rect {
-        x: Y_TITLE_BAND / 2.0 + 1.0 - TICK_H / 2.0,
-        y: t + ph / 2.0 - yw / 2.0,
-        w: TICK_H,
-        h: yw,
-    });
-
+    paint.bands();
+    paint.axes(&mut layout, (&y_ticks, &y_labels), h);
     // Clip the data to the plot rectangle.
+    let (l, t, pw, ph) = frame.rect;
     ctx.save();
     ctx.begin_path();
     ctx.rect(l, t, pw, ph);
     ctx.clip();
-    let mut ref_px = Vec::new();
-    for line in &plot.ref_lines {
-        ctx.set_stroke_style_str(&css(palette, "--p-5"));
-        set_dash(ctx, &[6.0, 4.0]);
-        ctx.set_line_width(1.5);
-        ctx.begin_path();
-        let (a, b) = match line.axis {
-            Axis::Y => {
-                let py = frame.px_y(line.value);
-                ((l, py), (l + pw, py))
-            }
-            Axis::X => {
-                let px = frame.px_x(line.value);
-                ((px, t), (px, t + ph))
-            }
-        };
-        ctx.move_to(a.0, a.1);
-        ctx.line_to(b.0, b.1);
-        ctx.stroke();
-        ref_px.push((line, a, b));
-    }
-    let buckets = (pw as usize).max(1);
-    let keep = move |y: f64| !log || y > 0.0;
-    let mut curves: Vec<Vec<(f64, f64)>> = Vec::new();
-    for s in &plot.series {
-        let (var, dash) = role_style(s.role);
-        let pts = decimate_min_max(&s.x, &s.y, (x0, x1), buckets, keep);
-        ctx.set_stroke_style_str(&css(palette, var));
-        set_dash(ctx, dash);
-        ctx.set_line_width(2.0);
-        ctx.begin_path();
-        let px: Vec<(f64, f64)> = pts
-            .iter()
-            .map(|(x, y)| (frame.px_x(*x), frame.px_y(*y)))
-            .collect();
-        for (i, (x, y)) in px.iter().enumerate() {
-            if i == 0 {
-                ctx.move_to(*x, *y);
-            } else {
-                ctx.line_to(*x, *y);
-            }
-        }
-        if px.len() == 1 {
-            let _ = ctx.arc(px[0].0, px[0].1, 2.0, 0.0, std::f64::consts::TAU);
-        }
-        ctx.stroke();
-        if !px.is_empty() {
-            curves.push(px);
-        }
-    }
-    set_dash(ctx, &[]);
-    let plot_rect = Rect {
-        x: l,
-        y: t,
-        w: pw,
-        h: ph,
-    };
+    let ref_px = paint.ref_lines();
+    let curves = paint.series();
     // Marker diamonds are obstacles for every label.
-    let mut taken: Vec<Rect> = Vec::new();
-    let diamonds: Vec<(f64, f64)> = plot
-        .markers
+    let diamonds = paint.diamonds();
+    let mut taken: Vec<Rect> = diamonds
         .iter()
-        .map(|m| (frame.px_x(m.x), frame.px_y(m.y)))
-        .collect();
-    for (px, py) in &diamonds {
-        ctx.set_fill_style_str(&css(palette, "--p-6"));
-        ctx.set_stroke_style_str(&palette.background);
-        ctx.begin_path();
-        // A diamond: its shape tells it from the lines.
-        ctx.move_to(*px, py - 6.0);
-        ctx.line_to(px + 6.0, *py);
-        ctx.line_to(*px, py + 6.0);
-        ctx.line_to(px - 6.0, *py);
-        ctx.close_path();
-        ctx.fill();
-        ctx.stroke();
-        taken.push(Rect {
+        .map(|(px, py)| Rect {
             x: px - 7.0,
             y: py - 7.0,
             w: 14.0,
             h: 14.0,
-        });
-    }
+        })
+        .collect();
     let diamond_count = taken.len();
-    // Reference-line labels: at an end of their line, where no series is.
-    let mut to_draw: Vec<PlacedLabel> = Vec::new();
-    let mut placed = Vec::new();
-    for (line, a, b) in &ref_px {
-        if line.label.is_empty() {
-            continue;
-        }
-        let size = (measure(&line.label) + 6.0, TICK_H + 2.0);
-        let preferred = match line.axis {
-            Axis::Y => vec![
-                (b.0 - size.0 - 4.0, a.1 - size.1 - 1.0),
-                (b.0 - size.0 - 4.0, a.1 + 2.0),
-                (a.0 + 4.0, a.1 - size.1 - 1.0),
-                (a.0 + 4.0, a.1 + 2.0),
-                (a.0 + (pw - size.0) / 2.0, a.1 - size.1 - 1.0),
-                (a.0 + (pw - size.0) / 2.0, a.1 + 2.0),
-            ],
-            Axis::X => vec![
-                (a.0 + 3.0, t + 2.0),
-                (a.0 - size.0 - 3.0, t + 2.0),
-                (a.0 + 3.0, t + ph - size.1 - 2.0),
-                (a.0 - size.0 - 3.0, t + ph - size.1 - 2.0),
-            ],
-        };
-        let anchor = (b.0, b.1);
-        let preferred: Vec<(f64, f64)> = labels
-            .spot(&line.label, anchor)
-            .into_iter()
-            .chain(preferred)
-            .collect();
-        let r = place_label(anchor, size, &preferred, &plot_rect, &curves, &taken);
-        taken.push(r);
-        placed.push((line.label.clone(), (r.x - anchor.0, r.y - anchor.1)));
-        to_draw.push((line.label.clone(), r, None));
-    }
-    // Marker labels: beside their diamond if free, else in free space with a
-    // leader line; never on each other, on a curve or on a reference line.
-    let mut marker_obstacles = curves.clone();
-    marker_obstacles.extend(ref_px.iter().map(|(_, a, b)| vec![*a, *b]));
-    for (m, (px, py)) in plot.markers.iter().zip(&diamonds) {
-        if m.label.is_empty() {
-            continue;
-        }
-        let size = (measure(&m.label) + 6.0, TICK_H + 2.0);
-        let preferred: Vec<(f64, f64)> = labels
-            .spot(&m.label, (*px, *py))
-            .into_iter()
-            .chain([
-                (px + 8.0, py - size.1 - 4.0),
-                (px - size.0 - 8.0, py - size.1 - 4.0),
-                (px + 8.0, py + 4.0),
-                (px - size.0 - 8.0, py + 4.0),
-            ])
-            .collect();
-        let r = place_label(
-            (*px, *py),
-            size,
-            &preferred,
-            &plot_rect,
-            &marker_obstacles,
-            &taken,
-        );
-        taken.push(r);
-        placed.push((m.label.clone(), (r.x - px, r.y - py)));
-        let far = r.distance_to((*px, *py)) > 12.0;
-        to_draw.push((m.label.clone(), r, far.then_some((*px, *py))));
-    }
-    labels.0 = placed;
-    ctx.set_text_align("left");
-    ctx.set_text_baseline("middle");
-    for (label, r, leader) in &to_draw {
-        if let Some((ax, ay)) = leader {
-            let cx = ax.clamp(r.x, r.x + r.w);
-            let cy = ay.clamp(r.y, r.y + r.h);
-            ctx.set_stroke_style_str(&css(palette, "--muted"));
-            ctx.set_line_width(1.0);
-            ctx.begin_path();
-            ctx.move_to(*ax, *ay);
-            ctx.line_to(cx, cy);
-            ctx.stroke();
-        }
-        ctx.set_fill_style_str(&palette.background);
-        ctx.set_global_alpha(0.85);
-        ctx.fill_rect(r.x, r.y, r.w, r.h);
-        ctx.set_global_alpha(1.0);
-        ctx.set_fill_style_str(&text);
-        let _ = ctx.fill_text(label, r.x + 3.0, r.y + r.h / 2.0);
-    }
+    let to_draw = paint.place_labels(&ref_px, &curves, &diamonds, &mut taken, labels);
+    paint.labels(&to_draw);
     ctx.restore();
     layout.labels = taken[diamond_count..].to_vec();
     (frame, layout)
+}
+
+/// The width of `text` in the plot font, CSS pixels.
+fn measure(ctx: &CanvasRenderingContext2d, text: &str) -> f64 {
+    crate::text::width(ctx, PLOT_FONT, text)
+}
+
+/// A reference line as drawn: the line and its ends, CSS pixels.
+type RefLinePx<'a> = (&'a labcore::plot::RefLine, (f64, f64), (f64, f64));
+
+/// One paint of one plot: the parts of [`paint_plot_layout`], in order.
+struct PlotPaint<'a> {
+    ctx: &'a CanvasRenderingContext2d,
+    plot: &'a Plot,
+    palette: &'a Palette,
+    frame: Frame,
+    /// The text colour.
+    text: String,
+}
+
+impl PlotPaint<'_> {
+    /// The shaded bands, under everything else.
+    fn bands(&self) {
+        let (ctx, frame) = (self.ctx, &self.frame);
+        let (l, t, pw, ph) = frame.rect;
+        let ((x0, x1), (y0, y1)) = (frame.x, frame.y);
+        ctx.set_fill_style_str(&self.palette.var(PLOT_BAND.var));
+        ctx.set_global_alpha(BAND_OPACITY);
+        for band in &self.plot.bands {
+            match band.axis {
+                Axis::Y => {
+                    let (a, b) = (frame.px_y(band.hi.min(y1)), frame.px_y(band.lo.max(y0)));
+                    ctx.fill_rect(l, a, pw, (b - a).max(0.0));
+                }
+                Axis::X => {
+                    let (a, b) = (frame.px_x(band.lo.max(x0)), frame.px_x(band.hi.min(x1)));
+                    ctx.fill_rect(a, t, (b - a).max(0.0), ph);
+                }
+            }
+        }
+        ctx.set_global_alpha(1.0);
+    }
+
+    /// Grid lines, tick labels, the frame and the axis titles; writes where
+    /// the labels and titles went into `layout`.
+    fn axes(&self, layout: &mut Layout, (y_ticks, y_labels): (&[f64], &[String]), h: f64) {
+        let (ctx, frame) = (self.ctx, &self.frame);
+        let (l, t, pw, ph) = frame.rect;
+        let (x0, x1) = frame.x;
+        ctx.set_line_width(1.0);
+        set_dash(ctx, &[]);
+        ctx.set_stroke_style_str(self.palette.colour(Role::Grid));
+        ctx.set_fill_style_str(&self.text);
+        // As many x ticks as fit side by side with a gap between their labels.
+        let mut max_x_ticks = ((pw / 70.0) as usize).clamp(2, 10);
+        let (x_ticks, x_labels) = loop {
+            let ticks = nice_ticks(x0, x1, max_x_ticks);
+            let labels = tick_labels(&ticks, false);
+            let widest = labels.iter().map(|t| measure(ctx, t)).fold(0.0, f64::max);
+            if max_x_ticks <= 2 || (widest + 12.0) * labels.len() as f64 <= pw {
+                break (ticks, labels);
+            }
+            max_x_ticks -= 1;
+        };
+        ctx.set_text_align("center");
+        ctx.set_text_baseline("top");
+        for (x, label) in x_ticks.iter().zip(&x_labels) {
+            let px = frame.px_x(*x);
+            ctx.begin_path();
+            ctx.move_to(px, t);
+            ctx.line_to(px, t + ph);
+            ctx.stroke();
+            let _ = ctx.fill_text(label, px, t + ph + 4.0);
+            let lw = measure(ctx, label);
+            layout.x_ticks.push((
+                label.clone(),
+                Rect {
+                    x: px - lw / 2.0,
+                    y: t + ph + 4.0,
+                    w: lw,
+                    h: TICK_H,
+                },
+            ));
+        }
+        ctx.set_text_align("right");
+        ctx.set_text_baseline("middle");
+        for (y, label) in y_ticks.iter().zip(y_labels) {
+            let py = frame.px_y(*y);
+            ctx.begin_path();
+            ctx.move_to(l, py);
+            ctx.line_to(l + pw, py);
+            ctx.stroke();
+            let _ = ctx.fill_text(label, l - 6.0, py);
+            let lw = measure(ctx, label);
+            layout.y_ticks.push((
+                label.clone(),
+                Rect {
+                    x: l - 6.0 - lw,
+                    y: py - TICK_H / 2.0,
+                    w: lw,
+                    h: TICK_H,
+                },
+            ));
+        }
+        ctx.set_stroke_style_str(&self.palette.var("--muted"));
+        ctx.stroke_rect(l, t, pw, ph);
+        self.axis_titles(layout, h);
+    }
+
+    fn axis_titles(&self, layout: &mut Layout, h: f64) {
+        let ctx = self.ctx;
+        let (l, t, pw, ph) = self.frame.rect;
+        ctx.set_text_align("center");
+        ctx.set_text_baseline("bottom");
+        let x_title = axis_title(self.plot.x_label, self.plot.x_unit);
+        let _ = ctx.fill_text(&x_title, l + pw / 2.0, h - 1.0);
+        let xw = measure(ctx, &x_title);
+        layout.x_title = Some(Rect {
+            x: l + pw / 2.0 - xw / 2.0,
+            y: h - 1.0 - TICK_H,
+            w: xw,
+            h: TICK_H,
+        });
+        let y_title = axis_title(self.plot.y_label, self.plot.y_unit);
+        ctx.save();
+        let _ = ctx.translate(Y_TITLE_BAND / 2.0 + 1.0, t + ph / 2.0);
+        let _ = ctx.rotate(-std::f64::consts::FRAC_PI_2);
+        ctx.set_text_baseline("middle");
+        let _ = ctx.fill_text(&y_title, 0.0, 0.0);
+        ctx.restore();
+        let yw = measure(ctx, &y_title);
+        layout.y_title = Some(Rect {
+            x: Y_TITLE_BAND / 2.0 + 1.0 - TICK_H / 2.0,
+            y: t + ph / 2.0 - yw / 2.0,
+            w: TICK_H,
+            h: yw,
+        });
+    }
+
+    /// The dashed reference lines; returns where each went.
+    fn ref_lines(&self) -> Vec<RefLinePx<'_>> {
+        let (ctx, frame) = (self.ctx, &self.frame);
+        let (l, t, pw, ph) = frame.rect;
+        let (reference, _) = role_style(SeriesRole::Reference);
+        let mut ref_px = Vec::new();
+        for line in &self.plot.ref_lines {
+            ctx.set_stroke_style_str(&self.palette.var(reference));
+            set_dash(ctx, &REF_LINE_DASH_PX);
+            ctx.set_line_width(1.5);
+            ctx.begin_path();
+            let (a, b) = match line.axis {
+                Axis::Y => {
+                    let py = frame.px_y(line.value);
+                    ((l, py), (l + pw, py))
+                }
+                Axis::X => {
+                    let px = frame.px_x(line.value);
+                    ((px, t), (px, t + ph))
+                }
+            };
+            ctx.move_to(a.0, a.1);
+            ctx.line_to(b.0, b.1);
+            ctx.stroke();
+            ref_px.push((line, a, b));
+        }
+        ref_px
+    }
+
+    /// Every series, decimated to a bucket per pixel column; returns each
+    /// drawn curve in CSS pixels.
+    fn series(&self) -> Vec<Vec<(f64, f64)>> {
+        let (ctx, frame) = (self.ctx, &self.frame);
+        let log = frame.log;
+        let buckets = (frame.rect.2 as usize).max(1);
+        let keep = move |y: f64| !log || y > 0.0;
+        let mut curves: Vec<Vec<(f64, f64)>> = Vec::new();
+        for s in &self.plot.series {
+            let (var, dash) = role_style(s.role);
+            let pts = decimate_min_max(&s.x, &s.y, frame.x, buckets, keep);
+            ctx.set_stroke_style_str(&self.palette.var(var));
+            set_dash(ctx, dash);
+            ctx.set_line_width(2.0);
+            ctx.begin_path();
+            let px: Vec<(f64, f64)> = pts
+                .iter()
+                .map(|(x, y)| (frame.px_x(*x), frame.px_y(*y)))
+                .collect();
+            for (i, (x, y)) in px.iter().enumerate() {
+                if i == 0 {
+                    ctx.move_to(*x, *y);
+                } else {
+                    ctx.line_to(*x, *y);
+                }
+            }
+            if px.len() == 1 {
+                let _ = ctx.arc(px[0].0, px[0].1, 2.0, 0.0, std::f64::consts::TAU);
+            }
+            ctx.stroke();
+            if !px.is_empty() {
+                curves.push(px);
+            }
+        }
+        set_dash(ctx, &[]);
+        curves
+    }
+
+    /// A diamond at each event marker (its shape tells it from the lines);
+    /// returns their centres.
+    fn diamonds(&self) -> Vec<(f64, f64)> {
+        let ctx = self.ctx;
+        let diamonds: Vec<(f64, f64)> = self
+            .plot
+            .markers
+            .iter()
+            .map(|m| (self.frame.px_x(m.x), self.frame.px_y(m.y)))
+            .collect();
+        let (bound, _) = role_style(SeriesRole::Bound);
+        for (px, py) in &diamonds {
+            ctx.set_fill_style_str(&self.palette.var(bound));
+            ctx.set_stroke_style_str(&self.palette.background);
+            ctx.begin_path();
+            ctx.move_to(*px, py - 6.0);
+            ctx.line_to(px + 6.0, *py);
+            ctx.line_to(*px, py + 6.0);
+            ctx.line_to(px - 6.0, *py);
+            ctx.close_path();
+            ctx.fill();
+            ctx.stroke();
+        }
+        diamonds
+    }
+
+    /// Places the reference-line and marker labels clear of each other, the
+    /// curves and `taken`, each where it was last time if still free
+    /// (`memory`); adds their boxes to `taken`.
+    fn place_labels(
+        &self,
+        ref_px: &[RefLinePx<'_>],
+        curves: &[Vec<(f64, f64)>],
+        diamonds: &[(f64, f64)],
+        taken: &mut Vec<Rect>,
+        memory: &mut LabelMemory,
+    ) -> Vec<PlacedLabel> {
+        let (l, t, pw, ph) = self.frame.rect;
+        let plot_rect = Rect {
+            x: l,
+            y: t,
+            w: pw,
+            h: ph,
+        };
+        let mut to_draw: Vec<PlacedLabel> = Vec::new();
+        let mut placed = Vec::new();
+        // Reference-line labels: at an end of their line, where no series is.
+        for (line, a, b) in ref_px {
+            if line.label.is_empty() {
+                continue;
+            }
+            let size = (measure(self.ctx, &line.label) + 6.0, TICK_H + 2.0);
+            let anchor = (b.0, b.1);
+            let preferred: Vec<(f64, f64)> = memory
+                .spot(&line.label, anchor)
+                .into_iter()
+                .chain(ref_label_spots(line.axis, *a, *b, size, &self.frame))
+                .collect();
+            let r = place_label(anchor, size, &preferred, &plot_rect, curves, taken);
+            taken.push(r);
+            placed.push((line.label.clone(), (r.x - anchor.0, r.y - anchor.1)));
+            to_draw.push((line.label.clone(), r, None));
+        }
+        // Marker labels: beside their diamond if free, else in free space with a
+        // leader line; never on each other, on a curve or on a reference line.
+        let mut marker_obstacles = curves.to_vec();
+        marker_obstacles.extend(ref_px.iter().map(|(_, a, b)| vec![*a, *b]));
+        for (m, (px, py)) in self.plot.markers.iter().zip(diamonds) {
+            if m.label.is_empty() {
+                continue;
+            }
+            let size = (measure(self.ctx, &m.label) + 6.0, TICK_H + 2.0);
+            let preferred: Vec<(f64, f64)> = memory
+                .spot(&m.label, (*px, *py))
+                .into_iter()
+                .chain([
+                    (px + 8.0, py - size.1 - 4.0),
+                    (px - size.0 - 8.0, py - size.1 - 4.0),
+                    (px + 8.0, py + 4.0),
+                    (px - size.0 - 8.0, py + 4.0),
+                ])
+                .collect();
+            let r = place_label(
+                (*px, *py),
+                size,
+                &preferred,
+                &plot_rect,
+                &marker_obstacles,
+                taken,
+            );
+            taken.push(r);
+            placed.push((m.label.clone(), (r.x - px, r.y - py)));
+            let far = r.distance_to((*px, *py)) > 12.0;
+            to_draw.push((m.label.clone(), r, far.then_some((*px, *py))));
+        }
+        memory.0 = placed;
+        to_draw
+    }
+
+    /// The placed labels on a plate of the background, with their leader lines.
+    fn labels(&self, to_draw: &[PlacedLabel]) {
+        let ctx = self.ctx;
+        ctx.set_text_align("left");
+        ctx.set_text_baseline("middle");
+        for (label, r, leader) in to_draw {
+            if let Some((ax, ay)) = leader {
+                let cx = ax.clamp(r.x, r.x + r.w);
+                let cy = ay.clamp(r.y, r.y + r.h);
+                ctx.set_stroke_style_str(&self.palette.var("--muted"));
+                ctx.set_line_width(1.0);
+                ctx.begin_path();
+                ctx.move_to(*ax, *ay);
+                ctx.line_to(cx, cy);
+                ctx.stroke();
+            }
+            ctx.set_fill_style_str(&self.palette.background);
+            ctx.set_global_alpha(0.85);
+            ctx.fill_rect(r.x, r.y, r.w, r.h);
+            ctx.set_global_alpha(1.0);
+            ctx.set_fill_style_str(&self.text);
+            let _ = ctx.fill_text(label, r.x + 3.0, r.y + r.h / 2.0);
+        }
+    }
+}
+
+/// Where a reference line's label may go, best first: at an end of the
+/// line, above or below it (a horizontal line), or beside it at the top or
+/// the bottom (a vertical one).
+fn ref_label_spots(
+    axis: Axis,
+    a: (f64, f64),
+    b: (f64, f64),
+    size: (f64, f64),
+    frame: &Frame,
+) -> Vec<(f64, f64)> {
+    let (_, t, pw, ph) = frame.rect;
+    match axis {
+        Axis::Y => vec![
+            (b.0 - size.0 - 4.0, a.1 - size.1 - 1.0),
+            (b.0 - size.0 - 4.0, a.1 + 2.0),
+            (a.0 + 4.0, a.1 - size.1 - 1.0),
+            (a.0 + 4.0, a.1 + 2.0),
+            (a.0 + (pw - size.0) / 2.0, a.1 - size.1 - 1.0),
+            (a.0 + (pw - size.0) / 2.0, a.1 + 2.0),
+        ],
+        Axis::X => vec![
+            (a.0 + 3.0, t + 2.0),
+            (a.0 - size.0 - 3.0, t + 2.0),
+            (a.0 + 3.0, t + ph - size.1 - 2.0),
+            (a.0 - size.0 - 3.0, t + ph - size.1 - 2.0),
+        ],
+    }
 }
 
 /// A label to draw: its text, its box and the anchor of its leader line.
@@ -1429,7 +1530,7 @@ fn show_nearest(drawn: &Drawn, plot: &Plot, palette: &Palette, x: f64) {
         cursor_x.get_or_insert(sx);
         let (px, py) = (frame.px_x(sx), frame.px_y(sy));
         let (var, _) = role_style(s.role);
-        ctx.set_fill_style_str(&css(palette, var));
+        ctx.set_fill_style_str(&palette.var(var));
         ctx.begin_path();
         let _ = ctx.arc(px, py, 4.0, 0.0, std::f64::consts::TAU);
         ctx.fill();
@@ -1447,7 +1548,7 @@ fn show_nearest(drawn: &Drawn, plot: &Plot, palette: &Palette, x: f64) {
     let Some(cx) = cursor_x else { return };
     let (_, t, _, ph) = frame.rect;
     let px = frame.px_x(cx);
-    ctx.set_stroke_style_str(&css(palette, "--muted"));
+    ctx.set_stroke_style_str(&palette.var("--muted"));
     set_dash(ctx, &[3.0, 3.0]);
     ctx.begin_path();
     ctx.move_to(px, t);

@@ -19,51 +19,11 @@ const POINTS_MAX: usize = 500;
 /// Most segments of a batch drawn.
 const SEGMENTS_MAX: usize = 1500;
 
-/// The role's class; `web/style.css` gives `.c-<role>` the colour
-/// `var(--c-<role>)`.
+/// The role's class (the style table's); `web/style.css` gives
+/// `.c-<role>` the colour `var(--c-<role>)`.
 fn class(role: Role) -> &'static str {
-    match role {
-        Role::Grid => "c-grid",
-        Role::Bound => "c-bound",
-        Role::Link => "c-link",
-        Role::Joint => "c-joint",
-        Role::Base => "c-base",
-        Role::Tip => "c-tip",
-        Role::Target => "c-target",
-        Role::Ghost => "c-ghost",
-        Role::Sample => "c-sample",
-        Role::Accent => "c-accent",
-        Role::Warning => "c-warning",
-        Role::Text => "c-text",
-        Role::Robot => "c-robot",
-        Role::Obstacle => "c-obstacle",
-        Role::Path => "c-path",
-        Role::Estimate => "c-estimate",
-        Role::Visited => "c-visited",
-    }
+    role.style().class()
 }
-
-/// Every role's class, for the test that `web/style.css` styles them all.
-#[cfg(test)]
-const ROLES: [Role; 17] = [
-    Role::Grid,
-    Role::Bound,
-    Role::Link,
-    Role::Joint,
-    Role::Base,
-    Role::Tip,
-    Role::Target,
-    Role::Ghost,
-    Role::Sample,
-    Role::Accent,
-    Role::Warning,
-    Role::Text,
-    Role::Robot,
-    Role::Obstacle,
-    Role::Path,
-    Role::Estimate,
-    Role::Visited,
-];
 
 /// World → thumbnail pixels (uniform fit, y up), as the canvas does it.
 struct Map {
@@ -123,176 +83,205 @@ pub fn svg(scene: &Scene, view: ViewBox) -> String {
             }
             other => other,
         };
-        let _ = match item {
-            Item::Line {
-                from,
-                to,
-                width_px,
-                role,
-                dashed,
-            } => {
-                let ((x1, y1), (x2, y2)) = (map.px(*from), map.px(*to));
-                write!(
-                    out,
-                    "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\"{:.1}\"{}/>",
-                    class(*role),
-                    (width_px * 0.6).max(0.8),
-                    if *dashed { " stroke-dasharray=\"4 3\"" } else { "" }
-                )
-            }
-            Item::Circle {
-                center,
-                radius_m,
-                role,
-                fill,
-                dashed,
-            } => {
-                let (x, y) = map.px(*center);
-                let paint = if *fill {
-                    "fill=\"currentColor\" fill-opacity=\".18\""
-                } else {
-                    "fill=\"none\" stroke=\"currentColor\""
-                };
-                write!(
-                    out,
-                    "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" class=\"{}\" {paint}{}/>",
-                    radius_m * map.scale,
-                    class(*role),
-                    if *dashed {
-                        " stroke-dasharray=\"4 3\""
-                    } else {
-                        ""
-                    }
-                )
-            }
-            Item::Dot {
-                center,
-                radius_px,
-                role,
-            } => {
-                let (x, y) = map.px(*center);
-                write!(
-                    out,
-                    "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" class=\"{}\" fill=\"currentColor\"/>",
-                    radius_px * 0.6,
-                    class(*role)
-                )
-            }
-            Item::Points { points, role, .. } => {
-                let stride = points.len().div_ceil(POINTS_MAX).max(1);
-                let mut d = String::new();
-                for p in points.iter().step_by(stride) {
-                    let (x, y) = map.px(*p);
-                    let _ = write!(d, "M{x:.0} {y:.0}h1");
-                }
-                write!(
-                    out,
-                    "<path d=\"{d}\" class=\"{}\" stroke=\"currentColor\" stroke-opacity=\".6\" stroke-width=\"1.5\"/>",
-                    class(*role)
-                )
-            }
-            Item::Ellipse {
-                center,
-                semi_axis_a,
-                semi_axis_b,
-                role,
-            } => {
-                let (x, y) = map.px(*center);
-                let angle = -semi_axis_a.y.atan2(semi_axis_a.x).to_degrees();
-                write!(
-                    out,
-                    "<ellipse cx=\"{x:.1}\" cy=\"{y:.1}\" rx=\"{:.1}\" ry=\"{:.1}\" transform=\"rotate({angle:.1} {x:.1} {y:.1})\" \
-                     class=\"{c}\" fill=\"currentColor\" fill-opacity=\".18\" stroke=\"currentColor\"/>",
-                    semi_axis_a.length() * map.scale,
-                    semi_axis_b.length() * map.scale,
-                    c = class(*role)
-                )
-            }
-            Item::Polyline {
-                points,
-                role,
-                dashed,
-                closed,
-                ..
-            } => write!(
+        let _ = item_svg(&mut out, &map, item);
+    }
+    out.push_str("</svg>");
+    out
+}
+
+/// One item of the display list, by its kind.
+fn item_svg(out: &mut String, map: &Map, item: &Item) -> std::fmt::Result {
+    match item {
+        Item::Line { .. } | Item::Circle { .. } | Item::Dot { .. } | Item::Ellipse { .. } => {
+            shape_svg(out, map, item)
+        }
+        Item::Points { .. }
+        | Item::Polyline { .. }
+        | Item::Polygon { .. }
+        | Item::Rect { .. }
+        | Item::Arrow { .. }
+        | Item::Arrows { .. }
+        | Item::Segments { .. } => path_svg(out, map, item),
+        // Cell images and text are left to the live canvas.
+        Item::Heatmap { .. }
+        | Item::Raster { .. }
+        | Item::VersionedRaster { .. }
+        | Item::SegmentLayer { .. }
+        | Item::Label { .. }
+        | Item::ScaleBar
+        | Item::OffView { .. }
+        | Item::FocusRing { .. } => Ok(()),
+    }
+}
+
+/// Lines, circles, dots and ellipses.
+fn shape_svg(out: &mut String, map: &Map, item: &Item) -> std::fmt::Result {
+    match item {
+        Item::Line {
+            from,
+            to,
+            width_px,
+            role,
+            dashed,
+        } => {
+            let ((x1, y1), (x2, y2)) = (map.px(*from), map.px(*to));
+            write!(
                 out,
-                "<{tag} points=\"{}\" class=\"{}\" fill=\"none\" stroke=\"currentColor\"{}/>",
-                points_attr(&map, points),
+                "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\"{:.1}\"{}/>",
+                class(*role),
+                (width_px * 0.6).max(0.8),
+                if *dashed { " stroke-dasharray=\"4 3\"" } else { "" }
+            )
+        }
+        Item::Circle {
+            center,
+            radius_m,
+            role,
+            fill,
+            dashed,
+        } => {
+            let (x, y) = map.px(*center);
+            let paint = if *fill {
+                "fill=\"currentColor\" fill-opacity=\".18\""
+            } else {
+                "fill=\"none\" stroke=\"currentColor\""
+            };
+            write!(
+                out,
+                "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" class=\"{}\" {paint}{}/>",
+                radius_m * map.scale,
                 class(*role),
                 if *dashed {
                     " stroke-dasharray=\"4 3\""
                 } else {
                     ""
-                },
-                tag = if *closed { "polygon" } else { "polyline" }
-            ),
-            Item::Polygon { points, role } => write!(
-                out,
-                "<polygon points=\"{}\" class=\"{}\" fill=\"currentColor\" fill-opacity=\".35\" stroke=\"currentColor\"/>",
-                points_attr(&map, points),
-                class(*role)
-            ),
-            Item::Rect {
-                min,
-                max,
-                role,
-                fill,
-            } => {
-                let ((x1, y1), (x2, y2)) = (map.px(*min), map.px(*max));
-                write!(
-                    out,
-                    "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" class=\"{}\" fill=\"{}\" stroke=\"currentColor\"/>",
-                    x1.min(x2),
-                    y1.min(y2),
-                    (x2 - x1).abs(),
-                    (y2 - y1).abs(),
-                    class(*role),
-                    if *fill { "currentColor" } else { "none" }
-                )
-            }
-            Item::Arrow { from, to, role, .. } => {
-                let ((x1, y1), (x2, y2)) = (map.px(*from), map.px(*to));
-                write!(
-                    out,
-                    "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\"1.5\"/>",
-                    class(*role)
-                )
-            }
-            Item::Arrows {
-                arrows: pairs,
-                role,
-                ..
-            }
-            | Item::Segments {
-                segments: pairs,
-                role,
-                ..
-            } => {
-                let stride = pairs.len().div_ceil(SEGMENTS_MAX).max(1);
-                let mut d = String::new();
-                for (a, b) in pairs.iter().step_by(stride) {
-                    let ((x1, y1), (x2, y2)) = (map.px(*a), map.px(*b));
-                    let _ = write!(d, "M{x1:.0} {y1:.0}L{x2:.0} {y2:.0}");
                 }
-                write!(
-                    out,
-                    "<path d=\"{d}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\".7\"/>",
-                    class(*role)
-                )
-            }
-            // Cell images and text are left to the live canvas.
-            Item::Heatmap { .. }
-            | Item::Raster { .. }
-            | Item::VersionedRaster { .. }
-            | Item::SegmentLayer { .. }
-            | Item::Label { .. }
-            | Item::ScaleBar
-            | Item::OffView { .. }
-            | Item::FocusRing { .. } => Ok(()),
-        };
+            )
+        }
+        Item::Dot {
+            center,
+            radius_px,
+            role,
+        } => {
+            let (x, y) = map.px(*center);
+            write!(
+                out,
+                "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" class=\"{}\" fill=\"currentColor\"/>",
+                radius_px * 0.6,
+                class(*role)
+            )
+        }
+        Item::Ellipse {
+            center,
+            semi_axis_a,
+            semi_axis_b,
+            role,
+        } => {
+            let (x, y) = map.px(*center);
+            let angle = -semi_axis_a.y.atan2(semi_axis_a.x).to_degrees();
+            write!(
+                out,
+                "<ellipse cx=\"{x:.1}\" cy=\"{y:.1}\" rx=\"{:.1}\" ry=\"{:.1}\" transform=\"rotate({angle:.1} {x:.1} {y:.1})\" \
+                 class=\"{c}\" fill=\"currentColor\" fill-opacity=\".18\" stroke=\"currentColor\"/>",
+                semi_axis_a.length() * map.scale,
+                semi_axis_b.length() * map.scale,
+                c = class(*role)
+            )
+        }
+        _ => Ok(()),
     }
-    out.push_str("</svg>");
-    out
+}
+
+/// Point clouds, polylines, polygons, rectangles, arrows and segment batches.
+fn path_svg(out: &mut String, map: &Map, item: &Item) -> std::fmt::Result {
+    match item {
+        Item::Points { points, role, .. } => {
+            let stride = points.len().div_ceil(POINTS_MAX).max(1);
+            let mut d = String::new();
+            for p in points.iter().step_by(stride) {
+                let (x, y) = map.px(*p);
+                let _ = write!(d, "M{x:.0} {y:.0}h1");
+            }
+            write!(
+                out,
+                "<path d=\"{d}\" class=\"{}\" stroke=\"currentColor\" stroke-opacity=\".6\" stroke-width=\"1.5\"/>",
+                class(*role)
+            )
+        }
+        Item::Polyline {
+            points,
+            role,
+            dashed,
+            closed,
+            ..
+        } => write!(
+            out,
+            "<{tag} points=\"{}\" class=\"{}\" fill=\"none\" stroke=\"currentColor\"{}/>",
+            points_attr(map, points),
+            class(*role),
+            if *dashed {
+                " stroke-dasharray=\"4 3\""
+            } else {
+                ""
+            },
+            tag = if *closed { "polygon" } else { "polyline" }
+        ),
+        Item::Polygon { points, role } => write!(
+            out,
+            "<polygon points=\"{}\" class=\"{}\" fill=\"currentColor\" fill-opacity=\".35\" stroke=\"currentColor\"/>",
+            points_attr(map, points),
+            class(*role)
+        ),
+        Item::Rect {
+            min,
+            max,
+            role,
+            fill,
+        } => {
+            let ((x1, y1), (x2, y2)) = (map.px(*min), map.px(*max));
+            write!(
+                out,
+                "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" class=\"{}\" fill=\"{}\" stroke=\"currentColor\"/>",
+                x1.min(x2),
+                y1.min(y2),
+                (x2 - x1).abs(),
+                (y2 - y1).abs(),
+                class(*role),
+                if *fill { "currentColor" } else { "none" }
+            )
+        }
+        Item::Arrow { from, to, role, .. } => {
+            let ((x1, y1), (x2, y2)) = (map.px(*from), map.px(*to));
+            write!(
+                out,
+                "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\"1.5\"/>",
+                class(*role)
+            )
+        }
+        Item::Arrows {
+            arrows: pairs,
+            role,
+            ..
+        }
+        | Item::Segments {
+            segments: pairs,
+            role,
+            ..
+        } => {
+            let stride = pairs.len().div_ceil(SEGMENTS_MAX).max(1);
+            let mut d = String::new();
+            for (a, b) in pairs.iter().step_by(stride) {
+                let ((x1, y1), (x2, y2)) = (map.px(*a), map.px(*b));
+                let _ = write!(d, "M{x1:.0} {y1:.0}L{x2:.0} {y2:.0}");
+            }
+            write!(
+                out,
+                "<path d=\"{d}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\".7\"/>",
+                class(*role)
+            )
+        }
+        _ => Ok(()),
+    }
 }
 
 /// The card picture of a registered experiment: its preview state as SVG.
@@ -334,7 +323,7 @@ mod tests {
             css.contains(".thumb {") || css.contains(".thumb{"),
             "svg.thumb background"
         );
-        for role in ROLES {
+        for role in Role::ALL.iter().copied() {
             let c = class(role);
             let rule = format!(".{c} {{ color: var(--{c}); }}");
             assert!(css.contains(&rule), "web/style.css lacks `{rule}`");

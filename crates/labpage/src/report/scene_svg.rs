@@ -10,6 +10,7 @@
 
 use super::n;
 use crate::content_html::escape;
+use crate::scene::style::{self, CANVAS};
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
 use crate::units::format_number;
 use glam::DVec2;
@@ -27,21 +28,9 @@ pub const MAX_RASTER_RUNS: usize = 12_000;
 const MAX_W: f64 = 640.0;
 const MAX_H: f64 = 520.0;
 
-/// The light theme's colour of each role (web/style.css, `:root`).
+/// The light theme's colour of each role (the style table's).
 fn colour(role: Role) -> &'static str {
-    match role {
-        Role::Grid => "#d5dbe1",
-        Role::Bound => "#7a8590",
-        Role::Link | Role::Robot => "#0072B2",
-        Role::Joint | Role::Base | Role::Text => "#1b1f24",
-        Role::Tip | Role::Warning => "#D55E00",
-        Role::Target | Role::Estimate => "#CC79A7",
-        Role::Ghost | Role::Obstacle => "#5f6a75",
-        Role::Sample => "#009E73",
-        Role::Accent => "#B36B00",
-        Role::Path => "#E69F00",
-        Role::Visited => "#56B4E9",
-    }
+    role.style().light()
 }
 
 /// World → picture coordinates.
@@ -69,11 +58,17 @@ fn n1(v: f64) -> String {
     format_number(v, 1)
 }
 
-fn dash(dashed: bool) -> &'static str {
+/// An opacity or a stroke: two decimals at most (`0.18`, `2`).
+fn n2(v: f64) -> String {
+    format_number(v, 2)
+}
+
+fn dash(dashed: bool) -> String {
     if dashed {
-        " stroke-dasharray=\"6 5\""
+        let [on, off] = style::DASH_PX;
+        format!(" stroke-dasharray=\"{} {}\"", n2(on), n2(off))
     } else {
-        ""
+        String::new()
     }
 }
 
@@ -104,9 +99,10 @@ pub(super) fn scene_svg(scene: &Scene, view: ViewBox) -> (String, Vec<String>) {
         "<svg class=\"scene\" viewBox=\"0 0 {w} {h}\" width=\"{w}\" height=\"{h}\" role=\"img\" \
          aria-label=\"The simulation\" font-family=\"system-ui, sans-serif\" font-size=\"13\" \
          stroke-linecap=\"round\" stroke-linejoin=\"round\">\
-         <rect width=\"{w}\" height=\"{h}\" fill=\"#ffffff\"/>",
+         <rect width=\"{w}\" height=\"{h}\" fill=\"{bg}\"/>",
         w = n(w),
-        h = n(h)
+        h = n(h),
+        bg = CANVAS.light
     );
     for item in &scene.items {
         item_svg(&mut s, item, &m, (w, h), &mut notes);
@@ -124,6 +120,7 @@ fn finite(p: &DVec2) -> bool {
     p.is_finite()
 }
 
+/// One item of the display list, by its kind.
 fn item_svg(s: &mut String, item: &Item, m: &Map, (w, h): (f64, f64), notes: &mut Vec<String>) {
     match item {
         Item::Line {
@@ -132,25 +129,7 @@ fn item_svg(s: &mut String, item: &Item, m: &Map, (w, h): (f64, f64), notes: &mu
             width_px,
             role,
             dashed,
-        } if finite(from) && finite(to) => {
-            let (a, b) = (m.p(*from), m.p(*to));
-            let _ = write!(
-                s,
-                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"{}\"{}{}/>",
-                n1(a.0),
-                n1(a.1),
-                n1(b.0),
-                n1(b.1),
-                colour(*role),
-                n1(*width_px),
-                dash(*dashed),
-                if *role == Role::Ghost {
-                    " stroke-opacity=\"0.7\""
-                } else {
-                    ""
-                }
-            );
-        }
+        } if finite(from) && finite(to) => line_svg(s, m, (*from, *to), *width_px, *role, *dashed),
         Item::Circle {
             center,
             radius_m,
@@ -158,74 +137,18 @@ fn item_svg(s: &mut String, item: &Item, m: &Map, (w, h): (f64, f64), notes: &mu
             fill,
             dashed,
         } if finite(center) && radius_m.is_finite() => {
-            let (x, y) = m.p(*center);
-            let r = (radius_m * m.scale).max(0.0);
-            let paint = if *fill {
-                format!("fill=\"{}\" fill-opacity=\"0.18\"", colour(*role))
-            } else {
-                format!(
-                    "fill=\"none\" stroke=\"{}\" stroke-width=\"2\"{}",
-                    colour(*role),
-                    dash(*dashed)
-                )
-            };
-            let _ = write!(
-                s,
-                "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" {paint}/>",
-                n1(x),
-                n1(y),
-                n1(r)
-            );
+            circle_svg(s, m, *center, *radius_m, *role, (*fill, *dashed));
         }
         Item::Dot {
             center,
             radius_px,
             role,
-        } if finite(center) => {
-            let (x, y) = m.p(*center);
-            let _ = write!(
-                s,
-                "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\" stroke=\"#ffffff\" stroke-width=\"2\"/>",
-                n1(x),
-                n1(y),
-                n1(*radius_px),
-                colour(*role)
-            );
-        }
+        } if finite(center) => dot_svg(s, m, *center, *radius_px, *role),
         Item::Points {
             points,
             radius_px,
             role,
-        } => {
-            if points.len() > MAX_POINTS {
-                notes.push(format!(
-                    "{} of {} sample points drawn",
-                    points.len().div_ceil(points.len().div_ceil(MAX_POINTS)),
-                    points.len()
-                ));
-            }
-            let d = n1(radius_px * 2.0);
-            let mut path = String::new();
-            for i in thin(points.len(), MAX_POINTS) {
-                let p = points[i];
-                if finite(&p) {
-                    let (x, y) = m.p(p);
-                    let _ = write!(
-                        path,
-                        "M{},{}h{d}v{d}h-{d}z",
-                        n1(x - radius_px),
-                        n1(y - radius_px)
-                    );
-                }
-            }
-            if !path.is_empty() {
-                let _ = write!(
-                    s,
-                    "<path d=\"{path}\" fill=\"{}\" fill-opacity=\"0.55\"/>",
-                    colour(*role)
-                );
-            }
-        }
+        } => points_svg(s, m, points, *radius_px, *role, notes),
         Item::Heatmap {
             min,
             cell_m,
@@ -233,173 +156,46 @@ fn item_svg(s: &mut String, item: &Item, m: &Map, (w, h): (f64, f64), notes: &mu
             rows,
             values,
             role,
-        } => {
-            // Ten opacity levels, one path each: a fine heat map stays small.
-            let c = m.scale * cell_m;
-            let mut levels: Vec<String> = vec![String::new(); 10];
-            for row in 0..*rows {
-                for col in 0..*cols {
-                    let Some(v) = values.get(row * cols + col) else {
-                        continue;
-                    };
-                    if v.is_nan() || *v <= 0.0 {
-                        continue;
-                    }
-                    let level = ((f64::from(v.min(1.0)) * 10.0).ceil() as usize).clamp(1, 10);
-                    let corner = *min + DVec2::new(col as f64, (row + 1) as f64) * *cell_m;
-                    let (x, y) = m.p(corner);
-                    let _ = write!(
-                        levels[level - 1],
-                        "M{},{}h{c}v{c}h-{c}z",
-                        n1(x),
-                        n1(y),
-                        c = n1(c)
-                    );
-                }
-            }
-            for (i, path) in levels.iter().enumerate() {
-                if !path.is_empty() {
-                    let _ = write!(
-                        s,
-                        "<path d=\"{path}\" fill=\"{}\" fill-opacity=\"{}\"/>",
-                        colour(*role),
-                        format_number((i + 1) as f64 * 0.06, 2)
-                    );
-                }
-            }
-        }
+        } => heatmap_svg(s, m, *min, *cell_m, (*cols, *rows), values, *role),
         Item::Ellipse {
             center,
             semi_axis_a,
             semi_axis_b,
             role,
         } if finite(center) && finite(semi_axis_a) && finite(semi_axis_b) => {
-            let (x, y) = m.p(*center);
-            let ra = (semi_axis_a.length() * m.scale).max(0.5);
-            let rb = (semi_axis_b.length() * m.scale).max(0.5);
-            // Picture y points down, so the angle changes sign.
-            let deg = -semi_axis_a.y.atan2(semi_axis_a.x).to_degrees();
-            let _ = write!(
-                s,
-                "<ellipse cx=\"0\" cy=\"0\" rx=\"{}\" ry=\"{}\" transform=\"translate({} {}) rotate({})\" \
-                 fill=\"{c}\" fill-opacity=\"0.18\" stroke=\"{c}\" stroke-width=\"2\"/>",
-                n1(ra),
-                n1(rb),
-                n1(x),
-                n1(y),
-                n1(deg),
-                c = colour(*role)
-            );
+            ellipse_svg(s, m, *center, (*semi_axis_a, *semi_axis_b), *role);
         }
         Item::Label {
             pos,
             text,
             role,
             offset_px,
-        } if finite(pos) => {
-            let (x, y) = m.p(*pos);
-            let x = (x + offset_px.x).clamp(4.0, (w - 4.0).max(4.0));
-            let y = (y + offset_px.y).clamp(10.0, (h - 10.0).max(10.0));
-            let _ = write!(
-                s,
-                "<text x=\"{}\" y=\"{}\" dominant-baseline=\"middle\" font-weight=\"600\" fill=\"{}\" \
-                 stroke=\"#ffffff\" stroke-width=\"4\" paint-order=\"stroke\">{}</text>",
-                n1(x),
-                n1(y),
-                colour(*role),
-                escape(text)
-            );
-        }
+        } if finite(pos) => label_svg(s, m, (w, h), *pos, *offset_px, text, *role),
         Item::Polyline {
             points,
             width_px,
             role,
             dashed,
             closed,
-        } if points.len() >= 2 => {
-            let pts: Vec<String> = points
-                .iter()
-                .filter(|p| finite(p))
-                .map(|p| m.xy(*p))
-                .collect();
-            let _ = write!(
-                s,
-                "<{tag} points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{}/>",
-                pts.join(" "),
-                colour(*role),
-                n1(*width_px),
-                dash(*dashed),
-                tag = if *closed { "polygon" } else { "polyline" }
-            );
-        }
-        Item::Polygon { points, role } if points.len() >= 3 => {
-            let pts: Vec<String> = points
-                .iter()
-                .filter(|p| finite(p))
-                .map(|p| m.xy(*p))
-                .collect();
-            let _ = write!(
-                s,
-                "<polygon points=\"{}\" fill=\"{c}\" fill-opacity=\"0.35\" stroke=\"{c}\" stroke-width=\"2\"/>",
-                pts.join(" "),
-                c = colour(*role)
-            );
-        }
+        } if points.len() >= 2 => polyline_svg(s, m, points, *width_px, *role, (*dashed, *closed)),
+        Item::Polygon { points, role } if points.len() >= 3 => polygon_svg(s, m, points, *role),
         Item::Rect {
             min,
             max,
             role,
             fill,
-        } if finite(min) && finite(max) => {
-            let (a, b) = (m.p(*min), m.p(*max));
-            let c = colour(*role);
-            let paint = if *fill {
-                format!("fill=\"{c}\" fill-opacity=\"0.35\" stroke=\"{c}\" stroke-width=\"2\"")
-            } else {
-                format!("fill=\"none\" stroke=\"{c}\" stroke-width=\"2\"")
-            };
-            let _ = write!(
-                s,
-                "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" {paint}/>",
-                n1(a.0.min(b.0)),
-                n1(a.1.min(b.1)),
-                n1((b.0 - a.0).abs()),
-                n1((b.1 - a.1).abs())
-            );
-        }
+        } if finite(min) && finite(max) => rect_svg(s, m, (*min, *max), *role, *fill),
         Item::Arrow {
             from,
             to,
             width_px,
             role,
-        } => {
-            let d = arrow_path(m, *from, *to, *width_px);
-            if !d.is_empty() {
-                let _ = write!(
-                    s,
-                    "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
-                    colour(*role),
-                    n1(*width_px)
-                );
-            }
-        }
+        } => arrows_svg(s, m, std::slice::from_ref(&(*from, *to)), *width_px, *role),
         Item::Arrows {
             arrows,
             width_px,
             role,
-        } => {
-            let d: String = thin(arrows.len(), MAX_POINTS)
-                .map(|i| arrow_path(m, arrows[i].0, arrows[i].1, *width_px))
-                .collect();
-            if !d.is_empty() {
-                let _ = write!(
-                    s,
-                    "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
-                    colour(*role),
-                    n1(*width_px)
-                );
-            }
-        }
+        } => arrows_svg(s, m, arrows, *width_px, *role),
         Item::Segments {
             segments,
             width_px,
@@ -433,6 +229,300 @@ fn item_svg(s: &mut String, item: &Item, m: &Map, (w, h): (f64, f64), notes: &mu
         // The keyboard's focus ring (the page adds it), and items with
         // non-finite or too few points, are left out.
         _ => {}
+    }
+}
+
+fn line_svg(
+    s: &mut String,
+    m: &Map,
+    (from, to): (DVec2, DVec2),
+    width_px: f64,
+    role: Role,
+    dashed: bool,
+) {
+    let (a, b) = (m.p(from), m.p(to));
+    let opacity = role.style().line_opacity;
+    let _ = write!(
+        s,
+        "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"{}\"{}{}/>",
+        n1(a.0),
+        n1(a.1),
+        n1(b.0),
+        n1(b.1),
+        colour(role),
+        n1(width_px),
+        dash(dashed),
+        if opacity < 1.0 {
+            format!(" stroke-opacity=\"{}\"", n2(opacity))
+        } else {
+            String::new()
+        }
+    );
+}
+
+fn circle_svg(
+    s: &mut String,
+    m: &Map,
+    center: DVec2,
+    radius_m: f64,
+    role: Role,
+    (fill, dashed): (bool, bool),
+) {
+    let (x, y) = m.p(center);
+    let r = (radius_m * m.scale).max(0.0);
+    let paint = if fill {
+        format!(
+            "fill=\"{}\" fill-opacity=\"{}\"",
+            colour(role),
+            n2(style::FILL_OPACITY_LIGHT)
+        )
+    } else {
+        format!(
+            "fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{}",
+            colour(role),
+            n2(style::OUTLINE_PX),
+            dash(dashed)
+        )
+    };
+    let _ = write!(
+        s,
+        "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" {paint}/>",
+        n1(x),
+        n1(y),
+        n1(r)
+    );
+}
+
+fn dot_svg(s: &mut String, m: &Map, center: DVec2, radius_px: f64, role: Role) {
+    let (x, y) = m.p(center);
+    let _ = write!(
+        s,
+        "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\" stroke=\"{}\" stroke-width=\"{}\"/>",
+        n1(x),
+        n1(y),
+        n1(radius_px),
+        colour(role),
+        CANVAS.light,
+        n2(style::OUTLINE_PX)
+    );
+}
+
+fn points_svg(
+    s: &mut String,
+    m: &Map,
+    points: &[DVec2],
+    radius_px: f64,
+    role: Role,
+    notes: &mut Vec<String>,
+) {
+    if points.len() > MAX_POINTS {
+        notes.push(format!(
+            "{} of {} sample points drawn",
+            points.len().div_ceil(points.len().div_ceil(MAX_POINTS)),
+            points.len()
+        ));
+    }
+    let d = n1(radius_px * 2.0);
+    let mut path = String::new();
+    for i in thin(points.len(), MAX_POINTS) {
+        let p = points[i];
+        if finite(&p) {
+            let (x, y) = m.p(p);
+            let _ = write!(
+                path,
+                "M{},{}h{d}v{d}h-{d}z",
+                n1(x - radius_px),
+                n1(y - radius_px)
+            );
+        }
+    }
+    if !path.is_empty() {
+        let _ = write!(
+            s,
+            "<path d=\"{path}\" fill=\"{}\" fill-opacity=\"{}\"/>",
+            colour(role),
+            n2(style::POINTS_OPACITY)
+        );
+    }
+}
+
+/// Densities as ten opacity levels, one path each: a fine heat map stays small.
+fn heatmap_svg(
+    s: &mut String,
+    m: &Map,
+    min: DVec2,
+    cell_m: f64,
+    (cols, rows): (usize, usize),
+    values: &[f32],
+    role: Role,
+) {
+    let c = m.scale * cell_m;
+    let mut levels: Vec<String> = vec![String::new(); 10];
+    for row in 0..rows {
+        for col in 0..cols {
+            let Some(v) = values.get(row * cols + col) else {
+                continue;
+            };
+            if v.is_nan() || *v <= 0.0 {
+                continue;
+            }
+            let level = ((f64::from(v.min(1.0)) * 10.0).ceil() as usize).clamp(1, 10);
+            let corner = min + DVec2::new(col as f64, (row + 1) as f64) * cell_m;
+            let (x, y) = m.p(corner);
+            let _ = write!(
+                levels[level - 1],
+                "M{},{}h{c}v{c}h-{c}z",
+                n1(x),
+                n1(y),
+                c = n1(c)
+            );
+        }
+    }
+    for (i, path) in levels.iter().enumerate() {
+        if !path.is_empty() {
+            let _ = write!(
+                s,
+                "<path d=\"{path}\" fill=\"{}\" fill-opacity=\"{}\"/>",
+                colour(role),
+                format_number((i + 1) as f64 * 0.06, 2)
+            );
+        }
+    }
+}
+
+fn ellipse_svg(
+    s: &mut String,
+    m: &Map,
+    center: DVec2,
+    (semi_axis_a, semi_axis_b): (DVec2, DVec2),
+    role: Role,
+) {
+    let (x, y) = m.p(center);
+    let ra = (semi_axis_a.length() * m.scale).max(0.5);
+    let rb = (semi_axis_b.length() * m.scale).max(0.5);
+    // Picture y points down, so the angle changes sign.
+    let deg = -semi_axis_a.y.atan2(semi_axis_a.x).to_degrees();
+    let _ = write!(
+        s,
+        "<ellipse cx=\"0\" cy=\"0\" rx=\"{}\" ry=\"{}\" transform=\"translate({} {}) rotate({})\" \
+         fill=\"{c}\" fill-opacity=\"{}\" stroke=\"{c}\" stroke-width=\"{}\"/>",
+        n1(ra),
+        n1(rb),
+        n1(x),
+        n1(y),
+        n1(deg),
+        n2(style::FILL_OPACITY_LIGHT),
+        n2(style::OUTLINE_PX),
+        c = colour(role)
+    );
+}
+
+fn label_svg(
+    s: &mut String,
+    m: &Map,
+    (w, h): (f64, f64),
+    pos: DVec2,
+    offset_px: DVec2,
+    text: &str,
+    role: Role,
+) {
+    let (x, y) = m.p(pos);
+    let x = (x + offset_px.x).clamp(4.0, (w - 4.0).max(4.0));
+    let y = (y + offset_px.y).clamp(10.0, (h - 10.0).max(10.0));
+    let _ = write!(
+        s,
+        "<text x=\"{}\" y=\"{}\" dominant-baseline=\"middle\" font-weight=\"600\" fill=\"{}\" \
+         stroke=\"{}\" stroke-width=\"{}\" paint-order=\"stroke\">{}</text>",
+        n1(x),
+        n1(y),
+        colour(role),
+        CANVAS.light,
+        n2(style::LABEL_HALO_PX),
+        escape(text)
+    );
+}
+
+/// The finite points as an SVG `points` list.
+fn points_attr(m: &Map, points: &[DVec2]) -> String {
+    let pts: Vec<String> = points
+        .iter()
+        .filter(|p| finite(p))
+        .map(|p| m.xy(*p))
+        .collect();
+    pts.join(" ")
+}
+
+fn polyline_svg(
+    s: &mut String,
+    m: &Map,
+    points: &[DVec2],
+    width_px: f64,
+    role: Role,
+    (dashed, closed): (bool, bool),
+) {
+    let _ = write!(
+        s,
+        "<{tag} points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"{}/>",
+        points_attr(m, points),
+        colour(role),
+        n1(width_px),
+        dash(dashed),
+        tag = if closed { "polygon" } else { "polyline" }
+    );
+}
+
+/// Fill and outline of a filled polygon or rectangle.
+fn filled_paint(role: Role) -> String {
+    format!(
+        "fill=\"{c}\" fill-opacity=\"{}\" stroke=\"{c}\" stroke-width=\"{}\"",
+        n2(style::FILL_OPACITY),
+        n2(style::OUTLINE_PX),
+        c = colour(role)
+    )
+}
+
+fn polygon_svg(s: &mut String, m: &Map, points: &[DVec2], role: Role) {
+    let _ = write!(
+        s,
+        "<polygon points=\"{}\" {}/>",
+        points_attr(m, points),
+        filled_paint(role)
+    );
+}
+
+fn rect_svg(s: &mut String, m: &Map, (min, max): (DVec2, DVec2), role: Role, fill: bool) {
+    let (a, b) = (m.p(min), m.p(max));
+    let paint = if fill {
+        filled_paint(role)
+    } else {
+        format!(
+            "fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"",
+            colour(role),
+            n2(style::OUTLINE_PX)
+        )
+    };
+    let _ = write!(
+        s,
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" {paint}/>",
+        n1(a.0.min(b.0)),
+        n1(a.1.min(b.1)),
+        n1((b.0 - a.0).abs()),
+        n1((b.1 - a.1).abs())
+    );
+}
+
+/// Arrows of one role as one path (at most [`MAX_POINTS`] of them).
+fn arrows_svg(s: &mut String, m: &Map, arrows: &[(DVec2, DVec2)], width_px: f64, role: Role) {
+    let d: String = thin(arrows.len(), MAX_POINTS)
+        .map(|i| arrow_path(m, arrows[i].0, arrows[i].1, width_px))
+        .collect();
+    if !d.is_empty() {
+        let _ = write!(
+            s,
+            "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\"/>",
+            colour(role),
+            n1(width_px)
+        );
     }
 }
 
@@ -567,9 +657,9 @@ fn off_view_svg(s: &mut String, m: &Map, (w, h): (f64, f64), at: DVec2, label: &
     let at_text = back - u * 6.0;
     let _ = write!(
         s,
-        "<path d=\"M{},{}L{},{}L{},{}z\" fill=\"{c}\" stroke=\"#ffffff\" stroke-width=\"1.5\"/>\
+        "<path d=\"M{},{}L{},{}L{},{}z\" fill=\"{c}\" stroke=\"{bg}\" stroke-width=\"1.5\"/>\
          <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" dominant-baseline=\"middle\" font-weight=\"600\" \
-         fill=\"{c}\" stroke=\"#ffffff\" stroke-width=\"4\" paint-order=\"stroke\">{}</text>",
+         fill=\"{c}\" stroke=\"{bg}\" stroke-width=\"{halo}\" paint-order=\"stroke\">{}</text>",
         n1(tip.x),
         n1(tip.y),
         n1(l.x),
@@ -579,7 +669,9 @@ fn off_view_svg(s: &mut String, m: &Map, (w, h): (f64, f64), at: DVec2, label: &
         n1(at_text.x.clamp(40.0, (w - 40.0).max(40.0))),
         n1(at_text.y.clamp(14.0, (h - 6.0).max(14.0))),
         escape(label),
-        c = colour(role)
+        c = colour(role),
+        bg = CANVAS.light,
+        halo = n2(style::LABEL_HALO_PX)
     );
 }
 
@@ -636,14 +728,16 @@ fn scale_bar(s: &mut String, scale: f64, h: f64) {
     };
     let _ = write!(
         s,
-        "<path d=\"M{x},{}V{y}H{}V{}\" fill=\"none\" stroke=\"#1b1f24\" stroke-width=\"2\"/>\
-         <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"#1b1f24\">{label}</text>",
+        "<path d=\"M{x},{}V{y}H{}V{}\" fill=\"none\" stroke=\"{ink}\" stroke-width=\"{}\"/>\
+         <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{ink}\">{label}</text>",
         n1(y - 5.0),
         n1(x + len),
         n1(y - 5.0),
+        n2(style::OUTLINE_PX),
         n1(x + len / 2.0),
         n1(y - 8.0),
         x = n1(x),
-        y = n1(y)
+        y = n1(y),
+        ink = colour(Role::Text)
     );
 }

@@ -995,3 +995,31 @@ fn report_data_record_holds_id_seed_answers_and_the_printed_score() {
         "</script><b>\"\\\n\u{2028}"
     );
 }
+
+#[test]
+fn the_report_scene_draws_the_grid_in_the_canvas_grid_colour() {
+    // The grid's colour had drifted: #d5dbe1 in the report, #e3e7ec on the
+    // canvas (web/style.css). Both come from the style table now.
+    let mut scene = Scene::default();
+    scene.axes(ViewBox::centered(1.0));
+    let (svg, _) = scene_svg::scene_svg(&scene, ViewBox::centered(1.0));
+    assert!(svg.contains("stroke=\"#e3e7ec\""), "{svg}");
+    assert!(!svg.contains("#d5dbe1"), "{svg}");
+    assert_eq!(crate::scene::Role::Grid.style().light(), "#e3e7ec");
+}
+
+#[test]
+fn the_report_plot_draws_reference_lines_and_bands_as_the_canvas_plot_does() {
+    // The report's plots had drifted from the canvas's: reference lines
+    // dashed 5 5 (canvas 6 4), bands at opacity 0.18 (canvas 0.22).
+    let svg = plot_svg(&hostile_plot(), 0);
+    assert!(
+        svg.contains("stroke=\"#5f6a75\" stroke-width=\"1.2\" stroke-dasharray=\"6 4\""),
+        "{svg}"
+    );
+    assert!(
+        svg.contains("fill=\"#E69F00\" fill-opacity=\"0.22\""),
+        "{svg}"
+    );
+    assert!(!svg.contains("stroke-dasharray=\"5 5\""), "{svg}");
+}

@@ -540,30 +540,13 @@ impl AStarGrid {
     /// Paints the cells on the line from `a` to `b` (Bresenham), so a fast
     /// drag leaves no gaps.
     fn paint_line(&mut self, a: Cell, b: Cell, blocked: bool) -> bool {
-        let (mut x, mut y) = (a.x as i64, a.y as i64);
-        let (x1, y1) = (b.x as i64, b.y as i64);
-        let (dx, dy) = ((x1 - x).abs(), -(y1 - y).abs());
-        let (sx, sy) = (if x < x1 { 1 } else { -1 }, if y < y1 { 1 } else { -1 });
-        let mut err = dx + dy;
         let mut changed = false;
-        // At most dx + 1 + |dy| + 1 cells on the line.
-        for _ in 0..=(dx - dy + 1) {
+        let ends = ((a.x as i64, a.y as i64), (b.x as i64, b.y as i64));
+        crate::bresenham::line(ends.0, ends.1, |x, y| {
             if let Some(c) = self.grid.cell_at(x, y) {
                 changed |= self.paint(c, blocked);
             }
-            if x == x1 && y == y1 {
-                break;
-            }
-            let e2 = 2 * err;
-            if e2 >= dy {
-                err += dy;
-                x += sx;
-            }
-            if e2 <= dx {
-                err += dx;
-                y += sy;
-            }
-        }
+        });
         changed
     }
 

@@ -1,0 +1,100 @@
+//! The world → CSS-pixel mapping of a canvas, and segment clipping in pixels.
+
+use glam::DVec2;
+use labcore::ViewBox;
+
+/// The world → CSS-pixel mapping of one frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Viewport {
+    pub scale_px_per_m: f64,
+    pub center_world: DVec2,
+    pub center_px: DVec2,
+}
+
+impl Viewport {
+    /// Fits `view` into a `width_px` × `height_px` canvas, uniform scale.
+    #[must_use]
+    pub fn fit(view: ViewBox, width_px: f64, height_px: f64) -> Self {
+        let size = (view.max - view.min).max(DVec2::splat(1e-9));
+        let scale = (width_px / size.x).min(height_px / size.y).max(1e-9);
+        Self {
+            scale_px_per_m: scale,
+            center_world: (view.min + view.max) * 0.5,
+            center_px: DVec2::new(width_px, height_px) * 0.5,
+        }
+    }
+
+    #[must_use]
+    pub fn to_px(&self, p: DVec2) -> DVec2 {
+        let d = (p - self.center_world) * self.scale_px_per_m;
+        DVec2::new(self.center_px.x + d.x, self.center_px.y - d.y)
+    }
+
+    #[must_use]
+    pub fn to_world(&self, px: DVec2) -> DVec2 {
+        let d = px - self.center_px;
+        self.center_world + DVec2::new(d.x, -d.y) / self.scale_px_per_m
+    }
+}
+
+/// Liang–Barsky clipping of segment `a`–`b` to `[0, max_x] × [0, max_y]`.
+pub(crate) fn clip_segment(a: DVec2, b: DVec2, max_x: f64, max_y: f64) -> Option<(DVec2, DVec2)> {
+    if !(a.is_finite() && b.is_finite()) {
+        return None;
+    }
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-d.x, a.x),
+        (d.x, max_x - a.x),
+        (-d.y, a.y),
+        (d.y, max_y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+            if t0 > t1 {
+                return None;
+            }
+        }
+    }
+    Some((a + d * t0, a + d * t1))
+}
+
+/// The pixel a point falls in, for [`labcore::bresenham::line`] (rounded
+/// to the nearest whole pixel).
+pub(crate) fn round_px(p: DVec2) -> (i64, i64) {
+    (p.x.round() as i64, p.y.round() as i64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clipping_keeps_inside_parts_only() {
+        let c =
+            |a: (f64, f64), b: (f64, f64)| clip_segment(DVec2::from(a), DVec2::from(b), 10.0, 10.0);
+        assert_eq!(
+            c((1.0, 1.0), (5.0, 5.0)),
+            Some((DVec2::new(1.0, 1.0), DVec2::new(5.0, 5.0)))
+        );
+        assert_eq!(
+            c((-10.0, 5.0), (20.0, 5.0)),
+            Some((DVec2::new(0.0, 5.0), DVec2::new(10.0, 5.0)))
+        );
+        assert_eq!(c((-5.0, -5.0), (-1.0, 20.0)), None);
+        assert_eq!(c((f64::NAN, 0.0), (1.0, 1.0)), None);
+        // A far-away endpoint is clipped, not walked pixel by pixel.
+        let (a, b) = c((5.0, 5.0), (1e300, 5.0)).expect("crosses the canvas");
+        assert_eq!((a.x, b.x), (5.0, 10.0));
+    }
+}
