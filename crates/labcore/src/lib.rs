@@ -79,8 +79,8 @@ pub mod table;
 pub use clock::Clock;
 pub use content::Content;
 pub use experiment::{
-    ActionSpec, Experiment, Handle, Input, Modifiers, Notice, Notices, ParamError, ParamKind,
-    ParamSpec, Phase, Preset, Readout, Sanitized, Status, Tone,
+    ActionSpec, Experiment, Handle, Input, Lab, Modifiers, Notice, Notices, ParamError, ParamKind,
+    ParamSpec, Phase, Preset, Presentation, Readout, Sanitized, Status, Tone,
 };
 pub use experiments::{find, registry, Entry};
 pub use glam;

@@ -3,7 +3,7 @@
 //! Parsing never fails: anything malformed falls back to a default and adds a
 //! short notice for the page to show.
 
-use crate::experiment::{Experiment, ParamError, Sanitized};
+use crate::experiment::{Experiment, Lab, ParamError, Sanitized};
 use crate::quiz::format_number;
 
 /// The six tabs of an experiment page, in order.
@@ -310,8 +310,8 @@ pub fn restore_instructor<E: Experiment>(link: &str, fresh: E) -> (E, Instructor
 /// A link without parameters (`#/id/tab`) keeps the current state. Returns
 /// the notices of [`apply_params`].
 pub fn open_in_tab(
-    current: &mut Box<dyn Experiment>,
-    make: fn() -> Box<dyn Experiment>,
+    current: &mut Box<dyn Lab>,
+    make: fn() -> Box<dyn Lab>,
     params: &[(String, String)],
 ) -> Vec<String> {
     if params.is_empty() {

@@ -1,7 +1,7 @@
 //! One module per experiment, and the registry that lists them.
 
 use crate::content::{Content, ContentError};
-use crate::experiment::Experiment;
+use crate::experiment::Lab;
 use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
@@ -37,13 +37,13 @@ macro_rules! content_file {
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
 pub struct Entry {
-    /// Same as [`Experiment::id`] and the content file's `id`.
+    /// Same as [`crate::experiment::Experiment::id`] and the content file's `id`.
     pub id: &'static str,
     /// The content file (`assets/<id>.json`), compiled in (without the
     /// `reading` feature, its quiz part only: see `content_file!`).
     pub content_json: &'static str,
     /// A fresh experiment at default parameters.
-    pub make: fn() -> Box<dyn Experiment>,
+    pub make: fn() -> Box<dyn Lab>,
     /// The experiment's parameterised quiz questions.
     pub generators: GeneratorLookup,
     /// The parsed content, filled on first use.

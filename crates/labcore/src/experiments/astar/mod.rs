@@ -36,7 +36,7 @@
 //! it to move half a window). This is view state, never in the link.
 
 use crate::experiment::{
-    check_param, format_fixed, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
+    check_param, format_fixed, ActionSpec, Experiment, Presentation, Input, Modifiers, Notice, Notices,
     ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::planning::astar::{Search, SearchConfig, StepOutcome, Strategy};
@@ -1450,17 +1450,9 @@ impl Experiment for AStarGrid {
             .collect()
     }
 
-    fn describe(&self) -> String {
-        view::describe(self)
-    }
-
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         let near = |c: Cell| (self.cell_center(c) - p).length() <= tolerance_m.max(0.5);
         near(self.start) || near(self.goal)
-    }
-
-    fn tables(&self) -> Vec<Table> {
-        view::tables(self)
     }
 
     fn file_types(&self) -> &'static [&'static str] {
@@ -1483,10 +1475,6 @@ impl Experiment for AStarGrid {
 
     fn export_text(&self) -> Option<(String, String)> {
         Some(("grid.map".into(), write_map(&self.grid)))
-    }
-
-    fn captures_touch(&self) -> bool {
-        true
     }
 
     /// The grid (`walls=` a wall code; or `maze=W×H.seed` / `map=arena`
@@ -1579,63 +1567,6 @@ impl Experiment for AStarGrid {
             _ => return Err(ParamError::UnknownKey { key: key.into() }),
         }
         Ok(())
-    }
-
-    fn notice(&self) -> Option<Notice> {
-        self.notices.current()
-    }
-
-    fn touch_hint(&self) -> &'static str {
-        view::touch_hint(self)
-    }
-
-    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
-        let size = DVec2::new(width_px, height_px);
-        if size.is_finite() && size.min_element() > 0.0 {
-            self.viewport_px = Some(size);
-            self.frame_ends();
-        }
-    }
-
-    /// The whole grid, or when [`AStarGrid::zoomed`] a window of
-    /// finger-sized cells at the pan (the page fits it to the canvas).
-    fn view(&self) -> ViewBox {
-        match view::window_cells(self) {
-            Some((c, r)) if self.zoomed() => ViewBox {
-                min: self.pan,
-                max: self.pan + DVec2::new(c as f64, r as f64),
-            },
-            _ => ViewBox {
-                min: DVec2::ZERO,
-                max: DVec2::new(self.grid.width() as f64, self.grid.height() as f64),
-            },
-        }
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        view::scene(self, out);
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        view::readouts(self)
-    }
-
-    fn status(&self) -> Status {
-        view::status(self)
-    }
-
-    fn hint(&self) -> &'static str {
-        view::hint(self)
-    }
-
-    fn preview(&mut self) {
-        self.plan();
-        if let Some(search) = self.search.as_mut() {
-            search.run();
-        }
-        self.search_raster();
-        self.search_finished();
-        self.driven_m = self.path_length_m() * 0.6;
     }
 
     fn animating(&self) -> bool {

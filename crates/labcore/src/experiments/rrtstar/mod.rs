@@ -26,7 +26,7 @@
 //! and the obstacles as text (key `obs`, see [`encode_obstacles`]).
 
 use crate::experiment::{
-    check_param, format_metres, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
+    check_param, format_metres, ActionSpec, Experiment, Presentation, Input, Modifiers, Notice, Notices,
     ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
 };
 use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar};
@@ -904,19 +904,11 @@ impl Experiment for RrtStarField {
         crate::experiment::finish_drag(self, to)
     }
 
-    fn describe(&self) -> String {
-        view::describe(self)
-    }
-
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         let tol = tolerance_m.max(HANDLE_M);
         (p - self.start).length() <= tol
             || (p - self.goal).length() <= tol
             || self.obstacle_at(p, tolerance_m.max(0.0)).is_some()
-    }
-
-    fn tables(&self) -> Vec<Table> {
-        view::tables(self)
     }
     fn extra_state(&self) -> Vec<(&'static str, String)> {
         vec![("obs", encode_obstacles(&self.obstacles))]
@@ -935,45 +927,6 @@ impl Experiment for RrtStarField {
             self.invalidate();
         }
         Ok(())
-    }
-
-    fn view(&self) -> ViewBox {
-        ViewBox {
-            min: DVec2::splat(-0.2),
-            max: FIELD_M + 0.2,
-        }
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        view::scene(self, out);
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        view::readouts(self)
-    }
-
-    fn status(&self) -> Status {
-        view::status(self)
-    }
-
-    fn notice(&self) -> Option<Notice> {
-        self.notices.current()
-    }
-
-    fn hint(&self) -> &'static str {
-        "Press Grow tree. Drag the start, goal or obstacles; click free space to add a disc (drop one outside the field to remove it); Shift-click sets the start, Ctrl-click the goal."
-    }
-
-    fn touch_hint(&self) -> &'static str {
-        "Press Grow tree. Drag the start, the goal or an obstacle; tap free space to add a disc, and drop a disc outside the field to remove it."
-    }
-
-    fn preview(&mut self) {
-        self.start_run(&[self.planner]);
-        if let Some(run) = self.runs.first_mut() {
-            run.grow(1500);
-        }
-        self.growing = false;
     }
 
     fn animating(&self) -> bool {
