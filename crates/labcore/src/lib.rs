@@ -80,7 +80,7 @@ pub use clock::Clock;
 pub use content::Content;
 pub use experiment::{
     ActionSpec, Experiment, Handle, Input, Lab, Modifiers, Notice, Notices, ParamError, ParamKind,
-    ParamSpec, Phase, Preset, Presentation, Readout, Sanitized, Status, Tone,
+    ParamSpec, Phase, Presentation, Preset, Readout, Sanitized, Status, Tone,
 };
 pub use experiments::{find, registry, Entry};
 pub use glam;

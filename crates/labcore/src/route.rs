@@ -704,9 +704,9 @@ pub fn format_instructor(
 /// from its link. Returns the labels of the parameters that had to be put
 /// back (the page says they are locked).
 pub fn keep_locked(
-    experiment: &mut dyn Experiment,
+    experiment: &mut dyn Lab,
     instructor: &Instructor,
-    op: impl FnOnce(&mut dyn Experiment),
+    op: impl FnOnce(&mut dyn Lab),
 ) -> Vec<&'static str> {
     let mut op = Some(op);
     keep_locked_dyn(experiment, instructor, &mut |e| {
@@ -720,9 +720,9 @@ pub fn keep_locked(
 /// caller's own copy cost the shipped modules about 800 bytes).
 #[inline(never)]
 fn keep_locked_dyn(
-    experiment: &mut dyn Experiment,
+    experiment: &mut dyn Lab,
     instructor: &Instructor,
-    op: &mut dyn FnMut(&mut dyn Experiment),
+    op: &mut dyn FnMut(&mut dyn Lab),
 ) -> Vec<&'static str> {
     if instructor.locked.is_empty() {
         op(experiment);
@@ -1183,6 +1183,9 @@ mod tests {
         }
         fn input(&mut self, _input: crate::Input) {}
         fn step(&mut self, _dt_s: f64) {}
+    }
+
+    impl crate::experiment::Presentation for Texty {
         fn view(&self) -> crate::ViewBox {
             crate::ViewBox::centered(1.0)
         }

@@ -2,13 +2,13 @@
 //! notice, and each produces the state its description tells.
 
 use labcore::route::{self, Page, Tab};
-use labcore::{registry, Experiment};
+use labcore::{registry, Lab};
 
 const DT_S: f64 = 1.0 / 60.0;
 
 /// The experiment `id` opened from its preset `name`'s link, as the
 /// Presets menu opens it; panics on any notice.
-fn open(id: &str, name: &str) -> Box<dyn Experiment> {
+fn open(id: &str, name: &str) -> Box<dyn Lab> {
     let entry = labcore::find(id).expect(id);
     let preset = (entry.make)()
         .presets()
@@ -22,7 +22,7 @@ fn open(id: &str, name: &str) -> Box<dyn Experiment> {
 
 /// A fresh experiment `id` with `link` applied (locks, hides and note
 /// checked too), and every notice.
-fn apply(id: &str, link: &str) -> (Box<dyn Experiment>, Vec<String>) {
+fn apply(id: &str, link: &str) -> (Box<dyn Lab>, Vec<String>) {
     let mut exp = (labcore::find(id).expect(id).make)();
     let parsed = route::parse(link, &[id]);
     let mut notices = parsed.notices;
@@ -35,18 +35,18 @@ fn apply(id: &str, link: &str) -> (Box<dyn Experiment>, Vec<String>) {
     (exp, notices)
 }
 
-fn run(exp: &mut dyn Experiment, seconds: f64) {
+fn run(exp: &mut dyn Lab, seconds: f64) {
     for _ in 0..(seconds / DT_S).round() as usize {
         exp.step(DT_S);
     }
 }
 
-fn readout(exp: &dyn Experiment, key: &str) -> String {
+fn readout(exp: &dyn Lab, key: &str) -> String {
     labcore::experiment::readout_value(exp, key).unwrap_or_else(|| panic!("no readout {key}"))
 }
 
 /// The leading number of a readout (`61.0%` → 61, `0.250 m` → 0.25).
-fn number(exp: &dyn Experiment, key: &str) -> f64 {
+fn number(exp: &dyn Lab, key: &str) -> f64 {
     let text = readout(exp, key);
     let end = text
         .find(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
@@ -87,7 +87,7 @@ fn every_experiment_ships_two_or_three_presets_that_apply_cleanly_and_reload_exa
 
 #[test]
 fn fk_presets_put_the_tip_on_the_outer_circle_the_inner_rim_and_the_base() {
-    let tip = |e: &dyn Experiment| number(e, "x").hypot(number(e, "y"));
+    let tip = |e: &dyn Lab| number(e, "x").hypot(number(e, "y"));
     let e = open("fk", "Full stretch");
     assert!((tip(e.as_ref()) - 1.7).abs() < 1e-3, "L₁ + L₂");
     assert_eq!(readout(e.as_ref(), "reach"), "100.0%");
@@ -176,7 +176,7 @@ fn dls_presets_oscillate_without_damping_settle_with_adaptive_damping_and_stretc
 /// search guided towards the goal fills the cup before it goes round.
 #[test]
 fn astar_trap_maze_makes_a_star_and_greedy_search_expand_the_whole_cup() {
-    let planned = |mut e: Box<dyn Experiment>| {
+    let planned = |mut e: Box<dyn Lab>| {
         e.set_param("rate", 50.0).unwrap();
         e.action("plan").unwrap();
         run(e.as_mut(), 30.0);

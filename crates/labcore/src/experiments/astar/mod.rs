@@ -30,14 +30,14 @@
 //! ([`Experiment::export_text`], a Moving AI map). Then both ends as one value,
 //! `ends=sx.sy.gx.gy`, applied after the grid as whole points (issue 14).
 //!
-//! **On a phone** ([`Experiment::viewport_px`] at most [`PHONE_WIDTH_PX`]
+//! **On a phone** ([`Presentation::viewport_px`] at most [`PHONE_WIDTH_PX`]
 //! wide) the view is a window of cells at least [`MIN_CELL_PX`] across around
 //! the start and goal; its outer ring of cells is a pan band (drag it, or tap
 //! it to move half a window). This is view state, never in the link.
 
 use crate::experiment::{
-    check_param, format_fixed, ActionSpec, Experiment, Presentation, Input, Modifiers, Notice, Notices,
-    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
+    ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone,
 };
 use crate::planning::astar::{Search, SearchConfig, StepOutcome, Strategy};
 use crate::planning::grid::{Cell, Connectivity, OccupancyGrid};

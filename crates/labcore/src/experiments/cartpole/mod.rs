@@ -48,8 +48,8 @@ use crate::control::cartpole::{
 };
 use crate::control::{Complex, Stability};
 use crate::experiment::{
-    check_param, format_fixed, ActionSpec, Experiment, Presentation, Input, Notice, Notices, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, ActionSpec, Experiment, Input, Notice, Notices, ParamError,
+    ParamSpec, Presentation, Readout, Sanitized, Status, Tone,
 };
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{format_number, Draw, Generator};

@@ -7,8 +7,8 @@
 
 use crate::experiment::{
     check_param, clamp_to_params, format_degrees, format_fixed, format_magnitude, format_metres,
-    format_point, with_coordinate, ActionSpec, Experiment, Presentation, Handle, Input, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
+    format_point, with_coordinate, ActionSpec, Experiment, Handle, Input, ParamError, ParamSpec,
+    Presentation, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::dls::{AdaptiveDamping, DlsSolver};

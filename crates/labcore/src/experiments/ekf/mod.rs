@@ -53,8 +53,8 @@ use crate::estimation::models::{
 use crate::estimation::slam::EkfSlam;
 use crate::estimation::wrap_angle;
 use crate::experiment::{
-    check_param, format_fixed, format_magnitude, ActionSpec, Experiment, Presentation, Input, Notice, Notices,
-    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, format_magnitude, ActionSpec, Experiment, Input, Notice, Notices,
+    ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone,
 };
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{format_number, Draw, Generator};

@@ -9,7 +9,8 @@
 
 use crate::experiment::{
     check_param, format_degrees, format_fixed, format_magnitude, format_metres, format_point,
-    Experiment, Presentation, Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    Experiment, Handle, Input, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status,
+    Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};

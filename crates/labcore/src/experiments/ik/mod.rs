@@ -11,8 +11,8 @@
 //! is what the two links solve for.
 
 use crate::experiment::{
-    check_param, clamp_to_params, format_degrees, format_point, with_coordinate, Experiment, Presentation,
-    Handle, Input, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, clamp_to_params, format_degrees, format_point, with_coordinate, Experiment,
+    Handle, Input, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{

@@ -57,8 +57,8 @@ use crate::control::pid::{
 use crate::control::step_info::{step_info, StepInfo, SETTLING_THRESHOLD};
 use crate::control::{Complex, Stability};
 use crate::experiment::{
-    check_param, format_fixed, format_magnitude, format_metres, ActionSpec, Experiment, Presentation, Input,
-    Notice, Notices, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, format_magnitude, format_metres, ActionSpec, Experiment, Input,
+    Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone,
 };
 use crate::plot::{Axis, Band, Marker, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{format_number, Draw, Generator};

@@ -305,8 +305,8 @@ impl Presentation for PidControl {
                 "Steady-state error",
                 y_final.map_or("--".into(), |y| {
                     // The linear loop's prediction until the run has settled.
-                    let reached =
-                        self.state == RunState::Quiet || info.is_some_and(|i| i.settling_time_s.is_some());
+                    let reached = self.state == RunState::Quiet
+                        || info.is_some_and(|i| i.settling_time_s.is_some());
                     if reached {
                         metres(self.setpoint_m - y)
                     } else {

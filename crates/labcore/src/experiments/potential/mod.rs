@@ -33,8 +33,8 @@
 //! is the run's state.
 
 use crate::experiment::{
-    check_param, format_fixed, format_metres, with_coordinate, ActionSpec, Experiment, Presentation, Input,
-    Notice, Notices, ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_fixed, format_metres, with_coordinate, ActionSpec, Experiment, Input,
+    Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone,
 };
 use crate::experiments::diffdrive::{draw_field, draw_robot, push_bounded, push_trail, snap_into};
 use crate::mobile::go_to_goal::GoToGoal;
@@ -92,7 +92,7 @@ const DEFAULT_OBSTACLES: [DVec2; MAX_OBSTACLES] = [
     DVec2::new(4.0, 1.0),
 ];
 const DEFAULT_GOAL: DVec2 = DVec2::new(7.2, 3.0);
-/// Most steps [`Experiment::preview`] takes: one live run's hard limit
+/// Most steps [`Presentation::preview`] takes: one live run's hard limit
 /// (120 s at 60 steps per second) and a little more.
 pub const MAX_PREVIEW_STEPS: usize = 7300;
 

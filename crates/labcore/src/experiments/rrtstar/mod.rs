@@ -26,8 +26,8 @@
 //! and the obstacles as text (key `obs`, see [`encode_obstacles`]).
 
 use crate::experiment::{
-    check_param, format_metres, ActionSpec, Experiment, Presentation, Input, Modifiers, Notice, Notices,
-    ParamError, ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_metres, ActionSpec, Experiment, Input, Modifiers, Notice, Notices,
+    ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone,
 };
 use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar};
 use crate::planning::world::{Obstacle, World};

@@ -184,7 +184,9 @@ impl Presentation for RrtStarField {
                 RrtError::StartNotFree => {
                     "the start is in an obstacle: drag it to free space".to_owned()
                 }
-                RrtError::GoalNotFree => "the goal is in an obstacle: drag it to free space".to_owned(),
+                RrtError::GoalNotFree => {
+                    "the goal is in an obstacle: drag it to free space".to_owned()
+                }
                 e => e.to_string(),
             };
             return Status::new(text, Tone::Bad);
@@ -210,7 +212,9 @@ impl Presentation for RrtStarField {
                 format!("{what}… {} nodes, no path yet", tree.len()),
                 Tone::Neutral,
             ),
-            (true, Some(c)) => Status::new(format!("{what}… best {}", format_metres(c)), Tone::Good),
+            (true, Some(c)) => {
+                Status::new(format!("{what}… best {}", format_metres(c)), Tone::Good)
+            }
             (false, Some(c)) => {
                 Status::ended(format!("done: best path {}", format_metres(c)), Tone::Good)
             }

@@ -9,8 +9,8 @@
 //! `r = max(0, L_max − (R − L_max))`.
 
 use crate::experiment::{
-    check_param, format_point, ActionSpec, Experiment, Presentation, Handle, Input, Notice, Notices, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, format_point, ActionSpec, Experiment, Handle, Input, Notice, Notices, ParamError,
+    ParamSpec, Presentation, Readout, Sanitized, Status, Tone,
 };
 use crate::kinematics::chain::{forward, tip, Annulus};
 use crate::kinematics::dls::DlsSolver;
