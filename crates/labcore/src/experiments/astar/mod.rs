@@ -487,36 +487,6 @@ impl AStarGrid {
         self.walls_raster();
     }
 
-    /// The raster showing only the walls.
-    fn walls_raster(&mut self) {
-        let (w, h) = (self.grid.width(), self.grid.height());
-        self.raster.clear();
-        self.raster.resize(w * h, 0);
-        for (y, row) in self.grid.cells().chunks(w).enumerate() {
-            let r = (h - 1 - y) * w;
-            for (dst, &b) in self.raster[r..r + w].iter_mut().zip(row) {
-                *dst = if b { BLOCKED } else { 0 };
-            }
-        }
-    }
-
-    /// The raster from the search's cell states (rows flipped to y up).
-    fn search_raster(&mut self) {
-        let Some(search) = &self.search else {
-            return;
-        };
-        search.write_cell_states(&mut self.scratch);
-        let (w, h) = (self.grid.width(), self.grid.height());
-        if self.scratch.len() != w * h {
-            return;
-        }
-        self.raster.resize(w * h, 0);
-        for (y, row) in self.scratch.chunks(w).enumerate() {
-            let r = (h - 1 - y) * w;
-            self.raster[r..r + w].copy_from_slice(row);
-        }
-    }
-
     /// Sets one cell's wall, keeping the start and goal free of paint, and
     /// updates the raster and code length lazily (see [`Self::end_edit`]).
     fn paint(&mut self, cell: Cell, blocked: bool) -> bool {
@@ -901,87 +871,6 @@ impl AStarGrid {
         self.grid_link.is_some()
     }
 
-    // ---- View state (never in the link) ----
-
-    /// Whether the view shows a finger-sized window instead of the grid.
-    #[must_use]
-    pub fn zoomed(&self) -> bool {
-        let auto = self.viewport_px.is_some_and(|v| v.x <= PHONE_WIDTH_PX);
-        self.zoom_choice.unwrap_or(auto) && view::window_cells(self).is_some()
-    }
-
-    /// The pan clamped so the window stays on the grid.
-    fn clamp_pan(&self, pan: DVec2) -> DVec2 {
-        let Some((c, r)) = view::window_cells(self) else {
-            return DVec2::ZERO;
-        };
-        let max = DVec2::new(
-            (self.grid.width() - c) as f64,
-            (self.grid.height() - r) as f64,
-        );
-        let p = if pan.is_finite() { pan } else { DVec2::ZERO };
-        p.round().clamp(DVec2::ZERO, max)
-    }
-
-    /// Centres the zoomed window on the start and goal when both fit,
-    /// otherwise on the start.
-    fn frame_ends(&mut self) {
-        let Some((c, r)) = view::window_cells(self) else {
-            self.pan = DVec2::ZERO;
-            return;
-        };
-        let (s, g) = (self.cell_center(self.start), self.cell_center(self.goal));
-        let inner = DVec2::new(c as f64 - 2.0, r as f64 - 2.0);
-        let d = (s - g).abs();
-        let centre = if d.x < inner.x && d.y < inner.y {
-            (s + g) * 0.5
-        } else {
-            s
-        };
-        self.pan = self.clamp_pan(centre - DVec2::new(c as f64, r as f64) * 0.5);
-    }
-
-    /// Pans the zoomed window the least that brings `p` (world) inside its
-    /// inner part (off the pan band).
-    fn follow(&mut self, p: DVec2) {
-        if !self.zoomed() {
-            return;
-        }
-        let view = self.view();
-        let lo = view.min + 1.0;
-        let hi = view.max - 1.0;
-        let shift = DVec2::new(
-            (p.x - lo.x).min(0.0) + (p.x - hi.x).max(0.0),
-            (p.y - lo.y).min(0.0) + (p.y - hi.y).max(0.0),
-        );
-        self.pan = self.clamp_pan(self.pan + shift.signum() * shift.abs().ceil());
-    }
-
-    /// The pan direction of a press at `p` on the zoomed view's edge band
-    /// (the outer ring of cells on each side with more grid beyond), or
-    /// `None` inside.
-    fn band_side(&self, p: DVec2) -> Option<DVec2> {
-        if !self.zoomed() || !p.is_finite() {
-            return None;
-        }
-        let view = self.view();
-        let (w, h) = (self.grid.width() as f64, self.grid.height() as f64);
-        let side = |v: f64, lo: f64, hi: f64, max: f64| {
-            if v < lo + 1.0 && lo > 0.0 {
-                -1.0
-            } else if v > hi - 1.0 && hi < max {
-                1.0
-            } else {
-                0.0
-            }
-        };
-        let d = DVec2::new(
-            side(p.x, view.min.x, view.max.x, w),
-            side(p.y, view.min.y, view.max.y, h),
-        );
-        (d != DVec2::ZERO).then_some(d)
-    }
-
     fn robot(&self) -> Option<DVec2> {
         if !matches!(self.phase, Phase::Driving | Phase::Arrived) {
             return None;
@@ -1342,9 +1231,7 @@ impl Experiment for AStarGrid {
             Input::PointerUp(_) => {
                 if let Drag::Pan { grab, moved: false } = self.drag {
                     // A tap on the band pans half a window that way.
-                    if let (Some(d), Some((c, r))) =
-                        (self.band_side(grab), view::window_cells(self))
-                    {
+                    if let (Some(d), Some((c, r))) = (self.band_side(grab), self.window_cells()) {
                         let half = DVec2::new((c / 2).max(1) as f64, (r / 2).max(1) as f64);
                         self.pan = self.clamp_pan(self.pan + d * half);
                     }

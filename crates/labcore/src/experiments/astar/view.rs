@@ -1,5 +1,7 @@
-//! What experiment 6 shows: the grid scene, readouts, status, tables and hint.
-//! Only reads the state.
+//! What experiment 6 shows: the grid scene, readouts, status, tables and hint,
+//! and what the page needs to show them: the camera (zoom and pan on a
+//! phone) and the raster cache of cell states. It reads the model and
+//! writes only this view state.
 
 use super::*;
 
@@ -7,7 +9,7 @@ impl Presentation for AStarGrid {
     /// The whole grid, or when [`AStarGrid::zoomed`] a window of
     /// finger-sized cells at the pan (the page fits it to the canvas).
     fn view(&self) -> ViewBox {
-        match view::window_cells(self) {
+        match self.window_cells() {
             Some((c, r)) if self.zoomed() => ViewBox {
                 min: self.pan,
                 max: self.pan + DVec2::new(c as f64, r as f64),
@@ -501,16 +503,129 @@ fn pan_band(a: &AStarGrid, out: &mut Scene) {
     }
 }
 
-/// The zoomed window's size in cells (columns, rows) for the canvas the
-/// page told: as many [`MIN_CELL_PX`] cells as fit, `None` when the whole
-/// grid already shows cells that large (or no canvas size is known yet).
-pub(super) fn window_cells(a: &AStarGrid) -> Option<(usize, usize)> {
-    let vp = a.viewport_px?;
-    let (w, h) = (a.grid.width(), a.grid.height());
-    if (vp.x / w as f64).min(vp.y / h as f64) >= MIN_CELL_PX {
-        return None;
+/// The camera (view state, never in the link: the canvas size, the zoom
+/// and the pan) and the raster cache of cell states the scene paints.
+impl AStarGrid {
+    /// Whether the view shows a finger-sized window instead of the grid.
+    #[must_use]
+    pub fn zoomed(&self) -> bool {
+        let auto = self.viewport_px.is_some_and(|v| v.x <= PHONE_WIDTH_PX);
+        self.zoom_choice.unwrap_or(auto) && self.window_cells().is_some()
     }
-    let fit = |px: f64, n: usize| ((px / MIN_CELL_PX).floor() as usize).clamp(1, n);
-    let (c, r) = (fit(vp.x, w), fit(vp.y, h));
-    (c < w || r < h).then_some((c, r))
+
+    /// The zoomed window's size in cells (columns, rows) for the canvas the
+    /// page told: as many [`MIN_CELL_PX`] cells as fit, `None` when the whole
+    /// grid already shows cells that large (or no canvas size is known yet).
+    pub(super) fn window_cells(&self) -> Option<(usize, usize)> {
+        let vp = self.viewport_px?;
+        let (w, h) = (self.grid.width(), self.grid.height());
+        if (vp.x / w as f64).min(vp.y / h as f64) >= MIN_CELL_PX {
+            return None;
+        }
+        let fit = |px: f64, n: usize| ((px / MIN_CELL_PX).floor() as usize).clamp(1, n);
+        let (c, r) = (fit(vp.x, w), fit(vp.y, h));
+        (c < w || r < h).then_some((c, r))
+    }
+
+    /// The pan clamped so the window stays on the grid.
+    pub(super) fn clamp_pan(&self, pan: DVec2) -> DVec2 {
+        let Some((c, r)) = self.window_cells() else {
+            return DVec2::ZERO;
+        };
+        let max = DVec2::new(
+            (self.grid.width() - c) as f64,
+            (self.grid.height() - r) as f64,
+        );
+        let p = if pan.is_finite() { pan } else { DVec2::ZERO };
+        p.round().clamp(DVec2::ZERO, max)
+    }
+
+    /// Centres the zoomed window on the start and goal when both fit,
+    /// otherwise on the start.
+    pub(super) fn frame_ends(&mut self) {
+        let Some((c, r)) = self.window_cells() else {
+            self.pan = DVec2::ZERO;
+            return;
+        };
+        let (s, g) = (self.cell_center(self.start), self.cell_center(self.goal));
+        let inner = DVec2::new(c as f64 - 2.0, r as f64 - 2.0);
+        let d = (s - g).abs();
+        let centre = if d.x < inner.x && d.y < inner.y {
+            (s + g) * 0.5
+        } else {
+            s
+        };
+        self.pan = self.clamp_pan(centre - DVec2::new(c as f64, r as f64) * 0.5);
+    }
+
+    /// Pans the zoomed window the least that brings `p` (world) inside its
+    /// inner part (off the pan band).
+    pub(super) fn follow(&mut self, p: DVec2) {
+        if !self.zoomed() {
+            return;
+        }
+        let view = self.view();
+        let lo = view.min + 1.0;
+        let hi = view.max - 1.0;
+        let shift = DVec2::new(
+            (p.x - lo.x).min(0.0) + (p.x - hi.x).max(0.0),
+            (p.y - lo.y).min(0.0) + (p.y - hi.y).max(0.0),
+        );
+        self.pan = self.clamp_pan(self.pan + shift.signum() * shift.abs().ceil());
+    }
+
+    /// The pan direction of a press at `p` on the zoomed view's edge band
+    /// (the outer ring of cells on each side with more grid beyond), or
+    /// `None` inside.
+    pub(super) fn band_side(&self, p: DVec2) -> Option<DVec2> {
+        if !self.zoomed() || !p.is_finite() {
+            return None;
+        }
+        let view = self.view();
+        let (w, h) = (self.grid.width() as f64, self.grid.height() as f64);
+        let side = |v: f64, lo: f64, hi: f64, max: f64| {
+            if v < lo + 1.0 && lo > 0.0 {
+                -1.0
+            } else if v > hi - 1.0 && hi < max {
+                1.0
+            } else {
+                0.0
+            }
+        };
+        let d = DVec2::new(
+            side(p.x, view.min.x, view.max.x, w),
+            side(p.y, view.min.y, view.max.y, h),
+        );
+        (d != DVec2::ZERO).then_some(d)
+    }
+
+    /// The raster showing only the walls.
+    pub(super) fn walls_raster(&mut self) {
+        let (w, h) = (self.grid.width(), self.grid.height());
+        self.raster.clear();
+        self.raster.resize(w * h, 0);
+        for (y, row) in self.grid.cells().chunks(w).enumerate() {
+            let r = (h - 1 - y) * w;
+            for (dst, &b) in self.raster[r..r + w].iter_mut().zip(row) {
+                *dst = if b { BLOCKED } else { 0 };
+            }
+        }
+    }
+
+    /// The raster from the search's cell states (rows flipped to y up).
+    pub(super) fn search_raster(&mut self) {
+        let Some(search) = &self.search else {
+            return;
+        };
+        search.write_cell_states(&mut self.scratch);
+        let (w, h) = (self.grid.width(), self.grid.height());
+        if self.scratch.len() != w * h {
+            return;
+        }
+        self.raster.resize(w * h, 0);
+        for (y, row) in self.scratch.chunks(w).enumerate() {
+            let r = (h - 1 - y) * w;
+            self.raster[r..r + w].copy_from_slice(row);
+        }
+    }
 }
