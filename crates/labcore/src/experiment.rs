@@ -788,7 +788,11 @@ pub trait Experiment {
 /// reader's description and the tables. Methods take `&self` and only read
 /// the model, except [`Presentation::viewport_px`] (view state, never in the
 /// link) and [`Presentation::preview`] (the home-page picture's state).
-pub trait Presentation {
+///
+/// It extends [`Experiment`] (the view depends on the model, never the
+/// other way), so one vtable serves both: a second, independent supertrait
+/// would give every experiment a second vtable in each wasm module.
+pub trait Presentation: Experiment {
     /// The world rectangle the canvas should show.
     fn view(&self) -> ViewBox;
     /// The canvas's size in CSS pixels, told by the page on mount and on every
@@ -840,10 +844,11 @@ pub trait Presentation {
 }
 
 /// An experiment and its presentation: what the registry makes and the page
-/// runs. Every type with both traits is one.
-pub trait Lab: Experiment + Presentation {}
+/// runs. Every type with both traits is one. A `&dyn Lab` passes where a
+/// `&dyn Experiment` (the model alone) is asked for.
+pub trait Lab: Presentation {}
 
-impl<T: Experiment + Presentation + ?Sized> Lab for T {}
+impl<T: Presentation + ?Sized> Lab for T {}
 
 /// Ends a drag an experiment has grabbed (a press on a handle, or its own
 /// record of one): moves the pressed pointer to `to` and releases it there,
