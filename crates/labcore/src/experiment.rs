@@ -1,4 +1,5 @@
-//! The one seam between solvers and the page: [`Experiment`].
+//! The one seam between solvers and the page: [`Experiment`] (the model)
+//! and [`Presentation`] (what is shown of it), together a [`Lab`].
 //!
 //! labweb turns DOM events into [`Input`] values already in world coordinates,
 //! calls [`Experiment::step`] with a fixed `dt`, asks for a [`Scene`] and the
@@ -408,7 +409,7 @@ impl Handle {
 
 /// A status or notice in a finger's words, shown while the student uses
 /// touch: "click" becomes "tap" (statuses and notices start in lower case;
-/// hints have [`Experiment::touch_hint`]).
+/// hints have [`Presentation::touch_hint`]).
 #[must_use]
 pub fn for_touch(text: &str) -> String {
     text.replace("click", "tap")
@@ -508,7 +509,7 @@ pub struct Notice {
 }
 
 /// The notice an experiment last posted: keep one as a field and return
-/// [`Notices::current`] from [`Experiment::notice`].
+/// [`Notices::current`] from [`Presentation::notice`].
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Notices {
     serial: u64,
@@ -578,7 +579,9 @@ impl Readout {
     pub const DEGREE_DECIMALS: usize = crate::units::DEGREE_DECIMALS;
 }
 
-/// One experiment: parameters, state, a fixed-step simulation and a display list.
+/// One experiment's model: parameters, state, a fixed-step simulation,
+/// input, actions, plots as data, handles, link state, files and presets.
+/// What is shown of it is its [`Presentation`].
 ///
 /// Contract: every method leaves the state finite whatever it is given; a
 /// refused input leaves the state exactly as it was.
@@ -663,21 +666,6 @@ pub trait Experiment {
         self.input(Input::PointerDown(h.at));
         finish_drag(self, to)
     }
-    /// One or two sentences a screen reader says about the scene ("robot at
-    /// (2.10, 3.40) m heading 45°, 2 of 3 waypoints reached"), on request and
-    /// when a run ends. Default: the status and the readouts.
-    fn describe(&self) -> String {
-        let readouts: Vec<String> = self
-            .readouts()
-            .iter()
-            .map(|r| format!("{} {}", r.label, r.value))
-            .collect();
-        format!("{}. {}.", self.status().text, readouts.join(", "))
-    }
-    /// Live tables shown beside the canvas (an open list, a comparison).
-    fn tables(&self) -> Vec<Table> {
-        Vec::new()
-    }
     /// File name extensions the experiment can load (e.g. `[".map"]`); the
     /// page offers a file picker and dropping a file on the canvas.
     fn file_types(&self) -> &'static [&'static str] {
@@ -711,39 +699,6 @@ pub trait Experiment {
     fn set_extra_state(&mut self, key: &str, _value: &str) -> Result<(), ParamError> {
         Err(ParamError::UnknownKey { key: key.into() })
     }
-    /// Whether the canvas must take every touch (e.g. painting walls), so a
-    /// swipe over it never scrolls the page. The page says so and offers a
-    /// way to scroll. Default: no.
-    fn captures_touch(&self) -> bool {
-        false
-    }
-    /// The world rectangle the canvas should show.
-    fn view(&self) -> ViewBox;
-    /// Fills `out` with this frame's display list (cleared first by the caller).
-    fn scene(&self, out: &mut Scene);
-    /// The live numbers beside the canvas.
-    fn readouts(&self) -> Vec<Readout>;
-    /// The status badge: the run's state from the model's evidence.
-    fn status(&self) -> Status;
-    /// The latest transient notice, if any (see [`Notice`]). Default: none.
-    fn notice(&self) -> Option<Notice> {
-        None
-    }
-    /// One line above the canvas telling the student how to interact.
-    fn hint(&self) -> &'static str;
-    /// The hint to show while the student uses touch, when it differs
-    /// (e.g. no Shift-click on a phone). Default: [`Experiment::hint`].
-    fn touch_hint(&self) -> &'static str {
-        self.hint()
-    }
-    /// The canvas's size in CSS pixels, told by the page on mount and on every
-    /// resize, so an experiment can choose a view that keeps handles and cells
-    /// finger-sized on a phone. It must not change the link state. Default:
-    /// ignored.
-    fn viewport_px(&mut self, _width_px: f64, _height_px: f64) {}
-    /// Puts the experiment in a representative state for its home-page
-    /// picture (e.g. a swept workspace, a solved target). Default: as built.
-    fn preview(&mut self) {}
     /// Named starting states that tell a story, shown in a Presets menu on
     /// the Simulation tab. Default: none.
     fn presets(&self) -> &'static [Preset] {
@@ -754,6 +709,73 @@ pub trait Experiment {
         true
     }
 }
+
+/// What is shown of an experiment (its `view.rs`): the view box, the display
+/// list, the readouts, the status badge, notices, hints, the screen
+/// reader's description and the tables. Methods take `&self` and only read
+/// the model, except [`Presentation::viewport_px`] (view state, never in the
+/// link) and [`Presentation::preview`] (the home-page picture's state).
+///
+/// It extends [`Experiment`] (the view depends on the model, never the
+/// other way), so one vtable serves both: a second, independent supertrait
+/// would give every experiment a second vtable in each wasm module.
+pub trait Presentation: Experiment {
+    /// The world rectangle the canvas should show.
+    fn view(&self) -> ViewBox;
+    /// The canvas's size in CSS pixels, told by the page on mount and on every
+    /// resize, so an experiment can choose a view that keeps handles and cells
+    /// finger-sized on a phone. It must not change the link state. Default:
+    /// ignored.
+    fn viewport_px(&mut self, _width_px: f64, _height_px: f64) {}
+    /// Fills `out` with this frame's display list (cleared first by the caller).
+    fn scene(&self, out: &mut Scene);
+    /// The live numbers beside the canvas.
+    fn readouts(&self) -> Vec<Readout>;
+    /// The status badge: the run's state from the model's evidence.
+    fn status(&self) -> Status;
+    /// The latest transient notice, if any (see [`Notice`]). Default: none.
+    fn notice(&self) -> Option<Notice> {
+        None
+    }
+    /// One or two sentences a screen reader says about the scene ("robot at
+    /// (2.10, 3.40) m heading 45°, 2 of 3 waypoints reached"), on request and
+    /// when a run ends. Default: the status and the readouts.
+    fn describe(&self) -> String {
+        let readouts: Vec<String> = self
+            .readouts()
+            .iter()
+            .map(|r| format!("{} {}", r.label, r.value))
+            .collect();
+        format!("{}. {}.", self.status().text, readouts.join(", "))
+    }
+    /// One line above the canvas telling the student how to interact.
+    fn hint(&self) -> &'static str;
+    /// The hint to show while the student uses touch, when it differs
+    /// (e.g. no Shift-click on a phone). Default: [`Presentation::hint`].
+    fn touch_hint(&self) -> &'static str {
+        self.hint()
+    }
+    /// Live tables shown beside the canvas (an open list, a comparison).
+    fn tables(&self) -> Vec<Table> {
+        Vec::new()
+    }
+    /// Whether the canvas must take every touch (e.g. painting walls), so a
+    /// swipe over it never scrolls the page. The page says so and offers a
+    /// way to scroll. Default: no.
+    fn captures_touch(&self) -> bool {
+        false
+    }
+    /// Puts the experiment in a representative state for its home-page
+    /// picture (e.g. a swept workspace, a solved target). Default: as built.
+    fn preview(&mut self) {}
+}
+
+/// An experiment and its presentation: what the registry makes and the page
+/// runs. Every type with both traits is one. A `&dyn Lab` passes where a
+/// `&dyn Experiment` (the model alone) is asked for.
+pub trait Lab: Presentation {}
+
+impl<T: Presentation + ?Sized> Lab for T {}
 
 /// Ends a drag an experiment has grabbed (a press on a handle, or its own
 /// record of one): moves the pressed pointer to `to` and releases it there,
@@ -789,7 +811,7 @@ pub fn point_slot(key: &str, prefix: char, count: usize) -> Option<(usize, bool)
 /// The formatted value of the readout `key`, or `None` when the experiment
 /// shows no such readout now.
 #[must_use]
-pub fn readout_value(experiment: &dyn Experiment, key: &str) -> Option<String> {
+pub fn readout_value(experiment: &dyn Presentation, key: &str) -> Option<String> {
     experiment
         .readouts()
         .into_iter()

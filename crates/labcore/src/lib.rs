@@ -83,8 +83,8 @@ pub mod units;
 pub use clock::Clock;
 pub use content::Content;
 pub use experiment::{
-    ActionSpec, Experiment, Handle, Input, Modifiers, Notice, Notices, ParamError, ParamKind,
-    ParamSpec, Phase, Preset, Readout, Sanitized, Status, Tone,
+    ActionSpec, Experiment, Handle, Input, Lab, Modifiers, Notice, Notices, ParamError, ParamKind,
+    ParamSpec, Phase, Presentation, Preset, Readout, Sanitized, Status, Tone,
 };
 pub use experiments::{find, registry, Entry};
 pub use glam;

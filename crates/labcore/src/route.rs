@@ -3,7 +3,7 @@
 //! Parsing never fails: anything malformed falls back to a default and adds a
 //! short notice for the page to show.
 
-use crate::experiment::{Experiment, ParamError, Sanitized};
+use crate::experiment::{Experiment, Lab, ParamError, Sanitized};
 use crate::units::format_number;
 
 /// The six tabs of an experiment page, in order.
@@ -310,8 +310,8 @@ pub fn restore_instructor<E: Experiment>(link: &str, fresh: E) -> (E, Instructor
 /// A link without parameters (`#/id/tab`) keeps the current state. Returns
 /// the notices of [`apply_params`].
 pub fn open_in_tab(
-    current: &mut Box<dyn Experiment>,
-    make: fn() -> Box<dyn Experiment>,
+    current: &mut Box<dyn Lab>,
+    make: fn() -> Box<dyn Lab>,
     params: &[(String, String)],
 ) -> Vec<String> {
     if params.is_empty() {
@@ -704,9 +704,9 @@ pub fn format_instructor(
 /// from its link. Returns the labels of the parameters that had to be put
 /// back (the page says they are locked).
 pub fn keep_locked(
-    experiment: &mut dyn Experiment,
+    experiment: &mut dyn Lab,
     instructor: &Instructor,
-    op: impl FnOnce(&mut dyn Experiment),
+    op: impl FnOnce(&mut dyn Lab),
 ) -> Vec<&'static str> {
     let mut op = Some(op);
     keep_locked_dyn(experiment, instructor, &mut |e| {
@@ -720,9 +720,9 @@ pub fn keep_locked(
 /// caller's own copy cost the shipped modules about 800 bytes).
 #[inline(never)]
 fn keep_locked_dyn(
-    experiment: &mut dyn Experiment,
+    experiment: &mut dyn Lab,
     instructor: &Instructor,
-    op: &mut dyn FnMut(&mut dyn Experiment),
+    op: &mut dyn FnMut(&mut dyn Lab),
 ) -> Vec<&'static str> {
     if instructor.locked.is_empty() {
         op(experiment);
@@ -1183,6 +1183,9 @@ mod tests {
         }
         fn input(&mut self, _input: crate::Input) {}
         fn step(&mut self, _dt_s: f64) {}
+    }
+
+    impl crate::experiment::Presentation for Texty {
         fn view(&self) -> crate::ViewBox {
             crate::ViewBox::centered(1.0)
         }

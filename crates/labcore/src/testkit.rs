@@ -10,7 +10,7 @@
 //! what a test asks for: a test kit's failure is a failed test.
 
 use crate::clock::Clock;
-use crate::experiment::{Experiment, Input, Modifiers, Phase, Status};
+use crate::experiment::{Experiment, Input, Lab, Modifiers, Phase, Presentation, Status};
 use crate::route::{self, Page, Tab};
 use crate::scene::Scene;
 use glam::DVec2;
@@ -31,21 +31,21 @@ pub const CTRL: Modifiers = Modifiers {
 };
 
 /// Replays `n` fixed steps of [`DT_S`].
-pub fn steps<E: Experiment + ?Sized>(e: &mut E, n: usize) {
+pub fn steps<E: Presentation + ?Sized>(e: &mut E, n: usize) {
     for _ in 0..n {
         e.step(DT_S);
     }
 }
 
 /// Steps for `seconds` of simulated time, rounded to whole steps of [`DT_S`].
-pub fn run_for<E: Experiment + ?Sized>(e: &mut E, seconds: f64) {
+pub fn run_for<E: Presentation + ?Sized>(e: &mut E, seconds: f64) {
     steps(e, (seconds / DT_S).round() as usize);
 }
 
 /// Steps while the lab animates, at most `max_s` simulated seconds; returns
 /// the simulated seconds stepped (`max_s` or a little over when it never
 /// came to rest: check `animating()` where that matters).
-pub fn run_while_animating<E: Experiment + ?Sized>(e: &mut E, max_s: f64) -> f64 {
+pub fn run_while_animating<E: Presentation + ?Sized>(e: &mut E, max_s: f64) -> f64 {
     let mut t_s = 0.0;
     while e.animating() && t_s < max_s {
         e.step(DT_S);
@@ -62,7 +62,7 @@ pub const SETTLE_MAX_STEPS: usize = 100_000;
 ///
 /// # Panics
 /// When the lab still animates after [`SETTLE_MAX_STEPS`] steps.
-pub fn settle<E: Experiment + ?Sized>(e: &mut E) -> usize {
+pub fn settle<E: Presentation + ?Sized>(e: &mut E) -> usize {
     let mut n = 0;
     while e.animating() {
         assert!(n < SETTLE_MAX_STEPS, "never settles");
@@ -74,7 +74,7 @@ pub fn settle<E: Experiment + ?Sized>(e: &mut E) -> usize {
 
 /// Steps until `done` holds for the status (checked before each step), at
 /// most `max_steps` steps; the steps taken, or `None` when it never held.
-pub fn run_until_status<E: Experiment + ?Sized>(
+pub fn run_until_status<E: Presentation + ?Sized>(
     e: &mut E,
     max_steps: usize,
     mut done: impl FnMut(&Status) -> bool,
@@ -91,7 +91,7 @@ pub fn run_until_status<E: Experiment + ?Sized>(
 }
 
 /// [`run_until_status`] for a phase of the run (e.g. [`Phase::Ended`]).
-pub fn run_until_phase<E: Experiment + ?Sized>(
+pub fn run_until_phase<E: Presentation + ?Sized>(
     e: &mut E,
     phase: Phase,
     max_steps: usize,
@@ -103,7 +103,7 @@ pub fn run_until_phase<E: Experiment + ?Sized>(
 ///
 /// # Panics
 /// When the lab shows no such readout now.
-pub fn readout<E: Experiment + ?Sized>(e: &E, key: &str) -> String {
+pub fn readout<E: Presentation + ?Sized>(e: &E, key: &str) -> String {
     e.readouts()
         .into_iter()
         .find(|r| r.key == key)
@@ -116,7 +116,7 @@ pub fn readout<E: Experiment + ?Sized>(e: &E, key: &str) -> String {
 ///
 /// # Panics
 /// When there is no such readout or it does not start with a number.
-pub fn readout_number<E: Experiment + ?Sized>(e: &E, key: &str) -> f64 {
+pub fn readout_number<E: Presentation + ?Sized>(e: &E, key: &str) -> f64 {
     let text = readout(e, key);
     leading_number(&text).unwrap_or_else(|| panic!("{key}: “{text}” has no leading number"))
 }
@@ -133,14 +133,14 @@ pub fn leading_number(text: &str) -> Option<f64> {
 }
 
 /// A press and release at `p` (world coordinates, metres): a click or a tap.
-pub fn click<E: Experiment + ?Sized>(e: &mut E, p: DVec2) {
+pub fn click<E: Presentation + ?Sized>(e: &mut E, p: DVec2) {
     e.input(Input::PointerDown(p));
     e.input(Input::PointerUp(p));
 }
 
 /// A drag with the pointer pressed through `path` (world coordinates): a
 /// press at the first point, a move to each next one, a release at the last.
-pub fn drag_through<E: Experiment + ?Sized>(e: &mut E, path: &[DVec2]) {
+pub fn drag_through<E: Presentation + ?Sized>(e: &mut E, path: &[DVec2]) {
     let (Some(&from), Some(&to)) = (path.first(), path.last()) else {
         return;
     };
@@ -152,7 +152,7 @@ pub fn drag_through<E: Experiment + ?Sized>(e: &mut E, path: &[DVec2]) {
 }
 
 /// The notice shown beside the status now, or `""` when there is none.
-pub fn notice_text<E: Experiment + ?Sized>(e: &E) -> String {
+pub fn notice_text<E: Presentation + ?Sized>(e: &E) -> String {
     e.notice().map(|n| n.text).unwrap_or_default()
 }
 
@@ -160,7 +160,7 @@ pub fn notice_text<E: Experiment + ?Sized>(e: &E) -> String {
 ///
 /// # Panics
 /// When the lab refuses the action.
-pub fn press<E: Experiment + ?Sized>(e: &mut E, key: &str) {
+pub fn press<E: Presentation + ?Sized>(e: &mut E, key: &str) {
     e.action(key)
         .unwrap_or_else(|err| panic!("action {key}: {err:?}"));
 }
@@ -170,7 +170,7 @@ pub fn press<E: Experiment + ?Sized>(e: &mut E, key: &str) {
 ///
 /// # Panics
 /// When the lab refuses a value.
-pub fn set_params<E: Experiment + ?Sized>(e: &mut E, pairs: &[(&str, f64)]) {
+pub fn set_params<E: Presentation + ?Sized>(e: &mut E, pairs: &[(&str, f64)]) {
     for &(key, value) in pairs {
         e.set_param(key, value)
             .unwrap_or_else(|err| panic!("{key} = {value}: {err:?}"));
@@ -196,7 +196,7 @@ pub fn apply_link(e: &mut dyn Experiment, link: &str) -> Vec<String> {
 
 /// What opening `e`'s Simulation link on a fresh page gives: the rebuilt
 /// lab, the link and the link's notices.
-pub fn through_link<E: Experiment + Default>(e: &E) -> (E, String, Vec<String>) {
+pub fn through_link<E: Presentation + Default>(e: &E) -> (E, String, Vec<String>) {
     let link = route::format(e, Tab::Simulation);
     let (fresh, notices) = route::restore(&link, E::default());
     (fresh, link, notices)
@@ -209,7 +209,7 @@ pub fn through_link<E: Experiment + Default>(e: &E) -> (E, String, Vec<String>) 
 /// # Panics
 /// When any of that fails.
 #[must_use]
-pub fn reopen<E: Experiment + Default>(e: &E) -> E {
+pub fn reopen<E: Presentation + Default>(e: &E) -> E {
     let (fresh, link, notices) = through_link(e);
     assert!(notices.is_empty(), "{link}: {notices:?}");
     assert_eq!(route::format(&fresh, Tab::Simulation), link);
@@ -224,14 +224,14 @@ pub fn reopen<E: Experiment + Default>(e: &E) -> E {
 /// # Panics
 /// When no experiment has that id.
 #[must_use]
-pub fn open(id: &str) -> Box<dyn Experiment> {
+pub fn open(id: &str) -> Box<dyn Lab> {
     (crate::find(id)
         .unwrap_or_else(|| panic!("no experiment {id}"))
         .make)()
 }
 
 /// The display list the lab draws now.
-pub fn scene_of<E: Experiment + ?Sized>(e: &E) -> Scene {
+pub fn scene_of<E: Presentation + ?Sized>(e: &E) -> Scene {
     let mut scene = Scene::default();
     e.scene(&mut scene);
     scene

@@ -6,33 +6,33 @@
 //! - [`Experiment::move_handle`] (the keyboard and the typed coordinates)
 //!   gives exactly the state the equivalent pointer drag gives, puts the
 //!   handle where it was sent, and the result reloads from its link.
-//! - [`Experiment::describe`] says what the scene shows, per experiment.
+//! - [`labcore::Presentation::describe`] says what the scene shows, per experiment.
 
 use labcore::glam::DVec2;
 use labcore::route::{apply_params, format, parse, Page, Tab};
-use labcore::{registry, Experiment};
+use labcore::{registry, Lab};
 
 /// The page's keyboard step: 2 % of the view's width (see labweb's canvas input).
-fn keyboard_step(exp: &dyn Experiment) -> f64 {
+fn keyboard_step(exp: &dyn Lab) -> f64 {
     let view = exp.view();
     (view.max.x - view.min.x) * 0.02
 }
 
 /// A drag with the pointer from `from` to `to`.
-fn drag(exp: &mut dyn Experiment, from: DVec2, to: DVec2) {
+fn drag(exp: &mut dyn Lab, from: DVec2, to: DVec2) {
     labcore::testkit::drag_through(exp, &[from, to]);
 }
 
 /// The two states every experiment is checked in: as built, and as its
 /// home-page picture (waypoints dropped, a goal set, a tree grown).
-fn states(entry: &labcore::Entry) -> [Box<dyn Experiment>; 2] {
+fn states(entry: &labcore::Entry) -> [Box<dyn Lab>; 2] {
     let fresh = (entry.make)();
     let mut preview = (entry.make)();
     preview.preview();
     [fresh, preview]
 }
 
-fn reload(exp: &dyn Experiment) -> Box<dyn Experiment> {
+fn reload(exp: &dyn Lab) -> Box<dyn Lab> {
     let ids: Vec<&str> = registry().iter().map(|e| e.id).collect();
     let link = format(exp, Tab::Simulation);
     let Page::Experiment { params, .. } = parse(&link, &ids).page else {
@@ -207,7 +207,7 @@ fn every_description_is_a_short_finite_sentence() {
     }
 }
 
-fn describe(id: &str, setup: impl FnOnce(&mut dyn Experiment)) -> String {
+fn describe(id: &str, setup: impl FnOnce(&mut dyn Lab)) -> String {
     let mut exp = (labcore::find(id).expect("registered").make)();
     setup(exp.as_mut());
     exp.describe()
@@ -382,7 +382,7 @@ const KEY_WORDS: &[&str] = &[
     "has focus",
 ];
 
-fn assert_touch_words(id: &str, when: &str, exp: &dyn Experiment) {
+fn assert_touch_words(id: &str, when: &str, exp: &dyn Lab) {
     let texts = [
         exp.touch_hint().to_owned(),
         labcore::experiment::for_touch(&exp.status().text),

@@ -3,11 +3,11 @@
 
 use labcore::route::{self, Tab};
 use labcore::testkit::{self, readout, readout_number, run_for};
-use labcore::{registry, Experiment};
+use labcore::{registry, Lab};
 
 /// The experiment `id` opened from its preset `name`'s link, as the
 /// Presets menu opens it; panics on any notice.
-fn open(id: &str, name: &str) -> Box<dyn Experiment> {
+fn open(id: &str, name: &str) -> Box<dyn Lab> {
     let entry = labcore::find(id).expect(id);
     let preset = (entry.make)()
         .presets()
@@ -21,7 +21,7 @@ fn open(id: &str, name: &str) -> Box<dyn Experiment> {
 
 /// A fresh experiment `id` with `link` applied (locks, hides and note
 /// checked too), and every notice.
-fn apply(id: &str, link: &str) -> (Box<dyn Experiment>, Vec<String>) {
+fn apply(id: &str, link: &str) -> (Box<dyn Lab>, Vec<String>) {
     let mut exp = testkit::open(id);
     let notices = testkit::apply_link(exp.as_mut(), link);
     (exp, notices)
@@ -58,7 +58,7 @@ fn every_experiment_ships_two_or_three_presets_that_apply_cleanly_and_reload_exa
 
 #[test]
 fn fk_presets_put_the_tip_on_the_outer_circle_the_inner_rim_and_the_base() {
-    let tip = |e: &dyn Experiment| readout_number(e, "x").hypot(readout_number(e, "y"));
+    let tip = |e: &dyn Lab| readout_number(e, "x").hypot(readout_number(e, "y"));
     let e = open("fk", "Full stretch");
     assert!((tip(e.as_ref()) - 1.7).abs() < 1e-3, "L₁ + L₂");
     assert_eq!(readout(e.as_ref(), "reach"), "100.0%");
@@ -150,7 +150,7 @@ fn dls_presets_oscillate_without_damping_settle_with_adaptive_damping_and_stretc
 /// search guided towards the goal fills the cup before it goes round.
 #[test]
 fn astar_trap_maze_makes_a_star_and_greedy_search_expand_the_whole_cup() {
-    let planned = |mut e: Box<dyn Experiment>| {
+    let planned = |mut e: Box<dyn Lab>| {
         e.set_param("rate", 50.0).unwrap();
         e.action("plan").unwrap();
         run_for(e.as_mut(), 30.0);

@@ -268,20 +268,20 @@ fn set_param_returns_exactly_the_stored_value() {
 /// Drives an experiment the way a student can: pointer presses, drags and
 /// releases with and without Shift/Ctrl, keyboard nudges, typed parameter
 /// values (any value the field accepts, clamped or not), buttons, and time.
-fn random_session(exp: &mut dyn labcore::Experiment, seed: u64) {
+fn random_session(exp: &mut dyn labcore::Lab, seed: u64) {
     random_session_with(exp, seed, &mut |exp, op| op(exp));
 }
 
 /// A student's input as an operation on the experiment; the shell runs it
 /// through `run` (e.g. [`labcore::route::keep_locked`]).
-type Op<'a> = &'a mut dyn FnMut(&mut dyn labcore::Experiment);
+type Op<'a> = &'a mut dyn FnMut(&mut dyn labcore::Lab);
 
 /// [`random_session`] with every input, action, reset and run of steps
 /// passed through `run`.
 fn random_session_with(
-    exp: &mut dyn labcore::Experiment,
+    exp: &mut dyn labcore::Lab,
     seed: u64,
-    run: &mut dyn FnMut(&mut dyn labcore::Experiment, Op),
+    run: &mut dyn FnMut(&mut dyn labcore::Lab, Op),
 ) {
     let view = exp.view();
     let mut rng = labcore::Lcg64::new(seed);
@@ -686,7 +686,7 @@ fn glam_is_reexported_and_returned_angles_are_wrapped() {
 
 /// Everything observable about an experiment: its link, display list,
 /// readouts, status and plots.
-fn snapshot(exp: &dyn labcore::Experiment) -> String {
+fn snapshot(exp: &dyn labcore::Lab) -> String {
     let mut scene = Scene::default();
     exp.scene(&mut scene);
     format!(
@@ -708,7 +708,7 @@ fn snapshot(exp: &dyn labcore::Experiment) -> String {
 
 /// Puts an experiment in motion: a click near the middle of its view and its
 /// first action (a sweep, a solve).
-fn set_in_motion(exp: &mut dyn labcore::Experiment) {
+fn set_in_motion(exp: &mut dyn labcore::Lab) {
     let view = exp.view();
     let p = view.min + (view.max - view.min) * glam::DVec2::new(0.62, 0.58);
     exp.input(Input::PointerDown(p));

@@ -30,7 +30,7 @@
 
 use crate::content::Content;
 use crate::content_html::escape;
-use crate::experiment::{Experiment, ParamKind, ParamSpec, Tone};
+use crate::experiment::{Experiment, Lab, ParamKind, ParamSpec, Tone};
 use crate::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, Series, SeriesRole};
 use crate::quiz::{grade, score_percent, Prepared, PreparedKind, Response};
 pub use crate::route::AnswerKey;
@@ -101,7 +101,7 @@ impl QuizResult<'_> {
 /// What goes into a report.
 #[derive(Clone, Copy)]
 pub struct Report<'a> {
-    pub experiment: &'a dyn Experiment,
+    pub experiment: &'a dyn Lab,
     pub content: &'a Content,
     /// The absolute address that reproduces the run (the page's URL with
     /// the state in its hash).
@@ -370,7 +370,7 @@ fn param_value(spec: &ParamSpec, value: Option<f64>) -> String {
 }
 
 /// The status, the readouts and the live tables.
-fn results_section(h: &mut String, exp: &dyn Experiment) {
+fn results_section(h: &mut String, exp: &dyn Lab) {
     let status = exp.status();
     let tone = match status.tone {
         Tone::Neutral => "neutral",

@@ -5,7 +5,7 @@
 
 use crate::dom::{self, escape, Listener};
 use labcore::route::{self, Page};
-use labcore::Experiment;
+use labcore::Lab;
 use std::cell::RefCell;
 use wasm_bindgen::{JsCast, JsValue};
 use web_sys::{Element, Event, HtmlElement, KeyboardEvent};
@@ -78,7 +78,7 @@ fn section(title: &str, keys: &[(&str, &str)]) -> String {
 /// The dialog's contents: the shell's keys, then those of `exp` (its canvas,
 /// its time controls when animated, and its own hint).
 #[must_use]
-pub fn help_html(exp: Option<&dyn Experiment>) -> String {
+pub fn help_html(exp: Option<&dyn Lab>) -> String {
     let mut html = String::from("<h2 id=\"kbd-help-title\">Keyboard shortcuts</h2>");
     html.push_str(&section("Everywhere", SHELL_KEYS));
     if let Some(exp) = exp {
@@ -111,7 +111,7 @@ fn typing(target: Option<&Element>) -> bool {
 }
 
 /// The experiment the page shows now, if any.
-fn current_experiment() -> Option<Box<dyn Experiment>> {
+fn current_experiment() -> Option<Box<dyn Lab>> {
     let hash = dom::window().location().hash().unwrap_or_default();
     let ids: Vec<&str> = labcore::registry().iter().map(|e| e.id).collect();
     match route::parse(&hash, &ids).page {

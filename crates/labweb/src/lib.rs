@@ -74,7 +74,7 @@ pub fn paint_now() {
 /// clock counts; `None` when none is mounted (tests compare the page's run
 /// with one of their own).
 #[doc(hidden)]
-pub fn inspect_sim<R>(f: impl FnOnce(&dyn labcore::Experiment, u64) -> R) -> Option<R> {
+pub fn inspect_sim<R>(f: impl FnOnce(&dyn labcore::Lab, u64) -> R) -> Option<R> {
     APP.with(|a| {
         a.borrow()
             .as_ref()

@@ -14,7 +14,7 @@ use crate::plot_view;
 use crate::quiz_view::{self, Attempt};
 use labcore::quiz::Response;
 use labcore::route::{self, Page};
-use labcore::Experiment;
+use labcore::Lab;
 use labpage::report::{self, AnswerKey, QuizResult, Report, Student};
 use wasm_bindgen::prelude::*;
 use web_sys::Element;
@@ -93,7 +93,7 @@ pub fn remember(panel: &Element, id: &str) -> String {
 /// it as a download. `panel` is the Simulation panel (its article holds the
 /// quiz); `hash` is the link of the state shown (`#/pid/simulation?…`, with
 /// the instructor's keys).
-pub fn download(panel: &Element, exp: &dyn Experiment, hash: &str) {
+pub fn download(panel: &Element, exp: &dyn Lab, hash: &str) {
     let Some(entry) = labcore::find(exp.id()) else {
         return;
     };

@@ -257,8 +257,14 @@ impl labcore::Experiment for Runner {
     fn reset(&mut self) {
         self.t_s = 0.0;
     }
+}
+
+impl labcore::Presentation for Runner {
     fn view(&self) -> labcore::ViewBox {
         labcore::ViewBox::centered(1.0)
+    }
+    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
+        self.viewport_px = (width_px, height_px);
     }
     fn scene(&self, _out: &mut labcore::Scene) {}
     fn readouts(&self) -> Vec<labcore::Readout> {
@@ -270,9 +276,6 @@ impl labcore::Experiment for Runner {
                 format!("{}×{}", self.viewport_px.0, self.viewport_px.1),
             ),
         ]
-    }
-    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
-        self.viewport_px = (width_px, height_px);
     }
     fn status(&self) -> labcore::Status {
         if self.t_s >= 0.5 {

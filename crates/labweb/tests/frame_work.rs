@@ -193,6 +193,12 @@ impl labcore::Experiment for Streamer {
     fn animated(&self) -> bool {
         true
     }
+    fn plots(&self) -> &[Plot] {
+        &self.plots
+    }
+}
+
+impl labcore::Presentation for Streamer {
     fn view(&self) -> labcore::ViewBox {
         labcore::ViewBox::centered(3.0)
     }
@@ -222,9 +228,6 @@ impl labcore::Experiment for Streamer {
             labcore::Readout::new("drag", "Dragged to", format!("{:.4} m", self.dragged_x_m)),
         ]
     }
-    fn plots(&self) -> &[Plot] {
-        &self.plots
-    }
     fn status(&self) -> labcore::Status {
         labcore::Status::new("streaming", labcore::Tone::Neutral)
     }
@@ -241,10 +244,7 @@ fn mount(exp: Streamer) -> labweb::sim::SimView {
 }
 
 /// Mounts any experiment on a 360 × 300 px canvas.
-fn mount_experiment(
-    exp: impl labcore::Experiment + 'static,
-    caption: &str,
-) -> labweb::sim::SimView {
+fn mount_experiment(exp: impl labcore::Lab + 'static, caption: &str) -> labweb::sim::SimView {
     labweb::unmount();
     if let Some(old) = document().get_element_by_id("lab-under-test") {
         old.remove();

@@ -8,7 +8,7 @@
 
 use labcore::clock::Clock;
 use labcore::route::{self, Tab};
-use labcore::{Experiment, Phase};
+use labcore::{Lab, Phase};
 use std::cell::Cell;
 use wasm_bindgen::JsCast;
 use wasm_bindgen::JsValue;
@@ -156,7 +156,7 @@ fn shown() -> (u64, String) {
     labweb::inspect_sim(|exp, steps| (steps, snapshot(exp))).expect("a simulation is mounted")
 }
 
-fn snapshot(exp: &dyn Experiment) -> String {
+fn snapshot(exp: &dyn Lab) -> String {
     format!(
         "status {:?}\nreadouts {:?}\nplots {:?}\ndescribe {}",
         exp.status(),
@@ -167,7 +167,7 @@ fn snapshot(exp: &dyn Experiment) -> String {
 }
 
 /// The experiment built fresh and left alone for `steps` fixed steps.
-fn left_alone(entry: &labcore::Entry, steps: u64) -> Box<dyn Experiment> {
+fn left_alone(entry: &labcore::Entry, steps: u64) -> Box<dyn Lab> {
     let mut exp = (entry.make)();
     for _ in 0..steps {
         exp.step(Clock::DT_S);

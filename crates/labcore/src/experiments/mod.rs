@@ -2,7 +2,7 @@
 
 use crate::catalogue::{Group, Planned};
 use crate::content::{Content, ContentError};
-use crate::experiment::Experiment;
+use crate::experiment::Lab;
 use crate::quiz::GeneratorLookup;
 use std::sync::OnceLock;
 
@@ -26,13 +26,13 @@ macro_rules! content_file {
 
 /// One experiment of the lab: how to build it, its content and its quiz generators.
 pub struct Entry {
-    /// Same as [`Experiment::id`] and the content file's `id`.
+    /// Same as [`crate::experiment::Experiment::id`] and the content file's `id`.
     pub id: &'static str,
     /// The content file's text (`assets/<id>.json`) with the `reading`
     /// feature; empty without it (see `content_file!`).
     pub content_json: &'static str,
     /// A fresh experiment at default parameters.
-    pub make: fn() -> Box<dyn Experiment>,
+    pub make: fn() -> Box<dyn Lab>,
     /// The experiment's parameterised quiz questions.
     pub generators: GeneratorLookup,
     /// The parsed content, filled on first use.

@@ -1,6 +1,6 @@
 use super::*;
 use crate::clock::Clock;
-use crate::experiment::{Input, ParamError, Readout, Sanitized, Status};
+use crate::experiment::{Input, Lab, ParamError, Presentation, Readout, Sanitized, Status};
 use crate::plot::{Band, Marker, RefLine};
 use crate::scene::{Scene, ViewBox};
 
@@ -343,14 +343,12 @@ impl Experiment for Hostile {
     fn plots(&self) -> &[Plot] {
         &self.plots
     }
-    fn tables(&self) -> Vec<Table> {
-        let mut t = Table::new("t", EVIL, &["<th>"]);
-        t.push_row(vec![EVIL.into()]);
-        vec![t]
-    }
     fn extra_state(&self) -> Vec<(&'static str, String)> {
         vec![("walls", EVIL.into())]
     }
+}
+
+impl Presentation for Hostile {
     fn view(&self) -> ViewBox {
         ViewBox::centered(1.0)
     }
@@ -370,6 +368,11 @@ impl Experiment for Hostile {
     }
     fn hint(&self) -> &'static str {
         ""
+    }
+    fn tables(&self) -> Vec<Table> {
+        let mut t = Table::new("t", EVIL, &["<th>"]);
+        t.push_row(vec![EVIL.into()]);
+        vec![t]
     }
 }
 
@@ -696,7 +699,7 @@ fn report_scene_draws_every_item_the_live_scene_draws_for_every_experiment() {
     let mut kinds_seen = std::collections::BTreeSet::new();
     for entry in crate::registry() {
         let id = entry.id;
-        let mut states: Vec<Box<dyn Experiment>> = Vec::new();
+        let mut states: Vec<Box<dyn Lab>> = Vec::new();
         let mut exp = (entry.make)();
         exp.preview();
         for _ in 0..if exp.animated() { 3600 } else { 0 } {

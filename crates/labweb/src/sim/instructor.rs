@@ -9,7 +9,7 @@
 use super::SimState;
 use crate::dom::{self, escape, query, query_all, Listener};
 use labcore::route::{self, Instructor, NOTE_MAX_CHARS};
-use labcore::{Experiment, ParamSpec};
+use labcore::{Lab, ParamSpec};
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::{JsCast, JsValue};
@@ -30,7 +30,7 @@ pub(super) fn note_html() -> String {
 
 /// The Presets menu: each preset is a link, so it can be shared or opened
 /// in a new tab like any state.
-pub(super) fn presets_html(exp: &dyn Experiment) -> String {
+pub(super) fn presets_html(exp: &dyn Lab) -> String {
     let presets = exp.presets();
     if presets.is_empty() {
         return String::new();
@@ -364,7 +364,7 @@ impl SimState {
     /// Runs a student's input through the locks (see
     /// [`route::keep_locked`]) and says which locked control it would have
     /// changed. Returns whether a lock put something back.
-    pub(super) fn guarded(&mut self, op: impl FnOnce(&mut dyn Experiment)) -> bool {
+    pub(super) fn guarded(&mut self, op: impl FnOnce(&mut dyn Lab)) -> bool {
         let put_back = route::keep_locked(self.exp.as_mut(), &self.instructor, op);
         if let Some(label) = put_back.first() {
             self.show_message(Some(&format!("{label} is locked by your instructor.")));

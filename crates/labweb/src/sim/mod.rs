@@ -17,7 +17,7 @@ use crate::plot_view::{self, PlotView};
 use glam::DVec2;
 use labcore::clock::Clock;
 use labcore::route::{self, Tab};
-use labcore::{Experiment, Phase, Scene};
+use labcore::{Lab, Phase, Scene};
 use std::cell::{Cell, RefCell};
 use std::rc::{Rc, Weak};
 use wasm_bindgen::prelude::*;
@@ -74,7 +74,7 @@ pub struct SimError(pub String);
 /// side, so the scene and its plots stay in view while any control is used.
 /// On a phone the parts dissolve into one ordered column: the canvas, its
 /// status and time bar, the actions, the main plot, then the rest.
-pub fn render(exp: &dyn Experiment, caption: &str) -> String {
+pub fn render(exp: &dyn Lab, caption: &str) -> String {
     let controls = panel::controls_html(exp.params());
     let actions: String = exp
         .actions()
@@ -179,7 +179,7 @@ fn coarse_pointer() -> bool {
 
 /// State shared by the frame loop and the event handlers.
 struct SimState {
-    exp: Box<dyn Experiment>,
+    exp: Box<dyn Lab>,
     canvas: HtmlCanvasElement,
     ctx: CanvasRenderingContext2d,
     panel: Element,
@@ -608,7 +608,7 @@ pub struct SimView {
 
 impl SimView {
     /// Wires the Simulation panel rendered by [`render`] to `exp`.
-    pub fn mount(panel: &Element, exp: Box<dyn Experiment>) -> Result<Self, SimError> {
+    pub fn mount(panel: &Element, exp: Box<dyn Lab>) -> Result<Self, SimError> {
         let canvas: HtmlCanvasElement = query(panel, "canvas.sim-canvas")
             .and_then(|c| c.dyn_into().ok())
             .ok_or_else(|| SimError("the page has no canvas".into()))?;
@@ -828,7 +828,7 @@ impl SimView {
     /// Calls `f` with the experiment and the steps the clock counts (tests
     /// compare a run in the page with one of their own).
     #[doc(hidden)]
-    pub fn inspect<R>(&self, f: impl FnOnce(&dyn Experiment, u64) -> R) -> R {
+    pub fn inspect<R>(&self, f: impl FnOnce(&dyn Lab, u64) -> R) -> R {
         let st = self.state.borrow();
         f(st.exp.as_ref(), st.clock.steps())
     }
@@ -899,7 +899,7 @@ fn export_png(canvas: &HtmlCanvasElement, file_name: &str) {
 }
 
 /// Paints an experiment's default scene on a small canvas (home-page cards).
-pub fn paint_thumbnail(canvas: &HtmlCanvasElement, exp: &dyn Experiment) {
+pub fn paint_thumbnail(canvas: &HtmlCanvasElement, exp: &dyn Lab) {
     let Some(ctx) = canvas
         .get_context("2d")
         .ok()

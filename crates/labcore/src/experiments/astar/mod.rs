@@ -30,15 +30,13 @@
 //! ([`Experiment::export_text`], a Moving AI map). Then both ends as one value,
 //! `ends=sx.sy.gx.gy`, applied after the grid as whole points (issue 14).
 //!
-//! **On a phone** ([`Experiment::viewport_px`] at most [`PHONE_WIDTH_PX`]
+//! **On a phone** ([`Presentation::viewport_px`] at most [`PHONE_WIDTH_PX`]
 //! wide) the view is a window of cells at least [`MIN_CELL_PX`] across around
 //! the start and goal; its outer ring of cells is a pan band (drag it, or tap
 //! it to move half a window). This is view state, never in the link.
 
-use crate::experiment::{
-    check_param, ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
-};
+use crate::experiment::{check_param, ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
+use crate::units::{format_fixed, format_number};
 use crate::planning::astar::{Search, SearchConfig, StepOutcome, Strategy};
 use crate::planning::grid::{Cell, Connectivity, OccupancyGrid};
 use crate::planning::heuristic::Heuristic;
@@ -50,7 +48,6 @@ use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
 use crate::table::Table;
-use crate::units::{format_fixed, format_number};
 use glam::DVec2;
 
 const HEURISTICS: &[&str] = &["Manhattan", "Octile", "Euclidean", "None (Dijkstra)"];
@@ -488,36 +485,6 @@ impl AStarGrid {
         self.walls_raster();
     }
 
-    /// The raster showing only the walls.
-    fn walls_raster(&mut self) {
-        let (w, h) = (self.grid.width(), self.grid.height());
-        self.raster.clear();
-        self.raster.resize(w * h, 0);
-        for (y, row) in self.grid.cells().chunks(w).enumerate() {
-            let r = (h - 1 - y) * w;
-            for (dst, &b) in self.raster[r..r + w].iter_mut().zip(row) {
-                *dst = if b { BLOCKED } else { 0 };
-            }
-        }
-    }
-
-    /// The raster from the search's cell states (rows flipped to y up).
-    fn search_raster(&mut self) {
-        let Some(search) = &self.search else {
-            return;
-        };
-        search.write_cell_states(&mut self.scratch);
-        let (w, h) = (self.grid.width(), self.grid.height());
-        if self.scratch.len() != w * h {
-            return;
-        }
-        self.raster.resize(w * h, 0);
-        for (y, row) in self.scratch.chunks(w).enumerate() {
-            let r = (h - 1 - y) * w;
-            self.raster[r..r + w].copy_from_slice(row);
-        }
-    }
-
     /// Sets one cell's wall, keeping the start and goal free of paint, and
     /// updates the raster and code length lazily (see [`Self::end_edit`]).
     fn paint(&mut self, cell: Cell, blocked: bool) -> bool {
@@ -885,87 +852,6 @@ impl AStarGrid {
         self.grid_link.is_some()
     }
 
-    // ---- View state (never in the link) ----
-
-    /// Whether the view shows a finger-sized window instead of the grid.
-    #[must_use]
-    pub fn zoomed(&self) -> bool {
-        let auto = self.viewport_px.is_some_and(|v| v.x <= PHONE_WIDTH_PX);
-        self.zoom_choice.unwrap_or(auto) && view::window_cells(self).is_some()
-    }
-
-    /// The pan clamped so the window stays on the grid.
-    fn clamp_pan(&self, pan: DVec2) -> DVec2 {
-        let Some((c, r)) = view::window_cells(self) else {
-            return DVec2::ZERO;
-        };
-        let max = DVec2::new(
-            (self.grid.width() - c) as f64,
-            (self.grid.height() - r) as f64,
-        );
-        let p = if pan.is_finite() { pan } else { DVec2::ZERO };
-        p.round().clamp(DVec2::ZERO, max)
-    }
-
-    /// Centres the zoomed window on the start and goal when both fit,
-    /// otherwise on the start.
-    fn frame_ends(&mut self) {
-        let Some((c, r)) = view::window_cells(self) else {
-            self.pan = DVec2::ZERO;
-            return;
-        };
-        let (s, g) = (self.cell_center(self.start), self.cell_center(self.goal));
-        let inner = DVec2::new(c as f64 - 2.0, r as f64 - 2.0);
-        let d = (s - g).abs();
-        let centre = if d.x < inner.x && d.y < inner.y {
-            (s + g) * 0.5
-        } else {
-            s
-        };
-        self.pan = self.clamp_pan(centre - DVec2::new(c as f64, r as f64) * 0.5);
-    }
-
-    /// Pans the zoomed window the least that brings `p` (world) inside its
-    /// inner part (off the pan band).
-    fn follow(&mut self, p: DVec2) {
-        if !self.zoomed() {
-            return;
-        }
-        let view = self.view();
-        let lo = view.min + 1.0;
-        let hi = view.max - 1.0;
-        let shift = DVec2::new(
-            (p.x - lo.x).min(0.0) + (p.x - hi.x).max(0.0),
-            (p.y - lo.y).min(0.0) + (p.y - hi.y).max(0.0),
-        );
-        self.pan = self.clamp_pan(self.pan + shift.signum() * shift.abs().ceil());
-    }
-
-    /// The pan direction of a press at `p` on the zoomed view's edge band
-    /// (the outer ring of cells on each side with more grid beyond), or
-    /// `None` inside.
-    fn band_side(&self, p: DVec2) -> Option<DVec2> {
-        if !self.zoomed() || !p.is_finite() {
-            return None;
-        }
-        let view = self.view();
-        let (w, h) = (self.grid.width() as f64, self.grid.height() as f64);
-        let side = |v: f64, lo: f64, hi: f64, max: f64| {
-            if v < lo + 1.0 && lo > 0.0 {
-                -1.0
-            } else if v > hi - 1.0 && hi < max {
-                1.0
-            } else {
-                0.0
-            }
-        };
-        let d = DVec2::new(
-            side(p.x, view.min.x, view.max.x, w),
-            side(p.y, view.min.y, view.max.y, h),
-        );
-        (d != DVec2::ZERO).then_some(d)
-    }
-
     fn robot(&self) -> Option<DVec2> {
         if !matches!(self.phase, Phase::Driving | Phase::Arrived) {
             return None;
@@ -1326,9 +1212,7 @@ impl Experiment for AStarGrid {
             Input::PointerUp(_) => {
                 if let Drag::Pan { grab, moved: false } = self.drag {
                     // A tap on the band pans half a window that way.
-                    if let (Some(d), Some((c, r))) =
-                        (self.band_side(grab), view::window_cells(self))
-                    {
+                    if let (Some(d), Some((c, r))) = (self.band_side(grab), self.window_cells()) {
                         let half = DVec2::new((c / 2).max(1) as f64, (r / 2).max(1) as f64);
                         self.pan = self.clamp_pan(self.pan + d * half);
                     }
@@ -1434,17 +1318,9 @@ impl Experiment for AStarGrid {
             .collect()
     }
 
-    fn describe(&self) -> String {
-        view::describe(self)
-    }
-
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         let near = |c: Cell| (self.cell_center(c) - p).length() <= tolerance_m.max(0.5);
         near(self.start) || near(self.goal)
-    }
-
-    fn tables(&self) -> Vec<Table> {
-        view::tables(self)
     }
 
     fn file_types(&self) -> &'static [&'static str] {
@@ -1467,10 +1343,6 @@ impl Experiment for AStarGrid {
 
     fn export_text(&self) -> Option<(String, String)> {
         Some(("grid.map".into(), write_map(&self.grid)))
-    }
-
-    fn captures_touch(&self) -> bool {
-        true
     }
 
     /// The grid (`walls=` a wall code; or `maze=W×H.seed` / `map=arena`
@@ -1563,63 +1435,6 @@ impl Experiment for AStarGrid {
             _ => return Err(ParamError::UnknownKey { key: key.into() }),
         }
         Ok(())
-    }
-
-    fn notice(&self) -> Option<Notice> {
-        self.notices.current()
-    }
-
-    fn touch_hint(&self) -> &'static str {
-        view::touch_hint(self)
-    }
-
-    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
-        let size = DVec2::new(width_px, height_px);
-        if size.is_finite() && size.min_element() > 0.0 {
-            self.viewport_px = Some(size);
-            self.frame_ends();
-        }
-    }
-
-    /// The whole grid, or when [`AStarGrid::zoomed`] a window of
-    /// finger-sized cells at the pan (the page fits it to the canvas).
-    fn view(&self) -> ViewBox {
-        match view::window_cells(self) {
-            Some((c, r)) if self.zoomed() => ViewBox {
-                min: self.pan,
-                max: self.pan + DVec2::new(c as f64, r as f64),
-            },
-            _ => ViewBox {
-                min: DVec2::ZERO,
-                max: DVec2::new(self.grid.width() as f64, self.grid.height() as f64),
-            },
-        }
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        view::scene(self, out);
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        view::readouts(self)
-    }
-
-    fn status(&self) -> Status {
-        view::status(self)
-    }
-
-    fn hint(&self) -> &'static str {
-        view::hint(self)
-    }
-
-    fn preview(&mut self) {
-        self.plan();
-        if let Some(search) = self.search.as_mut() {
-            search.run();
-        }
-        self.search_raster();
-        self.search_finished();
-        self.driven_m = self.path_length_m() * 0.6;
     }
 
     fn animating(&self) -> bool {

@@ -47,15 +47,12 @@ use crate::control::cartpole::{
     NUDGE_RAD_S,
 };
 use crate::control::{Complex, Stability};
-use crate::experiment::{
-    check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Readout,
-    Sanitized, Status, Tone,
-};
+use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
+use crate::units::{format_fixed, format_number};
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
-use crate::units::{format_fixed, format_number};
 use glam::DVec2;
 
 const INTEGRATORS: &[&str] = &["Euler (4 sub-steps)", "RK4 (4 sub-steps)"];
@@ -759,17 +756,6 @@ impl Experiment for CartPoleBalance {
         (self.tip_of(&self.sim.state) - p).length() <= tolerance_m
     }
 
-    fn view(&self) -> ViewBox {
-        ViewBox {
-            min: VIEW_MIN,
-            max: VIEW_MAX,
-        }
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        view::scene(self, out);
-    }
-
     /// The pole's tip (dragging it sets the start angle).
     fn handles(&self) -> Vec<crate::experiment::Handle> {
         vec![crate::experiment::Handle::new(
@@ -779,38 +765,7 @@ impl Experiment for CartPoleBalance {
         )]
     }
 
-    fn describe(&self) -> String {
-        view::describe(self)
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        view::readouts(self)
-    }
-
-    fn status(&self) -> Status {
-        view::status(self)
-    }
-
-    fn hint(&self) -> &'static str {
-        "Click beside the pole (or press ← → on the canvas) to nudge it; drag its tip to set the start angle. Drop pole switches control off."
-    }
-
-    fn touch_hint(&self) -> &'static str {
-        "Tap beside the pole to nudge it; drag its tip to set the start angle. Drop pole switches control off."
-    }
-
-    /// A pole caught from its start angle, a second into the run.
-    fn preview(&mut self) {
-        for _ in 0..60 {
-            self.step(1.0 / 60.0);
-        }
-    }
-
     fn animating(&self) -> bool {
         self.run == Run::Going && !self.at_rest()
-    }
-
-    fn notice(&self) -> Option<Notice> {
-        self.notices.current()
     }
 }

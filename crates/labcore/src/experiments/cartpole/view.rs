@@ -40,218 +40,318 @@ pub(super) fn force_text(force_n: f64) -> String {
     format!("{} N", format_fixed(force_n, 2))
 }
 
-pub(super) fn scene(e: &CartPoleBalance, out: &mut Scene) {
-    let track = e.sim.params.track_limit_m;
-    out.push(Item::Line {
-        from: DVec2::new(VIEW_MIN.x, 0.0),
-        to: DVec2::new(VIEW_MAX.x, 0.0),
-        width_px: 2.0,
-        role: Role::Bound,
-        dashed: false,
-    });
-    if track.is_finite() {
-        for side in [-1.0, 1.0] {
-            let x = side * (track + CART_HALF_W_M);
-            out.push(Item::Rect {
-                min: DVec2::new(x - 0.04, 0.0),
-                max: DVec2::new(x + 0.04, 0.35),
-                role: Role::Obstacle,
-                fill: true,
-            });
+impl Presentation for CartPoleBalance {
+    fn view(&self) -> ViewBox {
+        ViewBox {
+            min: VIEW_MIN,
+            max: VIEW_MAX,
         }
     }
-    for k in -2..=2 {
-        let x = f64::from(k);
-        out.push(Item::Line {
-            from: DVec2::new(x, 0.0),
-            to: DVec2::new(x, -0.08),
-            width_px: 1.0,
-            role: Role::Grid,
-            dashed: false,
-        });
-        out.push(Item::Label {
-            pos: DVec2::new(x, -0.08),
-            text: format!("{k} m"),
-            role: Role::Text,
-            offset_px: DVec2::new(-8.0, 12.0),
-        });
-    }
-    // The linear model as a ghost.
-    let lin = e.linear;
-    let lin_x = lin.x_m.clamp(-100.0, 100.0);
-    out.push(Item::Rect {
-        min: DVec2::new(lin_x - CART_HALF_W_M, CART_BOTTOM_M),
-        max: DVec2::new(lin_x + CART_HALF_W_M, PIVOT_Y_M),
-        role: Role::Ghost,
-        fill: false,
-    });
-    let lin_tip = e.tip_of(&CartPoleState { x_m: lin_x, ..lin });
-    out.push(Item::Line {
-        from: DVec2::new(lin_x, PIVOT_Y_M),
-        to: lin_tip,
-        width_px: 3.0,
-        role: Role::Ghost,
-        dashed: true,
-    });
-    // Its legend, once it stands apart from the real pole (it hides behind
-    // the real one while the two agree).
-    if (lin_tip - e.tip_of(&e.sim.state)).length() > GHOST_APART_M {
-        out.push(Item::Label {
-            pos: lin_tip,
-            text: GHOST_LEGEND.into(),
-            role: Role::Ghost,
-            offset_px: DVec2::new(8.0, -12.0),
-        });
-    }
-    // A cart whose centre is outside the view gets a mark at the canvas edge.
-    for (x, what, role) in [
-        (lin.x_m, "linear model", Role::Ghost),
-        (e.sim.state.x_m, "cart", Role::Robot),
-    ] {
-        if x.is_finite() && !(VIEW_MIN.x..=VIEW_MAX.x).contains(&x) {
-            out.push(Item::OffView {
-                at: DVec2::new(x.clamp(-1e6, 1e6), PIVOT_Y_M),
-                label: format!("{what} at x = {}", format_metres(x)),
-                role,
-            });
-        }
-    }
-    // Where the chosen criterion calls the pole fallen (12°).
-    let limit = e.criterion().angle_limit_rad;
-    let pivot = e.pivot();
-    if limit < 1.0 {
-        for side in [-1.0, 1.0] {
-            let (sin, cos) = crate::math::sin_cos(side * limit);
-            out.push(Item::Line {
-                from: pivot,
-                to: pivot + DVec2::new(sin, cos) * 1.1,
-                width_px: 1.0,
-                role: Role::Warning,
-                dashed: true,
-            });
-        }
-    }
-    // The cart, wheels, pole and force.
-    let x = pivot.x;
-    out.push(Item::Rect {
-        min: DVec2::new(x - CART_HALF_W_M, CART_BOTTOM_M),
-        max: DVec2::new(x + CART_HALF_W_M, PIVOT_Y_M),
-        role: Role::Robot,
-        fill: true,
-    });
-    for dx in [-0.15, 0.15] {
-        out.push(Item::Circle {
-            center: DVec2::new(x + dx, 0.035),
-            radius_m: 0.035,
-            role: Role::Joint,
-            fill: true,
-            dashed: false,
-        });
-    }
-    let tip = e.tip_of(&e.sim.state);
-    let fallen = matches!(e.run, Run::Ended { .. });
-    out.push(Item::Line {
-        from: pivot,
-        to: tip,
-        width_px: 7.0,
-        role: if fallen { Role::Warning } else { Role::Link },
-        dashed: false,
-    });
-    out.push(Item::Dot {
-        center: pivot,
-        radius_px: 6.0,
-        role: Role::Joint,
-    });
-    out.push(Item::Dot {
-        center: tip,
-        radius_px: 8.0,
-        role: Role::Tip,
-    });
-    let f = e.sim.last_force_n();
-    if f.abs() > 0.05 {
-        let y = 0.5 * (CART_BOTTOM_M + PIVOT_Y_M);
-        let start = x + CART_HALF_W_M.copysign(f);
-        out.push(Item::Arrow {
-            from: DVec2::new(start, y),
-            // Inside the view even from a cart at an end stop.
-            to: DVec2::new((start + f * ARROW_M_PER_N).clamp(VIEW_MIN.x, VIEW_MAX.x), y),
-            width_px: 3.0,
-            role: Role::Accent,
-        });
-    }
-    out.push(Item::Label {
-        pos: DVec2::new(x, 0.0),
-        text: format!("F = {}", force_text(f)),
-        role: Role::Text,
-        offset_px: DVec2::new(-24.0, 44.0),
-    });
-}
 
-pub(super) fn readouts(e: &CartPoleBalance) -> Vec<Readout> {
-    let s = e.sim.state;
-    let verdict = |z: &[Complex]| match Stability::of(z) {
-        Stability::Stable => "stable",
-        Stability::MarginallyStable => "marginally stable",
-        Stability::Unstable => "unstable",
-    };
-    let closed = closed_loop_eigenvalues(&e.sim.params, &e.sim.gains).ok();
-    let open = open_loop_eigenvalues(&e.sim.params).ok();
-    let status = match e.run {
-        Run::Going => status(e).text,
-        Run::Ended { status, time_s } => format!(
-            "{} at {} s",
-            if status == PoleStatus::OutOfBounds {
-                "off the track"
-            } else {
-                "fallen"
-            },
-            format_fixed(time_s, 2)
-        ),
-    };
-    vec![
-        Readout::degrees("theta", "Pole angle θ", s.theta_rad.to_degrees()),
-        Readout::new(
-            "omega",
-            "Angular velocity θ̇",
-            format!("{}°/s", format_fixed(s.omega_rad_s.to_degrees(), 1)),
-        ),
-        Readout::metres("x", "Cart position x", s.x_m),
-        Readout::new("force", "Force F", force_text(e.sim.last_force_n())),
-        Readout::new("status", "Status", status),
-        Readout::new(
-            "energy",
-            "Energy E",
-            format!("{} J", format_fixed(e.sim.energy_j(), 4)),
-        ),
-        Readout::new(
-            "closed_eig",
-            "Closed-loop eigenvalues (1/s)",
-            closed.as_deref().map_or("--".into(), format_eigenvalues),
-        ),
-        Readout::new(
-            "closed_verdict",
-            "Closed loop (linearised)",
-            closed.as_deref().map_or("--", verdict),
-        ),
-        Readout::new(
-            "open_eig",
-            "Open-loop eigenvalues (1/s)",
-            open.as_deref().map_or("--".into(), format_eigenvalues),
-        ),
-        Readout::new(
-            "lqr",
-            "LQR proposal for Q, R",
-            e.lqr_proposal().map_or(
-                "no stabilising solution: weight the cart position (q_x > 0)".into(),
-                |k| gains_text(&k),
+    fn scene(&self, out: &mut Scene) {
+        let track = self.sim.params.track_limit_m;
+        out.push(Item::Line {
+            from: DVec2::new(VIEW_MIN.x, 0.0),
+            to: DVec2::new(VIEW_MAX.x, 0.0),
+            width_px: 2.0,
+            role: Role::Bound,
+            dashed: false,
+        });
+        if track.is_finite() {
+            for side in [-1.0, 1.0] {
+                let x = side * (track + CART_HALF_W_M);
+                out.push(Item::Rect {
+                    min: DVec2::new(x - 0.04, 0.0),
+                    max: DVec2::new(x + 0.04, 0.35),
+                    role: Role::Obstacle,
+                    fill: true,
+                });
+            }
+        }
+        for k in -2..=2 {
+            let x = f64::from(k);
+            out.push(Item::Line {
+                from: DVec2::new(x, 0.0),
+                to: DVec2::new(x, -0.08),
+                width_px: 1.0,
+                role: Role::Grid,
+                dashed: false,
+            });
+            out.push(Item::Label {
+                pos: DVec2::new(x, -0.08),
+                text: format!("{k} m"),
+                role: Role::Text,
+                offset_px: DVec2::new(-8.0, 12.0),
+            });
+        }
+        // The linear model as a ghost.
+        let lin = self.linear;
+        let lin_x = lin.x_m.clamp(-100.0, 100.0);
+        out.push(Item::Rect {
+            min: DVec2::new(lin_x - CART_HALF_W_M, CART_BOTTOM_M),
+            max: DVec2::new(lin_x + CART_HALF_W_M, PIVOT_Y_M),
+            role: Role::Ghost,
+            fill: false,
+        });
+        let lin_tip = self.tip_of(&CartPoleState { x_m: lin_x, ..lin });
+        out.push(Item::Line {
+            from: DVec2::new(lin_x, PIVOT_Y_M),
+            to: lin_tip,
+            width_px: 3.0,
+            role: Role::Ghost,
+            dashed: true,
+        });
+        // Its legend, once it stands apart from the real pole (it hides behind
+        // the real one while the two agree).
+        if (lin_tip - self.tip_of(&self.sim.state)).length() > GHOST_APART_M {
+            out.push(Item::Label {
+                pos: lin_tip,
+                text: GHOST_LEGEND.into(),
+                role: Role::Ghost,
+                offset_px: DVec2::new(8.0, -12.0),
+            });
+        }
+        // A cart whose centre is outside the view gets a mark at the canvas edge.
+        for (x, what, role) in [
+            (lin.x_m, "linear model", Role::Ghost),
+            (self.sim.state.x_m, "cart", Role::Robot),
+        ] {
+            if x.is_finite() && !(VIEW_MIN.x..=VIEW_MAX.x).contains(&x) {
+                out.push(Item::OffView {
+                    at: DVec2::new(x.clamp(-1e6, 1e6), PIVOT_Y_M),
+                    label: format!("{what} at x = {}", format_metres(x)),
+                    role,
+                });
+            }
+        }
+        // Where the chosen criterion calls the pole fallen (12°).
+        let limit = self.criterion().angle_limit_rad;
+        let pivot = self.pivot();
+        if limit < 1.0 {
+            for side in [-1.0, 1.0] {
+                let (sin, cos) = crate::math::sin_cos(side * limit);
+                out.push(Item::Line {
+                    from: pivot,
+                    to: pivot + DVec2::new(sin, cos) * 1.1,
+                    width_px: 1.0,
+                    role: Role::Warning,
+                    dashed: true,
+                });
+            }
+        }
+        // The cart, wheels, pole and force.
+        let x = pivot.x;
+        out.push(Item::Rect {
+            min: DVec2::new(x - CART_HALF_W_M, CART_BOTTOM_M),
+            max: DVec2::new(x + CART_HALF_W_M, PIVOT_Y_M),
+            role: Role::Robot,
+            fill: true,
+        });
+        for dx in [-0.15, 0.15] {
+            out.push(Item::Circle {
+                center: DVec2::new(x + dx, 0.035),
+                radius_m: 0.035,
+                role: Role::Joint,
+                fill: true,
+                dashed: false,
+            });
+        }
+        let tip = self.tip_of(&self.sim.state);
+        let fallen = matches!(self.run, Run::Ended { .. });
+        out.push(Item::Line {
+            from: pivot,
+            to: tip,
+            width_px: 7.0,
+            role: if fallen { Role::Warning } else { Role::Link },
+            dashed: false,
+        });
+        out.push(Item::Dot {
+            center: pivot,
+            radius_px: 6.0,
+            role: Role::Joint,
+        });
+        out.push(Item::Dot {
+            center: tip,
+            radius_px: 8.0,
+            role: Role::Tip,
+        });
+        let f = self.sim.last_force_n();
+        if f.abs() > 0.05 {
+            let y = 0.5 * (CART_BOTTOM_M + PIVOT_Y_M);
+            let start = x + CART_HALF_W_M.copysign(f);
+            out.push(Item::Arrow {
+                from: DVec2::new(start, y),
+                // Inside the view even from a cart at an end stop.
+                to: DVec2::new((start + f * ARROW_M_PER_N).clamp(VIEW_MIN.x, VIEW_MAX.x), y),
+                width_px: 3.0,
+                role: Role::Accent,
+            });
+        }
+        out.push(Item::Label {
+            pos: DVec2::new(x, 0.0),
+            text: format!("F = {}", force_text(f)),
+            role: Role::Text,
+            offset_px: DVec2::new(-24.0, 44.0),
+        });
+    }
+
+    fn readouts(&self) -> Vec<Readout> {
+        let s = self.sim.state;
+        let verdict = |z: &[Complex]| match Stability::of(z) {
+            Stability::Stable => "stable",
+            Stability::MarginallyStable => "marginally stable",
+            Stability::Unstable => "unstable",
+        };
+        let closed = closed_loop_eigenvalues(&self.sim.params, &self.sim.gains).ok();
+        let open = open_loop_eigenvalues(&self.sim.params).ok();
+        let status = match self.run {
+            Run::Going => self.status().text,
+            Run::Ended { status, time_s } => format!(
+                "{} at {} s",
+                if status == PoleStatus::OutOfBounds {
+                    "off the track"
+                } else {
+                    "fallen"
+                },
+                format_fixed(time_s, 2)
             ),
-        ),
-        Readout::degrees(
-            "gap",
-            "Linear model gap, max |Δθ|",
-            e.max_gap_rad.to_degrees(),
-        ),
-    ]
+        };
+        vec![
+            Readout::degrees("theta", "Pole angle θ", s.theta_rad.to_degrees()),
+            Readout::new(
+                "omega",
+                "Angular velocity θ̇",
+                format!("{}°/s", format_fixed(s.omega_rad_s.to_degrees(), 1)),
+            ),
+            Readout::metres("x", "Cart position x", s.x_m),
+            Readout::new("force", "Force F", force_text(self.sim.last_force_n())),
+            Readout::new("status", "Status", status),
+            Readout::new(
+                "energy",
+                "Energy E",
+                format!("{} J", format_fixed(self.sim.energy_j(), 4)),
+            ),
+            Readout::new(
+                "closed_eig",
+                "Closed-loop eigenvalues (1/s)",
+                closed.as_deref().map_or("--".into(), format_eigenvalues),
+            ),
+            Readout::new(
+                "closed_verdict",
+                "Closed loop (linearised)",
+                closed.as_deref().map_or("--", verdict),
+            ),
+            Readout::new(
+                "open_eig",
+                "Open-loop eigenvalues (1/s)",
+                open.as_deref().map_or("--".into(), format_eigenvalues),
+            ),
+            Readout::new(
+                "lqr",
+                "LQR proposal for Q, R",
+                self.lqr_proposal().map_or(
+                    "no stabilising solution: weight the cart position (q_x > 0)".into(),
+                    |k| gains_text(&k),
+                ),
+            ),
+            Readout::degrees(
+                "gap",
+                "Linear model gap, max |Δθ|",
+                self.max_gap_rad.to_degrees(),
+            ),
+        ]
+    }
+
+    fn status(&self) -> Status {
+        let s = self.sim.state;
+        match self.run {
+            Run::Ended { status, time_s } => Status::ended(
+                format!(
+                    "{} at t = {} s: press Reset",
+                    if status == PoleStatus::OutOfBounds {
+                        "cart off the track"
+                    } else {
+                        "pole fallen"
+                    },
+                    format_fixed(time_s, 2)
+                ),
+                Tone::Bad,
+            ),
+            Run::Going if !self.sim.control_enabled => {
+                let lean = wrap_deg(s.theta_rad.to_degrees());
+                let text = if self.at_rest() {
+                    "control off: upright and still, an unstable equilibrium (nudge it)"
+                } else if lean.abs() > 90.0 {
+                    "control off: the pole swings below the rail"
+                } else if lean * s.omega_rad_s >= 0.0 {
+                    "control off: the pole is falling"
+                } else {
+                    "control off: the pole swings back up"
+                };
+                Status::new(text, Tone::Warning)
+            }
+            Run::Going if self.at_rest() => Status::new("balanced", Tone::Good),
+            Run::Going => {
+                let (theta_deg, x_m, catching) = self.recent_peaks();
+                if catching && x_m <= DRIFT_M {
+                    Status::new(
+                        format!(
+                            "catching the pole from θ₀ = {}",
+                            format_degrees(self.start_deg)
+                        ),
+                        Tone::Neutral,
+                    )
+                } else if theta_deg > SWING_DEG {
+                    Status::new(
+                        format!("swinging: |θ| up to {}", format_degrees(theta_deg)),
+                        Tone::Warning,
+                    )
+                } else if x_m > DRIFT_M {
+                    Status::new(
+                        format!("drifting: |x| up to {}", format_metres(x_m)),
+                        Tone::Warning,
+                    )
+                } else {
+                    Status::new("balancing", Tone::Neutral)
+                }
+            }
+        }
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
+    }
+
+    /// The run's state from what the pole and cart have done over the last
+    /// [`STATUS_WINDOW_S`]: "balancing" only while |θ| and |x| stay small.
+    /// "Pole at -0.5° from upright, turning 0.2°/s; cart at 0.164 m pushed with
+    /// -0.09 N; balancing."
+    fn describe(&self) -> String {
+        let value = |key| crate::experiment::readout_value(self, key).unwrap_or_default();
+        format!(
+            "Pole at {} from upright, turning {}; cart at {} pushed with {}; {}.",
+            value("theta"),
+            value("omega"),
+            value("x"),
+            value("force"),
+            self.status().text
+        )
+    }
+
+    fn hint(&self) -> &'static str {
+        "Click beside the pole (or press ← → on the canvas) to nudge it; drag its tip to set the start angle. Drop pole switches control off."
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        "Tap beside the pole to nudge it; drag its tip to set the start angle. Drop pole switches control off."
+    }
+
+    /// A pole caught from its start angle, a second into the run.
+    fn preview(&mut self) {
+        for _ in 0..60 {
+            self.step(1.0 / 60.0);
+        }
+    }
 }
 
 /// `(−180°, 180°]`.
@@ -261,77 +361,5 @@ pub(super) fn wrap_deg(deg: f64) -> f64 {
         w - 360.0
     } else {
         w
-    }
-}
-
-/// The run's state from what the pole and cart have done over the last
-/// [`STATUS_WINDOW_S`]: "balancing" only while |θ| and |x| stay small.
-/// "Pole at -0.5° from upright, turning 0.2°/s; cart at 0.164 m pushed with
-/// -0.09 N; balancing."
-pub(super) fn describe(e: &CartPoleBalance) -> String {
-    let value = |key| crate::experiment::readout_value(e, key).unwrap_or_default();
-    format!(
-        "Pole at {} from upright, turning {}; cart at {} pushed with {}; {}.",
-        value("theta"),
-        value("omega"),
-        value("x"),
-        value("force"),
-        status(e).text
-    )
-}
-
-pub(super) fn status(e: &CartPoleBalance) -> Status {
-    let s = e.sim.state;
-    match e.run {
-        Run::Ended { status, time_s } => Status::ended(
-            format!(
-                "{} at t = {} s: press Reset",
-                if status == PoleStatus::OutOfBounds {
-                    "cart off the track"
-                } else {
-                    "pole fallen"
-                },
-                format_fixed(time_s, 2)
-            ),
-            Tone::Bad,
-        ),
-        Run::Going if !e.sim.control_enabled => {
-            let lean = wrap_deg(s.theta_rad.to_degrees());
-            let text = if e.at_rest() {
-                "control off: upright and still, an unstable equilibrium (nudge it)"
-            } else if lean.abs() > 90.0 {
-                "control off: the pole swings below the rail"
-            } else if lean * s.omega_rad_s >= 0.0 {
-                "control off: the pole is falling"
-            } else {
-                "control off: the pole swings back up"
-            };
-            Status::new(text, Tone::Warning)
-        }
-        Run::Going if e.at_rest() => Status::new("balanced", Tone::Good),
-        Run::Going => {
-            let (theta_deg, x_m, catching) = e.recent_peaks();
-            if catching && x_m <= DRIFT_M {
-                Status::new(
-                    format!(
-                        "catching the pole from θ₀ = {}",
-                        format_degrees(e.start_deg)
-                    ),
-                    Tone::Neutral,
-                )
-            } else if theta_deg > SWING_DEG {
-                Status::new(
-                    format!("swinging: |θ| up to {}", format_degrees(theta_deg)),
-                    Tone::Warning,
-                )
-            } else if x_m > DRIFT_M {
-                Status::new(
-                    format!("drifting: |x| up to {}", format_metres(x_m)),
-                    Tone::Warning,
-                )
-            } else {
-                Status::new("balancing", Tone::Neutral)
-            }
-        }
     }
 }

@@ -27,13 +27,12 @@
 //! holds the generated questions and `tests.rs` one test per Procedure step.
 
 use crate::experiment::{
-    check_param, with_coordinate, ActionSpec, Experiment, Input, Notice, Notices, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
+    check_param, with_coordinate, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec,
+    Sanitized, Tone,
 };
 use crate::mobile::go_to_goal::{Command, GoToGoal, RunStats, WaypointFollower};
 use crate::mobile::unicycle::{wheel_speeds, Integrator, Pose};
 use crate::plot::{Axis, Band, Marker, Plot, Series, SeriesRole, XWindow};
-use crate::scene::{Scene, ViewBox};
 use glam::DVec2;
 
 /// Most waypoints queued at once (each is two URL parameters).
@@ -688,60 +687,8 @@ impl Experiment for DiffDrive {
         crate::experiment::finish_drag(self, to)
     }
 
-    fn describe(&self) -> String {
-        view::describe(self)
-    }
-
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         self.waypoint_near(p, tolerance_m.max(0.0)).is_some()
-    }
-
-    fn view(&self) -> ViewBox {
-        view::view()
-    }
-
-    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
-        let size = DVec2::new(width_px, height_px);
-        if size.is_finite() && size.min_element() > 0.0 {
-            self.viewport_px = Some(size);
-        }
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        view::scene(self, out);
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        view::readouts(self)
-    }
-
-    fn status(&self) -> Status {
-        view::status(self)
-    }
-
-    fn notice(&self) -> Option<Notice> {
-        self.notices.current()
-    }
-
-    fn hint(&self) -> &'static str {
-        view::hint()
-    }
-
-    fn touch_hint(&self) -> &'static str {
-        "Tap to drop a goal; tap again to queue more waypoints. Drag a waypoint to move it, tap it to remove it."
-    }
-
-    fn preview(&mut self) {
-        for p in [
-            DVec2::new(3.2, 4.6),
-            DVec2::new(6.4, 4.2),
-            DVec2::new(6.8, 1.2),
-        ] {
-            self.add_waypoint(p);
-        }
-        for _ in 0..60 * 14 {
-            self.step(crate::clock::Clock::DT_S);
-        }
     }
 
     fn animating(&self) -> bool {

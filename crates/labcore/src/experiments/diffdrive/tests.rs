@@ -2,7 +2,7 @@
 
 use super::quiz::*;
 use super::*;
-use crate::experiment::{Phase, Tone};
+use crate::experiment::{Lab, Phase, Presentation, Status, Tone};
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};
 use crate::scene::{Item, Role};
@@ -999,7 +999,7 @@ fn the_default_link_in_a_used_tab_gives_no_waypoints() {
     let Page::Experiment { params, .. } = parse(&default_link, &["diffdrive"]).page else {
         panic!("{default_link}");
     };
-    let make = || -> Box<dyn Experiment> { Box::new(DiffDrive::default()) };
+    let make = || -> Box<dyn Lab> { Box::new(DiffDrive::default()) };
     let mut tab = make();
     for p in [
         DVec2::new(1.0, 1.0),

@@ -2,11 +2,11 @@
 //! and the status. Only reads the model.
 
 use super::{DiffDrive, BODY_RADIUS_M, FIELD_H_M, FIELD_W_M, START};
-use crate::experiment::{Readout, Status, Tone};
+use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
+use crate::units::{format_degrees, format_fixed, format_metres};
 use crate::mobile::go_to_goal::RunStats;
 use crate::mobile::unicycle::Pose;
 use crate::scene::{Item, Role, Scene, ViewBox};
-use crate::units::{format_degrees, format_fixed, format_metres};
 use glam::DVec2;
 
 /// Draws a differential-drive robot at `pose`: a round body with a nose
@@ -162,241 +162,271 @@ pub(super) fn shown_card(d: &DiffDrive) -> Option<(usize, RunStats, bool)> {
     }
 }
 
-pub(super) fn view() -> ViewBox {
-    ViewBox {
-        min: DVec2::ZERO,
-        max: DVec2::new(FIELD_W_M, FIELD_H_M),
+impl Presentation for DiffDrive {
+    fn view(&self) -> ViewBox {
+        ViewBox {
+            min: DVec2::ZERO,
+            max: DVec2::new(FIELD_W_M, FIELD_H_M),
+        }
     }
-}
 
-pub(super) fn scene(d: &DiffDrive, out: &mut Scene) {
-    draw_field(out, FIELD_W_M, FIELD_H_M);
-    // The grid lines are 1 m apart but carry no numbers: a scale bar says so.
-    out.push(Item::ScaleBar);
-    out.push(Item::Circle {
-        center: START.position(),
-        radius_m: BODY_RADIUS_M,
-        role: Role::Ghost,
-        fill: false,
-        dashed: true,
-    });
-    if d.trail.len() > 1 {
-        out.push(Item::Polyline {
-            points: d.trail.clone(),
-            width_px: 2.5,
-            role: Role::Path,
-            dashed: false,
-            closed: false,
-        });
+    fn viewport_px(&mut self, width_px: f64, height_px: f64) {
+        let size = DVec2::new(width_px, height_px);
+        if size.is_finite() && size.min_element() > 0.0 {
+            self.viewport_px = Some(size);
+        }
     }
-    // The route still to drive, dashed.
-    if !d.follower.queue.is_empty() {
-        let mut route = vec![d.pose().position()];
-        route.extend(d.follower.queue.iter().copied());
-        out.push(Item::Polyline {
-            points: route,
-            width_px: 1.5,
-            role: Role::Target,
+
+    fn scene(&self, out: &mut Scene) {
+        draw_field(out, FIELD_W_M, FIELD_H_M);
+        // The grid lines are 1 m apart but carry no numbers: a scale bar says so.
+        out.push(Item::ScaleBar);
+        out.push(Item::Circle {
+            center: START.position(),
+            radius_m: BODY_RADIUS_M,
+            role: Role::Ghost,
+            fill: false,
             dashed: true,
-            closed: false,
         });
-    }
-    let reached = d.reached();
-    // The run cards' label boxes placed so far (canvas px).
-    let mut cards: Vec<[DVec2; 2]> = Vec::new();
-    for (k, (slot, w)) in d
-        .slots
-        .iter()
-        .enumerate()
-        .filter_map(|(i, w)| w.map(|w| (i, w)))
-        .enumerate()
-    {
-        let done = k < reached;
-        let role = if done { Role::Visited } else { Role::Target };
-        out.push(Item::Dot {
-            center: w,
-            radius_px: if k == reached { 8.0 } else { 6.0 },
-            role,
-        });
-        out.push(Item::Label {
-            pos: w,
-            text: (slot + 1).to_string(),
-            role: Role::Text,
-            offset_px: DVec2::new(-4.0, 18.0),
-        });
-        if let Some(card) = d.follower.completed.get(k) {
-            let text = format!(
-                "{} m · {} s",
-                format_fixed(card.path_length_m, 2),
-                format_fixed(card.time_to_goal_s.unwrap_or(card.elapsed_s), 1)
-            );
-            let offset_px = card_offset(d, w, text.chars().count(), &cards);
-            cards.push(label_box(d, w, offset_px, text.chars().count()));
+        if self.trail.len() > 1 {
+            out.push(Item::Polyline {
+                points: self.trail.clone(),
+                width_px: 2.5,
+                role: Role::Path,
+                dashed: false,
+                closed: false,
+            });
+        }
+        // The route still to drive, dashed.
+        if !self.follower.queue.is_empty() {
+            let mut route = vec![self.pose().position()];
+            route.extend(self.follower.queue.iter().copied());
+            out.push(Item::Polyline {
+                points: route,
+                width_px: 1.5,
+                role: Role::Target,
+                dashed: true,
+                closed: false,
+            });
+        }
+        let reached = self.reached();
+        // The run cards' label boxes placed so far (canvas px).
+        let mut cards: Vec<[DVec2; 2]> = Vec::new();
+        for (k, (slot, w)) in self
+            .slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, w)| w.map(|w| (i, w)))
+            .enumerate()
+        {
+            let done = k < reached;
+            let role = if done { Role::Visited } else { Role::Target };
+            out.push(Item::Dot {
+                center: w,
+                radius_px: if k == reached { 8.0 } else { 6.0 },
+                role,
+            });
             out.push(Item::Label {
                 pos: w,
-                text,
+                text: (slot + 1).to_string(),
                 role: Role::Text,
-                offset_px,
+                offset_px: DVec2::new(-4.0, 18.0),
+            });
+            if let Some(card) = self.follower.completed.get(k) {
+                let text = format!(
+                    "{} m · {} s",
+                    format_fixed(card.path_length_m, 2),
+                    format_fixed(card.time_to_goal_s.unwrap_or(card.elapsed_s), 1)
+                );
+                let offset_px = card_offset(self, w, text.chars().count(), &cards);
+                cards.push(label_box(self, w, offset_px, text.chars().count()));
+                out.push(Item::Label {
+                    pos: w,
+                    text,
+                    role: Role::Text,
+                    offset_px,
+                });
+            }
+        }
+        let pose = self.pose();
+        draw_robot(out, pose, self.track_m);
+        // With Kv above twice Max ω the robot can circle wide of its goal and
+        // leave the field: the page marks the canvas edge toward it meanwhile.
+        if pose.is_finite() {
+            out.push(Item::OffView {
+                at: pose.position(),
+                label: "robot".into(),
+                role: Role::Robot,
+            });
+        }
+        let cmd = self.command();
+        if cmd.v_mps > 1e-3 {
+            out.push(Item::Arrow {
+                from: pose.position(),
+                to: pose.position() + pose.heading() * cmd.v_mps,
+                width_px: 2.0,
+                role: Role::Accent,
             });
         }
     }
-    let pose = d.pose();
-    draw_robot(out, pose, d.track_m);
-    // With Kv above twice Max ω the robot can circle wide of its goal and
-    // leave the field: the page marks the canvas edge toward it meanwhile.
-    if pose.is_finite() {
-        out.push(Item::OffView {
-            at: pose.position(),
-            label: "robot".into(),
-            role: Role::Robot,
-        });
-    }
-    let cmd = d.command();
-    if cmd.v_mps > 1e-3 {
-        out.push(Item::Arrow {
-            from: pose.position(),
-            to: pose.position() + pose.heading() * cmd.v_mps,
-            width_px: 2.0,
-            role: Role::Accent,
-        });
-    }
-}
 
-pub(super) fn readouts(d: &DiffDrive) -> Vec<Readout> {
-    let cmd = d.command();
-    let (vl, vr) = d.wheels();
-    let pose = d.pose();
-    let speed = |v: f64| format!("{} m/s", format_fixed(v, 3));
-    let goal = d.follower.goal().map_or("--".into(), |g| {
-        format_metres((g - pose.position()).length())
-    });
-    let mut out = vec![
-        Readout::new("v", "Speed v", speed(cmd.v_mps)),
-        Readout::new(
-            "omega",
-            "Turn rate ω",
-            format!("{} rad/s", format_fixed(cmd.omega_radps, 3)),
-        ),
-        Readout::degrees("heading", "Heading θ", pose.theta_rad.to_degrees()),
-        Readout::new("goal", "Goal distance", goal),
-        Readout::new("vl", "Left wheel vL", speed(vl)),
-        Readout::new("vr", "Right wheel vR", speed(vr)),
-        Readout::new(
-            "waypoints",
-            "Waypoints reached",
-            format!("{} of {}", d.reached(), d.waypoints().len()),
-        ),
-    ];
-    let card = shown_card(d);
-    let value = |f: &dyn Fn(&RunStats, bool) -> String| {
-        card.as_ref()
-            .map_or("--".into(), |(_, s, done)| f(s, *done))
-    };
-    out.extend([
-        Readout::new(
-            "card",
-            "Run card",
-            card.as_ref().map_or("--".into(), |(n, _, done)| {
-                format!(
-                    "waypoint {n}{}",
-                    if *done { " (reached)" } else { " (driving)" }
-                )
-            }),
-        ),
-        Readout::new(
-            "path",
-            "Path length",
-            value(&|s, _| format_metres(s.path_length_m)),
-        ),
-        Readout::new(
-            "time",
-            "Time to goal",
-            value(&|s, done| match (done, s.time_to_goal_s) {
-                (true, Some(t)) => format!("{} s", format_fixed(t, 2)),
-                _ => format!("{} s so far", format_fixed(s.elapsed_s, 2)),
-            }),
-        ),
-        Readout::new(
-            "max_error",
-            "Largest heading error",
-            value(&|s, _| format_degrees(s.max_heading_error_rad.to_degrees())),
-        ),
-        Readout::new(
-            "at_limit",
-            "Time at a limit",
-            value(&|s, _| {
-                format!(
-                    "v {}%, ω {}%",
-                    format_fixed(100.0 * s.v_limit_share(), 1),
-                    format_fixed(100.0 * s.omega_limit_share(), 1)
-                )
-            }),
-        ),
-    ]);
-    out
-}
-
-pub(super) fn status(d: &DiffDrive) -> Status {
-    let total = d.waypoints().len();
-    if total == 0 {
-        return Status::new("idle: click to drop a goal", Tone::Neutral);
+    fn readouts(&self) -> Vec<Readout> {
+        let cmd = self.command();
+        let (vl, vr) = self.wheels();
+        let pose = self.pose();
+        let speed = |v: f64| format!("{} m/s", format_fixed(v, 3));
+        let goal = self.follower.goal().map_or("--".into(), |g| {
+            format_metres((g - pose.position()).length())
+        });
+        let mut out = vec![
+            Readout::new("v", "Speed v", speed(cmd.v_mps)),
+            Readout::new(
+                "omega",
+                "Turn rate ω",
+                format!("{} rad/s", format_fixed(cmd.omega_radps, 3)),
+            ),
+            Readout::degrees("heading", "Heading θ", pose.theta_rad.to_degrees()),
+            Readout::new("goal", "Goal distance", goal),
+            Readout::new("vl", "Left wheel vL", speed(vl)),
+            Readout::new("vr", "Right wheel vR", speed(vr)),
+            Readout::new(
+                "waypoints",
+                "Waypoints reached",
+                format!("{} of {}", self.reached(), self.waypoints().len()),
+            ),
+        ];
+        let card = shown_card(self);
+        let value = |f: &dyn Fn(&RunStats, bool) -> String| {
+            card.as_ref()
+                .map_or("--".into(), |(_, s, done)| f(s, *done))
+        };
+        out.extend([
+            Readout::new(
+                "card",
+                "Run card",
+                card.as_ref().map_or("--".into(), |(n, _, done)| {
+                    format!(
+                        "waypoint {n}{}",
+                        if *done { " (reached)" } else { " (driving)" }
+                    )
+                }),
+            ),
+            Readout::new(
+                "path",
+                "Path length",
+                value(&|s, _| format_metres(s.path_length_m)),
+            ),
+            Readout::new(
+                "time",
+                "Time to goal",
+                value(&|s, done| match (done, s.time_to_goal_s) {
+                    (true, Some(t)) => format!("{} s", format_fixed(t, 2)),
+                    _ => format!("{} s so far", format_fixed(s.elapsed_s, 2)),
+                }),
+            ),
+            Readout::new(
+                "max_error",
+                "Largest heading error",
+                value(&|s, _| format_degrees(s.max_heading_error_rad.to_degrees())),
+            ),
+            Readout::new(
+                "at_limit",
+                "Time at a limit",
+                value(&|s, _| {
+                    format!(
+                        "v {}%, ω {}%",
+                        format_fixed(100.0 * s.v_limit_share(), 1),
+                        format_fixed(100.0 * s.omega_limit_share(), 1)
+                    )
+                }),
+            ),
+        ]);
+        out
     }
-    let reached = d.reached();
-    let Some(goal) = d.follower.goal() else {
-        // Every waypoint of the route reached: the run is over until the
-        // student adds one (or replays it).
-        return Status::ended(
-            if total == 1 {
-                "reached the goal".to_owned()
-            } else {
-                format!("reached all {total} waypoints")
-            },
-            Tone::Good,
+
+    fn status(&self) -> Status {
+        let total = self.waypoints().len();
+        if total == 0 {
+            return Status::new("idle: click to drop a goal", Tone::Neutral);
+        }
+        let reached = self.reached();
+        let Some(goal) = self.follower.goal() else {
+            // Every waypoint of the route reached: the run is over until the
+            // student adds one (or replays it).
+            return Status::ended(
+                if total == 1 {
+                    "reached the goal".to_owned()
+                } else {
+                    format!("reached all {total} waypoints")
+                },
+                Tone::Good,
+            );
+        };
+        // The command the readouts show, once the robot has been stepped toward
+        // this goal; before that, what the controller commands from here. No
+        // forward speed while the goal is more than 90° off the heading.
+        let cmd = if self.follower.current.elapsed_s > 0.0 {
+            self.command()
+        } else {
+            self.follower.controller.command(self.pose(), goal)
+        };
+        let doing = if cmd.v_mps < 1e-3 && cmd.heading_error_rad.abs() > 0.1 {
+            "turning on the spot"
+        } else {
+            "driving"
+        };
+        Status::new(
+            format!("waypoint {} of {total}: {doing}", reached + 1),
+            Tone::Neutral,
+        )
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
+    }
+
+    /// "Robot at (2.10, 3.40) m heading 45.0°, 2 of 3 waypoints reached; waypoint 3 of 3: driving."
+    fn describe(&self) -> String {
+        let pose = self.pose();
+        let heading = crate::kinematics::two_link_ik::wrap_pi(pose.theta_rad).to_degrees();
+        let robot = format!(
+            "Robot at {} heading {}",
+            crate::units::format_point(pose.position()),
+            format_degrees(heading)
         );
-    };
-    // The command the readouts show, once the robot has been stepped toward
-    // this goal; before that, what the controller commands from here. No
-    // forward speed while the goal is more than 90° off the heading.
-    let cmd = if d.follower.current.elapsed_s > 0.0 {
-        d.command()
-    } else {
-        d.follower.controller.command(d.pose(), goal)
-    };
-    let doing = if cmd.v_mps < 1e-3 && cmd.heading_error_rad.abs() > 0.1 {
-        "turning on the spot"
-    } else {
-        "driving"
-    };
-    Status::new(
-        format!("waypoint {} of {total}: {doing}", reached + 1),
-        Tone::Neutral,
-    )
-}
-
-/// "Robot at (2.10, 3.40) m heading 45.0°, 2 of 3 waypoints reached; waypoint 3 of 3: driving."
-pub(super) fn describe(d: &DiffDrive) -> String {
-    let pose = d.pose();
-    let heading = crate::kinematics::two_link_ik::wrap_pi(pose.theta_rad).to_degrees();
-    let robot = format!(
-        "Robot at {} heading {}",
-        crate::units::format_point(pose.position()),
-        format_degrees(heading)
-    );
-    let total = d.waypoints().len();
-    if total == 0 {
-        return format!("{robot}, no waypoints yet; {}.", status(d).text);
+        let total = self.waypoints().len();
+        if total == 0 {
+            return format!("{robot}, no waypoints yet; {}.", self.status().text);
+        }
+        let next = self.follower.goal().map_or(String::new(), |g| {
+            format!(", next at {}", crate::units::format_point(g))
+        });
+        format!(
+            "{robot}, {} of {total} waypoint{} reached{next}; {}.",
+            self.reached(),
+            if total == 1 { "" } else { "s" },
+            self.status().text
+        )
     }
-    let next = d.follower.goal().map_or(String::new(), |g| {
-        format!(", next at {}", crate::units::format_point(g))
-    });
-    format!(
-        "{robot}, {} of {total} waypoint{} reached{next}; {}.",
-        d.reached(),
-        if total == 1 { "" } else { "s" },
-        status(d).text
-    )
-}
 
-pub(super) fn hint() -> &'static str {
-    "Click or tap to drop a goal; click again to queue more waypoints. Drag a waypoint to move it, tap it to remove it."
+    fn hint(&self) -> &'static str {
+        "Click or tap to drop a goal; click again to queue more waypoints. Drag a waypoint to move it, tap it to remove it."
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        "Tap to drop a goal; tap again to queue more waypoints. Drag a waypoint to move it, tap it to remove it."
+    }
+
+    fn preview(&mut self) {
+        for p in [
+            DVec2::new(3.2, 4.6),
+            DVec2::new(6.4, 4.2),
+            DVec2::new(6.8, 1.2),
+        ] {
+            self.add_waypoint(p);
+        }
+        for _ in 0..60 * 14 {
+            self.step(crate::clock::Clock::DT_S);
+        }
+    }
 }

@@ -52,15 +52,12 @@ use crate::estimation::models::{
 };
 use crate::estimation::slam::EkfSlam;
 use crate::estimation::wrap_angle;
-use crate::experiment::{
-    check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Readout,
-    Sanitized, Status, Tone,
-};
+use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
+use crate::units::{format_fixed, format_magnitude, format_number};
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
-use crate::units::{format_fixed, format_magnitude, format_number};
 use glam::{DMat2, DMat3, DVec2, DVec3};
 
 const MODES: &[&str] = &["Localisation", "EKF-SLAM"];
@@ -890,45 +887,6 @@ impl Experiment for EkfExperiment {
 
     fn plots(&self) -> &[Plot] {
         &self.plots
-    }
-
-    /// The landmarks with a margin, and headroom at the top for the status
-    /// badge that overlays the canvas there.
-    fn view(&self) -> ViewBox {
-        ViewBox {
-            min: DVec2::splat(-VIEW_HALF_M),
-            max: DVec2::new(VIEW_HALF_M, VIEW_HALF_M + VIEW_HEADROOM_M),
-        }
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        view::scene(self, out);
-    }
-
-    fn describe(&self) -> String {
-        view::describe(self)
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        view::readouts(self)
-    }
-
-    fn status(&self) -> Status {
-        view::status(self)
-    }
-
-    fn notice(&self) -> Option<Notice> {
-        self.notices.current()
-    }
-
-    fn hint(&self) -> &'static str {
-        "Watch the 3σ ellipse grow between landmark sightings and shrink at each fix; press Consistency check to average NEES over N seeded runs."
-    }
-
-    fn preview(&mut self) {
-        for _ in 0..(24.0 / FILTER_DT_S) as usize {
-            self.advance_live();
-        }
     }
 
     /// The robot drives its loop for ever.

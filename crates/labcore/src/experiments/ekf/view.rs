@@ -39,115 +39,226 @@ fn star(c: DVec2, r: f64) -> Vec<DVec2> {
         .collect()
 }
 
-pub(super) fn scene(e: &EkfExperiment, out: &mut Scene) {
-    let run = &e.live;
-    out.push(Item::Circle {
-        center: DVec2::ZERO,
-        radius_m: LOOP_RADIUS_M,
-        role: Role::Grid,
-        fill: false,
-        dashed: true,
-    });
-    // The sensor's field of view from the true pose.
-    let settings = e.settings();
-    let sensor = settings.sensor;
-    let truth = run.truth;
-    let fov = sensor.fov_rad.min(TAU);
-    let arc_points = 24;
-    let mut wedge = Vec::with_capacity(arc_points + 2);
-    if fov < TAU - 1e-9 {
-        wedge.push(truth.truncate());
-    }
-    for k in 0..=arc_points {
-        let a = truth.z - 0.5 * fov + fov * k as f64 / arc_points as f64;
-        let (s, c) = crate::math::sin_cos(a);
-        wedge.push(truth.truncate() + DVec2::new(c, s) * sensor.max_range_m);
-    }
-    out.push(Item::Polyline {
-        points: wedge,
-        width_px: 1.0,
-        role: Role::Bound,
-        dashed: true,
-        closed: true,
-    });
-    let trail_style = [
-        (TRAIL_TRUTH, Role::Robot, false),
-        (TRAIL_EKF, Role::Estimate, false),
-        (TRAIL_DR, Role::Ghost, true),
-    ];
-    for (k, role, dashed) in trail_style {
-        out.push(Item::Polyline {
-            points: e.trails[k].iter().copied().collect(),
-            width_px: 1.5,
-            role,
-            dashed,
-            closed: false,
-        });
-    }
-    for &m in &e.landmarks {
-        out.push(Item::Polygon {
-            points: star(m, 0.18),
-            role: Role::Accent,
-        });
-    }
-    if let Filter::Slam(slam) = &run.filter {
-        for &id in slam.landmark_ids() {
-            if let Some((m, cov)) = slam.landmark(id) {
-                out.push(ellipse(m, cov));
-                out.push(Item::Dot {
-                    center: m,
-                    radius_px: 3.0,
-                    role: Role::Estimate,
-                });
-            }
+impl Presentation for EkfExperiment {
+    /// The landmarks with a margin, and headroom at the top for the status
+    /// badge that overlays the canvas there.
+    fn view(&self) -> ViewBox {
+        ViewBox {
+            min: DVec2::splat(-VIEW_HALF_M),
+            max: DVec2::new(VIEW_HALF_M, VIEW_HALF_M + VIEW_HEADROOM_M),
         }
     }
-    for z in run.flashing() {
-        let (s, c) = crate::math::sin_cos(truth.z + z.bearing_rad);
-        out.push(Item::Line {
-            from: truth.truncate(),
-            to: truth.truncate() + DVec2::new(c, s) * z.range_m,
-            width_px: 2.0,
-            role: Role::Path,
-            dashed: false,
+
+    fn scene(&self, out: &mut Scene) {
+        let run = &self.live;
+        out.push(Item::Circle {
+            center: DVec2::ZERO,
+            radius_m: LOOP_RADIUS_M,
+            role: Role::Grid,
+            fill: false,
+            dashed: true,
+        });
+        // The sensor's field of view from the true pose.
+        let settings = self.settings();
+        let sensor = settings.sensor;
+        let truth = run.truth;
+        let fov = sensor.fov_rad.min(TAU);
+        let arc_points = 24;
+        let mut wedge = Vec::with_capacity(arc_points + 2);
+        if fov < TAU - 1e-9 {
+            wedge.push(truth.truncate());
+        }
+        for k in 0..=arc_points {
+            let a = truth.z - 0.5 * fov + fov * k as f64 / arc_points as f64;
+            let (s, c) = crate::math::sin_cos(a);
+            wedge.push(truth.truncate() + DVec2::new(c, s) * sensor.max_range_m);
+        }
+        out.push(Item::Polyline {
+            points: wedge,
+            width_px: 1.0,
+            role: Role::Bound,
+            dashed: true,
+            closed: true,
+        });
+        let trail_style = [
+            (TRAIL_TRUTH, Role::Robot, false),
+            (TRAIL_EKF, Role::Estimate, false),
+            (TRAIL_DR, Role::Ghost, true),
+        ];
+        for (k, role, dashed) in trail_style {
+            out.push(Item::Polyline {
+                points: self.trails[k].iter().copied().collect(),
+                width_px: 1.5,
+                role,
+                dashed,
+                closed: false,
+            });
+        }
+        for &m in &self.landmarks {
+            out.push(Item::Polygon {
+                points: star(m, 0.18),
+                role: Role::Accent,
+            });
+        }
+        if let Filter::Slam(slam) = &run.filter {
+            for &id in slam.landmark_ids() {
+                if let Some((m, cov)) = slam.landmark(id) {
+                    out.push(ellipse(m, cov));
+                    out.push(Item::Dot {
+                        center: m,
+                        radius_px: 3.0,
+                        role: Role::Estimate,
+                    });
+                }
+            }
+        }
+        for z in run.flashing() {
+            let (s, c) = crate::math::sin_cos(truth.z + z.bearing_rad);
+            out.push(Item::Line {
+                from: truth.truncate(),
+                to: truth.truncate() + DVec2::new(c, s) * z.range_m,
+                width_px: 2.0,
+                role: Role::Path,
+                dashed: false,
+            });
+        }
+        out.push(Item::Polyline {
+            points: robot_outline(run.dead_reckoning),
+            width_px: 1.5,
+            role: Role::Ghost,
+            dashed: true,
+            closed: true,
+        });
+        let est = run.estimate();
+        out.push(ellipse(est.truncate(), position_block(run.pose_cov())));
+        out.push(Item::Polygon {
+            points: robot_outline(est),
+            role: Role::Estimate,
+        });
+        out.push(Item::Polygon {
+            points: robot_outline(truth),
+            role: Role::Robot,
         });
     }
-    out.push(Item::Polyline {
-        points: robot_outline(run.dead_reckoning),
-        width_px: 1.5,
-        role: Role::Ghost,
-        dashed: true,
-        closed: true,
-    });
-    let est = run.estimate();
-    out.push(ellipse(est.truncate(), position_block(run.pose_cov())));
-    out.push(Item::Polygon {
-        points: robot_outline(est),
-        role: Role::Estimate,
-    });
-    out.push(Item::Polygon {
-        points: robot_outline(truth),
-        role: Role::Robot,
-    });
-}
 
-/// "Robot at (…) m heading 12.0°; the estimate is 0.057 m and -0.8° off,
-/// 6 landmarks (known map); EKF localisation, known map."
-pub(super) fn describe(e: &EkfExperiment) -> String {
-    let truth = e.live.truth;
-    let value = |key| crate::experiment::readout_value(e, key).unwrap_or_default();
-    format!(
-        "Robot at {} heading {}; the estimate is {} and {} off (dead reckoning alone: {}); landmarks {}; {}.",
-        crate::units::format_point(truth.truncate()),
-        crate::units::format_degrees(
-            crate::kinematics::two_link_ik::wrap_pi(truth.z).to_degrees()
-        ),
-        value("error"),
-        value("heading_error"),
-        value("dr_error"),
-        value("landmarks"),
-        status(e).text
-    )
+    fn readouts(&self) -> Vec<Readout> {
+        let run = &self.live;
+        let (truth, est, cov) = (run.truth, run.estimate(), run.pose_cov());
+        let per_loop = match run.obs_last_lap {
+            Some(n) => n.to_string(),
+            None => format!("{} so far", run.obs_this_lap),
+        };
+        let mapped = match &run.filter {
+            Filter::Localisation(_) => format!("{} (known map)", self.landmarks.len()),
+            Filter::Slam(s) => format!("{} of {}", s.landmark_count(), self.landmarks.len()),
+        };
+        let anees = self
+            .check_result()
+            .map_or("--".into(), |r| format_fixed(r.mean_anees, 2));
+        vec![
+            Readout::metres("error", "Position error", position_error_m(truth, est)),
+            Readout::degrees(
+                "heading_error",
+                "Heading error",
+                heading_error_rad(truth, est).to_degrees(),
+            ),
+            Readout::new(
+                "trace",
+                "Position uncertainty σx² + σy²",
+                trace_text(position_trace(cov)),
+            ),
+            Readout::new(
+                "nees",
+                "NEES",
+                run.nees().map_or("--".into(), |v| format_fixed(v, 2)),
+            ),
+            Readout::new("obs_per_loop", "Observations per loop", per_loop),
+            Readout::metres(
+                "dr_error",
+                "Dead-reckoning error",
+                position_error_m(truth, run.dead_reckoning),
+            ),
+            Readout::new("landmarks", "Landmarks", mapped),
+            Readout::new("anees", "Average NEES (check)", anees),
+        ]
+    }
+
+    fn status(&self) -> Status {
+        if let Some(check) = &self.check {
+            if !check.finished() {
+                return Status::new(
+                    format!("consistency check… {}/{} runs", check.done, check.runs),
+                    Tone::Neutral,
+                );
+            }
+            let Some(r) = check.result else {
+                return Status::new(
+                    "consistency check failed: every run lost its covariance",
+                    Tone::Bad,
+                );
+            };
+            let (lo, hi) = r.band;
+            let pct = (r.inside * 100.0).round();
+            let n = check.counted();
+            let detail = format!(
+                "average NEES {:.2}, {pct:.0} % of steps inside [{lo:.2}, {hi:.2}] over {n} runs",
+                r.mean_anees
+            );
+            return if r.inside >= INSIDE_NEEDED {
+                Status::new(format!("consistent: {detail}"), Tone::Good)
+            } else if r.mean_anees > hi {
+                Status::new(format!("over-confident: {detail}"), Tone::Bad)
+            } else if r.mean_anees < lo {
+                Status::new(format!("under-confident: {detail}"), Tone::Warning)
+            } else {
+                Status::new(format!("inconsistent at times: {detail}"), Tone::Warning)
+            };
+        }
+        match &self.live.filter {
+            Filter::Localisation(_) => Status::new("EKF localisation, known map", Tone::Neutral),
+            Filter::Slam(s) => Status::new(
+                format!(
+                    "EKF-SLAM: {} of {} landmarks mapped",
+                    s.landmark_count(),
+                    self.landmarks.len()
+                ),
+                Tone::Neutral,
+            ),
+        }
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
+    }
+
+    /// "Robot at (…) m heading 12.0°; the estimate is 0.057 m and -0.8° off,
+    /// 6 landmarks (known map); EKF localisation, known map."
+    fn describe(&self) -> String {
+        let truth = self.live.truth;
+        let value = |key| crate::experiment::readout_value(self, key).unwrap_or_default();
+        format!(
+            "Robot at {} heading {}; the estimate is {} and {} off (dead reckoning alone: {}); landmarks {}; {}.",
+            crate::units::format_point(truth.truncate()),
+            crate::units::format_degrees(
+                crate::kinematics::two_link_ik::wrap_pi(truth.z).to_degrees()
+            ),
+            value("error"),
+            value("heading_error"),
+            value("dr_error"),
+            value("landmarks"),
+            self.status().text
+        )
+    }
+
+    fn hint(&self) -> &'static str {
+        "Watch the 3σ ellipse grow between landmark sightings and shrink at each fix; press Consistency check to average NEES over N seeded runs."
+    }
+
+    fn preview(&mut self) {
+        for _ in 0..(24.0 / FILTER_DT_S) as usize {
+            self.advance_live();
+        }
+    }
 }
 
 /// The position uncertainty σx² + σy² with four significant digits
@@ -159,91 +270,5 @@ pub(super) fn trace_text(trace_m2: f64) -> String {
         format!("{} m²", format_fixed(trace_m2, decimals))
     } else {
         format!("{} m²", format_magnitude(trace_m2))
-    }
-}
-
-pub(super) fn readouts(e: &EkfExperiment) -> Vec<Readout> {
-    let run = &e.live;
-    let (truth, est, cov) = (run.truth, run.estimate(), run.pose_cov());
-    let per_loop = match run.obs_last_lap {
-        Some(n) => n.to_string(),
-        None => format!("{} so far", run.obs_this_lap),
-    };
-    let mapped = match &run.filter {
-        Filter::Localisation(_) => format!("{} (known map)", e.landmarks.len()),
-        Filter::Slam(s) => format!("{} of {}", s.landmark_count(), e.landmarks.len()),
-    };
-    let anees = e
-        .check_result()
-        .map_or("--".into(), |r| format_fixed(r.mean_anees, 2));
-    vec![
-        Readout::metres("error", "Position error", position_error_m(truth, est)),
-        Readout::degrees(
-            "heading_error",
-            "Heading error",
-            heading_error_rad(truth, est).to_degrees(),
-        ),
-        Readout::new(
-            "trace",
-            "Position uncertainty σx² + σy²",
-            trace_text(position_trace(cov)),
-        ),
-        Readout::new(
-            "nees",
-            "NEES",
-            run.nees().map_or("--".into(), |v| format_fixed(v, 2)),
-        ),
-        Readout::new("obs_per_loop", "Observations per loop", per_loop),
-        Readout::metres(
-            "dr_error",
-            "Dead-reckoning error",
-            position_error_m(truth, run.dead_reckoning),
-        ),
-        Readout::new("landmarks", "Landmarks", mapped),
-        Readout::new("anees", "Average NEES (check)", anees),
-    ]
-}
-
-pub(super) fn status(e: &EkfExperiment) -> Status {
-    if let Some(check) = &e.check {
-        if !check.finished() {
-            return Status::new(
-                format!("consistency check… {}/{} runs", check.done, check.runs),
-                Tone::Neutral,
-            );
-        }
-        let Some(r) = check.result else {
-            return Status::new(
-                "consistency check failed: every run lost its covariance",
-                Tone::Bad,
-            );
-        };
-        let (lo, hi) = r.band;
-        let pct = (r.inside * 100.0).round();
-        let n = check.counted();
-        let detail = format!(
-            "average NEES {:.2}, {pct:.0} % of steps inside [{lo:.2}, {hi:.2}] over {n} runs",
-            r.mean_anees
-        );
-        return if r.inside >= INSIDE_NEEDED {
-            Status::new(format!("consistent: {detail}"), Tone::Good)
-        } else if r.mean_anees > hi {
-            Status::new(format!("over-confident: {detail}"), Tone::Bad)
-        } else if r.mean_anees < lo {
-            Status::new(format!("under-confident: {detail}"), Tone::Warning)
-        } else {
-            Status::new(format!("inconsistent at times: {detail}"), Tone::Warning)
-        };
-    }
-    match &e.live.filter {
-        Filter::Localisation(_) => Status::new("EKF localisation, known map", Tone::Neutral),
-        Filter::Slam(s) => Status::new(
-            format!(
-                "EKF-SLAM: {} of {} landmarks mapped",
-                s.landmark_count(),
-                e.landmarks.len()
-            ),
-            Tone::Neutral,
-        ),
     }
 }

@@ -56,15 +56,12 @@ use crate::control::pid::{
 };
 use crate::control::step_info::{step_info, StepInfo, SETTLING_THRESHOLD};
 use crate::control::{Complex, Stability};
-use crate::experiment::{
-    check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Readout,
-    Sanitized, Status, Tone,
-};
+use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
+use crate::units::{format_fixed, format_magnitude, format_metres, format_number};
 use crate::plot::{Axis, Band, Marker, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
-use crate::units::{format_fixed, format_magnitude, format_metres, format_number};
 use glam::DVec2;
 
 mod quiz;
@@ -873,17 +870,6 @@ impl Experiment for PidControl {
             && p.y <= MARKER_TOP_M + tolerance_m
     }
 
-    fn view(&self) -> ViewBox {
-        ViewBox {
-            min: VIEW_MIN,
-            max: VIEW_MAX,
-        }
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        view::scene(self, out);
-    }
-
     /// The setpoint marker (it moves along x only).
     fn handles(&self) -> Vec<crate::experiment::Handle> {
         vec![crate::experiment::Handle::along_x(
@@ -891,41 +877,6 @@ impl Experiment for PidControl {
             "Setpoint",
             DVec2::new(self.setpoint_m, MARKER_TOP_M),
         )]
-    }
-
-    fn describe(&self) -> String {
-        view::describe(self)
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        view::readouts(self)
-    }
-
-    fn status(&self) -> Status {
-        view::status(self)
-    }
-
-    fn notice(&self) -> Option<Notice> {
-        self.notices.current()
-    }
-
-    fn hint(&self) -> &'static str {
-        "Drag the setpoint marker or use the sliders; each change replays the step. Pin run keeps a response to compare gains."
-    }
-
-    /// A finished default step response with one pinned run for comparison.
-    fn preview(&mut self) {
-        self.gains.kd = 2.0;
-        self.restart();
-        while self.state == RunState::Running {
-            self.step(0.1);
-        }
-        self.pin();
-        self.gains.kd = PARAMS[2].default;
-        self.restart();
-        for _ in 0..30 {
-            self.step(0.1);
-        }
     }
 
     fn animating(&self) -> bool {

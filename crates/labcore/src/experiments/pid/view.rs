@@ -102,318 +102,350 @@ pub(super) fn percent(v: f64) -> String {
     format!("{}%", quantity(v, 1))
 }
 
-/// The track, the setpoint marker, the cart and its force arrow.
-pub(super) fn scene(e: &PidControl, out: &mut Scene) {
-    // Track with a tick every 0.5 m, labels at whole metres and an end stop
-    // at each end (the run stops when the cart passes one).
-    out.push(Item::Line {
-        from: DVec2::new(-TRACK_END_M, 0.0),
-        to: DVec2::new(TRACK_END_M, 0.0),
-        width_px: 2.0,
-        role: Role::Bound,
-        dashed: false,
-    });
-    for end in [-TRACK_END_M, TRACK_END_M] {
+impl Presentation for PidControl {
+    fn view(&self) -> ViewBox {
+        ViewBox {
+            min: VIEW_MIN,
+            max: VIEW_MAX,
+        }
+    }
+
+    /// The track, the setpoint marker, the cart and its force arrow.
+    fn scene(&self, out: &mut Scene) {
+        // Track with a tick every 0.5 m, labels at whole metres and an end stop
+        // at each end (the run stops when the cart passes one).
         out.push(Item::Line {
-            from: DVec2::new(end, -0.1),
-            to: DVec2::new(end, 0.2),
-            width_px: 4.0,
+            from: DVec2::new(-TRACK_END_M, 0.0),
+            to: DVec2::new(TRACK_END_M, 0.0),
+            width_px: 2.0,
             role: Role::Bound,
             dashed: false,
         });
-    }
-    for k in -5..=5 {
-        let x = f64::from(k) * 0.5;
-        out.push(Item::Line {
-            from: DVec2::new(x, 0.0),
-            to: DVec2::new(x, -0.08),
-            width_px: 1.0,
-            role: Role::Grid,
-            dashed: false,
-        });
-        if k % 2 == 0 {
-            out.push(Item::Label {
-                pos: DVec2::new(x, -0.08),
-                text: format!("{} m", k / 2),
-                role: Role::Text,
-                offset_px: DVec2::new(-8.0, 12.0),
+        for end in [-TRACK_END_M, TRACK_END_M] {
+            out.push(Item::Line {
+                from: DVec2::new(end, -0.1),
+                to: DVec2::new(end, 0.2),
+                width_px: 4.0,
+                role: Role::Bound,
+                dashed: false,
             });
         }
-    }
-    // The ±2 % band around the final value, on the track; named below the
-    // track's metre labels when it is not around the setpoint.
-    if let Some(band) = e.plots[0].bands.first() {
-        out.push(Item::Rect {
-            min: DVec2::new(band.lo, -0.02),
-            max: DVec2::new(band.hi, 0.02),
-            role: Role::Accent,
-            fill: true,
-        });
-        if band.label != "±2 % band" {
-            out.push(Item::Label {
-                pos: DVec2::new(0.5 * (band.lo + band.hi), -0.08),
-                text: band.label.clone(),
+        for k in -5..=5 {
+            let x = f64::from(k) * 0.5;
+            out.push(Item::Line {
+                from: DVec2::new(x, 0.0),
+                to: DVec2::new(x, -0.08),
+                width_px: 1.0,
+                role: Role::Grid,
+                dashed: false,
+            });
+            if k % 2 == 0 {
+                out.push(Item::Label {
+                    pos: DVec2::new(x, -0.08),
+                    text: format!("{} m", k / 2),
+                    role: Role::Text,
+                    offset_px: DVec2::new(-8.0, 12.0),
+                });
+            }
+        }
+        // The ±2 % band around the final value, on the track; named below the
+        // track's metre labels when it is not around the setpoint.
+        if let Some(band) = self.plots[0].bands.first() {
+            out.push(Item::Rect {
+                min: DVec2::new(band.lo, -0.02),
+                max: DVec2::new(band.hi, 0.02),
                 role: Role::Accent,
-                offset_px: DVec2::new(-60.0, 30.0),
+                fill: true,
+            });
+            if band.label != "±2 % band" {
+                out.push(Item::Label {
+                    pos: DVec2::new(0.5 * (band.lo + band.hi), -0.08),
+                    text: band.label.clone(),
+                    role: Role::Accent,
+                    offset_px: DVec2::new(-60.0, 30.0),
+                });
+            }
+        }
+        // Setpoint marker (the draggable handle).
+        let r = self.setpoint_m;
+        out.push(Item::Line {
+            from: DVec2::new(r, 0.0),
+            to: DVec2::new(r, MARKER_TOP_M),
+            width_px: 2.0,
+            role: Role::Target,
+            dashed: true,
+        });
+        out.push(Item::Polygon {
+            points: vec![
+                DVec2::new(r, MARKER_TOP_M - 0.12),
+                DVec2::new(r - 0.08, MARKER_TOP_M),
+                DVec2::new(r + 0.08, MARKER_TOP_M),
+            ],
+            role: Role::Target,
+        });
+        out.push(Item::Label {
+            pos: DVec2::new(r, MARKER_TOP_M),
+            text: format!("r = {}", format_metres(r)),
+            role: Role::Target,
+            offset_px: DVec2::new(10.0, -12.0),
+        });
+        // The cart, its wheels and the control force; the canvas edge is marked
+        // when the cart is beyond the view.
+        let x = self.run.state.x_m.clamp(-1e3, 1e3);
+        if x.is_finite() && !(VIEW_MIN.x..=VIEW_MAX.x).contains(&x) {
+            out.push(Item::OffView {
+                at: DVec2::new(x, 0.5 * (CART_BOTTOM_M + CART_TOP_M)),
+                label: format!("cart at {}", metres(self.run.state.x_m)),
+                role: Role::Robot,
             });
         }
-    }
-    // Setpoint marker (the draggable handle).
-    let r = e.setpoint_m;
-    out.push(Item::Line {
-        from: DVec2::new(r, 0.0),
-        to: DVec2::new(r, MARKER_TOP_M),
-        width_px: 2.0,
-        role: Role::Target,
-        dashed: true,
-    });
-    out.push(Item::Polygon {
-        points: vec![
-            DVec2::new(r, MARKER_TOP_M - 0.12),
-            DVec2::new(r - 0.08, MARKER_TOP_M),
-            DVec2::new(r + 0.08, MARKER_TOP_M),
-        ],
-        role: Role::Target,
-    });
-    out.push(Item::Label {
-        pos: DVec2::new(r, MARKER_TOP_M),
-        text: format!("r = {}", format_metres(r)),
-        role: Role::Target,
-        offset_px: DVec2::new(10.0, -12.0),
-    });
-    // The cart, its wheels and the control force; the canvas edge is marked
-    // when the cart is beyond the view.
-    let x = e.run.state.x_m.clamp(-1e3, 1e3);
-    if x.is_finite() && !(VIEW_MIN.x..=VIEW_MAX.x).contains(&x) {
-        out.push(Item::OffView {
-            at: DVec2::new(x, 0.5 * (CART_BOTTOM_M + CART_TOP_M)),
-            label: format!("cart at {}", metres(e.run.state.x_m)),
+        out.push(Item::Rect {
+            min: DVec2::new(x - CART_HALF_W_M, CART_BOTTOM_M),
+            max: DVec2::new(x + CART_HALF_W_M, CART_TOP_M),
             role: Role::Robot,
-        });
-    }
-    out.push(Item::Rect {
-        min: DVec2::new(x - CART_HALF_W_M, CART_BOTTOM_M),
-        max: DVec2::new(x + CART_HALF_W_M, CART_TOP_M),
-        role: Role::Robot,
-        fill: true,
-    });
-    for dx in [-0.13, 0.13] {
-        out.push(Item::Circle {
-            center: DVec2::new(x + dx, 0.045),
-            radius_m: 0.045,
-            role: Role::Joint,
             fill: true,
-            dashed: false,
+        });
+        for dx in [-0.13, 0.13] {
+            out.push(Item::Circle {
+                center: DVec2::new(x + dx, 0.045),
+                radius_m: 0.045,
+                role: Role::Joint,
+                fill: true,
+                dashed: false,
+            });
+        }
+        let u = self.run.last_terms().output;
+        let len = (u * ARROW_M_PER_N).clamp(-ARROW_MAX_M, ARROW_MAX_M);
+        if len.abs() > 0.01 {
+            let y = 0.5 * (CART_BOTTOM_M + CART_TOP_M);
+            let start = x + CART_HALF_W_M.copysign(len);
+            out.push(Item::Arrow {
+                from: DVec2::new(start, y),
+                to: DVec2::new(start + len, y),
+                width_px: 3.0,
+                role: Role::Accent,
+            });
+        }
+        out.push(Item::Label {
+            pos: DVec2::new(x, CART_TOP_M),
+            text: format!("u = {}", force_text(u)),
+            role: Role::Text,
+            offset_px: DVec2::new(-24.0, -14.0),
         });
     }
-    let u = e.run.last_terms().output;
-    let len = (u * ARROW_M_PER_N).clamp(-ARROW_MAX_M, ARROW_MAX_M);
-    if len.abs() > 0.01 {
-        let y = 0.5 * (CART_BOTTOM_M + CART_TOP_M);
-        let start = x + CART_HALF_W_M.copysign(len);
-        out.push(Item::Arrow {
-            from: DVec2::new(start, y),
-            to: DVec2::new(start + len, y),
-            width_px: 3.0,
-            role: Role::Accent,
-        });
-    }
-    out.push(Item::Label {
-        pos: DVec2::new(x, CART_TOP_M),
-        text: format!("u = {}", force_text(u)),
-        role: Role::Text,
-        offset_px: DVec2::new(-24.0, -14.0),
-    });
-}
 
-/// The live numbers beside the canvas.
-pub(super) fn readouts(e: &PidControl) -> Vec<Readout> {
-    let x = e.run.state.x_m;
-    let info = e.info.ok();
-    let y_final = e.final_value_m();
-    let (poles, stability) = match e.poles() {
-        Some((p, s)) => (
-            format_poles(&p),
-            match s {
-                Stability::Stable => "stable",
-                Stability::MarginallyStable => "marginally stable",
-                Stability::Unstable => "unstable",
-            },
-        ),
-        None => ("--".into(), "--"),
-    };
-    let second = SecondOrder::of(&e.plant, &e.gains).map_or("--".into(), |s| {
-        format!(
-            "ωn {} rad/s · ζ {}",
-            quantity(s.natural_frequency_rad_s, 3),
-            quantity(s.damping_ratio, 3)
-        )
-    });
-    let mut out = vec![
-        Readout::metres("x", "Position x", x),
-        Readout::metres("error", "Error e = r − x", e.setpoint_m - x),
-        Readout::new("force", "Force u", force_text(e.run.last_terms().output)),
-        Readout::new(
-            "overshoot",
-            "Overshoot",
-            match (e.info, e.setpoint_info) {
-                (Ok(i), _) => percent(i.overshoot_pct),
-                (Err(NoMetrics::StepTooSmall), _) => STEP_TOO_SMALL.into(),
-                // No final value: how far the cart went past the setpoint.
-                (Err(NoMetrics::NoFinalValue), Some(i)) if i.overshoot_pct > 0.0 => {
-                    format!("{} past the setpoint", percent(i.overshoot_pct))
-                }
-                (Err(_), _) => "--".into(),
-            },
-        ),
-        Readout::new(
-            "rise",
-            "Rise time (10–90 %)",
-            seconds(info.or(e.setpoint_info).and_then(|i| i.rise_time_s)),
-        ),
-        Readout::new(
-            "settling",
-            "Settling time (±2 %)",
-            match (info.and_then(|i| i.settling_time_s), y_final) {
-                (Some(ts), Some(y)) if !at_setpoint(y, e.setpoint_m) => {
-                    format!("{} (around {})", seconds(Some(ts)), metres(y))
-                }
-                (ts, _) => seconds(ts),
-            },
-        ),
-        Readout::new(
-            "peak",
-            "Peak",
-            info.or(e.setpoint_info).map_or("--".into(), |i| {
-                format!(
-                    "{} at {} s",
-                    format_metres(i.peak),
-                    format_fixed(i.peak_time_s, 2)
-                )
-            }),
-        ),
-        Readout::new(
-            "sse",
-            "Steady-state error",
-            y_final.map_or("--".into(), |y| {
-                // The linear loop's prediction until the run has settled.
-                let reached =
-                    e.state == RunState::Quiet || info.is_some_and(|i| i.settling_time_s.is_some());
-                if reached {
-                    metres(e.setpoint_m - y)
-                } else {
-                    format!("{} (predicted)", metres(e.setpoint_m - y))
-                }
-            }),
-        ),
-        Readout::new("poles", "Closed-loop poles (1/s)", poles),
-        Readout::new("stability", "Linear loop", stability),
-        Readout::new("second_order", "Second order (Ki = 0)", second),
-    ];
-    const PIN_KEYS: [&str; MAX_PINS] = ["pinA", "pinB", "pinC", "pinD"];
-    const PIN_LABELS: [&str; MAX_PINS] = [
-        "Pinned run A",
-        "Pinned run B",
-        "Pinned run C",
-        "Pinned run D",
-    ];
-    let mut pins: Vec<&Pin> = e.pins.iter().collect();
-    pins.sort_by_key(|p| p.slot);
-    for pin in pins {
-        let metrics = match pin.info {
-            Ok(i) => format!(
-                "overshoot {}, rise {}, settling {}",
-                percent(i.overshoot_pct),
-                seconds(i.rise_time_s),
-                seconds(i.settling_time_s)
+    /// The live numbers beside the canvas.
+    fn readouts(&self) -> Vec<Readout> {
+        let x = self.run.state.x_m;
+        let info = self.info.ok();
+        let y_final = self.final_value_m();
+        let (poles, stability) = match self.poles() {
+            Some((p, s)) => (
+                format_poles(&p),
+                match s {
+                    Stability::Stable => "stable",
+                    Stability::MarginallyStable => "marginally stable",
+                    Stability::Unstable => "unstable",
+                },
             ),
-            Err(NoMetrics::NoFinalValue) => "no metrics (no final value)".into(),
-            Err(NoMetrics::StepTooSmall) => format!("overshoot {STEP_TOO_SMALL}"),
-            Err(NoMetrics::NotYet) => "no metrics yet".into(),
+            None => ("--".into(), "--"),
         };
-        let partial = if pin.finished {
-            String::new()
-        } else {
-            format!(", so far (pinned at {})", seconds(Some(pin.time_s)))
-        };
-        out.push(Readout::new(
-            PIN_KEYS[pin.slot],
-            PIN_LABELS[pin.slot],
-            format!("{}, {metrics}{partial}", pin.gains_text()),
-        ));
-    }
-    out
-}
-
-/// The run's state from the model's evidence: running while the state is
-/// [`RunState::Running`], otherwise ended (settled, recorded in full, off the
-/// track or diverged), so the page offers Replay.
-/// "Cart at 1.075 m, setpoint 1.000 m, error -0.075 m; overshoot 7.8%, rise
-/// time 0.82 s, settling time --; stepping to 1.000 m."
-pub(super) fn describe(e: &PidControl) -> String {
-    let value = |key| crate::experiment::readout_value(e, key).unwrap_or_default();
-    format!(
-        "Cart at {}, setpoint {}, error {}; overshoot {}, rise time {}, settling time {}; {}.",
-        value("x"),
-        format_metres(e.setpoint_m),
-        value("error"),
-        value("overshoot"),
-        value("rise"),
-        value("settling"),
-        status(e).text
-    )
-}
-
-pub(super) fn status(e: &PidControl) -> Status {
-    let why_unstable = || match e.poles().map(|(_, s)| s) {
-        Some(Stability::Unstable) => "the loop is unstable",
-        Some(Stability::MarginallyStable) => "the loop is only marginally stable",
-        _ => "the overshoot carried it past the end",
-    };
-    match e.state {
-        RunState::Running => match settled_text(e) {
-            Some(text) => Status::new(text, Tone::Good),
-            None => Status::new(
-                format!("stepping to {}", format_metres(e.setpoint_m)),
-                Tone::Neutral,
-            ),
-        },
-        RunState::OffTrack => Status::ended(
+        let second = SecondOrder::of(&self.plant, &self.gains).map_or("--".into(), |s| {
             format!(
-                "off the track at {}: {}",
-                format_metres(TRACK_END_M.copysign(e.position_m())),
-                why_unstable()
+                "ωn {} rad/s · ζ {}",
+                quantity(s.natural_frequency_rad_s, 3),
+                quantity(s.damping_ratio, 3)
+            )
+        });
+        let mut out = vec![
+            Readout::metres("x", "Position x", x),
+            Readout::metres("error", "Error e = r − x", self.setpoint_m - x),
+            Readout::new("force", "Force u", force_text(self.run.last_terms().output)),
+            Readout::new(
+                "overshoot",
+                "Overshoot",
+                match (self.info, self.setpoint_info) {
+                    (Ok(i), _) => percent(i.overshoot_pct),
+                    (Err(NoMetrics::StepTooSmall), _) => STEP_TOO_SMALL.into(),
+                    // No final value: how far the cart went past the setpoint.
+                    (Err(NoMetrics::NoFinalValue), Some(i)) if i.overshoot_pct > 0.0 => {
+                        format!("{} past the setpoint", percent(i.overshoot_pct))
+                    }
+                    (Err(_), _) => "--".into(),
+                },
             ),
-            Tone::Bad,
-        ),
-        RunState::Diverged => Status::ended(format!("diverged: {}", why_unstable()), Tone::Bad),
-        RunState::Quiet | RunState::Complete => match (e.info, e.final_value_m()) {
-            (
-                Ok(StepInfo {
-                    settling_time_s: Some(_),
-                    ..
+            Readout::new(
+                "rise",
+                "Rise time (10–90 %)",
+                seconds(info.or(self.setpoint_info).and_then(|i| i.rise_time_s)),
+            ),
+            Readout::new(
+                "settling",
+                "Settling time (±2 %)",
+                match (info.and_then(|i| i.settling_time_s), y_final) {
+                    (Some(ts), Some(y)) if !at_setpoint(y, self.setpoint_m) => {
+                        format!("{} (around {})", seconds(Some(ts)), metres(y))
+                    }
+                    (ts, _) => seconds(ts),
+                },
+            ),
+            Readout::new(
+                "peak",
+                "Peak",
+                info.or(self.setpoint_info).map_or("--".into(), |i| {
+                    format!(
+                        "{} at {} s",
+                        format_metres(i.peak),
+                        format_fixed(i.peak_time_s, 2)
+                    )
                 }),
-                Some(_),
-            ) => Status::ended(settled_text(e).unwrap_or_default(), Tone::Good),
-            (Err(NoMetrics::StepTooSmall), Some(_)) => {
-                Status::ended("at rest: the step is under 1 mm", Tone::Neutral)
-            }
-            (_, Some(_)) => Status::ended(
-                format!("not settled after {} s", format_fixed(e.time_s(), 0)),
-                Tone::Warning,
             ),
-            // Recorded in full with no final value to settle at: the cart
-            // may still be swinging, so no "at rest".
-            (_, None) if e.run.state.v_m_s.abs() < QUIET_MIN_M => {
-                Status::ended("at rest", Tone::Neutral)
-            }
-            (_, None) => Status::ended(
-                format!(
-                    "{} s recorded: the loop has no final value",
-                    format_fixed(e.time_s(), 0)
+            Readout::new(
+                "sse",
+                "Steady-state error",
+                y_final.map_or("--".into(), |y| {
+                    // The linear loop's prediction until the run has settled.
+                    let reached = self.state == RunState::Quiet
+                        || info.is_some_and(|i| i.settling_time_s.is_some());
+                    if reached {
+                        metres(self.setpoint_m - y)
+                    } else {
+                        format!("{} (predicted)", metres(self.setpoint_m - y))
+                    }
+                }),
+            ),
+            Readout::new("poles", "Closed-loop poles (1/s)", poles),
+            Readout::new("stability", "Linear loop", stability),
+            Readout::new("second_order", "Second order (Ki = 0)", second),
+        ];
+        const PIN_KEYS: [&str; MAX_PINS] = ["pinA", "pinB", "pinC", "pinD"];
+        const PIN_LABELS: [&str; MAX_PINS] = [
+            "Pinned run A",
+            "Pinned run B",
+            "Pinned run C",
+            "Pinned run D",
+        ];
+        let mut pins: Vec<&Pin> = self.pins.iter().collect();
+        pins.sort_by_key(|p| p.slot);
+        for pin in pins {
+            let metrics = match pin.info {
+                Ok(i) => format!(
+                    "overshoot {}, rise {}, settling {}",
+                    percent(i.overshoot_pct),
+                    seconds(i.rise_time_s),
+                    seconds(i.settling_time_s)
                 ),
-                Tone::Warning,
+                Err(NoMetrics::NoFinalValue) => "no metrics (no final value)".into(),
+                Err(NoMetrics::StepTooSmall) => format!("overshoot {STEP_TOO_SMALL}"),
+                Err(NoMetrics::NotYet) => "no metrics yet".into(),
+            };
+            let partial = if pin.finished {
+                String::new()
+            } else {
+                format!(", so far (pinned at {})", seconds(Some(pin.time_s)))
+            };
+            out.push(Readout::new(
+                PIN_KEYS[pin.slot],
+                PIN_LABELS[pin.slot],
+                format!("{}, {metrics}{partial}", pin.gains_text()),
+            ));
+        }
+        out
+    }
+
+    fn status(&self) -> Status {
+        let why_unstable = || match self.poles().map(|(_, s)| s) {
+            Some(Stability::Unstable) => "the loop is unstable",
+            Some(Stability::MarginallyStable) => "the loop is only marginally stable",
+            _ => "the overshoot carried it past the end",
+        };
+        match self.state {
+            RunState::Running => match settled_text(self) {
+                Some(text) => Status::new(text, Tone::Good),
+                None => Status::new(
+                    format!("stepping to {}", format_metres(self.setpoint_m)),
+                    Tone::Neutral,
+                ),
+            },
+            RunState::OffTrack => Status::ended(
+                format!(
+                    "off the track at {}: {}",
+                    format_metres(TRACK_END_M.copysign(self.position_m())),
+                    why_unstable()
+                ),
+                Tone::Bad,
             ),
-        },
+            RunState::Diverged => Status::ended(format!("diverged: {}", why_unstable()), Tone::Bad),
+            RunState::Quiet | RunState::Complete => match (self.info, self.final_value_m()) {
+                (
+                    Ok(StepInfo {
+                        settling_time_s: Some(_),
+                        ..
+                    }),
+                    Some(_),
+                ) => Status::ended(settled_text(self).unwrap_or_default(), Tone::Good),
+                (Err(NoMetrics::StepTooSmall), Some(_)) => {
+                    Status::ended("at rest: the step is under 1 mm", Tone::Neutral)
+                }
+                (_, Some(_)) => Status::ended(
+                    format!("not settled after {} s", format_fixed(self.time_s(), 0)),
+                    Tone::Warning,
+                ),
+                // Recorded in full with no final value to settle at: the cart
+                // may still be swinging, so no "at rest".
+                (_, None) if self.run.state.v_m_s.abs() < QUIET_MIN_M => {
+                    Status::ended("at rest", Tone::Neutral)
+                }
+                (_, None) => Status::ended(
+                    format!(
+                        "{} s recorded: the loop has no final value",
+                        format_fixed(self.time_s(), 0)
+                    ),
+                    Tone::Warning,
+                ),
+            },
+        }
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
+    }
+
+    /// The run's state from the model's evidence: running while the state is
+    /// [`RunState::Running`], otherwise ended (settled, recorded in full, off the
+    /// track or diverged), so the page offers Replay.
+    /// "Cart at 1.075 m, setpoint 1.000 m, error -0.075 m; overshoot 7.8%, rise
+    /// time 0.82 s, settling time --; stepping to 1.000 m."
+    fn describe(&self) -> String {
+        let value = |key| crate::experiment::readout_value(self, key).unwrap_or_default();
+        format!(
+            "Cart at {}, setpoint {}, error {}; overshoot {}, rise time {}, settling time {}; {}.",
+            value("x"),
+            format_metres(self.setpoint_m),
+            value("error"),
+            value("overshoot"),
+            value("rise"),
+            value("settling"),
+            self.status().text
+        )
+    }
+
+    fn hint(&self) -> &'static str {
+        "Drag the setpoint marker or use the sliders; each change replays the step. Pin run keeps a response to compare gains."
+    }
+
+    /// A finished default step response with one pinned run for comparison.
+    fn preview(&mut self) {
+        self.gains.kd = 2.0;
+        self.restart();
+        while self.state == RunState::Running {
+            self.step(0.1);
+        }
+        self.pin();
+        self.gains.kd = PARAMS[2].default;
+        self.restart();
+        for _ in 0..30 {
+            self.step(0.1);
+        }
     }
 }

@@ -32,10 +32,8 @@
 //! field, the map and the run. Prompts and refusals are notices; the status
 //! is the run's state.
 
-use crate::experiment::{
-    check_param, with_coordinate, ActionSpec, Experiment, Input, Notice, Notices, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
-};
+use crate::experiment::{check_param, with_coordinate, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
+use crate::units::{format_fixed, format_metres};
 use crate::experiments::diffdrive::{draw_field, draw_robot, push_bounded, push_trail, snap_into};
 use crate::mobile::go_to_goal::GoToGoal;
 use crate::mobile::potential_field::{
@@ -45,7 +43,6 @@ use crate::mobile::potential_field::{
 use crate::mobile::unicycle::{Integrator, Pose};
 use crate::plot::{Marker, Plot, Series, SeriesRole, XWindow};
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
-use crate::units::{format_fixed, format_metres};
 use glam::DVec2;
 
 mod quiz;
@@ -93,7 +90,7 @@ const DEFAULT_OBSTACLES: [DVec2; MAX_OBSTACLES] = [
     DVec2::new(4.0, 1.0),
 ];
 const DEFAULT_GOAL: DVec2 = DVec2::new(7.2, 3.0);
-/// Most steps [`Experiment::preview`] takes: one live run's hard limit
+/// Most steps [`Presentation::preview`] takes: one live run's hard limit
 /// (120 s at 60 steps per second) and a little more.
 pub const MAX_PREVIEW_STEPS: usize = 7300;
 
@@ -802,57 +799,9 @@ impl Experiment for PotentialFieldLab {
         crate::experiment::finish_drag(self, to)
     }
 
-    fn describe(&self) -> String {
-        self.description()
-    }
-
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         self.handle_under(p, tolerance_m.max(0.0)).is_some()
             || self.obstacle_at(p, tolerance_m.max(0.0)).is_some()
-    }
-
-    fn view(&self) -> ViewBox {
-        ViewBox {
-            min: DVec2::ZERO,
-            max: DVec2::new(FIELD_W_M, FIELD_H_M),
-        }
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        self.draw_scene(out);
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        self.readout_list()
-    }
-
-    fn status(&self) -> Status {
-        self.current_status()
-    }
-
-    fn hint(&self) -> &'static str {
-        "Click or tap to set the goal; drag obstacles, the goal or the start. Add obstacle, then click to place it."
-    }
-
-    fn touch_hint(&self) -> &'static str {
-        "Tap to set the goal; drag obstacles, the goal or the start. Add obstacle, then tap to place it."
-    }
-
-    /// The default field with the default goal, run to its end. Bounded:
-    /// at most [`MAX_PREVIEW_STEPS`] steps, since a run that cannot move (a
-    /// goal inside an obstacle) never ends by itself.
-    fn preview(&mut self) {
-        self.set_goal(DEFAULT_GOAL);
-        for _ in 0..MAX_PREVIEW_STEPS {
-            if !self.animating() {
-                break;
-            }
-            self.step(crate::clock::Clock::DT_S);
-        }
-    }
-
-    fn notice(&self) -> Option<Notice> {
-        self.notices.current()
     }
 
     fn extra_state(&self) -> Vec<(&'static str, String)> {

@@ -131,9 +131,18 @@ impl PotentialFieldLab {
         }
         .finish()
     }
+}
+
+impl Presentation for PotentialFieldLab {
+    fn view(&self) -> ViewBox {
+        ViewBox {
+            min: DVec2::ZERO,
+            max: DVec2::new(FIELD_W_M, FIELD_H_M),
+        }
+    }
 
     /// The display list (the trait's `scene` delegates here).
-    pub(super) fn draw_scene(&self, out: &mut Scene) {
+    fn scene(&self, out: &mut Scene) {
         if let (Some(map), true) = (&self.basin, self.goal.is_some()) {
             out.push(Item::Raster {
                 min: map.min,
@@ -262,33 +271,8 @@ impl PotentialFieldLab {
         }
     }
 
-    /// "Robot at (…) m, goal at (…) m, 2 obstacles; reached the goal in 8.7 s."
-    pub(super) fn description(&self) -> String {
-        use crate::units::format_point;
-        let robot = self.run.map_or(self.start, |r| r.pose.position());
-        let obstacles = match self.count {
-            0 => "no obstacles".to_owned(),
-            1 => "1 obstacle".to_owned(),
-            n => format!("{n} obstacles"),
-        };
-        match self.goal {
-            None => format!(
-                "Robot at the start {}, {obstacles}, no goal yet; {}.",
-                format_point(robot),
-                self.current_status().text
-            ),
-            Some(g) => format!(
-                "Robot at {}, goal at {} ({} away), {obstacles}; {}.",
-                format_point(robot),
-                format_point(g),
-                format_metres((g - robot).length()),
-                self.current_status().text
-            ),
-        }
-    }
-
     /// The live numbers beside the canvas.
-    pub(super) fn readout_list(&self) -> Vec<Readout> {
+    fn readouts(&self) -> Vec<Readout> {
         let run = self.run;
         let p = run.map_or(self.start, |r| r.pose.position());
         let rep = self.field.repulsive_force(p).length();
@@ -368,7 +352,7 @@ impl PotentialFieldLab {
 
     /// The status badge: the run's state only (prompts and refusals are
     /// notices).
-    pub(super) fn current_status(&self) -> Status {
+    fn status(&self) -> Status {
         let mut status = self.status_of_run();
         // A basin map still filling in is work in progress: the page keeps
         // time running for it even when the run itself has ended.
@@ -376,6 +360,56 @@ impl PotentialFieldLab {
             status.phase = crate::experiment::Phase::Live;
         }
         status
+    }
+
+    fn notice(&self) -> Option<Notice> {
+        self.notices.current()
+    }
+
+    /// "Robot at (…) m, goal at (…) m, 2 obstacles; reached the goal in 8.7 s."
+    fn describe(&self) -> String {
+        use crate::units::format_point;
+        let robot = self.run.map_or(self.start, |r| r.pose.position());
+        let obstacles = match self.count {
+            0 => "no obstacles".to_owned(),
+            1 => "1 obstacle".to_owned(),
+            n => format!("{n} obstacles"),
+        };
+        match self.goal {
+            None => format!(
+                "Robot at the start {}, {obstacles}, no goal yet; {}.",
+                format_point(robot),
+                self.status().text
+            ),
+            Some(g) => format!(
+                "Robot at {}, goal at {} ({} away), {obstacles}; {}.",
+                format_point(robot),
+                format_point(g),
+                format_metres((g - robot).length()),
+                self.status().text
+            ),
+        }
+    }
+
+    fn hint(&self) -> &'static str {
+        "Click or tap to set the goal; drag obstacles, the goal or the start. Add obstacle, then click to place it."
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        "Tap to set the goal; drag obstacles, the goal or the start. Add obstacle, then tap to place it."
+    }
+
+    /// The default field with the default goal, run to its end. Bounded:
+    /// at most [`MAX_PREVIEW_STEPS`] steps, since a run that cannot move (a
+    /// goal inside an obstacle) never ends by itself.
+    fn preview(&mut self) {
+        self.set_goal(DEFAULT_GOAL);
+        for _ in 0..MAX_PREVIEW_STEPS {
+            if !self.animating() {
+                break;
+            }
+            self.step(crate::clock::Clock::DT_S);
+        }
     }
 }
 

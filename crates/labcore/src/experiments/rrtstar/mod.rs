@@ -25,10 +25,8 @@
 //! **The link** holds every parameter, the start and goal (snapped to 1 cm)
 //! and the obstacles as text (key `obs`, see [`encode_obstacles`]).
 
-use crate::experiment::{
-    check_param, ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamSpec,
-    Readout, Sanitized, Status, Tone,
-};
+use crate::experiment::{check_param, ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
+use crate::units::{format_metres, format_number};
 use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar};
 use crate::planning::world::{Obstacle, World};
 use crate::plot::{Plot, Series, SeriesRole};
@@ -36,7 +34,6 @@ use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, SegmentLayer, ViewBox};
 use crate::table::Table;
-use crate::units::{format_metres, format_number};
 use glam::DVec2;
 
 /// The field, metres.
@@ -905,19 +902,11 @@ impl Experiment for RrtStarField {
         crate::experiment::finish_drag(self, to)
     }
 
-    fn describe(&self) -> String {
-        view::describe(self)
-    }
-
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         let tol = tolerance_m.max(HANDLE_M);
         (p - self.start).length() <= tol
             || (p - self.goal).length() <= tol
             || self.obstacle_at(p, tolerance_m.max(0.0)).is_some()
-    }
-
-    fn tables(&self) -> Vec<Table> {
-        view::tables(self)
     }
     fn extra_state(&self) -> Vec<(&'static str, String)> {
         vec![("obs", encode_obstacles(&self.obstacles))]
@@ -936,45 +925,6 @@ impl Experiment for RrtStarField {
             self.invalidate();
         }
         Ok(())
-    }
-
-    fn view(&self) -> ViewBox {
-        ViewBox {
-            min: DVec2::splat(-0.2),
-            max: FIELD_M + 0.2,
-        }
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        view::scene(self, out);
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        view::readouts(self)
-    }
-
-    fn status(&self) -> Status {
-        view::status(self)
-    }
-
-    fn notice(&self) -> Option<Notice> {
-        self.notices.current()
-    }
-
-    fn hint(&self) -> &'static str {
-        "Press Grow tree. Drag the start, goal or obstacles; click free space to add a disc (drop one outside the field to remove it); Shift-click sets the start, Ctrl-click the goal."
-    }
-
-    fn touch_hint(&self) -> &'static str {
-        "Press Grow tree. Drag the start, the goal or an obstacle; tap free space to add a disc, and drop a disc outside the field to remove it."
-    }
-
-    fn preview(&mut self) {
-        self.start_run(&[self.planner]);
-        if let Some(run) = self.runs.first_mut() {
-            run.grow(1500);
-        }
-        self.growing = false;
     }
 
     fn animating(&self) -> bool {

@@ -10,10 +10,8 @@
 //! fixed absolute orientation `φ` and the wrist centre `p − L3 (cos φ, sin φ)`
 //! is what the two links solve for.
 
-use crate::experiment::{
-    check_param, clamp_to_params, with_coordinate, Experiment, Handle, Input, ParamError,
-    ParamSpec, Readout, Sanitized, Status, Tone,
-};
+use crate::experiment::{check_param, clamp_to_params, with_coordinate, Experiment, Handle, Input, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
+use crate::units::{format_degrees, format_point, format_number};
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
     lerp_angle, solve, Elbow, IkError, Singularity, TwoLinkAngles, TwoLinkSolution,
@@ -21,8 +19,9 @@ use crate::kinematics::two_link_ik::{
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Item, Role, Scene, ViewBox};
-use crate::units::{format_degrees, format_number, format_point};
 use glam::DVec2;
+
+mod view;
 
 const PARAMS: &[ParamSpec] = &[
     ParamSpec::slider("t1", "θ₁", "°", -180.0, 180.0, 1.0, 35.0),
@@ -354,174 +353,9 @@ impl Experiment for InverseKinematics {
         vec![Handle::arm_target(self.target, self.tip())]
     }
 
-    /// "Target at (1.10, 0.90) m: in reach. Arm at θ₁ 66.4°, θ₂ -67.8°, tip at (1.10, 0.90) m."
-    fn describe(&self) -> String {
-        let arm = format!(
-            "Arm at θ₁ {}, θ₂ {}, tip at {}",
-            format_degrees(self.theta1_deg),
-            format_degrees(self.theta2_deg),
-            format_point(self.tip())
-        );
-        match self.target {
-            None => format!("No target yet: {}. {arm}.", self.status().text),
-            Some(t) => format!(
-                "Target at {}: {}. {arm}{}.",
-                format_point(t),
-                self.status().text,
-                if self.animating() { ", moving" } else { "" }
-            ),
-        }
-    }
-
     fn handle_at(&self, p: DVec2, tolerance_m: f64) -> bool {
         let near = |q: DVec2| (q - p).length() <= tolerance_m;
         near(self.tip()) || self.target.is_some_and(near)
-    }
-
-    /// The arm's current reach fills the canvas.
-    fn view(&self) -> ViewBox {
-        ViewBox::framing(self.l1_m + self.l2_m + self.l3_m)
-    }
-
-    fn scene(&self, out: &mut Scene) {
-        out.axes(self.view());
-        let (centre, annulus) = self.reach();
-        for r in [annulus.outer_m, annulus.inner_m] {
-            if r > 1e-9 {
-                out.push(Item::Circle {
-                    center: centre,
-                    radius_m: r,
-                    role: Role::Bound,
-                    fill: false,
-                    dashed: true,
-                });
-            }
-        }
-        if let Some(Solved::Reachable(sol)) = self.solved {
-            let ghost = sol.branch(self.elbow.other());
-            if sol.singularity == Singularity::Regular {
-                out.chain(
-                    &self.points(ghost.theta1_rad.to_degrees(), ghost.theta2_rad.to_degrees()),
-                    Role::Ghost,
-                );
-            }
-        }
-        let points = self.points(self.theta1_deg, self.theta2_deg);
-        out.chain(&points, Role::Link);
-        if let Some(target) = self.target {
-            let out_of_reach = matches!(self.solved, Some(Solved::OutOfReach { .. }));
-            let role = if out_of_reach {
-                Role::Warning
-            } else {
-                Role::Target
-            };
-            let arm = 0.08;
-            out.push(Item::Line {
-                from: target - DVec2::new(arm, 0.0),
-                to: target + DVec2::new(arm, 0.0),
-                width_px: 2.0,
-                role,
-                dashed: false,
-            });
-            out.push(Item::Line {
-                from: target - DVec2::new(0.0, arm),
-                to: target + DVec2::new(0.0, arm),
-                width_px: 2.0,
-                role,
-                dashed: false,
-            });
-            out.push(Item::Circle {
-                center: target,
-                radius_m: arm,
-                role,
-                fill: false,
-                dashed: out_of_reach,
-            });
-            if out_of_reach {
-                out.push(Item::Label {
-                    pos: target,
-                    text: "out of reach".into(),
-                    role: Role::Warning,
-                    offset_px: DVec2::new(12.0, -14.0),
-                });
-            }
-        }
-    }
-
-    fn readouts(&self) -> Vec<Readout> {
-        let tip = self.tip();
-        let sol = self.solution();
-        let angle = |key, label, a: Option<f64>| match a {
-            Some(rad) => Readout::degrees(key, label, rad.to_degrees()),
-            None => Readout::new(key, label, "--"),
-        };
-        let mut r = vec![
-            Readout::metres("x", "End-effector X", tip.x),
-            Readout::metres("y", "End-effector Y", tip.y),
-            angle("theta1", "θ₁ solved", sol.map(|a| a.theta1_rad)),
-            angle("theta2", "θ₂ solved", sol.map(|a| a.theta2_rad)),
-        ];
-        r.push(match sol {
-            Some(a) if self.l3_m > 0.0 => angle(
-                "theta3",
-                "θ₃ (wrist)",
-                Some(crate::kinematics::two_link_ik::wrap_pi(
-                    self.phi_deg.to_radians() - a.theta1_rad - a.theta2_rad,
-                )),
-            ),
-            _ if self.l3_m > 0.0 => Readout::new("theta3", "θ₃ (wrist)", "--"),
-            _ => Readout::new("theta3", "θ₃ (wrist)", "no wrist"),
-        });
-        r
-    }
-
-    fn status(&self) -> Status {
-        // A move that has arrived is over (the page offers Replay); while
-        // the arm moves, or after a slider took it off its goal, it is live.
-        let status = |text: String, tone| {
-            if self.arrived() {
-                Status::ended(text, tone)
-            } else {
-                Status::new(text, tone)
-            }
-        };
-        match self.solved {
-            None => Status::new("click a target", Tone::Neutral),
-            Some(Solved::OutOfReach { .. }) => status(
-                format!("out of reach: {}", self.out_of_reach_reason()),
-                Tone::Bad,
-            ),
-            Some(Solved::Reachable(sol)) => match sol.singularity {
-                Singularity::Regular if self.near_boundary() => status(
-                    "near singular: the branches almost merge".into(),
-                    Tone::Warning,
-                ),
-                Singularity::Regular => status("in reach".into(), Tone::Good),
-                Singularity::OuterBoundary => status(
-                    "singular: arm straight, branches merge".into(),
-                    Tone::Warning,
-                ),
-                Singularity::InnerBoundary => {
-                    status("singular: arm folded, branches merge".into(), Tone::Warning)
-                }
-                Singularity::AtBase => status("singular: any θ₁ works".into(), Tone::Warning),
-            },
-        }
-    }
-
-    fn hint(&self) -> &'static str {
-        "Click or tap a target, or type its x and y; the arm moves to the closed-form solution."
-    }
-
-    fn touch_hint(&self) -> &'static str {
-        "Tap a target, or type its x and y; the arm moves to the closed-form solution."
-    }
-
-    fn preview(&mut self) {
-        self.set_target(DVec2::new(1.1, 0.9));
-        while self.animating() {
-            self.step(0.05);
-        }
     }
 
     fn animating(&self) -> bool {
@@ -766,8 +600,7 @@ mod tests {
         assert!((d.answer - c).abs() < 1e-12);
     }
 
-    use crate::units::format_degrees;
-
+    
     fn dashed_circles(ik: &InverseKinematics) -> Vec<(DVec2, f64)> {
         let scene = scene_of(ik);
         scene
@@ -1075,7 +908,7 @@ mod tests {
         assert_eq!(ghost_elbow(&ik), None, "one straight arm");
         assert!(ik.theta2_deg.abs() < 1e-6);
         let content =
-            crate::content::Content::parse(include_str!("../../../../assets/ik.json")).unwrap();
+            crate::content::Content::parse(include_str!("../../../../../assets/ik.json")).unwrap();
         assert!(content.procedure[5].contains("two or three more steps"));
     }
 

@@ -1,0 +1,130 @@
+//! What experiment 9 shows: the view box, the scene, the readouts and the status.
+
+use super::*;
+
+impl Presentation for DampedLeastSquares {
+    fn view(&self) -> ViewBox {
+        ViewBox::centered(VIEW_HALF_M)
+    }
+
+    fn scene(&self, out: &mut Scene) {
+        out.axes(self.view());
+        let lengths = self.lengths();
+        out.bound_circle(Annulus::of_chain(&lengths).outer_m);
+        let pose = forward(&lengths, &self.angles_rad);
+        let tip = pose.tip();
+        let m = self.manipulability();
+        out.push(Item::Ellipse {
+            center: tip,
+            semi_axis_a: m.u_max * m.sigma_max * ELLIPSE_SCALE,
+            semi_axis_b: m.u_min * m.sigma_min * ELLIPSE_SCALE,
+            role: Role::Accent,
+        });
+        if let Some(target) = self.target {
+            let unreachable = target.length() > TOTAL_REACH_M;
+            let role = if unreachable {
+                Role::Warning
+            } else {
+                Role::Target
+            };
+            out.push(Item::Line {
+                from: tip,
+                to: target,
+                width_px: 1.5,
+                role,
+                dashed: true,
+            });
+            out.push(Item::Dot {
+                center: target,
+                radius_px: 6.0,
+                role,
+            });
+        }
+        out.chain(&pose.points, Role::Link);
+    }
+
+    fn readouts(&self) -> Vec<Readout> {
+        let m = self.manipulability();
+        let error = self.error_m.map_or("--".into(), |e| {
+            if e < 1e-3 && e > 0.0 {
+                format!("{} m", format_magnitude(e))
+            } else {
+                format_metres(e)
+            }
+        });
+        let angles: Vec<String> = self
+            .angles_rad
+            .iter()
+            .map(|a| format_degrees(crate::kinematics::two_link_ik::wrap_pi(*a).to_degrees()))
+            .collect();
+        vec![
+            Readout::new("iterations", "Iterations", self.iterations.to_string()),
+            Readout::new("error", "Error", error),
+            Readout::new("w", "Manipulability w", format_fixed(m.w, 3)),
+            Readout::new("cond", "Condition σmax/σmin", format_magnitude(m.condition)),
+            Readout::metres("lambda_used", "λ used", self.lambda_used_m),
+            Readout::new("angles", "Joint angles θ₁…θₙ", angles.join(", ")),
+        ]
+    }
+
+    fn status(&self) -> Status {
+        match self.run {
+            Run::Idle => Status::new("click a target", Tone::Neutral),
+            Run::Iterating => Status::new("iterating…", Tone::Neutral),
+            Run::Converged => Status::ended(
+                format!("converged in {} iterations", self.iterations),
+                Tone::Good,
+            ),
+            Run::Settled => Status::ended("closest reachable pose", Tone::Warning),
+            Run::NoProgress { oscillating: true } => Status::ended(
+                format!(
+                    "not converging: oscillating near a singularity (no progress in {NO_PROGRESS_ITERATIONS} iterations)"
+                ),
+                Tone::Bad,
+            ),
+            Run::NoProgress { oscillating: false } => Status::ended(
+                format!("stalled: no progress in {NO_PROGRESS_ITERATIONS} iterations"),
+                Tone::Warning,
+            ),
+            Run::GaveUp => Status::ended(
+                format!("stopped: iteration limit ({})", self.max_iterations),
+                Tone::Warning,
+            ),
+        }
+    }
+
+    /// "4-link arm, tip at (…) m, target at (…) m: converged in 4 iterations; error 5.6 × 10⁻⁷ m."
+    fn describe(&self) -> String {
+        let value = |key| crate::experiment::readout_value(self, key).unwrap_or_default();
+        let arm = format!(
+            "{}-link arm, tip at {}",
+            self.links,
+            format_point(self.tip())
+        );
+        match self.target {
+            None => format!("{arm}. No target yet; {}.", self.status().text),
+            Some(t) => format!(
+                "{arm}, target at {}: {}; error {}, {} iterations.",
+                format_point(t),
+                self.status().text,
+                value("error"),
+                value("iterations")
+            ),
+        }
+    }
+
+    fn hint(&self) -> &'static str {
+        "Click or tap a target (or type its x and y) and watch each damped least-squares iteration."
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        "Tap a target (or type its x and y) and watch each damped least-squares iteration."
+    }
+
+    fn preview(&mut self) {
+        self.set_target(DVec2::new(1.3, 1.1));
+        while self.animating() {
+            self.iterate();
+        }
+    }
+}

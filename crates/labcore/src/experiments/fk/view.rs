@@ -1,0 +1,96 @@
+//! What experiment 1 shows: the view box, the scene, the readouts and the status.
+
+use super::*;
+
+impl Presentation for ForwardKinematics {
+    /// The arm's current reach fills the canvas.
+    fn view(&self) -> ViewBox {
+        ViewBox::framing(self.l1_m + self.l2_m)
+    }
+
+    fn scene(&self, out: &mut Scene) {
+        let view = self.view();
+        out.axes(view);
+        let annulus = Annulus::of_chain(&self.lengths());
+        out.bound_circle(annulus.outer_m);
+        out.bound_circle(annulus.inner_m);
+        let pose = forward(&self.lengths(), &self.angles_rad());
+        if let Some(target) = self.drag_target {
+            out.push(Item::Line {
+                from: pose.tip(),
+                to: target,
+                width_px: 1.5,
+                role: Role::Target,
+                dashed: true,
+            });
+            out.push(Item::Dot {
+                center: target,
+                radius_px: 5.0,
+                role: Role::Target,
+            });
+        }
+        out.chain(&pose.points, Role::Link);
+        let tip = pose.tip();
+        out.push(Item::Label {
+            pos: tip,
+            // The readouts' digits and unit: one format for the tip's position.
+            text: format!(
+                "({}, {}) m",
+                format_fixed(tip.x, Readout::METRE_DECIMALS),
+                format_fixed(tip.y, Readout::METRE_DECIMALS)
+            ),
+            role: Role::Tip,
+            offset_px: DVec2::new(12.0, -12.0),
+        });
+    }
+
+    fn readouts(&self) -> Vec<Readout> {
+        let tip = self.tip();
+        let annulus = Annulus::of_chain(&self.lengths());
+        let mut r = vec![
+            Readout::metres("x", "End-effector X", tip.x),
+            Readout::metres("y", "End-effector Y", tip.y),
+            Readout::new(
+                "reach",
+                "Reach used",
+                format!("{}%", format_fixed(100.0 * annulus.reach_used(tip), 1)),
+            ),
+        ];
+        // Only while a pointer drags beyond reach: inside, the tip follows the
+        // pointer and the distance is always 0.
+        if let Some(gap) = self.target_gap_m() {
+            r.push(Readout::new("target", "Target dist", format_gap(gap)));
+        }
+        r
+    }
+
+    fn status(&self) -> Status {
+        match self.drag_target {
+            Some(t) if !Annulus::of_chain(&self.lengths()).contains(t, 1e-9) => {
+                Status::new("out of reach", Tone::Warning)
+            }
+            _ => Status::new("in reach", Tone::Good),
+        }
+    }
+
+    /// "Tip at (0.76, 1.27) m, θ₁ 35.0°, θ₂ 40.0°, 87.1% of the reach used; in reach."
+    fn describe(&self) -> String {
+        let reach = Annulus::of_chain(&self.lengths()).reach_used(self.tip());
+        format!(
+            "Two-link arm with θ₁ {} and θ₂ {}: tip at {}, {}% of the reach used; {}.",
+            format_degrees(self.theta1_deg),
+            format_degrees(self.theta2_deg),
+            format_point(self.tip()),
+            format_fixed(100.0 * reach, 1),
+            self.status().text
+        )
+    }
+
+    fn hint(&self) -> &'static str {
+        "Move the sliders, or drag the orange tip (arrow keys move it when the canvas has focus)."
+    }
+
+    fn touch_hint(&self) -> &'static str {
+        "Move the sliders, or drag the orange tip."
+    }
+}
