@@ -21,8 +21,9 @@
 /// # Example
 /// ```
 /// let mut cells = Vec::new();
-/// labcore::bresenham::line((0, 0), (4, 2), |x, y| cells.push((x, y)));
-/// assert_eq!(cells, [(0, 0), (1, 0), (2, 1), (3, 1), (4, 2)]);
+/// labcore::bresenham::line((0, 0), (6, 2), |x, y| cells.push((x, y)));
+/// // y = x/3 rounded: 0, 0.33, 0.67, 1, 1.33, 1.67, 2.
+/// assert_eq!(cells, [(0, 0), (1, 0), (2, 1), (3, 1), (4, 1), (5, 2), (6, 2)]);
 /// ```
 #[inline]
 pub fn line(from: (i64, i64), to: (i64, i64), mut visit: impl FnMut(i64, i64)) {

@@ -107,17 +107,22 @@ fn a_test_kit_every_experiments_tests_use_it_and_copy_none_of_its_helpers() {
         "readout_value(",
     ];
     let experiments = crates_dir().join("labcore/src/experiments");
-    let mut test_files: Vec<PathBuf> = ["fk.rs", "ik.rs", "workspace.rs"]
-        .iter()
-        .map(|f| experiments.join(f))
-        .collect();
+    // Each experiment's folder: its `tests.rs`, or the tests module at the
+    // end of its `mod.rs` (the small experiments).
+    let mut test_files: Vec<PathBuf> = Vec::new();
     for entry in fs::read_dir(&experiments).expect("experiments/").flatten() {
-        let tests = entry.path().join("tests.rs");
+        let (tests, module) = (entry.path().join("tests.rs"), entry.path().join("mod.rs"));
         if tests.is_file() {
             test_files.push(tests);
+        } else if module.is_file() {
+            test_files.push(module);
         }
     }
-    assert!(test_files.len() >= 11, "{test_files:?}");
+    assert_eq!(
+        test_files.len(),
+        labcore::registry().len(),
+        "{test_files:?}"
+    );
     let mut problems = Vec::new();
     for file in &test_files {
         let text = fs::read_to_string(file).expect("readable");
