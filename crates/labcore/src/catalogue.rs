@@ -1,61 +1,7 @@
 //! The lab's table of contents: every experiment in the lab's numbering,
 //! grouped by topic, whether in this build or not.
 
-/// A topic of the lab; the navigation and the home page group by it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Group {
-    Kinematics,
-    MobileRobots,
-    Planning,
-    Control,
-    Estimation,
-}
-
-impl Group {
-    /// Every group, in the order the lab shows them.
-    pub const ALL: [Group; 5] = [
-        Group::Kinematics,
-        Group::MobileRobots,
-        Group::Planning,
-        Group::Control,
-        Group::Estimation,
-    ];
-
-    #[must_use]
-    pub fn title(self) -> &'static str {
-        match self {
-            Group::Kinematics => "Kinematics",
-            Group::MobileRobots => "Mobile robots",
-            Group::Planning => "Planning",
-            Group::Control => "Control",
-            Group::Estimation => "Estimation",
-        }
-    }
-
-    /// Stable key (HTML ids).
-    #[must_use]
-    pub fn key(self) -> &'static str {
-        match self {
-            Group::Kinematics => "kinematics",
-            Group::MobileRobots => "mobile",
-            Group::Planning => "planning",
-            Group::Control => "control",
-            Group::Estimation => "estimation",
-        }
-    }
-}
-
-/// One experiment of the lab's plan.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Planned {
-    /// The lab's number (1, 2, …: its place in the list).
-    pub number: u32,
-    /// The registry id once the experiment is built (see [`crate::registry`]).
-    pub id: &'static str,
-    /// Short title, used until the content file exists.
-    pub title: &'static str,
-    pub group: Group,
-}
+pub use crate::experiments::{Group, Planned};
 
 /// Every experiment of the lab, in its numbering: written from the one list
 /// of experiments in `experiments/mod.rs`.
