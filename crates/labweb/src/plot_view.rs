@@ -5,6 +5,7 @@
 
 use crate::dom::{self, escape, query, query_all};
 use crate::draw::Palette;
+use crate::viewport::clip_segment;
 use labcore::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, SeriesRole};
 use labcore::scene::style::{BAND_OPACITY, PLOT_BAND, REF_LINE_DASH_PX};
 use labcore::units::format_number;
@@ -180,35 +181,19 @@ impl Rect {
     }
 }
 
-/// Whether the segment `a`–`b` passes through `r` (Liang–Barsky clipping).
+/// Whether the segment `a`–`b` passes through `r`: its Liang–Barsky clip
+/// to the rectangle ([`clip_segment`], moved to the rectangle's corner) is
+/// not empty.
 #[must_use]
 pub fn segment_hits_rect(a: (f64, f64), b: (f64, f64), r: &Rect) -> bool {
-    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-    let mut t0: f64 = 0.0;
-    let mut t1: f64 = 1.0;
-    for (p, q) in [
-        (-dx, a.0 - r.x),
-        (dx, r.x + r.w - a.0),
-        (-dy, a.1 - r.y),
-        (dy, r.y + r.h - a.1),
-    ] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return false;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-            if t0 > t1 {
-                return false;
-            }
-        }
-    }
-    true
+    let corner = glam::DVec2::new(r.x, r.y);
+    clip_segment(
+        glam::DVec2::from(a) - corner,
+        glam::DVec2::from(b) - corner,
+        r.w,
+        r.h,
+    )
+    .is_some()
 }
 
 /// How many things `r` would cover: curve segments and labels already placed.
