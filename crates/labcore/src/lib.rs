@@ -74,9 +74,11 @@ pub mod rng;
 pub mod route;
 pub mod scene;
 pub mod table;
-// Tests only, natively: the wasm modules never carry it (unused, it still
-// shifted the optimiser's choices by about 300 bytes a module).
-#[cfg(not(target_arch = "wasm32"))]
+// Tests only: native builds, and the wasm test builds, which have the whole
+// content (`reading`, a default feature). The shipped wasm modules are built
+// without default features and never carry it (unused, it still shifted the
+// optimiser's choices by about 300 bytes a module).
+#[cfg(any(test, feature = "reading", not(target_arch = "wasm32")))]
 pub mod testkit;
 pub mod units;
 
