@@ -1,9 +1,15 @@
 //! Reads every content file `assets/<id>.json` once, at build time, and writes
 //! it as Rust into `$OUT_DIR/content.rs`: one function per experiment this
-//! build holds (its feature `<id>` is on) that builds its
-//! [`Content`](src/content.rs) from string literals, and `compiled(id)`,
-//! which [`crate::Entry::content`] calls. So no content is parsed at run time,
-//! in the browser or natively.
+//! build holds that builds its [`Content`](src/content.rs) from string
+//! literals, and `compiled(id)`, which [`crate::Entry::content`] calls. So no
+//! content is parsed at run time, in the browser or natively.
+//!
+//! Which experiments a build holds: every one that has a content file, or,
+//! when the environment variable `LAB_EXPERIMENTS` is set (`cargo xtask
+//! dist` sets it for each wasm module), the ids it lists, comma-separated.
+//! For each, this script sets `cfg(lab_experiment = "<id>")`, which the
+//! registry (`src/experiments/mod.rs`) reads; so adding an experiment needs
+//! no cargo feature of its own.
 //!
 //! Without the `reading` feature (the shipped wasm modules, whose reading
 //! tabs are pages of their own) the reading sections (theory, procedure,
@@ -23,12 +29,29 @@ fn main() {
     let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
     let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
     println!("cargo:rerun-if-changed={}", assets.display());
+    println!("cargo::rerun-if-env-changed={SELECTION_VAR}");
     let reading = std::env::var_os("CARGO_FEATURE_READING").is_some();
     let mut files: Vec<_> = std::fs::read_dir(&assets)
         .map(|dir| dir.filter_map(Result::ok).map(|e| e.path()).collect())
         .unwrap_or_default();
     files.retain(|p| p.extension().is_some_and(|e| e == "json"));
     files.sort();
+    let ids: Vec<String> = files
+        .iter()
+        .filter_map(|p| p.file_stem().and_then(|s| s.to_str()))
+        .filter(|id| is_identifier(id))
+        .map(str::to_owned)
+        .collect();
+    let selection = std::env::var(SELECTION_VAR).ok();
+    let held = held_experiments(&ids, selection.as_deref());
+    let values: Vec<String> = ids.iter().map(|id| format!("{id:?}")).collect();
+    println!(
+        "cargo::rustc-check-cfg=cfg(lab_experiment, values({}))",
+        values.join(", ")
+    );
+    for id in &held {
+        println!("cargo::rustc-cfg=lab_experiment={id:?}");
+    }
     let mut arms = String::new();
     let mut bodies = String::new();
     for path in files {
@@ -37,8 +60,7 @@ fn main() {
         };
         println!("cargo:rerun-if-changed={}", path.display());
         // An experiment left out of this build leaves its content out too.
-        let feature = format!("CARGO_FEATURE_{}", id.to_uppercase().replace('-', "_"));
-        if std::env::var_os(feature).is_none() || !is_identifier(id) {
+        if !held.iter().any(|h| h == id) {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap_or_default();
@@ -66,6 +88,34 @@ fn main() {
          match id {{\n{arms}        _ => None,\n    }}\n}}\n{bodies}"
     );
     std::fs::write(Path::new(&out).join("content.rs"), code).expect("OUT_DIR is writable");
+}
+
+/// The environment variable that narrows a build to some experiments.
+const SELECTION_VAR: &str = "LAB_EXPERIMENTS";
+
+/// The experiments a build holds: those of `ids` (every content file's) that
+/// `selection` lists, or all of them when there is no selection. An id the
+/// selection names without a content file stops the build, so a typo in
+/// `cargo xtask dist` cannot ship an empty module.
+fn held_experiments(ids: &[String], selection: Option<&str>) -> Vec<String> {
+    let Some(selection) = selection else {
+        return ids.to_vec();
+    };
+    let wanted: Vec<&str> = selection
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .collect();
+    for id in &wanted {
+        assert!(
+            ids.iter().any(|known| known == id),
+            "{SELECTION_VAR} names {id:?}, which has no content file assets/{id}.json"
+        );
+    }
+    ids.iter()
+        .filter(|id| wanted.contains(&id.as_str()))
+        .cloned()
+        .collect()
 }
 
 /// The id names a Rust function (`content_<id>`).

@@ -14,7 +14,7 @@ pub fn planned(id: &str) -> Option<&'static Planned> {
 }
 
 /// The key of the wasm module that ships experiment `id` (`cargo xtask
-/// dist` builds one module per key, with the features of its experiments):
+/// dist` builds one module per key, holding only its experiments):
 /// the one its line in `experiments/mod.rs` names, or its own id.
 #[must_use]
 pub fn wasm_module(id: &str) -> Option<&'static str> {

@@ -1,7 +1,7 @@
 //! The experiments are listed once, in `src/experiments/mod.rs`
-//! (`experiments!`): what cannot be generated from that list is checked
-//! against it here — the cargo features, README's table — and no other file
-//! spells the list out again.
+//! (`experiments!`): the build holds what it lists, no cargo feature names
+//! them again, and no other file spells the list out again. README's table is
+//! written from the list by `cargo xtask readme` (its test is there).
 
 use labcore::catalogue::CATALOGUE;
 use labcore::registry;
@@ -25,83 +25,38 @@ fn registry_the_default_build_holds_every_listed_experiment_in_order() {
     assert_eq!(built, listed());
 }
 
-/// `crates/labcore/Cargo.toml` has one feature per experiment, named after
-/// its id and enabling nothing else, and `default` turns every one on after
-/// `reading` (cargo cannot take its features from the list).
+/// The experiments are not cargo features (`build.rs` holds every one with a
+/// content file, or those `LAB_EXPERIMENTS` names), so no Cargo.toml of the
+/// workspace names them as features again.
 #[test]
-fn registry_cargo_features_are_the_listed_experiments() {
-    let toml = read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml"));
-    let section = toml
-        .split("\n[features]\n")
-        .nth(1)
-        .expect("a [features] section")
-        .split("\n[")
-        .next()
-        .unwrap_or_default();
-    let mut features: Vec<(String, String)> = Vec::new();
-    for line in section.lines().map(str::trim) {
-        if line.is_empty() || line.starts_with('#') {
-            continue;
+fn registry_no_cargo_manifest_lists_the_experiments_as_features() {
+    let mut manifests = vec![root().join("Cargo.toml")];
+    for dir in std::fs::read_dir(root().join("crates"))
+        .unwrap()
+        .filter_map(Result::ok)
+    {
+        let manifest = dir.path().join("Cargo.toml");
+        if manifest.is_file() {
+            manifests.push(manifest);
         }
-        let (name, value) = line.split_once('=').expect("feature = [...]");
-        features.push((name.trim().to_owned(), value.trim().to_owned()));
     }
-    let quoted = |ids: &[&str]| {
-        ids.iter()
-            .map(|id| format!("\"{id}\""))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let mut expected = vec![
-        (
-            "default".to_owned(),
-            format!("[{}]", quoted(&[&["reading"][..], &listed()].concat())),
-        ),
-        ("reading".to_owned(), "[]".to_owned()),
-    ];
-    expected.extend(
-        listed()
-            .iter()
-            .map(|id| ((*id).to_owned(), "[]".to_owned())),
-    );
-    let lines = |f: &[(String, String)]| {
-        f.iter()
-            .map(|(k, v)| format!("{k} = {v}"))
-            .collect::<Vec<_>>()
-            .join("\n")
-    };
-    assert_eq!(
-        lines(&features),
-        lines(&expected),
-        "crates/labcore/Cargo.toml's [features] should read (comments aside):\n{}",
-        lines(&expected)
-    );
-}
-
-/// README's table "The experiments" has one row per experiment, in the lab's
-/// order, with its number and id.
-#[test]
-fn registry_readme_table_is_the_listed_experiments() {
-    let readme = read(&root().join("README.md"));
-    let table = readme
-        .split("\n## The experiments\n")
-        .nth(1)
-        .expect("README has a section \"The experiments\"");
-    let rows: Vec<(String, String)> = table
-        .lines()
-        .skip_while(|l| !l.starts_with('|'))
-        .take_while(|l| l.starts_with('|'))
-        .skip(2) // the header and its rule
-        .map(|row| {
-            let cells: Vec<&str> = row.split('|').map(str::trim).collect();
-            (cells[1].to_owned(), cells[2].trim_matches('`').to_owned())
-        })
-        .collect();
-    let expected: Vec<(String, String)> = CATALOGUE
-        .iter()
-        .map(|p| (p.number.to_string(), p.id.to_owned()))
-        .collect();
-    assert_eq!(rows, expected, "README's experiments table: (#, id) rows");
+    assert!(manifests.len() >= 4, "found {} manifests", manifests.len());
+    for manifest in manifests {
+        let toml = read(&manifest);
+        let Some(section) = toml.split("\n[features]\n").nth(1) else {
+            continue;
+        };
+        let section = section.split("\n[").next().unwrap_or_default();
+        for id in listed() {
+            for spelled in [format!("\n{id} ="), format!("\"{id}\""), format!("/{id}\"")] {
+                assert!(
+                    !section.contains(&spelled),
+                    "{}: experiment {id:?} appears among the [features]",
+                    manifest.display()
+                );
+            }
+        }
+    }
 }
 
 /// Source files of the project that tests and code live in.

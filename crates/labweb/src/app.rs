@@ -350,7 +350,7 @@ fn find_or_render_article(app_root: &Element, entry: &'static Entry) -> Element 
     if let Some(article) = query(app_root, &selector) {
         return article;
     }
-    #[cfg(feature = "all-experiments")]
+    #[cfg(feature = "reading")]
     {
         let html = content_html::article(entry.id, entry.content().map_err(|e| e.to_string()));
         let _ = app_root.insert_adjacent_html("beforeend", &html);

@@ -56,7 +56,7 @@ extern "C" {
 /// any wasm runs; the test pages (every experiment's content built in) take
 /// it from main.js's text.
 pub fn show_article(article: Option<&Element>, tab: &str) {
-    #[cfg(feature = "all-experiments")]
+    #[cfg(feature = "reading")]
     install_show_article();
     if let Err(e) = show_article_js(article, tab) {
         web_sys::console::error_2(&"labShowArticle (web/main.js) failed:".into(), &e);
@@ -65,7 +65,7 @@ pub fn show_article(article: Option<&Element>, tab: &str) {
 
 /// On a test page (no main.js): defines `window.labShowArticle` from
 /// main.js's own text, so the tests run the code the site ships.
-#[cfg(feature = "all-experiments")]
+#[cfg(feature = "reading")]
 fn install_show_article() {
     const MAIN_JS: &str = include_str!("../../../web/main.js");
     let present =

@@ -604,7 +604,7 @@ fn key_on_canvas(key: &str) {
 /// A held arrow key moving the IK target: each press starts the arm turning
 /// and the arm stops before the next, yet the page's text keeps the 250 ms
 /// pace (before, every start and stop wrote it: 20 times a second).
-#[cfg(feature = "all-experiments")]
+#[cfg(feature = "reading")]
 #[wasm_bindgen_test]
 fn a_held_key_whose_presses_start_and_end_motions_writes_the_text_at_the_pace() {
     // With the target chosen ([) and moved as a handle, and without (the

@@ -12,6 +12,7 @@ mod modules;
 mod offline;
 mod pages;
 mod precompress;
+mod readme;
 mod scorm;
 mod serve;
 mod size;
@@ -43,6 +44,8 @@ commands:
   bench --browser           build dist/ and print the page's frame times, paint
                             costs and long tasks against their budgets
                             (tests/bench/; never pass/fail)
+  readme                    write README.md's table of the experiments from the
+                            registry and the content files
   help                      this text
 ";
 
@@ -58,6 +61,7 @@ fn main() -> ExitCode {
         "size" => no_args(cmd, rest).and_then(|()| size::size()),
         "test" => test::parse_args(rest).and_then(test::test),
         "bench" => bench(rest),
+        "readme" => no_args(cmd, rest).and_then(|()| readme::readme()),
         "help" | "--help" | "-h" => {
             print!("{HELP}");
             Ok(())

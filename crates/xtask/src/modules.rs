@@ -2,10 +2,11 @@
 //! group ([`modules`]).
 //!
 //! A page downloads only the module of the experiment it shows: `labweb` is
-//! built once per module with `--no-default-features` and the features
-//! `labcore/<id>` of its experiments, so the registry of that build — and,
-//! through dead-code elimination, their code and compiled-in content — holds
-//! only them. Each module is shipped as `pkg/<key>.<hash>.wasm` and
+//! built once per module with `--no-default-features` and
+//! `LAB_EXPERIMENTS=<id>,…` naming its experiments (labcore's `build.rs`
+//! turns that into `cfg(lab_experiment = …)`), so the registry of that build
+//! — and, through dead-code elimination, their code and compiled-in content —
+//! holds only them. Each module is shipped as `pkg/<key>.<hash>.wasm` and
 //! `pkg/<key>.<hash>.js`, named by a hash of both files, so a host may cache
 //! them for good and a redeployment changes the names of exactly the modules
 //! that changed. `index.html` lists them in `<meta name="lab-module">` tags,
@@ -106,13 +107,14 @@ pub fn modules() -> Vec<(&'static str, Vec<&'static str>)> {
 /// Set (to anything) for modules with the paint benchmarks' exports.
 pub const BENCH_EXPORTS_VAR: &str = "XTASK_BENCH_EXPORTS";
 
-/// The cargo features that build `ids` and nothing else.
+/// The environment variable labcore's `build.rs` reads: the experiments a
+/// build holds, comma-separated (unset: every one).
+pub const SELECTION_VAR: &str = "LAB_EXPERIMENTS";
+
+/// The value of [`SELECTION_VAR`] that builds `ids` and nothing else.
 #[must_use]
-pub fn features(ids: &[&str]) -> String {
-    ids.iter()
-        .map(|id| format!("labcore/{id}"))
-        .collect::<Vec<_>>()
-        .join(",")
+pub fn selection(ids: &[&str]) -> String {
+    ids.join(",")
 }
 
 /// Builds, binds and optimises one module per group that has experiments.
@@ -143,11 +145,8 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
             ids.join(", ")
         ));
         let t = Instant::now();
-        let mut wanted = features(&ids);
-        if bench_exports {
-            wanted.push_str(",bench-exports");
-        }
-        util::run(util::cargo().args([
+        let mut build = util::cargo();
+        build.env(SELECTION_VAR, selection(&ids)).args([
             "build",
             "-p",
             "labweb",
@@ -156,9 +155,11 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
             "--target",
             WASM_TARGET,
             "--no-default-features",
-            "--features",
-            &wanted,
-        ]))?;
+        ]);
+        if bench_exports {
+            build.args(["--features", "bench-exports"]);
+        }
+        util::run(&mut build)?;
         let input = target.join(WASM_TARGET).join(PROFILE).join("labweb.wasm");
         let glue_dir = out_root.join(key);
         wasm_bindgen_cli_support::Bindgen::new()
@@ -335,11 +336,8 @@ mod tests {
     }
 
     #[test]
-    fn features_name_labcore_experiments() {
-        assert_eq!(
-            features(&["pid", "cartpole"]),
-            "labcore/pid,labcore/cartpole"
-        );
+    fn a_selection_lists_the_ids_comma_separated() {
+        assert_eq!(selection(&["pid", "cartpole"]), "pid,cartpole");
     }
 
     #[test]

@@ -89,13 +89,15 @@ pub fn test(opts: Options) -> Result<(), String> {
                 // As the tests build it (every experiment), and as a shipped
                 // module is built: one experiment, no reading content (the
                 // code behind `cfg(not(feature = "reading"))`).
-                let configs: [&[&str]; 2] = [
-                    &[],
-                    &["--no-default-features", "--features", "labcore/astar"],
-                ];
-                for features in configs {
+                let configs: [(Option<&str>, &[&str]); 2] =
+                    [(None, &[]), (Some("astar"), &["--no-default-features"])];
+                for (selection, features) in configs {
+                    let mut clippy = util::cargo();
+                    if let Some(ids) = selection {
+                        clippy.env(crate::modules::SELECTION_VAR, ids);
+                    }
                     util::run(
-                        util::cargo()
+                        clippy
                             .args(["clippy", "-p", "labweb", "-p", "labpage", "-p", "labcore"])
                             .args(["--target", "wasm32-unknown-unknown"])
                             .args(features)

@@ -29,9 +29,20 @@ pub fn cargo() -> Command {
     cmd
 }
 
-/// Human-readable form of a command line, for messages.
+/// Human-readable form of a command line, for messages, with the environment
+/// variables it sets in front (`LAB_EXPERIMENTS=fk,ik cargo build …`).
 pub fn show(cmd: &Command) -> String {
-    let mut s = cmd.get_program().to_string_lossy().into_owned();
+    let mut s = String::new();
+    for (key, value) in cmd.get_envs() {
+        if let Some(value) = value {
+            s.push_str(&format!(
+                "{}={} ",
+                key.to_string_lossy(),
+                value.to_string_lossy()
+            ));
+        }
+    }
+    s.push_str(&cmd.get_program().to_string_lossy());
     for a in cmd.get_args() {
         s.push(' ');
         s.push_str(&a.to_string_lossy());

@@ -87,8 +87,8 @@ impl Entry {
 /// Writes, from the one list of experiments below: the experiment modules,
 /// the [`crate::catalogue::CATALOGUE`] (numbered in the list's order), the
 /// wasm module each ships in ([`crate::catalogue::wasm_module`]), and the
-/// registry of this build (one [`Entry`] for each experiment whose cargo
-/// feature is on). A line reads
+/// registry of this build (one [`Entry`] for each experiment the build holds:
+/// `cfg(lab_experiment = "<id>")`, which `build.rs` sets). A line reads
 /// `"<id>" => <module>::<Type>, <Group>, "<short title>"` and, for an
 /// experiment that shares its wasm module with others, `, in "<module key>"`.
 macro_rules! experiments {
@@ -120,13 +120,14 @@ macro_rules! experiments {
             [$(($id, wasm_module!($id $(, $wasm)?))),*];
 
         /// How many experiments this build holds.
-        const BUILT: usize = 0 $(+ cfg!(feature = $id) as usize)*;
+        const BUILT: usize = 0 $(+ cfg!(lab_experiment = $id) as usize)*;
 
         /// The experiments this build holds: every one by default; a wasm module
-        /// is built with only its experiments' features (`cargo xtask dist`),
-        /// so the other experiments' code and content are not in it.
+        /// is built with only its own (`LAB_EXPERIMENTS`, see `build.rs`; `cargo
+        /// xtask dist` sets it), so the other experiments' code and content are
+        /// not in it.
         static REGISTRY: [Entry; BUILT] = [$(
-            #[cfg(feature = $id)]
+            #[cfg(lab_experiment = $id)]
             Entry {
                 id: $id,
                 content_json: content_file!($id),
@@ -150,8 +151,9 @@ macro_rules! wasm_module {
 
 // The lab's experiments, in its numbering; the only list of them. Adding an
 // experiment is its folder (or file) here, its content file
-// `assets/<id>.json` and one line below; the tests then ask for its cargo
-// feature in `crates/labcore/Cargo.toml` and its row in README's table.
+// `assets/<id>.json` and one line below. The build holds every experiment
+// with a content file (`build.rs`); README's table is written from this list
+// and the content by `cargo xtask readme`.
 //
 // Wasm modules: experiments of one catalogue group that share their solvers
 // share a module, as long as a first visit stays within its budget (700 KB
