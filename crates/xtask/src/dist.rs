@@ -122,6 +122,17 @@ pub fn ensure_node_modules(root: &Path) -> Result<(), String> {
     if fresh {
         return Ok(());
     }
+    let modules = root.join("node_modules");
+    if fs::symlink_metadata(&modules).is_ok_and(|m| m.file_type().is_symlink()) {
+        // `npm ci` empties the folder first: through a link it would empty
+        // another checkout's node_modules (a git worktree sharing main's).
+        return Err(format!(
+            "{} is a symbolic link and looks older than package-lock.json: \
+             refusing to run `npm ci` through it; replace the link with a copy \
+             (or run `npm ci` where it points)",
+            modules.display()
+        ));
+    }
     if !util::has_program("npm") {
         return Err(
             "npm is not installed: install Node.js 20 or newer with npm \
@@ -370,6 +381,25 @@ fn stamp_version(dist: &Path) -> Result<String, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A worktree whose node_modules links to another checkout's must not
+    /// run `npm ci` (which empties the folder) through the link.
+    #[cfg(unix)]
+    #[test]
+    fn a_stale_node_modules_link_is_refused_not_reinstalled_through() {
+        let dir = std::env::temp_dir().join(format!("xtask-npm-link-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        let elsewhere = dir.join("elsewhere");
+        let checkout = dir.join("checkout");
+        fs::create_dir_all(elsewhere.join("kept")).unwrap();
+        fs::create_dir_all(&checkout).unwrap();
+        std::os::unix::fs::symlink(&elsewhere, checkout.join("node_modules")).unwrap();
+        fs::write(checkout.join("package-lock.json"), "{}").unwrap();
+        let refused = ensure_node_modules(&checkout).unwrap_err();
+        assert!(refused.contains("symbolic link"), "{refused}");
+        assert!(elsewhere.join("kept").is_dir());
+        fs::remove_dir_all(&dir).unwrap();
+    }
 
     fn values(text: &str, refs: &[UrlRef]) -> Vec<String> {
         refs.iter()
