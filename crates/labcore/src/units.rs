@@ -370,6 +370,18 @@ pub fn format_metres(value_m: f64) -> String {
     }
 }
 
+/// A length of any size: [`format_metres`] (`1.500 m`) below a kilometre,
+/// a power of ten beyond (`6.9 × 10³³ m`), never dozens of digits; `--`
+/// when it is not finite.
+#[must_use]
+pub fn format_length(value_m: f64) -> String {
+    if value_m.abs() < 1e3 || !value_m.is_finite() {
+        format_metres(value_m)
+    } else {
+        format!("{} m", format_magnitude(value_m))
+    }
+}
+
 /// An angle as every readout shows it: `-35.0°`.
 #[must_use]
 pub fn format_degrees(value_deg: f64) -> String {
@@ -540,6 +552,16 @@ mod tests {
     }
 
     /// Regression: “0.5 m2” was not recognised for m².
+    #[test]
+    fn a_length_of_any_size_reads_in_metres_or_as_a_power_of_ten() {
+        assert_eq!(format_length(0.7495), "0.750 m");
+        assert_eq!(format_length(-999.0), "-999.000 m");
+        assert_eq!(format_length(6.9e33), "6.9 × 10³³ m");
+        assert_eq!(format_length(-2.5e4), "-2.5 × 10⁴ m");
+        assert_eq!(format_length(f64::NAN), "--");
+        assert_eq!(format_length(f64::INFINITY), "--");
+    }
+
     #[test]
     fn square_metres_accept_m2_and_m_caret_2() {
         for text in [

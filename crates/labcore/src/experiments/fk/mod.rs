@@ -8,7 +8,7 @@
 //! reachable point.
 
 use crate::experiment::{check_param, Experiment, Handle, Input, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
-use crate::units::{format_degrees, format_fixed, format_magnitude, format_metres, format_point, format_number};
+use crate::units::{format_degrees, format_fixed, format_length, format_point, format_number};
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};
 use crate::quiz::{Draw, Generator};
@@ -176,17 +176,6 @@ impl Experiment for ForwardKinematics {
     }
 }
 
-/// A pointer's distance from the tip as the readout shows it: millimetres
-/// up to a kilometre, beyond that a power of ten (`6.9 × 10³³ m`), never
-/// dozens of digits.
-fn format_gap(gap_m: f64) -> String {
-    if gap_m < 1e3 {
-        format_metres(gap_m)
-    } else {
-        format!("{} m", format_magnitude(gap_m))
-    }
-}
-
 /// Draws link lengths and joint angles for a question, in the units shown,
 /// inside the sliders' ranges (so the student can set the arm up and read
 /// the answer off the readouts).
@@ -263,6 +252,7 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 mod tests {
     use super::*;
     use crate::testkit::{readout, scene_of};
+    use crate::units::format_metres;
 
     #[test]
     fn default_readouts_match_hand_values() {

@@ -59,7 +59,7 @@ impl Presentation for ForwardKinematics {
         // Only while a pointer drags beyond reach: inside, the tip follows the
         // pointer and the distance is always 0.
         if let Some(gap) = self.target_gap_m() {
-            r.push(Readout::new("target", "Target dist", format_gap(gap)));
+            r.push(Readout::new("target", "Target dist", format_length(gap)));
         }
         r
     }

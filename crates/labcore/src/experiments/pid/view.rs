@@ -27,15 +27,6 @@ pub(super) fn force_text(u_n: f64) -> String {
     }
 }
 
-/// A length: [`format_metres`] in the everyday range, the magnitude form beyond.
-fn metres(v: f64) -> String {
-    if v.abs() < 1e3 || !v.is_finite() {
-        format_metres(v)
-    } else {
-        format!("{} m", format_magnitude(v))
-    }
-}
-
 /// `-0.187` or `-1.000 ± 2.000i` (one entry per conjugate pair).
 pub(super) fn format_poles(poles: &[Complex]) -> String {
     let mut parts = Vec::new();
@@ -75,11 +66,11 @@ fn final_against_setpoint(e: &PidControl, y: f64) -> Option<String> {
     let off = if r.abs() >= MIN_STEP_M {
         format!("{} %", format_number(100.0 * (y - r).abs() / r.abs(), 1))
     } else {
-        metres((y - r).abs())
+        format_length((y - r).abs())
     };
     Some(format!(
         "{}, {off} {} the setpoint",
-        metres(y),
+        format_length(y),
         if short { "short of" } else { "past" }
     ))
 }
@@ -195,7 +186,7 @@ impl Presentation for PidControl {
         if x.is_finite() && !(VIEW_MIN.x..=VIEW_MAX.x).contains(&x) {
             out.push(Item::OffView {
                 at: DVec2::new(x, 0.5 * (CART_BOTTOM_M + CART_TOP_M)),
-                label: format!("cart at {}", metres(self.run.state.x_m)),
+                label: format!("cart at {}", format_length(self.run.state.x_m)),
                 role: Role::Robot,
             });
         }
@@ -284,7 +275,7 @@ impl Presentation for PidControl {
                 "Settling time (±2 %)",
                 match (info.and_then(|i| i.settling_time_s), y_final) {
                     (Some(ts), Some(y)) if !at_setpoint(y, self.setpoint_m) => {
-                        format!("{} (around {})", seconds(Some(ts)), metres(y))
+                        format!("{} (around {})", seconds(Some(ts)), format_length(y))
                     }
                     (ts, _) => seconds(ts),
                 },
@@ -308,9 +299,9 @@ impl Presentation for PidControl {
                     let reached = self.state == RunState::Quiet
                         || info.is_some_and(|i| i.settling_time_s.is_some());
                     if reached {
-                        metres(self.setpoint_m - y)
+                        format_length(self.setpoint_m - y)
                     } else {
-                        format!("{} (predicted)", metres(self.setpoint_m - y))
+                        format!("{} (predicted)", format_length(self.setpoint_m - y))
                     }
                 }),
             ),
