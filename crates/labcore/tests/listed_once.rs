@@ -57,7 +57,7 @@ fn registry_cargo_features_are_the_listed_experiments() {
             "default".to_owned(),
             format!("[{}]", quoted(&[&["reading"][..], &listed()].concat())),
         ),
-        ("reading".to_owned(), "[]".to_owned()),
+        ("reading".to_owned(), "[\"dep:labtex\"]".to_owned()),
     ];
     expected.extend(
         listed()
