@@ -64,6 +64,8 @@ pub struct Timeline {
     interval: u64,
     /// An input changed the state at `end`; not yet snapshot.
     dirty: bool,
+    /// The snapshots' estimated size, bytes.
+    bytes: usize,
     budget_bytes: usize,
     last_replay: u64,
     worst_replay: u64,
@@ -85,8 +87,10 @@ impl Timeline {
     /// [`Timeline::new`] with another memory budget, bytes (tests).
     #[must_use]
     pub fn with_budget(exp: &dyn Lab, step: u64, budget_bytes: usize) -> Self {
+        let first = Snapshot::of(exp, step, true);
         Self {
-            snaps: vec![Snapshot::of(exp, step, true)],
+            bytes: first.bytes,
+            snaps: vec![first],
             end: step,
             interval: Self::FIRST_INTERVAL,
             dirty: false,
@@ -124,7 +128,7 @@ impl Timeline {
     /// The snapshots' estimated size, bytes.
     #[must_use]
     pub fn bytes(&self) -> usize {
-        self.snaps.iter().map(|s| s.bytes).sum()
+        self.bytes
     }
 
     /// Steps replayed by the last [`Timeline::state_at`].
@@ -144,8 +148,10 @@ impl Timeline {
     /// (the run now ends at `step`), and the state the input leaves is
     /// snapshot by the next [`Timeline::commit`].
     pub fn input_at(&mut self, step: u64) {
-        let step = step.clamp(self.first(), self.end);
-        self.snaps.retain(|s| s.step <= step);
+        let step = step.max(self.first()).min(self.end);
+        while self.snaps.len() > 1 && self.snaps[self.snaps.len() - 1].step > step {
+            self.pop();
+        }
         self.end = step;
         self.dirty = true;
     }
@@ -158,10 +164,16 @@ impl Timeline {
             return;
         }
         self.dirty = false;
-        let step = self.end;
-        self.snaps.retain(|s| s.step != step);
-        self.snaps.push(Snapshot::of(exp, step, true));
-        self.keep_within_budget();
+        // The snapshots are in step order: one at this step is the last.
+        if self.snaps.len() > 1 && self.snaps[self.snaps.len() - 1].step == self.end {
+            self.pop();
+        }
+        if self.snaps.len() == 1 && self.snaps[0].step == self.end {
+            // The input changed the first state kept: it is the start now.
+            self.bytes = 0;
+            self.snaps.clear();
+        }
+        self.push(Snapshot::of(exp, self.end, true));
     }
 
     /// The live run took one step (after [`Timeline::commit`]): `exp` is
@@ -171,8 +183,7 @@ impl Timeline {
         self.commit_missed(exp);
         self.end += 1;
         if self.end.is_multiple_of(self.interval) {
-            self.snaps.push(Snapshot::of(exp, self.end, false));
-            self.keep_within_budget();
+            self.push(Snapshot::of(exp, self.end, false));
         }
     }
 
@@ -198,8 +209,8 @@ impl Timeline {
         step: u64,
         step_once: &mut dyn FnMut(&mut dyn Lab),
     ) -> (u64, Box<dyn Lab>) {
-        let step = step.clamp(self.first(), self.end);
-        let i = self.snaps.partition_point(|s| s.step <= step) - 1;
+        let step = step.max(self.first()).min(self.end);
+        let i = self.snaps.partition_point(|s| s.step <= step).max(1) - 1;
         let snap = &self.snaps[i];
         let mut lab = snap.lab.snapshot();
         let replay = step - snap.step;
@@ -242,19 +253,35 @@ impl Timeline {
         }
     }
 
-    /// Doubles the interval (dropping every other periodic snapshot) until
-    /// the snapshots fit the budget; if pinned ones alone do not, forgets
-    /// the oldest.
-    fn keep_within_budget(&mut self) {
-        while self.bytes() > self.budget_bytes && self.snaps.len() > 1 {
+    fn pop(&mut self) {
+        if let Some(s) = self.snaps.pop() {
+            self.bytes -= s.bytes;
+        }
+    }
+
+    /// Keeps `snap` (the latest step), then doubles the interval (dropping
+    /// every other periodic snapshot) until the snapshots fit the budget; if
+    /// pinned ones alone do not, forgets the oldest.
+    fn push(&mut self, snap: Snapshot) {
+        self.bytes += snap.bytes;
+        self.snaps.push(snap);
+        while self.bytes > self.budget_bytes && self.snaps.len() > 1 {
+            let doubled = self.interval * 2;
+            let mut i = 1;
+            let mut dropped = false;
+            while i < self.snaps.len() {
+                let s = &self.snaps[i];
+                if self.interval <= self.end && !s.pinned && !s.step.is_multiple_of(doubled) {
+                    self.bytes -= self.snaps.remove(i).bytes;
+                    dropped = true;
+                } else {
+                    i += 1;
+                }
+            }
             if self.interval <= self.end {
-                self.interval *= 2;
-                let interval = self.interval;
-                let first = self.first();
-                self.snaps
-                    .retain(|s| s.pinned || s.step == first || s.step.is_multiple_of(interval));
-            } else {
-                self.snaps.remove(0);
+                self.interval = doubled;
+            } else if !dropped {
+                self.bytes -= self.snaps.remove(0).bytes;
             }
         }
     }

@@ -28,30 +28,18 @@ pub(super) const RUN_TO_END_BUDGET_MS: f64 = 30.0;
 /// has not ended by then: a run that never ends is not run forever.
 pub(super) const RUN_TO_END_MAX_STEPS: u64 = 10 * 60 * 60;
 
-const ICON_BACK: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M14 2v12l-8-6zM2 2h3v12H2z\"/></svg>";
-const ICON_END: &str = "<svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M1 2v12l6-6zM7 2v12l6-6zM13 2h2v12h-2z\"/></svg>";
-
-/// The Step back and Run to end buttons (beside Step).
-pub(super) fn buttons_html() -> String {
-    format!(
-        "<button type=\"button\" data-time=\"back\" aria-keyshortcuts=\",\" title=\"One step back (key ,)\">{ICON_BACK} <span class=\"tb-text\">Back</span></button>\
-         <button type=\"button\" data-time=\"end\" aria-keyshortcuts=\"End\" title=\"Finish the run at once (key End)\">{ICON_END} <span class=\"tb-text\">Run to end</span></button>"
-    )
-}
+/// Step back and Run to end (beside Step).
+pub(super) const BUTTONS_HTML: &str = "<button type=\"button\" data-time=\"back\" aria-keyshortcuts=\",\" title=\"One step back (key ,)\">\
+     <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M14 2v12l-8-6zM2 2h3v12H2z\"/></svg> <span class=\"tb-text\">Back</span></button>\
+     <button type=\"button\" data-time=\"end\" aria-keyshortcuts=\"End\" title=\"Finish the run at once (key End)\">\
+     <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M1 2v12l6-6zM7 2v12l6-6zM13 2h2v12h-2z\"/></svg> <span class=\"tb-text\">Run to end</span></button>";
 
 /// The timeline slider, on its own row of the time bar: from the oldest
-/// step kept to the run's last step, in fixed steps; its arrow keys move one
-/// model step, its Page keys a second or a tenth of the run, whichever is
-/// more ([`page_steps`]).
+/// step kept to the run's last step, in fixed steps. Its keys are the
+/// browser's: an arrow moves one step, Page Up and Page Down a tenth of the
+/// run, Home and End to its ends.
 pub(super) const SLIDER_HTML: &str = "<input type=\"range\" class=\"tb-scrub\" data-time=\"scrub\" min=\"0\" max=\"0\" value=\"0\" step=\"1\" \
-     aria-label=\"Timeline\" aria-keyshortcuts=\"ArrowLeft ArrowRight PageUp PageDown Home End\" aria-valuetext=\"t = 0.00 s\">";
-
-/// What a Page key moves the timeline, fixed steps: one second, or a tenth
-/// of the run kept when that is more.
-pub(super) fn page_steps(first: u64, end: u64) -> u64 {
-    let second = (1.0 / Clock::DT_S).round() as u64;
-    second.max((end - first) / 10)
-}
+     aria-label=\"Timeline\" aria-valuetext=\"t = 0.00 s\">";
 
 /// One fixed step of a replay.
 fn step_once(exp: &mut dyn Lab) {
@@ -83,30 +71,6 @@ pub(super) fn listen(
         st.student_acted();
         st.seek(step);
     }));
-    let s = state.clone();
-    listeners.push(Listener::new(
-        slider.as_ref(),
-        "keydown",
-        move |e: Event| {
-            let Some(e) = e.dyn_ref::<web_sys::KeyboardEvent>() else {
-                return;
-            };
-            let mut st = s.borrow_mut();
-            let Some((first, end)) = st.timeline.as_ref().map(|t| (t.first(), t.end())) else {
-                return;
-            };
-            let now = st.clock.steps();
-            match e.key().as_str() {
-                "ArrowLeft" | "ArrowDown" => st.step_back(),
-                "ArrowRight" | "ArrowUp" => st.single_step(),
-                "PageDown" => st.seek(now.saturating_sub(page_steps(first, end))),
-                "PageUp" => st.seek(now + page_steps(first, end)),
-                _ => return,
-            }
-            e.prevent_default();
-            st.student_acted();
-        },
-    ));
 }
 
 impl SimState {
@@ -218,6 +182,7 @@ impl SimState {
         let mut done = false;
         let limit = from + RUN_TO_END_MAX_STEPS;
         let now = self.clock.steps();
+        // A run may move a locked parameter: it is held, as in a run.
         let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| loop {
             if exp.status().phase == Phase::Ended || !exp.animating() || now + taken >= limit {
                 done = true;

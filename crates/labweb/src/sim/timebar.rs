@@ -38,7 +38,7 @@ pub(super) fn timebar_html(step_s: f64) -> String {
          <button type=\"button\" data-time=\"reset\">{ICON_RESET} <span class=\"tb-text\">Reset</span></button>\
          <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output>{slider}</div>",
         step = step_text(step_s),
-        back_end = super::scrub::buttons_html(),
+        back_end = super::scrub::BUTTONS_HTML,
         slider = super::scrub::SLIDER_HTML,
     )
 }
