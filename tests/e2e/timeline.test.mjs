@@ -5,18 +5,21 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { DESKTOP, open, readouts, runUntil, runUntilReadout, screenshot, useLab, withPage } from "./helpers.mjs";
+import { DESKTOP, open, readouts, runUntil, runUntilReadout, screenshot, settle, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
 const PHONE_TALL = { width: 390, height: 844 };
 
 const steps = (page) => page.locator("canvas.sim-canvas").getAttribute("data-steps").then(Number);
 
-/** Waits (in page time) until the canvas says it shows step `n`. */
-const atStep = (page, n) =>
-  runUntil(page, (k) => Number(document.querySelector("canvas.sim-canvas").dataset.steps) === k, n, {
+/** Waits (in page time) until the canvas shows step `n` and its readouts. */
+async function atStep(page, n) {
+  await runUntil(page, (k) => Number(document.querySelector("canvas.sim-canvas").dataset.steps) === k, n, {
     what: `step ${n}`,
   });
+  // The frame after the jump writes the readouts.
+  await settle(page);
+}
 
 /** Moves the timeline slider to step `n`, as a drag does. */
 async function scrubTo(page, n) {
@@ -30,6 +33,7 @@ test("timeline: pid pauses, steps, steps back and scrubs back to the readouts th
     await runUntilReadout(page, "x", ">", 0.5);
     await page.locator("button[data-time=play]").click();
     await runUntil(page, () => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "false");
+    await settle(page);
     const s = await steps(page);
     const atS = await readouts(page);
     // Step, then Step back: the readouts of step s again, to the digit.
