@@ -131,6 +131,18 @@ impl Timeline {
         self.bytes
     }
 
+    /// Whether the state at `step` is the run's start stepped `step` times,
+    /// with no input on the way (so a link of the start and the time
+    /// reproduces it).
+    #[must_use]
+    pub fn unbroken_to(&self, step: u64) -> bool {
+        self.first() == 0
+            && !self
+                .snaps
+                .iter()
+                .any(|s| s.pinned && s.step > 0 && s.step <= step)
+    }
+
     /// Steps replayed by the last [`Timeline::state_at`].
     #[must_use]
     pub fn last_replay(&self) -> u64 {

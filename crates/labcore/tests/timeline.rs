@@ -204,3 +204,31 @@ fn scrub_input_in_the_past_starts_a_new_run_from_that_state() {
     assert_eq!(shown(again.as_ref()), expected);
     assert_eq!(again.param("kp"), Some(60.0));
 }
+
+/// Issue 26 §2, the link's moment: a state is the start stepped on only
+/// while no input came on the way; after one, a link of the start and a
+/// time would not reproduce it.
+#[test]
+fn link_moment_unbroken_only_while_no_input_came_on_the_way() {
+    let mut exp = labcore::testkit::open("pid");
+    let mut timeline = Timeline::new(exp.as_ref(), 0);
+    // The link's own parameters, applied at the start, are the start.
+    timeline.input_at(0);
+    exp.set_param("kp", 30.0).unwrap();
+    timeline.commit(exp.as_ref());
+    for _ in 0..50 {
+        exp.step(Clock::DT_S);
+        timeline.stepped(exp.as_ref());
+    }
+    assert!(timeline.unbroken_to(50));
+    timeline.input_at(50);
+    exp.set_param("kp", 60.0).unwrap();
+    timeline.commit(exp.as_ref());
+    for _ in 0..10 {
+        exp.step(Clock::DT_S);
+        timeline.stepped(exp.as_ref());
+    }
+    assert!(timeline.unbroken_to(49));
+    assert!(!timeline.unbroken_to(50));
+    assert!(!timeline.unbroken_to(60));
+}

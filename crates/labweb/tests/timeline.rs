@@ -314,3 +314,50 @@ fn end_key_finishes_the_astar_search_and_step_back_undoes_one_step() {
     labweb::paint_now();
     assert_eq!(shown(), (end - 1, planned(end - 1)));
 }
+
+fn hash() -> String {
+    web_sys::window().unwrap().location().hash().unwrap()
+}
+
+/// Issue 26 §2, the moment in the link: a paused run's link carries the
+/// time shown (`at=`), and opening it shows that moment exactly: the
+/// steps, status, readouts, plots up to it and the scene's description.
+#[wasm_bindgen_test]
+fn at_in_the_link_reopens_the_moment_shown_exactly() {
+    mount("#/pid/simulation?kp=40&kd=2");
+    for _ in 0..100 {
+        frame(ONE_STEP_MS);
+    }
+    scrub_to(41);
+    let there = shown();
+    assert_eq!(there.0, 41);
+    // The link is written at its pace (frames while paused take no step).
+    frame(300.0);
+    frame(300.0);
+    let link = hash();
+    assert!(link.contains("at=0.68"), "{link}");
+    assert!(link.contains("run=0"), "{link}");
+    mount(&link);
+    // Equal but for the plots' redraw counters (`revision`), which count
+    // the link's parameter writes too: they are the page's, not the run's.
+    let without_revisions = |(steps, text): (u64, String)| {
+        let text: Vec<String> = text
+            .split("revision: ")
+            .map(|part| {
+                part.trim_start_matches(|c: char| c.is_ascii_digit())
+                    .to_owned()
+            })
+            .collect();
+        (steps, text.join("revision: _"))
+    };
+    assert_eq!(
+        without_revisions(shown()),
+        without_revisions(there),
+        "{link}"
+    );
+    // Still paused there, and the timeline spans the steps to it.
+    frame(ONE_STEP_MS);
+    labweb::paint_now();
+    assert_eq!(shown().0, 41);
+    assert_eq!(attr(".tb-scrub", "max"), Some("41".into()));
+}

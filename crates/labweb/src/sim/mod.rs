@@ -501,6 +501,12 @@ impl SimState {
         let mut extra = Vec::new();
         if self.exp.animated() && !self.clock.running() && !self.ended_hold {
             extra.push("run=0".to_owned());
+            // The moment shown, when the link's state and the steps since
+            // reproduce it (no input on the way).
+            let steps = self.clock.steps();
+            if steps > 0 && self.timeline.as_ref().is_some_and(|t| t.unbroken_to(steps)) {
+                extra.push(format!("at={:.2}", self.clock.time_s()));
+            }
         }
         if self.clock.speed() != 1.0 {
             extra.push(format!("speed={}", self.clock.speed()));
@@ -782,12 +788,16 @@ impl SimView {
         let (shell, own): (Vec<_>, Vec<_>) = params
             .iter()
             .cloned()
-            .partition(|(k, _)| k == "run" || k == "speed");
+            .partition(|(k, _)| k == "run" || k == "speed" || k == "at");
         st.timeline_input();
         let mut notices = route::apply_params(st.exp.as_mut(), &own);
+        let mut at_s = None;
         for (key, raw) in shell {
             match (key.as_str(), raw.trim().parse::<f64>()) {
                 ("run", Ok(v)) if v == 0.0 || v == 1.0 => st.clock.set_running(v == 1.0),
+                ("at", Ok(v)) if st.timeline.is_some() && v.is_finite() && v >= 0.0 => {
+                    at_s = Some(v);
+                }
                 ("speed", Ok(v)) if v.is_finite() && v > 0.0 => {
                     let applied = st.clock.set_speed(v);
                     if applied != v {
@@ -799,6 +809,9 @@ impl SimView {
                     raw.chars().take(20).collect::<String>()
                 )),
             }
+        }
+        if let Some(t_s) = at_s {
+            st.open_at(t_s);
         }
         st.needs_paint = true;
         st.shown_values.iter_mut().for_each(|v| *v = None);

@@ -208,6 +208,30 @@ impl SimState {
         taken
     }
 
+    /// Opens the run at `t_s` seconds (a link's `at=`): the link's state is
+    /// its start; the run is stepped there (at most
+    /// [`RUN_TO_END_MAX_STEPS`], fewer if it ends first) and paused.
+    pub(super) fn open_at(&mut self, t_s: f64) {
+        let steps = ((t_s / Clock::DT_S).round() as u64).min(RUN_TO_END_MAX_STEPS);
+        self.clock.reset();
+        self.restart_timeline();
+        let timeline = &mut self.timeline;
+        let mut taken = 0;
+        let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
+            while taken < steps && exp.status().phase != Phase::Ended {
+                exp.step(Clock::DT_S);
+                if let Some(tl) = timeline.as_mut() {
+                    tl.stepped(exp);
+                }
+                taken += 1;
+            }
+        });
+        self.clock.seek(taken);
+        self.clock.set_running(false);
+        self.phase = self.exp.status().phase;
+        self.plots_force = true;
+    }
+
     /// Brings the slider up to date: its range (the record), its value (the
     /// step shown) and its spoken value, the time and the main readout.
     pub(super) fn sync_scrub(&mut self) {
