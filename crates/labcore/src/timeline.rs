@@ -192,22 +192,10 @@ impl Timeline {
     /// the state at the new end. Snapshots it every [`Timeline::interval`]
     /// steps; otherwise it costs nothing.
     pub fn stepped(&mut self, exp: &dyn Lab) {
-        self.commit_missed(exp);
+        debug_assert!(!self.dirty, "Timeline::stepped before Timeline::commit");
         self.end += 1;
         if self.end.is_multiple_of(self.interval) {
             self.push(Snapshot::of(exp, self.end, false));
-        }
-    }
-
-    /// A step after an input that was never committed would lose the input;
-    /// the state is then already past it, so it cannot be recovered exactly:
-    /// restart the record here instead (never happens in the shell, which
-    /// commits before stepping).
-    fn commit_missed(&mut self, exp: &dyn Lab) {
-        if self.dirty {
-            debug_assert!(false, "Timeline::stepped before Timeline::commit");
-            *self = Self::with_budget(exp, self.end + 1, self.budget_bytes);
-            self.end -= 1;
         }
     }
 

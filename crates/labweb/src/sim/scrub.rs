@@ -176,28 +176,8 @@ impl SimState {
         let Some(from) = self.run_to_end else {
             return 0;
         };
-        self.timeline_commit();
-        let timeline = &mut self.timeline;
-        let mut taken = 0u64;
-        let mut done = false;
-        let limit = from + RUN_TO_END_MAX_STEPS;
-        let now = self.clock.steps();
-        // A run may move a locked parameter: it is held, as in a run.
-        let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| loop {
-            if exp.status().phase == Phase::Ended || !exp.animating() || now + taken >= limit {
-                done = true;
-                break;
-            }
-            if dom::now_ms() - start_ms >= RUN_TO_END_BUDGET_MS {
-                break;
-            }
-            exp.step(Clock::DT_S);
-            if let Some(tl) = timeline.as_mut() {
-                tl.stepped(exp);
-            }
-            taken += 1;
-        });
-        self.clock.seek(now + taken);
+        let left = (from + RUN_TO_END_MAX_STEPS).saturating_sub(self.clock.steps());
+        let (taken, done) = self.step_recorded(left, true, start_ms, RUN_TO_END_BUDGET_MS);
         self.needs_paint = true;
         if done {
             self.run_to_end = None;
@@ -215,21 +195,46 @@ impl SimState {
         let steps = ((t_s / Clock::DT_S).round() as u64).min(RUN_TO_END_MAX_STEPS);
         self.clock.reset();
         self.restart_timeline();
-        let timeline = &mut self.timeline;
-        let mut taken = 0;
-        let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
-            while taken < steps && exp.status().phase != Phase::Ended {
-                exp.step(Clock::DT_S);
-                if let Some(tl) = timeline.as_mut() {
-                    tl.stepped(exp);
-                }
-                taken += 1;
-            }
-        });
-        self.clock.seek(taken);
+        self.step_recorded(steps, false, 0.0, f64::INFINITY);
         self.clock.set_running(false);
         self.phase = self.exp.status().phase;
         self.plots_force = true;
+    }
+
+    /// Takes up to `steps` steps of the live run, recorded, as a run takes
+    /// them (the instructor's locks held); stops at the run's end (with
+    /// `until_still`, also when nothing moves) or once the time since
+    /// `start_ms` reaches `budget_ms`. Returns the steps taken and whether
+    /// it is done (not stopped by the budget).
+    fn step_recorded(
+        &mut self,
+        steps: u64,
+        until_still: bool,
+        start_ms: f64,
+        budget_ms: f64,
+    ) -> (u64, bool) {
+        self.timeline_commit();
+        let timeline = &mut self.timeline;
+        let (mut taken, mut done) = (0, false);
+        let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| loop {
+            if taken >= steps
+                || exp.status().phase == Phase::Ended
+                || (until_still && !exp.animating())
+            {
+                done = true;
+                break;
+            }
+            if dom::now_ms() - start_ms >= budget_ms {
+                break;
+            }
+            exp.step(Clock::DT_S);
+            if let Some(tl) = timeline.as_mut() {
+                tl.stepped(exp);
+            }
+            taken += 1;
+        });
+        self.clock.seek(self.clock.steps() + taken);
+        (taken, done)
     }
 
     /// Brings the slider up to date: its range (the record), its value (the
