@@ -117,6 +117,18 @@ pub struct Report<'a> {
     /// Whether the quiz table shows each question's expected answer (the
     /// link's `key=`, see [`AnswerKey::in_force`]).
     pub answer_key: AnswerKey,
+    /// The moments the student marked in the run, in time order: a section
+    /// each, with the scene and the readouts of that moment.
+    pub marks: &'a [MarkedMoment<'a>],
+}
+
+/// A marked moment of the run (issue 26 §3): its time and the state the
+/// run had then (the timeline's, bit for bit the run's).
+#[derive(Clone, Copy)]
+pub struct MarkedMoment<'a> {
+    /// Simulated time of the mark, seconds.
+    pub t_s: f64,
+    pub state: &'a dyn Lab,
 }
 
 /// The student's own entries, typed on the Simulation tab before the report
@@ -216,6 +228,7 @@ pub fn render(r: &Report<'_>) -> String {
 
     parameters_section(&mut h, exp);
     results_section(&mut h, exp);
+    marks_section(&mut h, r.marks);
     plots_section(&mut h, exp.plots());
     quiz_section(&mut h, r.quiz.as_ref(), r.answer_key);
 
@@ -383,6 +396,16 @@ fn results_section(h: &mut String, exp: &dyn Lab) {
         "<section class=\"results\"><h2>Results</h2><p class=\"status {tone}\"><strong>Status:</strong> {}</p>",
         escape(&status.text)
     );
+    scene_figure(h, exp, "when the report was made");
+    readouts_table(h, exp, "Readouts");
+    for t in exp.tables() {
+        live_table(h, &t);
+    }
+    h.push_str("</section>");
+}
+
+/// The scene of `exp` as a picture, captioned "The simulation {when}".
+fn scene_figure(h: &mut String, exp: &dyn Lab, when: &str) {
     let mut scene = Scene::default();
     exp.scene(&mut scene);
     let (picture, thinned) = scene_svg::scene_svg(&scene, exp.view());
@@ -393,27 +416,54 @@ fn results_section(h: &mut String, exp: &dyn Lab) {
     };
     let _ = write!(
         h,
-        "<figure class=\"scene\">{picture}<figcaption>The simulation when the report was made{thinned}.</figcaption></figure>"
+        "<figure class=\"scene\">{picture}<figcaption>The simulation {}{thinned}.</figcaption></figure>",
+        escape(when)
     );
+}
+
+/// The readouts of `exp` as a table captioned `caption`.
+fn readouts_table(h: &mut String, exp: &dyn Lab, caption: &str) {
     let readouts = exp.readouts();
-    if !readouts.is_empty() {
-        h.push_str(
-            "<table class=\"data readouts\"><caption>Readouts</caption><thead><tr><th scope=\"col\">Quantity</th>\
-             <th scope=\"col\">Value</th></tr></thead><tbody>",
-        );
-        for r in &readouts {
-            let _ = write!(
-                h,
-                "<tr data-readout=\"{}\"><th scope=\"row\">{}</th><td class=\"num\">{}</td></tr>",
-                escape(r.key),
-                escape(r.label),
-                escape(&r.value)
-            );
-        }
-        h.push_str("</tbody></table>");
+    if readouts.is_empty() {
+        return;
     }
-    for t in exp.tables() {
-        live_table(h, &t);
+    let _ = write!(
+        h,
+        "<table class=\"data readouts\"><caption>{}</caption><thead><tr><th scope=\"col\">Quantity</th>\
+         <th scope=\"col\">Value</th></tr></thead><tbody>",
+        escape(caption)
+    );
+    for r in &readouts {
+        let _ = write!(
+            h,
+            "<tr data-readout=\"{}\"><th scope=\"row\">{}</th><td class=\"num\">{}</td></tr>",
+            escape(r.key),
+            escape(r.label),
+            escape(&r.value)
+        );
+    }
+    h.push_str("</tbody></table>");
+}
+
+/// A section per marked moment: its status, scene and readouts.
+fn marks_section(h: &mut String, marks: &[MarkedMoment<'_>]) {
+    if marks.is_empty() {
+        return;
+    }
+    h.push_str("<section class=\"marks\"><h2>Marked moments</h2>");
+    for (i, m) in marks.iter().enumerate() {
+        let t = format!("t = {:.2} s", m.t_s);
+        let _ = write!(
+            h,
+            "<section class=\"mark\" data-mark-t=\"{:.2}\"><h3>Mark {}: {t}</h3>\
+             <p class=\"status\"><strong>Status:</strong> {}</p>",
+            m.t_s,
+            i + 1,
+            escape(&m.state.status().text)
+        );
+        scene_figure(h, m.state, &format!("at {t}"));
+        readouts_table(h, m.state, &format!("Readouts at {t}"));
+        h.push_str("</section>");
     }
     h.push_str("</section>");
 }
