@@ -1445,12 +1445,15 @@ fn pid_step_9_scrubbing_back_to_the_peak_reads_the_overshoot_the_damping_predict
     assert!(!e.animating(), "the run finishes");
     // Scrub back through the whole run for the largest Position x.
     let step_once = &mut |lab: &mut dyn Lab| lab.step(1.0 / 60.0);
-    let peak_step = (0..=timeline.end())
-        .max_by(|&a, &b| {
-            let xa = readout_number(timeline.state_at(a, step_once).1.as_ref(), "x");
-            let xb = readout_number(timeline.state_at(b, step_once).1.as_ref(), "x");
-            xa.total_cmp(&xb)
+    let end = timeline.end();
+    let xs: Vec<f64> = (0..=end)
+        .map(|step| {
+            let (_, lab) = timeline.state_at(step, step_once);
+            *lab.plots()[0].series[0].y.last().unwrap()
         })
+        .collect();
+    let peak_step = (0..=end)
+        .max_by(|&a, &b| xs[a as usize].total_cmp(&xs[b as usize]))
         .unwrap();
     let (_, peak) = timeline.state_at(peak_step, step_once);
     assert_eq!(readout(peak.as_ref(), "x"), "1.374 m");
