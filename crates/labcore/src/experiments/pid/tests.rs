@@ -5,9 +5,7 @@ use super::view::{percent, seconds};
 use super::*;
 use crate::experiment::Phase;
 use crate::route::restore;
-use crate::testkit::{
-    self, procedure_step, readout, readout_number, reopen, scene_of, set_params, steps,
-};
+use crate::testkit::{self, procedure_step, readout, reopen, scene_of, set_params, steps};
 
 fn run_to_end(e: &mut PidControl) -> usize {
     let mut frames = 0;
