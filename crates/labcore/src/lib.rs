@@ -65,6 +65,7 @@ pub mod json;
 pub mod kinematics;
 pub mod linalg;
 pub mod lms;
+pub mod marks;
 pub mod math;
 pub mod mobile;
 pub mod planning;

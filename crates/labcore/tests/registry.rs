@@ -359,11 +359,35 @@ fn permalinks_reproduce_every_state_reachable_by_pointer_and_keyboard() {
             let mut exp = (entry.make)();
             random_session(exp.as_mut(), seed);
             let link = format(exp.as_ref(), Tab::Simulation);
-            let route = parse(&link, &ids);
-            assert!(route.notices.is_empty(), "{link}: {:?}", route.notices);
-            let Page::Experiment { params, .. } = route.page else {
+            // Issue 26 §3: the run's marks travel beside the state
+            // (`marks=1.20,3.45`, read by the shell) and come back exactly.
+            let mut marks = labcore::marks::Marks::default();
+            let mut rng = labcore::Lcg64::new(seed);
+            for _ in 0..rng.int(0, 5) {
+                marks.add(rng.int(0, 36_000) as u64);
+            }
+            let marked_link = if exp.animated() && !marks.is_empty() {
+                let sep = if link.contains('?') { '&' } else { '?' };
+                format!("{link}{sep}marks={}", marks.link_value())
+            } else {
+                link.clone()
+            };
+            let route = parse(&marked_link, &ids);
+            assert!(
+                route.notices.is_empty(),
+                "{marked_link}: {:?}",
+                route.notices
+            );
+            let Page::Experiment { mut params, .. } = route.page else {
                 panic!("{link} is not an experiment page");
             };
+            let linked_marks = match params.iter().position(|(k, _)| k == "marks") {
+                Some(i) => labcore::marks::Marks::parse(&params.remove(i).1).unwrap(),
+                None => labcore::marks::Marks::default(),
+            };
+            if exp.animated() {
+                assert_eq!(linked_marks, marks, "{marked_link}");
+            }
             let mut fresh = (entry.make)();
             let notices = apply_params(fresh.as_mut(), &params);
             assert!(

@@ -118,6 +118,18 @@ pub struct Report<'a> {
     /// Whether the quiz table shows each question's expected answer (the
     /// link's `key=`, see [`AnswerKey::in_force`]).
     pub answer_key: AnswerKey,
+    /// The moments the student marked in the run, in time order: a section
+    /// each, with the scene and the readouts of that moment.
+    pub marks: &'a [MarkedMoment<'a>],
+}
+
+/// A marked moment of the run (issue 26 §3): its time and the state the
+/// run had then (the timeline's, bit for bit the run's).
+#[derive(Clone, Copy)]
+pub struct MarkedMoment<'a> {
+    /// Simulated time of the mark, seconds.
+    pub t_s: f64,
+    pub state: &'a dyn Lab,
 }
 
 /// The student's own entries, typed on the Simulation tab before the report
@@ -159,6 +171,34 @@ pub struct Sheet {
     pub tables: Vec<Table>,
     pub plots: Vec<Plot>,
     pub quiz: Option<QuizSheet>,
+    /// The marked moments, in time order ([`MarkedMoment`]).
+    pub marks: Vec<Moment>,
+}
+
+/// A [`MarkedMoment`] as the report prints it: the time, and the status,
+/// scene and readouts the run had then.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Moment {
+    /// Simulated time of the mark, seconds.
+    pub t_s: f64,
+    pub status: Status,
+    pub scene: Scene,
+    pub view: ViewBox,
+    pub readouts: Vec<Readout>,
+}
+
+impl Moment {
+    fn of(m: &MarkedMoment<'_>) -> Moment {
+        let mut scene = Scene::default();
+        m.state.scene(&mut scene);
+        Moment {
+            t_s: m.t_s,
+            status: m.state.status(),
+            scene,
+            view: m.state.view(),
+            readouts: m.state.readouts(),
+        }
+    }
 }
 
 /// One parameter as the report prints it: its value already written as the
@@ -251,6 +291,7 @@ impl Sheet {
                 answers: q.answers.to_vec(),
                 submitted: q.submitted,
             }),
+            marks: r.marks.iter().map(Moment::of).collect(),
         }
     }
 }
@@ -351,6 +392,7 @@ pub fn render_sheet(r: &Sheet) -> String {
 
     parameters_section(&mut h, r);
     results_section(&mut h, r);
+    marks_section(&mut h, &r.marks);
     plots_section(&mut h, &r.plots);
     quiz_section(
         &mut h,
@@ -527,7 +569,17 @@ fn results_section(h: &mut String, r: &Sheet) {
         "<section class=\"results\"><h2>Results</h2><p class=\"status {tone}\"><strong>Status:</strong> {}</p>",
         escape(&status.text)
     );
-    let (picture, thinned) = scene_svg::scene_svg(&r.scene, r.view);
+    scene_figure(h, &r.scene, r.view, "when the report was made");
+    readouts_table(h, &r.readouts, "Readouts");
+    for t in &r.tables {
+        live_table(h, t);
+    }
+    h.push_str("</section>");
+}
+
+/// `scene` as a picture, captioned "The simulation {when}".
+fn scene_figure(h: &mut String, scene: &Scene, view: ViewBox, when: &str) {
+    let (picture, thinned) = scene_svg::scene_svg(scene, view);
     let thinned = if thinned.is_empty() {
         String::new()
     } else {
@@ -535,27 +587,53 @@ fn results_section(h: &mut String, r: &Sheet) {
     };
     let _ = write!(
         h,
-        "<figure class=\"scene\">{picture}<figcaption>The simulation when the report was made{thinned}.</figcaption></figure>"
+        "<figure class=\"scene\">{picture}<figcaption>The simulation {}{thinned}.</figcaption></figure>",
+        escape(when)
     );
-    let readouts = &r.readouts;
-    if !readouts.is_empty() {
-        h.push_str(
-            "<table class=\"data readouts\"><caption>Readouts</caption><thead><tr><th scope=\"col\">Quantity</th>\
-             <th scope=\"col\">Value</th></tr></thead><tbody>",
-        );
-        for r in readouts {
-            let _ = write!(
-                h,
-                "<tr data-readout=\"{}\"><th scope=\"row\">{}</th><td class=\"num\">{}</td></tr>",
-                escape(r.key),
-                escape(r.label),
-                escape(&r.value)
-            );
-        }
-        h.push_str("</tbody></table>");
+}
+
+/// `readouts` as a table captioned `caption`.
+fn readouts_table(h: &mut String, readouts: &[Readout], caption: &str) {
+    if readouts.is_empty() {
+        return;
     }
-    for t in &r.tables {
-        live_table(h, t);
+    let _ = write!(
+        h,
+        "<table class=\"data readouts\"><caption>{}</caption><thead><tr><th scope=\"col\">Quantity</th>\
+         <th scope=\"col\">Value</th></tr></thead><tbody>",
+        escape(caption)
+    );
+    for r in readouts {
+        let _ = write!(
+            h,
+            "<tr data-readout=\"{}\"><th scope=\"row\">{}</th><td class=\"num\">{}</td></tr>",
+            escape(r.key),
+            escape(r.label),
+            escape(&r.value)
+        );
+    }
+    h.push_str("</tbody></table>");
+}
+
+/// A section per marked moment: its status, scene and readouts.
+fn marks_section(h: &mut String, marks: &[Moment]) {
+    if marks.is_empty() {
+        return;
+    }
+    h.push_str("<section class=\"marks\"><h2>Marked moments</h2>");
+    for (i, m) in marks.iter().enumerate() {
+        let t = format!("t = {:.2} s", m.t_s);
+        let _ = write!(
+            h,
+            "<section class=\"mark\" data-mark-t=\"{:.2}\"><h3>Mark {}: {t}</h3>\
+             <p class=\"status\"><strong>Status:</strong> {}</p>",
+            m.t_s,
+            i + 1,
+            escape(&m.status.text)
+        );
+        scene_figure(h, &m.scene, m.view, &format!("at {t}"));
+        readouts_table(h, &m.readouts, &format!("Readouts at {t}"));
+        h.push_str("</section>");
     }
     h.push_str("</section>");
 }

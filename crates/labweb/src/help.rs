@@ -51,6 +51,7 @@ const TIME_KEYS: &[(&str, &str)] = &[
     (".", "One step while paused"),
     (",", "One step back (the timeline)"),
     ("End", "Run to the end at once"),
+    ("M", "Mark the moment shown (again: remove the mark)"),
 ];
 
 fn rows(keys: &[(&str, &str)]) -> String {

@@ -521,6 +521,9 @@ struct Drawn {
     on_screen: bool,
     parts: Parts,
     shown: Shown,
+    /// The run's marked moments on this plot, in its units (see
+    /// [`PlotView::set_marks`]).
+    marks: Vec<(f64, f64)>,
 }
 
 /// Where a plot is painted.
@@ -679,6 +682,7 @@ impl PlotView {
                     on_screen: true,
                     parts,
                     shown,
+                    marks: Vec::new(),
                 })
             })
             .collect::<Vec<Drawn>>();
@@ -825,6 +829,7 @@ impl PlotView {
             &mut drawn.labels,
         )
         .0;
+        paint_marks(&drawn.ctx, &drawn.frame, &drawn.marks, palette);
         match drawn.hover_x {
             Some(x) => show_nearest(drawn, plot, palette, x),
             None => {
@@ -834,6 +839,29 @@ impl PlotView {
             }
         }
         drawn.surface.present();
+    }
+
+    /// The run's marked moments (issue 26 §3): for each mark, its points on
+    /// each plot (plot key, points in the plot's units). A plot whose points
+    /// changed is painted again.
+    pub fn set_marks(&mut self, marks: &[(u64, labcore::marks::PlotPoints)]) {
+        for drawn in &mut self.plots {
+            let points: Vec<(f64, f64)> = marks
+                .iter()
+                .flat_map(|(_, plots)| plots.iter().filter(|(k, _)| *k == drawn.key))
+                .flat_map(|(_, p)| p.iter().copied())
+                .collect();
+            if points != drawn.marks {
+                drawn.marks = points;
+                drawn.revision = None;
+                let text: Vec<String> = drawn
+                    .marks
+                    .iter()
+                    .map(|(x, y)| format!("{x},{y}"))
+                    .collect();
+                let _ = drawn.canvas.set_attribute("data-marks", &text.join(" "));
+            }
+        }
     }
 
     /// Switches a plot between fitting the latest run and every run (the
@@ -919,6 +947,7 @@ impl Drawn {
             &mut self.labels,
         );
         self.frame = frame;
+        paint_marks(&self.ctx, &self.frame, &self.marks, palette);
         let json = layout.json();
         if json != self.shown.layout {
             let _ = self.canvas.set_attribute("data-layout", &json);
@@ -970,6 +999,40 @@ impl Drawn {
             }
         }
     }
+}
+
+/// Draws the run's marked moments: a downward triangle at each point, in
+/// the text colour with a background outline (a shape, not a colour, tells
+/// a mark from the curves and the event diamonds).
+fn paint_marks(
+    ctx: &CanvasRenderingContext2d,
+    frame: &Frame,
+    marks: &[(f64, f64)],
+    palette: &Palette,
+) {
+    if marks.is_empty() || frame.rect.2 <= 0.0 {
+        return;
+    }
+    let (l, t, w, h) = frame.rect;
+    ctx.save();
+    ctx.begin_path();
+    ctx.rect(l - 6.0, t - 6.0, w + 12.0, h + 12.0);
+    ctx.clip();
+    set_dash(ctx, &[]);
+    ctx.set_line_width(2.0);
+    ctx.set_stroke_style_str(&palette.background);
+    ctx.set_fill_style_str(palette.colour(Role::Text));
+    for &(x, y) in marks {
+        let (px, py) = (frame.px_x(x), frame.px_y(y));
+        ctx.begin_path();
+        ctx.move_to(px - 6.0, py - 10.0);
+        ctx.line_to(px + 6.0, py - 10.0);
+        ctx.line_to(px, py);
+        ctx.close_path();
+        ctx.stroke();
+        ctx.fill();
+    }
+    ctx.restore();
 }
 
 fn axis_title(label: &str, unit: &str) -> String {

@@ -22,7 +22,7 @@ use crate::quiz_view::{self, Attempt};
 use labcore::quiz::Response;
 use labcore::route::{self, Page};
 use labcore::Lab;
-use labpage::report::{self, AnswerKey, QuizResult, Report, Sheet, Student};
+use labpage::report::{self, AnswerKey, MarkedMoment, QuizResult, Report, Sheet, Student};
 use wasm_bindgen::prelude::*;
 use web_sys::Element;
 
@@ -99,8 +99,9 @@ pub fn remember(panel: &Element, id: &str) -> String {
 /// Builds `<id>-report.html` from the experiment's current state and offers
 /// it as a download. `panel` is the Simulation panel (its article holds the
 /// quiz); `hash` is the link of the state shown (`#/pid/simulation?…`, with
-/// the instructor's keys).
-pub fn download(panel: &Element, exp: &dyn Lab, hash: &str) {
+/// the instructor's keys); `marked` the run's marked moments, each with
+/// the state at it (time in seconds, state), a section each.
+pub fn download(panel: &Element, exp: &dyn Lab, hash: &str, marked: &[(f64, Box<dyn Lab>)]) {
     let Some(entry) = labcore::find(exp.id()) else {
         return;
     };
@@ -124,8 +125,16 @@ pub fn download(panel: &Element, exp: &dyn Lab, hash: &str) {
         Page::Experiment { .. } => parsed.instructor.note,
         Page::Home => None,
     };
+    let marks: Vec<MarkedMoment<'_>> = marked
+        .iter()
+        .map(|(t_s, state)| MarkedMoment {
+            t_s: *t_s,
+            state: state.as_ref(),
+        })
+        .collect();
     let sheet = report::wire::encode(&Sheet::of(&Report {
         experiment: exp,
+        marks: &marks,
         content,
         link: &link,
         date: &date,

@@ -48,6 +48,7 @@ fn a_damaged_report_sheet_is_an_error_not_a_panic() {
         note: Some("note"),
         student: Student::default(),
         answer_key: AnswerKey::Never,
+        marks: &[],
     }));
     for cut in 0..bytes.len() {
         assert!(
@@ -282,6 +283,7 @@ fn every_experiment_reports_every_parameter_and_plot_self_contained() {
             note: None,
             student: Student::default(),
             answer_key: AnswerKey::Submitted,
+            marks: &[],
         });
         let id = entry.id;
         balanced(&html).unwrap_or_else(|e| panic!("{id}: {e}"));
@@ -503,6 +505,7 @@ fn hostile_text_everywhere_is_escaped() {
             observations: EVIL,
         },
         answer_key: AnswerKey::Submitted,
+        marks: &[],
     });
     let lower = html.to_lowercase();
     // The one script element is the data record (JSON, never run).
@@ -605,6 +608,7 @@ fn an_empty_plot_and_an_unsubmitted_quiz_say_so() {
         note: None,
         student: Student::default(),
         answer_key: AnswerKey::Submitted,
+        marks: &[],
     });
     assert!(html.contains("No data yet: run the simulation first."));
     assert!(html.contains("No samples yet."));
@@ -846,6 +850,7 @@ fn rrtstar_report_draws_the_whole_tree_after_the_longest_run() {
         note: None,
         student: Student::default(),
         answer_key: AnswerKey::Submitted,
+        marks: &[],
     });
     let scene = svgs(&html)[0];
     // The tree is the one path in the Visited colour.
@@ -896,6 +901,7 @@ fn quiz_report(
         note: None,
         student,
         answer_key: key,
+        marks: &[],
     });
     (html, right, total)
 }
@@ -1089,4 +1095,94 @@ fn the_report_plot_draws_reference_lines_and_bands_as_the_canvas_plot_does() {
         "{svg}"
     );
     assert!(!svg.contains("stroke-dasharray=\"5 5\""), "{svg}");
+}
+
+/// The section of mark `t` (its `<section class="mark" …>` … `</section>`).
+fn mark_section<'h>(html: &'h str, t: &str) -> &'h str {
+    let start = html
+        .find(&format!("<section class=\"mark\" data-mark-t=\"{t}\">"))
+        .unwrap_or_else(|| panic!("no section for the mark at {t}"));
+    let end = start + html[start..].find("</section>").unwrap();
+    &html[start..end]
+}
+
+/// Issue 26 §3: a mark's section shows the state of its step, restored
+/// through the timeline: the readouts and the scene the live run had at
+/// that step, for every experiment with a timeline, marks mid-run and at a
+/// step between two snapshots.
+#[test]
+fn report_mark_section_shows_the_live_runs_state_at_the_marked_step() {
+    use labcore::timeline::Timeline;
+    let mut checked = 0;
+    for entry in crate::registry() {
+        let mut exp = (entry.make)();
+        if !exp.animated() {
+            continue;
+        }
+        exp.preview();
+        let mut timeline = Timeline::new(exp.as_ref(), 0);
+        let marked_steps = [45_u64, 100];
+        let mut live = Vec::new();
+        for step in 1..=150 {
+            exp.step(Clock::DT_S);
+            timeline.stepped(exp.as_ref());
+            if marked_steps.contains(&step) {
+                let mut scene = Scene::default();
+                exp.scene(&mut scene);
+                live.push((exp.readouts(), scene_svg::scene_svg(&scene, exp.view()).0));
+            }
+        }
+        let states: Vec<Box<dyn Lab>> = marked_steps
+            .iter()
+            .map(|&s| {
+                timeline
+                    .state_at(s, &mut |e: &mut dyn Lab| e.step(Clock::DT_S))
+                    .1
+            })
+            .collect();
+        let marks: Vec<MarkedMoment<'_>> = marked_steps
+            .iter()
+            .zip(&states)
+            .map(|(&s, state)| MarkedMoment {
+                t_s: s as f64 * Clock::DT_S,
+                state: state.as_ref(),
+            })
+            .collect();
+        let html = render(&Report {
+            experiment: exp.as_ref(),
+            content: content_of(entry.id),
+            link: "#/x",
+            date: "2026-11-27 09:00",
+            quiz: None,
+            note: None,
+            student: Student::default(),
+            answer_key: AnswerKey::Submitted,
+            marks: &marks,
+        });
+        let id = entry.id;
+        balanced(&html).unwrap_or_else(|e| panic!("{id}: {e}"));
+        assert!(html.contains("<h2>Marked moments</h2>"), "{id}");
+        for ((t, (readouts, svg)), n) in ["0.75", "1.67"].iter().zip(&live).zip(1..) {
+            let section = mark_section(&html, t);
+            assert!(
+                section.contains(&format!("<h3>Mark {n}: t = {t} s</h3>")),
+                "{id}"
+            );
+            assert!(
+                section.contains(svg.as_str()),
+                "{id} at {t}: the scene differs"
+            );
+            for r in readouts {
+                let row = format!(
+                    "<tr data-readout=\"{}\"><th scope=\"row\">{}</th><td class=\"num\">{}</td></tr>",
+                    escape(r.key),
+                    escape(r.label),
+                    escape(&r.value)
+                );
+                assert!(section.contains(&row), "{id} at {t}: {row}");
+            }
+        }
+        checked += 1;
+    }
+    assert!(checked >= 9, "only {checked} experiments with a timeline");
 }

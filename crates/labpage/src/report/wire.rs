@@ -15,7 +15,7 @@
 //! only in the report module (the linker leaves out what a build does not
 //! call).
 
-use super::{ParamRow, QuizSheet, Sheet, StudentSheet};
+use super::{Moment, ParamRow, QuizSheet, Sheet, StudentSheet};
 use crate::experiment::{Phase, Readout, Status, Tone};
 use crate::plot::{Axis, Band, Marker, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Prepared, PreparedKind, Response};
@@ -353,6 +353,14 @@ record!(Sheet {
     tables,
     plots,
     quiz,
+    marks,
+});
+record!(Moment {
+    t_s,
+    status,
+    scene,
+    view,
+    readouts
 });
 
 impl Wire for XWindow {

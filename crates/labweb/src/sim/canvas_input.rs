@@ -184,6 +184,15 @@ pub(super) fn listen(
                 }
                 return;
             }
+            "m" | "M" if !e.ctrl_key() && !e.meta_key() && !e.alt_key() => {
+                e.prevent_default();
+                let mut st = s.borrow_mut();
+                if st.exp.animated() {
+                    st.student_acted();
+                    st.toggle_mark();
+                }
+                return;
+            }
             "," | "End" => {
                 e.prevent_default();
                 let mut st = s.borrow_mut();

@@ -29,6 +29,7 @@ use web_sys::{
 mod a11y;
 mod canvas_input;
 mod instructor;
+mod marks;
 mod panel;
 mod scrub;
 mod status;
@@ -164,7 +165,7 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
         touch = if exp.captures_touch() { "all" } else { "handles" },
         report = crate::report_view::BUTTON_HTML,
         report_fields = crate::report_view::fields_html(exp.id()),
-        keys = if exp.animated() { ", Space plays or pauses, full stop steps once, comma steps back, End runs to the end" } else { "" },
+        keys = if exp.animated() { ", Space plays or pauses, full stop steps once, comma steps back, End runs to the end, M marks the moment" } else { "" },
         describe = a11y::describe_button_html(),
         description = a11y::DESCRIPTION_HTML,
         move_form = a11y::move_form_html(),
@@ -260,6 +261,8 @@ struct SimState {
     /// The timeline slider and what it shows: (first, last, shown) step.
     scrub_slider: Option<Element>,
     shown_scrub: (u64, u64, u64),
+    /// The marked moments of the run ([`marks`]).
+    marks: marks::MarkState,
 }
 
 /// Recent busy-frame times (step + paint), published on the canvas as
@@ -462,6 +465,7 @@ impl SimState {
             self.text_ms = time_ms;
             self.text_stale = false;
         }
+        self.sync_marks();
         // Plots follow the data, each at most every PLOT_INTERVAL_MS and
         // one a frame (they take turns), so no frame pays for all of them;
         // nor for a plot and the page's text together, unless forced.
@@ -511,6 +515,7 @@ impl SimState {
         if self.clock.speed() != 1.0 {
             extra.push(format!("speed={}", self.clock.speed()));
         }
+        extra.extend(self.marks_link());
         if !extra.is_empty() {
             hash.push(if hash.contains('?') { '&' } else { '?' });
             hash.push_str(&extra.join("&"));
@@ -700,6 +705,7 @@ impl SimView {
             run_to_end: None,
             scrub_slider: query(panel, ".tb-scrub"),
             shown_scrub: (0, 0, u64::MAX),
+            marks: marks::MarkState::default(),
         }));
         state.borrow_mut().restart_timeline();
         let mut listeners = Vec::new();
@@ -785,15 +791,22 @@ impl SimView {
     /// Applies raw URL parameters; returns notices about what was wrong.
     pub fn apply_params(&self, params: &[(String, String)]) -> Vec<String> {
         let mut st = self.state.borrow_mut();
-        let (shell, own): (Vec<_>, Vec<_>) = params
-            .iter()
-            .cloned()
-            .partition(|(k, _)| k == "run" || k == "speed" || k == "at");
+        let (shell, own): (Vec<_>, Vec<_>) = params.iter().cloned().partition(|(k, _)| {
+            k == "run" || k == "speed" || k == "at" || k == labcore::marks::MARKS_KEY
+        });
         st.timeline_input();
         let mut notices = route::apply_params(st.exp.as_mut(), &own);
         let mut at_s = None;
+        // A link is a whole state: its marks, or none.
+        let mut link_marks = labcore::marks::Marks::default();
         for (key, raw) in shell {
             match (key.as_str(), raw.trim().parse::<f64>()) {
+                (labcore::marks::MARKS_KEY, _) if st.timeline.is_some() => {
+                    match labcore::marks::Marks::parse(&raw) {
+                        Ok(marks) => link_marks = marks,
+                        Err(message) => notices.push(message),
+                    }
+                }
                 ("run", Ok(v)) if v == 0.0 || v == 1.0 => st.clock.set_running(v == 1.0),
                 ("at", Ok(v)) if st.timeline.is_some() && v.is_finite() && v >= 0.0 => {
                     at_s = Some(v);
@@ -813,6 +826,7 @@ impl SimView {
         if let Some(t_s) = at_s {
             st.open_at(t_s);
         }
+        st.set_marks(link_marks);
         st.needs_paint = true;
         st.shown_values.iter_mut().for_each(|v| *v = None);
         // The controls and readouts say the link's state at once, not after
@@ -892,6 +906,11 @@ impl SimView {
         st.plots.sync_text(st.exp.plots(), dom::now_ms(), true);
         st.plots_force = false;
         st.sync_timebar(true);
+        st.sync_marks();
+        if st.plots_force {
+            st.plots.draw(st.exp.plots(), &st.palette, true);
+            st.plots_force = false;
+        }
     }
 }
 

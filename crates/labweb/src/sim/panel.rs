@@ -147,8 +147,11 @@ pub(super) fn listen(
                     "back" => st.step_back(),
                     "end" => st.start_run_to_end(),
                     "reset" => st.reset_run(),
+                    "mark" => st.toggle_mark(),
                     _ => {}
                 }
+            } else if let Some(step) = attr("data-unmark").and_then(|s| s.parse().ok()) {
+                st.remove_mark(step);
             } else if button.has_attribute("data-touch-mode") {
                 st.touch_draws = !st.touch_draws;
                 let on = st.touch_draws;
@@ -167,7 +170,8 @@ pub(super) fn listen(
                     plot_view::download(&name, "text/plain", &text);
                 }
             } else if attr("data-export").as_deref() == Some("report") {
-                crate::report_view::download(&st.panel, st.exp.as_ref(), &st.link());
+                let marked = st.marked_states();
+                crate::report_view::download(&st.panel, st.exp.as_ref(), &st.link(), &marked);
             } else if attr("data-export").as_deref() == Some("png") {
                 st.paint();
                 export_png(&st.canvas, &format!("{}.png", st.file_stem()));

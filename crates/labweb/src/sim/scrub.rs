@@ -87,6 +87,7 @@ impl SimState {
             self.timeline = Some(Timeline::new(self.exp.as_ref(), self.clock.steps()));
         }
         self.run_to_end = None;
+        self.clear_marks();
     }
 
     /// An input is about to change the model at the step shown: the record
@@ -95,6 +96,7 @@ impl SimState {
         if let Some(tl) = &mut self.timeline {
             tl.input_at(self.clock.steps());
         }
+        self.marks_new_run_from(self.clock.steps());
     }
 
     /// Before the live run steps: the record takes the state an input left.

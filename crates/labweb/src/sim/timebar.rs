@@ -33,12 +33,14 @@ pub(super) fn timebar_html(step_s: f64) -> String {
          <button type=\"button\" class=\"tb-play\" data-time=\"play\" data-offer=\"pause\" aria-pressed=\"true\" aria-keyshortcuts=\"Space\">\
          <span class=\"tb-icon\">{ICON_PAUSE}</span> <span class=\"tb-label\">Pause</span></button>\
          <button type=\"button\" data-time=\"step\" aria-keyshortcuts=\".\" title=\"One step: {step} s (key .)\">{ICON_STEP} <span class=\"tb-text\">Step</span></button>\
-         {back_end}\
+         {back_end}{mark}\
          <label class=\"tb-speed\"><span class=\"tb-speed-text\">Playback</span> <select data-time=\"speed\">{speeds}</select></label>\
          <button type=\"button\" data-time=\"reset\">{ICON_RESET} <span class=\"tb-text\">Reset</span></button>\
-         <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output>{slider}</div>",
+         <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output>{marks}{slider}</div>",
         step = step_text(step_s),
         back_end = super::scrub::BUTTONS_HTML,
+        mark = super::marks::BUTTON_HTML,
+        marks = super::marks::LIST_HTML,
         slider = super::scrub::SLIDER_HTML,
     )
 }

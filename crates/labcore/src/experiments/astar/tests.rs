@@ -763,7 +763,10 @@ fn count_state(a: &AStarGrid, state: crate::planning::astar::CellState) -> usize
 /// checks) replayed on the state the previous steps left, so the test of
 /// step k starts from `after_step(k - 1)`.
 fn after_step(k: usize) -> AStarGrid {
-    testkit::after_step(&[step_1, step_2, step_3, step_4, step_5, step_6], k)
+    testkit::after_step(
+        &[step_1, step_2, step_3, step_4, step_5, step_6, step_7],
+        k,
+    )
 }
 
 /// Step 1: the green start on the left, the red goal on the right, walls
@@ -1072,7 +1075,11 @@ fn astar_step_6_mazes_differ_by_seed_solve_and_travel_in_the_link_by_seed() {
 /// benchmark's optimal length next to the path cost found.
 #[test]
 fn astar_step_7_the_arena_path_cost_matches_the_benchmark_optimum_in_the_status() {
-    let mut a = after_step(6);
+    step_7(&mut after_step(6));
+}
+
+/// Step 7's actions and observations (see its test).
+fn step_7(a: &mut AStarGrid) {
     // Steps 4 and 5 left Octile, 8-connected moves and the raised weight.
     assert_eq!((a.param("h"), a.param("conn")), (Some(1.0), Some(1.0)));
     assert_eq!(a.param("w"), Some(5.0));
@@ -1081,7 +1088,7 @@ fn astar_step_7_the_arena_path_cost_matches_the_benchmark_optimum_in_the_status(
     let shown = format_fixed(optimum, 3);
     assert!(a.status().text.contains(&shown), "{:?}", a.status());
     a.action("plan").unwrap();
-    settle(&mut a);
+    settle(a);
     let status = a.status();
     assert!(
         status.text.contains(&format!("arrived: path cost {shown}")),
@@ -1095,7 +1102,7 @@ fn astar_step_7_the_arena_path_cost_matches_the_benchmark_optimum_in_the_status(
     let (_, text) = a.export_text().unwrap();
     a.load_file("mine.map", &text).unwrap();
     a.action("plan").unwrap();
-    settle(&mut a);
+    settle(a);
     assert_eq!(a.phase, Phase::Arrived);
 }
 
@@ -1498,4 +1505,79 @@ fn astar_start_is_one_point_in_one_system_column_and_row_in_controls_and_move_a_
     assert_eq!(start.typed_text(start.typed().1), "column 3, row 12");
     assert!(a.move_handle("start", start.from_typed(DVec2::new(5.0, 10.0))));
     assert_eq!((a.param("sx"), a.param("sy")), (Some(5.0), Some(10.0)));
+}
+
+/// Step 8 (issue 26, the timeline): after Run to end, going back until the
+/// path disappears shows the search one expansion before the goal, the
+/// goal waiting in the open list; six steps back (one expansion at Speed
+/// 1×) the goal is not yet in it and (16, 13) is back there with its f.
+#[test]
+fn astar_step_8_stepping_back_through_the_expansions_undoes_the_path_and_the_open_list() {
+    use crate::timeline::Timeline;
+    use crate::Lab;
+    let text = crate::testkit::procedure_step("astar", 8);
+    for said in [
+        "20 × 15",
+        "Maze seed</em> to 1",
+        "w back to 1",
+        "Speed</em> to 1",
+        "<em>Run to end</em>",
+        "path cost 84.000",
+        "93",
+        "searching… 92 expanded",
+        "(17, 13) with g = 84, h = 0 and f = 84",
+        "six times",
+        "91",
+        "(16, 13) is back in the open list with g = 83, h = 1 and f = 84",
+    ] {
+        assert!(text.contains(said), "step 8 says {said:?}: {text}");
+    }
+    let mut a = after_step(7);
+    crate::testkit::set_params(&mut a, &[("size", 0.0), ("seed", 1.0), ("w", 1.0), ("rate", 1.0)]);
+    a.action("maze").unwrap();
+    a.action("plan").unwrap();
+    // Run to end, recorded as the shell records it.
+    let mut timeline = Timeline::new(&a as &dyn Lab, 0);
+    while a.animating() && timeline.end() < 36_000 {
+        a.step(DT);
+        timeline.stepped(&a as &dyn Lab);
+    }
+    assert_eq!(a.status().text, "arrived: path cost 84.000");
+    assert_eq!(readout(&a, "expanded"), "93");
+    let step_once = &mut |lab: &mut dyn Lab| lab.step(DT);
+    let open_rows = |lab: &dyn Lab| -> Vec<Vec<String>> {
+        lab.tables()
+            .into_iter()
+            .find(|t| t.key == "open")
+            .map(|t| t.rows)
+            .unwrap_or_default()
+    };
+    // Back, a step at a time, until the path is gone.
+    let mut step = timeline.end();
+    let before_path = loop {
+        let (_, lab) = timeline.state_at(step, step_once);
+        if readout(lab.as_ref(), "path_cells") == "--" {
+            break lab;
+        }
+        step -= 1;
+    };
+    assert_eq!(before_path.status().text, "searching… 92 expanded");
+    let rows = open_rows(before_path.as_ref());
+    assert_eq!(rows[1][1..], ["(17, 13)", "84", "0", "84"], "{rows:?}");
+    assert!(!scene_of(before_path.as_ref())
+        .items
+        .iter()
+        .any(|i| matches!(i, Item::Polyline { role: Role::Path, .. })));
+    // Six steps back: one expansion fewer.
+    let (_, earlier) = timeline.state_at(step - 6, step_once);
+    assert_eq!(readout(earlier.as_ref(), "expanded"), "91");
+    let rows = open_rows(earlier.as_ref());
+    assert!(rows.iter().all(|r| r[1] != "(17, 13)"), "{rows:?}");
+    assert!(
+        rows[1..].iter().any(|r| r[1..] == ["(16, 13)", "83", "1", "84"]),
+        "{rows:?}"
+    );
+    // And it is exactly the run's state there.
+    let (_, again) = timeline.state_at(step - 6, step_once);
+    assert_eq!(open_rows(again.as_ref()), rows);
 }

@@ -826,6 +826,20 @@ fn after_step(k: usize) -> PidControl {
         set_params(&mut e, &[("noise", 0.005), ("tf", 0.05), ("seed", 1.0)]);
         run_to_end(&mut e);
     }
+    if k >= 8 {
+        set_params(
+            &mut e,
+            &[
+                ("sat", 0.0),
+                ("d", 0.0),
+                ("c", 0.0),
+                ("kd", 0.0),
+                ("kp", 20.0),
+                ("ki", 5.0),
+            ],
+        );
+        run_to_end(&mut e);
+    }
     e
 }
 
@@ -1382,4 +1396,85 @@ fn pid_force_u_has_one_format_a_tiny_force_reads_0_00_n() {
         }
     }
     assert!(tiny > 0, "the run passes through tiny forces");
+}
+
+
+/// Step 9 (issue 26, the timeline): after Run to end, scrubbing back to the
+/// highest point of the response shows the peak the damping ratio
+/// predicts, and a mark there sits on the top of the curve.
+#[test]
+fn pid_step_9_scrubbing_back_to_the_peak_reads_the_overshoot_the_damping_predicts() {
+    use crate::timeline::Timeline;
+    use crate::Lab;
+    let text = procedure_step("pid", 9);
+    for said in [
+        "Kp = 25, Ki = 0, Kd = 2 and c = 1",
+        "<em>Run to end</em>",
+        "1.374 m",
+        "t = 0.66 s",
+        "ζ = (c + Kd)/(2√(m·Kp)) = 0.3",
+        "≈ 37.2 %",
+        "1.372 m",
+        "37.4 %",
+        "<em>Mark</em>",
+    ] {
+        assert!(text.contains(said), "step 9 says {said:?}: {text}");
+    }
+    let mut e = after_step(8);
+    set_params(
+        &mut e,
+        &[
+            ("kp", 25.0),
+            ("ki", 0.0),
+            ("kd", 2.0),
+            ("c", 1.0),
+            ("noise", 0.0),
+            ("tf", 0.0),
+        ],
+    );
+    // Run to end, recorded as the shell records it.
+    let mut timeline = Timeline::new(&e as &dyn Lab, 0);
+    let mut n = 0;
+    while e.animating() && n < 36_000 {
+        e.step(1.0 / 60.0);
+        timeline.stepped(&e as &dyn Lab);
+        n += 1;
+    }
+    assert!(!e.animating(), "the run finishes");
+    // Scrub back through the whole run for the largest Position x.
+    let step_once = &mut |lab: &mut dyn Lab| lab.step(1.0 / 60.0);
+    let end = timeline.end();
+    let xs: Vec<f64> = (0..=end)
+        .map(|step| {
+            let (_, lab) = timeline.state_at(step, step_once);
+            *lab.plots()[0].series[0].y.last().unwrap()
+        })
+        .collect();
+    let peak_step = (0..=end)
+        .max_by(|&a, &b| xs[a as usize].total_cmp(&xs[b as usize]))
+        .unwrap();
+    let (_, peak) = timeline.state_at(peak_step, step_once);
+    assert_eq!(readout(peak.as_ref(), "x"), "1.374 m");
+    let (t_peak, x_peak) = {
+        let s = &peak.plots()[0].series[0];
+        (*s.x.last().unwrap(), *s.y.last().unwrap())
+    };
+    assert_eq!(format!("{t_peak:.2}"), "0.66");
+    assert_eq!(format!("{x_peak:.3}"), "1.374");
+    // The theory: ζ = (c + Kd)/(2√(m·Kp)) = 3/10, overshoot 37.2 %.
+    let zeta: f64 = (1.0 + 2.0) / (2.0 * (1.0_f64 * 25.0).sqrt());
+    assert!((zeta - 0.3).abs() < 1e-12);
+    let overshoot = 100.0 * (-zeta * std::f64::consts::PI / (1.0 - zeta * zeta).sqrt()).exp();
+    assert_eq!(format!("{overshoot:.1}"), "37.2");
+    assert_eq!(format!("{:.3}", 1.0 + overshoot / 100.0), "1.372");
+    assert_eq!(readout(&e, "overshoot"), "37.4%");
+    // A mark there is the top of the finished curve.
+    let marked = crate::marks::plot_points(peak.plots());
+    let top = e.plots()[0].series[0]
+        .y
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert_eq!(marked[0].1[0], (t_peak, x_peak));
+    assert_eq!(x_peak, top);
 }
