@@ -1,0 +1,112 @@
+//! "The math" panel's promise, for every experiment that has one: each
+//! equation's substituted form, evaluated from the numbers as the panel
+//! shows them, is the readout it names, within the display rounding (half a
+//! digit of the readout, plus half a digit of each number put in, carried
+//! through the expression).
+
+use labcore::live_math::{rounding_bound, shown};
+use labcore::testkit::{leading_number, steps};
+use labcore::{registry, Lab, Lcg64};
+
+/// Half a unit of the last digit of a readout's number (`0.749 m` → 0.0005).
+fn half_digit(text: &str) -> f64 {
+    let number: String = text
+        .trim_start()
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || *c == '.' || *c == '-' || *c == '\u{2212}')
+        .collect();
+    let decimals = number.split_once('.').map_or(0, |(_, d)| d.len());
+    0.5 * 10f64.powi(-(decimals as i32))
+}
+
+/// Checks every equation of `e` against its readout; returns how many.
+fn check_equations(e: &dyn Lab, context: &str) -> usize {
+    let quantities = e.quantities();
+    let readouts = e.readouts();
+    for eq in e.equations() {
+        for key in eq.expr.keys() {
+            assert!(
+                quantities.iter().any(|q| q.key == key),
+                "{} {context}: equation {} reads {key:?}, which is not among its quantities",
+                e.id(),
+                eq.symbol
+            );
+        }
+        let readout = readouts
+            .iter()
+            .find(|r| r.key == eq.readout)
+            .unwrap_or_else(|| {
+                panic!(
+                    "{}: equation {} names no readout {:?}",
+                    e.id(),
+                    eq.symbol,
+                    eq.readout
+                )
+            });
+        let Some(shown_result) = leading_number(&readout.value) else {
+            continue; // "--": nothing to compare
+        };
+        let value = eq.expr.eval(&|k| shown(&quantities, k));
+        let tolerance = rounding_bound(&eq.expr, &quantities) + half_digit(&readout.value) + 1e-12;
+        assert!(
+            (value - shown_result).abs() <= tolerance,
+            "{} {context}: {} = {value} from the shown numbers, readout {:?} (tolerance {tolerance})",
+            e.id(),
+            eq.symbol,
+            readout.value
+        );
+    }
+    e.equations().len()
+}
+
+/// Random values of every slider and number parameter, inside their ranges.
+fn randomise(e: &mut dyn Lab, rng: &mut Lcg64) {
+    for spec in e.params() {
+        let value = spec.min + (spec.max - spec.min) * rng.next_f64();
+        let _ = e.set_param(spec.key, value);
+    }
+}
+
+#[test]
+fn live_math_every_equation_is_its_readout_within_the_display_rounding() {
+    let mut checked = 0;
+    for entry in registry() {
+        let mut e = (entry.make)();
+        if e.equations().is_empty() {
+            continue;
+        }
+        checked += check_equations(e.as_ref(), "at defaults");
+        let mut rng = Lcg64::new(27);
+        for trial in 0..200 {
+            randomise(e.as_mut(), &mut rng);
+            checked += check_equations(e.as_ref(), &format!("after random parameters #{trial}"));
+            if e.animated() {
+                steps(e.as_mut(), 1 + (trial % 7) * 10);
+                checked += check_equations(e.as_ref(), &format!("after steps, trial {trial}"));
+            }
+        }
+    }
+    assert!(checked > 0, "no experiment has equations yet");
+}
+
+#[test]
+fn live_math_every_quantity_key_is_unique_and_every_symbol_is_written() {
+    for entry in registry() {
+        let e = (entry.make)();
+        let quantities = e.quantities();
+        for (i, q) in quantities.iter().enumerate() {
+            assert!(
+                !q.symbol.is_empty(),
+                "{}: quantity {} has no symbol",
+                e.id(),
+                q.key
+            );
+            assert!(
+                quantities[..i].iter().all(|p| p.key != q.key),
+                "{}: quantity {} twice",
+                e.id(),
+                q.key
+            );
+        }
+    }
+}
