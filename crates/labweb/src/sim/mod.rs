@@ -88,6 +88,7 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
         })
         .collect();
     let readouts = readouts_html(&exp.readouts());
+    let math = labpage::math_panel::panel_html(exp.equations(), &exp.quantities(), &exp.readouts());
     let statusbar = statusbar_html(&exp.status());
     let timebar = if exp.animated() {
         timebar_html(exp.natural_step_s())
@@ -152,7 +153,7 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
            </div>{plots}\
            <div class=\"sim-side\">\
              <p class=\"sim-caption\">{caption}</p>\
-             <dl class=\"readouts\">{readouts}</dl>\
+             <dl class=\"readouts\">{readouts}</dl>{math}\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
              <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
              {presets}<form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>{move_form}\
@@ -233,6 +234,9 @@ struct SimState {
     touch_input: bool,
     shown_hint: Option<(&'static str, bool)>,
     shown_tables: Vec<labcore::Table>,
+    /// "The math" panel's changing parts as last written, an entry per
+    /// equation: the substituted form, the result and the text twin.
+    shown_math: Vec<(String, String, String)>,
     shown_view: labcore::ViewBox,
     hash_dirty: bool,
     last_hash_ms: f64,
@@ -659,6 +663,7 @@ impl SimView {
             touch_input: coarse_pointer(),
             shown_hint: None,
             shown_tables: Vec::new(),
+            shown_math: Vec::new(),
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
             last_hash_ms: 0.0,
