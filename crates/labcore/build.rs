@@ -16,6 +16,12 @@
 //! references) come out empty: only the id, number, title, summary, aim (the
 //! lab report quotes it) and quiz are compiled in.
 //!
+//! Every text field's formulas (LaTeX between dollars) are written as MathML
+//! here, by [`labtex::render`], so the compiled strings (the quiz text the
+//! wasm modules show and the reading pages alike) hold MathML and no module
+//! carries a converter. A formula that does not convert stops the build with
+//! the file, the field's JSON path and the position in the formula.
+//!
 //! serde_json is a build-dependency only: nothing of it reaches the crate.
 //! The fields are read as strictly as `Content::from_json` reads them (no
 //! field missing, none unknown, each of its type); a file that fails is
@@ -66,7 +72,13 @@ fn main() {
         let text = std::fs::read_to_string(&path).unwrap_or_default();
         let body = serde_json::from_str::<Value>(&text)
             .map_err(|e| e.to_string())
-            .and_then(|v| content(&v, reading))
+            .and_then(|mut v| {
+                if let Err(e) = render_formulas(&mut v, String::new()) {
+                    eprintln!("error: assets/{id}.json: {e}");
+                    std::process::exit(1);
+                }
+                content(&v, reading)
+            })
             .unwrap_or_else(|e| {
                 format!(
                     "Err(ContentError::Parse(String::from({:?})))",
@@ -116,6 +128,32 @@ fn held_experiments(ids: &[String], selection: Option<&str>) -> Vec<String> {
         .filter(|id| wanted.contains(&id.as_str()))
         .cloned()
         .collect()
+}
+
+/// Every string in `value` with its formulas written as MathML
+/// ([`labtex::render`]); an error names the string's JSON path
+/// (`theory[2].formula`), `path` being `value`'s own.
+fn render_formulas(value: &mut Value, path: String) -> Result<(), String> {
+    match value {
+        Value::String(s) => *s = labtex::render_field(&path, s)?,
+        Value::Array(items) => {
+            for (i, item) in items.iter_mut().enumerate() {
+                render_formulas(item, format!("{path}[{i}]"))?;
+            }
+        }
+        Value::Object(map) => {
+            for (key, item) in map.iter_mut() {
+                let inner = if path.is_empty() {
+                    key.clone()
+                } else {
+                    format!("{path}.{key}")
+                };
+                render_formulas(item, inner)?;
+            }
+        }
+        Value::Null | Value::Bool(_) | Value::Number(_) => {}
+    }
+    Ok(())
 }
 
 /// The id names a Rust function (`content_<id>`).

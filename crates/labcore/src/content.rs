@@ -1,8 +1,10 @@
 //! Experiment content as data: one JSON file per experiment under `assets/`.
 //!
 //! Text fields may hold a small, trusted subset of inline HTML (`<em>`,
-//! `<strong>`, `<code>`, `<sub>`, `<sup>`) and MathML (`<math>…</math>`); the
-//! files are ours and are compiled into the bundle, never user input.
+//! `<strong>`, `<code>`, `<sub>`, `<sup>`) and formulas in LaTeX (`$…$`,
+//! `$$…$$`), which `build.rs` (and [`Content::parse`]) write as MathML
+//! (`<math>…</math>`) with the `labtex` crate; the files are ours and are
+//! compiled into the bundle, never user input.
 
 #[cfg(feature = "reading")]
 use crate::json::{Fields, Json};
@@ -39,9 +41,10 @@ pub struct Content {
 pub enum Block {
     /// A sub-heading.
     Heading(String),
-    /// A paragraph (inline MathML allowed).
+    /// A paragraph (inline formulas allowed; MathML once built).
     Paragraph(String),
-    /// A display formula: a complete `<math display="block">…</math>` element.
+    /// A display formula: `$$…$$` in the file, a complete
+    /// `<math display="block">…</math>` element once built.
     Formula(String),
     /// A highlighted aside.
     Note(String),
@@ -211,6 +214,12 @@ impl Question {
 #[derive(Clone, Debug, PartialEq)]
 pub enum ContentError {
     Parse(String),
+    /// A formula that does not convert from LaTeX: its field's JSON path,
+    /// the position in the formula and what is wrong there. Only content
+    /// read at run time (`reading`) is converted here; the compiled-in files
+    /// were converted by `build.rs`.
+    #[cfg(feature = "reading")]
+    Latex(String),
     /// A reference whose DOI or URL is malformed.
     BadReference {
         reference: usize,
@@ -269,6 +278,8 @@ impl fmt::Display for ContentError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ContentError::Parse(e) => write!(f, "content is not valid JSON: {e}"),
+            #[cfg(feature = "reading")]
+            ContentError::Latex(e) => f.write_str(e),
             ContentError::Missing { section } => write!(f, "section “{section}” is empty"),
             ContentError::TooFewQuestions { found } => {
                 write!(
@@ -307,7 +318,7 @@ impl fmt::Display for ContentError {
             }
             ContentError::BadFormula { block } => write!(
                 f,
-                "theory block {}: a formula must be one <math display=\"block\"> element",
+                "theory block {}: a formula must be one display formula, $$…$$, and nothing else",
                 block + 1
             ),
             ContentError::UnknownGenerator { question, name } => {
@@ -371,10 +382,13 @@ impl Content {
         Ok(content)
     }
 
-    /// Parses a content file and checks it is complete (see [`Content::validate`]).
+    /// Parses a content file, writes its formulas (LaTeX between dollars) as
+    /// MathML as `build.rs` does for the compiled-in files, and checks it is
+    /// complete (see [`Content::validate`]).
     #[cfg(feature = "reading")]
     pub fn parse(json: &str) -> Result<Self, ContentError> {
-        let value = Json::parse(json).map_err(ContentError::Parse)?;
+        let mut value = Json::parse(json).map_err(ContentError::Parse)?;
+        render_formulas(&mut value, String::new()).map_err(ContentError::Latex)?;
         let content = Content::from_json(&value).map_err(ContentError::Parse)?;
         content.validate()?;
         Ok(content)
@@ -631,6 +645,34 @@ fn is_positive(x: f64) -> bool {
     x.is_finite() && x > 0.0
 }
 
+/// Every string in `value` with its formulas written as MathML
+/// ([`labtex::render`]), as `build.rs` writes the compiled-in files; an error
+/// names the string's JSON path (`theory[2].formula`), `path` being
+/// `value`'s own.
+#[cfg(feature = "reading")]
+fn render_formulas(value: &mut Json, path: String) -> Result<(), String> {
+    match value {
+        Json::String(s) => *s = labtex::render_field(&path, s)?,
+        Json::Array(items) => {
+            for (i, item) in items.iter_mut().enumerate() {
+                render_formulas(item, format!("{path}[{i}]"))?;
+            }
+        }
+        Json::Object(fields) => {
+            for (key, item) in fields.iter_mut() {
+                let inner = if path.is_empty() {
+                    key.clone()
+                } else {
+                    format!("{path}.{key}")
+                };
+                render_formulas(item, inner)?;
+            }
+        }
+        Json::Null | Json::Bool(_) | Json::Number(_) => {}
+    }
+    Ok(())
+}
+
 /// A display formula is exactly one `<math display="block">` element with
 /// balanced tags.
 fn is_block_math(s: &str) -> bool {
@@ -833,6 +875,79 @@ mod tests {
             );
             assert!(err.to_string().starts_with(field));
         }
+    }
+
+    /// Issue 27 §1: every formula of every content file is LaTeX between
+    /// dollars (no hand-written MathML is left) and converts: the compiled
+    /// content holds one `<math>` element for each formula and no dollar.
+    #[test]
+    fn latex_every_formula_of_every_content_file_converts() {
+        let mut formulas = 0;
+        for entry in crate::registry() {
+            let text = entry.content_json;
+            assert!(!text.contains("<math"), "{}: hand-written MathML", entry.id);
+            let content = entry.content().expect("converts");
+            let mut written = 0;
+            for (field, shown) in content.text_fields() {
+                assert!(!shown.contains('$'), "{} {field}: {shown}", entry.id);
+                // The Content-Security-Policy would block it.
+                assert!(!shown.contains(" style="), "{} {field}: {shown}", entry.id);
+                written += shown.matches("<math").count();
+            }
+            let dollars = text.matches('$').count() - 2 * text.matches("$$").count();
+            assert_eq!(dollars % 2, 0, "{}", entry.id);
+            assert_eq!(
+                written,
+                dollars / 2 + text.matches("$$").count() / 2,
+                "{}",
+                entry.id
+            );
+            formulas += written;
+        }
+        // 458 when the formulas were moved from MathML to LaTeX.
+        assert!(formulas >= 458, "{formulas} formulas");
+    }
+
+    /// Issue 27 §1: a formula that does not convert is refused naming the
+    /// field (its JSON path) and the position in the formula.
+    #[test]
+    fn latex_a_broken_formula_is_named_with_its_field_and_position() {
+        let entry = crate::find("fk").expect("fk");
+        let mut v: serde_json::Value = serde_json::from_str(entry.content_json).unwrap();
+        let formula = v["theory"][9]["formula"].as_str().unwrap().to_owned();
+        let broken = formula.replacen("= L_1", "= \\nosuch L_1", 1);
+        v["theory"][9]["formula"] = broken.clone().into();
+        let err = entry
+            .parse_content_text(&v.to_string())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("theory[9].formula: LaTeX error at character ")
+                && err.contains("\\nosuch"),
+            "{err}"
+        );
+        let at: usize = err["theory[9].formula: LaTeX error at character ".len()..]
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        let latex = broken.trim_matches('$');
+        assert_eq!(
+            latex.chars().nth(at - 1),
+            Some('\\'),
+            "character {at} of {latex} starts the unknown command"
+        );
+        let mut v: serde_json::Value = serde_json::from_str(entry.content_json).unwrap();
+        v["quiz"][0]["options"][1] = "costs $5".into();
+        let err = entry
+            .parse_content_text(&v.to_string())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("quiz[0].options[1]: ") && err.contains("not closed"),
+            "{err}"
+        );
     }
 
     #[test]

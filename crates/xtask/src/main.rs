@@ -4,7 +4,6 @@
 //! wasm-bindgen library (same exact version as the workspace's `wasm-bindgen`)
 //! and `flate2` are used: no other build tool has to be installed by hand.
 
-mod accents;
 mod dist;
 mod import_names;
 mod minify;

@@ -63,14 +63,12 @@ pub fn home_html() -> String {
 
 /// One experiment's article (six tabs, reading tabs filled in), as its
 /// reading page `pages/<id>.<hash>.html` holds it; `main.js` inserts it.
-/// Accents are written in the form every browser engine draws over their
-/// letter (see [`crate::accents`]).
+/// Its formulas were written as MathML from LaTeX when labcore was built,
+/// accents in the form every browser engine draws over their letter (see
+/// `labtex::accents`).
 #[must_use]
 pub fn article_html(entry: &labcore::Entry) -> String {
-    crate::accents::portable(&labpage::content_html::article(
-        entry.id,
-        entry.content().map_err(|e| e.to_string()),
-    ))
+    labpage::content_html::article(entry.id, entry.content().map_err(|e| e.to_string()))
 }
 
 /// Writes the home page and each experiment's reading page into
@@ -166,7 +164,7 @@ mod tests {
         for entry in labcore::registry() {
             let html = article_html(entry);
             assert_eq!(
-                crate::accents::non_portable(&html),
+                labtex::accents::non_portable(&html),
                 Vec::<String>::new(),
                 "{}",
                 entry.id
@@ -197,6 +195,24 @@ mod tests {
         );
         let no_refs = good.replace("\"references\": [", "\"references\": [] , \"x\": [");
         assert!(check_one(entry, &no_refs).is_err());
+    }
+
+    /// Issue 27 §1: a formula that does not convert from LaTeX fails the
+    /// build's content check naming the file, the field and the position.
+    #[test]
+    fn latex_a_broken_formula_is_named_with_file_field_and_position() {
+        let entry = labcore::find("fk").expect("fk");
+        let broken = entry
+            .content_json
+            .replacen("$\\\\theta_1$", "$\\\\theta_1 + \\\\frac{1}$", 1);
+        assert_ne!(broken, entry.content_json);
+        let e = check_one(entry, &broken).unwrap_err();
+        assert!(
+            e.starts_with("assets/fk.json: theory[")
+                && e.contains("].paragraph: LaTeX error at character ")
+                && e.contains("`\\theta_1 + \\frac{1}`"),
+            "{e}"
+        );
     }
 
     #[test]

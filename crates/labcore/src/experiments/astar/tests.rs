@@ -1340,7 +1340,8 @@ fn issue15_content_heuristics_quiz_wording_and_option_lengths() {
     let text = include_str!("../../../../../assets/astar.json");
     let v: serde_json::Value = serde_json::from_str(text).unwrap();
     let theory = v["theory"].to_string();
-    let abs_dx = r#"<mo stretchy=\"false\">|</mo><mi mathvariant=\"normal\">Δ</mi><mi>x</mi><mo stretchy=\"false\">|</mo>"#;
+    // `|\Delta x|` in the LaTeX, its backslash escaped in the JSON text.
+    let abs_dx = r#"|\\Delta x|"#;
     assert!(
         theory.matches(abs_dx).count() >= 4,
         "|Δx| in Manhattan and octile"

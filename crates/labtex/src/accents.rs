@@ -1,8 +1,8 @@
 //! Accents over a letter (θ̇, θ̈, μ̄, x̂) in the one MathML form that Chromium,
 //! Firefox and WebKit all draw above their letter.
 //!
-//! Content files (and any converter that writes MathML for them) write an
-//! accent the usual way, `<mover><mi>θ</mi><mo>˙</mo></mover>`. WebKit
+//! A converter (math-core among them) writes an accent the usual way,
+//! `<mover><mi>θ</mi><mo>˙</mo></mover>`. WebKit
 //! (WebKitGTK 2.50, Safari's engine) lays out a non-stretchy `<mo>` over a
 //! base by its font box, not its ink: the dot lands well above and to the
 //! left of the θ and lifts a superscript with it (θ̇² reads "θ ·2"), with or
@@ -22,7 +22,8 @@
 //! letter in all three. Compared by screenshots in `tests/e2e/browsers.test.mjs`
 //! (with no math font, TeX Gyre DejaVu Math and Latin Modern Math).
 //!
-//! `cargo xtask dist` applies [`portable`] to every reading page it writes.
+//! [`crate::render`] applies [`portable`] to every formula it writes, so the
+//! reading pages and the quiz text in the wasm modules carry only this form.
 
 /// The accent characters an author or converter writes, each with the one
 /// the portable form uses.
@@ -158,7 +159,6 @@ fn finish(
 /// The accents in `markup` that are not in the portable form, each as the
 /// `<mover>…</mover>` source text (at most 80 characters of it). Used by
 /// the tests that keep the old form from coming back.
-#[cfg(test)]
 #[must_use]
 pub fn non_portable(markup: &str) -> Vec<String> {
     let fixed = portable(markup);
