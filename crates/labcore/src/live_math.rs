@@ -231,7 +231,8 @@ fn write_text(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out: 
         }
         Expr::Mul(a, b) => {
             write_text(a, form, quantities, 2, out);
-            out.push('·');
+            // Symbols multiply by juxtaposition (`L1 cos θ1`); numbers need a dot.
+            out.push_str(if form == Form::Symbols { " " } else { "·" });
             write_text(b, form, quantities, 3, out);
         }
         Expr::Div(a, b) => {
@@ -322,7 +323,7 @@ mod tests {
     #[test]
     fn the_text_forms_write_symbols_and_numbers_with_their_degrees() {
         let q = arm(35.0);
-        assert_eq!(expr_text(&TIP_X, Form::Symbols, &q), "L1·cos θ1");
+        assert_eq!(expr_text(&TIP_X, Form::Symbols, &q), "L1 cos θ1");
         assert_eq!(expr_text(&TIP_X, Form::Numbers, &q), "1.00·cos 35°");
         const SUM: Expr = Expr::Cos(&Expr::Add(&T1, &T1));
         assert_eq!(expr_text(&SUM, Form::Symbols, &q), "cos (θ1 + θ1)");

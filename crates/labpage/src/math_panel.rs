@@ -25,7 +25,7 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
              <p class=\"equation-caption\">{caption}</p>\
              <p class=\"equation-forms\" aria-hidden=\"true\">\
              <math>{lhs}<mo>=</mo>{symbols}</math> \
-             <span class=\"equation-numbers\"><math><mo>=</mo>{numbers}</math></span> \
+             <span class=\"equation-numbers\">{numbers}</span> \
              <span class=\"equation-result\">= {result}</span></p>\
              <p class=\"sr-only equation-text\">{text}</p></div>",
             caption = escape(eq.caption),
@@ -45,7 +45,7 @@ pub fn live_parts(
     quantities: &[Quantity],
     readouts: &[Readout],
 ) -> (String, String, String) {
-    let numbers = expr_mathml(&eq.expr, Form::Numbers, quantities);
+    let numbers = wrapping_mathml(&eq.expr, quantities);
     let result = readouts
         .iter()
         .find(|r| r.key == eq.readout)
@@ -58,6 +58,41 @@ pub fn live_parts(
         result
     );
     (numbers, escape(&result), escape(&text))
+}
+
+/// The substituted form as MathML that may wrap between the terms of its
+/// top-level sum: `<math>= 1.00·cos 35°</math> <math>+ 0.80·cos 95°</math>`
+/// (a `<math>` element never breaks inside a narrow column).
+#[must_use]
+pub fn wrapping_mathml(expr: &Expr, quantities: &[Quantity]) -> String {
+    let mut terms: Vec<(&str, &Expr)> = Vec::new();
+    let mut rest = expr;
+    loop {
+        match *rest {
+            Expr::Add(a, b) => {
+                terms.push(("+", b));
+                rest = a;
+            }
+            Expr::Sub(a, b) => {
+                terms.push(("−", b));
+                rest = a;
+            }
+            _ => {
+                terms.push(("=", rest));
+                break;
+            }
+        }
+    }
+    terms
+        .iter()
+        .rev()
+        .map(|(op, term)| {
+            let mut m = String::new();
+            write_mathml(term, Form::Numbers, quantities, 2, &mut m);
+            format!("<math><mo>{op}</mo>{m}</math>")
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// A symbol spec (`θ_1`, `K_p`, `x`) as MathML.
@@ -115,10 +150,10 @@ fn write_mathml(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out
                 if negative {
                     out.push_str("<mo>−</mo>");
                 }
-                let _ = write!(out, "<mn>{digits}</mn>");
-                if q.unit == "°" {
-                    out.push_str("<mo>°</mo>");
-                }
+                // The degree sign inside the number: as a trailing `<mo>`
+                // Chromium may leave it out at the end of a `<math>`.
+                let degrees = if q.unit == "°" { "°" } else { "" };
+                let _ = write!(out, "<mn>{digits}{degrees}</mn>");
                 if bracket {
                     out.push_str("<mo>)</mo>");
                 }
@@ -141,7 +176,12 @@ fn write_mathml(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out
         }
         Expr::Mul(a, b) => {
             write_mathml(a, form, quantities, 2, out);
-            out.push_str("<mo>·</mo>");
+            // Symbols multiply by juxtaposition (L₁ cos θ₁); numbers need a dot.
+            out.push_str(if form == Form::Symbols {
+                "<mo>&#x2062;</mo>"
+            } else {
+                "<mo>·</mo>"
+            });
             write_mathml(b, form, quantities, 3, out);
         }
         Expr::Div(a, b) => {
@@ -161,7 +201,12 @@ fn write_mathml(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out
             } else {
                 "sin"
             };
+            // A thin space after the name, as TeX sets `\cos\theta` (browsers
+            // add none for the function-application operator).
             let _ = write!(out, "<mi>{name}</mi><mo>&#x2061;</mo>");
+            if precedence(a) >= 4 {
+                out.push_str("<mspace width=\"0.1667em\"></mspace>");
+            }
             write_mathml(a, form, quantities, 4, out);
         }
         Expr::Sqrt(a) => {
@@ -221,12 +266,22 @@ mod tests {
         let html = panel_html(&[EQ], &quantities(35.0), &readouts);
         assert!(html.contains("<h3 id=\"live-math-title\">The math</h3>"));
         assert!(html.contains(
-            "<mi>x</mi><mo>=</mo><msub><mi>L</mi><mn>1</mn></msub><mo>·</mo><mi>cos</mi>"
+            "<mi>x</mi><mo>=</mo><msub><mi>L</mi><mn>1</mn></msub><mo>&#x2062;</mo><mi>cos</mi>"
         ));
         assert!(html
-            .contains("<mn>1.00</mn><mo>·</mo><mi>cos</mi><mo>&#x2061;</mo><mn>35</mn><mo>°</mo>"));
+            .contains("<math><mo>=</mo><mn>1.00</mn><mo>·</mo><mi>cos</mi><mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math>"));
         assert!(html.contains("= 0.819 m"));
-        assert!(html.contains("x = L1·cos θ1 = 1.00·cos 35° = 0.819 m"));
+        assert!(html.contains("x = L1 cos θ1 = 1.00·cos 35° = 0.819 m"));
+    }
+
+    #[test]
+    fn a_long_sum_is_written_a_term_to_a_math_element_so_it_can_wrap() {
+        const SUM: Expr = Expr::Sub(&Expr::Add(&L, &T), &L);
+        assert_eq!(
+            wrapping_mathml(&SUM, &quantities(35.0)),
+            "<math><mo>=</mo><mn>1.00</mn></math> <math><mo>+</mo><mn>35°</mn></math> \
+             <math><mo>−</mo><mn>1.00</mn></math>"
+        );
     }
 
     #[test]

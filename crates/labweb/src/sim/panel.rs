@@ -505,7 +505,7 @@ impl SimState {
             }
             if let Some(block) = query(&self.panel, &format!("[data-equation=\"{i}\"]")) {
                 if let Some(numbers) = query(&block, ".equation-numbers") {
-                    numbers.set_inner_html(&format!("<math><mo>=</mo>{}</math>", now.0));
+                    numbers.set_inner_html(&now.0);
                 }
                 if let Some(result) = query(&block, ".equation-result") {
                     result.set_inner_html(&format!("= {}", now.1));
