@@ -84,6 +84,8 @@ pub enum Expr {
     Sqrt(&'static Expr),
     /// Square.
     Sq(&'static Expr),
+    /// The larger of two, written `max(a, b)`.
+    Max(&'static Expr, &'static Expr),
 }
 
 impl Expr {
@@ -106,6 +108,7 @@ impl Expr {
                 let v = a.eval(value);
                 v * v
             }
+            Expr::Max(a, b) => a.eval(value).max(b.eval(value)),
         }
     }
 
@@ -125,7 +128,11 @@ impl Expr {
                 }
             }
             Expr::Num(..) => {}
-            Expr::Add(a, b) | Expr::Sub(a, b) | Expr::Mul(a, b) | Expr::Div(a, b) => {
+            Expr::Add(a, b)
+            | Expr::Sub(a, b)
+            | Expr::Mul(a, b)
+            | Expr::Div(a, b)
+            | Expr::Max(a, b) => {
                 a.collect_keys(out);
                 b.collect_keys(out);
             }
@@ -260,6 +267,13 @@ fn write_text(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out: 
             write_text(a, form, quantities, 4, out);
             out.push('²');
         }
+        Expr::Max(a, b) => {
+            out.push_str("max(");
+            write_text(a, form, quantities, 0, out);
+            out.push_str(", ");
+            write_text(b, form, quantities, 0, out);
+            out.push(')');
+        }
     }
     if paren {
         out.push(')');
@@ -345,6 +359,15 @@ mod tests {
         let q = arm(0.0);
         let bound = rounding_bound(&TIP_X, &q);
         assert!((bound - 0.005).abs() < 1e-6, "{bound}");
+    }
+
+    #[test]
+    fn max_takes_the_larger_and_is_written_as_a_function() {
+        const HOLE: Expr = Expr::Max(&Expr::Num(0.0, "0"), &Expr::Sub(&L1, &Expr::Num(2.0, "2")));
+        let q = arm(0.0);
+        assert_eq!(HOLE.eval(&|k| shown(&q, k)), 0.0);
+        assert_eq!(expr_text(&HOLE, Form::Symbols, &q), "max(0, L1 − 2)");
+        assert_eq!(expr_text(&HOLE, Form::Numbers, &q), "max(0, 1.00 − 2)");
     }
 
     #[test]

@@ -219,6 +219,13 @@ fn write_mathml(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out
             write_mathml(a, form, quantities, 4, out);
             out.push_str("</mrow><mn>2</mn></msup>");
         }
+        Expr::Max(a, b) => {
+            out.push_str("<mi>max</mi><mo>(</mo>");
+            write_mathml(a, form, quantities, 0, out);
+            out.push_str("<mo separator=\"true\">,</mo>");
+            write_mathml(b, form, quantities, 0, out);
+            out.push_str("<mo>)</mo>");
+        }
     }
     if paren {
         out.push_str("<mo>)</mo>");
