@@ -86,6 +86,9 @@ pub enum Expr {
     Sq(&'static Expr),
     /// The larger of two, written `max(a, b)`.
     Max(&'static Expr, &'static Expr),
+    /// Arc cosine in degrees, of an argument clamped to `[-1, 1]` (as the
+    /// solvers snap a target on a boundary onto it).
+    Acos(&'static Expr),
 }
 
 impl Expr {
@@ -109,6 +112,7 @@ impl Expr {
                 v * v
             }
             Expr::Max(a, b) => a.eval(value).max(b.eval(value)),
+            Expr::Acos(a) => libm::acos(a.eval(value).clamp(-1.0, 1.0)).to_degrees(),
         }
     }
 
@@ -136,7 +140,12 @@ impl Expr {
                 a.collect_keys(out);
                 b.collect_keys(out);
             }
-            Expr::Neg(a) | Expr::Cos(a) | Expr::Sin(a) | Expr::Sqrt(a) | Expr::Sq(a) => {
+            Expr::Neg(a)
+            | Expr::Cos(a)
+            | Expr::Sin(a)
+            | Expr::Sqrt(a)
+            | Expr::Sq(a)
+            | Expr::Acos(a) => {
                 a.collect_keys(out);
             }
         }
@@ -266,6 +275,11 @@ fn write_text(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out: 
         Expr::Sq(a) => {
             write_text(a, form, quantities, 4, out);
             out.push('²');
+        }
+        Expr::Acos(a) => {
+            out.push_str("acos(");
+            write_text(a, form, quantities, 0, out);
+            out.push(')');
         }
         Expr::Max(a, b) => {
             out.push_str("max(");

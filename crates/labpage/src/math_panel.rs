@@ -219,6 +219,11 @@ fn write_mathml(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out
             write_mathml(a, form, quantities, 4, out);
             out.push_str("</mrow><mn>2</mn></msup>");
         }
+        Expr::Acos(a) => {
+            out.push_str("<mi>arccos</mi><mo>&#x2061;</mo><mo>(</mo>");
+            write_mathml(a, form, quantities, 0, out);
+            out.push_str("<mo>)</mo>");
+        }
         Expr::Max(a, b) => {
             out.push_str("<mi>max</mi><mo>(</mo>");
             write_mathml(a, form, quantities, 0, out);
