@@ -89,6 +89,8 @@ pub enum Expr {
     /// Arc cosine in degrees, of an argument clamped to `[-1, 1]` (as the
     /// solvers snap a target on a boundary onto it).
     Acos(&'static Expr),
+    /// `a` held within `±b`, written `clamp(a, ±b)` (an actuator limit).
+    Clamp(&'static Expr, &'static Expr),
 }
 
 impl Expr {
@@ -113,6 +115,10 @@ impl Expr {
             }
             Expr::Max(a, b) => a.eval(value).max(b.eval(value)),
             Expr::Acos(a) => libm::acos(a.eval(value).clamp(-1.0, 1.0)).to_degrees(),
+            Expr::Clamp(a, b) => {
+                let limit = b.eval(value).abs();
+                a.eval(value).clamp(-limit, limit)
+            }
         }
     }
 
@@ -136,7 +142,8 @@ impl Expr {
             | Expr::Sub(a, b)
             | Expr::Mul(a, b)
             | Expr::Div(a, b)
-            | Expr::Max(a, b) => {
+            | Expr::Max(a, b)
+            | Expr::Clamp(a, b) => {
                 a.collect_keys(out);
                 b.collect_keys(out);
             }
@@ -279,6 +286,13 @@ fn write_text(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out: 
         Expr::Acos(a) => {
             out.push_str("acos(");
             write_text(a, form, quantities, 0, out);
+            out.push(')');
+        }
+        Expr::Clamp(a, b) => {
+            out.push_str("clamp(");
+            write_text(a, form, quantities, 0, out);
+            out.push_str(", ±");
+            write_text(b, form, quantities, 4, out);
             out.push(')');
         }
         Expr::Max(a, b) => {

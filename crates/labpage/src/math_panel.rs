@@ -224,6 +224,13 @@ fn write_mathml(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out
             write_mathml(a, form, quantities, 0, out);
             out.push_str("<mo>)</mo>");
         }
+        Expr::Clamp(a, b) => {
+            out.push_str("<mi>clamp</mi><mo>(</mo>");
+            write_mathml(a, form, quantities, 0, out);
+            out.push_str("<mo separator=\"true\">,</mo><mo>±</mo>");
+            write_mathml(b, form, quantities, 4, out);
+            out.push_str("<mo>)</mo>");
+        }
         Expr::Max(a, b) => {
             out.push_str("<mi>max</mi><mo>(</mo>");
             write_mathml(a, form, quantities, 0, out);
