@@ -62,3 +62,34 @@ test("live math: on a phone the panel sits right after the readouts", () =>
     await page.locator(".live-math").scrollIntoViewIfNeeded();
     await screenshot(page, "livemath-fk-390");
   }));
+
+test("live math: every experiment with a panel shows results equal to its readouts, at a laptop's width", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    const links = [
+      "#/workspace/simulation",
+      "#/ik/simulation?tx=0.9&ty=0.8",
+      "#/pid/simulation",
+      "#/pid/simulation?sat=1&umax=5",
+    ];
+    for (const link of links) {
+      await open(lab, page, link);
+      await runFor(page, 700);
+      const texts = await equationTexts(page);
+      assert.ok(texts.length > 0, `${link}: a panel`);
+      const r = await readouts(page);
+      const results = await page.$$eval(".live-math .equation-result", (els) => els.map((e) => e.textContent.trim()));
+      for (const result of results) {
+        assert.ok(
+          Object.values(r).some((value) => `= ${value}` === result),
+          `${link}: the panel's ${result} is one of the readouts`,
+        );
+      }
+      if (link.includes("sat=1")) {
+        // The limit chose the other law: symbols and numbers both clamp.
+        assert.match(texts[0], /^u = clamp\(Kp e \+ Ki ∫e − Kd ẏ, ±umax\) = clamp\(/);
+        assert.match(await page.locator(".live-math .equation-caption").first().textContent(), /actuator limit/);
+      }
+      await page.locator(".live-math").scrollIntoViewIfNeeded();
+      await page.locator(".live-math").screenshot({ path: `target/e2e-shots/livemath-${link.split("/")[1]}${link.includes("sat") ? "-limited" : ""}.png` });
+    }
+  }));

@@ -24,7 +24,7 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
             "<div class=\"equation\" data-equation=\"{i}\">\
              <p class=\"equation-caption\">{caption}</p>\
              <p class=\"equation-forms\" aria-hidden=\"true\">\
-             <math>{lhs}<mo>=</mo>{symbols}</math> \
+             <span class=\"eq-part\"><math>{lhs}<mo>=</mo>{symbols}</math></span> \
              <span class=\"equation-numbers\">{numbers}</span> \
              <span class=\"equation-result\">= {result}</span></p>\
              <p class=\"sr-only equation-text\">{text}</p></div>",
@@ -89,7 +89,7 @@ pub fn wrapping_mathml(expr: &Expr, quantities: &[Quantity]) -> String {
         .map(|(op, term)| {
             let mut m = String::new();
             write_mathml(term, Form::Numbers, quantities, 2, &mut m);
-            format!("<math><mo>{op}</mo>{m}</math>")
+            format!("<span class=\"eq-part\"><math><mo>{op}</mo>{m}</math></span>")
         })
         .collect::<Vec<_>>()
         .join(" ")
@@ -288,7 +288,7 @@ mod tests {
             "<mi>x</mi><mo>=</mo><msub><mi>L</mi><mn>1</mn></msub><mo>&#x2062;</mo><mi>cos</mi>"
         ));
         assert!(html
-            .contains("<math><mo>=</mo><mn>1.00</mn><mo>·</mo><mi>cos</mi><mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math>"));
+            .contains("<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn><mo>·</mo><mi>cos</mi><mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math>"));
         assert!(html.contains("= 0.819 m"));
         assert!(html.contains("x = L1 cos θ1 = 1.00·cos 35° = 0.819 m"));
     }
@@ -298,8 +298,9 @@ mod tests {
         const SUM: Expr = Expr::Sub(&Expr::Add(&L, &T), &L);
         assert_eq!(
             wrapping_mathml(&SUM, &quantities(35.0)),
-            "<math><mo>=</mo><mn>1.00</mn></math> <math><mo>+</mo><mn>35°</mn></math> \
-             <math><mo>−</mo><mn>1.00</mn></math>"
+            "<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn></math></span> \
+             <span class=\"eq-part\"><math><mo>+</mo><mn>35°</mn></math></span> \
+             <span class=\"eq-part\"><math><mo>−</mo><mn>1.00</mn></math></span>"
         );
     }
 

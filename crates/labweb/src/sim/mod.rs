@@ -237,6 +237,9 @@ struct SimState {
     /// "The math" panel's changing parts as last written, an entry per
     /// equation: the substituted form, the result and the text twin.
     shown_math: Vec<(String, String, String)>,
+    /// Which equations the panel was written for (the slice's address): a
+    /// parameter may choose another set (pid's actuator limit).
+    shown_equations: usize,
     shown_view: labcore::ViewBox,
     hash_dirty: bool,
     last_hash_ms: f64,
@@ -627,6 +630,7 @@ impl SimView {
         let palette = Palette::from_css(&canvas);
         let view = exp.view();
         let n_params = exp.params().len();
+        let equations = exp.equations().as_ptr() as usize;
         let state = Rc::new(RefCell::new(SimState {
             exp,
             canvas: canvas.clone(),
@@ -664,6 +668,7 @@ impl SimView {
             shown_hint: None,
             shown_tables: Vec::new(),
             shown_math: Vec::new(),
+            shown_equations: equations,
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
             last_hash_ms: 0.0,

@@ -494,6 +494,20 @@ impl SimState {
             return;
         }
         let quantities = self.exp.quantities();
+        let set = equations.as_ptr() as usize;
+        if set != self.shown_equations {
+            // Another set of equations (a parameter chose it): write the
+            // panel anew, symbols included.
+            if let Some(section) = query(&self.panel, ".live-math") {
+                section.set_outer_html(&labpage::math_panel::panel_html(
+                    equations,
+                    &quantities,
+                    readouts,
+                ));
+            }
+            self.shown_equations = set;
+            self.shown_math.clear();
+        }
         self.shown_math.resize(
             equations.len(),
             (String::new(), String::new(), String::new()),

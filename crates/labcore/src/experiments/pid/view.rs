@@ -5,25 +5,49 @@ use crate::live_math::{Equation, Expr, Quantity};
 
 /// The PID law `u = Kp e + Ki ∫e dt + Kd ė` (Åström & Murray, *Feedback
 /// Systems*, §10.1), with the actuator limit when it is on.
-const PID_SUM: Expr = Expr::Add(
-    &Expr::Add(
-        &Expr::Mul(&Expr::Var("kp"), &Expr::Var("e")),
-        &Expr::Mul(&Expr::Var("ki"), &Expr::Var("ie")),
-    ),
-    &Expr::Mul(&Expr::Var("kd"), &Expr::Var("de")),
+const PI_TERMS: Expr = Expr::Add(
+    &Expr::Mul(&Expr::Var("kp"), &Expr::Var("e")),
+    &Expr::Mul(&Expr::Var("ki"), &Expr::Var("ie")),
 );
-const PID_LAW: &[Equation] = &[Equation {
-    symbol: "u",
-    expr: PID_SUM,
-    readout: "force",
-    caption: "The controller's force: proportional, integral and derivative terms added.",
-}];
-const PID_LAW_LIMITED: &[Equation] = &[Equation {
-    symbol: "u",
-    expr: Expr::Clamp(&PID_SUM, &Expr::Var("umax")),
-    readout: "force",
-    caption: "The controller's force: the three terms added, then held within the actuator limit.",
-}];
+/// Derivative on the error: `+ Kd ė`.
+const PID_ON_ERROR: Expr = Expr::Add(&PI_TERMS, &Expr::Mul(&Expr::Var("kd"), &Expr::Var("de")));
+/// Derivative on the measurement: `− Kd ẏ` (no kick when the setpoint jumps).
+const PID_ON_MEASUREMENT: Expr =
+    Expr::Sub(&PI_TERMS, &Expr::Mul(&Expr::Var("kd"), &Expr::Var("dy")));
+const SUM_CAPTION: &str = "The controller's force: proportional, integral and derivative terms added.";
+const LIMIT_CAPTION: &str =
+    "The controller's force: the three terms added, then held within the actuator limit.";
+/// `[derivative on error, on measurement]`, without and with the limit.
+const PID_LAWS: [[&[Equation]; 2]; 2] = [
+    [
+        &[Equation {
+            symbol: "u",
+            expr: PID_ON_ERROR,
+            readout: "force",
+            caption: SUM_CAPTION,
+        }],
+        &[Equation {
+            symbol: "u",
+            expr: PID_ON_MEASUREMENT,
+            readout: "force",
+            caption: SUM_CAPTION,
+        }],
+    ],
+    [
+        &[Equation {
+            symbol: "u",
+            expr: Expr::Clamp(&PID_ON_ERROR, &Expr::Var("umax")),
+            readout: "force",
+            caption: LIMIT_CAPTION,
+        }],
+        &[Equation {
+            symbol: "u",
+            expr: Expr::Clamp(&PID_ON_MEASUREMENT, &Expr::Var("umax")),
+            readout: "force",
+            caption: LIMIT_CAPTION,
+        }],
+    ],
+];
 
 /// What the overshoot readout and a pin say when the step is under [`MIN_STEP_M`].
 pub(super) const STEP_TOO_SMALL: &str = "— (step under 1 mm)";
@@ -254,28 +278,20 @@ impl Presentation for PidControl {
     fn quantities(&self) -> Vec<Quantity> {
         let terms = self.run.last_terms();
         let c = &self.run.controller;
-        let derivative = if self.derivative_on_measurement {
-            "−ẏ"
-        } else {
-            "ė"
-        };
         vec![
             Quantity::new("kp", "K_p", self.gains.kp, 1, ""),
             Quantity::new("ki", "K_i", self.gains.ki, 1, ""),
             Quantity::new("kd", "K_d", self.gains.kd, 1, ""),
             Quantity::new("e", "e", terms.error_m, 4, "m"),
             Quantity::new("ie", "∫e", c.integral_m_s(), 4, "m·s"),
-            Quantity::new("de", derivative, c.derivative_m_s(), 4, "m/s"),
+            Quantity::new("de", "ė", c.derivative_m_s(), 4, "m/s"),
+            Quantity::new("dy", "ẏ", -c.derivative_m_s(), 4, "m/s"),
             Quantity::new("umax", "u_max", self.force_limit_n, 0, "N"),
         ]
     }
 
     fn equations(&self) -> &'static [Equation] {
-        if self.saturation {
-            PID_LAW_LIMITED
-        } else {
-            PID_LAW
-        }
+        PID_LAWS[usize::from(self.saturation)][usize::from(self.derivative_on_measurement)]
     }
 
     fn readouts(&self) -> Vec<Readout> {
