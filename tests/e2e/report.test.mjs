@@ -253,6 +253,9 @@ test("rrtstar: the report after the longest run (20,000 iterations) draws the wh
       await step.click();
     }
     await waitStatus(page, /^done/);
+    // The address bar's link follows at its pace (a paused run's link names
+    // the moment shown, `at=`, which each step moves).
+    await page.clock.runFor(300);
     const nodes = Number((await page.locator(`${ART} [data-readout=nodes]`).textContent()).replace(/[^\d]/g, ""));
     assert.ok(nodes > 10_000, `${nodes} nodes on screen`);
     const facts = await pageFacts(page);

@@ -73,6 +73,13 @@ impl Clock {
         self.steps
     }
 
+    /// Puts the clock at step `steps` of the run (the timeline went there,
+    /// or a replay of the record moved on); the running state, the speed
+    /// and any partial step are kept.
+    pub fn seek(&mut self, steps: u64) {
+        self.steps = steps;
+    }
+
     /// Back to t = 0 (the running state and speed are kept).
     pub fn reset(&mut self) {
         self.accumulator_s = 0.0;

@@ -708,6 +708,13 @@ pub trait Experiment {
     fn animating(&self) -> bool {
         true
     }
+    /// An estimate of the heap the model's state holds, bytes: what one
+    /// snapshot of it costs the timeline, which keeps its snapshots within
+    /// a budget ([`crate::timeline::Timeline::BUDGET_BYTES`]). Default: the
+    /// plots' samples; an experiment holding more (a grid, a tree) adds it.
+    fn state_bytes(&self) -> usize {
+        crate::timeline::plots_bytes(self.plots())
+    }
 }
 
 /// What is shown of an experiment (its `view.rs`): the view box, the display
@@ -781,11 +788,20 @@ pub trait Presentation: Experiment {
 }
 
 /// An experiment and its presentation: what the registry makes and the page
-/// runs. Every type with both traits is one. A `&dyn Lab` passes where a
-/// `&dyn Experiment` (the model alone) is asked for.
-pub trait Lab: Presentation {}
+/// runs. Every type with both traits that can be copied is one. A `&dyn Lab`
+/// passes where a `&dyn Experiment` (the model alone) is asked for.
+pub trait Lab: Presentation {
+    /// A copy of the whole experiment as it is now: what the timeline keeps
+    /// as a snapshot ([`crate::timeline::Timeline`]). Stepping the copy and
+    /// the original alike gives the same states, bit for bit.
+    fn snapshot(&self) -> Box<dyn Lab>;
+}
 
-impl<T: Presentation + ?Sized> Lab for T {}
+impl<T: Presentation + Clone + 'static> Lab for T {
+    fn snapshot(&self) -> Box<dyn Lab> {
+        Box::new(self.clone())
+    }
+}
 
 /// Ends a drag an experiment has grabbed (a press on a handle, or its own
 /// record of one): moves the pressed pointer to `to` and releases it there,

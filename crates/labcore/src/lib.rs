@@ -81,6 +81,7 @@ pub mod table;
 // optimiser's choices by about 300 bytes a module).
 #[cfg(any(test, feature = "reading", not(target_arch = "wasm32")))]
 pub mod testkit;
+pub mod timeline;
 pub mod units;
 
 pub use clock::Clock;

@@ -49,6 +49,8 @@ const CANVAS_KEYS: &[(&str, &str)] = &[
 const TIME_KEYS: &[(&str, &str)] = &[
     ("Space", "Play or pause (Replay once the run has ended)"),
     (".", "One step while paused"),
+    (",", "One step back (the timeline)"),
+    ("End", "Run to the end at once"),
 ];
 
 fn rows(keys: &[(&str, &str)]) -> String {

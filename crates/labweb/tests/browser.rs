@@ -222,6 +222,7 @@ fn a_panic_is_reported_visibly_on_the_page() {
 
 /// A stand-in experiment for the shell's status model: it runs for 0.5 s
 /// and then reports an ended run; a press on the canvas posts a notice.
+#[derive(Clone)]
 struct Runner {
     t_s: f64,
     notices: labcore::Notices,

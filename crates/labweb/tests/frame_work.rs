@@ -121,6 +121,7 @@ fn plot_paints() -> Vec<u32> {
 /// A stand-in for the experiments with several live plots (cart-pole and
 /// EKF have four): every step adds a sample to each plot, while its
 /// readouts and scene labels stay the same.
+#[derive(Clone)]
 struct Streamer {
     t_s: f64,
     plots: Vec<Plot>,

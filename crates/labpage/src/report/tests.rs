@@ -310,6 +310,7 @@ fn every_experiment_reports_every_parameter_and_plot_self_contained() {
 }
 
 /// A made-up experiment whose every text is hostile markup.
+#[derive(Clone)]
 struct Hostile {
     plots: Vec<Plot>,
 }

@@ -184,6 +184,19 @@ pub(super) fn listen(
                 }
                 return;
             }
+            "," | "End" => {
+                e.prevent_default();
+                let mut st = s.borrow_mut();
+                if st.exp.animated() {
+                    st.student_acted();
+                    if e.key() == "," {
+                        st.step_back();
+                    } else {
+                        st.start_run_to_end();
+                    }
+                }
+                return;
+            }
             _ => {}
         }
         let dir = match e.key().as_str() {

@@ -358,6 +358,13 @@ impl SimState {
 
     /// A pointer or keyboard input on the canvas, through the locks.
     pub(super) fn guarded_input(&mut self, input: labcore::Input, modifiers: labcore::Modifiers) {
+        if let labcore::Input::PointerMove { pressed: false, .. } = input {
+            // A hover changes nothing the run records (no new run from the past).
+            let _ = route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
+                exp.input_with(input, modifiers);
+            });
+            return;
+        }
         self.guarded(|exp| exp.input_with(input, modifiers));
     }
 
@@ -365,6 +372,7 @@ impl SimState {
     /// [`route::keep_locked`]) and says which locked control it would have
     /// changed. Returns whether a lock put something back.
     pub(super) fn guarded(&mut self, op: impl FnOnce(&mut dyn Lab)) -> bool {
+        self.timeline_input();
         let put_back = route::keep_locked(self.exp.as_mut(), &self.instructor, op);
         if let Some(label) = put_back.first() {
             self.show_message(Some(&format!("{label} is locked by your instructor.")));

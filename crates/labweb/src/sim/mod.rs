@@ -30,6 +30,7 @@ mod a11y;
 mod canvas_input;
 mod instructor;
 mod panel;
+mod scrub;
 mod status;
 mod timebar;
 
@@ -164,7 +165,7 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
         touch = if exp.captures_touch() { "all" } else { "handles" },
         report = crate::report_view::BUTTON_HTML,
         report_fields = crate::report_view::fields_html(exp.id()),
-        keys = if exp.animated() { ", Space plays or pauses, full stop steps once" } else { "" },
+        keys = if exp.animated() { ", Space plays or pauses, full stop steps once, comma steps back, End runs to the end" } else { "" },
         describe = a11y::describe_button_html(),
         description = a11y::DESCRIPTION_HTML,
         move_form = a11y::move_form_html(),
@@ -258,6 +259,14 @@ struct SimState {
     /// The handle the keyboard and the Move form act on (drawn with a ring).
     focused_handle: Option<String>,
     shown_move: a11y::ShownMove,
+    /// The run's record, for an experiment with time controls (the
+    /// timeline: [`scrub`]).
+    timeline: Option<labcore::timeline::Timeline>,
+    /// Run to end is finishing the run; the step it started from.
+    run_to_end: Option<u64>,
+    /// The timeline slider and what it shows: (first, last, shown) step.
+    scrub_slider: Option<Element>,
+    shown_scrub: (u64, u64, u64),
 }
 
 /// Recent busy-frame times (step + paint), published on the canvas as
@@ -372,10 +381,18 @@ impl SimState {
         } else {
             0
         };
-        let steps = if steps > 0 {
+        let steps = if self.run_to_end.is_some() {
+            self.run_to_end_frame(start) as u32
+        } else if steps > 0 && self.in_past() {
+            // Play from the past replays the record up to its end.
+            let from = self.clock.steps() - u64::from(steps);
+            self.forward_in_past(from, u64::from(steps)) as u32
+        } else if steps > 0 {
+            self.timeline_commit();
             // A run may move a locked parameter (an arm turning to its
             // target): it is held, quietly.
             let clock = &mut self.clock;
+            let timeline = &mut self.timeline;
             let mut taken = 0;
             let _ = route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
                 taken = clock.take_steps(
@@ -386,6 +403,9 @@ impl SimState {
                     // frames fell (a replay ends at the same t).
                     || {
                         exp.step(Clock::DT_S);
+                        if let Some(tl) = timeline.as_mut() {
+                            tl.stepped(exp);
+                        }
                         exp.status().phase != Phase::Ended
                     },
                 );
@@ -488,6 +508,12 @@ impl SimState {
         let mut extra = Vec::new();
         if self.exp.animated() && !self.clock.running() && !self.ended_hold {
             extra.push("run=0".to_owned());
+            // The moment shown, when the link's state and the steps since
+            // reproduce it (no input on the way).
+            let steps = self.clock.steps();
+            if steps > 0 && self.timeline.as_ref().is_some_and(|t| t.unbroken_to(steps)) {
+                extra.push(format!("at={:.2}", self.clock.time_s()));
+            }
         }
         if self.clock.speed() != 1.0 {
             extra.push(format!("speed={}", self.clock.speed()));
@@ -680,12 +706,18 @@ impl SimView {
             quiz_seed: None,
             focused_handle: None,
             shown_move: a11y::ShownMove::default(),
+            timeline: None,
+            run_to_end: None,
+            scrub_slider: query(panel, ".tb-scrub"),
+            shown_scrub: (0, 0, u64::MAX),
         }));
+        state.borrow_mut().restart_timeline();
         let mut listeners = Vec::new();
         canvas_input::listen(&state, &canvas, &mut listeners);
         panel::listen(&state, panel, &mut listeners);
         instructor::listen(&state, panel, &mut listeners);
         a11y::listen(&state, panel, &mut listeners);
+        scrub::listen(&state, panel, &mut listeners);
         // Theme changes (light/dark, more contrast, forced colours) repaint
         // with the new palette.
         for query in [
@@ -766,11 +798,16 @@ impl SimView {
         let (shell, own): (Vec<_>, Vec<_>) = params
             .iter()
             .cloned()
-            .partition(|(k, _)| k == "run" || k == "speed");
+            .partition(|(k, _)| k == "run" || k == "speed" || k == "at");
+        st.timeline_input();
         let mut notices = route::apply_params(st.exp.as_mut(), &own);
+        let mut at_s = None;
         for (key, raw) in shell {
             match (key.as_str(), raw.trim().parse::<f64>()) {
                 ("run", Ok(v)) if v == 0.0 || v == 1.0 => st.clock.set_running(v == 1.0),
+                ("at", Ok(v)) if st.timeline.is_some() && v.is_finite() && v >= 0.0 => {
+                    at_s = Some(v);
+                }
                 ("speed", Ok(v)) if v.is_finite() && v > 0.0 => {
                     let applied = st.clock.set_speed(v);
                     if applied != v {
@@ -782,6 +819,9 @@ impl SimView {
                     raw.chars().take(20).collect::<String>()
                 )),
             }
+        }
+        if let Some(t_s) = at_s {
+            st.open_at(t_s);
         }
         st.needs_paint = true;
         st.shown_values.iter_mut().for_each(|v| *v = None);
@@ -886,6 +926,7 @@ fn read_file(state: &Rc<RefCell<SimState>>, file: web_sys::File) {
             Ok(()) => {
                 st.show_message(Some(&format!("Loaded “{name}”.")));
                 st.clock.reset();
+                st.restart_timeline();
             }
             Err(e) => st.show_message(Some(&format!("Could not load “{name}”: {e}"))),
         }

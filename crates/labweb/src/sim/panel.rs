@@ -144,6 +144,8 @@ pub(super) fn listen(
                 match what.as_str() {
                     "play" => st.play_pressed(),
                     "step" => st.single_step(),
+                    "back" => st.step_back(),
+                    "end" => st.start_run_to_end(),
                     "reset" => st.reset_run(),
                     _ => {}
                 }
@@ -547,6 +549,7 @@ impl SimState {
             self.needs_paint = true;
             return;
         }
+        self.timeline_input();
         match self.exp.set_param(key, value) {
             Ok(Sanitized::InRange(_)) => self.show_message(None),
             Ok(Sanitized::Clamped(v)) => self.show_message(Some(&format!(

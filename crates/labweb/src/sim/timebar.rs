@@ -33,10 +33,13 @@ pub(super) fn timebar_html(step_s: f64) -> String {
          <button type=\"button\" class=\"tb-play\" data-time=\"play\" data-offer=\"pause\" aria-pressed=\"true\" aria-keyshortcuts=\"Space\">\
          <span class=\"tb-icon\">{ICON_PAUSE}</span> <span class=\"tb-label\">Pause</span></button>\
          <button type=\"button\" data-time=\"step\" aria-keyshortcuts=\".\" title=\"One step: {step} s (key .)\">{ICON_STEP} <span class=\"tb-text\">Step</span></button>\
+         {back_end}\
          <label class=\"tb-speed\"><span class=\"tb-speed-text\">Playback</span> <select data-time=\"speed\">{speeds}</select></label>\
          <button type=\"button\" data-time=\"reset\">{ICON_RESET} <span class=\"tb-text\">Reset</span></button>\
-         <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output></div>",
+         <output class=\"tb-time\" aria-label=\"Simulated time\">t = 0.00 s</output>{slider}</div>",
         step = step_text(step_s),
+        back_end = super::scrub::BUTTONS_HTML,
+        slider = super::scrub::SLIDER_HTML,
     )
 }
 
@@ -147,6 +150,7 @@ impl SimState {
 
     /// The play button (and Space): Pause/Play, or Replay once the run ended.
     pub(super) fn play_pressed(&mut self) {
+        self.run_to_end = None;
         self.phase = self.exp.status().phase;
         if self.phase == Phase::Ended {
             self.reset_run();
@@ -166,13 +170,26 @@ impl SimState {
     pub(super) fn single_step(&mut self) {
         let was_animating = self.exp.animating();
         let steps = Clock::fixed_steps_in(self.exp.natural_step_s());
-        let clock = &mut self.clock;
-        let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
-            clock.single_step(steps, || {
-                exp.step(Clock::DT_S);
-                exp.status().phase != Phase::Ended
+        self.run_to_end = None;
+        if self.in_past() {
+            // Along the record, as it went.
+            self.clock.set_running(false);
+            self.forward_in_past(self.clock.steps(), u64::from(steps));
+        } else {
+            self.timeline_commit();
+            let clock = &mut self.clock;
+            let timeline = &mut self.timeline;
+            let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| {
+                clock.single_step(steps, || {
+                    exp.step(Clock::DT_S);
+                    if let Some(tl) = timeline.as_mut() {
+                        tl.stepped(exp);
+                    }
+                    exp.status().phase != Phase::Ended
+                });
             });
-        });
+        }
+        self.phase = self.exp.status().phase;
         self.needs_paint = true;
         self.hash_dirty = true;
         self.plots_force = true;
@@ -197,6 +214,7 @@ impl SimState {
         // Reset keeps the parameters, locked ones above all.
         self.guarded(|exp| exp.reset());
         self.clock.reset();
+        self.restart_timeline();
         self.phase = self.exp.status().phase;
         self.needs_paint = true;
         self.hash_dirty = true;
@@ -231,6 +249,7 @@ impl SimState {
             self.shown_clock = Some(clock);
         }
         if text {
+            self.sync_scrub();
             // The time is written only when its text changes.
             let held = if clock == ClockState::Held {
                 " · held"

@@ -1437,6 +1437,15 @@ impl Experiment for AStarGrid {
         Ok(())
     }
 
+    /// The grid's per-cell arrays (walls, the generated grid, the raster
+    /// and its scratch, the search's costs, parents and lists): about 24
+    /// bytes a cell, with the plot.
+    fn state_bytes(&self) -> usize {
+        let cells = self.grid.width() * self.grid.height();
+        let search = if self.search.is_some() { 16 } else { 0 };
+        cells * (8 + search) + crate::timeline::plots_bytes(&self.plots)
+    }
+
     fn animating(&self) -> bool {
         matches!(
             self.phase,

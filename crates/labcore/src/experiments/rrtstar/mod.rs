@@ -927,6 +927,13 @@ impl Experiment for RrtStarField {
         Ok(())
     }
 
+    /// Each tree's nodes (position, parent, cost, children) and the edge
+    /// layer the page draws, with the plot.
+    fn state_bytes(&self) -> usize {
+        let nodes: usize = self.runs.iter().map(|r| r.tree.len()).sum();
+        nodes * 72 + crate::timeline::plots_bytes(&self.plots)
+    }
+
     fn animating(&self) -> bool {
         self.growing || self.driving()
     }

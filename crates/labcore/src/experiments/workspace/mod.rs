@@ -349,6 +349,13 @@ impl Experiment for Workspace {
         (self.tip() - p).length() <= tolerance_m
     }
 
+    /// The swept tips and the density grid's counts, with the plot.
+    fn state_bytes(&self) -> usize {
+        self.tips.capacity() * std::mem::size_of::<DVec2>()
+            + self.density.cols * self.density.rows * 4
+            + crate::timeline::plots_bytes(&self.plots)
+    }
+
     fn animating(&self) -> bool {
         self.sweeping()
     }

@@ -1,0 +1,270 @@
+//! The timeline in the time bar (issue 26 §1): a slider over the run so
+//! far, Step back (`,`) and Run to end (`End`), for every experiment with
+//! time controls.
+//!
+//! The run's record is a [`Timeline`] (labcore): every input is reported to
+//! it before it changes the model ([`SimState::timeline_input`]) and every
+//! step after it is taken, and going to a step swaps in the state the
+//! timeline rebuilds, bit for bit the one the run had there. An input while
+//! the timeline shows the past starts a new run from that moment (the old
+//! future is dropped). Scrubbing pauses the run; Play from the past replays
+//! the record up to its end, then the run goes on live.
+
+use super::SimState;
+use crate::dom::{self, query, Listener};
+use labcore::clock::Clock;
+use labcore::timeline::Timeline;
+use labcore::{Lab, Phase};
+use std::cell::RefCell;
+use std::rc::Rc;
+use wasm_bindgen::JsCast;
+use web_sys::{Element, Event, HtmlInputElement};
+
+/// The longest a frame of Run to end may step, milliseconds: the run is
+/// finished over as many frames as it takes, each well under a 50 ms task.
+pub(super) const RUN_TO_END_BUDGET_MS: f64 = 30.0;
+
+/// Run to end stops after this many steps (10 simulated minutes) if the run
+/// has not ended by then: a run that never ends is not run forever.
+pub(super) const RUN_TO_END_MAX_STEPS: u64 = 10 * 60 * 60;
+
+/// Step back and Run to end (beside Step).
+pub(super) const BUTTONS_HTML: &str = "<button type=\"button\" data-time=\"back\" aria-keyshortcuts=\",\" title=\"One step back (key ,)\">\
+     <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M14 2v12l-8-6zM2 2h3v12H2z\"/></svg> <span class=\"tb-text\">Back</span></button>\
+     <button type=\"button\" data-time=\"end\" aria-keyshortcuts=\"End\" title=\"Finish the run at once (key End)\">\
+     <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M1 2v12l6-6zM7 2v12l6-6zM13 2h2v12h-2z\"/></svg> <span class=\"tb-text\">Run to end</span></button>";
+
+/// The timeline slider, on its own row of the time bar: from the oldest
+/// step kept to the run's last step, in fixed steps. Its keys are the
+/// browser's: an arrow moves one step, Page Up and Page Down a tenth of the
+/// run, Home and End to its ends.
+pub(super) const SLIDER_HTML: &str = "<input type=\"range\" class=\"tb-scrub\" data-time=\"scrub\" min=\"0\" max=\"0\" value=\"0\" step=\"1\" \
+     aria-label=\"Timeline\" aria-valuetext=\"t = 0.00 s\">";
+
+/// One fixed step of a replay.
+fn step_once(exp: &mut dyn Lab) {
+    exp.step(Clock::DT_S);
+}
+
+/// Wires the slider: dragging it (or its arrow, Page, Home and End keys)
+/// goes to that step.
+pub(super) fn listen(
+    state: &Rc<RefCell<SimState>>,
+    panel: &Element,
+    listeners: &mut Vec<Listener>,
+) {
+    let Some(slider) = query(panel, ".tb-scrub") else {
+        return;
+    };
+    let s = state.clone();
+    listeners.push(Listener::new(slider.as_ref(), "input", move |e: Event| {
+        let Some(input) = e
+            .target()
+            .and_then(|t| t.dyn_into::<HtmlInputElement>().ok())
+        else {
+            return;
+        };
+        let Ok(step) = input.value().parse::<u64>() else {
+            return;
+        };
+        let mut st = s.borrow_mut();
+        st.student_acted();
+        st.seek(step);
+    }));
+}
+
+impl SimState {
+    /// Whether the scene shows a step before the run's last.
+    pub(super) fn in_past(&self) -> bool {
+        self.timeline
+            .as_ref()
+            .is_some_and(|t| self.clock.steps() < t.end())
+    }
+
+    /// A new record from the state now (mount, Reset, a file loaded).
+    pub(super) fn restart_timeline(&mut self) {
+        if self.exp.animated() {
+            self.timeline = Some(Timeline::new(self.exp.as_ref(), self.clock.steps()));
+        }
+        self.run_to_end = None;
+    }
+
+    /// An input is about to change the model at the step shown: the record
+    /// keeps the state it leaves (from the past: a new run from there).
+    pub(super) fn timeline_input(&mut self) {
+        if let Some(tl) = &mut self.timeline {
+            tl.input_at(self.clock.steps());
+        }
+    }
+
+    /// Before the live run steps: the record takes the state an input left.
+    pub(super) fn timeline_commit(&mut self) {
+        if let Some(tl) = &mut self.timeline {
+            tl.commit(self.exp.as_ref());
+        }
+    }
+
+    /// Goes to step `step` of the run (clamped to the record) and pauses
+    /// there: the scene, readouts, status, tables and plots as they were.
+    pub(super) fn seek(&mut self, step: u64) {
+        let Some(tl) = self.timeline.as_mut() else {
+            return;
+        };
+        tl.commit(self.exp.as_ref());
+        let (at, lab) = tl.state_at(step, &mut step_once);
+        self.exp = lab;
+        if self.css_size.0 >= 1.0 {
+            self.exp.viewport_px(self.css_size.0, self.css_size.1);
+        }
+        self.clock.set_running(false);
+        self.clock.seek(at);
+        self.ended_hold = false;
+        self.run_to_end = None;
+        self.phase = self.exp.status().phase;
+        self.last_time_ms = None;
+        self.after_jump();
+    }
+
+    /// What a jump in time redraws: the scene, every plot, the controls
+    /// (the parameters may have been others then), the text and the link.
+    fn after_jump(&mut self) {
+        self.needs_paint = true;
+        self.plots_force = true;
+        self.hash_dirty = true;
+        self.shown_values.iter_mut().for_each(|v| *v = None);
+        self.sync_timebar(true);
+    }
+
+    /// Step back (the button and `,`): one model step earlier.
+    pub(super) fn step_back(&mut self) {
+        let n = u64::from(Clock::fixed_steps_in(self.exp.natural_step_s()));
+        self.seek(self.clock.steps().saturating_sub(n));
+    }
+
+    /// Moves on `n` steps along the record while the scene shows the past
+    /// (Play or Step there); returns the steps taken (fewer at its end).
+    pub(super) fn forward_in_past(&mut self, from: u64, n: u64) -> u64 {
+        let Some(tl) = self.timeline.as_mut() else {
+            return 0;
+        };
+        let at = tl.forward(&mut self.exp, from, from + n, &mut step_once);
+        self.clock.seek(at);
+        at - from
+    }
+
+    /// Run to end (the button and `End`): pauses, goes to the run's last
+    /// step, then finishes the run over the next frames.
+    pub(super) fn start_run_to_end(&mut self) {
+        if self.timeline.is_none() {
+            return;
+        }
+        if self.in_past() {
+            let end = self.timeline.as_ref().map_or(0, Timeline::end);
+            self.seek(end);
+        }
+        self.clock.set_running(false);
+        self.ended_hold = false;
+        self.run_to_end = Some(self.clock.steps());
+        self.needs_paint = true;
+        self.sync_timebar(true);
+    }
+
+    /// One frame of Run to end: steps until the run ends or stops moving,
+    /// for at most [`RUN_TO_END_BUDGET_MS`] since `start_ms`. Returns the
+    /// steps taken.
+    pub(super) fn run_to_end_frame(&mut self, start_ms: f64) -> u64 {
+        let Some(from) = self.run_to_end else {
+            return 0;
+        };
+        let left = (from + RUN_TO_END_MAX_STEPS).saturating_sub(self.clock.steps());
+        let (taken, done) = self.step_recorded(left, true, start_ms, RUN_TO_END_BUDGET_MS);
+        self.needs_paint = true;
+        if done {
+            self.run_to_end = None;
+            self.plots_force = true;
+            self.hash_dirty = true;
+            self.announce();
+        }
+        taken
+    }
+
+    /// Opens the run at `t_s` seconds (a link's `at=`): the link's state is
+    /// its start; the run is stepped there (at most
+    /// [`RUN_TO_END_MAX_STEPS`], fewer if it ends first) and paused.
+    pub(super) fn open_at(&mut self, t_s: f64) {
+        let steps = ((t_s / Clock::DT_S).round() as u64).min(RUN_TO_END_MAX_STEPS);
+        self.clock.reset();
+        self.restart_timeline();
+        self.step_recorded(steps, false, 0.0, f64::INFINITY);
+        self.clock.set_running(false);
+        self.phase = self.exp.status().phase;
+        self.plots_force = true;
+    }
+
+    /// Takes up to `steps` steps of the live run, recorded, as a run takes
+    /// them (the instructor's locks held); stops at the run's end (with
+    /// `until_still`, also when nothing moves) or once the time since
+    /// `start_ms` reaches `budget_ms`. Returns the steps taken and whether
+    /// it is done (not stopped by the budget).
+    fn step_recorded(
+        &mut self,
+        steps: u64,
+        until_still: bool,
+        start_ms: f64,
+        budget_ms: f64,
+    ) -> (u64, bool) {
+        self.timeline_commit();
+        let timeline = &mut self.timeline;
+        let (mut taken, mut done) = (0, false);
+        let _ = labcore::route::keep_locked(self.exp.as_mut(), &self.instructor, |exp| loop {
+            if taken >= steps
+                || exp.status().phase == Phase::Ended
+                || (until_still && !exp.animating())
+            {
+                done = true;
+                break;
+            }
+            if dom::now_ms() - start_ms >= budget_ms {
+                break;
+            }
+            exp.step(Clock::DT_S);
+            if let Some(tl) = timeline.as_mut() {
+                tl.stepped(exp);
+            }
+            taken += 1;
+        });
+        self.clock.seek(self.clock.steps() + taken);
+        (taken, done)
+    }
+
+    /// Brings the slider up to date: its range (the record), its value (the
+    /// step shown) and its spoken value, the time and the main readout.
+    pub(super) fn sync_scrub(&mut self) {
+        let Some(tl) = &self.timeline else {
+            return;
+        };
+        let now = (tl.first(), tl.end(), self.clock.steps());
+        if now == self.shown_scrub {
+            return;
+        }
+        self.shown_scrub = now;
+        let Some(slider) = self
+            .scrub_slider
+            .as_ref()
+            .and_then(|s| s.dyn_ref::<HtmlInputElement>())
+        else {
+            return;
+        };
+        let _ = slider.set_attribute("min", &now.0.to_string());
+        let _ = slider.set_attribute("max", &now.1.to_string());
+        slider.set_value(&now.2.to_string());
+        let main = self
+            .exp
+            .readouts()
+            .into_iter()
+            .next()
+            .map_or(String::new(), |r| format!(", {} = {}", r.label, r.value));
+        let text = format!("t = {:.2} s{main}", self.clock.time_s());
+        let _ = slider.set_attribute("aria-valuetext", &text);
+    }
+}

@@ -1,0 +1,91 @@
+//! The harness the page tests share (`runs.rs`, `timeline.rs`): a minimal
+//! copy of the shell booted on a link, and animation frames the test drives
+//! (the browser's `requestAnimationFrame` replaced by a queue the test
+//! empties with a frame time of its choosing), so no step depends on the
+//! wall clock.
+#![allow(dead_code)] // each test file uses its own part of the harness
+
+use std::cell::Cell;
+use wasm_bindgen::JsValue;
+
+pub fn document() -> web_sys::Document {
+    web_sys::window().unwrap().document().unwrap()
+}
+
+pub fn js(body: &str) -> JsValue {
+    js_sys::Function::new_no_args(body)
+        .call0(&JsValue::NULL)
+        .unwrap()
+}
+
+/// Replaces `requestAnimationFrame` by a queue (once): `__frame(t)` runs the
+/// callbacks queued so far with frame time `t` (ms).
+pub const FRAME_QUEUE: &str = r#"
+if (!window.__frames) {
+  const queue = (window.__frames = new Map());
+  let next = 0;
+  window.requestAnimationFrame = (cb) => { queue.set(++next, cb); return next; };
+  window.cancelAnimationFrame = (id) => { queue.delete(id); };
+  window.__frame = (t) => {
+    const due = [...queue.values()];
+    queue.clear();
+    for (const cb of due) cb(t);
+  };
+}
+"#;
+
+thread_local! {
+    /// The test's frame time, ms: it only ever grows.
+    static NOW_MS: Cell<f64> = const { Cell::new(1000.0) };
+}
+
+/// One animation frame, `gap_ms` after the last.
+pub fn frame(gap_ms: f64) {
+    let t = NOW_MS.with(|n| {
+        n.set(n.get() + gap_ms);
+        n.get()
+    });
+    js_sys::Function::new_with_args("t", "window.__frame(t)")
+        .call1(&JsValue::NULL, &JsValue::from_f64(t))
+        .unwrap();
+}
+
+/// A frame gap that gives one fixed step per frame at 1× for hundreds of
+/// frames (the accumulator gains 0.033 ms a frame).
+pub const ONE_STEP_MS: f64 = 16.7;
+
+/// A minimal copy of the shell, booted on `hash` (written without an event,
+/// so no late `hashchange` reaches a later test).
+pub fn mount(hash: &str) {
+    js(FRAME_QUEUE);
+    labweb::unmount();
+    if let Some(old) = document().get_element_by_id("lab-under-test") {
+        old.remove();
+    }
+    let wrapper = document().create_element("div").unwrap();
+    wrapper.set_id("lab-under-test");
+    document().body().unwrap().append_child(&wrapper).unwrap();
+    // The site's own rules for the badge: its marks are CSS, as in the page
+    // (the rest of the style sheet is left out: it only slows the frames).
+    let badge_rules: String = include_str!("../../../../web/style.css")
+        .lines()
+        .filter(|l| l.starts_with(".sim-status["))
+        .collect();
+    wrapper.set_inner_html(&format!(
+        "<nav id=\"lab-nav\"></nav>\
+         <div id=\"notice\" hidden><span class=\"notice-text\"></span></div>\
+         <div id=\"fatal\" hidden><span class=\"fatal-text\"></span></div>\
+         <main id=\"app\" style=\"width:600px\"></main>\
+         <style>{}</style>\
+         <style>.sim-canvas{{display:block;width:400px;height:400px}}</style>",
+        badge_rules
+    ));
+    web_sys::window()
+        .unwrap()
+        .history()
+        .unwrap()
+        .replace_state_with_url(&JsValue::NULL, "", Some(hash))
+        .unwrap();
+    labweb::boot();
+    labweb::paint_now();
+}
