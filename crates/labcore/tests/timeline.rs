@@ -10,18 +10,8 @@ use labcore::{Input, Lab, Lcg64};
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
-/// The nine experiments the issue names (any other animated one is tested too).
-const EVOLVING: [&str; 9] = [
-    "diffdrive",
-    "potential",
-    "pid",
-    "cartpole",
-    "ekf",
-    "rrtstar",
-    "astar",
-    "dls",
-    "workspace",
-];
+mod evolving;
+use evolving::EVOLVING;
 
 /// Everything the page shows of the state: the display list, the readouts,
 /// the status, the tables and the plots (their data up to now), hashed.

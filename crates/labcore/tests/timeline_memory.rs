@@ -4,6 +4,9 @@
 //! estimated. RRT* grows to 20,000 iterations and A* searches a 512 × 512
 //! maze. Run with `--nocapture` for the numbers.
 
+mod evolving;
+use evolving::EVOLVING;
+
 use labcore::clock::Clock;
 use labcore::glam::DVec2;
 use labcore::timeline::Timeline;
@@ -71,17 +74,7 @@ fn started(id: &str) -> Box<dyn Lab> {
 fn memory_a_ten_minute_run_keeps_the_timeline_within_32_mb() {
     let mut report = Vec::new();
     let mut failures = Vec::new();
-    for id in [
-        "diffdrive",
-        "potential",
-        "pid",
-        "cartpole",
-        "ekf",
-        "rrtstar",
-        "astar",
-        "dls",
-        "workspace",
-    ] {
+    for id in EVOLVING {
         let mut exp = started(id);
         let before = LIVE.load(Ordering::Relaxed);
         let mut timeline = Timeline::new(exp.as_ref(), 0);

@@ -8,14 +8,16 @@
 
 use labcore::clock::Clock;
 use labcore::route::{self, Tab};
-use labcore::{Lab, Phase};
+use labcore::Phase;
 use wasm_bindgen::JsCast;
 use wasm_bindgen_futures::JsFuture;
 use wasm_bindgen_test::*;
-use web_sys::{HtmlElement, KeyboardEvent, KeyboardEventInit};
 
 mod page;
-use page::{document, frame, js, mount, ONE_STEP_MS};
+use page::{
+    attr, element, frame, hash, js, left_alone, mount, press_key_on_canvas, shown, snapshot, text,
+    ONE_STEP_MS,
+};
 
 wasm_bindgen_test_configure!(run_in_browser);
 
@@ -24,15 +26,6 @@ fn next_hashchange() -> JsFuture {
     let promise =
         js("return new Promise((r) => addEventListener('hashchange', () => r(), { once: true }))");
     JsFuture::from(js_sys::Promise::from(promise))
-}
-
-fn element(selector: &str) -> HtmlElement {
-    document()
-        .query_selector(selector)
-        .unwrap()
-        .unwrap_or_else(|| panic!("{selector} exists"))
-        .dyn_into()
-        .unwrap()
 }
 
 /// Clicks the tab link `slug` of the shown article, as a student does.
@@ -55,43 +48,6 @@ async fn back() {
         .back()
         .unwrap();
     routed.await.unwrap();
-}
-
-fn hash() -> String {
-    web_sys::window().unwrap().location().hash().unwrap()
-}
-
-fn text(selector: &str) -> String {
-    element(selector).text_content().unwrap_or_default()
-}
-
-fn attr(selector: &str, name: &str) -> Option<String> {
-    element(selector).get_attribute(name)
-}
-
-/// What the page's run shows: steps counted, status, readouts, plots and
-/// the scene's description (Debug text, so a NaN equals a NaN).
-fn shown() -> (u64, String) {
-    labweb::inspect_sim(|exp, steps| (steps, snapshot(exp))).expect("a simulation is mounted")
-}
-
-fn snapshot(exp: &dyn Lab) -> String {
-    format!(
-        "status {:?}\nreadouts {:?}\nplots {:?}\ndescribe {}",
-        exp.status(),
-        exp.readouts(),
-        exp.plots(),
-        exp.describe()
-    )
-}
-
-/// The experiment built fresh and left alone for `steps` fixed steps.
-fn left_alone(entry: &labcore::Entry, steps: u64) -> Box<dyn Lab> {
-    let mut exp = (entry.make)();
-    for _ in 0..steps {
-        exp.step(Clock::DT_S);
-    }
-    exp
 }
 
 const OTHER_TABS: [&str; 5] = ["aim", "theory", "procedure", "quiz", "references"];
@@ -198,14 +154,6 @@ fn ekf_paused_the_badge_still_reads_running_no_more_it_says_paused() {
         frame(ONE_STEP_MS);
         assert_ne!(attr(".sim-status", "data-clock").as_deref(), Some("paused"));
     }
-}
-
-fn press_key_on_canvas(key: &str) {
-    let init = KeyboardEventInit::new();
-    init.set_key(key);
-    init.set_bubbles(true);
-    let event = KeyboardEvent::new_with_keyboard_event_init_dict("keydown", &init).unwrap();
-    element("canvas.sim-canvas").dispatch_event(&event).unwrap();
 }
 
 /// Issue 23 §3, ekf: one press of Step (and of `.`) takes one filter cycle,

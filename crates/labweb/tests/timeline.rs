@@ -3,65 +3,18 @@
 //! `runs.rs`), so no step depends on the wall clock.
 
 use labcore::clock::Clock;
-use labcore::{Lab, Phase};
+use labcore::Phase;
 use wasm_bindgen::JsCast;
 use wasm_bindgen_test::*;
-use web_sys::{HtmlElement, HtmlInputElement, KeyboardEvent, KeyboardEventInit};
+use web_sys::HtmlInputElement;
 
 mod page;
-use page::{document, frame, mount, ONE_STEP_MS};
+use page::{
+    attr, element, frame, hash, left_alone, mount, press_key_on_canvas, shown, snapshot, text,
+    ONE_STEP_MS,
+};
 
 wasm_bindgen_test_configure!(run_in_browser);
-
-fn element(selector: &str) -> HtmlElement {
-    document()
-        .query_selector(selector)
-        .unwrap()
-        .unwrap_or_else(|| panic!("{selector} exists"))
-        .dyn_into()
-        .unwrap()
-}
-
-fn text(selector: &str) -> String {
-    element(selector).text_content().unwrap_or_default()
-}
-
-fn attr(selector: &str, name: &str) -> Option<String> {
-    element(selector).get_attribute(name)
-}
-
-/// What the page's run shows: steps counted, status, readouts, plots and
-/// the scene's description (Debug text, so a NaN equals a NaN).
-fn shown() -> (u64, String) {
-    labweb::inspect_sim(|exp, steps| (steps, snapshot(exp))).expect("a simulation is mounted")
-}
-
-fn snapshot(exp: &dyn Lab) -> String {
-    format!(
-        "status {:?}\nreadouts {:?}\nplots {:?}\ndescribe {}",
-        exp.status(),
-        exp.readouts(),
-        exp.plots(),
-        exp.describe()
-    )
-}
-
-/// The experiment built fresh and left alone for `steps` fixed steps.
-fn left_alone(entry: &labcore::Entry, steps: u64) -> Box<dyn Lab> {
-    let mut exp = (entry.make)();
-    for _ in 0..steps {
-        exp.step(Clock::DT_S);
-    }
-    exp
-}
-
-fn press_key_on_canvas(key: &str) {
-    let init = KeyboardEventInit::new();
-    init.set_key(key);
-    init.set_bubbles(true);
-    let event = KeyboardEvent::new_with_keyboard_event_init_dict("keydown", &init).unwrap();
-    element("canvas.sim-canvas").dispatch_event(&event).unwrap();
-}
 
 /// Moves the timeline slider to `step` as a drag (or its keys) does.
 fn scrub_to(step: u64) {
@@ -232,10 +185,6 @@ fn end_key_finishes_the_astar_search_and_step_back_undoes_one_step() {
     press_key_on_canvas(",");
     labweb::paint_now();
     assert_eq!(shown(), (end - 1, planned(end - 1)));
-}
-
-fn hash() -> String {
-    web_sys::window().unwrap().location().hash().unwrap()
 }
 
 /// Issue 26 §2, the moment in the link: a paused run's link carries the

@@ -5,8 +5,11 @@
 //! wall clock.
 #![allow(dead_code)] // each test file uses its own part of the harness
 
+use labcore::clock::Clock;
+use labcore::Lab;
 use std::cell::Cell;
-use wasm_bindgen::JsValue;
+use wasm_bindgen::{JsCast, JsValue};
+use web_sys::{HtmlElement, KeyboardEvent, KeyboardEventInit};
 
 pub fn document() -> web_sys::Document {
     web_sys::window().unwrap().document().unwrap()
@@ -88,4 +91,58 @@ pub fn mount(hash: &str) {
         .unwrap();
     labweb::boot();
     labweb::paint_now();
+}
+
+pub fn element(selector: &str) -> HtmlElement {
+    document()
+        .query_selector(selector)
+        .unwrap()
+        .unwrap_or_else(|| panic!("{selector} exists"))
+        .dyn_into()
+        .unwrap()
+}
+
+pub fn text(selector: &str) -> String {
+    element(selector).text_content().unwrap_or_default()
+}
+
+pub fn attr(selector: &str, name: &str) -> Option<String> {
+    element(selector).get_attribute(name)
+}
+
+/// What the page's run shows: steps counted, status, readouts, plots and
+/// the scene's description (Debug text, so a NaN equals a NaN).
+pub fn shown() -> (u64, String) {
+    labweb::inspect_sim(|exp, steps| (steps, snapshot(exp))).expect("a simulation is mounted")
+}
+
+pub fn snapshot(exp: &dyn Lab) -> String {
+    format!(
+        "status {:?}\nreadouts {:?}\nplots {:?}\ndescribe {}",
+        exp.status(),
+        exp.readouts(),
+        exp.plots(),
+        exp.describe()
+    )
+}
+
+/// The experiment built fresh and left alone for `steps` fixed steps.
+pub fn left_alone(entry: &labcore::Entry, steps: u64) -> Box<dyn Lab> {
+    let mut exp = (entry.make)();
+    for _ in 0..steps {
+        exp.step(Clock::DT_S);
+    }
+    exp
+}
+
+pub fn press_key_on_canvas(key: &str) {
+    let init = KeyboardEventInit::new();
+    init.set_key(key);
+    init.set_bubbles(true);
+    let event = KeyboardEvent::new_with_keyboard_event_init_dict("keydown", &init).unwrap();
+    element("canvas.sim-canvas").dispatch_event(&event).unwrap();
+}
+
+pub fn hash() -> String {
+    web_sys::window().unwrap().location().hash().unwrap()
 }
