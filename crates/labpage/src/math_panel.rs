@@ -1,10 +1,11 @@
 //! "The math" panel of the Simulation tab: each governing equation of an
 //! experiment three times over — in symbols, with the student's numbers put
 //! in, and the result, which is the readout — as MathML with a plain-text
-//! twin that screen readers read ([`labcore::live_math`]).
+//! twin that screen readers read ([`labcore::live_math`]). One writer
+//! ([`Writer`]) serves both, so the two cannot say different things.
 
 use crate::experiment::Readout;
-use labcore::live_math::{expr_text, symbol_text, Equation, Expr, Form, Quantity};
+use labcore::live_math::{Equation, Expr, Form, Quantity};
 use std::fmt::Write as _;
 
 /// The panel for `equations`, or an empty string when there are none.
@@ -19,18 +20,21 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
     );
     for (i, eq) in equations.iter().enumerate() {
         let (numbers, result, text) = live_parts(eq, quantities, readouts);
+        let mut symbols = Writer::new(Target::MathMl, Form::Symbols, quantities);
+        symbols.symbol(eq.symbol);
+        symbols.put("<mo>=</mo>", "");
+        symbols.expr(&eq.expr, 0);
         let _ = write!(
             out,
             "<div class=\"equation\" data-equation=\"{i}\">\
              <p class=\"equation-caption\">{caption}</p>\
              <p class=\"equation-forms\" aria-hidden=\"true\">\
-             <span class=\"eq-part\"><math>{lhs}<mo>=</mo>{symbols}</math></span> \
+             <span class=\"eq-part\"><math>{symbols}</math></span> \
              <span class=\"equation-numbers\">{numbers}</span> \
              <span class=\"equation-result\">= {result}</span></p>\
              <p class=\"sr-only equation-text\">{text}</p></div>",
             caption = escape(eq.caption),
-            lhs = symbol_mathml(eq.symbol),
-            symbols = expr_mathml(&eq.expr, Form::Symbols, quantities),
+            symbols = symbols.out,
         );
     }
     out.push_str("</section>");
@@ -38,31 +42,37 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
 }
 
 /// The parts of an equation that change with the run: the substituted form
-/// (MathML), the result (the readout's text) and the whole equation as text.
+/// (MathML that may wrap between the terms of its top-level sum), the
+/// result (the readout's text) and the whole equation as text.
 #[must_use]
 pub fn live_parts(
     eq: &Equation,
     quantities: &[Quantity],
     readouts: &[Readout],
 ) -> (String, String, String) {
-    let numbers = wrapping_mathml(&eq.expr, quantities);
     let result = readouts
         .iter()
         .find(|r| r.key == eq.readout)
-        .map_or_else(|| "--".to_owned(), |r| r.value.clone());
-    let text = format!(
-        "{} = {} = {} = {}",
-        symbol_text(eq.symbol),
-        expr_text(&eq.expr, Form::Symbols, quantities),
-        expr_text(&eq.expr, Form::Numbers, quantities),
-        result
-    );
-    (numbers, escape(&result), escape(&text))
+        .map_or("--", |r| r.value.as_str());
+    let mut text = Writer::new(Target::Text, Form::Symbols, quantities);
+    text.symbol(eq.symbol);
+    text.out.push_str(" = ");
+    text.expr(&eq.expr, 0);
+    text.out.push_str(" = ");
+    text.form = Form::Numbers;
+    text.expr(&eq.expr, 0);
+    text.out.push_str(" = ");
+    text.out.push_str(result);
+    (
+        wrapping_mathml(&eq.expr, quantities),
+        escape(result),
+        escape(&text.out),
+    )
 }
 
 /// The substituted form as MathML that may wrap between the terms of its
-/// top-level sum: `<math>= 1.00·cos 35°</math> <math>+ 0.80·cos 95°</math>`
-/// (a `<math>` element never breaks inside a narrow column).
+/// top-level sum: `<math>= 1.00·cos 35°</math> <math>+ 0.80·cos 95°</math>`,
+/// each in its own box (a `<math>` element never breaks inside itself).
 #[must_use]
 pub fn wrapping_mathml(expr: &Expr, quantities: &[Quantity]) -> String {
     let mut terms: Vec<(&str, &Expr)> = Vec::new();
@@ -83,164 +93,214 @@ pub fn wrapping_mathml(expr: &Expr, quantities: &[Quantity]) -> String {
             }
         }
     }
-    terms
-        .iter()
-        .rev()
-        .map(|(op, term)| {
-            let mut m = String::new();
-            write_mathml(term, Form::Numbers, quantities, 2, &mut m);
-            format!("<span class=\"eq-part\"><math><mo>{op}</mo>{m}</math></span>")
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
+    let mut w = Writer::new(Target::MathMl, Form::Numbers, quantities);
+    for (i, (op, term)) in terms.iter().rev().enumerate() {
+        if i > 0 {
+            w.out.push(' ');
+        }
+        let _ = write!(w.out, "<span class=\"eq-part\"><math><mo>{op}</mo>");
+        w.expr(term, 2);
+        w.out.push_str("</math></span>");
+    }
+    w.out
 }
 
 /// A symbol spec (`θ_1`, `K_p`, `x`) as MathML.
 #[must_use]
 pub fn symbol_mathml(symbol: &str) -> String {
-    let token = |t: &str| {
-        if !t.is_empty() && t.chars().all(|c| c.is_ascii_digit()) {
-            format!("<mn>{t}</mn>")
-        } else {
-            format!("<mi>{}</mi>", escape(t))
+    let mut w = Writer::new(Target::MathMl, Form::Symbols, &[]);
+    w.symbol(symbol);
+    w.out
+}
+
+/// What a [`Writer`] writes: MathML for the eye or text for the ear.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Target {
+    MathMl,
+    Text,
+}
+
+/// Writes an expression, with symbols or numbers, as MathML or text.
+struct Writer<'a> {
+    out: String,
+    to: Target,
+    form: Form,
+    quantities: &'a [Quantity],
+}
+
+impl<'a> Writer<'a> {
+    fn new(to: Target, form: Form, quantities: &'a [Quantity]) -> Self {
+        Self {
+            out: String::new(),
+            to,
+            form,
+            quantities,
         }
-    };
-    match symbol.split_once('_') {
-        Some((base, sub)) => format!("<msub>{}{}</msub>", token(base), token(sub)),
-        None => token(symbol),
+    }
+
+    /// `mathml` or `text`, whichever this writer writes.
+    fn put(&mut self, mathml: &str, text: &str) {
+        self.out.push_str(match self.to {
+            Target::MathMl => mathml,
+            Target::Text => text,
+        });
+    }
+
+    /// A token: `<mi>`/`<mn>` in MathML, the bare text otherwise.
+    fn token(&mut self, tag: &str, text: &str) {
+        match self.to {
+            Target::MathMl => {
+                let _ = write!(self.out, "<{tag}>{}</{tag}>", escape(text));
+            }
+            Target::Text => self.out.push_str(text),
+        }
+    }
+
+    /// A symbol spec: a base and an optional subscript after `_`.
+    fn symbol(&mut self, spec: &str) {
+        let kind = |t: &str| {
+            if !t.is_empty() && t.chars().all(|c| c.is_ascii_digit()) {
+                "mn"
+            } else {
+                "mi"
+            }
+        };
+        match spec.split_once('_') {
+            Some((base, sub)) => {
+                self.put("<msub>", "");
+                self.token(kind(base), base);
+                self.token(kind(sub), sub);
+                self.put("</msub>", "");
+            }
+            None => self.token(kind(spec), spec),
+        }
+    }
+
+    /// A quantity's number as shown, a negative one bracketed inside an
+    /// operation, degrees with their sign.
+    fn number(&mut self, q: &Quantity, outer: u8) {
+        let number = q.number_text();
+        let (negative, digits) = match number.strip_prefix('-') {
+            Some(rest) => (true, rest),
+            None => (false, number.as_str()),
+        };
+        let bracket = negative && outer > 0;
+        if bracket {
+            self.put("<mo>(</mo>", "(");
+        }
+        if negative {
+            self.put("<mo>−</mo>", "−");
+        }
+        // The degree sign inside the number: as a trailing `<mo>` Chromium
+        // may leave it out at the end of a `<math>`.
+        let degrees = if q.unit == "°" { "°" } else { "" };
+        self.token("mn", &format!("{digits}{degrees}"));
+        if bracket {
+            self.put("<mo>)</mo>", ")");
+        }
+    }
+
+    /// `expr`, bracketed when it binds less tightly than `outer` asks.
+    fn expr(&mut self, expr: &Expr, outer: u8) {
+        let paren = precedence(expr) < outer;
+        if paren {
+            self.put("<mo>(</mo>", "(");
+        }
+        match *expr {
+            Expr::Var(key) => match self.quantities.iter().find(|q| q.key == key) {
+                Some(q) if self.form == Form::Symbols => self.symbol(q.symbol),
+                Some(q) => self.number(q, outer),
+                None => self.token("mi", key),
+            },
+            Expr::Num(_, text) => self.token("mn", text),
+            Expr::Add(a, b) | Expr::Sub(a, b) => {
+                self.expr(a, 1);
+                if matches!(expr, Expr::Add(..)) {
+                    self.put("<mo>+</mo>", " + ");
+                } else {
+                    self.put("<mo>−</mo>", " − ");
+                }
+                self.expr(b, 2);
+            }
+            Expr::Mul(a, b) => {
+                self.expr(a, 2);
+                // Symbols multiply by juxtaposition (L₁ cos θ₁); numbers need a dot.
+                if self.form == Form::Symbols {
+                    self.put("<mo>&#x2062;</mo>", " ");
+                } else {
+                    self.put("<mo>·</mo>", "·");
+                }
+                self.expr(b, 3);
+            }
+            Expr::Div(a, b) => {
+                self.put("<mfrac><mrow>", "(");
+                self.expr(a, 0);
+                self.put("</mrow><mrow>", ") / (");
+                self.expr(b, 0);
+                self.put("</mrow></mfrac>", ")");
+            }
+            Expr::Neg(a) => {
+                self.put("<mo>−</mo>", "−");
+                self.expr(a, 3);
+            }
+            Expr::Cos(a) | Expr::Sin(a) => {
+                let name = if matches!(expr, Expr::Cos(_)) {
+                    "cos"
+                } else {
+                    "sin"
+                };
+                self.token("mi", name);
+                // A thin space after the name, as TeX sets `\cos\theta`
+                // (browsers add none for the function-application operator).
+                if precedence(a) >= 4 {
+                    self.put("<mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace>", " ");
+                } else {
+                    self.put("<mo>&#x2061;</mo>", " ");
+                }
+                self.expr(a, 4);
+            }
+            Expr::Sqrt(a) => {
+                self.put("<msqrt>", "√(");
+                self.expr(a, 0);
+                self.put("</msqrt>", ")");
+            }
+            Expr::Sq(a) => {
+                self.put("<msup><mrow>", "");
+                self.expr(a, 4);
+                self.put("</mrow><mn>2</mn></msup>", "²");
+            }
+            Expr::Acos(a) => {
+                self.token("mi", "arccos");
+                self.put("<mo>&#x2061;</mo><mo>(</mo>", "(");
+                self.expr(a, 0);
+                self.put("<mo>)</mo>", ")");
+            }
+            Expr::Clamp(a, b) | Expr::Max(a, b) => {
+                let clamp = matches!(expr, Expr::Clamp(..));
+                self.token("mi", if clamp { "clamp" } else { "max" });
+                self.put("<mo>(</mo>", "(");
+                self.expr(a, 0);
+                self.put("<mo separator=\"true\">,</mo>", ", ");
+                if clamp {
+                    self.put("<mo>±</mo>", "±");
+                }
+                self.expr(b, if clamp { 4 } else { 0 });
+                self.put("<mo>)</mo>", ")");
+            }
+        }
+        if paren {
+            self.put("<mo>)</mo>", ")");
+        }
     }
 }
 
-/// Binding strength, as in [`labcore::live_math`]'s text form.
+/// Binding strength: sums 1, products 2, unary minus 3, atoms 4.
 fn precedence(expr: &Expr) -> u8 {
     match expr {
         Expr::Add(..) | Expr::Sub(..) => 1,
         Expr::Mul(..) | Expr::Div(..) => 2,
         Expr::Neg(..) => 3,
         _ => 4,
-    }
-}
-
-/// `expr` as MathML, with symbols or with the shown numbers.
-#[must_use]
-pub fn expr_mathml(expr: &Expr, form: Form, quantities: &[Quantity]) -> String {
-    let mut out = String::new();
-    write_mathml(expr, form, quantities, 0, &mut out);
-    out
-}
-
-fn write_mathml(expr: &Expr, form: Form, quantities: &[Quantity], outer: u8, out: &mut String) {
-    let paren = precedence(expr) < outer;
-    if paren {
-        out.push_str("<mo>(</mo>");
-    }
-    match *expr {
-        Expr::Var(key) => match quantities.iter().find(|q| q.key == key) {
-            Some(q) if form == Form::Symbols => out.push_str(&symbol_mathml(q.symbol)),
-            Some(q) => {
-                let number = q.number_text();
-                let (negative, digits) = match number.strip_prefix('-') {
-                    Some(rest) => (true, rest.to_owned()),
-                    None => (false, number),
-                };
-                let bracket = negative && outer > 0;
-                if bracket {
-                    out.push_str("<mo>(</mo>");
-                }
-                if negative {
-                    out.push_str("<mo>−</mo>");
-                }
-                // The degree sign inside the number: as a trailing `<mo>`
-                // Chromium may leave it out at the end of a `<math>`.
-                let degrees = if q.unit == "°" { "°" } else { "" };
-                let _ = write!(out, "<mn>{digits}{degrees}</mn>");
-                if bracket {
-                    out.push_str("<mo>)</mo>");
-                }
-            }
-            None => {
-                let _ = write!(out, "<mi>{}</mi>", escape(key));
-            }
-        },
-        Expr::Num(_, text) => {
-            let _ = write!(out, "<mn>{}</mn>", escape(text));
-        }
-        Expr::Add(a, b) | Expr::Sub(a, b) => {
-            write_mathml(a, form, quantities, 1, out);
-            out.push_str(if matches!(expr, Expr::Add(..)) {
-                "<mo>+</mo>"
-            } else {
-                "<mo>−</mo>"
-            });
-            write_mathml(b, form, quantities, 2, out);
-        }
-        Expr::Mul(a, b) => {
-            write_mathml(a, form, quantities, 2, out);
-            // Symbols multiply by juxtaposition (L₁ cos θ₁); numbers need a dot.
-            out.push_str(if form == Form::Symbols {
-                "<mo>&#x2062;</mo>"
-            } else {
-                "<mo>·</mo>"
-            });
-            write_mathml(b, form, quantities, 3, out);
-        }
-        Expr::Div(a, b) => {
-            out.push_str("<mfrac><mrow>");
-            write_mathml(a, form, quantities, 0, out);
-            out.push_str("</mrow><mrow>");
-            write_mathml(b, form, quantities, 0, out);
-            out.push_str("</mrow></mfrac>");
-        }
-        Expr::Neg(a) => {
-            out.push_str("<mo>−</mo>");
-            write_mathml(a, form, quantities, 3, out);
-        }
-        Expr::Cos(a) | Expr::Sin(a) => {
-            let name = if matches!(expr, Expr::Cos(_)) {
-                "cos"
-            } else {
-                "sin"
-            };
-            // A thin space after the name, as TeX sets `\cos\theta` (browsers
-            // add none for the function-application operator).
-            let _ = write!(out, "<mi>{name}</mi><mo>&#x2061;</mo>");
-            if precedence(a) >= 4 {
-                out.push_str("<mspace width=\"0.1667em\"></mspace>");
-            }
-            write_mathml(a, form, quantities, 4, out);
-        }
-        Expr::Sqrt(a) => {
-            out.push_str("<msqrt>");
-            write_mathml(a, form, quantities, 0, out);
-            out.push_str("</msqrt>");
-        }
-        Expr::Sq(a) => {
-            out.push_str("<msup><mrow>");
-            write_mathml(a, form, quantities, 4, out);
-            out.push_str("</mrow><mn>2</mn></msup>");
-        }
-        Expr::Acos(a) => {
-            out.push_str("<mi>arccos</mi><mo>&#x2061;</mo><mo>(</mo>");
-            write_mathml(a, form, quantities, 0, out);
-            out.push_str("<mo>)</mo>");
-        }
-        Expr::Clamp(a, b) => {
-            out.push_str("<mi>clamp</mi><mo>(</mo>");
-            write_mathml(a, form, quantities, 0, out);
-            out.push_str("<mo separator=\"true\">,</mo><mo>±</mo>");
-            write_mathml(b, form, quantities, 4, out);
-            out.push_str("<mo>)</mo>");
-        }
-        Expr::Max(a, b) => {
-            out.push_str("<mi>max</mi><mo>(</mo>");
-            write_mathml(a, form, quantities, 0, out);
-            out.push_str("<mo separator=\"true\">,</mo>");
-            write_mathml(b, form, quantities, 0, out);
-            out.push_str("<mo>)</mo>");
-        }
-    }
-    if paren {
-        out.push_str("<mo>)</mo>");
     }
 }
 
@@ -304,6 +364,31 @@ mod tests {
         );
     }
 
+    fn text(expr: &Expr, form: Form, q: &[Quantity]) -> String {
+        let mut w = Writer::new(Target::Text, form, q);
+        w.expr(expr, 0);
+        w.out
+    }
+
+    #[test]
+    fn the_text_twin_writes_symbols_by_juxtaposition_and_numbers_with_dots() {
+        let q = quantities(35.0);
+        assert_eq!(text(&X, Form::Symbols, &q), "L1 cos θ1");
+        assert_eq!(text(&X, Form::Numbers, &q), "1.00·cos 35°");
+        const SUM: Expr = Expr::Cos(&Expr::Add(&T, &T));
+        assert_eq!(text(&SUM, Form::Symbols, &q), "cos (θ1 + θ1)");
+        const HOLE: Expr = Expr::Max(&Expr::Num(0.0, "0"), &Expr::Sub(&L, &Expr::Num(2.0, "2")));
+        assert_eq!(text(&HOLE, Form::Numbers, &q), "max(0, 1.00 − 2)");
+        const HELD: Expr = Expr::Clamp(&X, &L);
+        assert_eq!(text(&HELD, Form::Symbols, &q), "clamp(L1 cos θ1, ±L1)");
+        let negative = [
+            Quantity::new("l", "L", 2.0, 1, ""),
+            Quantity::new("t", "e", -0.25, 2, ""),
+        ];
+        const P: Expr = Expr::Mul(&L, &T);
+        assert_eq!(text(&P, Form::Numbers, &negative), "2.0·(−0.25)");
+    }
+
     #[test]
     fn no_equations_no_panel() {
         assert_eq!(panel_html(&[], &quantities(0.0), &[]), "");
@@ -316,8 +401,10 @@ mod tests {
             Quantity::new("t", "e", -0.5, 1, ""),
         ];
         const P: Expr = Expr::Mul(&L, &T);
+        let mut w = Writer::new(Target::MathMl, Form::Numbers, &q);
+        w.expr(&P, 0);
         assert_eq!(
-            expr_mathml(&P, Form::Numbers, &q),
+            w.out,
             "<mn>2.0</mn><mo>·</mo><mo>(</mo><mo>−</mo><mn>0.5</mn><mo>)</mo>"
         );
     }
