@@ -163,6 +163,10 @@ impl Expr {
 /// the readout `readout`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Equation {
+    /// Stable key naming the equation within its experiment (`x`, `omega_n`):
+    /// the same in every variant of the equation set (a clamped and an
+    /// unclamped `u` are both `u`), so content and links can refer to it.
+    pub key: &'static str,
     /// What it computes (`x`, `ω_n`).
     pub symbol: &'static str,
     pub expr: Expr,

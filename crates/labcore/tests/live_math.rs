@@ -110,3 +110,48 @@ fn live_math_every_quantity_key_is_unique_and_every_symbol_is_written() {
         }
     }
 }
+
+#[test]
+fn live_math_every_equation_has_a_stable_key_unique_in_its_experiment() {
+    for entry in registry() {
+        let mut e = (entry.make)();
+        // Every variant of the equation set the parameters can choose.
+        let mut rng = Lcg64::new(2727);
+        let mut seen: Vec<(&'static str, &'static str)> = Vec::new();
+        for _ in 0..60 {
+            let equations = e.equations();
+            for (i, eq) in equations.iter().enumerate() {
+                assert!(
+                    !eq.key.is_empty()
+                        && eq
+                            .key
+                            .chars()
+                            .all(|c| c.is_ascii_alphanumeric() || c == '_'),
+                    "{}: equation {} has key {:?} (want ASCII letters, digits, _)",
+                    e.id(),
+                    eq.symbol,
+                    eq.key
+                );
+                assert!(
+                    equations[..i].iter().all(|other| other.key != eq.key),
+                    "{}: equation key {} twice",
+                    e.id(),
+                    eq.key
+                );
+                // A key names one result in every variant.
+                if let Some((_, readout)) = seen.iter().find(|(k, _)| *k == eq.key) {
+                    assert_eq!(
+                        *readout,
+                        eq.readout,
+                        "{}: equation {} changed its readout",
+                        e.id(),
+                        eq.key
+                    );
+                } else {
+                    seen.push((eq.key, eq.readout));
+                }
+            }
+            randomise(e.as_mut(), &mut rng);
+        }
+    }
+}

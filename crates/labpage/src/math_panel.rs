@@ -26,13 +26,14 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
         symbols.expr(&eq.expr, 0);
         let _ = write!(
             out,
-            "<div class=\"equation\" data-equation=\"{i}\">\
+            "<div class=\"equation\" data-equation=\"{i}\" data-key=\"{key}\">\
              <p class=\"equation-caption\">{caption}</p>\
              <p class=\"equation-forms\" aria-hidden=\"true\">\
              <span class=\"eq-part\"><math>{symbols}</math></span> \
              <span class=\"equation-numbers\">{numbers}</span> \
              <span class=\"equation-result\">= {result}</span></p>\
              <p class=\"sr-only equation-text\">{text}</p></div>",
+            key = eq.key,
             caption = escape(eq.caption),
             symbols = symbols.out,
         );
@@ -319,6 +320,7 @@ mod tests {
     const T: Expr = Expr::Var("t");
     const X: Expr = Expr::Mul(&L, &Expr::Cos(&T));
     const EQ: Equation = Equation {
+        key: "x",
         symbol: "x",
         expr: X,
         readout: "x",

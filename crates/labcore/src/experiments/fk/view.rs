@@ -12,12 +12,14 @@ const T12: Expr = Expr::Add(&T1, &Expr::Var("t2"));
 /// Robotics*, ch. 3): `x = L₁cos θ₁ + L₂cos(θ₁+θ₂)`, `y = L₁sin θ₁ + L₂sin(θ₁+θ₂)`.
 const EQUATIONS: &[Equation] = &[
     Equation {
+        key: "x",
         symbol: "x",
         expr: Expr::Add(&Expr::Mul(&L1, &Expr::Cos(&T1)), &Expr::Mul(&L2, &Expr::Cos(&T12))),
         readout: "x",
         caption: "The tip's x: each link's length times the cosine of its absolute angle.",
     },
     Equation {
+        key: "y",
         symbol: "y",
         expr: Expr::Add(&Expr::Mul(&L1, &Expr::Sin(&T1)), &Expr::Mul(&L2, &Expr::Sin(&T12))),
         readout: "y",

@@ -18,12 +18,14 @@ const COS_THETA2: Expr = Expr::Div(
     &Expr::Mul(&Expr::Mul(&Expr::Num(2.0, "2"), &L1), &L2),
 );
 const ELBOW_UP: &[Equation] = &[Equation {
+    key: "theta2",
     symbol: "θ_2",
     expr: Expr::Neg(&Expr::Acos(&COS_THETA2)),
     readout: "theta2",
     caption: "The elbow angle from the law of cosines; elbow up takes the negative root.",
 }];
 const ELBOW_DOWN: &[Equation] = &[Equation {
+    key: "theta2",
     symbol: "θ_2",
     expr: Expr::Acos(&COS_THETA2),
     readout: "theta2",

@@ -21,12 +21,14 @@ const LIMIT_CAPTION: &str =
 const PID_LAWS: [[&[Equation]; 2]; 2] = [
     [
         &[Equation {
+            key: "u",
             symbol: "u",
             expr: PID_ON_ERROR,
             readout: "force",
             caption: SUM_CAPTION,
         }],
         &[Equation {
+            key: "u",
             symbol: "u",
             expr: PID_ON_MEASUREMENT,
             readout: "force",
@@ -35,12 +37,14 @@ const PID_LAWS: [[&[Equation]; 2]; 2] = [
     ],
     [
         &[Equation {
+            key: "u",
             symbol: "u",
             expr: Expr::Clamp(&PID_ON_ERROR, &Expr::Var("umax")),
             readout: "force",
             caption: LIMIT_CAPTION,
         }],
         &[Equation {
+            key: "u",
             symbol: "u",
             expr: Expr::Clamp(&PID_ON_MEASUREMENT, &Expr::Var("umax")),
             readout: "force",

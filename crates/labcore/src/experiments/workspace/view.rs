@@ -17,6 +17,7 @@ const REACH: Expr = Expr::Add(&Expr::Add(&L1, &L2), &L3);
 /// link cannot fold back over, `r = max(0, 2 L_max − R)`.
 const EQUATIONS: &[Equation] = &[
     Equation {
+        key: "x",
         symbol: "x",
         expr: Expr::Add(
             &Expr::Add(&Expr::Mul(&L1, &Expr::Cos(&T1)), &Expr::Mul(&L2, &Expr::Cos(&T12))),
@@ -26,12 +27,14 @@ const EQUATIONS: &[Equation] = &[
         caption: "The tip's x: each link adds its length along its absolute angle.",
     },
     Equation {
+        key: "outer",
         symbol: "R",
         expr: REACH,
         readout: "outer_theory",
         caption: "The outer radius: every link laid out straight.",
     },
     Equation {
+        key: "hole",
         symbol: "r",
         expr: Expr::Max(
             &Expr::Num(0.0, "0"),
