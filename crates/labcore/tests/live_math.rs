@@ -155,3 +155,62 @@ fn live_math_every_equation_has_a_stable_key_unique_in_its_experiment() {
         }
     }
 }
+
+/// The experiment `id` at its defaults with `params` set.
+fn lab(id: &str, params: &[(&str, f64)]) -> Box<dyn Lab> {
+    let entry = registry().iter().find(|e| (e.make)().id() == id).expect(id);
+    let mut e = (entry.make)();
+    for (k, v) in params {
+        e.set_param(k, *v)
+            .unwrap_or_else(|err| panic!("{id} {k}: {err:?}"));
+    }
+    e
+}
+
+/// Equation `key` of `e` evaluated from the numbers as shown, and the text of
+/// the readout it names.
+fn equation(e: &dyn Lab, key: &str) -> (f64, String) {
+    let quantities = e.quantities();
+    let eq = e
+        .equations()
+        .iter()
+        .find(|eq| eq.key == key)
+        .unwrap_or_else(|| panic!("{}: no equation {key}", e.id()));
+    let value = eq.expr.eval(&|k| shown(&quantities, k));
+    let readout = e
+        .readouts()
+        .into_iter()
+        .find(|r| r.key == eq.readout)
+        .map(|r| r.value)
+        .unwrap_or_default();
+    (value, readout)
+}
+
+/// The value of quantity `key` as shown.
+fn quantity(e: &dyn Lab, key: &str) -> f64 {
+    shown(&e.quantities(), key).unwrap_or_else(|| panic!("{}: no quantity {key}", e.id()))
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+#[test]
+fn live_math_pid_omega_n_and_zeta_by_hand() {
+    // Kp = 25 N/m, Ki = 0, Kd = 5 N·s/m, m = 1.0 kg, c = 1.0 N·s/m:
+    // ωn = √(25 / 1.0) = 5.000 rad/s, ζ = (1.0 + 5.0) / (2·√(1.0·25.0)) = 0.600.
+    let e = lab("pid", &[("kp", 25.0), ("ki", 0.0), ("kd", 5.0)]);
+    assert_eq!(
+        (quantity(e.as_ref(), "m"), quantity(e.as_ref(), "c")),
+        (1.0, 1.0)
+    );
+    let (wn, text) = equation(e.as_ref(), "omega_n");
+    assert!(close(wn, 5.0, 1e-12), "{wn}");
+    assert_eq!(text, "5.000 rad/s");
+    let (zeta, text) = equation(e.as_ref(), "zeta");
+    assert!(close(zeta, 0.6, 1e-12), "{zeta}");
+    assert_eq!(text, "0.600");
+    // With Ki ≠ 0 the loop is third order: no readout to compare with.
+    let e = lab("pid", &[]);
+    assert_eq!(equation(e.as_ref(), "zeta").1, "--");
+}
