@@ -19,10 +19,12 @@ fn half_digit(text: &str) -> f64 {
     0.5 * 10f64.powi(-(decimals as i32))
 }
 
-/// Checks every equation of `e` against its readout; returns how many.
-fn check_equations(e: &dyn Lab, context: &str) -> usize {
+/// Checks every equation of `e` against its readout; returns the keys of
+/// those that had a number to compare.
+fn check_equations(e: &dyn Lab, context: &str) -> Vec<&'static str> {
     let quantities = e.quantities();
     let readouts = e.readouts();
+    let mut compared = Vec::new();
     for eq in e.equations() {
         for key in eq.expr.keys() {
             assert!(
@@ -50,43 +52,85 @@ fn check_equations(e: &dyn Lab, context: &str) -> usize {
         let tolerance = rounding_bound(&eq.expr, &quantities) + half_digit(&readout.value) + 1e-12;
         assert!(
             (value - shown_result).abs() <= tolerance,
-            "{} {context}: {} = {value} from the shown numbers, readout {:?} (tolerance {tolerance})",
+            "{} {context}: {} = {value} from the shown numbers, readout {:?} (tolerance {tolerance}) {quantities:?}",
             e.id(),
             eq.symbol,
             readout.value
         );
+        compared.push(eq.key);
     }
-    e.equations().len()
+    compared
 }
 
-/// Random values of every slider and number parameter, inside their ranges.
+/// Random values of every parameter inside its range; now and then its
+/// minimum or its default instead (a gain of 0 chooses other equations).
 fn randomise(e: &mut dyn Lab, rng: &mut Lcg64) {
     for spec in e.params() {
-        let value = spec.min + (spec.max - spec.min) * rng.next_f64();
+        let pick = rng.next_f64();
+        let value = if pick < 0.15 {
+            spec.min
+        } else if pick < 0.3 {
+            spec.default
+        } else {
+            spec.min + (spec.max - spec.min) * rng.next_f64()
+        };
         let _ = e.set_param(spec.key, value);
     }
 }
 
 #[test]
 fn live_math_every_equation_is_its_readout_within_the_display_rounding() {
-    let mut checked = 0;
+    let mut with_equations = 0;
     for entry in registry() {
         let mut e = (entry.make)();
         if e.equations().is_empty() {
             continue;
         }
-        checked += check_equations(e.as_ref(), "at defaults");
+        with_equations += 1;
+        let mut compared = check_equations(e.as_ref(), "at defaults");
         let mut rng = Lcg64::new(27);
         for trial in 0..200 {
             randomise(e.as_mut(), &mut rng);
-            checked += check_equations(e.as_ref(), &format!("after random parameters #{trial}"));
+            compared.extend(check_equations(
+                e.as_ref(),
+                &format!("after random parameters #{trial}"),
+            ));
+            // An action now and then (grow, run, plan …), so runs happen.
+            let actions = e.actions();
+            if !actions.is_empty() && trial % 3 == 0 {
+                let pick = actions
+                    [rng.next_f64().mul_add(actions.len() as f64, 0.0) as usize % actions.len()];
+                let _ = e.action(pick.key);
+                compared.extend(check_equations(
+                    e.as_ref(),
+                    &format!("after action {} #{trial}", pick.key),
+                ));
+            }
             if e.animated() {
                 steps(e.as_mut(), 1 + (trial % 7) * 10);
-                checked += check_equations(e.as_ref(), &format!("after steps, trial {trial}"));
+                compared.extend(check_equations(
+                    e.as_ref(),
+                    &format!("after steps, trial {trial}"),
+                ));
             }
         }
+        // Every equation met a number to compare with, in some variant.
+        let mut keys: Vec<&str> = Vec::new();
+        let mut fresh = (entry.make)();
+        let mut rng = Lcg64::new(2727);
+        for _ in 0..60 {
+            keys.extend(fresh.equations().iter().map(|eq| eq.key));
+            randomise(fresh.as_mut(), &mut rng);
+        }
+        for key in keys {
+            assert!(
+                compared.contains(&key),
+                "{}: equation {key} was never compared with a number",
+                e.id()
+            );
+        }
     }
-    assert!(checked > 0, "no experiment has equations yet");
+    assert!(with_equations > 0, "no experiment has equations yet");
 }
 
 #[test]
@@ -213,4 +257,30 @@ fn live_math_pid_omega_n_and_zeta_by_hand() {
     // With Ki ≠ 0 the loop is third order: no readout to compare with.
     let e = lab("pid", &[]);
     assert_eq!(equation(e.as_ref(), "zeta").1, "--");
+}
+
+#[test]
+fn live_math_rrtstar_neighbour_radius_by_hand() {
+    // The 10 m × 6 m field: γ = 1.1·2·√1.5·√(60/π) = 11.775 m.
+    let mut e = lab("rrtstar", &[("eta", 2.0)]);
+    assert_eq!(quantity(e.as_ref(), "gamma"), 11.775);
+    e.action("grow").unwrap();
+    while quantity(e.as_ref(), "n") < 300.0 {
+        steps(e.as_mut(), 1);
+    }
+    // r(n) = min(11.775·√(ln n / n), 2.00); at n = 300 that is 1.624 m.
+    let n = quantity(e.as_ref(), "n");
+    let by_hand = (11.775 * (n.ln() / n).sqrt()).min(2.0);
+    let (r, text) = equation(e.as_ref(), "radius");
+    assert!(close(r, by_hand, 1e-12), "{r} vs {by_hand}");
+    assert!(
+        close(leading_number(&text).unwrap(), by_hand, 0.0015),
+        "{text} vs {by_hand}"
+    );
+    assert!(close(11.775 * (300f64.ln() / 300.0).sqrt(), 1.624, 0.0005));
+    // With few nodes the step η caps it: r(10) = 11.775·√(ln 10 / 10) = 5.65 > η.
+    let mut e = lab("rrtstar", &[("eta", 0.5)]);
+    e.action("grow").unwrap();
+    steps(e.as_mut(), 1);
+    assert_eq!(equation(e.as_ref(), "radius"), (0.5, "0.500 m".into()));
 }
