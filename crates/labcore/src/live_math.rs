@@ -49,10 +49,15 @@ impl Quantity {
         }
     }
 
-    /// The number as shown (`0.80`), without its unit.
+    /// The number as shown (`0.80`), without its unit; `--` when there is
+    /// none (no goal yet, no obstacle).
     #[must_use]
     pub fn number_text(&self) -> String {
-        format_fixed(self.value, self.decimals)
+        if self.value.is_finite() {
+            format_fixed(self.value, self.decimals)
+        } else {
+            "--".into()
+        }
     }
 
     /// The value the shown number stands for (the rounding the student reads).

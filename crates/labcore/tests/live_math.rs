@@ -137,6 +137,16 @@ fn live_math_every_equation_is_its_readout_within_the_display_rounding() {
 fn live_math_every_quantity_key_is_unique_and_every_symbol_is_written() {
     for entry in registry() {
         let e = (entry.make)();
+        // An equation names its readout by key: one readout per key.
+        let readouts = e.readouts();
+        for (i, r) in readouts.iter().enumerate() {
+            assert!(
+                readouts[..i].iter().all(|o| o.key != r.key),
+                "{}: readout {} twice",
+                e.id(),
+                r.key
+            );
+        }
         let quantities = e.quantities();
         for (i, q) in quantities.iter().enumerate() {
             assert!(
@@ -283,4 +293,33 @@ fn live_math_rrtstar_neighbour_radius_by_hand() {
     e.action("grow").unwrap();
     steps(e.as_mut(), 1);
     assert_eq!(equation(e.as_ref(), "radius"), (0.5, "0.500 m".into()));
+}
+
+#[test]
+fn live_math_potential_pull_clearance_and_push_by_hand() {
+    // Robot at the start (0.60, 3.00) m, goal (8.00, 3.00) m, one obstacle of
+    // radius 0.50 m at (2.00, 3.00) m, kₐ = 1.00, kᵣ = 1.60, d₀ = 1.00 m.
+    let e = lab(
+        "potential",
+        &[
+            ("gx", 8.0),
+            ("gy", 3.0),
+            ("nobs", 1.0),
+            ("o1x", 2.0),
+            ("o1y", 3.0),
+        ],
+    );
+    // d_g = √((8.00 − 0.60)² + (3.00 − 3.00)²) = 7.400 m.
+    assert_eq!(
+        equation(e.as_ref(), "goal_distance"),
+        (7.4, "7.400 m".into())
+    );
+    // The conic pull: F_att = kₐ = 1.000, whatever the distance.
+    assert_eq!(equation(e.as_ref(), "f_att"), (1.0, "1.000".into()));
+    // d = √((0.60 − 2.00)² + 0) − 0.50 = 0.900 m.
+    let (d, text) = equation(e.as_ref(), "clearance");
+    assert!(close(d, 0.9, 1e-12) && text == "0.900 m", "{d} {text}");
+    // F_rep = 1.60·max(0, 1.00 − 0.900)/1.00 = 0.160.
+    let (push, text) = equation(e.as_ref(), "f_rep");
+    assert!(close(push, 0.16, 1e-12) && text == "0.160", "{push} {text}");
 }
