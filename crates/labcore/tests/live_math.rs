@@ -323,3 +323,27 @@ fn live_math_potential_pull_clearance_and_push_by_hand() {
     let (push, text) = equation(e.as_ref(), "f_rep");
     assert!(close(push, 0.16, 1e-12) && text == "0.160", "{push} {text}");
 }
+
+#[test]
+fn live_math_diffdrive_control_law_and_unicycle_by_hand() {
+    // From the start (4, 3) m heading 0° toward a first waypoint at (6, 4) m:
+    // d = √(2² + 1²) = 2.236 m, eθ = atan2(1, 2) = 0.464 rad.
+    let mut e = lab("diffdrive", &[("w1x", 6.0), ("w1y", 4.0)]);
+    steps(e.as_mut(), 1);
+    assert!(close(quantity(e.as_ref(), "d"), 2.236, 1e-12));
+    assert!(close(quantity(e.as_ref(), "e"), 0.464, 1e-12));
+    // ω = clamp(3.50·0.464, ±1.40) = clamp(1.624, ±1.40) = 1.400 rad/s.
+    assert_eq!(equation(e.as_ref(), "omega"), (1.4, "1.400 rad/s".into()));
+    // v = min(1.20·2.236·max(0, cos 0.464), 1.10) = min(2.400, 1.10) = 1.100 m/s.
+    assert_eq!(equation(e.as_ref(), "v"), (1.1, "1.100 m/s".into()));
+    // ẋ = 1.100·cos 0° = 1.100 m/s, ẏ = 1.100·sin 0° = 0.000 m/s.
+    assert_eq!(equation(e.as_ref(), "xdot"), (1.1, "1.100 m/s".into()));
+    assert_eq!(equation(e.as_ref(), "ydot"), (0.0, "0.000 m/s".into()));
+    // A step later the robot has turned left: ẏ = v sin θ > 0.
+    steps(e.as_mut(), 1);
+    let (ydot, text) = equation(e.as_ref(), "ydot");
+    assert!(
+        ydot > 0.0 && close(ydot, leading_number(&text).unwrap(), 0.0015),
+        "{ydot} {text}"
+    );
+}
