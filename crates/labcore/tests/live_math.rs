@@ -347,3 +347,42 @@ fn live_math_diffdrive_control_law_and_unicycle_by_hand() {
         "{ydot} {text}"
     );
 }
+
+#[test]
+fn live_math_astar_f_is_g_plus_h_for_the_last_cell_expanded_by_hand() {
+    // The default grid: the start is 25 cells across and 1 up from the goal.
+    let mut e = lab("astar", &[]);
+    e.action("plan").unwrap();
+    steps(e.as_mut(), 1);
+    assert_eq!(
+        (quantity(e.as_ref(), "dx"), quantity(e.as_ref(), "dy")),
+        (25.0, 1.0)
+    );
+    // Octile: h = max(25, 1) + (√2 − 1)·min(25, 1) = 25.414 m; f = 0.000 + 25.414.
+    let (h, text) = equation(e.as_ref(), "h");
+    assert!(
+        close(h, 25.0 + 2f64.sqrt() - 1.0, 1e-12) && text == "25.414 m",
+        "{h} {text}"
+    );
+    assert_eq!(equation(e.as_ref(), "f"), (25.414, "25.414 m".into()));
+    // Two expansions on, the diagonal neighbour: g = √2 = 1.414, Δx = 24,
+    // Δy = 0, h = 24.000, f = 1.414 + 24.000 = 25.414 m (an octile h is consistent).
+    steps(e.as_mut(), 2);
+    assert_eq!(
+        (quantity(e.as_ref(), "dx"), quantity(e.as_ref(), "dy")),
+        (24.0, 0.0)
+    );
+    assert_eq!(equation(e.as_ref(), "h"), (24.0, "24.000 m".into()));
+    assert_eq!(equation(e.as_ref(), "f"), (25.414, "25.414 m".into()));
+    // Manhattan from the start: h = 25 + 1 = 26.000 m.
+    let mut e = lab("astar", &[("h", 0.0)]);
+    e.action("plan").unwrap();
+    steps(e.as_mut(), 1);
+    assert_eq!(equation(e.as_ref(), "h"), (26.0, "26.000 m".into()));
+    // Weighted, w = 2: f = 0.000 + 2.0·25.414 = 50.828 m.
+    let mut e = lab("astar", &[("w", 2.0)]);
+    e.action("plan").unwrap();
+    steps(e.as_mut(), 1);
+    let (f, text) = equation(e.as_ref(), "f");
+    assert!(close(f, 50.828, 1e-12) && text == "50.828 m", "{f} {text}");
+}
