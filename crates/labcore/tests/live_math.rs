@@ -8,7 +8,8 @@ use labcore::live_math::{rounding_bound, shown};
 use labcore::testkit::{leading_number, steps};
 use labcore::{registry, Lab, Lcg64};
 
-/// Half a unit of the last digit of a readout's number (`0.749 m` → 0.0005).
+/// Half a unit of the last digit of a readout's number (`0.749 m` → 0.0005,
+/// `2.4 × 10⁵` → 5000).
 fn half_digit(text: &str) -> f64 {
     let number: String = text
         .trim_start()
@@ -16,7 +17,32 @@ fn half_digit(text: &str) -> f64 {
         .take_while(|c| c.is_ascii_digit() || *c == '.' || *c == '-' || *c == '\u{2212}')
         .collect();
     let decimals = number.split_once('.').map_or(0, |(_, d)| d.len());
-    0.5 * 10f64.powi(-(decimals as i32))
+    0.5 * 10f64.powi(power_of_ten(text) - decimals as i32)
+}
+
+/// The power of ten of a readout in the magnitude form (`2.4 × 10⁻⁵ m` → −5), else 0.
+fn power_of_ten(text: &str) -> i32 {
+    let Some((_, exponent)) = text.split_once("× 10") else {
+        return 0;
+    };
+    let mut power = 0;
+    let mut sign = 1;
+    for c in exponent.chars() {
+        match c {
+            '⁻' => sign = -1,
+            '⁰' => power *= 10,
+            '¹' => power = power * 10 + 1,
+            '²' | '³' => power = power * 10 + 2 + i32::from(c == '³'),
+            '⁴'..='⁹' => power = power * 10 + (c as i32 - '⁴' as i32 + 4),
+            _ => break,
+        }
+    }
+    sign * power
+}
+
+/// The number a readout shows, in the magnitude form too (`2.4 × 10⁵` → 240000).
+fn readout_number(text: &str) -> Option<f64> {
+    leading_number(text).map(|v| v * 10f64.powi(power_of_ten(text)))
 }
 
 /// Checks every equation of `e` against its readout; returns the keys of
@@ -45,7 +71,7 @@ fn check_equations(e: &dyn Lab, context: &str) -> Vec<&'static str> {
                     eq.readout
                 )
             });
-        let Some(shown_result) = leading_number(&readout.value) else {
+        let Some(shown_result) = readout_number(&readout.value) else {
             continue; // "--": nothing to compare
         };
         let value = eq.expr.eval(&|k| shown(&quantities, k));
@@ -163,6 +189,16 @@ fn live_math_every_quantity_key_is_unique_and_every_symbol_is_written() {
             );
         }
     }
+}
+
+#[test]
+fn live_math_a_readout_in_the_magnitude_form_is_read_whole() {
+    assert_eq!(readout_number("2.4 × 10⁵"), Some(240_000.0));
+    assert!((readout_number("5.6 × 10⁻⁷ m").unwrap() - 5.6e-7).abs() < 1e-20);
+    assert_eq!(power_of_ten("1.0 × 10¹⁵⁰ rad/s"), 150);
+    assert_eq!(power_of_ten("0.749 m"), 0);
+    assert!((half_digit("2.4 × 10⁵") - 5000.0).abs() < 1e-9);
+    assert_eq!(readout_number("∞ (singular)"), None);
 }
 
 #[test]
@@ -385,4 +421,32 @@ fn live_math_astar_f_is_g_plus_h_for_the_last_cell_expanded_by_hand() {
     steps(e.as_mut(), 1);
     let (f, text) = equation(e.as_ref(), "f");
     assert!(close(f, 50.828, 1e-12) && text == "50.828 m", "{f} {text}");
+}
+
+#[test]
+fn live_math_dls_error_manipulability_and_condition_by_hand() {
+    // Two links of 1.20 m, both joints at 0.3 rad: the tip sits at
+    // (1.2 cos 0.3 + 1.2 cos 0.6, 1.2 sin 0.3 + 1.2 sin 0.6) = (2.137, 1.032) m.
+    let e = lab("dls", &[("n", 2.0), ("tx", 1.0), ("ty", 1.0)]);
+    // |e| = √((1.000 − 2.137)² + (1.000 − 1.032)²) = 1.137 m.
+    let (error, text) = equation(e.as_ref(), "error");
+    assert!(
+        close(error, 1.137_450_5, 1e-6) && text == "1.137 m",
+        "{error} {text}"
+    );
+    // JJᵀ = [[1.5245, −2.8767], [−2.8767, 5.5468]] m²:
+    // w = √(1.5245·5.5468 − 2.8767²) = 0.4251, and in closed form for two
+    // links L₁L₂|sin θ₂| = 1.44·sin 0.3 = 0.4255: the readout 0.426.
+    assert_eq!(quantity(e.as_ref(), "a"), 1.5245);
+    assert_eq!(quantity(e.as_ref(), "b"), -2.8767);
+    assert_eq!(quantity(e.as_ref(), "c"), 5.5468);
+    let (w, text) = equation(e.as_ref(), "w");
+    assert!(close(w, 0.425_08, 1e-5) && text == "0.426", "{w} {text}");
+    assert!(close(1.44 * 0.3f64.sin(), 0.4255, 1e-4));
+    // σmax/σmin = 2.654 / 0.1603 = 16.6.
+    let (kappa, text) = equation(e.as_ref(), "condition");
+    assert!(
+        close(kappa, 2.654 / 0.1603, 1e-9) && text == "16.6",
+        "{kappa} {text}"
+    );
 }
