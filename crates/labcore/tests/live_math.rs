@@ -450,3 +450,39 @@ fn live_math_dls_error_manipulability_and_condition_by_hand() {
         "{kappa} {text}"
     );
 }
+
+#[test]
+fn live_math_cartpole_force_from_the_state_it_came_from_and_energy_by_hand() {
+    let mut e = lab("cartpole", &[]);
+    // At the start, the pole at θ = 6°, at rest: E = m g l cos θ =
+    // 0.10·9.80·0.50·cos 6° = 0.4873 J; no step yet, so no force.
+    assert_eq!(equation(e.as_ref(), "energy").1, "0.4873 J");
+    assert!(close(
+        equation(e.as_ref(), "energy").0,
+        0.49 * 6f64.to_radians().cos(),
+        1e-12
+    ));
+    assert_eq!(equation(e.as_ref(), "force"), (0.0, "0.00 N".into()));
+    // The first step's force comes from that start: F = 3.0·0 + 6.0·0 +
+    // 120.0·0.10472 + 18.0·0 = 12.57 N (under the 30 N limit) …
+    while quantity(e.as_ref(), "thk") == 0.0 {
+        steps(e.as_mut(), 1);
+    }
+    assert_eq!(quantity(e.as_ref(), "thk"), 0.10472);
+    let (f, text) = equation(e.as_ref(), "force");
+    assert!(
+        close(f, 120.0 * 0.10472, 1e-12) && text == "12.57 N",
+        "{f} {text}"
+    );
+    // … while the state has moved on since: the next force comes from the new one.
+    assert_ne!(
+        e.quantities().iter().find(|q| q.key == "th").unwrap().value,
+        6.0,
+        "the pole has moved"
+    );
+    // Control off: no force.
+    let mut e = lab("cartpole", &[("ctl", 0.0)]);
+    steps(e.as_mut(), 10);
+    assert_eq!(equation(e.as_ref(), "force"), (0.0, "0.00 N".into()));
+    assert!(e.equations()[0].caption.starts_with("No force"));
+}
