@@ -194,6 +194,17 @@ pub struct Equation {
     pub caption: &'static str,
 }
 
+/// Decimals that show `v` to four significant digits (3 for 1.234, 6 for
+/// 0.001234, 0 for 2500), at most 12; 3 for zero or a non-finite value.
+#[must_use]
+pub fn four_significant(v: f64) -> usize {
+    if v != 0.0 && v.is_finite() {
+        (3 - libm::floor(libm::log10(v.abs())) as i32).clamp(0, 12) as usize
+    } else {
+        3
+    }
+}
+
 /// The value of `key` among `quantities` as shown.
 #[must_use]
 pub fn shown(quantities: &[Quantity], key: &str) -> Option<f64> {
@@ -319,6 +330,17 @@ mod tests {
         // The keys of the new nodes are collected too.
         const ALL: Expr = Expr::Min(&Expr::Ln(&L1), &Expr::CosRad(&T1));
         assert_eq!(ALL.keys(), vec!["l1", "t1"]);
+    }
+
+    #[test]
+    fn four_significant_digits_whatever_the_size() {
+        assert_eq!(four_significant(1.234), 3);
+        assert_eq!(four_significant(-0.001_234), 6);
+        assert_eq!(four_significant(2500.0), 0);
+        assert_eq!(four_significant(820.7), 1);
+        assert_eq!(four_significant(1e-20), 12);
+        assert_eq!(four_significant(0.0), 3);
+        assert_eq!(four_significant(f64::NAN), 3);
     }
 
     #[test]

@@ -486,3 +486,29 @@ fn live_math_cartpole_force_from_the_state_it_came_from_and_energy_by_hand() {
     assert_eq!(equation(e.as_ref(), "force"), (0.0, "0.00 N".into()));
     assert!(e.equations()[0].caption.starts_with("No force"));
 }
+
+#[test]
+fn live_math_ekf_error_trace_and_nees_by_hand() {
+    // At the start P = diag(0.05², 0.05², (2°)²): Λ = P⁻¹ = diag(400, 400,
+    // 820.7), and the seeded start error e = (−0.05831 m, −0.005542 m, 0.07941 rad).
+    let e = lab("ekf", &[]);
+    let shown: Vec<f64> = ["ex", "ey", "eth", "lxx", "lyy", "ltt", "lxy"]
+        .iter()
+        .map(|k| quantity(e.as_ref(), k))
+        .collect();
+    assert_eq!(
+        shown,
+        [-0.05831, -0.005542, 0.07941, 400.0, 400.0, 820.7, 0.0]
+    );
+    // |e| = √(0.05831² + 0.005542²) = 0.0586 m, shown 0.059 m.
+    let (error, text) = equation(e.as_ref(), "error");
+    assert!(
+        close(error, 0.058_573, 1e-6) && text == "0.059 m",
+        "{error} {text}"
+    );
+    // σ² = 0.002500 + 0.002500 = 0.005000 m².
+    assert_eq!(equation(e.as_ref(), "trace"), (0.005, "0.005000 m²".into()));
+    // NEES = 400·0.05831² + 400·0.005542² + 820.7·0.07941² = 1.360 + 0.012 + 5.175 = 6.55.
+    let (nees, text) = equation(e.as_ref(), "nees");
+    assert!(close(nees, 6.5476, 1e-4) && text == "6.55", "{nees} {text}");
+}

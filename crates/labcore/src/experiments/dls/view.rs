@@ -1,7 +1,7 @@
 //! What experiment 9 shows: the view box, the scene, the readouts and the status.
 
 use super::*;
-use crate::live_math::{Equation, Expr, Quantity};
+use crate::live_math::{four_significant, Equation, Expr, Quantity};
 
 const A: Expr = Expr::Var("a");
 const B: Expr = Expr::Var("b");
@@ -112,13 +112,7 @@ impl Presentation for DampedLeastSquares {
             crate::kinematics::jacobian::jjt_entries(&jacobian(&self.lengths(), &self.angles_rad));
         let m = self.manipulability();
         // Four significant digits, so a small σ_min still shows what it is.
-        let significant = |v: f64| {
-            if v > 0.0 && v.is_finite() {
-                (3 - libm::floor(libm::log10(v)) as i32).clamp(3, 12) as usize
-            } else {
-                3
-            }
-        };
+        let significant = four_significant;
         vec![
             Quantity::new("xt", "x_t", target.x, 3, "m"),
             Quantity::new("x", "x", tip.x, 3, "m"),
