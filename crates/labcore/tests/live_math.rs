@@ -512,3 +512,30 @@ fn live_math_ekf_error_trace_and_nees_by_hand() {
     let (nees, text) = equation(e.as_ref(), "nees");
     assert!(close(nees, 6.5476, 1e-4) && text == "6.55", "{nees} {text}");
 }
+
+#[test]
+fn live_math_ekf_innovation_of_the_last_observation_by_hand() {
+    let mut e = lab("ekf", &[]);
+    // Before any reading there is no innovation to show.
+    assert_eq!(equation(e.as_ref(), "innovation_range").1, "--");
+    while quantity(e.as_ref(), "zr").is_nan() {
+        steps(e.as_mut(), 1);
+    }
+    // The first reading's last landmark: z = (2.281 m, 59.05°), predicted
+    // ẑ = (2.330 m, 59.87°): ν = (2.281 − 2.330, 59.05° − 59.87°) = (−0.049 m, −0.8°).
+    let z: Vec<f64> = ["zr", "zhr", "zb", "zhb"]
+        .iter()
+        .map(|k| quantity(e.as_ref(), k))
+        .collect();
+    assert_eq!(z, [2.281, 2.33, 59.05, 59.87]);
+    let (nu_r, text) = equation(e.as_ref(), "innovation_range");
+    assert!(
+        close(nu_r, -0.049, 1e-12) && text == "-0.049 m",
+        "{nu_r} {text}"
+    );
+    let (nu_b, text) = equation(e.as_ref(), "innovation_bearing");
+    assert!(
+        close(nu_b, -0.82, 1e-12) && text == "-0.8°",
+        "{nu_b} {text}"
+    );
+}

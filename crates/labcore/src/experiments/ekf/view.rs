@@ -18,6 +18,20 @@ const CROSS_YT: Expr = Expr::Mul(&Expr::Mul(&Expr::Mul(&TWO, &Expr::Var("lyt")),
 /// written out with the information matrix `Λ = P⁻¹` as the filter inverts it.
 const EQUATIONS: &[Equation] = &[
     Equation {
+        key: "innovation_range",
+        symbol: "ν_r",
+        expr: Expr::Sub(&Expr::Var("zr"), &Expr::Var("zhr")),
+        readout: "innov_r",
+        caption: "The innovation of the last observation folded in: the range measured less the range the estimate predicted …",
+    },
+    Equation {
+        key: "innovation_bearing",
+        symbol: "ν_b",
+        expr: Expr::Sub(&Expr::Var("zb"), &Expr::Var("zhb")),
+        readout: "innov_b",
+        caption: "… and the same for its bearing (the prediction taken within half a turn of the measurement).",
+    },
+    Equation {
         key: "error",
         symbol: "|e|",
         expr: Expr::Sqrt(&Expr::Add(&Expr::Sq(&EX), &Expr::Sq(&EY))),
@@ -214,6 +228,17 @@ impl Presentation for EkfExperiment {
                 "Heading error",
                 heading_error_rad(truth, est).to_degrees(),
             ),
+            Readout::metres(
+                "innov_r",
+                "Innovation ν, range",
+                run.last_update().map_or(f64::NAN, |(_, u)| u.innovation.x),
+            ),
+            Readout::degrees(
+                "innov_b",
+                "Innovation ν, bearing",
+                run.last_update()
+                    .map_or(f64::NAN, |(_, u)| u.innovation.y.to_degrees()),
+            ),
             Readout::new(
                 "trace",
                 "Position uncertainty σx² + σy²",
@@ -247,7 +272,15 @@ impl Presentation for EkfExperiment {
             DMat3::from_diagonal(DVec3::NAN)
         };
         let q = |key, symbol, v: f64, unit| Quantity::new(key, symbol, v, four_significant(v), unit);
+        // ẑ's bearing as z − ν: the same angle, within half a turn of z.
+        let (z, predicted) = run.last_update().map_or((DVec2::NAN, DVec2::NAN), |(z, u)| {
+            (z, DVec2::new(u.predicted.x, z.y - u.innovation.y))
+        });
         vec![
+            Quantity::new("zr", "z_r", z.x, 3, "m"),
+            Quantity::new("zhr", "ẑ_r", predicted.x, 3, "m"),
+            Quantity::new("zb", "z_b", z.y.to_degrees(), 2, "°"),
+            Quantity::new("zhb", "ẑ_b", predicted.y.to_degrees(), 2, "°"),
             q("ex", "e_x", e.x, "m"),
             q("ey", "e_y", e.y, "m"),
             q("eth", "e_θ", e.z, "rad"),
