@@ -32,10 +32,10 @@ const EQUATIONS: &[Equation] = &[
     },
     Equation {
         key: "condition",
-        symbol: "σ_max/σ_min",
+        symbol: "κ",
         expr: Expr::Div(&Expr::Var("smax"), &Expr::Var("smin")),
         readout: "cond",
-        caption: "The condition number: the velocity ellipse's long semi-axis over its short one (J's singular values); it blows up near a singularity.",
+        caption: "The condition number κ: the velocity ellipse's long semi-axis over its short one (J's singular values); it blows up near a singularity.",
     },
 ];
 
