@@ -174,6 +174,18 @@ fn live_math_every_quantity_key_is_unique_and_every_symbol_is_written() {
             );
         }
         let quantities = e.quantities();
+        // A symbol spec is a base and at most one subscript after `_`.
+        let symbols = quantities
+            .iter()
+            .map(|q| q.symbol)
+            .chain(e.equations().iter().map(|eq| eq.symbol));
+        for symbol in symbols {
+            assert!(
+                symbol.matches('_').count() <= 1 && !symbol.contains('/'),
+                "{}: symbol {symbol:?} is not a base with one subscript",
+                e.id()
+            );
+        }
         for (i, q) in quantities.iter().enumerate() {
             assert!(
                 !q.symbol.is_empty(),
