@@ -75,7 +75,7 @@ const PANELS = [
   { link: "#/pid/simulation", keys: ["u", "omega_n", "zeta"] },
   { link: "#/pid/simulation?sat=1&umax=5", keys: ["u", "omega_n", "zeta"], name: "pid-limited" },
   { link: "#/pid/simulation?ki=0&kp=25&kd=5", keys: ["u", "omega_n", "zeta"], name: "pid-second-order" },
-  { link: "#/diffdrive/simulation", keys: ["v", "omega", "xdot", "ydot"] },
+  { link: "#/diffdrive/simulation?w1x=6&w1y=4", keys: ["v", "omega", "xdot", "ydot"] },
   { link: "#/potential/simulation?gx=8&gy=3", keys: ["goal_distance", "f_att", "clearance", "f_rep"] },
   { link: "#/astar/simulation", action: "plan", keys: ["h", "f"] },
   { link: "#/cartpole/simulation", keys: ["force", "energy"] },
