@@ -762,6 +762,16 @@ pub trait Presentation: Experiment {
     fn touch_hint(&self) -> &'static str {
         self.hint()
     }
+    /// The live quantities "The math" panel puts into the equations: key,
+    /// symbol, value as shown and unit ([`crate::live_math`]).
+    fn quantities(&self) -> Vec<crate::live_math::Quantity> {
+        Vec::new()
+    }
+    /// The governing equations "The math" panel shows, each producing one
+    /// readout; none by default.
+    fn equations(&self) -> &'static [crate::live_math::Equation] {
+        &[]
+    }
     /// Live tables shown beside the canvas (an open list, a comparison).
     fn tables(&self) -> Vec<Table> {
         Vec::new()

@@ -64,6 +64,7 @@ pub mod experiments;
 pub mod json;
 pub mod kinematics;
 pub mod linalg;
+pub mod live_math;
 pub mod lms;
 pub mod marks;
 pub mod math;

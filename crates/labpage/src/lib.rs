@@ -9,6 +9,7 @@
 //! labcore never does (the arrow runs `labpage -> labcore`).
 
 pub mod content_html;
+pub mod math_panel;
 pub mod report;
 
 // labcore's modules, named as at home so the report and page code reads the

@@ -203,6 +203,13 @@ impl Pid {
         Ok(())
     }
 
+    /// The (filtered) derivative the last update used (m/s): `ė`, or with
+    /// derivative on measurement `−ẏ`.
+    #[must_use]
+    pub fn derivative_m_s(&self) -> f64 {
+        self.derivative_filtered
+    }
+
     /// The integral state `∫e dt` (m·s).
     #[must_use]
     pub fn integral_m_s(&self) -> f64 {

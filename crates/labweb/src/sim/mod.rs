@@ -90,6 +90,7 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
         })
         .collect();
     let readouts = readouts_html(&exp.readouts());
+    let math = labpage::math_panel::panel_html(exp.equations(), &exp.quantities(), &exp.readouts());
     let statusbar = statusbar_html(&exp.status());
     let timebar = if exp.animated() {
         timebar_html(exp.natural_step_s())
@@ -154,7 +155,7 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
            </div>{plots}\
            <div class=\"sim-side\">\
              <p class=\"sim-caption\">{caption}</p>\
-             <dl class=\"readouts\">{readouts}</dl>\
+             <dl class=\"readouts\">{readouts}</dl>{math}\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
              <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
              {presets}<form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>{move_form}\
@@ -235,6 +236,12 @@ struct SimState {
     touch_input: bool,
     shown_hint: Option<(&'static str, bool)>,
     shown_tables: Vec<labcore::Table>,
+    /// "The math" panel's changing parts as last written, an entry per
+    /// equation: the substituted form, the result and the text twin.
+    shown_math: Vec<(String, String, String)>,
+    /// Which equations the panel was written for (the slice's address): a
+    /// parameter may choose another set (pid's actuator limit).
+    shown_equations: usize,
     shown_view: labcore::ViewBox,
     hash_dirty: bool,
     last_hash_ms: f64,
@@ -654,6 +661,7 @@ impl SimView {
         let palette = Palette::from_css(&canvas);
         let view = exp.view();
         let n_params = exp.params().len();
+        let equations = exp.equations().as_ptr() as usize;
         let state = Rc::new(RefCell::new(SimState {
             exp,
             canvas: canvas.clone(),
@@ -690,6 +698,8 @@ impl SimView {
             touch_input: coarse_pointer(),
             shown_hint: None,
             shown_tables: Vec::new(),
+            shown_math: Vec::new(),
+            shown_equations: equations,
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
             last_hash_ms: 0.0,

@@ -482,6 +482,7 @@ impl SimState {
         self.sync_status();
         self.sync_hint();
         let tables = self.exp.tables();
+        self.sync_math(&readouts);
         if tables != self.shown_tables {
             if let Some(section) = query(&self.panel, ".tables") {
                 section.set_inner_html(&tables_html(&tables));
@@ -489,6 +490,52 @@ impl SimState {
             self.shown_tables = tables;
         }
         self.sync_move_form();
+    }
+
+    /// Writes the parts of "The math" panel whose text changed: each
+    /// equation's substituted form, its result and its text twin.
+    fn sync_math(&mut self, readouts: &[labcore::Readout]) {
+        let equations = self.exp.equations();
+        if equations.is_empty() {
+            return;
+        }
+        let quantities = self.exp.quantities();
+        let set = equations.as_ptr() as usize;
+        if set != self.shown_equations {
+            // Another set of equations (a parameter chose it): write the
+            // panel anew, symbols included.
+            if let Some(section) = query(&self.panel, ".live-math") {
+                section.set_outer_html(&labpage::math_panel::panel_html(
+                    equations,
+                    &quantities,
+                    readouts,
+                ));
+            }
+            self.shown_equations = set;
+            self.shown_math.clear();
+        }
+        self.shown_math.resize(
+            equations.len(),
+            (String::new(), String::new(), String::new()),
+        );
+        for (i, (eq, shown)) in equations.iter().zip(self.shown_math.iter_mut()).enumerate() {
+            let now = labpage::math_panel::live_parts(eq, &quantities, readouts);
+            if *shown == now {
+                continue;
+            }
+            if let Some(block) = query(&self.panel, &format!("[data-equation=\"{i}\"]")) {
+                if let Some(numbers) = query(&block, ".equation-numbers") {
+                    numbers.set_inner_html(&now.0);
+                }
+                if let Some(result) = query(&block, ".equation-result") {
+                    result.set_inner_html(&format!("= {}", now.1));
+                }
+                if let Some(text) = query(&block, ".equation-text") {
+                    text.set_inner_html(&now.2);
+                }
+            }
+            *shown = now;
+        }
     }
 
     pub(super) fn set_param(&mut self, key: &str, value: f64) {

@@ -1,6 +1,31 @@
 //! What experiment 1 shows: the view box, the scene, the readouts and the status.
 
 use super::*;
+use crate::live_math::{Equation, Expr, Quantity};
+
+const L1: Expr = Expr::Var("l1");
+const L2: Expr = Expr::Var("l2");
+const T1: Expr = Expr::Var("t1");
+const T12: Expr = Expr::Add(&T1, &Expr::Var("t2"));
+
+/// Forward kinematics of the two-link arm (Craig, *Introduction to
+/// Robotics*, ch. 3): `x = L₁cos θ₁ + L₂cos(θ₁+θ₂)`, `y = L₁sin θ₁ + L₂sin(θ₁+θ₂)`.
+const EQUATIONS: &[Equation] = &[
+    Equation {
+        key: "x",
+        symbol: "x",
+        expr: Expr::Add(&Expr::Mul(&L1, &Expr::Cos(&T1)), &Expr::Mul(&L2, &Expr::Cos(&T12))),
+        readout: "x",
+        caption: "The tip's x: each link's length times the cosine of its absolute angle.",
+    },
+    Equation {
+        key: "y",
+        symbol: "y",
+        expr: Expr::Add(&Expr::Mul(&L1, &Expr::Sin(&T1)), &Expr::Mul(&L2, &Expr::Sin(&T12))),
+        readout: "y",
+        caption: "The tip's y: the same with sines.",
+    },
+];
 
 impl Presentation for ForwardKinematics {
     /// The arm's current reach fills the canvas.
@@ -62,6 +87,19 @@ impl Presentation for ForwardKinematics {
             r.push(Readout::new("target", "Target dist", format_length(gap)));
         }
         r
+    }
+
+    fn quantities(&self) -> Vec<Quantity> {
+        vec![
+            Quantity::new("l1", "L_1", self.l1_m, 2, "m"),
+            Quantity::new("l2", "L_2", self.l2_m, 2, "m"),
+            Quantity::new("t1", "θ_1", self.theta1_deg, 1, "°"),
+            Quantity::new("t2", "θ_2", self.theta2_deg, 1, "°"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        EQUATIONS
     }
 
     fn status(&self) -> Status {

@@ -1,6 +1,36 @@
 //! What experiment 2 shows: the view box, the scene, the readouts and the status.
 
 use super::*;
+use crate::live_math::{Equation, Expr, Quantity};
+
+const L1: Expr = Expr::Var("l1");
+const L2: Expr = Expr::Var("l2");
+/// The law of cosines for the elbow: `cos θ₂ = (x² + y² − L₁² − L₂²) / (2 L₁ L₂)`
+/// (Craig, *Introduction to Robotics*, §4.4; Spong et al., §3.3).
+const COS_THETA2: Expr = Expr::Div(
+    &Expr::Sub(
+        &Expr::Sub(
+            &Expr::Add(&Expr::Sq(&Expr::Var("px")), &Expr::Sq(&Expr::Var("py"))),
+            &Expr::Sq(&L1),
+        ),
+        &Expr::Sq(&L2),
+    ),
+    &Expr::Mul(&Expr::Mul(&Expr::Num(2.0, "2"), &L1), &L2),
+);
+const ELBOW_UP: &[Equation] = &[Equation {
+    key: "theta2",
+    symbol: "θ_2",
+    expr: Expr::Neg(&Expr::Acos(&COS_THETA2)),
+    readout: "theta2",
+    caption: "The elbow angle from the law of cosines; elbow up takes the negative root.",
+}];
+const ELBOW_DOWN: &[Equation] = &[Equation {
+    key: "theta2",
+    symbol: "θ_2",
+    expr: Expr::Acos(&COS_THETA2),
+    readout: "theta2",
+    caption: "The elbow angle from the law of cosines; elbow down takes the positive root.",
+}];
 
 impl Presentation for InverseKinematics {
     /// The arm's current reach fills the canvas.
@@ -70,6 +100,25 @@ impl Presentation for InverseKinematics {
                     offset_px: DVec2::new(12.0, -14.0),
                 });
             }
+        }
+    }
+
+    /// The point the two links reach for (the target, or with a wrist the
+    /// wrist centre), and the link lengths.
+    fn quantities(&self) -> Vec<Quantity> {
+        let p = self.target.map_or(DVec2::NAN, |t| t - self.wrist_offset());
+        vec![
+            Quantity::new("px", "x", p.x, 3, "m"),
+            Quantity::new("py", "y", p.y, 3, "m"),
+            Quantity::new("l1", "L_1", self.l1_m, 2, "m"),
+            Quantity::new("l2", "L_2", self.l2_m, 2, "m"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        match self.elbow {
+            Elbow::Up => ELBOW_UP,
+            Elbow::Down => ELBOW_DOWN,
         }
     }
 

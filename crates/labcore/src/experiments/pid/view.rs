@@ -1,6 +1,71 @@
 //! What experiment 7 shows: the scene, the readouts and the status. It only reads the state.
 
 use super::*;
+use crate::live_math::{Equation, Expr, Quantity};
+
+/// The PID law `u = Kp e + Ki ∫e dt + Kd ė` (Åström & Murray, *Feedback
+/// Systems*, §10.1), with the actuator limit when it is on.
+const PI_TERMS: Expr = Expr::Add(
+    &Expr::Mul(&Expr::Var("kp"), &Expr::Var("e")),
+    &Expr::Mul(&Expr::Var("ki"), &Expr::Var("ie")),
+);
+/// Derivative on the error: `+ Kd ė`.
+const PID_ON_ERROR: Expr = Expr::Add(&PI_TERMS, &Expr::Mul(&Expr::Var("kd"), &Expr::Var("de")));
+/// Derivative on the measurement: `− Kd ẏ` (no kick when the setpoint jumps).
+const PID_ON_MEASUREMENT: Expr =
+    Expr::Sub(&PI_TERMS, &Expr::Mul(&Expr::Var("kd"), &Expr::Var("dy")));
+const SUM_CAPTION: &str = "The controller's force: proportional, integral and derivative terms added.";
+const LIMIT_CAPTION: &str =
+    "The controller's force: the three terms added, then held within the actuator limit.";
+/// With `Ki = 0` the loop is the second-order system `m s² + (c + Kd) s + Kp`
+/// (Åström & Murray, *Feedback Systems*, §7.3): its natural frequency
+/// `ωn = √(Kp/m)` …
+const NATURAL_FREQUENCY: Equation = Equation {
+    key: "omega_n",
+    symbol: "ω_n",
+    expr: Expr::Sqrt(&Expr::Div(&Expr::Var("kp"), &Expr::Var("m"))),
+    readout: "wn",
+    caption: "With Ki = 0, the natural frequency: the gain Kp as a spring against the mass.",
+};
+/// … and its damping ratio `ζ = (c + Kd) / (2√(m Kp))`.
+const DAMPING_RATIO: Equation = Equation {
+    key: "zeta",
+    symbol: "ζ",
+    expr: Expr::Div(
+        &Expr::Add(&Expr::Var("c"), &Expr::Var("kd")),
+        &Expr::Mul(
+            &Expr::Num(2.0, "2"),
+            &Expr::Sqrt(&Expr::Mul(&Expr::Var("m"), &Expr::Var("kp"))),
+        ),
+    ),
+    readout: "zeta",
+    caption: "With Ki = 0, the damping ratio: drag and Kd against twice √(m Kp).",
+};
+/// The force law `u` with its caption.
+const fn law(expr: Expr, caption: &'static str) -> [Equation; 3] {
+    [
+        Equation {
+            key: "u",
+            symbol: "u",
+            expr,
+            readout: "force",
+            caption,
+        },
+        NATURAL_FREQUENCY,
+        DAMPING_RATIO,
+    ]
+}
+/// `[derivative on error, on measurement]`, without and with the limit.
+const PID_LAWS: [[&[Equation]; 2]; 2] = [
+    [
+        &law(PID_ON_ERROR, SUM_CAPTION),
+        &law(PID_ON_MEASUREMENT, SUM_CAPTION),
+    ],
+    [
+        &law(Expr::Clamp(&PID_ON_ERROR, &Expr::Var("umax")), LIMIT_CAPTION),
+        &law(Expr::Clamp(&PID_ON_MEASUREMENT, &Expr::Var("umax")), LIMIT_CAPTION),
+    ],
+];
 
 /// What the overshoot readout and a pin say when the step is under [`MIN_STEP_M`].
 pub(super) const STEP_TOO_SMALL: &str = "— (step under 1 mm)";
@@ -226,6 +291,29 @@ impl Presentation for PidControl {
     }
 
     /// The live numbers beside the canvas.
+    /// The gains and what the last control update saw: its error, the
+    /// integral and the derivative.
+    fn quantities(&self) -> Vec<Quantity> {
+        let terms = self.run.last_terms();
+        let c = &self.run.controller;
+        vec![
+            Quantity::new("kp", "K_p", self.gains.kp, 1, ""),
+            Quantity::new("ki", "K_i", self.gains.ki, 1, ""),
+            Quantity::new("kd", "K_d", self.gains.kd, 1, ""),
+            Quantity::new("e", "e", terms.error_m, 4, "m"),
+            Quantity::new("ie", "∫e", c.integral_m_s(), 4, "m·s"),
+            Quantity::new("de", "ė", c.derivative_m_s(), 4, "m/s"),
+            Quantity::new("dy", "ẏ", -c.derivative_m_s(), 4, "m/s"),
+            Quantity::new("umax", "u_max", self.force_limit_n, 0, "N"),
+            Quantity::new("m", "m", self.plant.mass_kg, 1, "kg"),
+            Quantity::new("c", "c", self.plant.drag_n_s_per_m, 1, "N·s/m"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        PID_LAWS[usize::from(self.saturation)][usize::from(self.derivative_on_measurement)]
+    }
+
     fn readouts(&self) -> Vec<Readout> {
         let x = self.run.state.x_m;
         let info = self.info.ok();
@@ -241,11 +329,11 @@ impl Presentation for PidControl {
             ),
             None => ("--".into(), "--"),
         };
-        let second = SecondOrder::of(&self.plant, &self.gains).map_or("--".into(), |s| {
-            format!(
-                "ωn {} rad/s · ζ {}",
-                quantity(s.natural_frequency_rad_s, 3),
-                quantity(s.damping_ratio, 3)
+        let second = SecondOrder::of(&self.plant, &self.gains);
+        let (wn, zeta) = second.map_or(("--".into(), "--".into()), |s| {
+            (
+                format!("{} rad/s", quantity(s.natural_frequency_rad_s, 3)),
+                quantity(s.damping_ratio, 3),
             )
         });
         let mut out = vec![
@@ -307,7 +395,8 @@ impl Presentation for PidControl {
             ),
             Readout::new("poles", "Closed-loop poles (1/s)", poles),
             Readout::new("stability", "Linear loop", stability),
-            Readout::new("second_order", "Second order (Ki = 0)", second),
+            Readout::new("wn", "Natural frequency ωn (Ki = 0)", wn),
+            Readout::new("zeta", "Damping ratio ζ (Ki = 0)", zeta),
         ];
         const PIN_KEYS: [&str; MAX_PINS] = ["pinA", "pinB", "pinC", "pinD"];
         const PIN_LABELS: [&str; MAX_PINS] = [

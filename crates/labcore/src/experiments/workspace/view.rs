@@ -1,6 +1,49 @@
 //! What experiment 3 shows: the view box, the scene, the readouts and the status.
 
 use super::*;
+use crate::live_math::{Equation, Expr, Quantity};
+
+const L1: Expr = Expr::Var("l1");
+const L2: Expr = Expr::Var("l2");
+const L3: Expr = Expr::Var("l3");
+const T1: Expr = Expr::Var("t1");
+const T12: Expr = Expr::Add(&T1, &Expr::Var("t2"));
+const T123: Expr = Expr::Add(&T12, &Expr::Var("t3"));
+const REACH: Expr = Expr::Add(&Expr::Add(&L1, &L2), &L3);
+
+/// The three-link arm's forward kinematics and its workspace annulus
+/// (Craig, *Introduction to Robotics*, ch. 3–4): the outer radius is the
+/// links laid straight, `R = L₁ + L₂ + L₃`; the hole is what the longest
+/// link cannot fold back over, `r = max(0, 2 L_max − R)`.
+const EQUATIONS: &[Equation] = &[
+    Equation {
+        key: "x",
+        symbol: "x",
+        expr: Expr::Add(
+            &Expr::Add(&Expr::Mul(&L1, &Expr::Cos(&T1)), &Expr::Mul(&L2, &Expr::Cos(&T12))),
+            &Expr::Mul(&L3, &Expr::Cos(&T123)),
+        ),
+        readout: "x",
+        caption: "The tip's x: each link adds its length along its absolute angle.",
+    },
+    Equation {
+        key: "outer",
+        symbol: "R",
+        expr: REACH,
+        readout: "outer_theory",
+        caption: "The outer radius: every link laid out straight.",
+    },
+    Equation {
+        key: "hole",
+        symbol: "r",
+        expr: Expr::Max(
+            &Expr::Num(0.0, "0"),
+            &Expr::Sub(&Expr::Mul(&Expr::Num(2.0, "2"), &Expr::Var("lmax")), &REACH),
+        ),
+        readout: "inner_theory",
+        caption: "The hole: what the longest link cannot fold back over.",
+    },
+];
 
 impl Presentation for Workspace {
     /// The arm's current reach fills the canvas.
@@ -31,6 +74,24 @@ impl Presentation for Workspace {
         out.bound_circle(annulus.inner_m);
         let pose = forward(&self.lengths_m, &self.angles_rad());
         out.chain(&pose.points, Role::Link);
+    }
+
+    fn quantities(&self) -> Vec<Quantity> {
+        let [l1, l2, l3] = self.lengths_m;
+        let [t1, t2, t3] = self.angles_deg;
+        vec![
+            Quantity::new("l1", "L_1", l1, 2, "m"),
+            Quantity::new("l2", "L_2", l2, 2, "m"),
+            Quantity::new("l3", "L_3", l3, 2, "m"),
+            Quantity::new("lmax", "L_max", l1.max(l2).max(l3), 2, "m"),
+            Quantity::new("t1", "θ_1", t1, 1, "°"),
+            Quantity::new("t2", "θ_2", t2, 1, "°"),
+            Quantity::new("t3", "θ_3", t3, 1, "°"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        EQUATIONS
     }
 
     fn readouts(&self) -> Vec<Readout> {

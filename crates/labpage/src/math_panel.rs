@@ -1,0 +1,452 @@
+//! "The math" panel of the Simulation tab: each governing equation of an
+//! experiment three times over — in symbols, with the student's numbers put
+//! in, and the result, which is the readout — as MathML with a plain-text
+//! twin that screen readers read ([`labcore::live_math`]). One writer
+//! ([`Writer`]) serves both, so the two cannot say different things.
+
+use crate::experiment::Readout;
+use labcore::live_math::{Equation, Expr, Form, Quantity};
+use std::fmt::Write as _;
+
+/// The panel for `equations`, or an empty string when there are none.
+#[must_use]
+pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[Readout]) -> String {
+    if equations.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from(
+        "<section class=\"live-math\" aria-labelledby=\"live-math-title\">\
+         <h3 id=\"live-math-title\">The math</h3>",
+    );
+    for (i, eq) in equations.iter().enumerate() {
+        let (numbers, result, text) = live_parts(eq, quantities, readouts);
+        let mut symbols = Writer::new(Target::MathMl, Form::Symbols, quantities);
+        symbols.symbol(eq.symbol);
+        symbols.put("<mo>=</mo>", "");
+        symbols.expr(&eq.expr, 0);
+        let _ = write!(
+            out,
+            "<div class=\"equation\" data-equation=\"{i}\" data-key=\"{key}\">\
+             <p class=\"equation-caption\">{caption}</p>\
+             <p class=\"equation-forms\" aria-hidden=\"true\">\
+             <span class=\"eq-part\"><math>{symbols}</math></span> \
+             <span class=\"equation-numbers\">{numbers}</span> \
+             <span class=\"equation-result\">= {result}</span></p>\
+             <p class=\"sr-only equation-text\">{text}</p></div>",
+            key = eq.key,
+            caption = escape(eq.caption),
+            symbols = symbols.out,
+        );
+    }
+    out.push_str("</section>");
+    out
+}
+
+/// The parts of an equation that change with the run: the substituted form
+/// (MathML that may wrap between the terms of its top-level sum), the
+/// result (the readout's text) and the whole equation as text.
+#[must_use]
+pub fn live_parts(
+    eq: &Equation,
+    quantities: &[Quantity],
+    readouts: &[Readout],
+) -> (String, String, String) {
+    let result = readouts
+        .iter()
+        .find(|r| r.key == eq.readout)
+        .map_or("--", |r| r.value.as_str());
+    let mut text = Writer::new(Target::Text, Form::Symbols, quantities);
+    text.symbol(eq.symbol);
+    text.out.push_str(" = ");
+    text.expr(&eq.expr, 0);
+    text.out.push_str(" = ");
+    text.form = Form::Numbers;
+    text.expr(&eq.expr, 0);
+    text.out.push_str(" = ");
+    text.out.push_str(result);
+    (
+        wrapping_mathml(&eq.expr, quantities),
+        escape(result),
+        escape(&text.out),
+    )
+}
+
+/// The substituted form as MathML that may wrap between the terms of its
+/// top-level sum: `<math>= 1.00·cos 35°</math> <math>+ 0.80·cos 95°</math>`,
+/// each in its own box (a `<math>` element never breaks inside itself).
+#[must_use]
+pub fn wrapping_mathml(expr: &Expr, quantities: &[Quantity]) -> String {
+    let mut terms: Vec<(&str, &Expr)> = Vec::new();
+    let mut rest = expr;
+    loop {
+        match *rest {
+            Expr::Add(a, b) => {
+                terms.push(("+", b));
+                rest = a;
+            }
+            Expr::Sub(a, b) => {
+                terms.push(("−", b));
+                rest = a;
+            }
+            _ => {
+                terms.push(("=", rest));
+                break;
+            }
+        }
+    }
+    let mut w = Writer::new(Target::MathMl, Form::Numbers, quantities);
+    for (i, (op, term)) in terms.iter().rev().enumerate() {
+        if i > 0 {
+            w.out.push(' ');
+        }
+        let _ = write!(w.out, "<span class=\"eq-part\"><math><mo>{op}</mo>");
+        w.expr(term, 2);
+        w.out.push_str("</math></span>");
+    }
+    w.out
+}
+
+/// A symbol spec (`θ_1`, `K_p`, `x`) as MathML.
+#[must_use]
+pub fn symbol_mathml(symbol: &str) -> String {
+    let mut w = Writer::new(Target::MathMl, Form::Symbols, &[]);
+    w.symbol(symbol);
+    w.out
+}
+
+/// What a [`Writer`] writes: MathML for the eye or text for the ear.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Target {
+    MathMl,
+    Text,
+}
+
+/// Writes an expression, with symbols or numbers, as MathML or text.
+struct Writer<'a> {
+    out: String,
+    to: Target,
+    form: Form,
+    quantities: &'a [Quantity],
+}
+
+impl<'a> Writer<'a> {
+    fn new(to: Target, form: Form, quantities: &'a [Quantity]) -> Self {
+        Self {
+            out: String::new(),
+            to,
+            form,
+            quantities,
+        }
+    }
+
+    /// `mathml` or `text`, whichever this writer writes.
+    fn put(&mut self, mathml: &str, text: &str) {
+        self.out.push_str(match self.to {
+            Target::MathMl => mathml,
+            Target::Text => text,
+        });
+    }
+
+    /// A token: `<mi>`/`<mn>` in MathML, the bare text otherwise.
+    fn token(&mut self, tag: &str, text: &str) {
+        match self.to {
+            Target::MathMl => {
+                let _ = write!(self.out, "<{tag}>{}</{tag}>", escape(text));
+            }
+            Target::Text => self.out.push_str(text),
+        }
+    }
+
+    /// A symbol spec: a base and an optional subscript after `_`.
+    fn symbol(&mut self, spec: &str) {
+        let kind = |t: &str| {
+            if !t.is_empty() && t.chars().all(|c| c.is_ascii_digit()) {
+                "mn"
+            } else {
+                "mi"
+            }
+        };
+        match spec.split_once('_') {
+            Some((base, sub)) => {
+                self.put("<msub>", "");
+                self.token(kind(base), base);
+                self.token(kind(sub), sub);
+                self.put("</msub>", "");
+            }
+            None => self.token(kind(spec), spec),
+        }
+    }
+
+    /// A quantity's number as shown, a negative one bracketed inside an
+    /// operation, degrees with their sign.
+    fn number(&mut self, q: &Quantity, outer: u8) {
+        let number = q.number_text();
+        let (negative, digits) = match number.strip_prefix('-') {
+            Some(rest) => (true, rest),
+            None => (false, number.as_str()),
+        };
+        let bracket = negative && outer > 0;
+        if bracket {
+            self.put("<mo>(</mo>", "(");
+        }
+        if negative {
+            self.put("<mo>−</mo>", "−");
+        }
+        // The degree sign inside the number: as a trailing `<mo>` Chromium
+        // may leave it out at the end of a `<math>`.
+        let degrees = if q.unit == "°" { "°" } else { "" };
+        self.token("mn", &format!("{digits}{degrees}"));
+        if bracket {
+            self.put("<mo>)</mo>", ")");
+        }
+    }
+
+    /// `expr`, bracketed when it binds less tightly than `outer` asks.
+    fn expr(&mut self, expr: &Expr, outer: u8) {
+        let paren = precedence(expr) < outer;
+        if paren {
+            self.put("<mo>(</mo>", "(");
+        }
+        match *expr {
+            Expr::Var(key) => match self.quantities.iter().find(|q| q.key == key) {
+                Some(q) if self.form == Form::Symbols => self.symbol(q.symbol),
+                Some(q) => self.number(q, outer),
+                None => self.token("mi", key),
+            },
+            Expr::Num(_, text) => self.token("mn", text),
+            Expr::Add(a, b) | Expr::Sub(a, b) => {
+                self.expr(a, 1);
+                if matches!(expr, Expr::Add(..)) {
+                    self.put("<mo>+</mo>", " + ");
+                } else {
+                    self.put("<mo>−</mo>", " − ");
+                }
+                self.expr(b, 2);
+            }
+            Expr::Mul(a, b) => {
+                self.expr(a, 2);
+                // Symbols multiply by juxtaposition (L₁ cos θ₁); numbers need a dot.
+                if self.form == Form::Symbols {
+                    self.put("<mo>&#x2062;</mo>", " ");
+                } else {
+                    self.put("<mo>·</mo>", "·");
+                }
+                self.expr(b, 3);
+            }
+            Expr::Div(a, b) => {
+                self.put("<mfrac><mrow>", "(");
+                self.expr(a, 0);
+                self.put("</mrow><mrow>", ") / (");
+                self.expr(b, 0);
+                self.put("</mrow></mfrac>", ")");
+            }
+            Expr::Neg(a) => {
+                self.put("<mo>−</mo>", "−");
+                self.expr(a, 3);
+            }
+            Expr::Cos(a) | Expr::Sin(a) | Expr::CosRad(a) | Expr::Ln(a) => {
+                let name = match expr {
+                    Expr::Sin(_) => "sin",
+                    Expr::Ln(_) => "ln",
+                    _ => "cos",
+                };
+                self.token("mi", name);
+                // A thin space after the name, as TeX sets `\cos\theta`
+                // (browsers add none for the function-application operator).
+                if precedence(a) >= 4 {
+                    self.put("<mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace>", " ");
+                } else {
+                    self.put("<mo>&#x2061;</mo>", " ");
+                }
+                self.expr(a, 4);
+            }
+            Expr::Sqrt(a) => {
+                self.put("<msqrt>", "√(");
+                self.expr(a, 0);
+                self.put("</msqrt>", ")");
+            }
+            Expr::Sq(a) => {
+                self.put("<msup><mrow>", "");
+                self.expr(a, 4);
+                self.put("</mrow><mn>2</mn></msup>", "²");
+            }
+            Expr::Acos(a) => {
+                self.token("mi", "arccos");
+                self.put("<mo>&#x2061;</mo><mo>(</mo>", "(");
+                self.expr(a, 0);
+                self.put("<mo>)</mo>", ")");
+            }
+            Expr::Clamp(a, b) | Expr::Max(a, b) | Expr::Min(a, b) => {
+                let clamp = matches!(expr, Expr::Clamp(..));
+                let name = match expr {
+                    Expr::Clamp(..) => "clamp",
+                    Expr::Max(..) => "max",
+                    _ => "min",
+                };
+                self.token("mi", name);
+                self.put("<mo>(</mo>", "(");
+                self.expr(a, 0);
+                self.put("<mo separator=\"true\">,</mo>", ", ");
+                if clamp {
+                    self.put("<mo>±</mo>", "±");
+                }
+                self.expr(b, if clamp { 4 } else { 0 });
+                self.put("<mo>)</mo>", ")");
+            }
+        }
+        if paren {
+            self.put("<mo>)</mo>", ")");
+        }
+    }
+}
+
+/// Binding strength: sums 1, products 2, unary minus 3, atoms 4.
+fn precedence(expr: &Expr) -> u8 {
+    match expr {
+        Expr::Add(..) | Expr::Sub(..) => 1,
+        Expr::Mul(..) | Expr::Div(..) => 2,
+        Expr::Neg(..) => 3,
+        _ => 4,
+    }
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const L: Expr = Expr::Var("l");
+    const T: Expr = Expr::Var("t");
+    const X: Expr = Expr::Mul(&L, &Expr::Cos(&T));
+    const EQ: Equation = Equation {
+        key: "x",
+        symbol: "x",
+        expr: X,
+        readout: "x",
+        caption: "Tip x",
+    };
+
+    fn quantities(t_deg: f64) -> Vec<Quantity> {
+        vec![
+            Quantity::new("l", "L_1", 1.0, 2, "m"),
+            Quantity::new("t", "θ_1", t_deg, 0, "°"),
+        ]
+    }
+
+    #[test]
+    fn a_symbol_with_a_subscript_is_an_msub() {
+        assert_eq!(symbol_mathml("θ_1"), "<msub><mi>θ</mi><mn>1</mn></msub>");
+        assert_eq!(symbol_mathml("K_p"), "<msub><mi>K</mi><mi>p</mi></msub>");
+        assert_eq!(symbol_mathml("x"), "<mi>x</mi>");
+    }
+
+    #[test]
+    fn the_panel_shows_symbols_numbers_and_the_readout() {
+        let readouts = [Readout::new("x", "Tip X", "0.819 m")];
+        let html = panel_html(&[EQ], &quantities(35.0), &readouts);
+        assert!(html.contains("<h3 id=\"live-math-title\">The math</h3>"));
+        assert!(html.contains(
+            "<mi>x</mi><mo>=</mo><msub><mi>L</mi><mn>1</mn></msub><mo>&#x2062;</mo><mi>cos</mi>"
+        ));
+        assert!(html
+            .contains("<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn><mo>·</mo><mi>cos</mi><mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math>"));
+        assert!(html.contains("= 0.819 m"));
+        assert!(html.contains("x = L1 cos θ1 = 1.00·cos 35° = 0.819 m"));
+    }
+
+    #[test]
+    fn a_long_sum_is_written_a_term_to_a_math_element_so_it_can_wrap() {
+        const SUM: Expr = Expr::Sub(&Expr::Add(&L, &T), &L);
+        assert_eq!(
+            wrapping_mathml(&SUM, &quantities(35.0)),
+            "<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn></math></span> \
+             <span class=\"eq-part\"><math><mo>+</mo><mn>35°</mn></math></span> \
+             <span class=\"eq-part\"><math><mo>−</mo><mn>1.00</mn></math></span>"
+        );
+    }
+
+    fn text(expr: &Expr, form: Form, q: &[Quantity]) -> String {
+        let mut w = Writer::new(Target::Text, form, q);
+        w.expr(expr, 0);
+        w.out
+    }
+
+    #[test]
+    fn the_text_twin_writes_symbols_by_juxtaposition_and_numbers_with_dots() {
+        let q = quantities(35.0);
+        assert_eq!(text(&X, Form::Symbols, &q), "L1 cos θ1");
+        assert_eq!(text(&X, Form::Numbers, &q), "1.00·cos 35°");
+        const SUM: Expr = Expr::Cos(&Expr::Add(&T, &T));
+        assert_eq!(text(&SUM, Form::Symbols, &q), "cos (θ1 + θ1)");
+        const HOLE: Expr = Expr::Max(&Expr::Num(0.0, "0"), &Expr::Sub(&L, &Expr::Num(2.0, "2")));
+        assert_eq!(text(&HOLE, Form::Numbers, &q), "max(0, 1.00 − 2)");
+        const HELD: Expr = Expr::Clamp(&X, &L);
+        assert_eq!(text(&HELD, Form::Symbols, &q), "clamp(L1 cos θ1, ±L1)");
+        let negative = [
+            Quantity::new("l", "L", 2.0, 1, ""),
+            Quantity::new("t", "e", -0.25, 2, ""),
+        ];
+        const P: Expr = Expr::Mul(&L, &T);
+        assert_eq!(text(&P, Form::Numbers, &negative), "2.0·(−0.25)");
+    }
+
+    #[test]
+    fn no_equations_no_panel() {
+        assert_eq!(panel_html(&[], &quantities(0.0), &[]), "");
+    }
+
+    #[test]
+    fn a_negative_factor_is_bracketed_with_a_minus_sign() {
+        let q = [
+            Quantity::new("l", "L", 2.0, 1, ""),
+            Quantity::new("t", "e", -0.5, 1, ""),
+        ];
+        const P: Expr = Expr::Mul(&L, &T);
+        let mut w = Writer::new(Target::MathMl, Form::Numbers, &q);
+        w.expr(&P, 0);
+        assert_eq!(
+            w.out,
+            "<mn>2.0</mn><mo>·</mo><mo>(</mo><mo>−</mo><mn>0.5</mn><mo>)</mo>"
+        );
+    }
+
+    #[test]
+    fn min_ln_and_a_radian_cosine_are_written_like_their_kin() {
+        const R: Expr = Expr::Min(
+            &Expr::Mul(
+                &Expr::Var("g"),
+                &Expr::Sqrt(&Expr::Div(&Expr::Ln(&Expr::Var("n")), &Expr::Var("n"))),
+            ),
+            &Expr::CosRad(&Expr::Var("e")),
+        );
+        const EQ: Equation = Equation {
+            key: "r",
+            symbol: "r",
+            expr: R,
+            readout: "r",
+            caption: "",
+        };
+        let q = [
+            Quantity::new("g", "γ", 11.775, 3, "m"),
+            Quantity::new("n", "n", 300.0, 0, ""),
+            Quantity::new("e", "e_θ", 0.5, 3, "rad"),
+        ];
+        let readouts = [Readout::new("r", "r", "0.878 m")];
+        let (numbers, _, text) = live_parts(&EQ, &q, &readouts);
+        assert_eq!(
+            text,
+            "r = min(γ √((ln n) / (n)), cos eθ) = min(11.775·√((ln 300) / (300)), cos 0.500) = 0.878 m"
+        );
+        assert!(
+            numbers.contains("<mi>min</mi>") && numbers.contains("<mi>ln</mi>"),
+            "{numbers}"
+        );
+        assert!(!numbers.contains('°'), "{numbers}");
+    }
+}

@@ -1,0 +1,177 @@
+// "The math" on the Simulation tab (issue 27 §2): each equation in symbols,
+// with the student's numbers put in, and the readout it gives — updated as
+// the student moves a control, read by screen readers as text.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { open, readouts, runFor, runUntil, runUntilReadout, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+
+const lab = useLab();
+
+/** The text twin of every equation in the panel. */
+function equationTexts(page) {
+  return page.$$eval(".live-math .equation-text", (els) => els.map((e) => e.textContent.trim()));
+}
+
+/** Evaluates "a·cos b° + c·cos d°"-style substituted text, as the panel writes it. */
+function evaluate(substituted) {
+  const js = substituted
+    .replace(/·/g, "*")
+    .replace(/−/g, "-")
+    .replace(/cos /g, "Math.cos")
+    .replace(/sin /g, "Math.sin")
+    .replace(/(-?\d+(?:\.\d+)?)°/g, "(($1)*Math.PI/180)");
+  return Function(`"use strict"; return (${js});`)();
+}
+
+test("live math: fk's panel writes x and y with the student's numbers, and they are the readouts", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, "#/fk/simulation?t1=35&t2=60&l1=1&l2=0.8");
+    await assert.doesNotReject(page.locator(".live-math h3", { hasText: "The math" }).waitFor());
+    let [x, y] = await equationTexts(page);
+    assert.equal(x, "x = L1 cos θ1 + L2 cos (θ1 + θ2) = 1.00·cos 35.0° + 0.80·cos (35.0° + 60.0°) = 0.749 m");
+    assert.match(y, /^y = L1 sin θ1 \+ L2 sin \(θ1 \+ θ2\) = 1\.00·sin 35\.0° \+ 0\.80·sin \(35\.0° \+ 60\.0°\) = /);
+    // A slider moved: the numbers and the result follow, and still agree.
+    await page.locator("#p-t1").fill("60");
+    await runFor(page, 400);
+    [x, y] = await equationTexts(page);
+    const r = await readouts(page);
+    for (const [text, key] of [[x, "x"], [y, "y"]]) {
+      const [, , substituted, result] = text.split(" = ");
+      assert.equal(result, r[key], `${key}: the panel's result is the readout`);
+      assert.ok(
+        Math.abs(evaluate(substituted) - Number.parseFloat(r[key])) <= 0.0005 + 1e-9,
+        `${key}: ${substituted} evaluates to the readout ${r[key]}`,
+      );
+    }
+    assert.match(x, /= 1\.00·cos 60\.0° \+ 0\.80·cos \(60\.0° \+ 60\.0°\) = 0\.100 m$/);
+    // MathML is drawn; assistive technology reads the text twin instead.
+    assert.equal(await page.locator(".live-math .equation-forms math").count(), 6, "x and y: the symbols, then a <math> a term");
+    assert.equal(await page.locator(".live-math .equation-forms[aria-hidden=true]").count(), 2);
+    await screenshot(page, "livemath-fk-1280");
+  }));
+
+test("live math: on a phone the panel sits right after the readouts", () =>
+  withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, clock: true }, async (page) => {
+    await open(lab, page, "#/fk/simulation");
+    const readoutsBox = await page.locator("dl.readouts").boundingBox();
+    const mathBox = await page.locator(".live-math").boundingBox();
+    assert.ok(mathBox.y >= readoutsBox.y + readoutsBox.height - 1, "below the readouts");
+    assert.ok(mathBox.y - (readoutsBox.y + readoutsBox.height) < 40, "right after them");
+    assert.ok(mathBox.width <= 390, "fits the phone's width");
+    await page.locator(".live-math").scrollIntoViewIfNeeded();
+    await screenshot(page, "livemath-fk-390");
+  }));
+
+/** The panel's results, `= 0.749 m` each. */
+function equationResults(page) {
+  return page.$$eval(".live-math .equation-result", (els) => els.map((e) => e.textContent.trim()));
+}
+
+/** Every experiment's panel, reached by a link (and a button where a run needs one). */
+const PANELS = [
+  { link: "#/workspace/simulation", keys: ["x", "outer", "hole"] },
+  { link: "#/ik/simulation?tx=0.9&ty=0.8", keys: ["theta2"] },
+  { link: "#/pid/simulation", keys: ["u", "omega_n", "zeta"] },
+  { link: "#/pid/simulation?sat=1&umax=5", keys: ["u", "omega_n", "zeta"], name: "pid-limited" },
+  { link: "#/pid/simulation?ki=0&kp=25&kd=5", keys: ["u", "omega_n", "zeta"], name: "pid-second-order" },
+  { link: "#/diffdrive/simulation?w1x=6&w1y=4", keys: ["v", "omega", "xdot", "ydot"] },
+  { link: "#/potential/simulation?gx=8&gy=3", keys: ["goal_distance", "f_att", "clearance", "f_rep"] },
+  { link: "#/astar/simulation", action: "plan", keys: ["h", "f"] },
+  { link: "#/cartpole/simulation", keys: ["force", "energy"] },
+  { link: "#/dls/simulation?tx=1&ty=1", keys: ["error", "w", "condition"] },
+  { link: "#/rrtstar/simulation", action: "grow", keys: ["radius"] },
+  { link: "#/ekf/simulation", keys: ["innovation_range", "innovation_bearing", "error", "trace", "nees"] },
+];
+
+test("live math: every experiment's panel shows results equal to its readouts, at a laptop's width", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    for (const { link, action, keys, name } of PANELS) {
+      await open(lab, page, link);
+      if (action) await page.locator(`button[data-action=${action}]`).click();
+      await runFor(page, 700);
+      const texts = await equationTexts(page);
+      assert.equal(texts.length, keys.length, `${link}: ${keys.length} equations`);
+      assert.deepEqual(
+        await page.$$eval(".live-math .equation", (els) => els.map((e) => e.dataset.key)),
+        keys,
+        `${link}: the equations by key`,
+      );
+      const r = await readouts(page);
+      for (const result of await equationResults(page)) {
+        assert.ok(
+          Object.values(r).some((value) => `= ${value}` === result),
+          `${link}: the panel's ${result} is one of the readouts`,
+        );
+      }
+      // At least one equation has a number to show once the run has gone on.
+      assert.ok((await equationResults(page)).some((t) => t !== "= --"), `${link}: a result`);
+      if (link.includes("sat=1")) {
+        // The limit chose the other law: symbols and numbers both clamp.
+        assert.match(texts[0], /^u = clamp\(Kp e \+ Ki ∫e − Kd ẏ, ±umax\) = clamp\(/);
+        assert.match(await page.locator(".live-math .equation-caption").first().textContent(), /actuator limit/);
+      }
+      if (link.includes("ki=0")) {
+        // ωn = √(Kp/m) = √(25.0 / 1.0) = 5.000 rad/s, ζ = (c + Kd)/(2√(m Kp)) = 0.600.
+        assert.equal(texts[1], "ωn = √((Kp) / (m)) = √((25.0) / (1.0)) = 5.000 rad/s");
+        assert.equal(texts[2], "ζ = (c + Kd) / (2 √(m Kp)) = (1.0 + 5.0) / (2·√(1.0·25.0)) = 0.600");
+      }
+      await page.locator(".live-math").scrollIntoViewIfNeeded();
+      const shot = name ?? link.split("/")[1];
+      await page.locator(".live-math").screenshot({ path: `target/e2e-shots/livemath-${shot}.png` });
+    }
+  }));
+
+test("live math: on a phone every panel sits with the readouts and fits the width", () =>
+  withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, clock: true }, async (page) => {
+    for (const { link, action, name } of PANELS.filter((p) => ["ekf", "potential", "cartpole", "dls"].some((id) => p.link.includes(id)))) {
+      await open(lab, page, link);
+      if (action) await page.locator(`button[data-action=${action}]`).click();
+      await runFor(page, 700);
+      const readoutsBox = await page.locator("dl.readouts").boundingBox();
+      const mathBox = await page.locator(".live-math").boundingBox();
+      assert.ok(mathBox.y >= readoutsBox.y + readoutsBox.height - 1, `${link}: below the readouts`);
+      assert.ok(mathBox.y - (readoutsBox.y + readoutsBox.height) < 40, `${link}: right after them`);
+      assert.ok(mathBox.x >= 0 && mathBox.x + mathBox.width <= 390, `${link}: within the phone's width`);
+      await page.locator(".live-math").scrollIntoViewIfNeeded();
+      await screenshot(page, `livemath-${name ?? link.split("/")[1]}-390`);
+    }
+  }));
+
+/** Waits (in page time) until the canvas shows step `n` and its readouts. */
+async function atStep(page, n) {
+  await runUntil(page, (k) => Number(document.querySelector("canvas.sim-canvas").dataset.steps) === k, n, {
+    what: `step ${n}`,
+  });
+  await settle(page);
+}
+
+test("live math: a past step on the timeline shows that step's numbers, and the present ones again after", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, "#/pid/simulation");
+    await runUntilReadout(page, "x", ">", 0.5);
+    await page.locator("button[data-time=play]").click();
+    await runUntil(page, () => document.querySelector("button[data-time=play]").getAttribute("aria-pressed") === "false");
+    await settle(page);
+    const s = Number(await page.locator("canvas.sim-canvas").getAttribute("data-steps"));
+    const now = await equationTexts(page);
+    // Back to the middle of the run: the force law with that step's error.
+    const k = Math.floor(s / 2);
+    await page.locator(".tb-scrub").fill(String(k));
+    await atStep(page, k);
+    const past = await equationTexts(page);
+    assert.notEqual(past[0], now[0], "the force law's numbers are the past step's");
+    const r = await readouts(page);
+    assert.equal(past[0].split(" = ").at(-1), r.force, "its result is that step's force readout");
+    // One step on and back with the keys: the same numbers again.
+    await page.locator("canvas.sim-canvas").focus();
+    await page.keyboard.press(".");
+    await atStep(page, k + 1);
+    await page.keyboard.press(",");
+    await atStep(page, k);
+    assert.deepEqual(await equationTexts(page), past);
+    // Forward to the end of the record: the present numbers.
+    await page.locator(".tb-scrub").fill(String(s));
+    await atStep(page, s);
+    assert.deepEqual(await equationTexts(page), now);
+  }));
