@@ -176,6 +176,17 @@ pub struct Equation {
     pub caption: &'static str,
 }
 
+/// The equations of `all` that `keys` name (the content's `math` list), in
+/// the order of `keys`; a key without an equation is left out (the content
+/// check refuses it).
+#[must_use]
+pub fn named(all: &[Equation], keys: &[String]) -> Vec<Equation> {
+    keys.iter()
+        .filter_map(|k| all.iter().find(|e| e.key == k))
+        .copied()
+        .collect()
+}
+
 /// The value of `key` among `quantities` as shown.
 #[must_use]
 pub fn shown(quantities: &[Quantity], key: &str) -> Option<f64> {

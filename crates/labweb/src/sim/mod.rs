@@ -64,6 +64,15 @@ pub const STEP_BUDGET_MS: f64 = 8.0;
 #[derive(Debug)]
 pub struct SimError(pub String);
 
+/// The equations "The math" panel shows: those the content's `math` list
+/// names, in its order.
+pub(super) fn panel_equations(exp: &dyn Lab) -> Vec<labcore::live_math::Equation> {
+    let names = labcore::find(exp.id())
+        .and_then(|e| e.content().ok())
+        .map_or(&[][..], |c| &c.math[..]);
+    labcore::live_math::named(exp.equations(), names)
+}
+
 /// The HTML of the Simulation tab for an experiment.
 ///
 /// Three parts side by side on a laptop (see `style.css`): the stage (the
@@ -89,7 +98,8 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
         })
         .collect();
     let readouts = readouts_html(&exp.readouts());
-    let math = labpage::math_panel::panel_html(exp.equations(), &exp.quantities(), &exp.readouts());
+    let math =
+        labpage::math_panel::panel_html(&panel_equations(exp), &exp.quantities(), &exp.readouts());
     let statusbar = statusbar_html(&exp.status());
     let timebar = if exp.animated() {
         timebar_html(exp.natural_step_s())
