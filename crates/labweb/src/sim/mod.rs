@@ -29,6 +29,7 @@ use web_sys::{
 mod a11y;
 mod canvas_input;
 mod instructor;
+mod live;
 mod panel;
 mod scrub;
 mod status;
@@ -251,6 +252,9 @@ struct SimState {
     /// Which equations the panel was written for (the slice's address): a
     /// parameter may choose another set (pid's actuator limit).
     shown_equations: usize,
+    /// The key of the live quantity whose symbol is hovered or focused: its
+    /// tagged parts of the scene are drawn as a halo.
+    live_key: Option<String>,
     shown_view: labcore::ViewBox,
     hash_dirty: bool,
     last_hash_ms: f64,
@@ -561,6 +565,16 @@ impl SimState {
             &self.palette,
             &mut self.backdrop,
         );
+        if let Some(key) = &self.live_key {
+            crate::draw::paint_tags(
+                &self.ctx,
+                &self.scene.tags,
+                key,
+                &self.viewport,
+                &self.palette,
+                self.dpr,
+            );
+        }
         // Let go of the display list now: a kept layer it shares with the
         // model (copy-on-write) would otherwise be copied by the next step.
         self.scene.clear();
@@ -705,6 +719,7 @@ impl SimView {
             shown_tables: Vec::new(),
             shown_math: Vec::new(),
             shown_equations: equations,
+            live_key: None,
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
             last_hash_ms: 0.0,
@@ -728,6 +743,7 @@ impl SimView {
         instructor::listen(&state, panel, &mut listeners);
         a11y::listen(&state, panel, &mut listeners);
         scrub::listen(&state, panel, &mut listeners);
+        live::listen(&state, panel, &mut listeners);
         // Theme changes (light/dark, more contrast, forced colours) repaint
         // with the new palette.
         for query in [
