@@ -274,12 +274,14 @@ pub enum ContentError {
     /// The `math` list names fewer or more equations than
     /// [`MATH_EQUATIONS`] allows, or one twice, or any for an experiment
     /// without equations.
+    #[cfg(feature = "reading")]
     MathCount {
         found: usize,
         /// The experiment's equation keys.
         known: String,
     },
     /// The `math` list names an equation the experiment does not have.
+    #[cfg(feature = "reading")]
     UnknownEquation {
         key: String,
         /// The experiment's equation keys.
@@ -287,6 +289,7 @@ pub enum ContentError {
     },
     /// A `\\live{key}{…}` symbol whose key is not among the experiment's
     /// quantities.
+    #[cfg(feature = "reading")]
     UnknownLiveKey {
         /// Where: "theory block 3", "question 2 prompt", …
         field: String,
@@ -356,20 +359,24 @@ impl fmt::Display for ContentError {
                 f,
                 "{field}: its inline markup does not nest (an unclosed or stray tag, or a bare “<” that should be written &lt;)"
             ),
+            #[cfg(feature = "reading")]
             ContentError::MathCount { found, known } if known.is_empty() => write!(
                 f,
                 "math: names {found} equations, but the experiment has none (write \"math\": [])"
             ),
+            #[cfg(feature = "reading")]
             ContentError::MathCount { found, known } => write!(
                 f,
                 "math: names {found} equations; the panel shows {} to {} different ones of the experiment's equations ({known})",
                 MATH_EQUATIONS.start(),
                 MATH_EQUATIONS.end()
             ),
+            #[cfg(feature = "reading")]
             ContentError::UnknownEquation { key, known } => write!(
                 f,
                 "math: no equation with key “{key}” (the experiment's equations: {known})"
             ),
+            #[cfg(feature = "reading")]
             ContentError::UnknownLiveKey { field, key, known } => write!(
                 f,
                 "{field}: \\live{{{key}}}: no quantity with key “{key}” (the experiment's quantities: {known})"

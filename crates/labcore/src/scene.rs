@@ -274,15 +274,15 @@ impl Scene {
 
     /// Tags a planar arm's parts with the quantities that name them: link
     /// `i` with `l<i>`, joint angle `i` with `t<i>`, an arc from the previous
-    /// link's direction (the x axis for the first) to its own (three links
-    /// at most).
+    /// link's direction (the x axis for the first) to its own, at 0.45 of
+    /// the link's length (three links at most).
     pub fn tag_arm(&mut self, joints: &[DVec2], angles_rad: &[f64]) {
         const LINKS: [&str; 3] = ["l1", "l2", "l3"];
         const ANGLES: [&str; 3] = ["t1", "t2", "t3"];
         let mut heading = 0.0;
         for (i, (w, a)) in joints.windows(2).zip(angles_rad).enumerate().take(3) {
             self.tag(LINKS[i], w.to_vec());
-            let radius = 0.3 * (w[1] - w[0]).length();
+            let radius = 0.45 * (w[1] - w[0]).length();
             self.tag_arc(ANGLES[i], w[0], radius, heading, heading + a);
             heading += a;
         }

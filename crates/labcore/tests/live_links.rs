@@ -74,7 +74,7 @@ fn live_the_scene_tags_links_angles_goal_and_error() {
         }
         assert_eq!(tagged_keys(e.as_ref(), "at defaults"), keys, "{id}");
     }
-    // θ1's arc runs from the x axis to the first link, at a third of its length.
+    // θ1's arc runs from the x axis to the first link, at 0.45 of its length.
     let mut fk = (labcore::find("fk").unwrap().make)();
     fk.set_param("t1", 90.0).unwrap();
     let mut scene = Scene::default();
@@ -86,6 +86,6 @@ fn live_the_scene_tags_links_angles_goal_and_error() {
         .find(|q| q.key == "l1")
         .unwrap()
         .value;
-    assert!((arc[0] - labcore::glam::DVec2::new(0.3 * l1, 0.0)).length() < 1e-12);
-    assert!((*arc.last().unwrap() - labcore::glam::DVec2::new(0.0, 0.3 * l1)).length() < 1e-12);
+    assert!((arc[0] - labcore::glam::DVec2::new(0.45 * l1, 0.0)).length() < 1e-12);
+    assert!((*arc.last().unwrap() - labcore::glam::DVec2::new(0.0, 0.45 * l1)).length() < 1e-12);
 }

@@ -221,10 +221,25 @@ impl Marked {
     fn wrap_live(&self, mathml: &str) -> String {
         let mut out = mathml.to_owned();
         for (i, key) in self.keys.iter().enumerate() {
-            out = out.replacen(
-                &format!("<mrow style=\"color:#FEED{i:02X};\">"),
-                &format!("<mrow data-live=\"{key}\" tabindex=\"0\">"),
-                1,
+            let marker = format!("<mrow style=\"color:#FEED{i:02X};\">");
+            let Some(at) = out.find(&marker) else {
+                continue;
+            };
+            // A function name (`\cos`) keeps the thin space it has before a
+            // bare symbol: the converter leaves it out before a group.
+            let mut head = out[..at].to_owned();
+            if let Some(name_at) = head.rfind(" rspace=\"0\">") {
+                let name = &head[name_at + " rspace=\"0\">".len()..];
+                if name
+                    .strip_suffix("</mo>")
+                    .is_some_and(|n| n.len() > 1 && n.chars().all(|c| c.is_ascii_alphabetic()))
+                {
+                    head.replace_range(name_at..name_at + 12, " rspace=\"0.1667em\">");
+                }
+            }
+            out = format!(
+                "{head}<mrow data-live=\"{key}\" tabindex=\"0\">{}",
+                &out[at + marker.len()..]
             );
         }
         out
@@ -428,7 +443,7 @@ mod tests {
             render("$x = \\live{l1}{L_1} \\cos \\live{t1}{\\theta_1}$").unwrap(),
             "<math><mi>x</mi><mo>=</mo>\
              <mrow data-live=\"l1\" tabindex=\"0\"><msub><mi>L</mi><mn>1</mn></msub></mrow>\
-             <mo lspace=\"0.1667em\" rspace=\"0\">cos</mo>\
+             <mo lspace=\"0.1667em\" rspace=\"0.1667em\">cos</mo>\
              <mrow data-live=\"t1\" tabindex=\"0\"><msub><mi>θ</mi><mn>1</mn></msub></mrow></math>"
         );
         let html = render(
@@ -437,6 +452,14 @@ mod tests {
         .unwrap();
         assert_eq!(live_keys(&html), vec!["t1", "t2", "t1"]);
         assert!(!html.contains("style"), "{html}");
+        // The function name keeps its thin space before the marked symbol.
+        assert_eq!(
+            render("$\\cos\\live{t1}{\\theta_1}$").unwrap(),
+            render("$\\cos\\theta_1$")
+                .unwrap()
+                .replace("<msub>", "<mrow data-live=\"t1\" tabindex=\"0\"><msub>")
+                .replace("</msub>", "</msub></mrow>")
+        );
         let dotted = render("$\\dot{\\live{de}{e}}$").unwrap();
         assert_eq!(live_keys(&dotted), vec!["de"]);
         assert_eq!(accents::non_portable(&dotted), Vec::<String>::new());

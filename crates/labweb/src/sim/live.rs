@@ -4,7 +4,8 @@
 //! it draws the scene's parts tagged with that key as a halo
 //! ([`labcore::scene::Tag`]) and shows the quantity's value from the
 //! student's current run in a tip (`θ1 = 35.0°`), a status region that
-//! screen readers announce.
+//! screen readers announce (in the panel, whose numbers stand under the
+//! symbols, it is only read out).
 
 use super::SimState;
 use crate::dom::{query, Listener};
@@ -75,10 +76,15 @@ impl SimState {
             q.unit
         )));
         let _ = tip.remove_attribute("hidden");
+        // In "The math" the numbers already stand under the symbol: the tip
+        // is only read out there, not drawn over them.
+        let in_panel = symbol.closest(".live-math").ok().flatten().is_some();
+        let _ = tip.class_list().toggle_with_force("sr-only", in_panel);
         let at = symbol.get_bounding_client_rect();
         if let Some(style) = tip.dyn_ref::<HtmlElement>().map(HtmlElement::style) {
-            let _ = style.set_property("left", &format!("{}px", at.left().round()));
-            let _ = style.set_property("top", &format!("{}px", (at.bottom() + 6.0).round()));
+            // Whole pixels, written without float formatting.
+            let _ = style.set_property("left", &format!("{}px", at.left() as i32));
+            let _ = style.set_property("top", &format!("{}px", at.bottom() as i32 + 6));
         }
     }
 }
