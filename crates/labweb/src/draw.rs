@@ -105,9 +105,9 @@ pub fn paint_tags(
 ) {
     let _ = ctx.set_transform(dpr, 0.0, 0.0, dpr, 0.0, 0.0);
     for (colour, width, alpha, dashed) in [
-        (&palette.focus, 12.0, 0.3, false),
-        (&palette.background, 6.0, 1.0, false),
-        (&palette.focus, 3.0, 1.0, true),
+        (&palette.focus, 16.0, 0.45, false),
+        (&palette.background, 7.0, 1.0, false),
+        (&palette.focus, 4.0, 1.0, true),
     ] {
         ctx.set_global_alpha(alpha);
         ctx.set_stroke_style_str(colour);
