@@ -49,10 +49,15 @@ impl Quantity {
         }
     }
 
-    /// The number as shown (`0.80`), without its unit.
+    /// The number as shown (`0.80`), without its unit; `--` when there is
+    /// none (no goal yet, no obstacle).
     #[must_use]
     pub fn number_text(&self) -> String {
-        format_fixed(self.value, self.decimals)
+        if self.value.is_finite() {
+            format_fixed(self.value, self.decimals)
+        } else {
+            "--".into()
+        }
     }
 
     /// The value the shown number stands for (the rounding the student reads).
@@ -91,6 +96,13 @@ pub enum Expr {
     Acos(&'static Expr),
     /// `a` held within `±b`, written `clamp(a, ±b)` (an actuator limit).
     Clamp(&'static Expr, &'static Expr),
+    /// The smaller of two, written `min(a, b)`.
+    Min(&'static Expr, &'static Expr),
+    /// Natural logarithm, written `ln a`.
+    Ln(&'static Expr),
+    /// Cosine of an angle in radians (a controller's error in rad), written
+    /// `cos` like [`Expr::Cos`]; the number shown carries no degree sign.
+    CosRad(&'static Expr),
 }
 
 impl Expr {
@@ -119,6 +131,9 @@ impl Expr {
                 let limit = b.eval(value).abs();
                 a.eval(value).clamp(-limit, limit)
             }
+            Expr::Min(a, b) => a.eval(value).min(b.eval(value)),
+            Expr::Ln(a) => libm::log(a.eval(value)),
+            Expr::CosRad(a) => libm::cos(a.eval(value)),
         }
     }
 
@@ -143,6 +158,7 @@ impl Expr {
             | Expr::Mul(a, b)
             | Expr::Div(a, b)
             | Expr::Max(a, b)
+            | Expr::Min(a, b)
             | Expr::Clamp(a, b) => {
                 a.collect_keys(out);
                 b.collect_keys(out);
@@ -152,7 +168,9 @@ impl Expr {
             | Expr::Sin(a)
             | Expr::Sqrt(a)
             | Expr::Sq(a)
-            | Expr::Acos(a) => {
+            | Expr::Acos(a)
+            | Expr::Ln(a)
+            | Expr::CosRad(a) => {
                 a.collect_keys(out);
             }
         }
@@ -187,6 +205,17 @@ pub fn named(all: &[Equation], keys: &[String]) -> Vec<Equation> {
         .collect()
 }
 
+/// Decimals that show `v` to four significant digits (3 for 1.234, 6 for
+/// 0.001234, 0 for 2500), at most 12; 3 for zero or a non-finite value.
+#[must_use]
+pub fn four_significant(v: f64) -> usize {
+    if v != 0.0 && v.is_finite() {
+        (3 - libm::floor(libm::log10(v.abs())) as i32).clamp(0, 12) as usize
+    } else {
+        3
+    }
+}
+
 /// The value of `key` among `quantities` as shown.
 #[must_use]
 pub fn shown(quantities: &[Quantity], key: &str) -> Option<f64> {
@@ -204,32 +233,44 @@ pub enum Form {
 }
 
 /// The largest amount by which `expr` can move when each quantity it reads
-/// moves by half a unit of its last shown digit (first order, by central
-/// differences): how far the substituted form may honestly sit from a
-/// value computed from unrounded numbers.
+/// moves by up to half a unit of its last shown digit: how far the
+/// substituted form may honestly sit from a value computed from unrounded
+/// numbers. Every corner of that box is tried (up to 10 quantities), so
+/// roundings that add up across a kink such as `max(0, …)` count; beyond
+/// that, each quantity's larger one-sided change is summed.
 #[must_use]
 pub fn rounding_bound(expr: &Expr, quantities: &[Quantity]) -> f64 {
-    let base = |key: &str| shown(quantities, key);
-    expr.keys()
-        .iter()
-        .map(|key| {
-            let Some(q) = quantities.iter().find(|q| q.key == *key) else {
-                return 0.0;
-            };
-            let half = 0.5 * 10f64.powi(-(q.decimals as i32));
-            let at = |delta: f64| {
-                expr.eval(&|k: &str| {
-                    if k == *key {
-                        base(k).map(|v| v + delta)
-                    } else {
-                        base(k)
-                    }
-                })
-            };
-            let h = half.max(1e-9);
-            ((at(h) - at(-h)) / (2.0 * h)).abs() * half
+    let keys = expr.keys();
+    let centre = expr.eval(&|k| shown(quantities, k));
+    let half = |key: &str| {
+        quantities
+            .iter()
+            .find(|q| q.key == key)
+            .map_or(0.0, |q| 0.5 * 10f64.powi(-(q.decimals as i32)))
+    };
+    // The value with each key `i` moved by `sign(i)` half digits.
+    let moved = |sign: &dyn Fn(usize) -> f64| {
+        expr.eval(&|k: &str| {
+            let i = keys.iter().position(|key| *key == k)?;
+            shown(quantities, k).map(|v| v + sign(i) * half(k))
         })
-        .sum()
+    };
+    if keys.len() <= 10 {
+        (0..1u32 << keys.len())
+            .map(|corner| {
+                let sign = |i: usize| if corner >> i & 1 == 1 { 1.0 } else { -1.0 };
+                (moved(&sign) - centre).abs()
+            })
+            .fold(0.0, f64::max)
+    } else {
+        (0..keys.len())
+            .map(|i| {
+                let up = moved(&|j| if j == i { 1.0 } else { 0.0 });
+                let down = moved(&|j| if j == i { -1.0 } else { 0.0 });
+                (up - centre).abs().max((down - centre).abs())
+            })
+            .sum()
+    }
 }
 
 #[cfg(test)]
@@ -258,11 +299,24 @@ mod tests {
     }
 
     #[test]
-    fn the_rounding_bound_is_the_first_order_spread_of_half_a_digit() {
-        // x = L1·cos θ1 at 1.00 m, 0°: ∂x/∂L1 = 1 (half digit 0.005), ∂x/∂θ1 = 0.
+    fn the_rounding_bound_is_the_spread_of_half_a_digit() {
+        // x = L1·cos θ1 at 1.00 m, 0°: the farthest corner is L1 − 0.005 at
+        // θ1 ± 0.5°, 1 − 0.995·cos 0.5°.
         let q = arm(0.0);
         let bound = rounding_bound(&TIP_X, &q);
-        assert!((bound - 0.005).abs() < 1e-6, "{bound}");
+        let expected = 1.0 - 0.995 * 0.5f64.to_radians().cos();
+        assert!((bound - expected).abs() < 1e-9, "{bound}");
+    }
+
+    #[test]
+    fn the_rounding_bound_counts_a_kink_at_its_corner() {
+        // max(0, 2·L1 − 2) at L1 = 1.00: one side moves by 0.01, the other not.
+        const HOLE: Expr = Expr::Max(
+            &Expr::Num(0.0, "0"),
+            &Expr::Sub(&Expr::Mul(&Expr::Num(2.0, "2"), &L1), &Expr::Num(2.0, "2")),
+        );
+        let bound = rounding_bound(&HOLE, &arm(0.0));
+        assert!((bound - 0.01).abs() < 1e-9, "{bound}");
     }
 
     #[test]
@@ -274,6 +328,30 @@ mod tests {
         assert_eq!(EDGE.eval(&|_| None), 0.0);
         const HELD: Expr = Expr::Clamp(&Expr::Num(-7.0, "-7"), &Expr::Num(5.0, "5"));
         assert_eq!(HELD.eval(&|_| None), -5.0);
+    }
+
+    #[test]
+    fn min_takes_the_smaller_ln_is_natural_and_cos_rad_reads_radians() {
+        const CAP: Expr = Expr::Min(&L1, &Expr::Num(0.5, "0.5"));
+        assert_eq!(CAP.eval(&|k| shown(&arm(0.0), k)), 0.5);
+        const LOG: Expr = Expr::Ln(&Expr::Num(std::f64::consts::E, "e"));
+        assert!((LOG.eval(&|_| None) - 1.0).abs() < 1e-15);
+        const HALF_TURN: Expr = Expr::CosRad(&Expr::Num(std::f64::consts::PI, "π"));
+        assert_eq!(HALF_TURN.eval(&|_| None), -1.0);
+        // The keys of the new nodes are collected too.
+        const ALL: Expr = Expr::Min(&Expr::Ln(&L1), &Expr::CosRad(&T1));
+        assert_eq!(ALL.keys(), vec!["l1", "t1"]);
+    }
+
+    #[test]
+    fn four_significant_digits_whatever_the_size() {
+        assert_eq!(four_significant(1.234), 3);
+        assert_eq!(four_significant(-0.001_234), 6);
+        assert_eq!(four_significant(2500.0), 0);
+        assert_eq!(four_significant(820.7), 1);
+        assert_eq!(four_significant(1e-20), 12);
+        assert_eq!(four_significant(0.0), 3);
+        assert_eq!(four_significant(f64::NAN), 3);
     }
 
     #[test]

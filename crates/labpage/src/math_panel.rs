@@ -250,11 +250,11 @@ impl<'a> Writer<'a> {
                 self.put("<mo>−</mo>", "−");
                 self.expr(a, 3);
             }
-            Expr::Cos(a) | Expr::Sin(a) => {
-                let name = if matches!(expr, Expr::Cos(_)) {
-                    "cos"
-                } else {
-                    "sin"
+            Expr::Cos(a) | Expr::Sin(a) | Expr::CosRad(a) | Expr::Ln(a) => {
+                let name = match expr {
+                    Expr::Sin(_) => "sin",
+                    Expr::Ln(_) => "ln",
+                    _ => "cos",
                 };
                 self.token("mi", name);
                 // A thin space after the name, as TeX sets `\cos\theta`
@@ -282,9 +282,14 @@ impl<'a> Writer<'a> {
                 self.expr(a, 0);
                 self.put("<mo>)</mo>", ")");
             }
-            Expr::Clamp(a, b) | Expr::Max(a, b) => {
+            Expr::Clamp(a, b) | Expr::Max(a, b) | Expr::Min(a, b) => {
                 let clamp = matches!(expr, Expr::Clamp(..));
-                self.token("mi", if clamp { "clamp" } else { "max" });
+                let name = match expr {
+                    Expr::Clamp(..) => "clamp",
+                    Expr::Max(..) => "max",
+                    _ => "min",
+                };
+                self.token("mi", name);
                 self.put("<mo>(</mo>", "(");
                 self.expr(a, 0);
                 self.put("<mo separator=\"true\">,</mo>", ", ");
@@ -436,5 +441,39 @@ mod tests {
             w.out,
             "<mn>2.0</mn><mo>·</mo><mo>(</mo><mo>−</mo><mn>0.5</mn><mo>)</mo>"
         );
+    }
+
+    #[test]
+    fn min_ln_and_a_radian_cosine_are_written_like_their_kin() {
+        const R: Expr = Expr::Min(
+            &Expr::Mul(
+                &Expr::Var("g"),
+                &Expr::Sqrt(&Expr::Div(&Expr::Ln(&Expr::Var("n")), &Expr::Var("n"))),
+            ),
+            &Expr::CosRad(&Expr::Var("e")),
+        );
+        const EQ: Equation = Equation {
+            key: "r",
+            symbol: "r",
+            expr: R,
+            readout: "r",
+            caption: "",
+        };
+        let q = [
+            Quantity::new("g", "γ", 11.775, 3, "m"),
+            Quantity::new("n", "n", 300.0, 0, ""),
+            Quantity::new("e", "e_θ", 0.5, 3, "rad"),
+        ];
+        let readouts = [Readout::new("r", "r", "0.878 m")];
+        let (numbers, _, text) = live_parts(&EQ, &q, &readouts);
+        assert_eq!(
+            text,
+            "r = min(γ √((ln n) / (n)), cos eθ) = min(11.775·√((ln 300) / (300)), cos 0.500) = 0.878 m"
+        );
+        assert!(
+            numbers.contains("<mi>min</mi>") && numbers.contains("<mi>ln</mi>"),
+            "{numbers}"
+        );
+        assert!(!numbers.contains('°'), "{numbers}");
     }
 }

@@ -622,6 +622,17 @@ pub enum PoleStatus {
 /// Default pole nudge, an added angular velocity (rad/s).
 pub const NUDGE_RAD_S: f64 = 0.5;
 
+/// What the last step's force was computed from: the state at the start of
+/// the step, the gains, the limit and whether control was on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForceInputs {
+    pub state: CartPoleState,
+    pub gains: StateFeedback,
+    /// `|F| ≤` this (N).
+    pub force_limit_n: f64,
+    pub control_enabled: bool,
+}
+
 /// A controlled cart-pole: physics, feedback, integrator choice, status and time.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CartPole {
@@ -638,6 +649,7 @@ pub struct CartPole {
     pub time_s: f64,
     last_force_n: f64,
     last_saturated: bool,
+    last_inputs: Option<ForceInputs>,
 }
 
 impl CartPole {
@@ -655,6 +667,7 @@ impl CartPole {
             time_s: 0.0,
             last_force_n: 0.0,
             last_saturated: false,
+            last_inputs: None,
         }
     }
 
@@ -662,6 +675,12 @@ impl CartPole {
     #[must_use]
     pub fn last_force_n(&self) -> f64 {
         self.last_force_n
+    }
+
+    /// What the last step's force was computed from; `None` before the first step.
+    #[must_use]
+    pub fn last_inputs(&self) -> Option<ForceInputs> {
+        self.last_inputs
     }
 
     /// `true` when the last step's force was cut by the actuator limit.
@@ -696,6 +715,7 @@ impl CartPole {
         self.time_s = 0.0;
         self.last_force_n = 0.0;
         self.last_saturated = false;
+        self.last_inputs = None;
     }
 
     /// One control period: the force `F = k·s` (or 0 with control off) is computed from
@@ -726,6 +746,12 @@ impl CartPole {
         ) {
             return false;
         }
+        self.last_inputs = Some(ForceInputs {
+            state: self.state,
+            gains: self.gains,
+            force_limit_n: lim,
+            control_enabled: self.control_enabled,
+        });
         self.state = s;
         self.time_s += dt_s;
         self.last_force_n = applied;

@@ -64,6 +64,8 @@ pub struct Update {
     pub belief: Belief,
     /// Innovation `ν = z − h(μ̄)`, bearing in `[−π, π)`.
     pub innovation: DVec2,
+    /// The predicted observation `ẑ = h(μ̄)`: range (m), bearing (rad).
+    pub predicted: DVec2,
     /// Normalised innovation squared `νᵀ S⁻¹ ν` (χ² with 2 degrees of
     /// freedom for a consistent filter).
     pub nis: f64,
@@ -227,6 +229,7 @@ pub fn ekf_update(
     Ok(Update {
         belief,
         innovation: nu,
+        predicted: zhat,
         nis,
     })
 }
@@ -247,6 +250,9 @@ pub struct SequentialUpdate {
     pub rejected: usize,
     /// Sum of the applied updates' NIS.
     pub nis_sum: f64,
+    /// The last applied observation `z` (range m, bearing rad) and its
+    /// update, if any was applied.
+    pub last: Option<(DVec2, Update)>,
 }
 
 /// Folds in every observation in order, each about the mean left by the
@@ -264,6 +270,7 @@ pub fn ekf_update_sequential(
         applied: 0,
         rejected: 0,
         nis_sum: 0.0,
+        last: None,
     };
     for z in observations {
         let Some(&m) = landmarks.get(z.id) else {
@@ -275,6 +282,7 @@ pub fn ekf_update_sequential(
                 out.belief = up.belief;
                 out.applied += 1;
                 out.nis_sum += up.nis;
+                out.last = Some((z.z(), up));
             }
             Err(_) => out.rejected += 1,
         }

@@ -77,6 +77,9 @@ pub struct Command {
     pub omega_limited: bool,
     /// `distance ≤ tolerance`: the command is zero.
     pub arrived: bool,
+    /// The heading `θ` of the pose the command was computed from, radians
+    /// (what the unicycle moves along while the command holds).
+    pub heading_rad: f64,
 }
 
 impl GoToGoal {
@@ -119,6 +122,7 @@ impl GoToGoal {
             return Command {
                 distance_m,
                 arrived: true,
+                heading_rad: pose.theta_rad,
                 ..Command::default()
             };
         }
@@ -153,6 +157,7 @@ impl GoToGoal {
             v_limited: v_raw > self.max_v_mps,
             omega_limited: omega_raw.abs() > self.max_omega_radps,
             arrived: false,
+            heading_rad: pose.theta_rad,
         }
     }
 }
@@ -230,6 +235,9 @@ pub struct WaypointFollower {
     pub completed: Vec<RunStats>,
     /// The last command applied.
     pub last_command: Command,
+    /// The gains and limits [`WaypointFollower::last_command`] was computed
+    /// with (the controller may have changed since).
+    pub last_controller: GoToGoal,
 }
 
 impl WaypointFollower {
@@ -246,6 +254,7 @@ impl WaypointFollower {
             current: RunStats::default(),
             completed: Vec::new(),
             last_command: Command::default(),
+            last_controller: GoToGoal::default(),
         }
     }
 
@@ -288,6 +297,7 @@ impl WaypointFollower {
             return self.last_command;
         };
         let cmd = self.controller.command(self.pose, goal);
+        self.last_controller = self.controller;
         if cmd.arrived {
             self.current.time_to_goal_s = Some(self.current.elapsed_s);
             self.completed.push(self.current);

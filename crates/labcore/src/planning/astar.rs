@@ -780,6 +780,20 @@ impl Search {
         self.padded_of(cell).map(|i| self.trace(i))
     }
 
+    /// `g`, `h` and the priority `f` of a cell the search has reached (open
+    /// or closed), as the open list ranks it: `g + h`, `g + w·h` or `h`.
+    #[must_use]
+    pub fn entry_of(&self, cell: Cell) -> Option<OpenEntry> {
+        let g = self.g_of(cell)?;
+        let h = self.heuristic(cell.x + 1, cell.y + 1);
+        Some(OpenEntry {
+            cell,
+            g,
+            h,
+            f: self.g_factor * g + self.h_factor * h,
+        })
+    }
+
     /// The first `k` cells the open list would expand next, in that order, with
     /// their `g`, `h` and `f`. Costs `O(frontier)` per call: meant for a panel
     /// redrawn once per frame.

@@ -4,6 +4,78 @@
 //! writes only this view state.
 
 use super::*;
+use crate::live_math::{Equation, Expr, Quantity};
+use crate::planning::astar::{OpenEntry, Strategy};
+
+const DX: Expr = Expr::Var("dx");
+const DY: Expr = Expr::Var("dy");
+const H_CAPTION: &str = "The heuristic of the last cell expanded: Δx and Δy count the cells between it and the goal across and up.";
+const fn heuristic(expr: Expr) -> Equation {
+    Equation {
+        key: "h",
+        symbol: "h",
+        expr,
+        readout: "last_h",
+        caption: H_CAPTION,
+    }
+}
+/// The heuristics in [`Heuristic::ALL`]'s order (Hart, Nilsson & Raphael
+/// 1968; the octile distance: a diagonal step costs √2).
+const HEURISTICS_H: [Equation; 4] = [
+    heuristic(Expr::Add(&DX, &DY)),
+    heuristic(Expr::Add(
+        &Expr::Max(&DX, &DY),
+        &Expr::Mul(
+            &Expr::Sub(&Expr::Sqrt(&Expr::Num(2.0, "2")), &Expr::Num(1.0, "1")),
+            &Expr::Min(&DX, &DY),
+        ),
+    )),
+    heuristic(Expr::Sqrt(&Expr::Add(&Expr::Sq(&DX), &Expr::Sq(&DY)))),
+    heuristic(Expr::Num(0.0, "0")),
+];
+const fn priority(expr: Expr, caption: &'static str) -> Equation {
+    Equation {
+        key: "f",
+        symbol: "f",
+        expr,
+        readout: "last_f",
+        caption,
+    }
+}
+/// A*, weighted A* (Pohl 1970) and greedy best-first.
+const PRIORITIES: [Equation; 3] = [
+    priority(
+        Expr::Add(&Expr::Var("g"), &Expr::Var("h")),
+        "Its priority: the cost so far g plus the estimate h still to go.",
+    ),
+    priority(
+        Expr::Add(&Expr::Var("g"), &Expr::Mul(&Expr::Var("w"), &Expr::Var("h"))),
+        "Its priority in weighted A*: the estimate counts w times.",
+    ),
+    priority(
+        Expr::Var("h"),
+        "Its priority in greedy best-first search: the estimate alone.",
+    ),
+];
+const fn pair(h: usize, f: usize) -> [Equation; 2] {
+    [HEURISTICS_H[h], PRIORITIES[f]]
+}
+/// `[heuristic][strategy]`.
+const EQUATIONS: [[&[Equation]; 3]; 4] = [
+    [&pair(0, 0), &pair(0, 1), &pair(0, 2)],
+    [&pair(1, 0), &pair(1, 1), &pair(1, 2)],
+    [&pair(2, 0), &pair(2, 1), &pair(2, 2)],
+    [&pair(3, 0), &pair(3, 1), &pair(3, 2)],
+];
+
+impl AStarGrid {
+    /// The last cell the search expanded, its `g`, `h` and `f`, and the goal.
+    fn last_entry(&self) -> Option<(OpenEntry, Cell)> {
+        let search = self.search.as_ref()?;
+        let cell = search.last_expanded()?;
+        Some((search.entry_of(cell)?, search.goal()))
+    }
+}
 
 impl Presentation for AStarGrid {
     /// The whole grid, or when [`AStarGrid::zoomed`] a window of
@@ -185,6 +257,16 @@ impl Presentation for AStarGrid {
                 "Path cost",
                 if found { self.path_cost } else { f64::NAN },
             ),
+            Readout::metres(
+                "last_h",
+                "Last expanded: h",
+                self.last_entry().map_or(f64::NAN, |(e, _)| e.h),
+            ),
+            Readout::metres(
+                "last_f",
+                "Last expanded: f",
+                self.last_entry().map_or(f64::NAN, |(e, _)| e.f),
+            ),
             Readout::new(
                 "grid",
                 "Grid",
@@ -207,6 +289,46 @@ impl Presentation for AStarGrid {
                 },
             ),
         ]
+    }
+
+    /// The last cell expanded: its distance to the goal in cells, `g`, `h`
+    /// and the weight.
+    fn quantities(&self) -> Vec<Quantity> {
+        let last = self.last_entry();
+        let (dx, dy) = last.map_or((f64::NAN, f64::NAN), |(e, goal)| {
+            (
+                e.cell.x.abs_diff(goal.x) as f64,
+                e.cell.y.abs_diff(goal.y) as f64,
+            )
+        });
+        let weight = match self.search.as_ref().map(|s| s.config().strategy) {
+            Some(Strategy::Weighted { weight }) => weight,
+            _ => 1.0,
+        };
+        vec![
+            Quantity::new("dx", "Δx", dx, 0, ""),
+            Quantity::new("dy", "Δy", dy, 0, ""),
+            Quantity::new("g", "g", last.map_or(f64::NAN, |(e, _)| e.g), 3, "m"),
+            Quantity::new("h", "h", last.map_or(f64::NAN, |(e, _)| e.h), 3, "m"),
+            Quantity::new("w", "w", weight, 1, ""),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        let config = self
+            .search
+            .as_ref()
+            .map_or_else(|| self.config(), |s| s.config());
+        let h = Heuristic::ALL
+            .iter()
+            .position(|x| *x == config.heuristic)
+            .unwrap_or(1);
+        let strategy = match config.strategy {
+            Strategy::AStar => 0,
+            Strategy::Weighted { .. } => 1,
+            Strategy::Greedy => 2,
+        };
+        EQUATIONS[h][strategy]
     }
 
     fn status(&self) -> Status {

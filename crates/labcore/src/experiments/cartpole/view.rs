@@ -1,7 +1,93 @@
 //! What experiment 8 shows: the scene, the readouts, the status badge.
 
 use super::*;
+use crate::live_math::{Equation, Expr, Quantity};
 use crate::units::{format_degrees, format_metres};
+
+/// The state feedback `F = kx x + kv ẋ + kθ θ + kω θ̇` (that is `u = −Kx`
+/// with `K = −k`; Ogata, *Modern Control Engineering*, §10.2), on the state
+/// the step started from, held within the force limit.
+const FEEDBACK: Expr = Expr::Clamp(
+    &Expr::Add(
+        &Expr::Add(
+            &Expr::Add(
+                &Expr::Mul(&Expr::Var("kx"), &Expr::Var("xk")),
+                &Expr::Mul(&Expr::Var("kv"), &Expr::Var("vk")),
+            ),
+            &Expr::Mul(&Expr::Var("kth"), &Expr::Var("thk")),
+        ),
+        &Expr::Mul(&Expr::Var("kom"), &Expr::Var("omk")),
+    ),
+    &Expr::Var("flim"),
+);
+/// The energy of cart and pole, the pole a uniform rod of half-length `l`
+/// (Barto, Sutton & Anderson 1983's model): kinetic plus potential.
+const ENERGY: Equation = Equation {
+    key: "energy",
+    symbol: "E",
+    expr: Expr::Add(
+        &Expr::Add(
+            &Expr::Add(
+                &Expr::Mul(
+                    &Expr::Mul(
+                        &Expr::Num(0.5, "½"),
+                        &Expr::Add(&Expr::Var("mc"), &Expr::Var("mp")),
+                    ),
+                    &Expr::Sq(&Expr::Var("v")),
+                ),
+                &Expr::Mul(
+                    &Expr::Mul(
+                        &Expr::Mul(
+                            &Expr::Mul(&Expr::Var("mp"), &Expr::Var("l")),
+                            &Expr::Var("v"),
+                        ),
+                        &Expr::Var("om"),
+                    ),
+                    &Expr::Cos(&Expr::Var("th")),
+                ),
+            ),
+            &Expr::Mul(
+                &Expr::Mul(
+                    &Expr::Num(2.0 / 3.0, "⅔"),
+                    &Expr::Mul(&Expr::Var("mp"), &Expr::Sq(&Expr::Var("l"))),
+                ),
+                &Expr::Sq(&Expr::Var("om")),
+            ),
+        ),
+        &Expr::Mul(
+            &Expr::Mul(
+                &Expr::Mul(&Expr::Var("mp"), &Expr::Var("g")),
+                &Expr::Var("l"),
+            ),
+            &Expr::Cos(&Expr::Var("th")),
+        ),
+    ),
+    readout: "energy",
+    caption: "The energy now: the cart's and the pole's motion plus the pole's height; with control off and no friction it stays put.",
+};
+/// With the controller acting, and with no force (control off, or no step yet).
+const EQUATIONS: [&[Equation]; 2] = [
+    &[
+        Equation {
+            key: "force",
+            symbol: "F",
+            expr: FEEDBACK,
+            readout: "force",
+            caption: "The controller's force, from the state the last step started from (subscript k), held within the limit.",
+        },
+        ENERGY,
+    ],
+    &[
+        Equation {
+            key: "force",
+            symbol: "F",
+            expr: Expr::Num(0.0, "0"),
+            readout: "force",
+            caption: "No force: control is off (or no step has run yet).",
+        },
+        ENERGY,
+    ],
+];
 
 /// `3.972, -3.972, 0, 0` or `-1.234 ± 5.678i`, slowest first.
 pub(super) fn format_eigenvalues(z: &[Complex]) -> String {
@@ -193,6 +279,45 @@ impl Presentation for CartPoleBalance {
             role: Role::Text,
             offset_px: DVec2::new(-24.0, 44.0),
         });
+    }
+
+    /// The gains and the state the last force came from (subscript k), and
+    /// the cart-pole's masses, length and state now for the energy.
+    fn quantities(&self) -> Vec<Quantity> {
+        let inputs = self.sim.last_inputs();
+        let k = inputs.map_or(self.sim.gains, |i| i.gains);
+        let at = inputs.map(|i| i.state).unwrap_or_default();
+        let p = &self.sim.params;
+        let s = self.sim.state;
+        vec![
+            Quantity::new("kx", "k_x", k.k_x, 1, "N/m"),
+            Quantity::new("xk", "x_k", at.x_m, 4, "m"),
+            Quantity::new("kv", "k_v", k.k_v, 1, "N·s/m"),
+            Quantity::new("vk", "ẋ_k", at.v_m_s, 4, "m/s"),
+            Quantity::new("kth", "k_θ", k.k_theta, 1, "N/rad"),
+            Quantity::new("thk", "θ_k", at.theta_rad, 5, "rad"),
+            Quantity::new("kom", "k_ω", k.k_omega, 1, "N·s/rad"),
+            Quantity::new("omk", "θ̇_k", at.omega_rad_s, 4, "rad/s"),
+            Quantity::new(
+                "flim",
+                "F_max",
+                inputs.map_or(p.force_limit_n, |i| i.force_limit_n),
+                0,
+                "N",
+            ),
+            Quantity::new("mc", "M", p.cart_mass_kg, 2, "kg"),
+            Quantity::new("mp", "m", p.pole_mass_kg, 2, "kg"),
+            Quantity::new("l", "l", p.half_length_m, 2, "m"),
+            Quantity::new("g", "g", p.gravity_m_s2, 2, "m/s²"),
+            Quantity::new("v", "ẋ", s.v_m_s, 4, "m/s"),
+            Quantity::new("om", "θ̇", s.omega_rad_s, 4, "rad/s"),
+            Quantity::new("th", "θ", s.theta_rad.to_degrees(), 3, "°"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        let acting = self.sim.last_inputs().is_some_and(|i| i.control_enabled);
+        EQUATIONS[usize::from(!acting)]
     }
 
     fn readouts(&self) -> Vec<Readout> {

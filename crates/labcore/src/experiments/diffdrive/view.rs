@@ -162,6 +162,72 @@ pub(super) fn shown_card(d: &DiffDrive) -> Option<(usize, RunStats, bool)> {
     }
 }
 
+use crate::live_math::{Equation, Expr, Quantity};
+
+/// The go-to-goal law (Siegwart, Nourbakhsh & Scaramuzza, *Autonomous Mobile
+/// Robots*, §3.6; Corke, *Robotics, Vision and Control*, §4.1): turn in
+/// proportion to the heading error, within the limit …
+const TURN: Equation = Equation {
+    key: "omega",
+    symbol: "ω",
+    expr: Expr::Clamp(
+        &Expr::Mul(&Expr::Var("kw"), &Expr::Var("e")),
+        &Expr::Var("wmax"),
+    ),
+    readout: "omega",
+    caption: "The turn rate: the heading error eθ (radians) times Kω, held within ±ω_max.",
+};
+/// … and the unicycle: the robot moves along its heading.
+const UNICYCLE: [Equation; 2] = [
+    Equation {
+        key: "xdot",
+        symbol: "ẋ",
+        expr: Expr::Mul(&Expr::Var("v"), &Expr::Cos(&Expr::Var("theta"))),
+        readout: "xdot",
+        caption: "The unicycle: the speed along the heading θ the command started from, x part …",
+    },
+    Equation {
+        key: "ydot",
+        symbol: "ẏ",
+        expr: Expr::Mul(&Expr::Var("v"), &Expr::Sin(&Expr::Var("theta"))),
+        readout: "ydot",
+        caption: "… and y part.",
+    },
+];
+/// Driving, and arrived (within the tolerance the command is zero).
+const EQUATIONS: [&[Equation]; 2] = [
+    &[
+        Equation {
+            key: "v",
+            symbol: "v",
+            expr: Expr::Min(
+                &Expr::Mul(
+                    &Expr::Mul(&Expr::Var("kv"), &Expr::Var("d")),
+                    &Expr::Max(&Expr::Num(0.0, "0"), &Expr::CosRad(&Expr::Var("e"))),
+                ),
+                &Expr::Var("vmax"),
+            ),
+            readout: "v",
+            caption: "The speed: Kv times the distance d to the goal, slowed by the cosine of the heading error (none while facing away), at most v_max.",
+        },
+        TURN,
+        UNICYCLE[0],
+        UNICYCLE[1],
+    ],
+    &[
+        Equation {
+            key: "v",
+            symbol: "v",
+            expr: Expr::Num(0.0, "0"),
+            readout: "v",
+            caption: "Within the arrival radius of the goal the robot stops.",
+        },
+        TURN,
+        UNICYCLE[0],
+        UNICYCLE[1],
+    ],
+];
+
 impl Presentation for DiffDrive {
     fn view(&self) -> ViewBox {
         ViewBox {
@@ -270,6 +336,26 @@ impl Presentation for DiffDrive {
         }
     }
 
+    /// The gains and limits, and what the last command was computed from.
+    fn quantities(&self) -> Vec<Quantity> {
+        let cmd = self.command();
+        let c = &self.follower.last_controller;
+        vec![
+            Quantity::new("kw", "K_ω", c.k_omega_per_s, 2, "1/s"),
+            Quantity::new("e", "e_θ", cmd.heading_error_rad, 3, "rad"),
+            Quantity::new("wmax", "ω_max", c.max_omega_radps, 2, "rad/s"),
+            Quantity::new("kv", "K_v", c.k_v_per_s, 2, "1/s"),
+            Quantity::new("d", "d", cmd.distance_m, 3, "m"),
+            Quantity::new("vmax", "v_max", c.max_v_mps, 2, "m/s"),
+            Quantity::new("v", "v", cmd.v_mps, 3, "m/s"),
+            Quantity::new("theta", "θ", cmd.heading_rad.to_degrees(), 1, "°"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        EQUATIONS[usize::from(self.command().arrived)]
+    }
+
     fn readouts(&self) -> Vec<Readout> {
         let cmd = self.command();
         let (vl, vr) = self.wheels();
@@ -280,6 +366,16 @@ impl Presentation for DiffDrive {
         });
         let mut out = vec![
             Readout::new("v", "Speed v", speed(cmd.v_mps)),
+            Readout::new(
+                "xdot",
+                "Velocity ẋ",
+                speed(cmd.v_mps * crate::math::cos(cmd.heading_rad)),
+            ),
+            Readout::new(
+                "ydot",
+                "Velocity ẏ",
+                speed(cmd.v_mps * crate::math::sin(cmd.heading_rad)),
+            ),
             Readout::new(
                 "omega",
                 "Turn rate ω",

@@ -1,6 +1,43 @@
 //! What experiment 9 shows: the view box, the scene, the readouts and the status.
 
 use super::*;
+use crate::live_math::{four_significant, Equation, Expr, Quantity};
+
+const A: Expr = Expr::Var("a");
+const B: Expr = Expr::Var("b");
+const C: Expr = Expr::Var("c");
+/// The remaining error, then Yoshikawa's manipulability `w = √det(J Jᵀ)`
+/// of the 2×2 `J Jᵀ` in closed form and the condition number `σmax/σmin`
+/// (Yoshikawa 1985; Nakamura & Hanafusa 1986 for the damping it guides).
+const EQUATIONS: &[Equation] = &[
+    Equation {
+        key: "error",
+        symbol: "|e|",
+        expr: Expr::Sqrt(&Expr::Add(
+            &Expr::Sq(&Expr::Sub(&Expr::Var("xt"), &Expr::Var("x"))),
+            &Expr::Sq(&Expr::Sub(&Expr::Var("yt"), &Expr::Var("y"))),
+        )),
+        readout: "error",
+        caption: "The error e the next step Δq = Jᵀ(JJᵀ + λ²I)⁻¹e works on: from the tip to the target.",
+    },
+    Equation {
+        key: "w",
+        symbol: "w",
+        expr: Expr::Sqrt(&Expr::Max(
+            &Expr::Num(0.0, "0"),
+            &Expr::Sub(&Expr::Mul(&A, &C), &Expr::Sq(&B)),
+        )),
+        readout: "w",
+        caption: "The manipulability √det(JJᵀ), with JJᵀ = [[a, b], [b, c]]: the area of the velocity ellipse over π, 0 at a singularity.",
+    },
+    Equation {
+        key: "condition",
+        symbol: "κ",
+        expr: Expr::Div(&Expr::Var("smax"), &Expr::Var("smin")),
+        readout: "cond",
+        caption: "The condition number κ: the velocity ellipse's long semi-axis over its short one (J's singular values); it blows up near a singularity.",
+    },
+];
 
 impl Presentation for DampedLeastSquares {
     fn view(&self) -> ViewBox {
@@ -65,6 +102,32 @@ impl Presentation for DampedLeastSquares {
             Readout::metres("lambda_used", "λ used", self.lambda_used_m),
             Readout::new("angles", "Joint angles θ₁…θₙ", angles.join(", ")),
         ]
+    }
+
+    /// The tip, the target and the entries of `J Jᵀ` at the current pose.
+    fn quantities(&self) -> Vec<Quantity> {
+        let tip = self.tip();
+        let target = self.target.unwrap_or(DVec2::NAN);
+        let (a, b, c) =
+            crate::kinematics::jacobian::jjt_entries(&jacobian(&self.lengths(), &self.angles_rad));
+        let m = self.manipulability();
+        // Four significant digits, so a small σ_min still shows what it is.
+        let significant = four_significant;
+        vec![
+            Quantity::new("xt", "x_t", target.x, 3, "m"),
+            Quantity::new("x", "x", tip.x, 3, "m"),
+            Quantity::new("yt", "y_t", target.y, 3, "m"),
+            Quantity::new("y", "y", tip.y, 3, "m"),
+            Quantity::new("a", "a", a, 4, "m²"),
+            Quantity::new("b", "b", b, 4, "m²"),
+            Quantity::new("c", "c", c, 4, "m²"),
+            Quantity::new("smax", "σ_max", m.sigma_max, significant(m.sigma_max), "m"),
+            Quantity::new("smin", "σ_min", m.sigma_min, significant(m.sigma_min), "m"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        EQUATIONS
     }
 
     fn status(&self) -> Status {

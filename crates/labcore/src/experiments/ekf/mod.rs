@@ -170,6 +170,9 @@ pub struct Run {
     /// The last sensor reading and the step it was taken on.
     observations: Vec<Observation>,
     reading_step: Option<u64>,
+    /// The last observation the localisation filter folded in, `z` (range m,
+    /// bearing rad), with its update (`ẑ`, `ν`); none in SLAM.
+    last_update: Option<(DVec2, crate::estimation::ekf::Update)>,
     /// Polar angle of the truth last step, and how far round it has gone.
     polar_rad: f64,
     travelled_rad: f64,
@@ -227,6 +230,7 @@ impl Run {
             steps: 0,
             observations: Vec::new(),
             reading_step: None,
+            last_update: None,
             polar_rad: crate::math::atan2(START.y, START.x),
             travelled_rad: 0.0,
             laps: 0,
@@ -265,6 +269,12 @@ impl Run {
         nees(self.truth, self.estimate(), self.pose_cov())
     }
 
+    /// The last observation folded in (localisation only): `z` and its update.
+    #[must_use]
+    pub fn last_update(&self) -> Option<(DVec2, crate::estimation::ekf::Update)> {
+        self.last_update
+    }
+
     /// Simulated time, seconds.
     #[must_use]
     pub fn time_s(&self) -> f64 {
@@ -301,7 +311,9 @@ impl Run {
             let r = settings.sensor.noise.r();
             match &mut self.filter {
                 Filter::Localisation(b) => {
-                    *b = ekf_update_sequential(b.mean, b.cov, &obs, landmarks, r).belief;
+                    let update = ekf_update_sequential(b.mean, b.cov, &obs, landmarks, r);
+                    *b = update.belief;
+                    self.last_update = update.last.or(self.last_update);
                 }
                 Filter::Slam(s) => {
                     s.observe_all(&obs, r);

@@ -2,6 +2,72 @@
 //! Only reads the state.
 
 use super::*;
+use crate::live_math::{four_significant, Equation, Expr, Quantity};
+
+const EX: Expr = Expr::Var("ex");
+const EY: Expr = Expr::Var("ey");
+const ETH: Expr = Expr::Var("eth");
+const TWO: Expr = Expr::Num(2.0, "2");
+/// `2 Λ_ij e_i e_j`, the off-diagonal terms of the quadratic form.
+const CROSS_XY: Expr = Expr::Mul(&Expr::Mul(&Expr::Mul(&TWO, &Expr::Var("lxy")), &EX), &EY);
+const CROSS_XT: Expr = Expr::Mul(&Expr::Mul(&Expr::Mul(&TWO, &Expr::Var("lxt")), &EX), &ETH);
+const CROSS_YT: Expr = Expr::Mul(&Expr::Mul(&Expr::Mul(&TWO, &Expr::Var("lyt")), &EY), &ETH);
+/// The position error, the position uncertainty and the normalised
+/// estimation error squared `eᵀ P⁻¹ e` (Bar-Shalom, Li & Kirubarajan,
+/// *Estimation with Applications to Tracking and Navigation*, §5.4),
+/// written out with the information matrix `Λ = P⁻¹` as the filter inverts it.
+const EQUATIONS: &[Equation] = &[
+    Equation {
+        key: "innovation_range",
+        symbol: "ν_r",
+        expr: Expr::Sub(&Expr::Var("zr"), &Expr::Var("zhr")),
+        readout: "innov_r",
+        caption: "The innovation of the last observation folded in: the range measured less the range the estimate predicted …",
+    },
+    Equation {
+        key: "innovation_bearing",
+        symbol: "ν_b",
+        expr: Expr::Sub(&Expr::Var("zb"), &Expr::Var("zhb")),
+        readout: "innov_b",
+        caption: "… and the same for its bearing (the prediction taken within half a turn of the measurement).",
+    },
+    Equation {
+        key: "error",
+        symbol: "|e|",
+        expr: Expr::Sqrt(&Expr::Add(&Expr::Sq(&EX), &Expr::Sq(&EY))),
+        readout: "error",
+        caption: "The position error: how far the estimate sits from the truth, e = truth − estimate.",
+    },
+    Equation {
+        key: "trace",
+        symbol: "σ²",
+        expr: Expr::Add(&Expr::Var("pxx"), &Expr::Var("pyy")),
+        readout: "trace",
+        caption: "The position uncertainty: the variances in x and y from the covariance P added.",
+    },
+    Equation {
+        key: "nees",
+        symbol: "NEES",
+        expr: Expr::Add(
+            &Expr::Add(
+                &Expr::Add(
+                    &Expr::Add(
+                        &Expr::Add(
+                            &Expr::Mul(&Expr::Var("lxx"), &Expr::Sq(&EX)),
+                            &Expr::Mul(&Expr::Var("lyy"), &Expr::Sq(&EY)),
+                        ),
+                        &Expr::Mul(&Expr::Var("ltt"), &Expr::Sq(&ETH)),
+                    ),
+                    &CROSS_XY,
+                ),
+                &CROSS_XT,
+            ),
+            &CROSS_YT,
+        ),
+        readout: "nees",
+        caption: "NEES = eᵀP⁻¹e over the pose error (x, y, θ), with Λ = P⁻¹: about 3 on average when the filter is honest about its uncertainty.",
+    },
+];
 
 /// Position error readouts and the 3σ ellipse come from this.
 fn ellipse(center: DVec2, cov: DMat2) -> Item {
@@ -162,6 +228,17 @@ impl Presentation for EkfExperiment {
                 "Heading error",
                 heading_error_rad(truth, est).to_degrees(),
             ),
+            Readout::metres(
+                "innov_r",
+                "Innovation ν, range",
+                run.last_update().map_or(f64::NAN, |(_, u)| u.innovation.x),
+            ),
+            Readout::degrees(
+                "innov_b",
+                "Innovation ν, bearing",
+                run.last_update()
+                    .map_or(f64::NAN, |(_, u)| u.innovation.y.to_degrees()),
+            ),
             Readout::new(
                 "trace",
                 "Position uncertainty σx² + σy²",
@@ -181,6 +258,45 @@ impl Presentation for EkfExperiment {
             Readout::new("landmarks", "Landmarks", mapped),
             Readout::new("anees", "Average NEES (check)", anees),
         ]
+    }
+
+    /// The pose error, the covariance's position variances and the
+    /// information matrix `Λ = P⁻¹`, each to four significant digits.
+    fn quantities(&self) -> Vec<Quantity> {
+        let run = &self.live;
+        let e = crate::estimation::consistency::pose_error(run.truth, run.estimate());
+        let cov = run.pose_cov();
+        let info = if cov.determinant() > 0.0 {
+            cov.inverse()
+        } else {
+            DMat3::from_diagonal(DVec3::NAN)
+        };
+        let q = |key, symbol, v: f64, unit| Quantity::new(key, symbol, v, four_significant(v), unit);
+        // ẑ's bearing as z − ν: the same angle, within half a turn of z.
+        let (z, predicted) = run.last_update().map_or((DVec2::NAN, DVec2::NAN), |(z, u)| {
+            (z, DVec2::new(u.predicted.x, z.y - u.innovation.y))
+        });
+        vec![
+            Quantity::new("zr", "z_r", z.x, 3, "m"),
+            Quantity::new("zhr", "ẑ_r", predicted.x, 3, "m"),
+            Quantity::new("zb", "z_b", z.y.to_degrees(), 2, "°"),
+            Quantity::new("zhb", "ẑ_b", predicted.y.to_degrees(), 2, "°"),
+            q("ex", "e_x", e.x, "m"),
+            q("ey", "e_y", e.y, "m"),
+            q("eth", "e_θ", e.z, "rad"),
+            q("pxx", "P_xx", cov.x_axis.x, "m²"),
+            q("pyy", "P_yy", cov.y_axis.y, "m²"),
+            q("lxx", "Λ_xx", info.x_axis.x, "1/m²"),
+            q("lyy", "Λ_yy", info.y_axis.y, "1/m²"),
+            q("ltt", "Λ_θθ", info.z_axis.z, "1/rad²"),
+            q("lxy", "Λ_xy", info.y_axis.x, "1/m²"),
+            q("lxt", "Λ_xθ", info.z_axis.x, "1/(m·rad)"),
+            q("lyt", "Λ_yθ", info.z_axis.y, "1/(m·rad)"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        EQUATIONS
     }
 
     fn status(&self) -> Status {

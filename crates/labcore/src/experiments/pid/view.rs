@@ -17,39 +17,53 @@ const PID_ON_MEASUREMENT: Expr =
 const SUM_CAPTION: &str = "The controller's force: proportional, integral and derivative terms added.";
 const LIMIT_CAPTION: &str =
     "The controller's force: the three terms added, then held within the actuator limit.";
+/// With `Ki = 0` the loop is the second-order system `m s² + (c + Kd) s + Kp`
+/// (Åström & Murray, *Feedback Systems*, §7.3): its natural frequency
+/// `ωn = √(Kp/m)` …
+const NATURAL_FREQUENCY: Equation = Equation {
+    key: "omega_n",
+    symbol: "ω_n",
+    expr: Expr::Sqrt(&Expr::Div(&Expr::Var("kp"), &Expr::Var("m"))),
+    readout: "wn",
+    caption: "With Ki = 0, the natural frequency: the gain Kp as a spring against the mass.",
+};
+/// … and its damping ratio `ζ = (c + Kd) / (2√(m Kp))`.
+const DAMPING_RATIO: Equation = Equation {
+    key: "zeta",
+    symbol: "ζ",
+    expr: Expr::Div(
+        &Expr::Add(&Expr::Var("c"), &Expr::Var("kd")),
+        &Expr::Mul(
+            &Expr::Num(2.0, "2"),
+            &Expr::Sqrt(&Expr::Mul(&Expr::Var("m"), &Expr::Var("kp"))),
+        ),
+    ),
+    readout: "zeta",
+    caption: "With Ki = 0, the damping ratio: drag and Kd against twice √(m Kp).",
+};
+/// The force law `u` with its caption.
+const fn law(expr: Expr, caption: &'static str) -> [Equation; 3] {
+    [
+        Equation {
+            key: "u",
+            symbol: "u",
+            expr,
+            readout: "force",
+            caption,
+        },
+        NATURAL_FREQUENCY,
+        DAMPING_RATIO,
+    ]
+}
 /// `[derivative on error, on measurement]`, without and with the limit.
 const PID_LAWS: [[&[Equation]; 2]; 2] = [
     [
-        &[Equation {
-            key: "u",
-            symbol: "u",
-            expr: PID_ON_ERROR,
-            readout: "force",
-            caption: SUM_CAPTION,
-        }],
-        &[Equation {
-            key: "u",
-            symbol: "u",
-            expr: PID_ON_MEASUREMENT,
-            readout: "force",
-            caption: SUM_CAPTION,
-        }],
+        &law(PID_ON_ERROR, SUM_CAPTION),
+        &law(PID_ON_MEASUREMENT, SUM_CAPTION),
     ],
     [
-        &[Equation {
-            key: "u",
-            symbol: "u",
-            expr: Expr::Clamp(&PID_ON_ERROR, &Expr::Var("umax")),
-            readout: "force",
-            caption: LIMIT_CAPTION,
-        }],
-        &[Equation {
-            key: "u",
-            symbol: "u",
-            expr: Expr::Clamp(&PID_ON_MEASUREMENT, &Expr::Var("umax")),
-            readout: "force",
-            caption: LIMIT_CAPTION,
-        }],
+        &law(Expr::Clamp(&PID_ON_ERROR, &Expr::Var("umax")), LIMIT_CAPTION),
+        &law(Expr::Clamp(&PID_ON_MEASUREMENT, &Expr::Var("umax")), LIMIT_CAPTION),
     ],
 ];
 
@@ -294,6 +308,8 @@ impl Presentation for PidControl {
             Quantity::new("de", "ė", c.derivative_m_s(), 4, "m/s"),
             Quantity::new("dy", "ẏ", -c.derivative_m_s(), 4, "m/s"),
             Quantity::new("umax", "u_max", self.force_limit_n, 0, "N"),
+            Quantity::new("m", "m", self.plant.mass_kg, 1, "kg"),
+            Quantity::new("c", "c", self.plant.drag_n_s_per_m, 1, "N·s/m"),
         ]
     }
 
@@ -316,11 +332,11 @@ impl Presentation for PidControl {
             ),
             None => ("--".into(), "--"),
         };
-        let second = SecondOrder::of(&self.plant, &self.gains).map_or("--".into(), |s| {
-            format!(
-                "ωn {} rad/s · ζ {}",
-                quantity(s.natural_frequency_rad_s, 3),
-                quantity(s.damping_ratio, 3)
+        let second = SecondOrder::of(&self.plant, &self.gains);
+        let (wn, zeta) = second.map_or(("--".into(), "--".into()), |s| {
+            (
+                format!("{} rad/s", quantity(s.natural_frequency_rad_s, 3)),
+                quantity(s.damping_ratio, 3),
             )
         });
         let mut out = vec![
@@ -382,7 +398,8 @@ impl Presentation for PidControl {
             ),
             Readout::new("poles", "Closed-loop poles (1/s)", poles),
             Readout::new("stability", "Linear loop", stability),
-            Readout::new("second_order", "Second order (Ki = 0)", second),
+            Readout::new("wn", "Natural frequency ωn (Ki = 0)", wn),
+            Readout::new("zeta", "Damping ratio ζ (Ki = 0)", zeta),
         ];
         const PIN_KEYS: [&str; MAX_PINS] = ["pinA", "pinB", "pinC", "pinD"];
         const PIN_LABELS: [&str; MAX_PINS] = [

@@ -2,7 +2,94 @@
 //! status badge. Everything here only reads the state.
 
 use super::*;
+use crate::live_math::{Equation, Expr, Quantity};
 use crate::mobile::potential_field::{Attraction, Repulsion};
+
+/// The field's laws at the robot (Khatib 1986; the lab's conic pull and
+/// linear push): the goal distance, the pull, the nearest clearance and its push.
+const fn laws(push: Equation) -> [Equation; 4] {
+    [GOAL_DISTANCE, PULL, CLEARANCE, push]
+}
+const GOAL_DISTANCE: Equation = Equation {
+        key: "goal_distance",
+        symbol: "d_g",
+        expr: Expr::Sqrt(&Expr::Add(
+            &Expr::Sq(&Expr::Sub(&Expr::Var("xg"), &Expr::Var("x"))),
+            &Expr::Sq(&Expr::Sub(&Expr::Var("yg"), &Expr::Var("y"))),
+        )),
+        readout: "goal",
+        caption: "The distance from the robot to the goal.",
+    };
+const PULL: Equation = Equation {
+        key: "f_att",
+        symbol: "F_att",
+        expr: Expr::Var("ka"),
+        readout: "att",
+        caption: "The conic pull: the same strength kₐ at any distance, pointing at the goal.",
+    };
+const CLEARANCE: Equation = Equation {
+        key: "clearance",
+        symbol: "d",
+        expr: Expr::Sub(
+            &Expr::Sqrt(&Expr::Add(
+                &Expr::Sq(&Expr::Sub(&Expr::Var("x"), &Expr::Var("cx"))),
+                &Expr::Sq(&Expr::Sub(&Expr::Var("y"), &Expr::Var("cy"))),
+            )),
+            &Expr::Var("r"),
+        ),
+        readout: "near_clearance",
+        caption: "The clearance to the nearest obstacle: the distance to its centre less its radius.",
+    };
+/// Outside the nearest obstacle, and inside it (where its surface's push holds).
+const EQUATIONS: [&[Equation]; 2] = [
+    &laws(Equation {
+        key: "f_rep",
+        symbol: "F_rep",
+        expr: Expr::Div(
+            &Expr::Mul(
+                &Expr::Var("kr"),
+                &Expr::Max(&Expr::Num(0.0, "0"), &Expr::Sub(&Expr::Var("d0"), &Expr::Var("d"))),
+            ),
+            &Expr::Var("d0"),
+        ),
+        readout: "rep_near",
+        caption: "The nearest obstacle's push: kᵣ at its surface, fading to nothing at the influence distance d₀.",
+    }),
+    &laws(Equation {
+        key: "f_rep",
+        symbol: "F_rep",
+        expr: Expr::Var("kr"),
+        readout: "rep_near",
+        caption: "Inside the nearest obstacle (d < 0) its push is the surface's, kᵣ.",
+    }),
+];
+
+impl PotentialFieldLab {
+    /// The robot's position: where the run is, else the start.
+    fn robot_m(&self) -> DVec2 {
+        self.run.map_or(self.start, |r| r.pose.position())
+    }
+
+    /// The obstacle nearest the robot's surface, if any.
+    fn nearest_obstacle(&self) -> Option<CircleObstacle> {
+        let p = self.robot_m();
+        self.field
+            .obstacles
+            .iter()
+            .copied()
+            .min_by(|a, b| a.clearance_m(p).total_cmp(&b.clearance_m(p)))
+    }
+
+    /// The push of the nearest obstacle alone, as the field computes it.
+    fn nearest_push(&self) -> Option<f64> {
+        let o = self.nearest_obstacle()?;
+        let alone = PotentialField {
+            obstacles: vec![o],
+            ..self.field.clone()
+        };
+        Some(alone.repulsive_force(self.robot_m()).length())
+    }
+}
 
 impl PotentialFieldLab {
     pub(super) fn status_of_run(&self) -> Status {
@@ -306,6 +393,24 @@ impl Presentation for PotentialFieldLab {
                 format!("{} m/s", format_fixed(speed, 3)),
             ),
             Readout::new("rep", "Repulsive force |F_rep|", format_fixed(rep, 3)),
+            Readout::new(
+                "att",
+                "Attractive force |F_att|",
+                self.goal.map_or("--".into(), |_| {
+                    format_fixed(self.field.attractive_force(p).length(), 3)
+                }),
+            ),
+            Readout::metres(
+                "near_clearance",
+                "Nearest clearance d",
+                self.nearest_obstacle().map_or(f64::NAN, |o| o.clearance_m(p)),
+            ),
+            Readout::new(
+                "rep_near",
+                "Nearest obstacle's push",
+                self.nearest_push()
+                    .map_or("--".into(), |f| format_fixed(f, 3)),
+            ),
             Readout::new("obstacles", "Obstacles", self.count.to_string()),
             Readout::new(
                 "goal",
@@ -352,6 +457,33 @@ impl Presentation for PotentialFieldLab {
 
     /// The status badge: the run's state only (prompts and refusals are
     /// notices).
+    /// The robot, the goal, the gains and the nearest obstacle.
+    fn quantities(&self) -> Vec<Quantity> {
+        let p = self.robot_m();
+        let goal = self.goal.unwrap_or(DVec2::NAN);
+        let near = self.nearest_obstacle();
+        let centre = near.map_or(DVec2::NAN, |o| o.centre);
+        let params = &self.field.params;
+        vec![
+            Quantity::new("x", "x", p.x, 3, "m"),
+            Quantity::new("y", "y", p.y, 3, "m"),
+            Quantity::new("xg", "x_g", goal.x, 3, "m"),
+            Quantity::new("yg", "y_g", goal.y, 3, "m"),
+            Quantity::new("ka", "k_a", params.k_att, 2, ""),
+            Quantity::new("cx", "c_x", centre.x, 3, "m"),
+            Quantity::new("cy", "c_y", centre.y, 3, "m"),
+            Quantity::new("r", "r", near.map_or(f64::NAN, |o| o.radius_m.max(0.0)), 2, "m"),
+            Quantity::new("kr", "k_r", params.k_rep, 2, ""),
+            Quantity::new("d0", "d_0", params.influence_m, 2, "m"),
+            Quantity::new("d", "d", near.map_or(f64::NAN, |o| o.clearance_m(p)), 3, "m"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        let p = self.robot_m();
+        EQUATIONS[usize::from(self.nearest_obstacle().is_some_and(|o| o.clearance_m(p) < 0.0))]
+    }
+
     fn status(&self) -> Status {
         let mut status = self.status_of_run();
         // A basin map still filling in is work in progress: the page keeps

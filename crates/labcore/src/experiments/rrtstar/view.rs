@@ -2,6 +2,23 @@
 //! Only reads the state.
 
 use super::*;
+use crate::live_math::{Equation, Expr, Quantity};
+
+/// The rewiring radius of RRT* in the plane (Karaman & Frazzoli 2011,
+/// Theorem 38, with d = 2): `r(n) = min(γ √(ln n / n), η)`.
+const EQUATIONS: &[Equation] = &[Equation {
+    key: "radius",
+    symbol: "r",
+    expr: Expr::Min(
+        &Expr::Mul(
+            &Expr::Var("gamma"),
+            &Expr::Sqrt(&Expr::Div(&Expr::Ln(&Expr::Var("n")), &Expr::Var("n"))),
+        ),
+        &Expr::Var("eta"),
+    ),
+    readout: "radius",
+    caption: "The rewiring radius: it shrinks as the tree grows (the square root is d = 2's 1/d power), never beyond the step η.",
+}];
 
 impl Presentation for RrtStarField {
     fn view(&self) -> ViewBox {
@@ -176,6 +193,25 @@ impl Presentation for RrtStarField {
             ),
             Readout::new("status", "Status", status),
         ]
+    }
+
+    /// The tree shown: its node count, `γ` and the step `η` (before any
+    /// tree, the field's `γ` and the slider's `η`).
+    fn quantities(&self) -> Vec<Quantity> {
+        let tree = self.shown();
+        let gamma = tree.map_or_else(
+            || crate::planning::rrt_star::default_gamma(FIELD_M.x * FIELD_M.y),
+            RrtStar::gamma,
+        );
+        vec![
+            Quantity::new("gamma", "γ", gamma, 3, "m"),
+            Quantity::new("n", "n", tree.map_or(1, RrtStar::len) as f64, 0, ""),
+            Quantity::new("eta", "η", tree.map_or(self.eta_m, |t| t.config().step_eta), 2, "m"),
+        ]
+    }
+
+    fn equations(&self) -> &'static [Equation] {
+        EQUATIONS
     }
 
     fn status(&self) -> Status {
