@@ -158,3 +158,14 @@ test("live links: pid's gains and error in the Theory formula show the run's val
     await page.locator(`${THEORY} .formula [data-live=e]`).first().focus();
     assert.match((await tip.textContent()).trim(), /^e = -?\d+\.\d{4} m$/);
   }));
+
+test("live math: the panel shows exactly the equations the content names, in its order", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    const keys = () => page.$$eval(`${SIM} .live-math .equation`, (els) => els.map((e) => e.dataset.key));
+    await open(lab, page, "#/pid/simulation");
+    await runFor(page, 100);
+    assert.deepEqual(await keys(), ["u", "omega_n", "zeta"]);
+    await open(lab, page, "#/ekf/simulation");
+    await runFor(page, 100);
+    assert.deepEqual(await keys(), ["innovation_range", "innovation_bearing", "trace", "nees"]);
+  }));

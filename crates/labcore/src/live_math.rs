@@ -354,6 +354,29 @@ mod tests {
         assert_eq!(four_significant(f64::NAN), 3);
     }
 
+    /// Issue 27 §2: the panel shows the equations the content names, in the
+    /// content's order.
+    #[test]
+    fn live_math_named_keeps_the_contents_order_and_only_those() {
+        const fn eq(key: &'static str) -> Equation {
+            Equation {
+                key,
+                symbol: "x",
+                expr: Expr::Num(0.0, "0"),
+                readout: "x",
+                caption: "",
+            }
+        }
+        const ALL: [Equation; 3] = [eq("a"), eq("b"), eq("c")];
+        let keys = |ks: &[&str]| ks.iter().map(|k| (*k).to_owned()).collect::<Vec<_>>();
+        let picked: Vec<_> = named(&ALL, &keys(&["c", "a"]))
+            .iter()
+            .map(|e| e.key)
+            .collect();
+        assert_eq!(picked, ["c", "a"]);
+        assert!(named(&ALL, &[]).is_empty());
+    }
+
     #[test]
     fn keys_are_listed_once_in_order() {
         const E: Expr = Expr::Add(&TIP_X, &Expr::Mul(&L1, &Expr::Sin(&T1)));
