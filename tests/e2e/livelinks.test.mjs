@@ -134,14 +134,14 @@ for (const [scheme, viewport, name] of [
       await page.mouse.move(0, 0);
       await tabTo(page, THEORY, "l2");
       assert.equal((await tip.textContent()).trim(), "L2 = 0.80 m");
-      if (name === "390") {
-        await page.evaluate(() => (location.hash = "#/fk/simulation"));
-        await page.waitForSelector(`${SIM}:not([hidden])`);
-        await page.locator(`${SIM} .live-math [data-live=t2]`).first().focus();
-        await runFor(page, 50);
-        await page.locator(`${SIM} canvas.sim-canvas`).scrollIntoViewIfNeeded();
-        await screenshot(page, "livelinks-fk-theta2-390");
-      }
+      // Back on the Simulation tab, θ2 in the panel lights its arc.
+      await page.evaluate(() => (location.hash = "#/fk/simulation"));
+      await page.waitForSelector(`${SIM}:not([hidden])`);
+      await page.locator(`${SIM} .live-math [data-live=t2]`).first().focus();
+      await runFor(page, 50);
+      assert.equal(await page.$eval(`${SIM} canvas.sim-canvas`, (c) => c.dataset.live), "t2");
+      await page.locator(`${SIM} canvas.sim-canvas`).scrollIntoViewIfNeeded();
+      await screenshot(page, `livelinks-fk-theta2-${name}`);
     }));
 }
 
