@@ -295,6 +295,7 @@ fn content(value: &Value, reading: bool) -> Result<String, String> {
     let procedure = f.strings("procedure")?;
     let quiz = list(f.array("quiz")?, question)?;
     let references = list(f.array("references")?, reference)?;
+    let math = f.strings("math")?;
     f.done()?;
     let (theory, procedure, references) = if reading {
         (theory, procedure, references)
@@ -308,7 +309,8 @@ fn content(value: &Value, reading: bool) -> Result<String, String> {
     Ok(format!(
         "Ok(Content {{\n        id: {id},\n        number: {number},\n        title: {title},\n        \
          summary: {summary},\n        aim: {aim},\n        theory: {theory},\n        \
-         procedure: {procedure},\n        quiz: {quiz},\n        references: {references},\n    }})"
+         procedure: {procedure},\n        quiz: {quiz},\n        references: {references},\n        \
+         math: {math},\n    }})"
     ))
 }
 

@@ -431,6 +431,34 @@ for (const [name, launch, available] of [
       assert.deepEqual(await b.problems(), [], "the page reported problems");
     });
 
+    test("fk: a live symbol of the Theory tab takes the keyboard's focus and shows the run's value (issue 27 §3)", async () => {
+      await openAndWait(b, "#/fk/simulation?t1=35&t2=60", simulationDrawn, "fk");
+      await b.evaluate(() => {
+        location.hash = "#/fk/theory";
+        return 1;
+      });
+      const seen = await b.waitFor(() => {
+        const panel = document.querySelector("article.exp:not([hidden]) [data-panel=theory]:not([hidden])");
+        const symbol = panel?.querySelector(".formula [data-live=t1]");
+        if (!symbol) return null;
+        symbol.focus();
+        const tip = document.querySelector("article.exp:not([hidden]) .live-tip");
+        const focused = document.activeElement === symbol;
+        const outline = getComputedStyle(symbol).outlineStyle;
+        const shown = tip && !tip.hidden ? tip.textContent.trim() : "";
+        symbol.blur();
+        symbol.dispatchEvent(new MouseEvent("mouseover", { bubbles: true }));
+        const hovered = tip && !tip.hidden ? tip.textContent.trim() : "";
+        return { tabIndex: symbol.tabIndex, focused, outline, shown, hovered };
+      });
+      console.log(`# ${b.name} live symbol ${JSON.stringify(seen)}`);
+      assert.equal(seen.tabIndex, 0);
+      assert.equal(seen.focused, true, "the symbol has the focus");
+      assert.equal(seen.shown, "θ1 = 35.0°");
+      assert.equal(seen.hovered, "θ1 = 35.0°");
+      assert.deepEqual(await b.problems(), [], "the page reported problems");
+    });
+
     for (const id of ACCENT_PAGES) {
       test(`${id}: the Theory tab shows its formulas, every accent drawn over its letter`, async () => {
         const t = await openAndWait(b, `#/${id}/theory`, theoryState, id);

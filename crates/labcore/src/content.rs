@@ -34,6 +34,11 @@ pub struct Content {
     pub procedure: Vec<String>,
     pub quiz: Vec<Question>,
     pub references: Vec<Reference>,
+    /// The keys of the equations "The math" panel shows, in the order shown
+    /// ([`MATH_EQUATIONS`] of them, each one of the experiment's
+    /// [`crate::live_math::Equation`]s; empty for an experiment without
+    /// equations).
+    pub math: Vec<String>,
 }
 
 /// A block of the Theory tab.
@@ -266,6 +271,32 @@ pub enum ContentError {
         expected: String,
         found: String,
     },
+    /// The `math` list names fewer or more equations than
+    /// [`MATH_EQUATIONS`] allows, or one twice, or any for an experiment
+    /// without equations.
+    #[cfg(feature = "reading")]
+    MathCount {
+        found: usize,
+        /// The experiment's equation keys.
+        known: String,
+    },
+    /// The `math` list names an equation the experiment does not have.
+    #[cfg(feature = "reading")]
+    UnknownEquation {
+        key: String,
+        /// The experiment's equation keys.
+        known: String,
+    },
+    /// A `\\live{key}{…}` symbol whose key is not among the experiment's
+    /// quantities.
+    #[cfg(feature = "reading")]
+    UnknownLiveKey {
+        /// Where: "theory block 3", "question 2 prompt", …
+        field: String,
+        key: String,
+        /// The experiment's quantity keys.
+        known: String,
+    },
     /// A text field whose inline markup does not nest (`<em>unclosed`), so
     /// the page built from it would come out unbalanced.
     UnbalancedMarkup {
@@ -328,6 +359,28 @@ impl fmt::Display for ContentError {
                 f,
                 "{field}: its inline markup does not nest (an unclosed or stray tag, or a bare “<” that should be written &lt;)"
             ),
+            #[cfg(feature = "reading")]
+            ContentError::MathCount { found, known } if known.is_empty() => write!(
+                f,
+                "math: names {found} equations, but the experiment has none (write \"math\": [])"
+            ),
+            #[cfg(feature = "reading")]
+            ContentError::MathCount { found, known } => write!(
+                f,
+                "math: names {found} equations; the panel shows {} to {} different ones of the experiment's equations ({known})",
+                MATH_EQUATIONS.start(),
+                MATH_EQUATIONS.end()
+            ),
+            #[cfg(feature = "reading")]
+            ContentError::UnknownEquation { key, known } => write!(
+                f,
+                "math: no equation with key “{key}” (the experiment's equations: {known})"
+            ),
+            #[cfg(feature = "reading")]
+            ContentError::UnknownLiveKey { field, key, known } => write!(
+                f,
+                "{field}: \\live{{{key}}}: no quantity with key “{key}” (the experiment's quantities: {known})"
+            ),
             ContentError::WrongId { expected, found } => {
                 write!(
                     f,
@@ -343,6 +396,8 @@ impl std::error::Error for ContentError {}
 pub const MIN_QUESTIONS: usize = 8;
 pub const MIN_GENERATED: usize = 2;
 pub const MIN_REFERENCES: usize = 3;
+/// How many equations "The math" panel shows (the content's `math` list).
+pub const MATH_EQUATIONS: std::ops::RangeInclusive<usize> = 1..=4;
 
 impl Content {
     /// Reads the fields of a content file's JSON (no field missing, none
@@ -377,6 +432,7 @@ impl Content {
                 .enumerate()
                 .map(|(i, r)| Reference::from_json(r, i))
                 .collect::<Result<_, _>>()?,
+            math: f.strings("math")?,
         };
         f.done()?;
         Ok(content)
@@ -519,6 +575,53 @@ impl Content {
         for (field, text) in self.text_fields() {
             if !tags_balanced(text) {
                 return Err(ContentError::UnbalancedMarkup { field });
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks the names this content gives its experiment's live math: every
+    /// key of `math` is one of `equations` (the experiment's equation keys),
+    /// and every `\\live{key}{…}` symbol of every text field names one of
+    /// `quantities` (its quantity keys).
+    #[cfg(feature = "reading")]
+    pub fn check_live_names(
+        &self,
+        equations: &[&str],
+        quantities: &[&str],
+    ) -> Result<(), ContentError> {
+        // An experiment without equations has no panel, and its list is
+        // empty; one with equations names some of them, each once.
+        let distinct = |i: usize, key: &String| !self.math[..i].contains(key);
+        let wanted = if equations.is_empty() {
+            0..=0
+        } else {
+            MATH_EQUATIONS
+        };
+        if !wanted.contains(&self.math.len())
+            || !self.math.iter().enumerate().all(|(i, k)| distinct(i, k))
+        {
+            return Err(ContentError::MathCount {
+                found: self.math.len(),
+                known: equations.join(", "),
+            });
+        }
+        if let Some(key) = self.math.iter().find(|k| !equations.contains(&k.as_str())) {
+            return Err(ContentError::UnknownEquation {
+                key: key.clone(),
+                known: equations.join(", "),
+            });
+        }
+        for (field, text) in self.text_fields() {
+            if let Some(key) = labtex::live_keys(text)
+                .into_iter()
+                .find(|k| !quantities.contains(k))
+            {
+                return Err(ContentError::UnknownLiveKey {
+                    field,
+                    key: key.to_owned(),
+                    known: quantities.join(", "),
+                });
             }
         }
         Ok(())
@@ -950,6 +1053,77 @@ mod tests {
             err.starts_with("quiz[0].options[1]: ") && err.contains("not closed"),
             "{err}"
         );
+    }
+
+    /// Issue 27 §3: the content names the panel's equations by key; a key
+    /// the experiment has no equation for is refused naming it, as is a
+    /// list of the wrong length or one with a repeat.
+    #[test]
+    fn live_math_a_named_equation_that_does_not_exist_is_refused_naming_its_key() {
+        let entry = crate::find("fk").expect("fk");
+        let good: serde_json::Value = serde_json::from_str(entry.content_json).unwrap();
+        let refused = |math: serde_json::Value| {
+            let mut v = good.clone();
+            v["math"] = math;
+            entry
+                .parse_content_text(&v.to_string())
+                .unwrap_err()
+                .to_string()
+        };
+        assert_eq!(
+            refused(serde_json::json!(["x", "tip_z"])),
+            "math: no equation with key “tip_z” (the experiment's equations: x, y)"
+        );
+        assert!(refused(serde_json::json!([]))
+            .starts_with("math: names 0 equations; the panel shows 1 to 4"));
+        assert!(refused(serde_json::json!(["x", "x"])).starts_with("math: names 2 equations"));
+        let mut v = good.clone();
+        v.as_object_mut().unwrap().remove("math");
+        let err = entry
+            .parse_content_text(&v.to_string())
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("missing field `math`"), "{err}");
+        assert_eq!(entry.content().unwrap().math, ["x", "y"]);
+    }
+
+    /// Issue 27 §3: every `\live{key}{…}` symbol names one of the
+    /// experiment's quantities; an unknown key is refused naming the field
+    /// and the key.
+    #[test]
+    fn live_a_symbol_naming_no_quantity_is_refused_naming_the_field_and_key() {
+        let entry = crate::find("fk").expect("fk");
+        let mut v: serde_json::Value = serde_json::from_str(entry.content_json).unwrap();
+        v["theory"][1]["paragraph"] =
+            "The angle $\\live{t1}{\\theta_1}$ and $\\live{t9}{\\theta_9}$.".into();
+        let err = entry
+            .parse_content_text(&v.to_string())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("theory block 2: \\live{t9}: no quantity with key “t9” (the experiment's quantities: l1, l2, t1, t2"),
+            "{err}"
+        );
+        v["theory"][1]["paragraph"] = "The angle $\\live{t1}{\\theta_1}$.".into();
+        assert!(entry.parse_content_text(&v.to_string()).is_ok());
+    }
+
+    /// An experiment without equations names none.
+    #[test]
+    fn live_math_an_experiment_without_equations_names_none() {
+        let content = crate::find("fk").unwrap().content().unwrap();
+        let mut c = content.clone();
+        c.math = vec!["x".into()];
+        assert_eq!(
+            c.check_live_names(&[], &[]).unwrap_err().to_string(),
+            "math: names 1 equations, but the experiment has none (write \"math\": [])"
+        );
+        c.math.clear();
+        c.theory.clear();
+        c.quiz.clear();
+        c.aim.clear();
+        c.procedure.clear();
+        assert_eq!(c.check_live_names(&[], &[]), Ok(()));
     }
 
     #[test]

@@ -194,6 +194,17 @@ pub struct Equation {
     pub caption: &'static str,
 }
 
+/// The equations of `all` that `keys` name (the content's `math` list), in
+/// the order of `keys`; a key without an equation is left out (the content
+/// check refuses it).
+#[must_use]
+pub fn named(all: &[Equation], keys: &[String]) -> Vec<Equation> {
+    keys.iter()
+        .filter_map(|k| all.iter().find(|e| e.key == k))
+        .copied()
+        .collect()
+}
+
 /// Decimals that show `v` to four significant digits (3 for 1.234, 6 for
 /// 0.001234, 0 for 2500), at most 12; 3 for zero or a non-finite value.
 #[must_use]
@@ -341,6 +352,29 @@ mod tests {
         assert_eq!(four_significant(1e-20), 12);
         assert_eq!(four_significant(0.0), 3);
         assert_eq!(four_significant(f64::NAN), 3);
+    }
+
+    /// Issue 27 §2: the panel shows the equations the content names, in the
+    /// content's order.
+    #[test]
+    fn live_math_named_keeps_the_contents_order_and_only_those() {
+        const fn eq(key: &'static str) -> Equation {
+            Equation {
+                key,
+                symbol: "x",
+                expr: Expr::Num(0.0, "0"),
+                readout: "x",
+                caption: "",
+            }
+        }
+        const ALL: [Equation; 3] = [eq("a"), eq("b"), eq("c")];
+        let keys = |ks: &[&str]| ks.iter().map(|k| (*k).to_owned()).collect::<Vec<_>>();
+        let picked: Vec<_> = named(&ALL, &keys(&["c", "a"]))
+            .iter()
+            .map(|e| e.key)
+            .collect();
+        assert_eq!(picked, ["c", "a"]);
+        assert!(named(&ALL, &[]).is_empty());
     }
 
     #[test]

@@ -203,6 +203,22 @@ pub struct Scene {
     /// ([`BackdropKey`]): equal keys mean equal items, which each experiment
     /// that marks a backdrop asserts in a test.
     pub backdrop_key: u64,
+    /// The parts of the scene that live quantities name, drawn as a halo
+    /// only while a symbol marked with that key is hovered or focused
+    /// (issue 27 §3).
+    pub tags: Vec<Tag>,
+}
+
+/// What a live quantity names in the scene: a link, an angle's arc, the
+/// goal. The page draws it as a halo (a wide translucent band under a dashed
+/// line, or a dashed ring around a point) while a symbol marked
+/// `\\live{key}{…}` is hovered or focused.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tag {
+    /// The quantity's key ([`crate::live_math::Quantity::key`]).
+    pub key: &'static str,
+    /// One point (a ring around it) or a path through the points (world, m).
+    pub points: Vec<DVec2>,
 }
 
 /// Builds a [`Scene::backdrop_key`]: a 64-bit FNV-1a fingerprint of the bits
@@ -248,6 +264,47 @@ impl Scene {
         self.items.clear();
         self.backdrop = 0;
         self.backdrop_key = 0;
+        self.tags.clear();
+    }
+
+    /// Tags what quantity `key` names: one point, or a path (see [`Tag`]).
+    pub fn tag(&mut self, key: &'static str, points: Vec<DVec2>) {
+        self.tags.push(Tag { key, points });
+    }
+
+    /// Tags a planar arm's parts with the quantities that name them: link
+    /// `i` with `l<i>`, joint angle `i` with `t<i>`, an arc from the previous
+    /// link's direction (the x axis for the first) to its own, at 0.45 of
+    /// the link's length (three links at most).
+    pub fn tag_arm(&mut self, joints: &[DVec2], angles_rad: &[f64]) {
+        const LINKS: [&str; 3] = ["l1", "l2", "l3"];
+        const ANGLES: [&str; 3] = ["t1", "t2", "t3"];
+        let mut heading = 0.0;
+        for (i, (w, a)) in joints.windows(2).zip(angles_rad).enumerate().take(3) {
+            self.tag(LINKS[i], w.to_vec());
+            let radius = 0.45 * (w[1] - w[0]).length();
+            self.tag_arc(ANGLES[i], w[0], radius, heading, heading + a);
+            heading += a;
+        }
+    }
+
+    /// Tags an angle: an arc of `radius_m` around `center` from direction
+    /// `from_rad` to `to_rad` (radians from +x, counter-clockwise).
+    pub fn tag_arc(
+        &mut self,
+        key: &'static str,
+        center: DVec2,
+        radius_m: f64,
+        from_rad: f64,
+        to_rad: f64,
+    ) {
+        let points = (0..=16)
+            .map(|i| {
+                let a = from_rad + (to_rad - from_rad) * f64::from(i) / 16.0;
+                center + radius_m * DVec2::new(libm::cos(a), libm::sin(a))
+            })
+            .collect();
+        self.tag(key, points);
     }
 
     /// Marks the items pushed so far as the backdrop, made from what `key`

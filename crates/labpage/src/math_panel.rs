@@ -28,10 +28,10 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
             out,
             "<div class=\"equation\" data-equation=\"{i}\" data-key=\"{key}\">\
              <p class=\"equation-caption\">{caption}</p>\
-             <p class=\"equation-forms\" aria-hidden=\"true\">\
+             <p class=\"equation-forms\">\
              <span class=\"eq-part\"><math>{symbols}</math></span> \
-             <span class=\"equation-numbers\">{numbers}</span> \
-             <span class=\"equation-result\">= {result}</span></p>\
+             <span class=\"equation-numbers\" aria-hidden=\"true\">{numbers}</span> \
+             <span class=\"equation-result\" aria-hidden=\"true\">= {result}</span></p>\
              <p class=\"sr-only equation-text\">{text}</p></div>",
             key = eq.key,
             caption = escape(eq.caption),
@@ -209,7 +209,13 @@ impl<'a> Writer<'a> {
         }
         match *expr {
             Expr::Var(key) => match self.quantities.iter().find(|q| q.key == key) {
-                Some(q) if self.form == Form::Symbols => self.symbol(q.symbol),
+                Some(q) if self.form == Form::Symbols => {
+                    // A quantity's symbol points at what it names (issue 27 §3).
+                    let live = format!("<mrow data-live=\"{key}\" tabindex=\"0\">");
+                    self.put(&live, "");
+                    self.symbol(q.symbol);
+                    self.put("</mrow>", "");
+                }
                 Some(q) => self.number(q, outer),
                 None => self.token("mi", key),
             },
@@ -339,6 +345,27 @@ mod tests {
         ]
     }
 
+    /// Issue 27 §3: each quantity's symbol in the symbolic form is a
+    /// focusable `data-live` element naming its key (the numbers are not),
+    /// outside anything hidden from assistive technology.
+    #[test]
+    fn live_the_panel_marks_each_quantity_symbol_with_its_key() {
+        let html = panel_html(&[EQ], &quantities(35.0), &[]);
+        assert_eq!(
+            html.matches("<mrow data-live=\"l\" tabindex=\"0\">")
+                .count()
+                + html
+                    .matches("<mrow data-live=\"t\" tabindex=\"0\">")
+                    .count(),
+            2,
+            "{html}"
+        );
+        let symbols_at = html.find("data-live").unwrap();
+        assert!(!html[..symbols_at].contains("aria-hidden"), "{html}");
+        let (numbers, _, text) = live_parts(&EQ, &quantities(35.0), &[]);
+        assert!(!numbers.contains("data-live") && !text.contains("data-live"));
+    }
+
     #[test]
     fn a_symbol_with_a_subscript_is_an_msub() {
         assert_eq!(symbol_mathml("θ_1"), "<msub><mi>θ</mi><mn>1</mn></msub>");
@@ -352,7 +379,7 @@ mod tests {
         let html = panel_html(&[EQ], &quantities(35.0), &readouts);
         assert!(html.contains("<h3 id=\"live-math-title\">The math</h3>"));
         assert!(html.contains(
-            "<mi>x</mi><mo>=</mo><msub><mi>L</mi><mn>1</mn></msub><mo>&#x2062;</mo><mi>cos</mi>"
+            "<mi>x</mi><mo>=</mo><mrow data-live=\"l\" tabindex=\"0\"><msub><mi>L</mi><mn>1</mn></msub></mrow><mo>&#x2062;</mo><mi>cos</mi>"
         ));
         assert!(html
             .contains("<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn><mo>·</mo><mi>cos</mi><mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math>"));

@@ -9,6 +9,12 @@
 //! is left as it is. The content files hold no hand-written `<math>` markup:
 //! a field that does is refused, so every formula on a page came from LaTeX.
 //!
+//! `\live{key}{symbol}` marks a symbol that names one of the experiment's
+//! live quantities (`\live{t1}{\theta_1}`): its MathML is wrapped in
+//! `<mrow data-live="t1" tabindex="0">`, which the page finds to highlight
+//! what the symbol names and to show its value ([`live_keys`] lists them;
+//! labcore checks each key is a quantity of the experiment).
+//!
 //! labcore's `build.rs` renders every text field before compiling the files
 //! in (the quiz text the wasm modules show and the reading pages alike), and
 //! labcore's `reading` parser does the same for a file read at run time by
@@ -100,14 +106,20 @@ pub fn render(text: &str) -> Result<String, TexError> {
                 ),
             });
         }
+        let marked = expand_live(latex)?;
         let mathml = converter
-            .convert_with_local_state(latex, display)
+            .convert_with_local_state(&marked.latex, display)
             .map_err(|e| TexError {
                 formula: latex.to_owned(),
-                at_char: latex[..e.0.start.min(latex.len())].chars().count() + 1,
+                at_char: marked.original_char(
+                    marked.latex[..e.0.start.min(marked.latex.len())]
+                        .chars()
+                        .count(),
+                ) + 1,
                 message: e.error_message(),
             })?
             .mathml;
+        let mathml = marked.wrap_live(&mathml);
         let mathml = without_inline_styles(&mathml).map_err(|message| TexError {
             formula: latex.to_owned(),
             at_char: 1,
@@ -166,6 +178,130 @@ fn without_inline_styles(mathml: &str) -> Result<String, String> {
     }
     out.push_str(rest);
     Ok(out)
+}
+
+/// The command that marks a live symbol: `\live{key}{symbol}`.
+const LIVE: &str = "\\live";
+/// What `\live{key}{` becomes for the converter: a group coloured with a
+/// marker colour whose last two hex digits number the mark, which comes out
+/// as `<mrow style="color:#FEEDnn;">` and is then rewritten by
+/// [`Marked::wrap_live`]. (Content cannot use `\color` itself: the
+/// Content-Security-Policy blocks its inline style.)
+const MARKER: &str = "{\\color[HTML]{FEED";
+
+/// A formula's LaTeX with its `\live` marks turned into marker groups.
+struct Marked {
+    latex: String,
+    /// The keys, in the order of their marker numbers.
+    keys: Vec<String>,
+    /// Each replacement: where it starts in `latex` (chars), its length
+    /// there and in the original (chars).
+    edits: Vec<(usize, usize, usize)>,
+}
+
+impl Marked {
+    /// The character of the original formula that character `at` of
+    /// `latex` came from.
+    fn original_char(&self, at: usize) -> usize {
+        let mut shift = 0isize;
+        for &(start, new_len, old_len) in &self.edits {
+            if at < start {
+                break;
+            }
+            if at < start + new_len {
+                return (start as isize - shift) as usize;
+            }
+            shift += new_len as isize - old_len as isize;
+        }
+        (at as isize - shift) as usize
+    }
+
+    /// `mathml` with each marker group written as a focusable
+    /// `<mrow data-live="key" tabindex="0">`.
+    fn wrap_live(&self, mathml: &str) -> String {
+        let mut out = mathml.to_owned();
+        for (i, key) in self.keys.iter().enumerate() {
+            let marker = format!("<mrow style=\"color:#FEED{i:02X};\">");
+            let Some(at) = out.find(&marker) else {
+                continue;
+            };
+            // A function name (`\cos`) keeps the thin space it has before a
+            // bare symbol: the converter leaves it out before a group.
+            let mut head = out[..at].to_owned();
+            if let Some(name_at) = head.rfind(" rspace=\"0\">") {
+                let name = &head[name_at + " rspace=\"0\">".len()..];
+                if name
+                    .strip_suffix("</mo>")
+                    .is_some_and(|n| n.len() > 1 && n.chars().all(|c| c.is_ascii_alphabetic()))
+                {
+                    head.replace_range(name_at..name_at + 12, " rspace=\"0.1667em\">");
+                }
+            }
+            out = format!(
+                "{head}<mrow data-live=\"{key}\" tabindex=\"0\">{}",
+                &out[at + marker.len()..]
+            );
+        }
+        out
+    }
+}
+
+/// `latex` with each `\live{key}{` replaced by a numbered marker group (the
+/// symbol and its closing brace stay as written); a malformed mark or key is
+/// an error at its position.
+fn expand_live(latex: &str) -> Result<Marked, TexError> {
+    let mut marked = Marked {
+        latex: String::with_capacity(latex.len()),
+        keys: Vec::new(),
+        edits: Vec::new(),
+    };
+    let mut rest = latex;
+    let mut new_chars = 0;
+    while let Some(at) = rest.find(LIVE) {
+        let head = &rest[..at];
+        marked.latex.push_str(head);
+        new_chars += head.chars().count();
+        let after = &rest[at + LIVE.len()..];
+        let error = |message: &str| TexError {
+            formula: latex.to_owned(),
+            at_char: latex[..latex.len() - rest.len() + at].chars().count() + 1,
+            message: message.to_owned(),
+        };
+        let key = after
+            .strip_prefix('{')
+            .and_then(|a| a.split_once("}{"))
+            .map(|(key, _)| key)
+            .filter(|key| {
+                !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            });
+        let Some(key) = key else {
+            return Err(error(
+                "write a live symbol as \\live{key}{symbol}, the key in letters, digits and _",
+            ));
+        };
+        if marked.keys.len() > 0xFF {
+            return Err(error("more than 256 live symbols in one formula"));
+        }
+        let replacement = format!("{MARKER}{:02X}}}", marked.keys.len());
+        let old_len = LIVE.len() + key.len() + 3;
+        marked.edits.push((new_chars, replacement.len(), old_len));
+        new_chars += replacement.len();
+        marked.latex.push_str(&replacement);
+        marked.keys.push(key.to_owned());
+        rest = &after[key.len() + 3..];
+    }
+    marked.latex.push_str(rest);
+    Ok(marked)
+}
+
+/// The keys of the live symbols (`data-live="…"`) in rendered `html`, in
+/// order, each as often as it is marked.
+#[must_use]
+pub fn live_keys(html: &str) -> Vec<&str> {
+    html.split(" data-live=\"")
+        .skip(1)
+        .filter_map(|part| part.split('"').next())
+        .collect()
 }
 
 /// Byte offset in `body` of the `fence` that closes a formula: the first one
@@ -296,5 +432,61 @@ mod tests {
         assert!(render("a $$ b").is_err());
         let e = render("so <math><mi>x</mi></math>").unwrap_err();
         assert!(e.message.contains("LaTeX"), "{e}");
+    }
+
+    /// Issue 27 §3: `\live{key}{symbol}` wraps the symbol's MathML in a
+    /// focusable `<mrow data-live="key">`, wherever the symbol sits (a
+    /// subscript's base, inside brackets, under an accent).
+    #[test]
+    fn live_a_marked_symbol_is_a_focusable_mrow_naming_its_key() {
+        assert_eq!(
+            render("$x = \\live{l1}{L_1} \\cos \\live{t1}{\\theta_1}$").unwrap(),
+            "<math><mi>x</mi><mo>=</mo>\
+             <mrow data-live=\"l1\" tabindex=\"0\"><msub><mi>L</mi><mn>1</mn></msub></mrow>\
+             <mo lspace=\"0.1667em\" rspace=\"0.1667em\">cos</mo>\
+             <mrow data-live=\"t1\" tabindex=\"0\"><msub><mi>θ</mi><mn>1</mn></msub></mrow></math>"
+        );
+        let html = render(
+            "$\\cos(\\live{t1}{\\theta_1} + \\live{t2}{\\theta_2})$ and $\\live{t1}{\\theta}_1^2$",
+        )
+        .unwrap();
+        assert_eq!(live_keys(&html), vec!["t1", "t2", "t1"]);
+        assert!(!html.contains("style"), "{html}");
+        // The function name keeps its thin space before the marked symbol.
+        assert_eq!(
+            render("$\\cos\\live{t1}{\\theta_1}$").unwrap(),
+            render("$\\cos\\theta_1$")
+                .unwrap()
+                .replace("<msub>", "<mrow data-live=\"t1\" tabindex=\"0\"><msub>")
+                .replace("</msub>", "</msub></mrow>")
+        );
+        let dotted = render("$\\dot{\\live{de}{e}}$").unwrap();
+        assert_eq!(live_keys(&dotted), vec!["de"]);
+        assert_eq!(accents::non_portable(&dotted), Vec::<String>::new());
+        // Sixteen and more marks in one formula keep their own keys.
+        let many: String = (0..20).map(|i| format!("\\live{{k{i}}}{{x}}+")).collect();
+        let html = render(&format!("${many}1$")).unwrap();
+        let expected: Vec<String> = (0..20).map(|i| format!("k{i}")).collect();
+        assert_eq!(live_keys(&html), expected);
+    }
+
+    /// A malformed mark is named with its position; an error after a mark
+    /// is placed in the formula as written, not as rewritten.
+    #[test]
+    fn live_a_malformed_mark_is_refused_at_its_position() {
+        for bad in [
+            "$a + \\live{t 1}{x}$",
+            "$a + \\live{}{x}$",
+            "$a + \\live{t1} x$",
+            "$a + \\live x$",
+        ] {
+            let e = render(bad).unwrap_err();
+            assert_eq!(e.at_char, 5, "{bad}: {e}");
+            assert!(e.message.contains("\\live{key}{symbol}"), "{e}");
+        }
+        let e = render("$\\live{t1}{\\theta_1} + \\nosuch$").unwrap_err();
+        assert_eq!(e.at_char, 23, "{e}");
+        assert!(e.message.contains("nosuch"), "{e}");
+        assert_eq!(live_keys("<p>no marks</p>"), Vec::<&str>::new());
     }
 }

@@ -91,6 +91,50 @@ pub fn paint_with_backdrop(
     }
 }
 
+/// Paints the parts of the scene tagged `key` as a halo over the picture
+/// (issue 27 §3): a wide translucent band, then a dashed line between two of
+/// the background's, in the focus colour; a single point gets a dashed ring.
+/// More than colour: the shape is thicker, outlined and dashed.
+pub fn paint_tags(
+    ctx: &CanvasRenderingContext2d,
+    tags: &[labcore::scene::Tag],
+    key: &str,
+    viewport: &Viewport,
+    palette: &Palette,
+    dpr: f64,
+) {
+    let _ = ctx.set_transform(dpr, 0.0, 0.0, dpr, 0.0, 0.0);
+    for (colour, width, alpha, dashed) in [
+        (&palette.focus, 16.0, 0.45, false),
+        (&palette.background, 7.0, 1.0, false),
+        (&palette.focus, 4.0, 1.0, true),
+    ] {
+        ctx.set_global_alpha(alpha);
+        ctx.set_stroke_style_str(colour);
+        ctx.set_line_width(width);
+        set_dash(ctx, dashed);
+        ctx.begin_path();
+        for tag in tags.iter().filter(|t| t.key == key) {
+            if let [p] = tag.points[..] {
+                let c = viewport.to_px(p);
+                ctx.move_to(c.x + 14.0, c.y);
+                let _ = ctx.arc(c.x, c.y, 14.0, 0.0, TAU);
+            } else {
+                for (i, p) in tag.points.iter().enumerate() {
+                    let q = viewport.to_px(*p);
+                    if i == 0 {
+                        ctx.move_to(q.x, q.y);
+                    } else {
+                        ctx.line_to(q.x, q.y);
+                    }
+                }
+            }
+        }
+        ctx.stroke();
+    }
+    ctx.set_global_alpha(1.0);
+}
+
 /// Paints `items` (over the background when `background`) into a canvas of
 /// `width_px` × `height_px` CSS pixels at `dpr` device pixels per CSS pixel.
 #[allow(clippy::too_many_arguments)]

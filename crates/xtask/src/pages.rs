@@ -204,6 +204,39 @@ mod tests {
         assert!(check_one(entry, &no_refs).is_err());
     }
 
+    /// Issue 27 §3: the build fails naming the file and the key when the
+    /// content names an equation the experiment lacks, or marks a symbol
+    /// `\live{key}{…}` whose key is none of its quantities.
+    #[test]
+    fn live_an_unknown_equation_or_live_key_fails_naming_the_file_and_key() {
+        let entry = labcore::find("fk").expect("fk");
+        let good = entry.content_json;
+        let e = check_one(
+            entry,
+            &good.replacen("\"math\": [\"x\"", "\"math\": [\"z\"", 1),
+        )
+        .unwrap_err();
+        assert!(
+            e.starts_with("assets/fk.json: math: no equation with key “z”"),
+            "{e}"
+        );
+        let e = check_one(
+            entry,
+            &good.replacen(
+                "\"aim\": [\n    \"",
+                "\"aim\": [\n    \"$\\\\live{tip}{p}$ ",
+                1,
+            ),
+        )
+        .unwrap_err();
+        assert!(
+            e.starts_with(
+                "assets/fk.json: aim paragraph 1: \\live{tip}: no quantity with key “tip”"
+            ),
+            "{e}"
+        );
+    }
+
     /// Issue 27 §1: a formula that does not convert from LaTeX fails the
     /// build's content check naming the file, the field and the position.
     #[test]

@@ -80,6 +80,16 @@ impl Entry {
             });
         }
         crate::quiz::prepare(&content, self.generators, 0)?;
+        #[cfg(feature = "reading")]
+        {
+            // The names the content gives the live math, against the
+            // experiment itself (its equation keys are the same in every
+            // variant of its equation set).
+            let lab = (self.make)();
+            let equations: Vec<&str> = lab.equations().iter().map(|e| e.key).collect();
+            let quantities: Vec<&str> = lab.quantities().iter().map(|q| q.key).collect();
+            content.check_live_names(&equations, &quantities)?;
+        }
         Ok(content)
     }
 }

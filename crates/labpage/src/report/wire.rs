@@ -311,11 +311,23 @@ record!(Prepared {
     explanation,
     parameterised
 });
-record!(Scene {
-    items,
-    backdrop,
-    backdrop_key
-});
+/// A scene crosses without its quantity tags: they serve the page's
+/// highlight of a symbol, which a printed report has no use for.
+impl Wire for Scene {
+    fn put(&self, w: &mut Writer) {
+        self.items.put(w);
+        self.backdrop.put(w);
+        self.backdrop_key.put(w);
+    }
+    fn take(r: &mut Reader<'_>) -> Result<Self, WireError> {
+        Ok(Scene {
+            items: Wire::take(r)?,
+            backdrop: Wire::take(r)?,
+            backdrop_key: Wire::take(r)?,
+            ..Scene::default()
+        })
+    }
+}
 record!(ParamRow {
     key,
     label,

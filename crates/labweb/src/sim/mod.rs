@@ -29,6 +29,7 @@ use web_sys::{
 mod a11y;
 mod canvas_input;
 mod instructor;
+mod live;
 mod marks;
 mod panel;
 mod scrub;
@@ -65,6 +66,15 @@ pub const STEP_BUDGET_MS: f64 = 8.0;
 #[derive(Debug)]
 pub struct SimError(pub String);
 
+/// The equations "The math" panel shows: those the content's `math` list
+/// names, in its order.
+pub(super) fn panel_equations(exp: &dyn Lab) -> Vec<labcore::live_math::Equation> {
+    let names = labcore::find(exp.id())
+        .and_then(|e| e.content().ok())
+        .map_or(&[][..], |c| &c.math[..]);
+    labcore::live_math::named(exp.equations(), names)
+}
+
 /// The HTML of the Simulation tab for an experiment.
 ///
 /// Three parts side by side on a laptop (see `style.css`): the stage (the
@@ -90,7 +100,8 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
         })
         .collect();
     let readouts = readouts_html(&exp.readouts());
-    let math = labpage::math_panel::panel_html(exp.equations(), &exp.quantities(), &exp.readouts());
+    let math =
+        labpage::math_panel::panel_html(&panel_equations(exp), &exp.quantities(), &exp.readouts());
     let statusbar = statusbar_html(&exp.status());
     let timebar = if exp.animated() {
         timebar_html(exp.natural_step_s())
@@ -242,6 +253,9 @@ struct SimState {
     /// Which equations the panel was written for (the slice's address): a
     /// parameter may choose another set (pid's actuator limit).
     shown_equations: usize,
+    /// The key of the live quantity whose symbol is hovered or focused: its
+    /// tagged parts of the scene are drawn as a halo.
+    live_key: Option<String>,
     shown_view: labcore::ViewBox,
     hash_dirty: bool,
     last_hash_ms: f64,
@@ -556,6 +570,16 @@ impl SimState {
             &self.palette,
             &mut self.backdrop,
         );
+        if let Some(key) = &self.live_key {
+            crate::draw::paint_tags(
+                &self.ctx,
+                &self.scene.tags,
+                key,
+                &self.viewport,
+                &self.palette,
+                self.dpr,
+            );
+        }
         // Let go of the display list now: a kept layer it shares with the
         // model (copy-on-write) would otherwise be copied by the next step.
         self.scene.clear();
@@ -700,6 +724,7 @@ impl SimView {
             shown_tables: Vec::new(),
             shown_math: Vec::new(),
             shown_equations: equations,
+            live_key: None,
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
             last_hash_ms: 0.0,
@@ -724,6 +749,7 @@ impl SimView {
         instructor::listen(&state, panel, &mut listeners);
         a11y::listen(&state, panel, &mut listeners);
         scrub::listen(&state, panel, &mut listeners);
+        live::listen(&state, panel, &mut listeners);
         // Theme changes (light/dark, more contrast, forced colours) repaint
         // with the new palette.
         for query in [

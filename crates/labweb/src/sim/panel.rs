@@ -495,18 +495,18 @@ impl SimState {
     /// Writes the parts of "The math" panel whose text changed: each
     /// equation's substituted form, its result and its text twin.
     fn sync_math(&mut self, readouts: &[labcore::Readout]) {
-        let equations = self.exp.equations();
+        let set = self.exp.equations().as_ptr() as usize;
+        let equations = super::panel_equations(self.exp.as_ref());
         if equations.is_empty() {
             return;
         }
         let quantities = self.exp.quantities();
-        let set = equations.as_ptr() as usize;
         if set != self.shown_equations {
             // Another set of equations (a parameter chose it): write the
             // panel anew, symbols included.
             if let Some(section) = query(&self.panel, ".live-math") {
                 section.set_outer_html(&labpage::math_panel::panel_html(
-                    equations,
+                    &equations,
                     &quantities,
                     readouts,
                 ));

@@ -56,6 +56,9 @@ impl Presentation for ForwardKinematics {
         }
         out.chain(&pose.points, Role::Link);
         let tip = pose.tip();
+        out.tag_arm(&pose.points, &self.angles_rad());
+        out.tag("x", vec![DVec2::ZERO, DVec2::new(tip.x, 0.0)]);
+        out.tag("y", vec![DVec2::new(tip.x, 0.0), tip]);
         out.push(Item::Label {
             pos: tip,
             // The readouts' digits and unit: one format for the tip's position.
@@ -95,6 +98,8 @@ impl Presentation for ForwardKinematics {
             Quantity::new("l2", "L_2", self.l2_m, 2, "m"),
             Quantity::new("t1", "θ_1", self.theta1_deg, 1, "°"),
             Quantity::new("t2", "θ_2", self.theta2_deg, 1, "°"),
+            Quantity::new("x", "x", self.tip().x, 3, "m"),
+            Quantity::new("y", "y", self.tip().y, 3, "m"),
         ]
     }
 

@@ -63,6 +63,17 @@ impl Presentation for InverseKinematics {
         }
         let points = self.points(self.theta1_deg, self.theta2_deg);
         out.chain(&points, Role::Link);
+        out.tag("l1", points[..2].to_vec());
+        out.tag("l2", points[1..3].to_vec());
+        if let Some(target) = self.target {
+            // x and y of the point the two links reach for, and the point.
+            let p = target - self.wrist_offset();
+            let foot = DVec2::new(p.x, 0.0);
+            out.tag("px", vec![DVec2::ZERO, foot]);
+            out.tag("py", vec![foot, p]);
+            out.tag("px", vec![p]);
+            out.tag("py", vec![p]);
+        }
         if let Some(target) = self.target {
             let out_of_reach = matches!(self.solved, Some(Solved::OutOfReach { .. }));
             let role = if out_of_reach {

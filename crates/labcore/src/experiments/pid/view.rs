@@ -270,6 +270,9 @@ impl Presentation for PidControl {
                 dashed: false,
             });
         }
+        // The error e = r − x: from the cart to the setpoint, above the cart.
+        let above = CART_TOP_M + 0.06;
+        out.tag("e", vec![DVec2::new(x, above), DVec2::new(r, above)]);
         let u = self.run.last_terms().output;
         let len = (u * ARROW_M_PER_N).clamp(-ARROW_MAX_M, ARROW_MAX_M);
         if len.abs() > 0.01 {

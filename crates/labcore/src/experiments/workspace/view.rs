@@ -74,6 +74,7 @@ impl Presentation for Workspace {
         out.bound_circle(annulus.inner_m);
         let pose = forward(&self.lengths_m, &self.angles_rad());
         out.chain(&pose.points, Role::Link);
+        out.tag_arm(&pose.points, &self.angles_rad());
     }
 
     fn quantities(&self) -> Vec<Quantity> {
