@@ -77,13 +77,13 @@ const PANELS = [
   { link: "#/pid/simulation", keys: ["u", "omega_n", "zeta"] },
   { link: "#/pid/simulation?sat=1&umax=5", keys: ["u", "omega_n", "zeta"], name: "pid-limited" },
   { link: "#/pid/simulation?ki=0&kp=25&kd=5", keys: ["u", "omega_n", "zeta"], name: "pid-second-order" },
-  { link: "#/diffdrive/simulation?w1x=6&w1y=4", keys: ["v", "omega", "xdot", "ydot"] },
+  { link: "#/diffdrive/simulation?w1x=6&w1y=4", keys: ["omega", "v", "xdot", "ydot"] },
   { link: "#/potential/simulation?gx=8&gy=3", keys: ["goal_distance", "f_att", "clearance", "f_rep"] },
   { link: "#/astar/simulation", action: "plan", keys: ["h", "f"] },
   { link: "#/cartpole/simulation", keys: ["force", "energy"] },
   { link: "#/dls/simulation?tx=1&ty=1", keys: ["error", "w", "condition"] },
   { link: "#/rrtstar/simulation", action: "grow", keys: ["radius"] },
-  { link: "#/ekf/simulation", keys: ["innovation_range", "innovation_bearing", "error", "trace", "nees"] },
+  { link: "#/ekf/simulation", keys: ["innovation_range", "innovation_bearing", "trace", "nees"] },
 ];
 
 test("live math: every experiment's panel shows results equal to its readouts, at a laptop's width", () =>
