@@ -133,6 +133,12 @@ pub(super) fn listen(
             let attr = |name: &str| button.get_attribute(name);
             let mut st = s.borrow_mut();
             if let Some(key) = attr("data-action") {
+                st.branch_cause = st
+                    .exp
+                    .actions()
+                    .iter()
+                    .find(|a| a.key == key)
+                    .map(|a| a.label);
                 let mut done = Ok(());
                 st.guarded(|exp| done = exp.action(&key));
                 if let Err(err) = done {
@@ -243,7 +249,17 @@ pub(super) fn listen(
                 let mut st = s.borrow_mut();
                 let st = &mut *st;
                 let x = (kind != "pointerleave").then(|| f64::from(e.client_x()));
-                st.plots.hover(&canvas, x, st.exp.plots(), &st.palette);
+                let plots = super::scrub::shown_plots(
+                    st.exp.as_ref(),
+                    st.record_end.as_deref(),
+                    &st.kept,
+                    st.kept_serial,
+                );
+                st.plots.hover(&canvas, x, &plots, &st.palette);
+                if kind == "pointerdown" && e.button() == 0 {
+                    // A point of the plot: the timeline goes to that moment.
+                    st.go_to_plot_point(&canvas, f64::from(e.client_x()));
+                }
             }));
         }
     }
