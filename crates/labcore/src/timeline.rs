@@ -371,10 +371,40 @@ impl Timeline {
 /// At most this many runs left behind by branches are kept on the plots.
 pub const MAX_KEPT: usize = 2;
 
-/// The roles the kept runs are drawn with
-/// (purple dash-dots, amber fine dashes: each differs from a live series by its dash as well as its
-/// colour), in order of use.
-pub const KEPT_ROLES: [SeriesRole; MAX_KEPT] = [SeriesRole::Quaternary, SeriesRole::Bound];
+/// The roles a kept run may be drawn with, in order of preference: each
+/// plot gives its kept runs roles its own series do not have
+/// ([`kept_roles`]), so a kept run differs from every live curve by its
+/// dash as well as its colour.
+pub const KEPT_ROLES: [SeriesRole; 6] = [
+    SeriesRole::Quaternary,
+    SeriesRole::Bound,
+    SeriesRole::Reference,
+    SeriesRole::Tertiary,
+    SeriesRole::Secondary,
+    SeriesRole::Primary,
+];
+
+/// The roles of the [`MAX_KEPT`] kept runs on `plot`: the first of
+/// [`KEPT_ROLES`] that none of its series has, else one only its other
+/// runs kept for comparison (a PID pin) have.
+#[must_use]
+pub fn kept_roles(plot: &Plot) -> [SeriesRole; MAX_KEPT] {
+    let mut taken: Vec<SeriesRole> = plot.series.iter().map(|s| s.role).collect();
+    let live: Vec<SeriesRole> = plot
+        .series
+        .iter()
+        .filter(|s| !s.comparison)
+        .map(|s| s.role)
+        .collect();
+    let mut roles = [SeriesRole::Bound; MAX_KEPT];
+    for role in &mut roles {
+        let free = KEPT_ROLES.iter().find(|r| !taken.contains(r));
+        let shared = KEPT_ROLES.iter().find(|r| !live.contains(r));
+        *role = *free.or(shared).unwrap_or(&SeriesRole::Bound);
+        taken.push(*role);
+    }
+    roles
+}
 
 /// A run a branch left behind (issue 26 §2): changing something while the
 /// timeline shows the past starts a new run from there, and the future
@@ -461,7 +491,7 @@ pub fn with_kept(plots: &[Plot], kept: &[KeptRun], serial: u64) -> Vec<Plot> {
         .map(|(i, plot)| {
             let mut plot = plot.clone();
             let unit = plot.y_unit;
-            for (k, role) in KEPT_ROLES.iter().enumerate() {
+            for (k, role) in kept_roles(&plot).iter().enumerate() {
                 let run = kept.get(k);
                 let mut s = run
                     .and_then(|r| r.series.get(i).cloned().flatten())

@@ -315,6 +315,27 @@ fn branching_keeps_the_abandoned_run_and_names_it_exactly() {
     assert_eq!(slot.label, label);
     assert_eq!((&slot.x, &slot.y), (&response.x, &response.y));
     assert_ne!(shown[0].revision, empty[0].revision, "a kept run redraws");
+    // Drawn unlike every live curve of its plot (PID's effort plot has
+    // four roles of its own; its response plot, five with the pins).
+    for plot in &shown {
+        let own = &plot.series[..plot.series.len() - MAX_KEPT];
+        for kept in &plot.series[own.len()..] {
+            assert!(
+                own.iter()
+                    .filter(|s| !s.comparison)
+                    .all(|s| s.role != kept.role),
+                "{}: {:?}",
+                plot.key,
+                kept.role
+            );
+        }
+        let first = &plot.series[own.len()];
+        assert!(
+            own.iter().all(|s| s.role != first.role),
+            "{}: a role of its own",
+            plot.key
+        );
+    }
     for k in 0..MAX_KEPT {
         keep(&mut kept, KeptRun::of(exp.as_ref(), format!("run {k}")));
     }
