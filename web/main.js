@@ -254,6 +254,40 @@ document.querySelector("#notice .notice-close").addEventListener("click", () => 
   document.getElementById("notice").hidden = true;
 });
 
+// The lab report's module (pkg/report.<hash>.js|wasm, crate labreport) is not
+// part of any experiment's download: it is fetched the first time a student
+// makes a report, or as the pointer or keyboard focus reaches the button so
+// that the press finds it ready. The experiment's module calls
+// labReport(bytes, done, failed) with the report's data; a failed download
+// is tried again at the next press.
+const REPORT = document.querySelector("meta[name=lab-report]")?.dataset;
+let reportGlue = null;
+let reportTries = 0;
+const loadReport = () => {
+  if (!reportGlue) {
+    reportGlue = (async () => {
+      if (!REPORT) throw new Error("this copy of the lab has no report module");
+      // A browser keeps a module that failed for its address: a retry asks
+      // for it under a new one.
+      const url = new URL(REPORT.js, import.meta.url);
+      if (reportTries++ > 0) url.searchParams.set("try", reportTries);
+      const glue = await import(url.href);
+      await glue.default({ module_or_path: new URL(REPORT.wasm, import.meta.url) });
+      return glue;
+    })();
+    reportGlue.catch(() => { reportGlue = null; });
+  }
+  return reportGlue;
+};
+window.labReport = (bytes, done, failed) => {
+  loadReport().then((glue) => glue.render(bytes)).then(done, failed);
+};
+for (const kind of ["pointerover", "focusin"]) {
+  document.addEventListener(kind, (e) => {
+    if (e.target.closest?.("[data-export=report]")) loadReport().catch(() => {});
+  }, { passive: true });
+}
+
 // Offline after one visit: once the page has loaded (never competing with
 // its first download), the service worker caches the whole site. A visit
 // after a new deployment says so quietly.

@@ -295,3 +295,139 @@ test("phone (4× CPU throttle, 390×844, DPR 2): each experiment running", async
     await context.close();
   }
 });
+
+// ---------------------------------------------------------------------------
+// The timeline (issue 26 §4): a scrub frame (the slider moved to a random
+// step: the state rebuilt from the nearest snapshot, then the frame that
+// paints it) against a running frame, per experiment, in the same run, on
+// the desktop and on the 4×-throttled phone stand-in.
+
+/** The experiments with a timeline, and what starts each one's run. */
+const TIMELINE_IDS = ["diffdrive", "potential", "pid", "cartpole", "ekf", "rrtstar", "astar", "dls", "workspace"];
+
+/** Where a tap sets a goal or target (DLS iterates towards a new target). */
+const TIMELINE_TAP = { ...START_TAP, dls: [0.75, 0.3] };
+
+/**
+ * Times every animation-frame callback of the page (the lab's frame: step
+ * and paint) into `window.__busy`, and the slider's input handler (the
+ * seek) into `window.__seekMs`.
+ */
+const recordFrameWork = () => {
+  window.__busy = [];
+  const request = window.requestAnimationFrame.bind(window);
+  window.requestAnimationFrame = (callback) =>
+    request((t) => {
+      const t0 = performance.now();
+      callback(t);
+      if (!callback.__bench) window.__busy.push(performance.now() - t0);
+    });
+};
+
+/** Busy ms of the lab's frames over the next `frames` frames. */
+const busyFrames = (page, frames) =>
+  page.evaluate(
+    (frames) =>
+      new Promise((done) => {
+        const start = window.__busy.length;
+        let n = 0;
+        const tick = () => {
+          if (++n < frames) return window.requestAnimationFrame(tick);
+          done(window.__busy.slice(start));
+        };
+        tick.__bench = true;
+        window.requestAnimationFrame(tick);
+      }),
+    frames,
+  );
+
+/**
+ * `count` scrubs to seeded random steps, one a frame: each one's cost is
+ * its input handler (the seek) plus the lab's next frame (the paint).
+ * Returns the costs (ms) and the slider's range.
+ */
+const scrubFrames = (page, count) =>
+  page.evaluate(
+    (count) =>
+      new Promise((done) => {
+        const slider = document.querySelector("article.exp:not([hidden]) .tb-scrub");
+        const lo = Number(slider.min);
+        const hi = Number(slider.max);
+        let seed = 12345;
+        const random = () => ((seed = (seed * 1103515245 + 12345) % 2147483648) / 2147483648);
+        const costs = [];
+        let seekMs = 0;
+        let mark = window.__busy.length;
+        const tick = () => {
+          if (costs.length + 1 > count) return done({ costs, lo, hi });
+          // The frame that painted the previous scrub ran before this one.
+          if (seekMs > 0) costs.push(seekMs + window.__busy.slice(mark).reduce((a, b) => a + b, 0));
+          slider.value = String(Math.round(lo + random() * (hi - lo)));
+          const t0 = performance.now();
+          slider.dispatchEvent(new Event("input", { bubbles: true }));
+          seekMs = performance.now() - t0;
+          mark = window.__busy.length;
+          window.requestAnimationFrame(tick);
+        };
+        tick.__bench = true;
+        window.requestAnimationFrame(tick);
+      }),
+    count,
+  );
+
+for (const phone of [false, true]) {
+  const where = phone ? `phone (${PHONE_RUN.cpuSlowdown}× CPU throttle)` : "desktop";
+  test(`timeline, ${where}: scrub frame p95 beside running frame p95`, async () => {
+    const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
+    const ids = only?.length ? TIMELINE_IDS.filter((id) => only.includes(id)) : TIMELINE_IDS;
+    const context = await lab.browser.newContext(
+      phone
+        ? { viewport: PHONE_RUN.viewport, deviceScaleFactor: PHONE_RUN.deviceScaleFactor, hasTouch: true }
+        : { viewport: { width: 1280, height: 800 } },
+    );
+    await context.addInitScript(recordFrameWork);
+    try {
+      for (const id of ids) {
+        const page = await context.newPage();
+        await page.goto(`${lab.server.base}index.html#/${id}/simulation`);
+        await page.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 60_000 });
+        const scope = page.locator("article.exp:not([hidden])");
+        await scope.locator("canvas.sim-canvas[data-view]").waitFor({ timeout: 60_000 });
+        if (phone) {
+          const cdp = await context.newCDPSession(page);
+          await cdp.send("Emulation.setCPUThrottlingRate", { rate: PHONE_RUN.cpuSlowdown });
+        }
+        // Start the run as the phone benchmark does, and time 3 s of it.
+        const action = START_ACTION[id];
+        if (action) await scope.locator(`.sim-actions button[data-action=${action}]`).dispatchEvent("click");
+        const canvas = scope.locator("canvas.sim-canvas");
+        if (TIMELINE_TAP[id]) {
+          const box = await canvas.boundingBox();
+          const [fx, fy] = TIMELINE_TAP[id];
+          await canvas.click({ position: { x: fx * box.width, y: fy * box.height } });
+        }
+        const play = scope.locator(".tb-play");
+        if ((await play.count()) && (await play.getAttribute("data-offer")) !== "pause") await play.dispatchEvent("click");
+        const base = await baselineMs(page);
+        const running = await busyFrames(page, 180);
+        // Then a long record: Run to end (10 simulated minutes at most),
+        // and 120 scrubs over it.
+        await scope.locator("button[data-time=end]").dispatchEvent("click");
+        // Run to end is done when the step count stops moving.
+        const stepsNow = () => canvas.evaluate((c) => Number(c.dataset.steps ?? 0));
+        for (let last = -1, t0 = Date.now(); Date.now() - t0 < 120_000; ) {
+          await page.waitForTimeout(500);
+          const now = await stepsNow();
+          if (now === last) break;
+          last = now;
+        }
+        const { costs, lo, hi } = await scrubFrames(page, 120);
+        report(`timeline ${where} ${id}: scrub frame p95`, p95(costs), 8, "ms",
+          `running frame p95 ${p95(running).toFixed(2)} ms; ${costs.length} scrubs over steps ${lo}–${hi}; JS baseline ${base.toFixed(1)} ms`);
+        await page.close();
+      }
+    } finally {
+      await context.close();
+    }
+  });
+}

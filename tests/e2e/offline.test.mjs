@@ -59,6 +59,13 @@ test("offline after one visit: every experiment's Simulation tab opens, draws, s
       await waitReady(page);
       await drawsAndSteps(page, id);
     }
+    // The lab report too: its module was never fetched while online (a
+    // report was never made), yet the worker holds it.
+    const [download] = await Promise.all([
+      page.waitForEvent("download"),
+      page.locator(`article.exp:not([hidden]) button[data-export=report]`).click(),
+    ]);
+    assert.equal(download.suggestedFilename(), `${ids.at(-1)}-report.html`, "a report is made offline");
     // The home page too, from the folder URL.
     await page.goto(lab.server.base);
     await page.waitForSelector("[data-page=home]:not([hidden]) a.card");

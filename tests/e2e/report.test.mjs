@@ -414,3 +414,37 @@ test("check a report: the check page passes an untampered report and catches an 
     const wasm = requests.filter((p) => p.endsWith(".wasm"));
     assert.equal(wasm.length, 1, JSON.stringify(wasm));
   }));
+
+test("the report's module is downloaded only when a report is made, once; a failed download says so and the next press works", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    const fetched = [];
+    page.on("request", (req) => {
+      const name = new URL(req.url()).pathname.split("/").pop();
+      if (/^report\.[0-9a-f]{8}\.(js|wasm)$/.test(name)) fetched.push(name);
+    });
+    await open(lab, page, "#/fk/simulation");
+    await page.waitForLoadState("networkidle");
+    assert.deepEqual(fetched, [], "a visit does not download the report's module");
+
+    // A host that serves something broken in its place: the page says so,
+    // the button is not left busy, and the lab goes on.
+    await page.route(/\/pkg\/report\.[0-9a-f]{8}\.js$/, (route) =>
+      route.fulfill({ status: 200, contentType: "text/javascript", body: 'throw new Error("a broken copy");' }),
+    );
+    await page.locator(`${ART} button[data-export=report]`).click();
+    const notice = page.locator("#notice:not([hidden]) .notice-text");
+    await notice.waitFor();
+    assert.match(await notice.textContent(), /^The lab report could not be made \(a broken copy\)\./);
+    assert.equal(await page.locator(`${ART} button[data-export=report]`).getAttribute("aria-busy"), null);
+    await page.unroute(/\/pkg\/report\.[0-9a-f]{8}\.js$/);
+
+    // The next press loads the real module and makes the file; a second
+    // report reuses it.
+    fetched.length = 0;
+    const first = await downloadReport(page, "fk");
+    assert.match(first, /<h1>Robot arm forward kinematics<\/h1>/);
+    assert.deepEqual(fetched.filter((n) => n.endsWith(".wasm")).length, 1, `the module was fetched once: ${fetched}`);
+    const second = await downloadReport(page, "fk");
+    assert.match(second, /lab-report-data/);
+    assert.equal(fetched.filter((n) => n.endsWith(".wasm")).length, 1, `and not again: ${fetched}`);
+  }));

@@ -30,17 +30,18 @@
 
 use crate::content::Content;
 use crate::content_html::escape;
-use crate::experiment::{Experiment, Lab, ParamKind, ParamSpec, Tone};
+use crate::experiment::{Lab, ParamKind, ParamSpec, Readout, Status, Tone};
 use crate::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, Series, SeriesRole};
 use crate::quiz::{grade, score_percent, Prepared, PreparedKind, Response};
 pub use crate::route::AnswerKey;
 use crate::scene::style::{BAND_OPACITY, CANVAS, PLOT_BAND, REF_LINE_DASH_PX};
-use crate::scene::{Role, Scene};
+use crate::scene::{Role, Scene, ViewBox};
 use crate::table::Table;
 use crate::units::format_number;
 use std::fmt::Write as _;
 
 mod scene_svg;
+pub mod wire;
 
 /// Most rows of a plot's data table in the report: a long series is shown
 /// at evenly spaced samples (first and last included), and the table says so.
@@ -131,6 +132,129 @@ pub struct Student<'a> {
     pub observations: &'a str,
 }
 
+/// Everything a report prints, copied out of the lab by [`Sheet::of`]:
+/// plain owned data, so the experiment's module can hand it as bytes
+/// ([`wire`]) to the report module, which is downloaded only when a student
+/// asks for a report, and which turns it into the file ([`render_sheet`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sheet {
+    pub id: String,
+    /// The experiment's number in the lab, its title and aim (inline HTML).
+    pub number: u32,
+    pub title: String,
+    pub aim: Vec<String>,
+    pub link: String,
+    pub date: String,
+    pub note: Option<String>,
+    pub student: StudentSheet,
+    pub answer_key: AnswerKey,
+    /// Every parameter, in the experiment's order.
+    pub params: Vec<ParamRow>,
+    /// The text state the link carries, `(key, value)`.
+    pub extra_state: Vec<(String, String)>,
+    pub status: Status,
+    pub scene: Scene,
+    pub view: ViewBox,
+    pub readouts: Vec<Readout>,
+    pub tables: Vec<Table>,
+    pub plots: Vec<Plot>,
+    pub quiz: Option<QuizSheet>,
+}
+
+/// One parameter as the report prints it: its value already written as the
+/// page shows it (a number, a toggle's or a choice's label).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamRow {
+    pub key: String,
+    pub label: String,
+    pub value: String,
+    pub unit: String,
+    pub group: Option<String>,
+}
+
+/// [`Student`], owned.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StudentSheet {
+    pub name: String,
+    pub group: String,
+    pub observations: String,
+}
+
+/// [`QuizResult`], owned.
+#[derive(Clone, Debug, PartialEq)]
+pub struct QuizSheet {
+    pub seed: u64,
+    pub questions: Vec<Prepared>,
+    pub answers: Vec<Response>,
+    pub submitted: bool,
+}
+
+impl QuizSheet {
+    fn result(&self) -> QuizResult<'_> {
+        QuizResult {
+            seed: self.seed,
+            questions: &self.questions,
+            answers: &self.answers,
+            submitted: self.submitted,
+        }
+    }
+}
+
+impl Sheet {
+    /// What `r` prints: the experiment's parameters, status, scene, view,
+    /// readouts, tables and plots as they are now, with the rest of `r`.
+    #[must_use]
+    pub fn of(r: &Report<'_>) -> Sheet {
+        let exp = r.experiment;
+        let mut scene = Scene::default();
+        exp.scene(&mut scene);
+        let params = exp
+            .params()
+            .iter()
+            .map(|spec| ParamRow {
+                key: spec.key.to_owned(),
+                label: spec.label.to_owned(),
+                value: param_value(spec, exp.param(spec.key)),
+                unit: spec.unit.to_owned(),
+                group: spec.group.map(str::to_owned),
+            })
+            .collect();
+        Sheet {
+            id: exp.id().to_owned(),
+            number: r.content.number,
+            title: r.content.title.clone(),
+            aim: r.content.aim.clone(),
+            link: r.link.to_owned(),
+            date: r.date.to_owned(),
+            note: r.note.map(str::to_owned),
+            student: StudentSheet {
+                name: r.student.name.to_owned(),
+                group: r.student.group.to_owned(),
+                observations: r.student.observations.to_owned(),
+            },
+            answer_key: r.answer_key,
+            params,
+            extra_state: exp
+                .extra_state()
+                .into_iter()
+                .map(|(k, v)| (k.to_owned(), v))
+                .collect(),
+            status: exp.status(),
+            scene,
+            view: exp.view(),
+            readouts: exp.readouts(),
+            tables: exp.tables(),
+            plots: exp.plots().to_vec(),
+            quiz: r.quiz.map(|q| QuizSheet {
+                seed: q.seed,
+                questions: q.questions.to_vec(),
+                answers: q.answers.to_vec(),
+                submitted: q.submitted,
+            }),
+        }
+    }
+}
+
 /// The `id` of the report's machine-readable record: a
 /// `<script type="application/json">` (data, never run; the file's policy
 /// allows no script) holding `{"report":1,"id","date","quiz":{"seed",
@@ -170,13 +294,24 @@ pub fn date_text(
     )
 }
 
-/// The whole report as one HTML document (see the module doc).
+/// The whole report as one HTML document (see the module doc): what the
+/// report module makes of the experiment's [`Sheet`].
 #[must_use]
 pub fn render(r: &Report<'_>) -> String {
-    let exp = r.experiment;
-    let c = r.content;
+    render_sheet(&Sheet::of(r))
+}
+
+/// The report from the bytes of a [`Sheet`] ([`wire::encode`]): what the
+/// report module runs.
+pub fn render_bytes(bytes: &[u8]) -> Result<String, wire::WireError> {
+    Ok(render_sheet(&wire::decode(bytes)?))
+}
+
+/// The report of `r` (see [`render`]).
+#[must_use]
+pub fn render_sheet(r: &Sheet) -> String {
     let mut h = String::with_capacity(64 * 1024);
-    let title = format!("Lab report: {}", c.title);
+    let title = format!("Lab report: {}", r.title);
     let _ = write!(
         h,
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
@@ -193,14 +328,14 @@ pub fn render(r: &Report<'_>) -> String {
          <div><dt>Name</dt><dd class=\"field\" contenteditable=\"true\" data-field=\"name\">{}</dd></div>\
          <div><dt>Group</dt><dd class=\"field\" contenteditable=\"true\" data-field=\"group\">{}</dd></div></dl>\
          <p class=\"link\">Reproduce this run: <a href=\"{link}\">{link}</a></p></header>",
-        c.number,
-        escape(&c.title),
-        escape(r.date),
+        r.number,
+        escape(&r.title),
+        escape(&r.date),
         escape(r.student.name.trim()),
         escape(r.student.group.trim()),
-        link = escape(r.link),
+        link = escape(&r.link),
     );
-    if let Some(note) = r.note.filter(|n| !n.trim().is_empty()) {
+    if let Some(note) = r.note.as_deref().filter(|n| !n.trim().is_empty()) {
         let _ = write!(
             h,
             "<aside class=\"note\"><strong>Instructor's note:</strong> {}</aside>",
@@ -208,16 +343,20 @@ pub fn render(r: &Report<'_>) -> String {
         );
     }
     h.push_str("<section class=\"aim\"><h2>Aim</h2>");
-    for p in &c.aim {
+    for p in &r.aim {
         // Content files are ours (trusted inline markup), as on the site.
         let _ = write!(h, "<p>{p}</p>");
     }
     h.push_str("</section>");
 
-    parameters_section(&mut h, exp);
-    results_section(&mut h, exp);
-    plots_section(&mut h, exp.plots());
-    quiz_section(&mut h, r.quiz.as_ref(), r.answer_key);
+    parameters_section(&mut h, r);
+    results_section(&mut h, r);
+    plots_section(&mut h, &r.plots);
+    quiz_section(
+        &mut h,
+        r.quiz.as_ref().map(QuizSheet::result).as_ref(),
+        r.answer_key,
+    );
 
     let typed = r.student.observations.trim();
     let lines = "<div class=\"line\"></div>".repeat(if typed.is_empty() {
@@ -235,7 +374,7 @@ pub fn render(r: &Report<'_>) -> String {
          <footer><p>Made by the Robotics virtual lab on {}. This file is self-contained: it needs no \
          network and makes no request. Open the link above to see the run again.</p></footer>",
         escape(typed),
-        escape(r.date)
+        escape(&r.date)
     );
     data_record(&mut h, r);
     h.push_str("</main></body></html>\n");
@@ -264,16 +403,21 @@ fn json_string(out: &mut String, text: &str) {
 }
 
 /// The machine-readable record of the report (see [`DATA_ID`]).
-fn data_record(h: &mut String, r: &Report<'_>) {
+fn data_record(h: &mut String, r: &Sheet) {
     let _ = write!(
         h,
         "<script type=\"application/json\" id=\"{DATA_ID}\">{{\"report\":1,\"id\":"
     );
-    json_string(h, r.experiment.id());
+    json_string(h, &r.id);
     h.push_str(",\"date\":");
-    json_string(h, r.date);
+    json_string(h, &r.date);
     h.push_str(",\"quiz\":");
-    match r.quiz.filter(|q| q.submitted) {
+    match r
+        .quiz
+        .as_ref()
+        .map(QuizSheet::result)
+        .filter(|q| q.submitted)
+    {
         None => h.push_str("null"),
         Some(q) => {
             let _ = write!(h, "{{\"seed\":\"{}\",\"answers\":[", q.seed);
@@ -300,29 +444,29 @@ fn data_record(h: &mut String, r: &Report<'_>) {
 
 /// The parameter table: every parameter (grouped ones under their group's
 /// heading) with its value and unit, then the text state the link carries.
-fn parameters_section(h: &mut String, exp: &dyn Experiment) {
+fn parameters_section(h: &mut String, r: &Sheet) {
     h.push_str(
         "<section class=\"params\"><h2>Parameters</h2><table class=\"data\"><thead><tr>\
          <th scope=\"col\">Parameter</th><th scope=\"col\">Value</th><th scope=\"col\">Unit</th>\
          <th scope=\"col\">Link key</th></tr></thead><tbody>",
     );
-    let specs = exp.params();
-    let row = |h: &mut String, spec: &ParamSpec| {
+    let specs = &r.params;
+    let row = |h: &mut String, spec: &ParamRow| {
         let _ = write!(
             h,
             "<tr data-param=\"{}\"><th scope=\"row\">{}</th><td class=\"num\">{}</td><td>{}</td><td><code>{}</code></td></tr>",
-            escape(spec.key),
-            escape(spec.label),
-            escape(&param_value(spec, exp.param(spec.key))),
-            escape(spec.unit),
-            escape(spec.key)
+            escape(&spec.key),
+            escape(&spec.label),
+            escape(&spec.value),
+            escape(&spec.unit),
+            escape(&spec.key)
         );
     };
     for spec in specs.iter().filter(|s| s.group.is_none()) {
         row(h, spec);
     }
     let mut groups: Vec<&str> = Vec::new();
-    for g in specs.iter().filter_map(|s| s.group) {
+    for g in specs.iter().filter_map(|s| s.group.as_deref()) {
         if !groups.contains(&g) {
             groups.push(g);
         }
@@ -333,11 +477,11 @@ fn parameters_section(h: &mut String, exp: &dyn Experiment) {
             "<tr class=\"group\"><th colspan=\"4\" scope=\"rowgroup\">{}</th></tr>",
             escape(g)
         );
-        for spec in specs.iter().filter(|s| s.group == Some(g)) {
+        for spec in specs.iter().filter(|s| s.group.as_deref() == Some(g)) {
             row(h, spec);
         }
     }
-    for (key, value) in exp.extra_state() {
+    for (key, value) in &r.extra_state {
         let shown: String = value.chars().take(TEXT_STATE_MAX).collect();
         let more = if value.chars().count() > TEXT_STATE_MAX {
             "… (the whole value is in the link)"
@@ -370,8 +514,8 @@ fn param_value(spec: &ParamSpec, value: Option<f64>) -> String {
 }
 
 /// The status, the readouts and the live tables.
-fn results_section(h: &mut String, exp: &dyn Lab) {
-    let status = exp.status();
+fn results_section(h: &mut String, r: &Sheet) {
+    let status = &r.status;
     let tone = match status.tone {
         Tone::Neutral => "neutral",
         Tone::Good => "good",
@@ -383,9 +527,7 @@ fn results_section(h: &mut String, exp: &dyn Lab) {
         "<section class=\"results\"><h2>Results</h2><p class=\"status {tone}\"><strong>Status:</strong> {}</p>",
         escape(&status.text)
     );
-    let mut scene = Scene::default();
-    exp.scene(&mut scene);
-    let (picture, thinned) = scene_svg::scene_svg(&scene, exp.view());
+    let (picture, thinned) = scene_svg::scene_svg(&r.scene, r.view);
     let thinned = if thinned.is_empty() {
         String::new()
     } else {
@@ -395,13 +537,13 @@ fn results_section(h: &mut String, exp: &dyn Lab) {
         h,
         "<figure class=\"scene\">{picture}<figcaption>The simulation when the report was made{thinned}.</figcaption></figure>"
     );
-    let readouts = exp.readouts();
+    let readouts = &r.readouts;
     if !readouts.is_empty() {
         h.push_str(
             "<table class=\"data readouts\"><caption>Readouts</caption><thead><tr><th scope=\"col\">Quantity</th>\
              <th scope=\"col\">Value</th></tr></thead><tbody>",
         );
-        for r in &readouts {
+        for r in readouts {
             let _ = write!(
                 h,
                 "<tr data-readout=\"{}\"><th scope=\"row\">{}</th><td class=\"num\">{}</td></tr>",
@@ -412,8 +554,8 @@ fn results_section(h: &mut String, exp: &dyn Lab) {
         }
         h.push_str("</tbody></table>");
     }
-    for t in exp.tables() {
-        live_table(h, &t);
+    for t in &r.tables {
+        live_table(h, t);
     }
     h.push_str("</section>");
 }

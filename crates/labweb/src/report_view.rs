@@ -2,8 +2,15 @@
 //! needs from the page (the absolute link of the run, the student's clock,
 //! the quiz attempt if it was submitted, an instructor's note and answer-key
 //! choice from the link, the name, group and observations the student typed)
-//! has [`labpage::report::render`] build the file and offers it as a
-//! download made in the page from a Blob (nothing leaves the browser).
+//! copies what the report prints into a [`labpage::report::Sheet`], and
+//! hands it as bytes to the report module, which builds the file, then
+//! offers the file as a download made in the page from a Blob (nothing
+//! leaves the browser).
+//!
+//! The report module (`pkg/report.<hash>.wasm`, crate `labreport`) is
+//! downloaded the first time it is needed (`main.js`'s `labReport`), not with
+//! the experiment: making the file is about 18 KB of gzipped code that most
+//! visits never run.
 //!
 //! The typed fields are kept in local storage per experiment
 //! (`labreport:<id>`), so they survive a reload and fill the next report.
@@ -15,7 +22,7 @@ use crate::quiz_view::{self, Attempt};
 use labcore::quiz::Response;
 use labcore::route::{self, Page};
 use labcore::Lab;
-use labpage::report::{self, AnswerKey, QuizResult, Report, Student};
+use labpage::report::{self, AnswerKey, QuizResult, Report, Sheet, Student};
 use wasm_bindgen::prelude::*;
 use web_sys::Element;
 
@@ -117,7 +124,7 @@ pub fn download(panel: &Element, exp: &dyn Lab, hash: &str) {
         Page::Experiment { .. } => parsed.instructor.note,
         Page::Home => None,
     };
-    let html = report::render(&Report {
+    let sheet = report::wire::encode(&Sheet::of(&Report {
         experiment: exp,
         content,
         link: &link,
@@ -137,12 +144,69 @@ pub fn download(panel: &Element, exp: &dyn Lab, hash: &str) {
             observations,
         },
         answer_key,
+    }));
+    make_file(&sheet, report::file_name(exp.id()), panel);
+}
+
+/// The page's bridge to the report module (`main.js`): `labReport(bytes,
+/// done, failed)` loads the module the first time, then calls `done` with
+/// the file's HTML or `failed` with the error.
+const BRIDGE: &str = "labReport";
+
+/// Has the report module turn `sheet` into the file and offers it as
+/// `file`. The button says it is busy meanwhile; if the module cannot be
+/// loaded (offline before it was ever fetched, a broken host) or refuses
+/// the bytes, the notice bar says so and the page goes on.
+fn make_file(sheet: &[u8], file: String, panel: &Element) {
+    let button = query(panel, "[data-export=report]");
+    let busy = move |on: bool| {
+        if let Some(b) = &button {
+            let _ = if on {
+                b.set_attribute("aria-busy", "true")
+            } else {
+                b.remove_attribute("aria-busy")
+            };
+        }
+    };
+    let failed = |why: String| {
+        dom::notice(&[format!(
+            "The lab report could not be made ({why}). Check the connection and press Lab report again."
+        )]);
+    };
+    let bridge = js_sys::Reflect::get(&dom::window(), &JsValue::from_str(BRIDGE))
+        .ok()
+        .and_then(|f| f.dyn_into::<js_sys::Function>().ok());
+    let Some(bridge) = bridge else {
+        failed("the page has no report module".into());
+        return;
+    };
+    busy(true);
+    let done_busy = busy.clone();
+    // One of the two callbacks runs; `once_into_js` frees the one that does.
+    let done = Closure::once_into_js(move |html: JsValue| {
+        done_busy(false);
+        match html.as_string() {
+            Some(html) => plot_view::download(&file, "text/html;charset=utf-8", &html),
+            None => failed("the report module returned no file".into()),
+        }
     });
-    plot_view::download(
-        &report::file_name(exp.id()),
-        "text/html;charset=utf-8",
-        &html,
-    );
+    let fail = Closure::once_into_js(move |e: JsValue| {
+        busy(false);
+        failed(error_text(&e));
+    });
+    let bytes = js_sys::Uint8Array::from(sheet);
+    if let Err(e) = bridge.call3(&JsValue::NULL, &bytes, &done, &fail) {
+        failed(error_text(&e));
+    }
+}
+
+/// An error's message (`Error.message`, or the value itself as text).
+fn error_text(e: &JsValue) -> String {
+    js_sys::Reflect::get(e, &JsValue::from_str("message"))
+        .ok()
+        .and_then(|m| m.as_string())
+        .or_else(|| e.as_string())
+        .unwrap_or_else(|| "unknown error".into())
 }
 
 /// The student's local date and time with its offset from UTC.

@@ -107,6 +107,11 @@ pub fn modules() -> Vec<(&'static str, Vec<&'static str>)> {
 /// Set (to anything) for modules with the paint benchmarks' exports.
 pub const BENCH_EXPORTS_VAR: &str = "XTASK_BENCH_EXPORTS";
 
+/// The key of the report module (`pkg/report.<hash>.wasm`, crate
+/// `labreport`): the lab report's code, which a page downloads only when a
+/// student makes a report (`main.js`'s `labReport`). It holds no experiment.
+pub const REPORT_KEY: &str = "report";
+
 /// The environment variable labcore's `build.rs` reads: the experiments a
 /// build holds, comma-separated (unset: every one).
 pub const SELECTION_VAR: &str = "LAB_EXPERIMENTS";
@@ -139,28 +144,40 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
         modules()
     };
     let mut finishing = Vec::new();
-    for (key, ids) in parts {
+    // The experiments' modules, then the report module (no experiment).
+    let packages = parts
+        .into_iter()
+        .map(|(key, ids)| ("labweb", key, ids))
+        .chain(std::iter::once(("labreport", REPORT_KEY, Vec::new())));
+    for (package, key, ids) in packages {
         step(&format!(
             "cargo build (wasm, release) — module '{key}': {}",
-            ids.join(", ")
+            if ids.is_empty() {
+                "the lab report".to_owned()
+            } else {
+                ids.join(", ")
+            }
         ));
         let t = Instant::now();
         let mut build = util::cargo();
         build.env(SELECTION_VAR, selection(&ids)).args([
             "build",
             "-p",
-            "labweb",
+            package,
             "--profile",
             PROFILE,
             "--target",
             WASM_TARGET,
             "--no-default-features",
         ]);
-        if bench_exports {
+        if bench_exports && package == "labweb" {
             build.args(["--features", "bench-exports"]);
         }
         util::run(&mut build)?;
-        let input = target.join(WASM_TARGET).join(PROFILE).join("labweb.wasm");
+        let input = target
+            .join(WASM_TARGET)
+            .join(PROFILE)
+            .join(format!("{package}.wasm"));
         let glue_dir = out_root.join(key);
         wasm_bindgen_cli_support::Bindgen::new()
             .input_path(&input)

@@ -95,6 +95,13 @@ pub fn render_site(dist: &Path, modules: &[crate::modules::Shipped]) -> Result<(
     }
     let mut module_metas = String::new();
     for m in modules {
+        if m.key == crate::modules::REPORT_KEY {
+            metas.push_str(&format!(
+                "<meta name=\"lab-report\" data-js=\"{}\" data-wasm=\"{}\">\n",
+                m.js, m.wasm
+            ));
+            continue;
+        }
         module_metas.push_str(&format!(
             "<meta name=\"lab-module\" content=\"{}\" data-experiments=\"{}\" data-js=\"{}\" \
              data-wasm=\"{}\" data-bytes=\"{}\">\n",

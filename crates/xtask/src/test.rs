@@ -98,7 +98,8 @@ pub fn test(opts: Options) -> Result<(), String> {
                     }
                     util::run(
                         clippy
-                            .args(["clippy", "-p", "labweb", "-p", "labpage", "-p", "labcore"])
+                            .args(["clippy", "-p", "labweb", "-p", "labreport", "-p", "labpage"])
+                            .args(["-p", "labcore"])
                             .args(["--target", "wasm32-unknown-unknown"])
                             .args(features)
                             .args(["--", "-D", "warnings"]),

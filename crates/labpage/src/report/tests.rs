@@ -1,8 +1,71 @@
 use super::*;
 use crate::clock::Clock;
-use crate::experiment::{Input, Lab, ParamError, Presentation, Readout, Sanitized, Status};
+use crate::experiment::{
+    Experiment, Input, Lab, ParamError, Presentation, Readout, Sanitized, Status,
+};
 use crate::plot::{Band, Marker, RefLine};
 use crate::scene::{Scene, ViewBox};
+
+/// Every report in these tests is made as the page makes it: the
+/// experiment's module writes the [`Sheet`] as bytes, the report module reads
+/// them back and renders. Reading back and writing again gives the same
+/// bytes (floats cross as their bits, so NaN and −0 survive too).
+fn render(r: &Report<'_>) -> String {
+    let bytes = wire::encode(&Sheet::of(r));
+    let sheet: Sheet = wire::decode(&bytes).expect("the sheet reads back");
+    assert_eq!(
+        wire::encode(&sheet),
+        bytes,
+        "the sheet reads back as written"
+    );
+    let html = render_bytes(&bytes).expect("the report module renders it");
+    assert_eq!(
+        html,
+        super::render(r),
+        "the same report as made in one piece"
+    );
+    html
+}
+
+/// A damaged sheet gives an error, never a panic: cut short anywhere, or
+/// with any one byte changed.
+#[test]
+fn a_damaged_report_sheet_is_an_error_not_a_panic() {
+    let (html, ..) = quiz_report("pid", 7, true, AnswerKey::Submitted, Student::default());
+    assert!(html.contains("Self-assessment"));
+    let entry = crate::find("cartpole").unwrap();
+    let mut exp = (entry.make)();
+    for _ in 0..120 {
+        exp.step(Clock::DT_S);
+    }
+    let content = entry.content().unwrap();
+    let bytes = wire::encode(&Sheet::of(&Report {
+        experiment: exp.as_ref(),
+        content,
+        link: "http://localhost/#/cartpole/simulation",
+        date: "today",
+        quiz: None,
+        note: Some("note"),
+        student: Student::default(),
+        answer_key: AnswerKey::Never,
+    }));
+    for cut in 0..bytes.len() {
+        assert!(
+            render_bytes(&bytes[..cut]).is_err(),
+            "cut at {cut} of {}",
+            bytes.len()
+        );
+    }
+    let mut extra = bytes.clone();
+    extra.push(0);
+    assert!(render_bytes(&extra).is_err(), "a byte left over");
+    // Every byte changed to 0xff: whatever it reads as, nothing panics.
+    for i in (0..bytes.len()).step_by(7) {
+        let mut damaged = bytes.clone();
+        damaged[i] = 0xff;
+        let _ = render_bytes(&damaged);
+    }
+}
 
 /// Checks that every tag of `html` is closed in order (HTML void elements
 /// and `/>` excepted), skipping the doctype and the style sheet; returns the
