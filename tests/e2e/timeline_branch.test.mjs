@@ -66,6 +66,9 @@ for (const [name, viewport, phone] of [
       await runUntilReadout(page, "x", ">", 0.5);
       await pause(page);
       await page.locator("figure[data-plot=response]").scrollIntoViewIfNeeded();
+      // A plot below the fold is repainted at most once a second (of page time).
+      await page.clock.runFor(1100);
+      await settle(page);
       await screenshot(page, `timeline-pid-branched-${name}`);
     }));
 
