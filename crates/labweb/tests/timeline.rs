@@ -254,19 +254,19 @@ fn key_on(target: &web_sys::HtmlElement, key: &str) {
     labweb::paint_now();
 }
 
-/// A press of the primary button at `fraction` of the plot canvas's width.
+/// A click (or tap) at `fraction` of the plot canvas's width.
 fn press_plot(key: &str, fraction: f64) {
     let canvas = plot_canvas(key);
     let rect = canvas.get_bounding_client_rect();
+    // A click is a PointerEvent in the browser (a MouseEvent too).
     let init = web_sys::PointerEventInit::new();
     init.set_is_primary(true);
-    init.set_pointer_id(7);
     init.set_pointer_type("mouse");
     init.set_bubbles(true);
     init.set_client_x((rect.left() + fraction * rect.width()) as i32);
     init.set_client_y((rect.top() + rect.height() / 2.0) as i32);
-    let down = web_sys::PointerEvent::new_with_event_init_dict("pointerdown", &init).unwrap();
-    canvas.dispatch_event(&down).unwrap();
+    let click = web_sys::PointerEvent::new_with_event_init_dict("click", &init).unwrap();
+    canvas.dispatch_event(&click).unwrap();
     labweb::paint_now();
 }
 

@@ -123,11 +123,20 @@ pub(super) fn listen(
     if let Some(sim) = query(panel, ".sim") {
         let s = state.clone();
         listeners.push(Listener::new(sim.as_ref(), "click", move |e: Event| {
-            let Some(button) = e
-                .target()
-                .and_then(|t| t.dyn_into::<Element>().ok())
-                .and_then(|el| el.closest("button").ok().flatten())
-            else {
+            let target = e.target().and_then(|t| t.dyn_into::<Element>().ok());
+            if let (Some(canvas), Some(m)) = (
+                target
+                    .as_ref()
+                    .filter(|el| el.class_list().contains("plot-canvas")),
+                e.dyn_ref::<web_sys::MouseEvent>(),
+            ) {
+                // A point of the plot (a click or a tap, not a swipe that
+                // scrolls): the timeline goes to that moment.
+                s.borrow_mut()
+                    .go_to_plot_point(canvas, f64::from(m.client_x()));
+                return;
+            }
+            let Some(button) = target.and_then(|el| el.closest("button").ok().flatten()) else {
                 return;
             };
             let attr = |name: &str| button.get_attribute(name);
@@ -256,10 +265,6 @@ pub(super) fn listen(
                     st.kept_serial,
                 );
                 st.plots.hover(&canvas, x, &plots, &st.palette);
-                if kind == "pointerdown" && e.button() == 0 {
-                    // A point of the plot: the timeline goes to that moment.
-                    st.go_to_plot_point(&canvas, f64::from(e.client_x()));
-                }
             }));
         }
     }
