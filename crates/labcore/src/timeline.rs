@@ -28,8 +28,12 @@
 //! ([`crate::clock::Clock::steps`]): one [`crate::Experiment::step`] of
 //! [`crate::clock::Clock::DT_S`] each.
 
-use crate::plot::Plot;
+use crate::experiment::{ParamKind, ParamSpec};
+use crate::plot::{Plot, Series, SeriesRole};
+use crate::scene::{Item, Role, Scene};
+use crate::units::{format_fixed, format_number, with_unit};
 use crate::Lab;
+use glam::DVec2;
 
 /// A kept copy of the experiment at one step.
 struct Snapshot {
@@ -296,4 +300,255 @@ pub fn plots_bytes(plots: &[Plot]) -> usize {
         .flat_map(|p| &p.series)
         .map(|s| (s.x.capacity() + s.y.capacity()) * std::mem::size_of::<f64>())
         .sum()
+}
+
+/// How far along its run a plot is: the largest x of the last samples of
+/// its series that are not kept for comparison (the time, the iteration);
+/// `None` before any sample. The plot cursor of a past moment is drawn
+/// there, and [`Timeline::step_at_plot_x`] looks for it.
+#[must_use]
+pub fn plot_x(plot: &Plot) -> Option<f64> {
+    plot.series
+        .iter()
+        .filter(|s| !s.comparison)
+        .filter_map(|s| s.x.last().copied())
+        .reduce(f64::max)
+}
+
+impl Timeline {
+    /// The step of the recorded run whose plot `plot` (an index into
+    /// [`crate::Experiment::plots`]) has got nearest to `x` (see
+    /// [`plot_x`]): a point clicked on a plot of the run, as a step to go
+    /// to. Only the stretch of the run since the plot last restarted (an
+    /// input that cleared it) is searched, as that is what the plot at the
+    /// run's end shows. Steps on a copy of one snapshot, at most
+    /// [`Timeline::interval`] steps. `None` when the plot has no samples.
+    pub fn step_at_plot_x(
+        &self,
+        plot: usize,
+        x: f64,
+        step_once: &mut dyn FnMut(&mut dyn Lab),
+    ) -> Option<u64> {
+        let key = |lab: &dyn Lab| lab.plots().get(plot).and_then(plot_x);
+        // The stretch: from the last snapshot after which the plot went back.
+        let mut lo = 0;
+        for i in 1..self.snaps.len() {
+            let (before, now) = (key(&*self.snaps[i - 1].lab), key(&*self.snaps[i].lab));
+            if now.is_none() || before.is_some_and(|b| now.is_some_and(|n| n < b)) {
+                lo = i;
+            }
+        }
+        // The last snapshot of the stretch at or before x, stepped on.
+        let i = (lo..self.snaps.len())
+            .rev()
+            .find(|&i| key(&*self.snaps[i].lab).is_some_and(|k| k <= x))
+            .unwrap_or(lo);
+        let limit = self.snaps.get(i + 1).map_or(self.end, |s| s.step);
+        let mut lab = self.snaps[i].lab.snapshot();
+        let mut step = self.snaps[i].step;
+        let mut prev: Option<(u64, f64)> = None;
+        let mut now = key(&*lab);
+        while step < limit && now.is_none_or(|k| k < x) {
+            if let Some(k) = now {
+                prev = Some((step, k));
+            }
+            step_once(lab.as_mut());
+            step += 1;
+            now = key(&*lab);
+        }
+        let here = now.map(|k| (step, k));
+        match (prev, here) {
+            (Some(p), Some(h)) => Some(if (x - p.1).abs() < (h.1 - x).abs() {
+                p.0
+            } else {
+                h.0
+            }),
+            (p, h) => h.or(p).map(|(s, _)| s),
+        }
+    }
+}
+
+/// At most this many runs left behind by branches are kept on the plots.
+pub const MAX_KEPT: usize = 2;
+
+/// The roles a kept run may be drawn with, in order of preference: each
+/// plot gives its kept runs roles its own series do not have
+/// ([`kept_roles`]), so a kept run differs from every live curve by its
+/// dash as well as its colour.
+pub const KEPT_ROLES: [SeriesRole; 6] = [
+    SeriesRole::Quaternary,
+    SeriesRole::Bound,
+    SeriesRole::Reference,
+    SeriesRole::Tertiary,
+    SeriesRole::Secondary,
+    SeriesRole::Primary,
+];
+
+/// The roles of the [`MAX_KEPT`] kept runs on `plot`: the first of
+/// [`KEPT_ROLES`] that none of its series has, else one only its other
+/// runs kept for comparison (a PID pin) have.
+#[must_use]
+pub fn kept_roles(plot: &Plot) -> [SeriesRole; MAX_KEPT] {
+    let mut taken: Vec<SeriesRole> = plot.series.iter().map(|s| s.role).collect();
+    let live: Vec<SeriesRole> = plot
+        .series
+        .iter()
+        .filter(|s| !s.comparison)
+        .map(|s| s.role)
+        .collect();
+    let mut roles = [SeriesRole::Bound; MAX_KEPT];
+    for role in &mut roles {
+        let free = KEPT_ROLES.iter().find(|r| !taken.contains(r));
+        let shared = KEPT_ROLES.iter().find(|r| !live.contains(r));
+        *role = *free.or(shared).unwrap_or(&SeriesRole::Bound);
+        taken.push(*role);
+    }
+    roles
+}
+
+/// A run a branch left behind (issue 26 §2): changing something while the
+/// timeline shows the past starts a new run from there, and the future
+/// the old run had is kept for comparison, as PID's pinned runs are, on
+/// every experiment's plots: the main series of each plot (its first not
+/// already kept for comparison) and the trails of its scene (solid
+/// [`Role::Path`] lines), named after the change.
+#[derive(Clone, Debug, PartialEq)]
+pub struct KeptRun {
+    /// The legend name, e.g. `before Kp 20 → 60 at t = 2.10 s`.
+    pub label: String,
+    /// Per plot of the experiment, its main series at the old run's end.
+    pub series: Vec<Option<Series>>,
+    /// The old run's trails, world coordinates (drawn as ghosts).
+    pub trails: Vec<Vec<DVec2>>,
+}
+
+impl KeptRun {
+    /// What `abandoned` (the state at the old run's end) leaves to compare
+    /// with, under `label`.
+    #[must_use]
+    pub fn of(abandoned: &dyn Lab, label: String) -> Self {
+        let series = abandoned
+            .plots()
+            .iter()
+            .map(|p| p.series.iter().find(|s| !s.comparison).cloned())
+            .collect();
+        let mut scene = Scene::default();
+        abandoned.scene(&mut scene);
+        let trails = scene
+            .items
+            .iter()
+            .filter_map(|item| match item {
+                Item::Polyline {
+                    points,
+                    role: Role::Path,
+                    dashed: false,
+                    closed: false,
+                    ..
+                } if points.len() > 1 => Some(points.clone()),
+                _ => None,
+            })
+            .collect();
+        Self {
+            label,
+            series,
+            trails,
+        }
+    }
+
+    /// The trails as ghosts: dimmed and dashed, so they differ from the
+    /// live run's by more than colour.
+    pub fn ghosts(&self, out: &mut Scene) {
+        for points in &self.trails {
+            out.push(Item::Polyline {
+                points: points.clone(),
+                width_px: 2.0,
+                role: Role::Ghost,
+                dashed: true,
+                closed: false,
+            });
+        }
+    }
+}
+
+/// Keeps `run`, the newest, dropping the oldest beyond [`MAX_KEPT`].
+pub fn keep(kept: &mut Vec<KeptRun>, run: KeptRun) {
+    if kept.len() == MAX_KEPT {
+        kept.remove(0);
+    }
+    kept.push(run);
+}
+
+/// The plots as the page shows them: each of `plots` followed by
+/// [`MAX_KEPT`] comparison series, empty until a run is kept (so the
+/// legend has their places from the start), filled from `kept`, oldest
+/// first. `serial` (bumped whenever `kept` changes) goes into each
+/// plot's [`Plot::revision`], so a new kept run redraws the plots.
+#[must_use]
+pub fn with_kept(plots: &[Plot], kept: &[KeptRun], serial: u64) -> Vec<Plot> {
+    plots
+        .iter()
+        .enumerate()
+        .map(|(i, plot)| {
+            let mut plot = plot.clone();
+            let unit = plot.y_unit;
+            for (k, role) in kept_roles(&plot).iter().enumerate() {
+                let run = kept.get(k);
+                let mut s = run
+                    .and_then(|r| r.series.get(i).cloned().flatten())
+                    .unwrap_or_else(|| Series::new("", unit, *role));
+                s.label = run.map_or_else(|| format!("kept run {}", k + 1), |r| r.label.clone());
+                s.role = *role;
+                s.comparison = true;
+                plot.series.push(s);
+            }
+            plot.revision = plot.revision.wrapping_add(serial << 40);
+            plot
+        })
+        .collect()
+}
+
+/// A parameter's value as a branch's name says it: the choice or switch
+/// label, or the number with its unit (`60`, `2.5 m`, `12°`).
+#[must_use]
+pub fn value_text(spec: &ParamSpec, value: f64) -> String {
+    match spec.kind {
+        ParamKind::Toggle { off, on } => (if value >= 0.5 { on } else { off }).to_owned(),
+        ParamKind::Choice(names) => names
+            .get(value as usize)
+            .map_or_else(|| format_number(value, 0), |n| (*n).to_owned()),
+        _ => {
+            let decimals = (0..6)
+                .find(|&d| (spec.step * 10f64.powi(d)).fract().abs() < 1e-9)
+                .unwrap_or(6) as usize;
+            with_unit(&format_number(value, decimals), spec.unit)
+        }
+    }
+}
+
+/// The name of the run a branch leaves behind: what changed and when,
+/// `before Kp 20 → 60 at t = 2.10 s`. The first parameter whose value
+/// differs between `before` and `after` (values in the order of `specs`)
+/// names the change; with none, `cause` does (an action's label, "a
+/// drag"), else "the change".
+#[must_use]
+pub fn branch_label(
+    specs: &[ParamSpec],
+    before: &[Option<f64>],
+    after: &[Option<f64>],
+    cause: Option<&str>,
+    t_s: f64,
+) -> String {
+    let changed = specs
+        .iter()
+        .zip(before.iter().zip(after))
+        .find(|(_, (b, a))| b != a);
+    let what = match changed {
+        Some((spec, (b, a))) => {
+            let text =
+                |v: &Option<f64>| v.map_or_else(|| "unset".to_owned(), |v| value_text(spec, v));
+            format!("{} {} → {}", spec.label, text(b), text(a))
+        }
+        None => cause.unwrap_or("the change").to_owned(),
+    };
+    format!("before {what} at t = {} s", format_fixed(t_s, 2))
 }

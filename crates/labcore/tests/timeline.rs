@@ -222,3 +222,163 @@ fn link_moment_unbroken_only_while_no_input_came_on_the_way() {
     assert!(!timeline.unbroken_to(50));
     assert!(!timeline.unbroken_to(60));
 }
+
+/// Issue 26 §1, plots lead to the scene: a point of any plot of a run
+/// (its x, a time or an iteration) names the step whose plot reached
+/// nearest it, found on one snapshot's copy with at most an interval of
+/// steps, for every evolving experiment.
+#[test]
+fn plot_point_to_step_finds_the_step_whose_plot_is_nearest_the_point() {
+    use labcore::timeline::plot_x;
+    for id in evolving_ids() {
+        let mut rng = Lcg64::new(26);
+        let mut exp = labcore::testkit::open(id);
+        for _ in 0..2 {
+            random_input(exp.as_mut(), &mut rng);
+        }
+        let mut timeline = Timeline::with_budget(exp.as_ref(), 0, 48 << 10);
+        timeline.commit(exp.as_ref());
+        let mut xs: Vec<Vec<Option<f64>>> = Vec::new();
+        for _ in 0..300 {
+            xs.push(exp.plots().iter().map(plot_x).collect());
+            exp.step(Clock::DT_S);
+            timeline.stepped(exp.as_ref());
+        }
+        xs.push(exp.plots().iter().map(plot_x).collect());
+        for (i, plot) in exp.plots().iter().enumerate() {
+            let Some(main) = plot.series.iter().find(|s| !s.comparison && !s.is_empty()) else {
+                continue;
+            };
+            for _ in 0..5 {
+                let j = rng.int(0, main.len() as i64 - 1) as usize;
+                // A point between two samples, too.
+                let x = main.x[j]
+                    + rng.range(-0.4, 0.4) * (main.x[j.min(main.len() - 2) + 1] - main.x[j]).abs();
+                let step = timeline
+                    .step_at_plot_x(i, x, &mut step_once)
+                    .unwrap_or_else(|| panic!("{id} plot {i}: a step for x = {x}"));
+                let best = xs
+                    .iter()
+                    .filter_map(|p| p[i])
+                    .map(|px| (px - x).abs())
+                    .fold(f64::INFINITY, f64::min);
+                let got = xs[step as usize][i].map(|px| (px - x).abs());
+                assert_eq!(got, Some(best), "{id} plot {i}: x = {x}, step {step}");
+            }
+        }
+    }
+}
+
+/// Issue 26 §2: a branch's kept run is named after what changed, where, in
+/// the parameter's own words and units; the plots keep a place for every
+/// kept run from the start, named once filled, the oldest dropped first.
+#[test]
+fn branching_keeps_the_abandoned_run_and_names_it_exactly() {
+    use labcore::timeline::{branch_label, keep, with_kept, KeptRun, MAX_KEPT};
+    let mut exp = labcore::testkit::open("pid");
+    let specs = exp.params();
+    let values =
+        |e: &dyn Lab| -> Vec<Option<f64>> { specs.iter().map(|s| e.param(s.key)).collect() };
+    exp.set_param("kp", 20.0).unwrap();
+    for _ in 0..300 {
+        exp.step(Clock::DT_S);
+    }
+    let before = values(exp.as_ref());
+    let abandoned = exp.snapshot();
+    exp.set_param("kp", 60.0).unwrap();
+    let label = branch_label(specs, &before, &values(exp.as_ref()), None, 2.1);
+    assert_eq!(label, "before Kp 20 N/m → 60 N/m at t = 2.10 s");
+    // Without a changed parameter, the action (or "the change") names it.
+    assert_eq!(
+        branch_label(specs, &before, &before, Some("Pin run"), 0.5),
+        "before Pin run at t = 0.50 s"
+    );
+    assert_eq!(
+        branch_label(specs, &before, &before, None, 12.0),
+        "before the change at t = 12.00 s"
+    );
+    let run = KeptRun::of(abandoned.as_ref(), label.clone());
+    let response = &abandoned.plots()[0].series[0];
+    assert_eq!(run.series[0].as_ref(), Some(response));
+    // The plots as shown: every plot ends with MAX_KEPT comparison places.
+    let mut kept = Vec::new();
+    let empty = with_kept(exp.plots(), &kept, 0);
+    for (shown, own) in empty.iter().zip(exp.plots()) {
+        assert_eq!(shown.series.len(), own.series.len() + MAX_KEPT);
+        assert!(shown.series[own.series.len()..]
+            .iter()
+            .all(|s| s.comparison && s.is_empty()));
+    }
+    keep(&mut kept, run);
+    let shown = with_kept(exp.plots(), &kept, 1);
+    let slot = &shown[0].series[exp.plots()[0].series.len()];
+    assert_eq!(slot.label, label);
+    assert_eq!((&slot.x, &slot.y), (&response.x, &response.y));
+    assert_ne!(shown[0].revision, empty[0].revision, "a kept run redraws");
+    // Drawn unlike every live curve of its plot (PID's effort plot has
+    // four roles of its own; its response plot, five with the pins).
+    for plot in &shown {
+        let own = &plot.series[..plot.series.len() - MAX_KEPT];
+        for kept in &plot.series[own.len()..] {
+            assert!(
+                own.iter()
+                    .filter(|s| !s.comparison)
+                    .all(|s| s.role != kept.role),
+                "{}: {:?}",
+                plot.key,
+                kept.role
+            );
+        }
+        let first = &plot.series[own.len()];
+        assert!(
+            own.iter().all(|s| s.role != first.role),
+            "{}: a role of its own",
+            plot.key
+        );
+    }
+    for k in 0..MAX_KEPT {
+        keep(&mut kept, KeptRun::of(exp.as_ref(), format!("run {k}")));
+    }
+    assert_eq!(kept.len(), MAX_KEPT);
+    assert_eq!(kept[0].label, "run 0", "the oldest went first");
+}
+
+/// Issue 26 §2: where the scene has a trail, the run a branch left behind
+/// is drawn as a ghost: dimmed and dashed, not told by colour alone.
+#[test]
+fn a_kept_run_draws_its_trail_as_a_dashed_ghost() {
+    use labcore::timeline::KeptRun;
+    use labcore::{Item, Role, Scene};
+    for id in ["diffdrive", "potential"] {
+        let mut rng = Lcg64::new(5);
+        let mut exp = labcore::testkit::open(id);
+        let mut run = KeptRun::of(exp.as_ref(), String::new());
+        for attempt in 0..20 {
+            random_input(exp.as_mut(), &mut rng);
+            for _ in 0..120 {
+                exp.step(Clock::DT_S);
+            }
+            run = KeptRun::of(exp.as_ref(), String::new());
+            if !run.trails.is_empty() || attempt == 19 {
+                break;
+            }
+        }
+        assert!(!run.trails.is_empty(), "{id} leaves a trail");
+        let mut scene = Scene::default();
+        run.ghosts(&mut scene);
+        assert_eq!(scene.items.len(), run.trails.len());
+        for item in &scene.items {
+            assert!(
+                matches!(
+                    item,
+                    Item::Polyline {
+                        role: Role::Ghost,
+                        dashed: true,
+                        ..
+                    }
+                ),
+                "{id}: {item:?}"
+            );
+        }
+    }
+}

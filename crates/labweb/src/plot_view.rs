@@ -514,6 +514,9 @@ struct Drawn {
     hover_x: Option<f64>,
     /// Whether the x axis fits the latest run (the comparison runs ignored).
     fit_latest: bool,
+    /// Where the timeline's cursor is drawn (plot x), while the timeline
+    /// shows a past moment ([`PlotView::set_cursor`]).
+    cursor_x: Option<f64>,
     /// Where its labels went at the last paint.
     labels: LabelMemory,
     /// Whether its canvas was in the window at the last
@@ -678,6 +681,7 @@ impl PlotView {
                     frame: Frame::default(),
                     hover_x: None,
                     fit_latest: false,
+                    cursor_x: None,
                     labels: LabelMemory::default(),
                     on_screen: true,
                     parts,
@@ -830,6 +834,9 @@ impl PlotView {
         )
         .0;
         paint_marks(&drawn.ctx, &drawn.frame, &drawn.marks, palette);
+        if let Some(x) = drawn.cursor_x {
+            paint_cursor(&drawn.ctx, &drawn.frame, palette, x);
+        }
         match drawn.hover_x {
             Some(x) => show_nearest(drawn, plot, palette, x),
             None => {
@@ -862,6 +869,47 @@ impl PlotView {
                 let _ = drawn.canvas.set_attribute("data-marks", &text.join(" "));
             }
         }
+    }
+
+    /// Puts the timeline's cursor on plot `key` at plot x `x` (`None`: no
+    /// cursor, the run shown live); the plot is repainted if it moved.
+    pub fn set_cursor(&mut self, key: &str, x: Option<f64>) {
+        if let Some(drawn) = self.plots.iter_mut().find(|d| d.key == key) {
+            if drawn.cursor_x != x {
+                drawn.cursor_x = x;
+                drawn.revision = None;
+                match x {
+                    Some(x) => {
+                        let _ = drawn.canvas.set_attribute("data-cursor", &format!("{x}"));
+                    }
+                    None => {
+                        let _ = drawn.canvas.remove_attribute("data-cursor");
+                    }
+                }
+            }
+        }
+    }
+
+    /// The plot whose canvas is `canvas` and the plot x under client x
+    /// `client_x` (as last drawn): a point clicked on the plot.
+    #[must_use]
+    pub fn point_at(&self, canvas: &Element, client_x: f64) -> Option<(&'static str, f64)> {
+        let drawn = self
+            .plots
+            .iter()
+            .find(|d| d.canvas.unchecked_ref::<Element>() == canvas)?;
+        let left = drawn.canvas.get_bounding_client_rect().left();
+        let x = drawn.frame.world_x(client_x - left);
+        x.is_finite().then_some((drawn.key, x))
+    }
+
+    /// The key of the plot drawn on `canvas`.
+    #[must_use]
+    pub fn key_of(&self, canvas: &Element) -> Option<&'static str> {
+        self.plots
+            .iter()
+            .find(|d| d.canvas.unchecked_ref::<Element>() == canvas)
+            .map(|d| d.key)
     }
 
     /// Switches a plot between fitting the latest run and every run (the
@@ -948,6 +996,9 @@ impl Drawn {
         );
         self.frame = frame;
         paint_marks(&self.ctx, &self.frame, &self.marks, palette);
+        if let Some(x) = self.cursor_x {
+            paint_cursor(&self.ctx, &self.frame, palette, x);
+        }
         let json = layout.json();
         if json != self.shown.layout {
             let _ = self.canvas.set_attribute("data-layout", &json);
@@ -1033,6 +1084,32 @@ fn paint_marks(
         ctx.fill();
     }
     ctx.restore();
+}
+
+/// The timeline's cursor: a solid vertical line in the text colour across
+/// the plot at plot x `x` (the moment the scene shows), with a small
+/// triangle on top, unlike the dashed reference lines.
+fn paint_cursor(ctx: &CanvasRenderingContext2d, frame: &Frame, palette: &Palette, x: f64) {
+    let (l, t, w, h) = frame.rect;
+    let px = frame.px_x(x);
+    if !(l - 0.5..=l + w + 0.5).contains(&px) {
+        return;
+    }
+    let colour = palette.colour(Role::Text);
+    ctx.set_stroke_style_str(colour);
+    ctx.set_fill_style_str(colour);
+    set_dash(ctx, &[]);
+    ctx.set_line_width(1.5);
+    ctx.begin_path();
+    ctx.move_to(px, t);
+    ctx.line_to(px, t + h);
+    ctx.stroke();
+    ctx.begin_path();
+    ctx.move_to(px - 5.0, t);
+    ctx.line_to(px + 5.0, t);
+    ctx.line_to(px, t + 7.0);
+    ctx.close_path();
+    ctx.fill();
 }
 
 fn axis_title(label: &str, unit: &str) -> String {

@@ -229,3 +229,263 @@ fn at_in_the_link_reopens_the_moment_shown_exactly() {
     assert_eq!(shown().0, 41);
     assert_eq!(attr(".tb-scrub", "max"), Some("41".into()));
 }
+
+// ---- Issue 26 §1 (the rest) and §2: plot cursor, plot points, slider
+// keys, branches.
+
+fn plot_canvas(key: &str) -> web_sys::HtmlElement {
+    element(&format!("figure[data-plot={key}] canvas.plot-canvas"))
+}
+
+fn cursor_of(key: &str) -> Option<f64> {
+    plot_canvas(key)
+        .get_attribute("data-cursor")
+        .map(|x| x.parse().unwrap())
+}
+
+fn key_on(target: &web_sys::HtmlElement, key: &str) {
+    let init = web_sys::KeyboardEventInit::new();
+    init.set_key(key);
+    init.set_bubbles(true);
+    init.set_cancelable(true);
+    let event =
+        web_sys::KeyboardEvent::new_with_keyboard_event_init_dict("keydown", &init).unwrap();
+    target.dispatch_event(&event).unwrap();
+    labweb::paint_now();
+}
+
+/// A click (or tap) at `fraction` of the plot canvas's width.
+fn press_plot(key: &str, fraction: f64) {
+    let canvas = plot_canvas(key);
+    let rect = canvas.get_bounding_client_rect();
+    // A click is a PointerEvent in the browser (a MouseEvent too).
+    let init = web_sys::PointerEventInit::new();
+    init.set_is_primary(true);
+    init.set_pointer_type("mouse");
+    init.set_bubbles(true);
+    init.set_client_x((rect.left() + fraction * rect.width()) as i32);
+    init.set_client_y((rect.top() + rect.height() / 2.0) as i32);
+    let click = web_sys::PointerEvent::new_with_event_init_dict("click", &init).unwrap();
+    canvas.dispatch_event(&click).unwrap();
+    labweb::paint_now();
+}
+
+fn plot_xs_of(exp: &dyn labcore::Lab) -> Vec<(&'static str, Option<f64>)> {
+    exp.plots()
+        .iter()
+        .map(|p| (p.key, labcore::timeline::plot_x(p)))
+        .collect()
+}
+
+/// Issue 26 §1: while the timeline shows a past moment, every plot draws a
+/// cursor there (the plot x its run had reached); live at the end, none.
+#[wasm_bindgen_test]
+fn plot_cursor_marks_the_moment_shown_on_every_plot_and_none_when_live() {
+    mount("#/pid/simulation");
+    let entry = labcore::find("pid").unwrap();
+    for _ in 0..120 {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    let end = steps_shown();
+    let keys: Vec<&str> = entry_plot_keys(entry);
+    assert!(keys.len() >= 2);
+    for key in &keys {
+        assert_eq!(cursor_of(key), None, "live: no cursor on {key}");
+    }
+    scrub_to(40);
+    for (key, x) in plot_xs_of(left_alone(entry, 40).as_ref()) {
+        assert_eq!(cursor_of(key), x, "{key} at step 40");
+        assert!(x.is_some());
+    }
+    scrub_to(end);
+    for key in &keys {
+        assert_eq!(cursor_of(key), None, "back at the end: no cursor on {key}");
+    }
+}
+
+fn entry_plot_keys(entry: &labcore::Entry) -> Vec<&'static str> {
+    (entry.make)().plots().iter().map(|p| p.key).collect()
+}
+
+/// Issue 26 §1, plots lead to the scene: a press on a plot point moves the
+/// timeline to that moment (the state the run had there), pauses, puts
+/// the cursor there and says the moment; a point further left is earlier.
+#[wasm_bindgen_test]
+fn clicking_a_plot_point_moves_the_timeline_there_and_pauses() {
+    mount("#/pid/simulation");
+    let entry = labcore::find("pid").unwrap();
+    for _ in 0..120 {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    let end = steps_shown();
+    press_plot("response", 0.5);
+    let (at, state) = shown();
+    assert!(at > 0 && at < end, "{at} of {end}");
+    assert_eq!(state, snapshot(left_alone(entry, at).as_ref()));
+    assert_eq!(attr(".sim-status", "data-clock").as_deref(), Some("paused"));
+    let x = plot_xs_of(left_alone(entry, at).as_ref())[0].1;
+    assert_eq!(cursor_of("response"), x);
+    let said = labweb::inspect_sim(|exp, _| exp.readouts()[0].clone()).unwrap();
+    assert_eq!(
+        text(".sim-live"),
+        format!(
+            "t = {:.2} s, {} = {}",
+            at as f64 * Clock::DT_S,
+            said.label,
+            said.value
+        )
+    );
+    // The other plot's points lead there too.
+    press_plot("effort", 0.2);
+    let earlier = steps_shown();
+    assert!(earlier < at, "{earlier} < {at}");
+    frame(ONE_STEP_MS);
+    assert_eq!(steps_shown(), earlier, "paused there");
+}
+
+/// Issue 26 §1: a focused plot moves the timeline point by point with its
+/// arrow keys (Left back, Right on), Home and End to its ends.
+#[wasm_bindgen_test]
+fn a_focused_plots_arrow_keys_move_the_timeline_point_by_point() {
+    mount("#/pid/simulation");
+    let entry = labcore::find("pid").unwrap();
+    for _ in 0..60 {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    let end = steps_shown();
+    let canvas = plot_canvas("response");
+    assert_eq!(canvas.get_attribute("tabindex").as_deref(), Some("0"));
+    let live = left_alone(entry, end);
+    let xs = live.plots()[0].series[0].x.clone();
+    key_on(&canvas, "ArrowLeft");
+    let back = steps_shown();
+    assert!(back < end);
+    assert_eq!(shown().1, snapshot(left_alone(entry, back).as_ref()));
+    // The cursor is on a point of the plot, each Left an earlier one, each
+    // Right a later one (a step may add more than one point).
+    let on_a_point = |x: Option<f64>| x.is_some_and(|x| xs.contains(&x));
+    let first = cursor_of("response");
+    assert!(on_a_point(first) && first < xs.last().copied(), "{first:?}");
+    key_on(&canvas, "ArrowLeft");
+    let second = cursor_of("response");
+    assert!(
+        on_a_point(second) && second < first,
+        "{second:?} < {first:?}"
+    );
+    assert_eq!(steps_shown(), back - 1, "one step further back");
+    key_on(&canvas, "ArrowRight");
+    assert_eq!(cursor_of("response"), first);
+    assert_eq!(steps_shown(), back);
+    key_on(&canvas, "Home");
+    assert_eq!(cursor_of("response"), Some(xs[0]));
+    key_on(&canvas, "End");
+    assert_eq!(steps_shown(), end);
+    assert_eq!(cursor_of("response"), None, "live again");
+}
+
+/// Issue 26 §1: the slider's own keys. An arrow is one model step (an EKF
+/// filter cycle, not one fixed step), Page keys one second; Home and End
+/// the record's ends.
+#[wasm_bindgen_test]
+fn slider_arrows_move_one_model_step_and_page_keys_one_second() {
+    mount("#/ekf/simulation");
+    let entry = labcore::find("ekf").unwrap();
+    let cycle = u64::from(Clock::fixed_steps_in(entry_step(entry)));
+    assert!(cycle > 1, "an EKF cycle is several fixed steps");
+    for _ in 0..150 {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    let end = steps_shown();
+    let slider = element(".tb-scrub");
+    key_on(&slider, "ArrowLeft");
+    assert_eq!(steps_shown(), end - cycle);
+    key_on(&slider, "ArrowRight");
+    assert_eq!(steps_shown(), end);
+    key_on(&slider, "PageDown");
+    assert_eq!(steps_shown(), end - 60);
+    assert_eq!(shown().1, snapshot(left_alone(entry, end - 60).as_ref()));
+    key_on(&slider, "PageUp");
+    assert_eq!(steps_shown(), end);
+    key_on(&slider, "Home");
+    assert_eq!(steps_shown(), 0);
+    key_on(&slider, "End");
+    assert_eq!(steps_shown(), end);
+}
+
+/// Issue 26 §1: where the plots count iterations (A* expansions), the Page
+/// keys move a tenth of the run.
+#[wasm_bindgen_test]
+fn slider_page_keys_move_a_tenth_of_an_iteration_run() {
+    mount("#/astar/simulation");
+    element("[data-action=plan]").click();
+    press_key_on_canvas("End");
+    let mut frames = 0;
+    while labweb::inspect_sim(|exp, _| exp.animating()).unwrap() {
+        frame(ONE_STEP_MS);
+        frames += 1;
+        assert!(frames < 200, "the search ends");
+    }
+    labweb::paint_now();
+    let end = steps_shown();
+    assert!(end >= 10, "{end}");
+    let slider = element(".tb-scrub");
+    key_on(&slider, "PageDown");
+    assert_eq!(steps_shown(), end - end / 10);
+}
+
+/// Issue 26 §2: a parameter changed while the timeline shows the past
+/// starts a new run there; the old future stays on the plots as a kept
+/// run named after the change and the moment.
+#[wasm_bindgen_test]
+fn branching_in_the_past_keeps_the_abandoned_run_named_after_the_change() {
+    mount("#/pid/simulation");
+    let entry = labcore::find("pid").unwrap();
+    for _ in 0..150 {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    let old_end = left_alone(entry, steps_shown());
+    scrub_to(126);
+    let slider: HtmlInputElement = element("input[type=range][data-param=kp]")
+        .dyn_into()
+        .unwrap();
+    slider.set_value("60");
+    let init = web_sys::EventInit::new();
+    init.set_bubbles(true);
+    slider
+        .dispatch_event(&web_sys::Event::new_with_event_init_dict("input", &init).unwrap())
+        .unwrap();
+    frame(ONE_STEP_MS);
+    labweb::paint_now();
+    let name = "before Kp 12 N/m → 60 N/m at t = 2.10 s";
+    let legend: Vec<(String, bool)> = page::document()
+        .query_selector_all("figure[data-plot=response] .legend-item[data-series]")
+        .unwrap()
+        .values()
+        .into_iter()
+        .map(|n| {
+            let el: web_sys::Element = n.unwrap().dyn_into().unwrap();
+            (
+                el.text_content().unwrap_or_default(),
+                el.has_attribute("hidden"),
+            )
+        })
+        .collect();
+    assert!(legend.contains(&(name.to_owned(), false)), "{legend:?}");
+    // The kept curve is the old run's response, on every plot.
+    let kept = labcore::timeline::KeptRun::of(old_end.as_ref(), name.to_owned());
+    let effort = page::document()
+        .query_selector_all("figure[data-plot=effort] .legend-item[data-series]")
+        .unwrap();
+    let names: Vec<String> = (0..effort.length())
+        .map(|i| effort.item(i).unwrap().text_content().unwrap_or_default())
+        .collect();
+    assert!(names.iter().any(|n| n == name), "{names:?}");
+    assert!(kept.series[0].as_ref().is_some_and(|s| !s.is_empty()));
+    // The new run goes on from there, live.
+    assert_eq!(attr(".tb-scrub", "max"), Some(steps_shown().to_string()));
+}

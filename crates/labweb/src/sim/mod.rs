@@ -108,7 +108,15 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
     } else {
         String::new()
     };
-    let all_plots = exp.plots();
+    // An experiment with a timeline keeps the runs its branches leave: each
+    // plot has their places in its legend from the start.
+    let slotted;
+    let all_plots = if exp.animated() && !exp.plots().is_empty() {
+        slotted = labcore::timeline::with_kept(exp.plots(), &[], 0);
+        &slotted[..]
+    } else {
+        exp.plots()
+    };
     let main_plot = all_plots.first().map_or(String::new(), |p| {
         format!(
             "<section class=\"sim-mainplot\" aria-label=\"Main plot\">{}</section>",
@@ -284,6 +292,18 @@ struct SimState {
     shown_scrub: (u64, u64, u64),
     /// The marked moments of the run ([`marks`]).
     marks: marks::MarkState,
+    /// The run's last state while the scene shows the past: its plots are
+    /// drawn (with a cursor at the moment shown), and an input there keeps
+    /// it as the run the branch left behind ([`scrub`]).
+    record_end: Option<Box<dyn Lab>>,
+    /// Runs that branches left behind, on the plots and as ghosts.
+    kept: Vec<labcore::timeline::KeptRun>,
+    /// Bumped whenever `kept` changes (the plots redraw).
+    kept_serial: u64,
+    /// A branch whose name waits for the input to be applied.
+    pending_branch: Option<scrub::PendingBranch>,
+    /// What the next input is, when the page knows (an action's label).
+    branch_cause: Option<&'static str>,
 }
 
 /// Recent busy-frame times (step + paint), published on the canvas as
@@ -373,6 +393,7 @@ impl SimState {
         // Reads before writes: the plots' sizes are read while the page's
         // layout is still clean; read after the readouts are written, each
         // would make the browser lay the page out again mid-frame.
+        self.finish_branch();
         let plots_due = self.plots_force || self.plots.due(time_ms);
         if plots_due {
             self.plots.measure();
@@ -482,7 +503,13 @@ impl SimState {
         if write_text {
             self.sync_dom();
             let at_once = input_paint || !self.exp.animating();
-            self.plots.sync_text(self.exp.plots(), time_ms, at_once);
+            let plots = scrub::shown_plots(
+                self.exp.as_ref(),
+                self.record_end.as_deref(),
+                &self.kept,
+                self.kept_serial,
+            );
+            self.plots.sync_text(&plots, time_ms, at_once);
             self.text_ms = time_ms;
             self.text_stale = false;
         }
@@ -491,11 +518,23 @@ impl SimState {
         // one a frame (they take turns), so no frame pays for all of them;
         // nor for a plot and the page's text together, unless forced.
         if self.plots_force {
-            self.plots.draw(self.exp.plots(), &self.palette, true);
+            self.sync_cursors();
+            let plots = scrub::shown_plots(
+                self.exp.as_ref(),
+                self.record_end.as_deref(),
+                &self.kept,
+                self.kept_serial,
+            );
+            self.plots.draw(&plots, &self.palette, true);
             self.plots_force = false;
         } else if plots_due && (input_paint || !write_text) {
-            self.plots
-                .draw_next(self.exp.plots(), &self.palette, time_ms);
+            let plots = scrub::shown_plots(
+                self.exp.as_ref(),
+                self.record_end.as_deref(),
+                &self.kept,
+                self.kept_serial,
+            );
+            self.plots.draw_next(&plots, &self.palette, time_ms);
         }
         self.sync_notice(time_ms);
         self.sync_timebar(write_text || input_paint);
@@ -559,6 +598,9 @@ impl SimState {
         }
         self.scene.clear();
         self.exp.scene(&mut self.scene);
+        for run in &self.kept {
+            run.ghosts(&mut self.scene);
+        }
         self.push_focus_ring();
         paint_with_backdrop(
             &self.ctx,
@@ -741,6 +783,11 @@ impl SimView {
             scrub_slider: query(panel, ".tb-scrub"),
             shown_scrub: (0, 0, u64::MAX),
             marks: marks::MarkState::default(),
+            record_end: None,
+            kept: Vec::new(),
+            kept_serial: 0,
+            pending_branch: None,
+            branch_cause: None,
         }));
         state.borrow_mut().restart_timeline();
         let mut listeners = Vec::new();
@@ -938,8 +985,16 @@ impl SimView {
         st.paint();
         st.sync_dom();
         let st = &mut *st;
-        st.plots.draw(st.exp.plots(), &st.palette, true);
-        st.plots.sync_text(st.exp.plots(), dom::now_ms(), true);
+        st.finish_branch();
+        st.sync_cursors();
+        let plots = scrub::shown_plots(
+            st.exp.as_ref(),
+            st.record_end.as_deref(),
+            &st.kept,
+            st.kept_serial,
+        );
+        st.plots.draw(&plots, &st.palette, true);
+        st.plots.sync_text(&plots, dom::now_ms(), true);
         st.plots_force = false;
         st.sync_timebar(true);
         st.sync_marks();

@@ -123,16 +123,31 @@ pub(super) fn listen(
     if let Some(sim) = query(panel, ".sim") {
         let s = state.clone();
         listeners.push(Listener::new(sim.as_ref(), "click", move |e: Event| {
-            let Some(button) = e
-                .target()
-                .and_then(|t| t.dyn_into::<Element>().ok())
-                .and_then(|el| el.closest("button").ok().flatten())
-            else {
+            let target = e.target().and_then(|t| t.dyn_into::<Element>().ok());
+            if let (Some(canvas), Some(m)) = (
+                target
+                    .as_ref()
+                    .filter(|el| el.class_list().contains("plot-canvas")),
+                e.dyn_ref::<web_sys::MouseEvent>(),
+            ) {
+                // A point of the plot (a click or a tap, not a swipe that
+                // scrolls): the timeline goes to that moment.
+                s.borrow_mut()
+                    .go_to_plot_point(canvas, f64::from(m.client_x()));
+                return;
+            }
+            let Some(button) = target.and_then(|el| el.closest("button").ok().flatten()) else {
                 return;
             };
             let attr = |name: &str| button.get_attribute(name);
             let mut st = s.borrow_mut();
             if let Some(key) = attr("data-action") {
+                st.branch_cause = st
+                    .exp
+                    .actions()
+                    .iter()
+                    .find(|a| a.key == key)
+                    .map(|a| a.label);
                 let mut done = Ok(());
                 st.guarded(|exp| done = exp.action(&key));
                 if let Err(err) = done {
@@ -247,7 +262,13 @@ pub(super) fn listen(
                 let mut st = s.borrow_mut();
                 let st = &mut *st;
                 let x = (kind != "pointerleave").then(|| f64::from(e.client_x()));
-                st.plots.hover(&canvas, x, st.exp.plots(), &st.palette);
+                let plots = super::scrub::shown_plots(
+                    st.exp.as_ref(),
+                    st.record_end.as_deref(),
+                    &st.kept,
+                    st.kept_serial,
+                );
+                st.plots.hover(&canvas, x, &plots, &st.palette);
             }));
         }
     }

@@ -9,16 +9,24 @@
 //! the timeline shows the past starts a new run from that moment (the old
 //! future is dropped). Scrubbing pauses the run; Play from the past replays
 //! the record up to its end, then the run goes on live.
+//!
+//! While the scene shows the past, the plots show the whole record with a
+//! cursor at the moment shown; a point clicked on a plot (or chosen with
+//! its arrow keys) moves the timeline there. An input in the past keeps the
+//! old future as a comparison run ([`KeptRun`]) named after the change,
+//! on the plots and, where the scene has a trail, as a ghost.
 
 use super::SimState;
 use crate::dom::{self, query, Listener};
 use labcore::clock::Clock;
-use labcore::timeline::Timeline;
+use labcore::plot::{Plot, XWindow};
+use labcore::timeline::{self, plot_x, KeptRun, Timeline};
 use labcore::{Lab, Phase};
+use std::borrow::Cow;
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::JsCast;
-use web_sys::{Element, Event, HtmlInputElement};
+use web_sys::{Element, Event, HtmlInputElement, KeyboardEvent};
 
 /// The longest a frame of Run to end may step, milliseconds: the run is
 /// finished over as many frames as it takes, each well under a 50 ms task.
@@ -35,15 +43,76 @@ pub(super) const BUTTONS_HTML: &str = "<button type=\"button\" data-time=\"back\
      <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M1 2v12l6-6zM7 2v12l6-6zM13 2h2v12h-2z\"/></svg> <span class=\"tb-text\">Run to end</span></button>";
 
 /// The timeline slider, on its own row of the time bar: from the oldest
-/// step kept to the run's last step, in fixed steps. Its keys are the
-/// browser's: an arrow moves one step, Page Up and Page Down a tenth of the
-/// run, Home and End to its ends.
+/// step kept to the run's last step, in fixed steps. Its keys are its own
+/// ([`SimState::scrub_key`]): an arrow moves one model step, Page Up and
+/// Page Down one second (a tenth of the run where the plots count
+/// iterations), Home and End to its ends.
 pub(super) const SLIDER_HTML: &str = "<input type=\"range\" class=\"tb-scrub\" data-time=\"scrub\" min=\"0\" max=\"0\" value=\"0\" step=\"1\" \
      aria-label=\"Timeline\" aria-valuetext=\"t = 0.00 s\">";
 
 /// One fixed step of a replay.
 fn step_once(exp: &mut dyn Lab) {
     exp.step(Clock::DT_S);
+}
+
+/// A branch taken in the past, named once its input has been applied.
+pub(super) struct PendingBranch {
+    /// The moment it branched from, seconds.
+    t_s: f64,
+    /// The parameters before the input.
+    before: Vec<Option<f64>>,
+    /// The old run's last state.
+    abandoned: Box<dyn Lab>,
+    /// What the input was, when the page knows (an action's label).
+    cause: Option<&'static str>,
+}
+
+fn param_values(exp: &dyn Lab) -> Vec<Option<f64>> {
+    exp.params().iter().map(|s| exp.param(s.key)).collect()
+}
+
+/// The plots as drawn: the record's (its last state's) while the scene
+/// shows the past, with a rolling window moved to keep the moment shown in
+/// view; each with the places of the kept runs (an experiment with a
+/// timeline). Borrowed, not copied, while there is nothing to add.
+pub(super) fn shown_plots<'a>(
+    exp: &'a dyn Lab,
+    record_end: Option<&'a dyn Lab>,
+    kept: &[KeptRun],
+    kept_serial: u64,
+) -> Cow<'a, [Plot]> {
+    if record_end.is_none() && kept.is_empty() {
+        return Cow::Borrowed(exp.plots());
+    }
+    let base = record_end.map_or(exp.plots(), |end| end.plots());
+    let mut plots = timeline::with_kept(base, kept, kept_serial);
+    if record_end.is_some() {
+        for (plot, now) in plots.iter_mut().zip(exp.plots()) {
+            if let (XWindow::Rolling(w), Some(x), Some((_, hi))) =
+                (plot.window, plot_x(now), plot.x_range())
+            {
+                if x < hi - 0.9 * w.abs() || x > hi {
+                    let lo = (x - 0.5 * w.abs()).max(plot.x_range().map_or(x, |r| r.0));
+                    plot.window = XWindow::Fixed(lo, lo + w.abs());
+                }
+            }
+        }
+    }
+    Cow::Owned(plots)
+}
+
+/// Makes each plot canvas focusable, its arrow keys moving the timeline
+/// along the plot, for an experiment with a timeline.
+pub(super) fn focusable_plots(panel: &Element) {
+    for canvas in dom::query_all(panel, ".plot-canvas") {
+        let _ = canvas.set_attribute("tabindex", "0");
+        let _ = canvas.set_attribute("aria-keyshortcuts", "ArrowLeft ArrowRight Home End");
+        let title = canvas.get_attribute("aria-label").unwrap_or_default();
+        let _ = canvas.set_attribute(
+            "aria-label",
+            &format!("{title}: click a point, or use the Left and Right arrows, to show the scene at that moment"),
+        );
+    }
 }
 
 /// Wires the slider: dragging it (or its arrow, Page, Home and End keys)
@@ -71,6 +140,38 @@ pub(super) fn listen(
         st.student_acted();
         st.seek(step);
     }));
+    let s = state.clone();
+    listeners.push(Listener::new(
+        slider.as_ref(),
+        "keydown",
+        move |e: Event| {
+            let Some(key) = e.dyn_ref::<KeyboardEvent>().map(KeyboardEvent::key) else {
+                return;
+            };
+            let mut st = s.borrow_mut();
+            if st.scrub_key(&key) {
+                e.prevent_default();
+            }
+        },
+    ));
+    if state.borrow().timeline.is_some() {
+        focusable_plots(panel);
+        let s = state.clone();
+        listeners.push(Listener::new(panel.as_ref(), "keydown", move |e: Event| {
+            let (Some(ke), Some(canvas)) = (
+                e.dyn_ref::<KeyboardEvent>(),
+                e.target()
+                    .and_then(|t| t.dyn_into::<Element>().ok())
+                    .filter(|el| el.class_list().contains("plot-canvas")),
+            ) else {
+                return;
+            };
+            let mut st = s.borrow_mut();
+            if st.plot_key(&canvas, &ke.key()) {
+                e.prevent_default();
+            }
+        }));
+    }
 }
 
 impl SimState {
@@ -83,6 +184,7 @@ impl SimState {
 
     /// A new record from the state now (mount, Reset, a file loaded).
     pub(super) fn restart_timeline(&mut self) {
+        self.record_end = None;
         if self.exp.animated() {
             self.timeline = Some(Timeline::new(self.exp.as_ref(), self.clock.steps()));
         }
@@ -93,10 +195,174 @@ impl SimState {
     /// An input is about to change the model at the step shown: the record
     /// keeps the state it leaves (from the past: a new run from there).
     pub(super) fn timeline_input(&mut self) {
+        let cause = self.branch_cause.take();
+        if let Some(abandoned) = self.record_end.take() {
+            // From the past: the old future is kept, named once the input
+            // is applied ([`SimState::finish_branch`]).
+            self.finish_branch();
+            self.pending_branch = Some(PendingBranch {
+                t_s: self.clock.time_s(),
+                before: param_values(self.exp.as_ref()),
+                abandoned,
+                cause,
+            });
+        }
         if let Some(tl) = &mut self.timeline {
             tl.input_at(self.clock.steps());
         }
         self.marks_new_run_from(self.clock.steps());
+    }
+
+    /// Names and keeps the run a branch left behind, once its input has
+    /// been applied: what changed (the first parameter that did, else the
+    /// action) and when.
+    pub(super) fn finish_branch(&mut self) {
+        let Some(branch) = self.pending_branch.take() else {
+            return;
+        };
+        let label = timeline::branch_label(
+            self.exp.params(),
+            &branch.before,
+            &param_values(self.exp.as_ref()),
+            branch.cause,
+            branch.t_s,
+        );
+        timeline::keep(
+            &mut self.kept,
+            KeptRun::of(branch.abandoned.as_ref(), label),
+        );
+        self.kept_serial += 1;
+        self.plots_force = true;
+        self.needs_paint = true;
+    }
+
+    /// Puts the cursor on every plot at the moment shown while it is in
+    /// the past; none when the run is shown live at its end.
+    pub(super) fn sync_cursors(&mut self) {
+        let past = self.record_end.is_some();
+        for plot in self.exp.plots() {
+            self.plots
+                .set_cursor(plot.key, if past { plot_x(plot) } else { None });
+        }
+    }
+
+    /// The moment shown in words: the time and the main readout
+    /// (`t = 3.20 s, x = 0.950 m`), as the slider speaks it.
+    pub(super) fn moment_text(&self) -> String {
+        let main = self
+            .exp
+            .readouts()
+            .into_iter()
+            .next()
+            .map_or(String::new(), |r| format!(", {} = {}", r.label, r.value));
+        format!("t = {:.2} s{main}", self.clock.time_s())
+    }
+
+    /// The timeline slider's keys: an arrow moves one model step, Page Up
+    /// and Page Down one second (a tenth of the run where the main plot
+    /// counts iterations, not seconds), Home and End to the record's ends.
+    /// Returns whether the key was one of them.
+    pub(super) fn scrub_key(&mut self, key: &str) -> bool {
+        let Some(tl) = &self.timeline else {
+            return false;
+        };
+        let (first, end, now) = (tl.first(), tl.end(), self.clock.steps());
+        let model = u64::from(Clock::fixed_steps_in(self.exp.natural_step_s())).max(1);
+        let in_seconds = self.exp.plots().first().is_none_or(|p| p.x_unit == "s");
+        let page = if in_seconds {
+            (1.0 / Clock::DT_S).round() as u64
+        } else {
+            ((end - first) / 10).max(1)
+        };
+        let target = match key {
+            "ArrowLeft" | "ArrowDown" => now.saturating_sub(model),
+            "ArrowRight" | "ArrowUp" => now + model,
+            "PageDown" => now.saturating_sub(page),
+            "PageUp" => now + page,
+            "Home" => first,
+            "End" => end,
+            _ => return false,
+        };
+        self.student_acted();
+        self.seek(target.clamp(first, end));
+        true
+    }
+
+    /// A click or tap at client x `client_x` on a plot's canvas: the
+    /// timeline goes to the moment of that point and pauses there.
+    pub(super) fn go_to_plot_point(&mut self, canvas: &Element, client_x: f64) {
+        if let Some((key, x)) = self.plots.point_at(canvas, client_x) {
+            self.go_to_plot_x(key, x, None);
+        }
+    }
+
+    /// Goes to the step of the run whose plot `key` reached nearest plot x
+    /// `x`, past `not` (a step the keys must leave), and says the moment.
+    /// Returns the step gone to.
+    fn go_to_plot_x(&mut self, key: &str, x: f64, not: Option<u64>) -> Option<u64> {
+        let index = self.exp.plots().iter().position(|p| p.key == key)?;
+        self.timeline_commit();
+        let step = self
+            .timeline
+            .as_ref()?
+            .step_at_plot_x(index, x, &mut step_once)?;
+        if Some(step) == not {
+            return None;
+        }
+        self.student_acted();
+        self.seek(step);
+        let text = self.moment_text();
+        self.say(&text);
+        Some(step)
+    }
+
+    /// A key on a focused plot: Left and Right move the timeline to the
+    /// plot's previous or next point, Home and End to its first and last.
+    /// Returns whether the key was one of them.
+    pub(super) fn plot_key(&mut self, canvas: &Element, key: &str) -> bool {
+        let Some(plot_key) = self.plots.key_of(canvas) else {
+            return false;
+        };
+        let (xs, now) = {
+            let plots = shown_plots(
+                self.exp.as_ref(),
+                self.record_end.as_deref(),
+                &self.kept,
+                self.kept_serial,
+            );
+            let Some(main) = plots
+                .iter()
+                .find(|p| p.key == plot_key)
+                .and_then(|p| p.series.iter().find(|s| !s.comparison && !s.is_empty()))
+            else {
+                return false;
+            };
+            let now = self
+                .exp
+                .plots()
+                .iter()
+                .find(|p| p.key == plot_key)
+                .and_then(plot_x)
+                .and_then(|x| main.nearest(x))
+                .unwrap_or(main.len() - 1);
+            (main.x.clone(), now)
+        };
+        let last = xs.len() - 1;
+        let step_now = self.clock.steps();
+        let order: Vec<usize> = match key {
+            "ArrowLeft" => (0..now).rev().collect(),
+            "ArrowRight" => (now + 1..=last).collect(),
+            "Home" => vec![0],
+            "End" => vec![last],
+            _ => return false,
+        };
+        // The next point that is another step (a step may add several).
+        for i in order {
+            if self.go_to_plot_x(plot_key, xs[i], Some(step_now)).is_some() {
+                break;
+            }
+        }
+        true
     }
 
     /// Before the live run steps: the record takes the state an input left.
@@ -114,7 +380,15 @@ impl SimState {
         };
         tl.commit(self.exp.as_ref());
         let (at, lab) = tl.state_at(step, &mut step_once);
-        self.exp = lab;
+        let end = tl.end();
+        let shown = std::mem::replace(&mut self.exp, lab);
+        // The run's last state is kept while the past is shown (its plots
+        // are drawn; an input there keeps it as the run left behind).
+        if at == end {
+            self.record_end = None;
+        } else if self.record_end.is_none() {
+            self.record_end = Some(shown);
+        }
         if self.css_size.0 >= 1.0 {
             self.exp.viewport_px(self.css_size.0, self.css_size.1);
         }
@@ -150,7 +424,12 @@ impl SimState {
             return 0;
         };
         let at = tl.forward(&mut self.exp, from, from + n, &mut step_once);
+        if at == tl.end() {
+            self.record_end = None;
+        }
         self.clock.seek(at);
+        // The plots' cursors follow the replay.
+        self.plots_force = true;
         at - from
     }
 
@@ -260,13 +539,7 @@ impl SimState {
         let _ = slider.set_attribute("min", &now.0.to_string());
         let _ = slider.set_attribute("max", &now.1.to_string());
         slider.set_value(&now.2.to_string());
-        let main = self
-            .exp
-            .readouts()
-            .into_iter()
-            .next()
-            .map_or(String::new(), |r| format!(", {} = {}", r.label, r.value));
-        let text = format!("t = {:.2} s{main}", self.clock.time_s());
+        let text = self.moment_text();
         let _ = slider.set_attribute("aria-valuetext", &text);
     }
 }

@@ -213,7 +213,9 @@ impl SimState {
     }
 
     pub(super) fn reset_run(&mut self) {
-        // Reset keeps the parameters, locked ones above all.
+        // Reset keeps the parameters, locked ones above all; it starts the
+        // run again rather than branching from the moment shown.
+        self.record_end = None;
         self.guarded(|exp| exp.reset());
         self.clock.reset();
         self.restart_timeline();

@@ -709,6 +709,96 @@ fn cartpole_step_7_the_linear_model_parts_from_the_nonlinear_as_the_angle_grows(
     assert!(e.status().text.starts_with("pole fallen at t = 0.00 s"));
 }
 
+/// Step 8 (issue 26 §2): with kθ = 15 and the other gains at their
+/// defaults the pole falls at t = 8.60 s; back on the timeline at
+/// t = 6.00 s (the swing's peak, about 31°), kθ = 120 starts a new run
+/// there that catches it without leaning further, and the old run is kept
+/// on the plots as "before kθ 15 N/rad → 120 N/rad at t = 6.00 s", still
+/// falling past 90°; from t = 6.40 s (about 17°, swinging back fast) it is
+/// too late: the pole falls at t = 7.88 s.
+#[test]
+fn cartpole_step_8_branch_before_the_fall_and_the_pole_is_caught() {
+    use crate::clock::Clock;
+    use crate::timeline::{branch_label, KeptRun, Timeline};
+    use crate::Lab;
+    // Where step 7 left it: control on, fallen past 12° / 2.4 m, 15° start.
+    let mut e = after_steps(6);
+    for (key, v) in [
+        ("ctl", 1.0),
+        ("fall", 0.0),
+        ("integ", 0.0),
+        ("fall", 1.0),
+        ("th0", 15.0),
+    ] {
+        e.set_param(key, v).unwrap();
+    }
+    for (key, v) in [
+        ("fall", 0.0),
+        ("th0", 6.0),
+        ("kth", 15.0),
+        ("kom", 18.0),
+        ("kx", 3.0),
+        ("kv", 6.0),
+    ] {
+        e.set_param(key, v).unwrap();
+    }
+    e.reset();
+    // The run, recorded as the page records it, until the pole falls.
+    let mut timeline = Timeline::new(&e, 0);
+    let mut end = 0;
+    while !matches!(e.run, Run::Ended { .. }) && end < 60 * 60 {
+        e.step(Clock::DT_S);
+        timeline.stepped(&e);
+        end += 1;
+    }
+    assert!(
+        e.status().text.starts_with("pole fallen at t = 8.60 s"),
+        "{}",
+        e.status().text
+    );
+    assert!(e.state().theta_rad.to_degrees().abs() > 90.0);
+    let old_end: Box<dyn Lab> = Box::new(e.clone());
+    let params =
+        |l: &dyn Lab| -> Vec<Option<f64>> { l.params().iter().map(|s| l.param(s.key)).collect() };
+    let degrees = |l: &dyn Lab| {
+        readout(l, "theta")
+            .trim_end_matches('°')
+            .parse::<f64>()
+            .unwrap()
+    };
+    // Back to `t_s` and kθ = 120 there: the angle then, the kept run's
+    // name, the largest lean after, and the status 30 s on.
+    let branch = |timeline: &mut Timeline, t_s: f64| {
+        let step = (t_s / Clock::DT_S).round() as u64;
+        let (at, mut lab) = timeline.state_at(step, &mut |l: &mut dyn Lab| l.step(Clock::DT_S));
+        assert_eq!(at, step);
+        let theta = readout(lab.as_ref(), "theta");
+        let before = params(lab.as_ref());
+        lab.set_param("kth", 120.0).unwrap();
+        let label = branch_label(lab.params(), &before, &params(lab.as_ref()), None, t_s);
+        let mut peak: f64 = 0.0;
+        for _ in 0..(30.0 / Clock::DT_S) as usize {
+            lab.step(Clock::DT_S);
+            peak = peak.max(degrees(lab.as_ref()).abs());
+        }
+        (theta, label, peak, lab.status().text)
+    };
+    let (theta, label, peak, status) = branch(&mut timeline, 6.0);
+    assert_eq!(theta, "31.3°");
+    assert_eq!(label, "before kθ 15 N/rad → 120 N/rad at t = 6.00 s");
+    assert!(peak < 31.4, "caught without leaning further: {peak}");
+    assert!(!status.starts_with("pole fallen"), "{status}");
+    // The old run, kept: its angle still ends past 90°.
+    let kept = KeptRun::of(old_end.as_ref(), label.clone());
+    let angle = kept.series[0].as_ref().expect("the angle plot's main series");
+    assert!(angle.y.last().unwrap().abs() > 90.0, "{:?}", angle.y.last());
+    assert_eq!(kept.label, label);
+    // From t = 6.40 s, leaning less but swinging back fast: too late.
+    let (theta, _, _, status) = branch(&mut timeline, 6.4);
+    assert_eq!(theta, "17.4°");
+    assert!(status.starts_with("pole fallen at t = 7.88 s"), "{status}");
+}
+
 // ---- Issue items.
 
 /// What the page does: Play steps only while the experiment is animating,
@@ -1132,3 +1222,4 @@ fn cartpole_force_has_one_format_in_the_readout_and_on_the_canvas() {
         );
     }
 }
+
