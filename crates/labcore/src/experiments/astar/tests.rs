@@ -308,7 +308,7 @@ fn load_file_reads_a_map_and_refuses_a_malformed_one_unchanged() {
     a.action("arena").unwrap();
     a.action("plan").unwrap();
     settle(&mut a);
-    let s = parse_scen(crate::planning::movingai::ARENA_SCEN)
+    let s = crate::planning::movingai::parse_scen(crate::planning::movingai::ARENA_SCEN)
         .unwrap()
         .pop()
         .unwrap();
