@@ -21,7 +21,7 @@ use std::time::Instant;
 
 pub const WASM_TARGET: &str = "wasm32-unknown-unknown";
 
-/// `wasm-opt` level. Measured on labweb's wasm-bindgen output (fk + ik
+/// `wasm-opt` level. Measured first on labweb's wasm-bindgen output (fk + ik
 /// experiments, Rust 1.95, binaryen 132, 2-core machine):
 ///
 /// | level | wasm bytes | gzip -9 bytes | wasm-opt time |
@@ -32,13 +32,31 @@ pub const WASM_TARGET: &str = "wasm32-unknown-unknown";
 /// | -Os   | 427,886    | 162,680       | 6.8 s         |
 /// | -Oz   | 427,204    | 162,665       | 7.4 s         |
 ///
-/// Both shave about 20 % (14 % gzipped) off the module; `-Oz` beats `-O3` by
-/// only 0.6 % raw and 0.2 % (318 bytes) gzipped. For that little, `-O3` keeps
-/// binaryen's inlining and speed-oriented passes, which the solvers running
-/// every frame benefit from (rustc builds them at opt-level 3 for the same
-/// reason). Re-measure with `XTASK_WASM_OPT=-Oz cargo xtask dist && cargo
-/// xtask size` if the bundle's character changes.
-pub const WASM_OPT_LEVEL: &str = "-O3";
+/// `-O3` was kept then, for 318 bytes. Measured again on the astar module
+/// once the timeline, marks and live math were in (issues 26 and 27), the
+/// page being within 4 KB of its 250 KiB budget:
+///
+/// | level            | wasm bytes | gzip -9 bytes | wasm-opt time |
+/// | ---------------- | ---------- | ------------- | ------------- |
+/// | -O3              | 541,104    | 240,829       | 7.1 s         |
+/// | -Oz              | 530,276    | 239,065       | 6.6 s         |
+/// | -Oz --converge   | 530,276    | 238,363       | 13.3 s        |
+/// | the level below  | 522,026    | 235,828       | 24 s          |
+///
+/// (the last row on a later build whose `-Oz --converge` gave 237,414).
+/// `-Oz --converge` repeats the passes until the module stops shrinking;
+/// before it, functions that are duplicates or differ only in constants are
+/// merged, common code tails folded, and the control flow flattened and
+/// rebuilt (`--flatten --rereloop`), which lets `-Oz` find more: 5 KB gzip
+/// off every module against `-O3`, with no assumption about the program
+/// (no `--low-memory-unused`, no `--ignore-implicit-traps`). rustc already
+/// builds the modules at opt-level "z" (`[profile.wasm-release]`), so
+/// binaryen's extra inlining at `-O3` bought little speed (the browser
+/// benchmark's running frames, README). The time runs beside the next
+/// module's cargo build. Re-measure with `XTASK_WASM_OPT=-O3 cargo xtask
+/// dist && cargo xtask size`.
+pub const WASM_OPT_LEVEL: &str = "--duplicate-function-elimination --merge-similar-functions \
+     --code-folding --flatten --rereloop -Oz --converge";
 
 /// Features of the Rust 1.95 `wasm32-unknown-unknown` output: exactly those
 /// LLVM's default "generic" CPU enables (and lists in the module's
