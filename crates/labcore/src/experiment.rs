@@ -713,7 +713,7 @@ pub trait Experiment {
     /// a budget ([`crate::timeline::Timeline::BUDGET_BYTES`]). Default: the
     /// plots' samples; an experiment holding more (a grid, a tree) adds it.
     fn state_bytes(&self) -> usize {
-        crate::timeline::plots_bytes(self.plots())
+        crate::plot::plots_bytes(self.plots())
     }
 }
 

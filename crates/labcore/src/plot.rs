@@ -529,6 +529,17 @@ pub fn decimate_min_max(
     out
 }
 
+/// The bytes a plot's samples take: the default of
+/// [`crate::Experiment::state_bytes`], what a timeline snapshot of them costs.
+#[must_use]
+pub fn plots_bytes(plots: &[Plot]) -> usize {
+    plots
+        .iter()
+        .flat_map(|p| &p.series)
+        .map(|s| (s.x.capacity() + s.y.capacity()) * std::mem::size_of::<f64>())
+        .sum()
+}
+
 #[cfg(test)]
 mod tests {
 

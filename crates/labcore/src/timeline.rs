@@ -291,17 +291,6 @@ impl Timeline {
     }
 }
 
-/// The bytes a plot's samples take: the default of
-/// [`crate::Experiment::state_bytes`].
-#[must_use]
-pub fn plots_bytes(plots: &[Plot]) -> usize {
-    plots
-        .iter()
-        .flat_map(|p| &p.series)
-        .map(|s| (s.x.capacity() + s.y.capacity()) * std::mem::size_of::<f64>())
-        .sum()
-}
-
 /// How far along its run a plot is: the largest x of the last samples of
 /// its series that are not kept for comparison (the time, the iteration);
 /// `None` before any sample. The plot cursor of a past moment is drawn

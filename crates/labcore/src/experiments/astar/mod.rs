@@ -1448,7 +1448,7 @@ impl Experiment for AStarGrid {
     fn state_bytes(&self) -> usize {
         let cells = self.grid.width() * self.grid.height();
         let search = if self.search.is_some() { 16 } else { 0 };
-        cells * (8 + search) + crate::timeline::plots_bytes(&self.plots)
+        cells * (8 + search) + crate::plot::plots_bytes(&self.plots)
     }
 
     fn animating(&self) -> bool {

@@ -931,7 +931,7 @@ impl Experiment for RrtStarField {
     /// layer the page draws, with the plot.
     fn state_bytes(&self) -> usize {
         let nodes: usize = self.runs.iter().map(|r| r.tree.len()).sum();
-        nodes * 72 + crate::timeline::plots_bytes(&self.plots)
+        nodes * 72 + crate::plot::plots_bytes(&self.plots)
     }
 
     fn animating(&self) -> bool {

@@ -353,7 +353,7 @@ impl Experiment for Workspace {
     fn state_bytes(&self) -> usize {
         self.tips.capacity() * std::mem::size_of::<DVec2>()
             + self.density.cols * self.density.rows * 4
-            + crate::timeline::plots_bytes(&self.plots)
+            + crate::plot::plots_bytes(&self.plots)
     }
 
     fn animating(&self) -> bool {
