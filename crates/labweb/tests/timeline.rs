@@ -156,12 +156,9 @@ fn run_to_end_button_finishes_the_run_and_the_timeline_spans_it() {
     );
 }
 
-/// Issue 26 §1, Run to end for A*: `End` finishes the search at once (no
-/// watching), and Step back then goes back one expansion step.
-#[wasm_bindgen_test]
-fn end_key_finishes_the_astar_search_and_step_back_undoes_one_step() {
-    mount("#/astar/simulation");
-    let entry = labcore::find("astar").unwrap();
+/// Presses Plan on the mounted A* page and End (Run to end), lets the
+/// frames finish the search, and returns the step the timeline shows then.
+fn plan_and_run_to_end() -> u64 {
     element("[data-action=plan]").click();
     press_key_on_canvas("End");
     let mut frames = 0;
@@ -171,7 +168,16 @@ fn end_key_finishes_the_astar_search_and_step_back_undoes_one_step() {
         assert!(frames < 200, "the search ends");
     }
     labweb::paint_now();
-    let end = steps_shown();
+    steps_shown()
+}
+
+/// Issue 26 §1, Run to end for A*: `End` finishes the search at once (no
+/// watching), and Step back then goes back one expansion step.
+#[wasm_bindgen_test]
+fn end_key_finishes_the_astar_search_and_step_back_undoes_one_step() {
+    mount("#/astar/simulation");
+    let entry = labcore::find("astar").unwrap();
+    let end = plan_and_run_to_end();
     let planned = |steps: u64| {
         let mut exp = (entry.make)();
         exp.action("plan").unwrap();
@@ -421,16 +427,7 @@ fn slider_arrows_move_one_model_step_and_page_keys_one_second() {
 #[wasm_bindgen_test]
 fn slider_page_keys_move_a_tenth_of_an_iteration_run() {
     mount("#/astar/simulation");
-    element("[data-action=plan]").click();
-    press_key_on_canvas("End");
-    let mut frames = 0;
-    while labweb::inspect_sim(|exp, _| exp.animating()).unwrap() {
-        frame(ONE_STEP_MS);
-        frames += 1;
-        assert!(frames < 200, "the search ends");
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = plan_and_run_to_end();
     assert!(end >= 10, "{end}");
     let slider = element(".tb-scrub");
     key_on(&slider, "PageDown");
