@@ -19,6 +19,7 @@ const MODULES = [...document.querySelectorAll("meta[name=lab-module]")].map((m) 
 }));
 const moduleOf = (id) => MODULES.find((m) => m.ids.includes(id));
 const glues = new Map(); // module key -> Promise of its started glue module
+const running = new Set(); // keys of the modules that have started (their glue resolved)
 const articles = new Map(); // experiment id -> Promise of its article element
 let active = null; // the key of the module that has the app mounted
 // Inside an LMS (a frame, or a window opened by the LMS) the SCORM bridge
@@ -110,6 +111,7 @@ function switchTo(mod) {
       return;
     }
     if (!first) glue.boot();
+    running.add(mod.key);
     window.labweb = glue;
   });
   return switching;
@@ -200,15 +202,24 @@ async function showPage() {
   // Among the running module's experiments, its own listener routes; it waits
   // for the article of an experiment not shown before, added here.
   if (active === mod.key) {
-    const present = app.querySelector(pageSelector(route.id));
-    if (present) return;
-    try {
-      await ensurePage(route.id);
-    } catch (error) {
-      pageFailed(error);
+    let present = app.querySelector(pageSelector(route.id));
+    const added = !present;
+    if (added) {
+      try {
+        present = await ensurePage(route.id);
+      } catch (error) {
+        pageFailed(error);
+        return;
+      }
+    }
+    // A module still downloading (or failing to start) routes nothing yet:
+    // the tab chosen meanwhile (a tab link, Back) is shown from here.
+    if (!running.has(mod.key)) {
+      const now = hashRoute();
+      if (now?.id === route.id) showStatic(present, now.tab);
       return;
     }
-    if (active === mod.key && hashRoute()?.id === route.id) (await glues.get(active))?.reroute();
+    if (added && active === mod.key && hashRoute()?.id === route.id) (await glues.get(active))?.reroute();
     return;
   }
   let article;

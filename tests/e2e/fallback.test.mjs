@@ -77,6 +77,37 @@ test("with the wasm request blocked, the reading tabs show and work, and the pag
   }
 });
 
+test("a tab chosen while the engine is still downloading is shown at once, also by Back", async () => {
+  // Not withPage: the wasm request is held, then refused, on purpose.
+  const context = await lab.browser.newContext({ serviceWorkers: "block" });
+  try {
+    const page = await context.newPage();
+    const held = [];
+    await page.route(/\.wasm(\?|$)/, (route) => {
+      held.push(route);
+    });
+    await page.goto(`${lab.server.base}index.html#/fk/simulation`);
+    const article = page.locator("article.exp:not([hidden])");
+    await article.locator("[data-panel=simulation]").waitFor({ state: "visible" });
+    await page.waitForFunction(() => performance.getEntriesByType("resource").length > 0);
+    await article.locator("[role=tab][data-tab=references]").click();
+    await page.waitForURL(/#\/fk\/references$/);
+    await article.locator("[data-panel=references] ol.refs li").first().waitFor({ state: "visible" });
+    await page.goBack();
+    await page.waitForURL(/#\/fk\/simulation$/);
+    await article.locator("[data-panel=simulation]").waitFor({ state: "visible" });
+    assert.ok(held.length > 0, "the wasm was asked for and is still held");
+    for (const route of held) await route.abort();
+    await page.locator("#fatal").waitFor({ state: "visible" });
+    // Forward again, after the failure: the reading tab still shows.
+    await page.goForward();
+    await page.waitForURL(/#\/fk\/references$/);
+    await article.locator("[data-panel=references]").waitFor({ state: "visible" });
+  } finally {
+    await context.close();
+  }
+});
+
 test("on a high-DPI screen the canvas backing store matches the device pixels", async () => {
   const context = await lab.browser.newContext({
     serviceWorkers: "block",
