@@ -174,6 +174,17 @@ export function useLab() {
 /** Contexts whose pages run on a stopped clock (`withPage`'s `clock`). */
 const stoppedClocks = new WeakSet();
 
+/**
+ * Whether a failed request is the browser giving up its own fetch of the
+ * tab's icon (Chromium's net::ERR_ABORTED, Firefox's NS_BINDING_ABORTED,
+ * WebKit's cancellation) — which happens when a page navigates away before
+ * the icon arrived, and says nothing about the lab.
+ */
+export function browserCancelledIcon(url, errorText) {
+  const icon = new URL(url).pathname.endsWith("/favicon.svg");
+  return icon && /ABORTED|cancel/i.test(errorText);
+}
+
 export async function withPage(lab, options, fn) {
   const {
     viewport = DESKTOP,
@@ -236,9 +247,14 @@ export async function withPage(lab, options, fn) {
       }
     });
     page.on("pageerror", (err) => problems.push(`uncaught exception: ${err.message}`));
-    page.on("requestfailed", (req) =>
-      problems.push(`request failed: ${req.url()} (${req.failure()?.errorText})`),
-    );
+    page.on("requestfailed", (req) => {
+      const error = req.failure()?.errorText ?? "";
+      // The browser fetches the tab's icon on its own schedule and cancels
+      // that fetch when the test navigates on; a cancelled icon is not a
+      // failure of the page (CI saw net::ERR_ABORTED on favicon.svg).
+      if (browserCancelledIcon(req.url(), error)) return;
+      problems.push(`request failed: ${req.url()} (${error})`);
+    });
     page.on("response", (res) => {
       if (res.status() >= 400) problems.push(`HTTP ${res.status()} for ${res.url()}`);
     });

@@ -24,3 +24,13 @@ test("no end-to-end test sleeps: no waitForTimeout in tests/e2e or tests/hosts",
   }
   assert.deepEqual(found, []);
 });
+
+test("a tab icon the browser cancelled on navigation is not a page problem; any other failed request is", async () => {
+  const { browserCancelledIcon } = await import("./helpers.mjs");
+  const base = "http://127.0.0.1:8000/labs/";
+  assert.equal(browserCancelledIcon(`${base}favicon.svg?v=1a2b`, "net::ERR_ABORTED"), true);
+  assert.equal(browserCancelledIcon(`${base}favicon.svg`, "NS_BINDING_ABORTED"), true);
+  assert.equal(browserCancelledIcon(`${base}favicon.svg`, "net::ERR_FAILED"), false);
+  assert.equal(browserCancelledIcon(`${base}pkg/astar.1a2b.wasm`, "net::ERR_ABORTED"), false);
+  assert.equal(browserCancelledIcon(`${base}index.html`, "net::ERR_ABORTED"), false);
+});
