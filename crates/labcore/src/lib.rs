@@ -68,6 +68,7 @@ pub mod live_math;
 pub mod lms;
 pub mod marks;
 pub mod math;
+pub mod memo;
 pub mod mobile;
 pub mod planning;
 pub mod plot;

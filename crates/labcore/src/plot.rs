@@ -218,6 +218,29 @@ impl Plot {
         self.touch();
     }
 
+    /// Forgets what lies wholly before `x_min` (a rolling window's left
+    /// edge): the samples with `x < x_min` and the x bands that end before
+    /// it. In batches: only once some series' oldest sample is `batch` or
+    /// more older than `x_min`, so each sample is moved about once per
+    /// `batch` of x rather than at every push (a drain per step moves the
+    /// whole window each step, which a long replay multiplies). Returns
+    /// whether anything was forgotten.
+    pub fn forget_before(&mut self, x_min: f64, batch: f64) -> bool {
+        let due = self
+            .series
+            .iter()
+            .any(|s| s.x.first().is_some_and(|x0| *x0 < x_min - batch));
+        if due {
+            for s in &mut self.series {
+                let cut = s.x.iter().take_while(|x| **x < x_min).count();
+                s.x.drain(..cut);
+                s.y.drain(..cut);
+            }
+            self.bands.retain(|b| b.axis == Axis::Y || b.hi >= x_min);
+        }
+        due
+    }
+
     /// Total number of samples over all series.
     #[must_use]
     pub fn sample_count(&self) -> usize {

@@ -49,6 +49,7 @@ use crate::control::cartpole::{
 use crate::control::{Complex, Stability};
 use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
 use crate::units::{format_fixed, format_number};
+use crate::memo::Memo;
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
@@ -161,6 +162,9 @@ pub struct CartPoleBalance {
     notices: Notices,
     /// θ (nonlinear and linear), x (both), force, energy change.
     plots: [Plot; 4],
+    /// Whether the closed loop is stable, for the last parameters and gains
+    /// asked: a step at rest needs it and they rarely change.
+    stable: Memo<(CartPoleParams, StateFeedback), bool>,
 }
 
 fn new_plots() -> [Plot; 4] {
@@ -234,6 +238,7 @@ impl Default for CartPoleBalance {
             dragging: false,
             notices: Notices::default(),
             plots: new_plots(),
+            stable: Memo::default(),
         };
         exp.sim.gains = StateFeedback {
             k_theta: PARAMS[0].default,
@@ -392,18 +397,7 @@ impl CartPoleBalance {
         let oldest = t - KEEP_S;
         for plot in &mut self.plots {
             // Trim in batches of a second, so each sample moves rarely.
-            if plot.series[0]
-                .x
-                .first()
-                .is_some_and(|x0| *x0 < oldest - 1.0)
-            {
-                for series in &mut plot.series {
-                    let cut = series.x.iter().take_while(|x| **x < oldest).count();
-                    series.x.drain(..cut);
-                    series.y.drain(..cut);
-                }
-                plot.bands.retain(|b| b.axis == Axis::Y || b.hi >= oldest);
-            }
+            plot.forget_before(oldest, 1.0);
             plot.touch();
         }
     }
@@ -528,8 +522,12 @@ impl CartPoleBalance {
         // A linear model held where it fell does not move either.
         small(&s)
             && (small(&self.linear) || !linear_up(&self.linear))
-            && closed_loop_eigenvalues(&self.sim.params, &self.sim.gains)
-                .is_ok_and(|z| z.iter().all(|p| p.re < 0.0))
+            && self
+                .stable
+                .get((self.sim.params, self.sim.gains), |(params, gains)| {
+                    closed_loop_eigenvalues(&params, &gains)
+                        .is_ok_and(|z| z.iter().all(|p| p.re < 0.0))
+                })
     }
 
     /// Largest `|θ|` (°, judged within (−180°, 180°]) and `|x|` (m) over the

@@ -689,7 +689,8 @@ impl EkfExperiment {
     }
 
     /// Appends the live run's current errors, bounds, NEES and trace to the
-    /// plots, and drops samples older than [`WINDOW_S`].
+    /// plots, and drops samples older than [`WINDOW_S`] (a second's worth
+    /// at a time).
     fn record(&mut self) {
         let run = &self.live;
         let t = run.time_s();
@@ -707,13 +708,8 @@ impl EkfExperiment {
         self.plots[PLOT_NEES].series[0].push(t, run.nees().unwrap_or(f64::NAN));
         self.plots[PLOT_TRACE].series[0].push(t, position_trace(cov));
         for p in &mut self.plots[..PLOT_ANEES] {
-            for s in &mut p.series {
-                let old = s.x.iter().take_while(|x| **x < t - WINDOW_S).count();
-                if old > 0 {
-                    s.x.drain(..old);
-                    s.y.drain(..old);
-                }
-            }
+            // In batches of a second: each sample moves rarely.
+            p.forget_before(t - WINDOW_S, 1.0);
             p.touch();
         }
         if run.steps.is_multiple_of(TRAIL_EVERY) {

@@ -156,14 +156,21 @@ fn three_sigma_bounds_are_the_square_roots_of_the_diagonal_of_p() {
 }
 
 #[test]
-fn plots_and_trails_keep_only_the_last_minute() {
+fn plots_and_trails_keep_the_last_minute_and_at_most_a_second_more() {
     let mut e = EkfExperiment::default();
-    run_for(&mut e, 90.0);
-    let t = e.live.time_s();
-    for plot in &e.plots[..PLOT_ANEES] {
-        for s in &plot.series {
-            assert!(s.x[0] >= t - WINDOW_S - 1e-9, "{}: {}", plot.key, s.x[0]);
-            assert!(s.len() <= (WINDOW_S / FILTER_DT_S) as usize + 1);
+    // Forgetting goes a second at a time: check it over a second's runs.
+    for extra_s in [0.0, 0.25, 0.5, 0.75] {
+        let left_s = 90.0 + extra_s - e.live.time_s();
+        run_for(&mut e, left_s);
+        let t = e.live.time_s();
+        for plot in &e.plots[..PLOT_ANEES] {
+            for s in &plot.series {
+                // The whole last minute is there ...
+                assert!(s.x[0] <= t - WINDOW_S + FILTER_DT_S, "{}: {}", plot.key, s.x[0]);
+                // ... and at most a second older.
+                assert!(s.x[0] >= t - WINDOW_S - 1.0 - 1e-9, "{}: {}", plot.key, s.x[0]);
+                assert!(s.len() <= ((WINDOW_S + 1.0) / FILTER_DT_S) as usize + 1);
+            }
         }
     }
     assert!(e.trails.iter().all(|t| t.len() == TRAIL_MAX));

@@ -58,6 +58,7 @@ use crate::control::step_info::{step_info, StepInfo, SETTLING_THRESHOLD};
 use crate::control::{Complex, Stability};
 use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
 use crate::units::{format_fixed, format_length, format_magnitude, format_metres, format_number};
+use crate::memo::Memo;
 use crate::plot::{Axis, Band, Marker, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
@@ -289,6 +290,9 @@ pub struct PidControl {
     pins_made: usize,
     /// Response (position and pinned runs) and control effort.
     plots: [Plot; 2],
+    /// The closed loop's stability for the last plant and gains asked: a
+    /// step needs it (the final value) and the gains rarely change.
+    stability: Memo<(MassDragPlant, PidGains), Option<Stability>>,
 }
 
 fn new_plots() -> [Plot; 2] {
@@ -355,6 +359,7 @@ impl Default for PidControl {
             sums: TermSums::default(),
             state: RunState::Running,
             quiet_samples: 0,
+            stability: Memo::default(),
             info: Err(NoMetrics::NotYet),
             setpoint_info: None,
             notices: Notices::default(),
@@ -431,8 +436,10 @@ impl PidControl {
     #[must_use]
     pub fn final_value_m(&self) -> Option<f64> {
         let g = self.gains;
-        let poles = closed_loop_poles(&self.plant, &g).ok()?;
-        if poles.stability != Stability::Stable {
+        let stability = self.stability.get((self.plant, g), |(plant, gains)| {
+            closed_loop_poles(&plant, &gains).ok().map(|p| p.stability)
+        });
+        if stability? != Stability::Stable {
             return None;
         }
         if self.saturation && self.disturbance_n.abs() > self.force_limit_n {
