@@ -342,8 +342,9 @@ const busyFrames = (page, frames) =>
   );
 
 /**
- * `count` scrubs to seeded random steps, one a frame: each one's cost is
- * its input handler (the seek) plus the lab's next frame (the paint).
+ * `count` scrubs to seeded random steps, one a frame, in one drag: each
+ * one's cost is its input handler (the seek) plus the lab's next frame
+ * (the paint).
  * Returns the costs (ms) and the slider's range.
  */
 const scrubFrames = (page, count) =>
@@ -358,8 +359,14 @@ const scrubFrames = (page, count) =>
         const costs = [];
         let seekMs = 0;
         let mark = window.__busy.length;
+        // A drag: the pointer holds the slider for the whole stream of
+        // moves, and lets go (`change`) at the end.
+        slider.dispatchEvent(new PointerEvent("pointerdown", { bubbles: true }));
         const tick = () => {
-          if (costs.length + 1 > count) return done({ costs, lo, hi });
+          if (costs.length + 1 > count) {
+            slider.dispatchEvent(new Event("change", { bubbles: true }));
+            return done({ costs, lo, hi });
+          }
           // The frame that painted the previous scrub ran before this one.
           if (seekMs > 0) costs.push(seekMs + window.__busy.slice(mark).reduce((a, b) => a + b, 0));
           slider.value = String(Math.round(lo + random() * (hi - lo)));

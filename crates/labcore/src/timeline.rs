@@ -477,23 +477,27 @@ pub fn with_kept(plots: &[Plot], kept: &[KeptRun], serial: u64) -> Vec<Plot> {
     plots
         .iter()
         .enumerate()
-        .map(|(i, plot)| {
-            let mut plot = plot.clone();
-            let unit = plot.y_unit;
-            for (k, role) in kept_roles(&plot).iter().enumerate() {
-                let run = kept.get(k);
-                let mut s = run
-                    .and_then(|r| r.series.get(i).cloned().flatten())
-                    .unwrap_or_else(|| Series::new("", unit, *role));
-                s.label = run.map_or_else(|| format!("kept run {}", k + 1), |r| r.label.clone());
-                s.role = *role;
-                s.comparison = true;
-                plot.series.push(s);
-            }
-            plot.revision = plot.revision.wrapping_add(serial << 40);
-            plot
-        })
+        .map(|(i, plot)| plot_with_kept(plot, i, kept, serial))
         .collect()
+}
+
+/// [`with_kept`] for one plot, the `index`-th of its experiment's.
+#[must_use]
+pub fn plot_with_kept(plot: &Plot, index: usize, kept: &[KeptRun], serial: u64) -> Plot {
+    let mut plot = plot.clone();
+    let unit = plot.y_unit;
+    for (k, role) in kept_roles(&plot).iter().enumerate() {
+        let run = kept.get(k);
+        let mut s = run
+            .and_then(|r| r.series.get(index).cloned().flatten())
+            .unwrap_or_else(|| Series::new("", unit, *role));
+        s.label = run.map_or_else(|| format!("kept run {}", k + 1), |r| r.label.clone());
+        s.role = *role;
+        s.comparison = true;
+        plot.series.push(s);
+    }
+    plot.revision = plot.revision.wrapping_add(serial << 40);
+    plot
 }
 
 /// A parameter's value as a branch's name says it: the choice or switch

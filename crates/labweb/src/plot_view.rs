@@ -13,7 +13,7 @@ use labcore::Role;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 use web_sys::{
-    CanvasRenderingContext2d, Element, HtmlCanvasElement, ImageBitmapRenderingContext,
+    CanvasRenderingContext2d, Element, HtmlCanvasElement, HtmlElement, ImageBitmapRenderingContext,
     OffscreenCanvas,
 };
 
@@ -83,6 +83,7 @@ pub fn render(plot: &Plot) -> String {
          <button type=\"button\" class=\"mini\" data-plot-table=\"{key}\" aria-expanded=\"false\">Table</button></span></figcaption>\
          <div class=\"plot-legend\">{legend}<span class=\"legend-extra\">{extra}</span></div>\
          <div class=\"plot-box\"><canvas class=\"plot-canvas\" role=\"img\" aria-label=\"{title}\"></canvas>\
+         <span class=\"plot-cursor\" aria-hidden=\"true\" hidden></span>\
          <output class=\"plot-tip\" hidden></output></div>\
          <p class=\"sr-only plot-summary\"></p>\
          <div class=\"plot-table\" hidden></div></figure>",
@@ -592,6 +593,8 @@ struct Parts {
     summary: Option<Element>,
     table: Option<Element>,
     tip: Option<Element>,
+    /// The timeline's cursor, laid over the canvas ([`Drawn::place_cursor`]).
+    cursor: Option<HtmlElement>,
     /// The series' legend entries with their series index.
     legend: Vec<(usize, Element)>,
 }
@@ -605,6 +608,9 @@ struct Shown {
     fit_hidden: Option<bool>,
     /// Per legend entry: hidden, and the label it shows.
     legend: Vec<Option<(bool, String)>>,
+    /// Where the cursor is laid (CSS px: x, top, height); `None` hidden
+    /// (as the page starts it).
+    cursor: Option<(f64, f64, f64)>,
 }
 
 /// Every plot of the mounted simulation.
@@ -662,6 +668,7 @@ impl PlotView {
                     summary: query(&figure, ".plot-summary"),
                     table: query(&figure, ".plot-table"),
                     tip: query(&figure, ".plot-tip"),
+                    cursor: query(&figure, ".plot-cursor").and_then(|e| e.dyn_into().ok()),
                     legend,
                 };
                 let shown = Shown {
@@ -834,9 +841,6 @@ impl PlotView {
         )
         .0;
         paint_marks(&drawn.ctx, &drawn.frame, &drawn.marks, palette);
-        if let Some(x) = drawn.cursor_x {
-            paint_cursor(&drawn.ctx, &drawn.frame, palette, x);
-        }
         match drawn.hover_x {
             Some(x) => show_nearest(drawn, plot, palette, x),
             None => {
@@ -872,12 +876,14 @@ impl PlotView {
     }
 
     /// Puts the timeline's cursor on plot `key` at plot x `x` (`None`: no
-    /// cursor, the run shown live); the plot is repainted if it moved.
+    /// cursor, the run shown live). The cursor is an element laid over the
+    /// canvas, so moving it repaints nothing: a scrub costs the plots only
+    /// a style change while the record they show stays the same.
     pub fn set_cursor(&mut self, key: &str, x: Option<f64>) {
         if let Some(drawn) = self.plots.iter_mut().find(|d| d.key == key) {
             if drawn.cursor_x != x {
                 drawn.cursor_x = x;
-                drawn.revision = None;
+                drawn.place_cursor();
                 match x {
                     Some(x) => {
                         let _ = drawn.canvas.set_attribute("data-cursor", &format!("{x}"));
@@ -953,6 +959,34 @@ impl PlotView {
 }
 
 impl Drawn {
+    /// Lays the timeline's cursor over the canvas at [`Drawn::cursor_x`]
+    /// as last painted (CSS px, the canvas's frame): a solid vertical line
+    /// in the text colour with a small triangle on top, unlike the dashed
+    /// reference lines (the style sheet's `.plot-cursor`). Hidden with no
+    /// cursor or outside the plot's x range. Writes only what changed.
+    fn place_cursor(&mut self) {
+        let Some(el) = &self.parts.cursor else {
+            return;
+        };
+        let (l, t, w, h) = self.frame.rect;
+        let px = self.cursor_x.map(|x| self.frame.px_x(x));
+        let place = px
+            .filter(|px| w > 0.0 && (l - 0.5..=l + w + 0.5).contains(px))
+            .map(|px| (px, t, h));
+        if self.shown.cursor == place {
+            return;
+        }
+        if let Some((px, t, h)) = place {
+            let style = el.style();
+            let _ = style.set_property("transform", &format!("translate({px:.1}px,{t:.1}px)"));
+            let _ = style.set_property("height", &format!("{h:.1}px"));
+        }
+        if self.shown.cursor.is_some() != place.is_some() {
+            dom::set_hidden(el, place.is_none());
+        }
+        self.shown.cursor = place;
+    }
+
     /// Writes the plot's text summary (read by screen readers) if it changed.
     fn sync_summary(&mut self, plot: &Plot) {
         if let Some(summary) = &self.parts.summary {
@@ -996,9 +1030,7 @@ impl Drawn {
         );
         self.frame = frame;
         paint_marks(&self.ctx, &self.frame, &self.marks, palette);
-        if let Some(x) = self.cursor_x {
-            paint_cursor(&self.ctx, &self.frame, palette, x);
-        }
+        self.place_cursor();
         let json = layout.json();
         if json != self.shown.layout {
             let _ = self.canvas.set_attribute("data-layout", &json);
@@ -1084,32 +1116,6 @@ fn paint_marks(
         ctx.fill();
     }
     ctx.restore();
-}
-
-/// The timeline's cursor: a solid vertical line in the text colour across
-/// the plot at plot x `x` (the moment the scene shows), with a small
-/// triangle on top, unlike the dashed reference lines.
-fn paint_cursor(ctx: &CanvasRenderingContext2d, frame: &Frame, palette: &Palette, x: f64) {
-    let (l, t, w, h) = frame.rect;
-    let px = frame.px_x(x);
-    if !(l - 0.5..=l + w + 0.5).contains(&px) {
-        return;
-    }
-    let colour = palette.colour(Role::Text);
-    ctx.set_stroke_style_str(colour);
-    ctx.set_fill_style_str(colour);
-    set_dash(ctx, &[]);
-    ctx.set_line_width(1.5);
-    ctx.begin_path();
-    ctx.move_to(px, t);
-    ctx.line_to(px, t + h);
-    ctx.stroke();
-    ctx.begin_path();
-    ctx.move_to(px - 5.0, t);
-    ctx.line_to(px + 5.0, t);
-    ctx.line_to(px, t + 7.0);
-    ctx.close_path();
-    ctx.fill();
 }
 
 fn axis_title(label: &str, unit: &str) -> String {

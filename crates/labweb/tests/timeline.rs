@@ -486,3 +486,129 @@ fn branching_in_the_past_keeps_the_abandoned_run_named_after_the_change() {
     // The new run goes on from there, live.
     assert_eq!(attr(".tb-scrub", "max"), Some(steps_shown().to_string()));
 }
+
+/// The cursor laid over plot `key`: shown, and its x in CSS px from the
+/// canvas's left (its transform), else `None` (hidden).
+fn cursor_overlay_px(key: &str) -> Option<f64> {
+    let el = element(&format!("figure[data-plot={key}] .plot-cursor"));
+    if el.hidden() {
+        return None;
+    }
+    let transform = el.style().get_property_value("transform").unwrap();
+    let x = transform
+        .trim_start_matches("translate(")
+        .split("px")
+        .next()
+        .unwrap();
+    Some(x.parse().unwrap())
+}
+
+/// Issue 26 §1, the plot cursor on a long run: the EKF's plots keep a
+/// rolling minute, so after 10 minutes the run's record has let the first
+/// nine go. Scrubbed back to t = 10 s, every plot still shows that moment
+/// (the window the run showed then) with the cursor on it, inside the
+/// plot; back at the end, no cursor.
+#[wasm_bindgen_test]
+fn plot_cursor_is_on_every_plot_even_at_a_moment_the_rolling_record_has_let_go() {
+    mount("#/ekf/simulation");
+    press_key_on_canvas("End");
+    // Run to end (paused meanwhile) is done when the steps stop growing.
+    let mut last = u64::MAX;
+    for frames in 0.. {
+        frame(ONE_STEP_MS);
+        let now = steps_shown();
+        if now == last {
+            break;
+        }
+        last = now;
+        assert!(frames < 5000, "Run to end finishes");
+    }
+    labweb::paint_now();
+    let end = steps_shown();
+    assert!(end as f64 * Clock::DT_S > 120.0, "a long run: {end} steps");
+    let entry = labcore::find("ekf").unwrap();
+    let keys: Vec<&str> = entry_plot_keys(entry);
+    scrub_to(600);
+    let at_600 = plot_xs_of(left_alone(entry, 600).as_ref());
+    for (key, x) in at_600 {
+        let px = cursor_overlay_px(key);
+        if x.is_none() {
+            assert_eq!(px, None, "{key} had no point at t = 10 s: no cursor");
+            continue;
+        }
+        let width = plot_canvas(key).get_bounding_client_rect().width();
+        assert!(
+            px.is_some_and(|px| px > 0.0 && px < width),
+            "{key}: the cursor at t = 10 s lies on the plot ({px:?} of {width} px)"
+        );
+    }
+    scrub_to(end);
+    for key in &keys {
+        assert_eq!(cursor_overlay_px(key), None, "live: no cursor on {key}");
+    }
+}
+
+fn slider_event(kind: &str) {
+    let event = web_sys::Event::new_with_event_init_dict(kind, &{
+        let init = web_sys::EventInit::new();
+        init.set_bubbles(true);
+        init
+    })
+    .unwrap();
+    element(".tb-scrub").dispatch_event(&event).unwrap();
+}
+
+/// Issue 26 §4, a drag of the timeline slider is a stream of moves: the
+/// link is written once it stops, not at every move (a link costs
+/// Chromium 10–17 ms a write, and Safari refuses more than 100 in 30 s),
+/// the readouts keep the text's pace, and the moment it stops at is
+/// written at once, its `at=` in the link.
+#[wasm_bindgen_test]
+fn dragging_the_timeline_writes_the_link_once_it_stops_and_the_text_at_its_pace() {
+    mount("#/pid/simulation");
+    for _ in 0..150 {
+        frame(ONE_STEP_MS);
+    }
+    let slider: HtmlInputElement = element(".tb-scrub").dyn_into().unwrap();
+    slider_event("pointerdown");
+    let mut links = Vec::new();
+    let mut readouts = Vec::new();
+    // 40 moves, one a frame (0.67 s): back from step 100 to step 22.
+    for k in (22..=100).rev().step_by(2) {
+        slider.set_value(&k.to_string());
+        slider_event("input");
+        frame(ONE_STEP_MS);
+        assert_eq!(steps_shown(), k, "the scene follows every move");
+        links.push(hash());
+        readouts.push(text("dl.readouts"));
+    }
+    links.dedup();
+    assert_eq!(links.len(), 1, "no link written during the drag: {links:?}");
+    readouts.dedup();
+    assert!(
+        (2..=6).contains(&readouts.len()),
+        "the readouts at the text's pace (0.25 s) over 0.67 s: {} versions",
+        readouts.len()
+    );
+    slider_event("change");
+    frame(ONE_STEP_MS);
+    let entry = labcore::find("pid").unwrap();
+    let expected = left_alone(entry, 22);
+    let shown_readouts = text("dl.readouts");
+    for r in expected.readouts() {
+        assert!(
+            shown_readouts.contains(&r.value),
+            "{} = {} written at once",
+            r.label,
+            r.value
+        );
+    }
+    for _ in 0..20 {
+        frame(ONE_STEP_MS);
+    }
+    assert!(
+        hash().contains(&format!("at={:.2}", 22.0 * Clock::DT_S)),
+        "the link names the moment: {}",
+        hash()
+    );
+}

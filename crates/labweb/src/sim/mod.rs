@@ -221,6 +221,12 @@ struct SimState {
     clock: Clock,
     plots: PlotView,
     plots_force: bool,
+    /// A jump in time: every plot whose picture changed (not only one, as
+    /// while a run streams) is repainted in the next frame.
+    plots_stale: bool,
+    /// A jump in time: the next frame moves the plots' cursors and writes
+    /// the time bar (the slider, the time), whatever the text's pace.
+    jumped: bool,
     /// Running, speed, steps and whether the play button offers Replay, as shown.
     shown_time: (bool, f64, u64, bool),
     /// The run's phase at the last frame (the time bar offers Replay when ended).
@@ -247,6 +253,9 @@ struct SimState {
     /// moving a point): its text keeps the pace of a run instead of being
     /// written at every event.
     text_paced: bool,
+    /// A pointer holds the timeline slider: its moves are a stream
+    /// ([`SimState::text_paced`]) until it lets go.
+    scrub_dragging: bool,
     shown_status: Option<labcore::Status>,
     notices: NoticeShelf,
     /// Serial of the notice on screen.
@@ -394,7 +403,7 @@ impl SimState {
         // layout is still clean; read after the readouts are written, each
         // would make the browser lay the page out again mid-frame.
         self.finish_branch();
-        let plots_due = self.plots_force || self.plots.due(time_ms);
+        let plots_due = self.plots_force || self.plots_stale || self.plots.due(time_ms);
         if plots_due {
             self.plots.measure();
         }
@@ -514,6 +523,9 @@ impl SimState {
             self.text_stale = false;
         }
         self.sync_marks();
+        if self.jumped {
+            self.sync_cursors();
+        }
         // Plots follow the data, each at most every PLOT_INTERVAL_MS and
         // one a frame (they take turns), so no frame pays for all of them;
         // nor for a plot and the page's text together, unless forced.
@@ -527,6 +539,16 @@ impl SimState {
             );
             self.plots.draw(&plots, &self.palette, true);
             self.plots_force = false;
+            self.plots_stale = false;
+        } else if self.plots_stale {
+            let plots = scrub::shown_plots(
+                self.exp.as_ref(),
+                self.record_end.as_deref(),
+                &self.kept,
+                self.kept_serial,
+            );
+            self.plots.draw(&plots, &self.palette, false);
+            self.plots_stale = false;
         } else if plots_due && (input_paint || !write_text) {
             let plots = scrub::shown_plots(
                 self.exp.as_ref(),
@@ -537,7 +559,8 @@ impl SimState {
             self.plots.draw_next(&plots, &self.palette, time_ms);
         }
         self.sync_notice(time_ms);
-        self.sync_timebar(write_text || input_paint);
+        self.sync_timebar(write_text || input_paint || self.jumped);
+        self.jumped = false;
         if self.hash_dirty
             && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS
             && time_ms - self.last_stream_ms >= HASH_INTERVAL_MS
@@ -745,6 +768,8 @@ impl SimView {
             clock: Clock::default(),
             plots: PlotView::mount(panel),
             plots_force: true,
+            plots_stale: false,
+            jumped: false,
             shown_time: (true, 0.0, u64::MAX, false),
             phase: Phase::Live,
             shown_clock: None,
@@ -758,6 +783,7 @@ impl SimView {
             text_ms: f64::NEG_INFINITY,
             text_stale: false,
             text_paced: false,
+            scrub_dragging: false,
             shown_status: None,
             notices: NoticeShelf::default(),
             shown_notice: None,

@@ -87,14 +87,35 @@ pub(super) fn shown_plots<'a>(
     let base = record_end.map_or(exp.plots(), |end| end.plots());
     let mut plots = timeline::with_kept(base, kept, kept_serial);
     if record_end.is_some() {
-        for (plot, now) in plots.iter_mut().zip(exp.plots()) {
-            if let (XWindow::Rolling(w), Some(x), Some((_, hi))) =
+        for (i, (plot, now)) in plots.iter_mut().zip(exp.plots()).enumerate() {
+            let (XWindow::Rolling(w), Some(x), Some((_, hi))) =
                 (plot.window, plot_x(now), plot.x_range())
-            {
-                if x < hi - 0.9 * w.abs() || x > hi {
-                    let lo = (x - 0.5 * w.abs()).max(plot.x_range().map_or(x, |r| r.0));
-                    plot.window = XWindow::Fixed(lo, lo + w.abs());
+            else {
+                continue;
+            };
+            let w = w.abs();
+            if x >= hi - 0.9 * w && x <= hi {
+                continue;
+            }
+            let first = plot
+                .series
+                .iter()
+                .filter(|s| !s.comparison)
+                .filter_map(|s| s.x.first().copied())
+                .reduce(f64::min);
+            match first {
+                // The record still holds that moment: a window around it.
+                Some(first) if x >= first => {
+                    let lo = (x - 0.5 * w).max(first);
+                    plot.window = XWindow::Fixed(lo, lo + w);
+                    // Another window is another picture; the cursor alone
+                    // moving is not ([`crate::plot_view::PlotView::set_cursor`]).
+                    plot.revision ^= lo.to_bits().rotate_left(29);
                 }
+                // The record has let that moment go (a long run keeps a
+                // window's worth of samples): the plot as the run showed it
+                // then, ending at the moment.
+                _ => *plot = timeline::plot_with_kept(now, i, kept, kept_serial),
             }
         }
     }
@@ -139,7 +160,40 @@ pub(super) fn listen(
         let mut st = s.borrow_mut();
         st.student_acted();
         st.seek(step);
+        // A drag is a stream of inputs: the page's text follows it at the
+        // text's pace, the link is written once it stops (a link a frame
+        // costs Chromium 10–17 ms each, and Safari refuses more than 100 in
+        // 30 s), and the plots whose picture changed (a rolling window that
+        // moved) are repainted at the plots' pace, one a frame; the cursors
+        // and the time follow every frame. A single move (a tap on the
+        // track, a value typed by a test) writes everything at once.
+        if st.scrub_dragging {
+            st.text_paced = true;
+            st.plots_stale = false;
+        }
     }));
+    let s = state.clone();
+    listeners.push(Listener::new(
+        slider.as_ref(),
+        "pointerdown",
+        move |_: Event| {
+            s.borrow_mut().scrub_dragging = true;
+        },
+    ));
+    // The drag ends with `change` (the value committed on release), or
+    // with the pointer let go or taken by the browser.
+    for kind in ["change", "pointerup", "pointercancel"] {
+        let s = state.clone();
+        listeners.push(Listener::new(slider.as_ref(), kind, move |_: Event| {
+            let mut st = s.borrow_mut();
+            if st.scrub_dragging {
+                st.scrub_dragging = false;
+                // The moment it stopped at, written at once.
+                st.needs_paint = true;
+                st.plots_stale = true;
+            }
+        }));
+    }
     let s = state.clone();
     listeners.push(Listener::new(
         slider.as_ref(),
@@ -401,14 +455,20 @@ impl SimState {
         self.after_jump();
     }
 
-    /// What a jump in time redraws: the scene, every plot, the controls
-    /// (the parameters may have been others then), the text and the link.
+    /// What a jump in time redraws: the scene, the plots' cursors (a plot
+    /// itself only where its picture changed: a rolling window that moved,
+    /// the record's end shown again), the controls (the parameters may have
+    /// been others then), the text and the link.
+    ///
+    /// Nothing is written to the page here, in the input's handler: the
+    /// next frame writes it all after reading the layout (a write here
+    /// would make that read lay the page out again, mid-frame).
     fn after_jump(&mut self) {
         self.needs_paint = true;
-        self.plots_force = true;
+        self.plots_stale = true;
+        self.jumped = true;
         self.hash_dirty = true;
         self.shown_values.iter_mut().for_each(|v| *v = None);
-        self.sync_timebar(true);
     }
 
     /// Step back (the button and `,`): one model step earlier.
@@ -429,7 +489,8 @@ impl SimState {
         }
         self.clock.seek(at);
         // The plots' cursors follow the replay.
-        self.plots_force = true;
+        self.plots_stale = true;
+        self.jumped = true;
         at - from
     }
 
