@@ -511,19 +511,32 @@ const abBlock = (page, name, on, frames) =>
  */
 async function compareAB(page, name, { beforeBlock = async () => {}, drive } = {}) {
   const out = { applies: true, blocks: [] };
+  // The browser's own account of its main thread (cumulative seconds):
+  // style and layout per block, to say where a difference goes.
+  const cdp = await page.context().newCDPSession(page);
+  await cdp.send("Performance.enable");
+  const styleLayoutS = async () => {
+    const { metrics } = await cdp.send("Performance.getMetrics");
+    const m = Object.fromEntries(metrics.map((x) => [x.name, x.value]));
+    return m.RecalcStyleDuration + m.LayoutDuration;
+  };
   let measuring = true;
   const driving = drive ? drive(() => measuring) : Promise.resolve();
   try {
     for (const [i, variant] of [...AB_ORDER].entries()) {
       await beforeBlock(i);
+      const before = await styleLayoutS();
       const r = await abBlock(page, name, variant === "A", AB_BLOCK_FRAMES);
+      // Over the block and its settling frame, ms a frame.
+      const styleLayout = ((await styleLayoutS()) - before) * 1000 / (r.frames.length + 1);
       out.applies &&= r.applies;
-      out.blocks.push({ variant, frames: r.frames, steps: r.steps });
+      out.blocks.push({ variant, frames: r.frames, steps: r.steps, styleLayout });
     }
   } finally {
     measuring = false;
     await driving;
     await page.evaluate((name) => window.labweb[name](true), name);
+    await cdp.detach().catch(() => {});
   }
   return out;
 }
@@ -532,9 +545,10 @@ async function compareAB(page, name, { beforeBlock = async () => {}, drive } = {
  * Reports A against B for one experiment (see compareAB): the ratio of
  * their whole-frame p95s over all their frames, with each one's p95 in ms.
  * The detail adds the means, the script-only p95s, the frames and steps
- * counted, and the median over the block pairs (AB or BA, side by side in
- * AB_ORDER) of the ratio of their p95s, which a load spike in one block of
- * the shared machine moves less.
+ * counted, the browser's style and layout per frame (mean), and the
+ * median over the block pairs (AB or BA, side by side in AB_ORDER) of the
+ * ratio of their p95s, which a load spike in one block of the shared machine
+ * moves less.
  */
 function reportAB(name, ab, [withA, withoutB], load) {
   const frames = (v) => ab.blocks.filter((b) => b.variant === v).flatMap((b) => b.frames);
@@ -542,6 +556,7 @@ function reportAB(name, ab, [withA, withoutB], load) {
   const whole = (fs) => fs.map((f) => f.whole);
   const mean = (xs) => xs.reduce((a, b) => a + b, 0) / xs.length;
   const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor((xs.length - 1) / 2)];
+  const styleLayout = (v) => mean(ab.blocks.filter((b) => b.variant === v).map((b) => b.styleLayout)).toFixed(2);
   const [A, B] = [frames("A"), frames("B")];
   const [a, b] = [p95(whole(A)), p95(whole(B))];
   const pairs = [];
@@ -552,7 +567,8 @@ function reportAB(name, ab, [withA, withoutB], load) {
   report(name, a / b, AB_RATIO_BUDGET, "×",
     `${withA} ${a.toFixed(2)} ms, ${withoutB} ${b.toFixed(2)} ms; pair median ×${median(pairs).toFixed(2)}; ` +
     `means ${mean(whole(A)).toFixed(2)}/${mean(whole(B)).toFixed(2)} ms, ` +
-    `script p95 ${p95(A.map((f) => f.script)).toFixed(2)}/${p95(B.map((f) => f.script)).toFixed(2)} ms; ` +
+    `script p95 ${p95(A.map((f) => f.script)).toFixed(2)}/${p95(B.map((f) => f.script)).toFixed(2)} ms, ` +
+    `style+layout ${styleLayout("A")}/${styleLayout("B")} ms; ` +
     `${A.length}/${B.length} frames, ${steps("A")}/${steps("B")} steps; load ${load}`);
 }
 
