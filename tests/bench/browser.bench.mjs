@@ -6,6 +6,7 @@
 // machine shows up as a slow baseline rather than as a regression.
 
 import { after, test } from "node:test";
+import os from "node:os";
 import { open, useLab, withPage } from "../e2e/helpers.mjs";
 
 const lab = useLab();
@@ -310,17 +311,30 @@ const TIMELINE_TAP = { ...START_TAP, dls: [0.75, 0.3] };
 
 /**
  * Times every animation-frame callback of the page (the lab's frame: step
- * and paint) into `window.__busy`, and the slider's input handler (the
- * seek) into `window.__seekMs`.
+ * and paint) into `window.__busy`. Each also goes into `window.__frames`
+ * as `{ script, whole }`: `whole` runs from the callback's start to the
+ * first task after the frame (a message posted from the callback), so it
+ * also holds the browser's style, layout and paint of that frame.
  */
 const recordFrameWork = () => {
   window.__busy = [];
+  window.__frames = [];
   const request = window.requestAnimationFrame.bind(window);
+  const after = new MessageChannel();
+  const pending = [];
+  after.port1.onmessage = () => {
+    const [t0, script] = pending.shift();
+    window.__frames.push({ script, whole: performance.now() - t0 });
+  };
   window.requestAnimationFrame = (callback) =>
     request((t) => {
       const t0 = performance.now();
       callback(t);
-      if (!callback.__bench) window.__busy.push(performance.now() - t0);
+      if (callback.__bench) return;
+      const script = performance.now() - t0;
+      window.__busy.push(script);
+      pending.push([t0, script]);
+      after.port2.postMessage(0);
     });
 };
 
@@ -438,3 +452,277 @@ for (const phone of [false, true]) {
     }
   });
 }
+
+// ---------------------------------------------------------------------------
+// Same-run A/B comparisons of running frames: the timeline recording (as
+// shipped) against the page before the timeline (issue 26 §4), and "The
+// math" panel open against closed (issue 27, Cost). The bench-exports
+// build switches the mounted page between A and B (`bench_timeline_recording`,
+// `bench_math_panel` in crates/labweb/src/bench.rs); shipped modules have
+// no switch. A and B take turns in blocks of frames in the Thue–Morse order
+// (ABBA BAAB BAAB ABBA), so a drift of the shared machine's speed during the
+// count (linear, or bent up to twice) falls on both alike.
+
+/** The order of the A and B blocks of frames. */
+const AB_ORDER = "ABBABAABBAABABBA";
+
+/** Frames counted in each block, after one frame that settles the switch. */
+const AB_BLOCK_FRAMES = 30;
+
+/**
+ * A ratio of B's p95 up to which A counts as "no slower" in the report's
+ * kept column: frames differ by more than this between like blocks on a
+ * busy machine (the detail gives the halves' drift of the same run).
+ */
+const AB_RATIO_BUDGET = 1.1;
+
+/**
+ * One block of `frames` lab frames with the page switched to A (`on`) or
+ * B by the export `name`: each frame's script and whole time (ms), the
+ * simulation steps the clock advanced, and whether the switch applied.
+ */
+const abBlock = (page, name, on, frames) =>
+  page.evaluate(
+    async ({ name, on, frames }) => {
+      const applies = window.labweb[name](on);
+      const canvas = document.querySelector("article.exp:not([hidden]) canvas.sim-canvas");
+      const labFrames = (n) =>
+        new Promise((done) => {
+          const from = window.__frames.length;
+          let ticks = 0;
+          // A page that stops asking for frames ends the block (3 × n at most).
+          const tick = () => (window.__frames.length - from >= n || ++ticks > 3 * n ? done() : window.requestAnimationFrame(tick));
+          tick.__bench = true;
+          window.requestAnimationFrame(tick);
+        });
+      await labFrames(1);
+      const from = window.__frames.length;
+      const steps0 = Number(canvas.dataset.steps || 0);
+      await labFrames(frames);
+      return {
+        applies,
+        frames: window.__frames.slice(from, from + frames),
+        steps: Number(canvas.dataset.steps || 0) - steps0,
+      };
+    },
+    { name, on, frames },
+  );
+
+/**
+ * Runs the blocks of AB_ORDER on `page` with the switch `name` (A: on, B:
+ * off) and leaves it on (as shipped). Before each block `beforeBlock(i)`
+ * may restart a run that ended (it runs for A and B alike); `drive` is
+ * awaited alongside the whole count (arrow keys moving a point). Returns the
+ * blocks in order, `{ variant, frames, steps }` each, and whether the
+ * switch applied.
+ */
+async function compareAB(page, name, { beforeBlock = async () => {}, drive } = {}) {
+  const out = { applies: true, blocks: [] };
+  // The browser's own account of its main thread (cumulative seconds):
+  // style and layout per block, to say where a difference goes.
+  const cdp = await page.context().newCDPSession(page);
+  await cdp.send("Performance.enable");
+  const styleLayoutS = async () => {
+    const { metrics } = await cdp.send("Performance.getMetrics");
+    const m = Object.fromEntries(metrics.map((x) => [x.name, x.value]));
+    return m.RecalcStyleDuration + m.LayoutDuration;
+  };
+  let measuring = true;
+  const driving = drive ? drive(() => measuring) : Promise.resolve();
+  try {
+    for (const [i, variant] of [...AB_ORDER].entries()) {
+      await beforeBlock(i);
+      const before = await styleLayoutS();
+      const r = await abBlock(page, name, variant === "A", AB_BLOCK_FRAMES);
+      // Over the block and its settling frame, ms a frame.
+      const styleLayout = ((await styleLayoutS()) - before) * 1000 / (r.frames.length + 1);
+      out.applies &&= r.applies;
+      out.blocks.push({ variant, frames: r.frames, steps: r.steps, styleLayout });
+    }
+  } finally {
+    measuring = false;
+    await driving;
+    await page.evaluate((name) => window.labweb[name](true), name);
+    await cdp.detach().catch(() => {});
+  }
+  return out;
+}
+
+/**
+ * Reports A against B for one experiment (see compareAB): the ratio of
+ * their whole-frame p95s over all their frames, with each one's p95 in ms.
+ * The detail adds the means, the script-only p95s, the frames and steps
+ * counted, the browser's style and layout per frame (mean), and the
+ * median over the block pairs (AB or BA, side by side in AB_ORDER) of the
+ * ratio of their p95s, which a load spike in one block of the shared machine
+ * moves less.
+ */
+function reportAB(name, ab, [withA, withoutB], load) {
+  const frames = (v) => ab.blocks.filter((b) => b.variant === v).flatMap((b) => b.frames);
+  const steps = (v) => ab.blocks.filter((b) => b.variant === v).reduce((n, b) => n + b.steps, 0);
+  const whole = (fs) => fs.map((f) => f.whole);
+  const mean = (xs) => xs.reduce((a, b) => a + b, 0) / xs.length;
+  const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor((xs.length - 1) / 2)];
+  const styleLayout = (v) => mean(ab.blocks.filter((b) => b.variant === v).map((b) => b.styleLayout)).toFixed(2);
+  const [A, B] = [frames("A"), frames("B")];
+  const [a, b] = [p95(whole(A)), p95(whole(B))];
+  const pairs = [];
+  for (let i = 0; i + 1 < ab.blocks.length; i += 2) {
+    const [x, y] = ab.blocks.slice(i, i + 2).sort((m, n) => (m.variant < n.variant ? -1 : 1));
+    pairs.push(p95(whole(x.frames)) / p95(whole(y.frames)));
+  }
+  report(name, a / b, AB_RATIO_BUDGET, "×",
+    `${withA} ${a.toFixed(2)} ms, ${withoutB} ${b.toFixed(2)} ms; pair median ×${median(pairs).toFixed(2)}; ` +
+    `means ${mean(whole(A)).toFixed(2)}/${mean(whole(B)).toFixed(2)} ms, ` +
+    `script p95 ${p95(A.map((f) => f.script)).toFixed(2)}/${p95(B.map((f) => f.script)).toFixed(2)} ms, ` +
+    `style+layout ${styleLayout("A")}/${styleLayout("B")} ms; ` +
+    `${A.length}/${B.length} frames, ${steps("A")}/${steps("B")} steps; load ${load}`);
+}
+
+/** The machine's load average over the last minute (the machine is shared). */
+const loadNow = () => os.loadavg()[0].toFixed(2);
+
+/** Whether the mounted run is moving (the time bar's clock state). */
+const clockState = (page) =>
+  page.evaluate(() => document.querySelector("article.exp:not([hidden]) .timebar")?.dataset.clock ?? "none");
+
+/**
+ * Where a tap sets the next goal or target when the last one was reached,
+ * alternating with TIMELINE_TAP's (so the robot sets off again).
+ */
+const SECOND_TAP = { diffdrive: [0.15, 0.8], potential: [0.15, 0.75] };
+
+/**
+ * Starts (`n` = 0) or restarts (`n` > 0) the run of `id` on `page` the way
+ * the phone benchmark starts it: its action, a tap on the canvas (a new
+ * goal or target every time, alternating), then Play or Replay.
+ */
+async function startRun(page, id, n = 0) {
+  const scope = page.locator("article.exp:not([hidden])");
+  const action = START_ACTION[id];
+  if (action) await scope.locator(`.sim-actions button[data-action=${action}]`).dispatchEvent("click");
+  const tap = n % 2 && SECOND_TAP[id] ? SECOND_TAP[id] : TIMELINE_TAP[id];
+  if (tap) {
+    const canvas = scope.locator("canvas.sim-canvas");
+    const box = await canvas.boundingBox();
+    await canvas.click({ position: { x: tap[0] * box.width, y: tap[1] * box.height } });
+  }
+  const play = scope.locator(".tb-play");
+  if ((await play.count()) && (await play.getAttribute("data-offer")) !== "pause") await play.dispatchEvent("click");
+}
+
+/** Opens `id`'s Simulation tab in a new page of `context`, throttled on the phone. */
+async function openSimulation(context, id, phone) {
+  const page = await context.newPage();
+  await page.goto(`${lab.server.base}index.html#/${id}/simulation`);
+  await page.waitForFunction(() => document.body.dataset.ready === "1", null, { timeout: 60_000 });
+  await page.locator("article.exp:not([hidden]) canvas.sim-canvas[data-view]").waitFor({ timeout: 60_000 });
+  if (phone) {
+    const cdp = await context.newCDPSession(page);
+    await cdp.send("Emulation.setCPUThrottlingRate", { rate: PHONE_RUN.cpuSlowdown });
+  }
+  return page;
+}
+
+/** A browser context for the desktop (1280×800) or the phone stand-in, timing every frame. */
+async function benchContext(phone) {
+  const context = await lab.browser.newContext(
+    phone
+      ? { viewport: PHONE_RUN.viewport, deviceScaleFactor: PHONE_RUN.deviceScaleFactor, hasTouch: true }
+      : { viewport: { width: 1280, height: 800 } },
+  );
+  await context.addInitScript(recordFrameWork);
+  return context;
+}
+
+/**
+ * Restarts a run that is no longer moving before a block (both variants
+ * alike); experiments moved by keys need none.
+ */
+const keepRunning = (page, id) => {
+  let restarts = 0;
+  return async () => {
+    if (DRIVEN_BY_KEYS.has(id)) return;
+    if ((await clockState(page)) !== "running") await startRun(page, id, ++restarts);
+  };
+};
+
+/** Moves the focused canvas's point with the arrow keys, 20 a second, while `going()`. */
+const driveByKeys = (page) => async (going) => {
+  await page.evaluate(() => document.querySelector("article.exp:not([hidden]) canvas.sim-canvas").focus({ preventScroll: true }));
+  for (let keys = 0; going(); keys++) {
+    await page.keyboard.press(keys % 40 < 20 ? "ArrowRight" : "ArrowLeft");
+    await new Promise((ok) => setTimeout(ok, 50));
+  }
+};
+
+for (const phone of [false, true]) {
+  const where = phone ? "phone" : "desktop";
+  test(`timeline, ${where}: running frame p95 recording beside not recording (A/B, same run)`, async () => {
+    const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
+    const ids = only?.length ? TIMELINE_IDS.filter((id) => only.includes(id)) : TIMELINE_IDS;
+    const context = await benchContext(phone);
+    try {
+      for (const id of ids) {
+        const page = await openSimulation(context, id, phone);
+        // DLS is moved by keys here (its target), as on the phone above:
+        // a tapped target is reached within a second.
+        if (!DRIVEN_BY_KEYS.has(id)) await startRun(page, id);
+        await page.waitForTimeout(300);
+        const ab = await compareAB(page, "bench_timeline_recording", {
+          beforeBlock: keepRunning(page, id),
+          drive: DRIVEN_BY_KEYS.has(id) ? driveByKeys(page) : undefined,
+        });
+        if (!ab.applies) report(`timeline ${where} ${id}: no simulation mounted`, NaN, 0, "");
+        else reportAB(`timeline ${where} ${id}: running p95, recording/not`, ab, ["with timeline", "without"], loadNow());
+        await page.close();
+      }
+    } finally {
+      await context.close();
+    }
+  });
+}
+
+/** Every experiment (issue 27: "The math" on all eleven). */
+const ALL_IDS = ["fk", "ik", "workspace", "diffdrive", "potential", "pid", "cartpole", "ekf", "astar", "rrtstar", "dls"];
+
+/**
+ * Where the page is scrolled while "The math" is compared: to the top, the
+ * scene in view and the panel below it (a student watching the run, as the
+ * phone benchmark does); or the panel in the middle of the screen (a
+ * student reading it; on a phone the scene is then above the screen).
+ */
+const MATH_VIEWS = {
+  scene: () => window.scrollTo(0, 0),
+  panel: () => document.querySelector("article.exp:not([hidden]) .live-math:not([hidden])")?.scrollIntoView({ block: "center" }),
+};
+
+test("the math panel, phone: running frame p95 open beside closed (A/B, same run)", async () => {
+  const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
+  const ids = only?.length ? ALL_IDS.filter((id) => only.includes(id)) : ALL_IDS;
+  const context = await benchContext(true);
+  try {
+    for (const id of ids) {
+      const page = await openSimulation(context, id, true);
+      if (!DRIVEN_BY_KEYS.has(id)) await startRun(page, id);
+      await page.waitForTimeout(300);
+      const keep = keepRunning(page, id);
+      for (const [view, scroll] of Object.entries(MATH_VIEWS)) {
+        const ab = await compareAB(page, "bench_math_panel", {
+          // Scrolled again after a tap that restarted the run (the click
+          // scrolls the canvas into view).
+          beforeBlock: async (i) => {
+            await keep(i);
+            await page.evaluate(scroll);
+          },
+          drive: DRIVEN_BY_KEYS.has(id) ? driveByKeys(page) : undefined,
+        });
+        if (!ab.applies) report(`math phone ${id}: no panel`, NaN, 0, "");
+        else reportAB(`math phone ${id} (${view} in view): p95 open/closed`, ab, ["open", "closed"], loadNow());
+      }
+      await page.close();
+    }
+  } finally {
+    await context.close();
+  }
+});

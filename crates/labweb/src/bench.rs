@@ -1,6 +1,7 @@
 //! The platform's benchmark scene and the paint benchmarks the browser
 //! benchmark (`tests/bench/browser.bench.mjs`) calls through the module's
-//! exports. Behind the `bench-exports` feature: the wasm tests and
+//! exports, and its same-run A/B switches (the timeline recording, "The
+//! math" panel open). Behind the `bench-exports` feature: the wasm tests and
 //! `cargo xtask bench --browser` build it, shipped modules do not (it cost
 //! every page about 250 lines of code).
 
@@ -267,6 +268,34 @@ pub fn bench_plot(points: u32, frames: u32) -> f64 {
     }
     let _ = ctx.get_image_data(0.0, 0.0, 1.0, 1.0);
     (dom::now_ms() - start) / f64::from(frames)
+}
+
+/// Same-run A/B switch of the browser benchmark (issue 26 §4): the
+/// mounted simulation records its timeline (`true`, as shipped: a new
+/// record from the state shown) or runs without one (`false`, the page
+/// before the timeline). Returns whether a simulation is mounted.
+#[wasm_bindgen]
+pub fn bench_timeline_recording(on: bool) -> bool {
+    crate::APP.with(|a| {
+        a.borrow()
+            .as_ref()
+            .and_then(|app| app.with_sim(|sim| sim.bench_timeline_recording(on)))
+            .is_some()
+    })
+}
+
+/// Same-run A/B switch of the browser benchmark (issue 27, Cost): "The
+/// math" panel of the mounted simulation open (`true`, as shipped) or
+/// closed (`false`: hidden and not written, the page before the panel).
+/// Returns whether the mounted simulation has the panel.
+#[wasm_bindgen]
+pub fn bench_math_panel(open: bool) -> bool {
+    crate::APP.with(|a| {
+        a.borrow()
+            .as_ref()
+            .and_then(|app| app.with_sim(|sim| sim.bench_math_panel(open)))
+            .unwrap_or(false)
+    })
 }
 
 /// A detached canvas of `w` × `h` pixels and its 2D context (benchmarks).

@@ -313,6 +313,10 @@ struct SimState {
     pending_branch: Option<scrub::PendingBranch>,
     /// What the next input is, when the page knows (an action's label).
     branch_cause: Option<&'static str>,
+    /// The browser benchmark closed "The math" panel: hidden and not
+    /// written, as the page was before it ([`SimView::bench_math_panel`]).
+    #[cfg(feature = "bench-exports")]
+    bench_math_closed: bool,
 }
 
 /// Recent busy-frame times (step + paint), published on the canvas as
@@ -814,6 +818,8 @@ impl SimView {
             kept_serial: 0,
             pending_branch: None,
             branch_cause: None,
+            #[cfg(feature = "bench-exports")]
+            bench_math_closed: false,
         }));
         state.borrow_mut().restart_timeline();
         let mut listeners = Vec::new();
@@ -994,6 +1000,36 @@ impl SimView {
     pub fn inspect<R>(&self, f: impl FnOnce(&dyn Lab, u64) -> R) -> R {
         let st = self.state.borrow();
         f(st.exp.as_ref(), st.clock.steps())
+    }
+
+    /// The browser benchmark's A/B switch for the timeline (issue 26 §4):
+    /// `false` drops the run's record, so the run steps unrecorded as the
+    /// page did before the timeline (no snapshots, no slider to keep up);
+    /// `true` starts a new record from the state shown, as Reset does.
+    #[cfg(feature = "bench-exports")]
+    pub fn bench_timeline_recording(&self, on: bool) {
+        let mut st = self.state.borrow_mut();
+        if on {
+            st.restart_timeline();
+        } else {
+            st.timeline = None;
+        }
+    }
+
+    /// The browser benchmark's A/B switch for "The math" panel (issue 27,
+    /// Cost): closed (`false`), the panel is hidden and not written, as the
+    /// page was before it; open again, it is written anew at the next
+    /// text update. Returns whether the experiment has the panel.
+    #[cfg(feature = "bench-exports")]
+    pub fn bench_math_panel(&self, open: bool) -> bool {
+        let mut st = self.state.borrow_mut();
+        st.bench_math_closed = !open;
+        st.shown_math.clear();
+        let Some(section) = query(&st.panel, ".live-math") else {
+            return false;
+        };
+        let _ = section.toggle_attribute_with_force("hidden", !open);
+        true
     }
 
     /// Runs one animation frame at `time_ms` (browser tests drive the clock

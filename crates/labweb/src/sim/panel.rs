@@ -516,6 +516,10 @@ impl SimState {
     /// Writes the parts of "The math" panel whose text changed: each
     /// equation's substituted form, its result and its text twin.
     fn sync_math(&mut self, readouts: &[labcore::Readout]) {
+        #[cfg(feature = "bench-exports")]
+        if self.bench_math_closed {
+            return;
+        }
         let set = self.exp.equations().as_ptr() as usize;
         let equations = super::panel_equations(self.exp.as_ref());
         if equations.is_empty() {
