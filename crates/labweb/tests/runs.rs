@@ -275,3 +275,86 @@ async fn a_change_just_before_leaving_the_tab_survives_back() {
     assert_eq!(shown(), (steps, state));
     assert!(hash().contains("kp=40"), "{}", hash());
 }
+
+/// The first equation's result in "The math" panel.
+fn math_result() -> String {
+    text(".live-math [data-equation=\"0\"] .equation-result")
+}
+
+/// Issue 27, cost: while a run streams and "The math" panel is out of the
+/// window (below the scene on a phone), the panel is not written (each
+/// write costs the page a style and layout pass of its formulas); once it
+/// is back in view the run's pace writes it again, and when the run stops
+/// it shows the last state's numbers, seen or not.
+#[wasm_bindgen_test]
+fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
+    mount("#/pid/simulation");
+    // The test page is short: the panel starts below the window. Fixed at
+    // the window's top, it is in view.
+    let panel = element(".live-math");
+    let in_view = |yes: bool| {
+        let style = panel.style();
+        if yes {
+            style.set_property("position", "fixed").unwrap();
+            style.set_property("top", "0").unwrap();
+        } else {
+            style.remove_property("position").unwrap();
+            style.remove_property("top").unwrap();
+        }
+    };
+    in_view(true);
+    for _ in 0..30 {
+        frame(ONE_STEP_MS);
+    }
+    let mut seen = vec![math_result()];
+    for _ in 0..60 {
+        frame(ONE_STEP_MS);
+        seen.push(math_result());
+    }
+    seen.dedup();
+    assert!(
+        seen.len() >= 3,
+        "in view, written at the run's pace: {seen:?}"
+    );
+    // Out of the window: a second of the run writes nothing.
+    // (Seen out of the window from the next measure of the plots, at most
+    // a plot interval on.)
+    in_view(false);
+    for _ in 0..5 {
+        frame(ONE_STEP_MS);
+    }
+    let before = math_result();
+    for _ in 0..60 {
+        frame(ONE_STEP_MS);
+        assert_eq!(math_result(), before, "out of the window: not rewritten");
+    }
+    // Back in view: written again within the text's pace.
+    in_view(true);
+    for _ in 0..20 {
+        frame(ONE_STEP_MS);
+    }
+    assert_ne!(math_result(), before, "back in view: written again");
+    // Out of the window again, then the run is paused: the last state's
+    // numbers are written anyway.
+    in_view(false);
+    for _ in 0..20 {
+        frame(ONE_STEP_MS);
+    }
+    element("button[data-time=play]").click();
+    for _ in 0..3 {
+        frame(ONE_STEP_MS);
+    }
+    let force = labweb::inspect_sim(|exp, _| {
+        exp.readouts()
+            .into_iter()
+            .find(|r| r.key == "force")
+            .map(|r| r.value)
+    })
+    .unwrap()
+    .expect("pid has a force readout");
+    assert_eq!(
+        math_result(),
+        format!("= {force}"),
+        "paused: the panel shows the state"
+    );
+}

@@ -270,6 +270,12 @@ struct SimState {
     /// Which equations the panel was written for (the slice's address): a
     /// parameter may choose another set (pid's actuator limit).
     shown_equations: usize,
+    /// Whether "The math" panel was in the window at the last
+    /// [`SimState::measure_math`] (true until measured).
+    math_on_screen: bool,
+    /// The text being written follows an input or the end of a motion
+    /// (not a run's pace): every part is written, seen or not.
+    text_at_once: bool,
     /// The key of the live quantity whose symbol is hovered or focused: its
     /// tagged parts of the scene are drawn as a halo.
     live_key: Option<String>,
@@ -411,6 +417,10 @@ impl SimState {
         if plots_due {
             self.plots.measure();
         }
+        if time_ms - self.text_ms >= TEXT_INTERVAL_MS {
+            // The text may be written this frame: is the panel seen?
+            self.measure_math();
+        }
         // Painting asked for by an input, an action or a resize (before the
         // clock's steps ask for theirs): its text is written at once, unless
         // the input is a stream (a drag, a held arrow key), whose text is
@@ -514,8 +524,9 @@ impl SimState {
             self.sync_status_during_stream();
         }
         if write_text {
-            self.sync_dom();
             let at_once = input_paint || !self.exp.animating();
+            self.text_at_once = at_once;
+            self.sync_dom();
             let plots = scrub::shown_plots(
                 self.exp.as_ref(),
                 self.record_end.as_deref(),
@@ -796,6 +807,8 @@ impl SimView {
             shown_tables: Vec::new(),
             shown_math: Vec::new(),
             shown_equations: equations,
+            math_on_screen: true,
+            text_at_once: true,
             live_key: None,
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
@@ -1045,6 +1058,7 @@ impl SimView {
         st.plots.measure();
         st.resize();
         st.paint();
+        st.text_at_once = true;
         st.sync_dom();
         let st = &mut *st;
         st.finish_branch();

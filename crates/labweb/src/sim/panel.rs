@@ -515,9 +515,18 @@ impl SimState {
 
     /// Writes the parts of "The math" panel whose text changed: each
     /// equation's substituted form, its result and its text twin.
+    ///
+    /// While a run streams and the panel is out of the window (on a phone,
+    /// below the scene), nothing is written: every write there costs the
+    /// page a style and layout pass of the formulas for nothing. The next
+    /// write after it scrolls in, or the one when the run stops, brings it
+    /// up to date.
     fn sync_math(&mut self, readouts: &[labcore::Readout]) {
         #[cfg(feature = "bench-exports")]
         if self.bench_math_closed {
+            return;
+        }
+        if !self.text_at_once && !self.math_on_screen {
             return;
         }
         let set = self.exp.equations().as_ptr() as usize;
@@ -560,6 +569,20 @@ impl SimState {
                 }
             }
             *shown = now;
+        }
+    }
+
+    /// Whether "The math" panel is in the window now (read with the plots'
+    /// sizes, before the frame writes anything).
+    pub(super) fn measure_math(&mut self) {
+        if let Some(section) = query(&self.panel, ".live-math") {
+            let rect = section.get_bounding_client_rect();
+            let view_h = dom::window()
+                .inner_height()
+                .ok()
+                .and_then(|h| h.as_f64())
+                .unwrap_or(f64::INFINITY);
+            self.math_on_screen = rect.height() > 0.0 && rect.bottom() > 0.0 && rect.top() < view_h;
         }
     }
 
