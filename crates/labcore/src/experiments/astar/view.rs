@@ -232,6 +232,17 @@ impl Presentation for AStarGrid {
         if self.zoomed() {
             pan_band(self, out);
         }
+        // What f = g + h names (issue 27 §3): the path so far to the last
+        // cell expanded, whose cost is g, and the estimate h from it to the
+        // goal, Δx cells across and Δy up.
+        if let (Some((e, goal)), Some(search)) = (self.last_entry(), &self.search) {
+            let (c, g) = (self.cell_center(e.cell), self.cell_center(goal));
+            let corner = DVec2::new(g.x, c.y);
+            out.tag_lines(&[("h", c, g), ("dx", c, corner), ("dy", corner, g)]);
+            if let Some(path) = search.path_to(e.cell) {
+                out.tag("g", path.into_iter().map(|p| self.cell_center(p)).collect());
+            }
+        }
     }
 
     fn readouts(&self) -> Vec<Readout> {

@@ -356,6 +356,21 @@ impl Presentation for PotentialFieldLab {
                 });
             }
         }
+        // What the laws' quantities name (issue 27 §3): the robot, the goal
+        // and the pull towards it, the nearest obstacle's centre, radius,
+        // clearance d, influence d₀ and its push (the arrows at their scale).
+        let p = pose.position();
+        if let Some(g) = self.goal {
+            let pull = p + self.field.attractive_force(p) * FORCE_SCALE_M;
+            out.tag_lines(&[("x", p, p), ("y", p, p), ("xg", g, g), ("yg", g, g), ("ka", p, pull)]);
+        }
+        if let Some(o) = self.nearest_obstacle() {
+            let (c, r) = (o.centre, o.radius_m.max(0.0));
+            let surface = c + (p - c).normalize_or_zero() * r;
+            let push = p + self.field.repulsive_force(p) * FORCE_SCALE_M;
+            out.tag_lines(&[("cx", c, c), ("cy", c, c), ("r", c, surface), ("d", surface, p), ("kr", p, push)]);
+            out.tag_circle("d0", c, r + self.field.params.influence_m);
+        }
     }
 
     /// The live numbers beside the canvas.
