@@ -322,10 +322,10 @@ impl Presentation for PotentialFieldLab {
         }
         let pose = self.run.map_or(self.start_pose(), |r| r.pose);
         draw_robot(out, pose, 0.3);
+        let p = pose.position();
+        let force = self.field.force(p);
+        let rep = self.field.repulsive_force(p);
         if let Some(run) = self.run {
-            let p = pose.position();
-            let force = self.field.force(p);
-            let rep = self.field.repulsive_force(p);
             if force.length() > 1e-6 {
                 out.push(Item::Arrow {
                     from: p,
@@ -356,19 +356,17 @@ impl Presentation for PotentialFieldLab {
                 });
             }
         }
-        // What the laws' quantities name (issue 27 §3): the robot, the goal
-        // and the pull towards it, the nearest obstacle's centre, radius,
-        // clearance d, influence d₀ and its push (the arrows at their scale).
-        let p = pose.position();
+        // What the laws' quantities name (issue 27 §3): the goal and the
+        // pull towards it, the nearest obstacle's radius r, clearance d,
+        // influence d₀ and its push (the arrows at the scale drawn).
+        let scale = FORCE_SCALE_M;
         if let Some(g) = self.goal {
-            let pull = p + self.field.attractive_force(p) * FORCE_SCALE_M;
-            out.tag_lines(&[("x", p, p), ("y", p, p), ("xg", g, g), ("yg", g, g), ("ka", p, pull)]);
+            out.tag_lines(&[("xg", g, g), ("yg", g, g), ("ka", p, p + (force - rep) * scale)]);
         }
         if let Some(o) = self.nearest_obstacle() {
             let (c, r) = (o.centre, o.radius_m.max(0.0));
             let surface = c + (p - c).normalize_or_zero() * r;
-            let push = p + self.field.repulsive_force(p) * FORCE_SCALE_M;
-            out.tag_lines(&[("cx", c, c), ("cy", c, c), ("r", c, surface), ("d", surface, p), ("kr", p, push)]);
+            out.tag_lines(&[("r", c, surface), ("d", surface, p), ("kr", p, p + rep * scale)]);
             out.tag_circle("d0", c, r + self.field.params.influence_m);
         }
     }
