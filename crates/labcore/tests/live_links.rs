@@ -384,7 +384,7 @@ fn live_astar_dx_dy_run_from_the_last_cell_to_the_goal_and_g_ends_there() {
 }
 
 /// potential: d is the clearance from the nearest obstacle's surface to the
-/// robot, r its radius, d₀ the circle where its push starts.
+/// robot (r from its centre), d₀ the circle where its push starts, k_a the pull.
 #[test]
 fn live_potential_d_r_and_d0_measure_the_nearest_obstacle() {
     let mut e = make("potential");
@@ -399,16 +399,25 @@ fn live_potential_d_r_and_d0_measure_the_nearest_obstacle() {
         value(e.as_ref(), "d"),
         value(e.as_ref(), "d0"),
     );
-    let (rt, dt) = (tag(e.as_ref(), "r"), tag(e.as_ref(), "d"));
-    assert!(near(rt[0], c) && ((rt[1] - c).length() - r).abs() < 1e-9);
-    assert!(near(dt[0], rt[1]) && ((dt[1] - dt[0]).length() - d).abs() < 1e-9 && d > 0.0);
+    let dt = tag(e.as_ref(), "d");
+    assert!(
+        ((dt[0] - c).length() - r).abs() < 1e-9,
+        "d starts on the surface"
+    );
+    assert!(((dt[1] - dt[0]).length() - d).abs() < 1e-9 && d > 0.0);
     for p in tag(e.as_ref(), "d0") {
         assert!(((p - c).length() - (r + d0)).abs() < 1e-9);
     }
-    assert!(near(
-        tag(e.as_ref(), "xg")[0],
-        DVec2::new(value(e.as_ref(), "xg"), value(e.as_ref(), "yg"))
-    ));
+    // k_a: the pull, from the robot towards the goal.
+    let pull = tag(e.as_ref(), "ka");
+    let goal = DVec2::new(value(e.as_ref(), "xg"), value(e.as_ref(), "yg"));
+    assert!(near(pull[0], dt[1]));
+    assert!(
+        (pull[1] - pull[0])
+            .normalize()
+            .dot((goal - pull[0]).normalize())
+            > 1.0 - 1e-9
+    );
 }
 
 /// cartpole: θ is the arc at the pivot from the upright to the pole, l the

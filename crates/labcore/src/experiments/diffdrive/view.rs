@@ -347,7 +347,7 @@ impl Presentation for DiffDrive {
             cmd.heading_rad,
             cmd.heading_rad + cmd.heading_error_rad,
         );
-        let goal = self.follower.queue.front().copied().unwrap_or(at);
+        let goal = self.follower.goal().unwrap_or(at);
         out.tag_lines(&[("d", at, goal), ("v", at, speed_tip)]);
     }
 

@@ -70,7 +70,9 @@ impl PotentialFieldLab {
         self.run.map_or(self.start, |r| r.pose.position())
     }
 
-    /// The obstacle nearest the robot's surface, if any.
+    /// The obstacle nearest the robot's surface, if any. Not inlined: the
+    /// scene, the quantities and the equations each ask.
+    #[inline(never)]
     fn nearest_obstacle(&self) -> Option<CircleObstacle> {
         let p = self.robot_m();
         self.field
@@ -356,17 +358,17 @@ impl Presentation for PotentialFieldLab {
                 });
             }
         }
-        // What the laws' quantities name (issue 27 §3): the goal and the
-        // pull towards it, the nearest obstacle's radius r, clearance d,
+        // What the laws' quantities name (issue 27 §3): the pull towards
+        // the goal, the clearance d from the nearest obstacle's surface, its
         // influence d₀ and its push (the arrows at the scale drawn).
         let scale = FORCE_SCALE_M;
-        if let Some(g) = self.goal {
-            out.tag_lines(&[("xg", g, g), ("yg", g, g), ("ka", p, p + (force - rep) * scale)]);
+        if self.goal.is_some() {
+            out.tag_lines(&[("ka", p, p + (force - rep) * scale)]);
         }
         if let Some(o) = self.nearest_obstacle() {
             let (c, r) = (o.centre, o.radius_m.max(0.0));
             let surface = c + (p - c).normalize_or_zero() * r;
-            out.tag_lines(&[("r", c, surface), ("d", surface, p), ("kr", p, p + rep * scale)]);
+            out.tag_lines(&[("d", surface, p), ("kr", p, p + rep * scale)]);
             out.tag_circle("d0", c, r + self.field.params.influence_m);
         }
     }
