@@ -205,3 +205,36 @@ test("live links: in each of diffdrive, potential, astar, cartpole, dls, rrtstar
       await page.mouse.move(0, 0);
     }
   }));
+
+for (const [viewport, name] of [
+  [{ width: 1280, height: 800 }, "1280"],
+  [{ width: 390, height: 844 }, "390"],
+]) {
+  test(`live links: diffdrive's e_θ, astar's h and ekf's P lit from the panel, and ekf's σ² on the Theory tab with the run's value (${name})`, () =>
+    withPage(lab, { clock: true, viewport }, async (page) => {
+      for (const [id, link, action, key] of [
+        ["diffdrive", "#/diffdrive/simulation?w1x=6&w1y=4", null, "e"],
+        ["astar", "#/astar/simulation", "plan", "h"],
+        ["ekf", "#/ekf/simulation?mode=0&seed=1", null, "pxx"],
+      ]) {
+        await open(lab, page, link);
+        if (action) await page.click(`${SIM} button[data-action=${action}]`);
+        await runFor(page, 400);
+        await page.locator(`${SIM} .live-math [data-live=${key}]`).first().focus();
+        await runFor(page, 50);
+        assert.equal(await page.$eval(`${SIM} canvas.sim-canvas`, (c) => c.dataset.live), key, id);
+        await page.locator(`${SIM} canvas.sim-canvas`).scrollIntoViewIfNeeded();
+        await screenshot(page, `livelinks-${id}-${key}-focus-${name}`);
+      }
+      // The Theory tab: σx² + σy² names P's variances; hovering σx² shows P_xx from the run.
+      await page.evaluate(() => (location.hash = "#/ekf/theory"));
+      await page.waitForSelector(`${THEORY}:not([hidden])`);
+      const symbol = page.locator(`${THEORY} [data-live=pxx]`).first();
+      await symbol.scrollIntoViewIfNeeded();
+      await symbol.hover();
+      const tip = page.locator("article.exp:not([hidden]) .live-tip");
+      await tip.waitFor();
+      assert.match((await tip.textContent()).trim(), /^Pxx = \d\.\d+ m²$/);
+      await screenshot(page, `livelinks-ekf-theory-pxx-${name}`);
+    }));
+}
