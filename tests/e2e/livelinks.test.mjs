@@ -169,3 +169,72 @@ test("live math: the panel shows exactly the equations the content names, in its
     await runFor(page, 100);
     assert.deepEqual(await keys(), ["innovation_range", "innovation_bearing", "trace", "nees"]);
   }));
+
+// Issue 27 §3 for the seven labs after the arms and pid: a symbol in "The
+// math" names a part of the scene, and hovering it there draws that part
+// as a halo (the canvas names the key it lights).
+const SEVEN = [
+  // [lab, link, the action that starts a run, the key, what it names]
+  ["diffdrive", "#/diffdrive/simulation?w1x=6&w1y=4", null, "d", "the line to the goal"],
+  ["potential", "#/potential/simulation?gx=8&gy=3", null, "d0", "the nearest obstacle's influence circle"],
+  ["astar", "#/astar/simulation", "plan", "h", "the line from the last cell expanded to the goal"],
+  ["cartpole", "#/cartpole/simulation?th0=20", null, "th", "the pole angle's arc"],
+  ["dls", "#/dls/simulation?tx=1&ty=1", null, "smax", "the velocity ellipse's long semi-axis"],
+  ["rrtstar", "#/rrtstar/simulation?iters=1500&batch=60", "grow", "radius", "the circle of r(n) around the newest node"],
+  ["ekf", "#/ekf/simulation?mode=0&seed=1", null, "pxx", "the 3σ ellipse"],
+];
+
+test("live links: in each of diffdrive, potential, astar, cartpole, dls, rrtstar and ekf, hovering a symbol in the math panel draws what it names", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    for (const [id, link, action, key, what] of SEVEN) {
+      await open(lab, page, link);
+      if (action) await page.click(`${SIM} button[data-action=${action}]`);
+      await runFor(page, 400);
+      // Paused, so the picture changes only by the halo.
+      const play = page.locator(`${SIM} button[data-time=play]`);
+      if ((await play.getAttribute("aria-pressed")) === "true") await play.click();
+      await runFor(page, 100);
+      const width = await page.$eval(`${SIM} canvas.sim-canvas`, (c) => c.width);
+      const before = await pixels(page);
+      await page.hover(`${SIM} .live-math [data-live=${key}]`);
+      await runFor(page, 50);
+      assert.equal(await page.$eval(`${SIM} canvas.sim-canvas`, (c) => c.dataset.live), key, id);
+      const diff = changed(before, await pixels(page), width);
+      assert.ok(diff.n > 200, `${id}: hovering ${key} (${what}) changed ${diff.n} pixels`);
+      await screenshot(page, `livelinks-${id}-${key}-1280`);
+      await page.mouse.move(0, 0);
+    }
+  }));
+
+for (const [viewport, name] of [
+  [{ width: 1280, height: 800 }, "1280"],
+  [{ width: 390, height: 844 }, "390"],
+]) {
+  test(`live links: diffdrive's e_θ, astar's h and ekf's P lit from the panel, and ekf's σ² on the Theory tab with the run's value (${name})`, () =>
+    withPage(lab, { clock: true, viewport }, async (page) => {
+      for (const [id, link, action, key] of [
+        ["diffdrive", "#/diffdrive/simulation?w1x=6&w1y=4", null, "e"],
+        ["astar", "#/astar/simulation", "plan", "h"],
+        ["ekf", "#/ekf/simulation?mode=0&seed=1", null, "pxx"],
+      ]) {
+        await open(lab, page, link);
+        if (action) await page.click(`${SIM} button[data-action=${action}]`);
+        await runFor(page, 400);
+        await page.locator(`${SIM} .live-math [data-live=${key}]`).first().focus();
+        await runFor(page, 50);
+        assert.equal(await page.$eval(`${SIM} canvas.sim-canvas`, (c) => c.dataset.live), key, id);
+        await page.locator(`${SIM} canvas.sim-canvas`).scrollIntoViewIfNeeded();
+        await screenshot(page, `livelinks-${id}-${key}-focus-${name}`);
+      }
+      // The Theory tab: σx² + σy² names P's variances; hovering σx² shows P_xx from the run.
+      await page.evaluate(() => (location.hash = "#/ekf/theory"));
+      await page.waitForSelector(`${THEORY}:not([hidden])`);
+      const symbol = page.locator(`${THEORY} [data-live=pxx]`).first();
+      await symbol.scrollIntoViewIfNeeded();
+      await symbol.hover();
+      const tip = page.locator("article.exp:not([hidden]) .live-tip");
+      await tip.waitFor();
+      assert.match((await tip.textContent()).trim(), /^Pxx = \d\.\d+ m²$/);
+      await screenshot(page, `livelinks-ekf-theory-pxx-${name}`);
+    }));
+}

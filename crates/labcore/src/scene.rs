@@ -4,6 +4,7 @@
 //! role to a theme colour (light/dark, colour-blind safe) that every
 //! renderer shares, so an experiment never names a colour.
 
+use core::f64::consts::TAU;
 use glam::DVec2;
 
 mod layer;
@@ -298,13 +299,69 @@ impl Scene {
         from_rad: f64,
         to_rad: f64,
     ) {
-        let points = (0..=16)
-            .map(|i| {
-                let a = from_rad + (to_rad - from_rad) * f64::from(i) / 16.0;
-                center + radius_m * DVec2::new(libm::cos(a), libm::sin(a))
-            })
-            .collect();
+        self.tag_curve(
+            key,
+            center,
+            DVec2::new(radius_m, 0.0),
+            DVec2::new(0.0, radius_m),
+            from_rad,
+            to_rad,
+        );
+    }
+
+    /// Tags a whole ellipse around `center` with semi-axis vectors
+    /// `semi_axis_a` and `semi_axis_b` (m; a circle of radius r has
+    /// `(r, 0)` and `(0, r)`), as a closed path of 33 points.
+    pub fn tag_ellipse(
+        &mut self,
+        key: &'static str,
+        center: DVec2,
+        semi_axis_a: DVec2,
+        semi_axis_b: DVec2,
+    ) {
+        self.tag_curve(key, center, semi_axis_a, semi_axis_b, 0.0, TAU);
+    }
+
+    /// Tags a circle of `radius_m` around `center` (a radius, a reach).
+    pub fn tag_circle(&mut self, key: &'static str, center: DVec2, radius_m: f64) {
+        self.tag_arc(key, center, radius_m, 0.0, TAU);
+    }
+
+    /// `center + a cos t + b sin t` for `t` from `from_rad` to `to_rad`:
+    /// an arc of an ellipse, 33 points (an arc of 16 segments was as fine
+    /// for a joint angle; a whole ellipse wants more).
+    fn tag_curve(
+        &mut self,
+        key: &'static str,
+        center: DVec2,
+        a: DVec2,
+        b: DVec2,
+        from_rad: f64,
+        to_rad: f64,
+    ) {
+        // A plain loop: an iterator's collect costs every page's module
+        // several hundred bytes of adapters.
+        let mut points = Vec::with_capacity(33);
+        for i in 0..33u32 {
+            let t = from_rad + (to_rad - from_rad) * f64::from(i) / 32.0;
+            points.push(center + a * libm::cos(t) + b * libm::sin(t));
+        }
         self.tag(key, points);
+    }
+
+    /// Tags several quantities at once, each `(key, from, to)`: a ring
+    /// around `from` when `to` is the same point, else the line between.
+    /// One loop for every experiment's points and lines keeps each page's
+    /// module small.
+    pub fn tag_lines(&mut self, tags: &[(&'static str, DVec2, DVec2)]) {
+        for &(key, from, to) in tags {
+            let mut points = Vec::with_capacity(2);
+            points.push(from);
+            if to != from {
+                points.push(to);
+            }
+            self.tag(key, points);
+        }
     }
 
     /// Marks the items pushed so far as the backdrop, made from what `key`

@@ -21,7 +21,13 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
     for (i, eq) in equations.iter().enumerate() {
         let (numbers, result, text) = live_parts(eq, quantities, readouts);
         let mut symbols = Writer::new(Target::MathMl, Form::Symbols, quantities);
-        symbols.symbol(eq.symbol);
+        // The result's symbol points at what it names too, when a quantity
+        // carries the equation's key (rrtstar's r, dls's |e|).
+        if quantities.iter().any(|q| q.key == eq.key) {
+            symbols.expr(&Expr::Var(eq.key), 0);
+        } else {
+            symbols.symbol(eq.symbol);
+        }
         symbols.put("<mo>=</mo>", "");
         symbols.expr(&eq.expr, 0);
         let _ = write!(

@@ -1347,10 +1347,12 @@ fn issue15_content_heuristics_quiz_wording_and_option_lengths() {
     let text = include_str!("../../../../../assets/astar.json");
     let v: serde_json::Value = serde_json::from_str(text).unwrap();
     let theory = v["theory"].to_string();
-    // `|\Delta x|` in the LaTeX, its backslash escaped in the JSON text.
+    // `|\Delta x|` in the LaTeX, its backslash escaped in the JSON text,
+    // or with Δx marked as the live quantity `dx` (issue 27 §3).
     let abs_dx = r#"|\\Delta x|"#;
+    let abs_live_dx = r#"|\\live{dx}{\\Delta x}|"#;
     assert!(
-        theory.matches(abs_dx).count() >= 4,
+        theory.matches(abs_dx).count() + theory.matches(abs_live_dx).count() >= 4,
         "|Δx| in Manhattan and octile"
     );
     let quiz = v["quiz"].as_array().unwrap();

@@ -232,6 +232,22 @@ impl Presentation for AStarGrid {
         if self.zoomed() {
             pan_band(self, out);
         }
+        // What f = g + h names (issue 27 §3): the path so far to the last
+        // cell expanded, whose cost is g, and the estimate h from it to the
+        // goal, Δx cells across and Δy up.
+        if let (Some((e, goal)), Some(search)) = (self.last_entry(), &self.search) {
+            let (c, g) = (self.cell_center(e.cell), self.cell_center(goal));
+            let corner = DVec2::new(g.x, c.y);
+            out.tag_lines(&[("h", c, g), ("dx", c, corner), ("dy", corner, g)]);
+            if let Some(path) = search.path_to(e.cell) {
+                // A loop, not an iterator's collect: fewer bytes in the module.
+                let mut points = Vec::with_capacity(path.len());
+                for cell in path {
+                    points.push(self.cell_center(cell));
+                }
+                out.tag("g", points);
+            }
+        }
     }
 
     fn readouts(&self) -> Vec<Readout> {

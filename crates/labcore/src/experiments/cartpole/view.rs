@@ -279,6 +279,16 @@ impl Presentation for CartPoleBalance {
             role: Role::Text,
             offset_px: DVec2::new(-24.0, 44.0),
         });
+        // What the feedback's and the energy's quantities name (issue 27
+        // §3): the pole's angle θ from the upright, now and at the last
+        // step's start (subscript k), the cart's position x_k along the
+        // track from 0, and the half-length l up the pole.
+        let at = self.sim.last_inputs().map_or(self.sim.state, |i| i.state);
+        let up = std::f64::consts::FRAC_PI_2;
+        out.tag_arc("th", pivot, 0.4, up, up - self.sim.state.theta_rad);
+        out.tag_arc("thk", pivot, 0.4, up, up - at.theta_rad);
+        let ground = DVec2::new(at.x_m.clamp(VIEW_MIN.x, VIEW_MAX.x), 0.0);
+        out.tag_lines(&[("xk", DVec2::ZERO, ground), ("l", pivot, pivot.midpoint(tip))]);
     }
 
     /// The gains and the state the last force came from (subscript k), and

@@ -326,14 +326,29 @@ impl Presentation for DiffDrive {
             });
         }
         let cmd = self.command();
+        let at = pose.position();
+        let speed_tip = at + pose.heading() * cmd.v_mps;
         if cmd.v_mps > 1e-3 {
             out.push(Item::Arrow {
-                from: pose.position(),
-                to: pose.position() + pose.heading() * cmd.v_mps,
+                from: at,
+                to: speed_tip,
                 width_px: 2.0,
                 role: Role::Accent,
             });
         }
+        // What the control law's quantities name (issue 27 §3): the heading
+        // θ from the x axis, the heading error eθ from the heading towards
+        // the goal, the distance d to it and the speed v along the heading.
+        out.tag_arc("theta", at, 0.45, 0.0, cmd.heading_rad);
+        out.tag_arc(
+            "e",
+            at,
+            0.7,
+            cmd.heading_rad,
+            cmd.heading_rad + cmd.heading_error_rad,
+        );
+        let goal = self.follower.goal().unwrap_or(at);
+        out.tag_lines(&[("d", at, goal), ("v", at, speed_tip)]);
     }
 
     /// The gains and limits, and what the last command was computed from.

@@ -78,6 +78,19 @@ impl Presentation for DampedLeastSquares {
             });
         }
         out.chain(&pose.points, Role::Link);
+        // What the error and the ellipse's quantities name (issue 27 §3):
+        // the tip's coordinates x and y, the target, the error e from the
+        // tip to it, and the velocity ellipse's semi-axes σmax and σmin.
+        let foot = DVec2::new(tip.x, 0.0);
+        out.tag_lines(&[
+            ("x", DVec2::ZERO, foot),
+            ("y", foot, tip),
+            ("smax", tip, tip + m.u_max * m.sigma_max * ELLIPSE_SCALE),
+            ("smin", tip, tip + m.u_min * m.sigma_min * ELLIPSE_SCALE),
+        ]);
+        if let Some(t) = self.target {
+            out.tag_lines(&[("xt", t, t), ("yt", t, t), ("error", tip, t)]);
+        }
     }
 
     fn readouts(&self) -> Vec<Readout> {
@@ -123,6 +136,7 @@ impl Presentation for DampedLeastSquares {
             Quantity::new("c", "c", c, 4, "m²"),
             Quantity::new("smax", "σ_max", m.sigma_max, significant(m.sigma_max), "m"),
             Quantity::new("smin", "σ_min", m.sigma_min, significant(m.sigma_min), "m"),
+            Quantity::new("error", "|e|", (target - tip).length(), 3, "m"),
         ]
     }
 

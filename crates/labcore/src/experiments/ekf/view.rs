@@ -196,7 +196,39 @@ impl Presentation for EkfExperiment {
             closed: true,
         });
         let est = run.estimate();
-        out.push(ellipse(est.truncate(), position_block(run.pose_cov())));
+        let uncertainty = ellipse(est.truncate(), position_block(run.pose_cov()));
+        // What the innovation, σ² and NEES name (issue 27 §3): P's 3σ
+        // ellipse; the error e from the estimate to the truth, across (e_x),
+        // up (e_y) and in heading (e_θ); and the landmark the last
+        // observation folded in saw: measured from the truth (z), predicted
+        // from the estimate (ẑ), range and bearing.
+        if let Item::Ellipse {
+            center,
+            semi_axis_a,
+            semi_axis_b,
+            ..
+        } = uncertainty
+        {
+            out.tag_ellipse("pxx", center, semi_axis_a, semi_axis_b);
+            out.tag_ellipse("pyy", center, semi_axis_a, semi_axis_b);
+        }
+        out.push(uncertainty);
+        let (at, seen) = (est.truncate(), truth.truncate());
+        let corner = DVec2::new(seen.x, at.y);
+        out.tag_lines(&[("ex", at, corner), ("ey", corner, seen)]);
+        out.tag_arc("eth", at, 0.5, est.z, est.z + pose_error(truth, est).z);
+        if let Some((z, u)) = run.last_update() {
+            let sighted = run
+                .observations
+                .iter()
+                .find(|o| o.z() == z)
+                .and_then(|o| self.landmarks.get(o.id));
+            if let Some(&m) = sighted {
+                out.tag_lines(&[("zr", seen, m), ("zhr", at, m)]);
+                out.tag_arc("zb", seen, 0.5, truth.z, truth.z + z.y);
+                out.tag_arc("zhb", at, 0.7, est.z, est.z + z.y - u.innovation.y);
+            }
+        }
         out.push(Item::Polygon {
             points: robot_outline(est),
             role: Role::Estimate,

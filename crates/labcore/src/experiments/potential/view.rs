@@ -70,7 +70,9 @@ impl PotentialFieldLab {
         self.run.map_or(self.start, |r| r.pose.position())
     }
 
-    /// The obstacle nearest the robot's surface, if any.
+    /// The obstacle nearest the robot's surface, if any. Not inlined: the
+    /// scene, the quantities and the equations each ask.
+    #[inline(never)]
     fn nearest_obstacle(&self) -> Option<CircleObstacle> {
         let p = self.robot_m();
         self.field
@@ -322,10 +324,10 @@ impl Presentation for PotentialFieldLab {
         }
         let pose = self.run.map_or(self.start_pose(), |r| r.pose);
         draw_robot(out, pose, 0.3);
+        let p = pose.position();
+        let force = self.field.force(p);
+        let rep = self.field.repulsive_force(p);
         if let Some(run) = self.run {
-            let p = pose.position();
-            let force = self.field.force(p);
-            let rep = self.field.repulsive_force(p);
             if force.length() > 1e-6 {
                 out.push(Item::Arrow {
                     from: p,
@@ -355,6 +357,19 @@ impl Presentation for PotentialFieldLab {
                     offset_px: DVec2::new(12.0, 16.0),
                 });
             }
+        }
+        // What the laws' quantities name (issue 27 §3): the pull towards
+        // the goal, the clearance d from the nearest obstacle's surface, its
+        // influence d₀ and its push (the arrows at the scale drawn).
+        let scale = FORCE_SCALE_M;
+        if self.goal.is_some() {
+            out.tag_lines(&[("ka", p, p + (force - rep) * scale)]);
+        }
+        if let Some(o) = self.nearest_obstacle() {
+            let (c, r) = (o.centre, o.radius_m.max(0.0));
+            let surface = c + (p - c).normalize_or_zero() * r;
+            out.tag_lines(&[("d", surface, p), ("kr", p, p + rep * scale)]);
+            out.tag_circle("d0", c, r + self.field.params.influence_m);
         }
     }
 

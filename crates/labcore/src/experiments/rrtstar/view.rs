@@ -20,6 +20,22 @@ const EQUATIONS: &[Equation] = &[Equation {
     caption: "The rewiring radius: it shrinks as the tree grows (the square root is d = 2's 1/d power), never beyond the step η.",
 }];
 
+impl RrtStarField {
+    /// The rewiring radius `r(n)` of the tree shown at its node count `n`,
+    /// m; NaN without a tree and for plain RRT, which does not rewire.
+    fn shown_radius(&self) -> f64 {
+        match self.shown() {
+            Some(t) if self.planner != Planner::Rrt => t.radius(t.len()),
+            _ => f64::NAN,
+        }
+    }
+
+    /// The step `η` of the tree shown (before any tree, the slider's), m.
+    fn shown_eta(&self) -> f64 {
+        self.shown().map_or(self.eta_m, |t| t.config().step_eta)
+    }
+}
+
 impl Presentation for RrtStarField {
     fn view(&self) -> ViewBox {
         ViewBox {
@@ -91,6 +107,17 @@ impl Presentation for RrtStarField {
                     }
                 }
             }
+        }
+        // What r(n) = min(γ √(ln n / n), η) names (issue 27 §3): the newest
+        // node, the n-th, and around it the rewiring radius r(n) and the step
+        // η that caps it.
+        if let Some(c) = self.shown().and_then(|t| Some(t.nodes()[t.newest()?])) {
+            out.tag_lines(&[("n", c, c)]);
+            let radius = self.shown_radius();
+            if radius > 0.0 {
+                out.tag_circle("radius", c, radius);
+            }
+            out.tag_circle("eta", c, self.shown_eta());
         }
         // The other planners' best paths (Compare), then the shown one on top.
         if self.runs.len() > 1 {
@@ -180,17 +207,7 @@ impl Presentation for RrtStarField {
                 "Best length",
                 tree.and_then(RrtStar::best_cost).unwrap_or(f64::NAN),
             ),
-            Readout::metres(
-                "radius",
-                "Rewiring radius r",
-                tree.map_or(f64::NAN, |t| {
-                    if self.planner == Planner::Rrt {
-                        f64::NAN
-                    } else {
-                        t.radius(t.len())
-                    }
-                }),
-            ),
+            Readout::metres("radius", "Rewiring radius r", self.shown_radius()),
             Readout::new("status", "Status", status),
         ]
     }
@@ -206,7 +223,8 @@ impl Presentation for RrtStarField {
         vec![
             Quantity::new("gamma", "γ", gamma, 3, "m"),
             Quantity::new("n", "n", tree.map_or(1, RrtStar::len) as f64, 0, ""),
-            Quantity::new("eta", "η", tree.map_or(self.eta_m, |t| t.config().step_eta), 2, "m"),
+            Quantity::new("eta", "η", self.shown_eta(), 2, "m"),
+            Quantity::new("radius", "r", self.shown_radius(), 3, "m"),
         ]
     }
 
