@@ -296,8 +296,37 @@ window.labReport = (bytes, done, failed) => {
 for (const kind of ["pointerover", "focusin"]) {
   document.addEventListener(kind, (e) => {
     if (e.target.closest?.("[data-export=report]")) loadReport().catch(() => {});
+    if (e.target.closest?.(".instructor-panel > summary")) loadInstructor().catch(() => {});
   }, { passive: true });
 }
+
+// The Instructor panel's code (instructor.<hash>.js, from web/instructor.js)
+// is not part of any experiment's download either: a student never needs it.
+// It is fetched the first time a panel is opened, or as the pointer or
+// keyboard focus reaches its summary, and builds the panel in the
+// placeholder the experiment's module leaves. A failed download says so in
+// the panel and is tried again at the next opening.
+const INSTRUCTOR = document.querySelector("meta[name=lab-instructor]")?.dataset.js ?? "instructor.js";
+let instructorCode = null;
+let instructorTries = 0;
+const loadInstructor = () => {
+  if (!instructorCode) {
+    const url = new URL(INSTRUCTOR, import.meta.url);
+    if (instructorTries++ > 0) url.searchParams.set("try", instructorTries);
+    instructorCode = import(url.href);
+    instructorCode.catch(() => { instructorCode = null; });
+  }
+  return instructorCode;
+};
+// `toggle` does not bubble: caught on its way down.
+document.addEventListener("toggle", (e) => {
+  const panel = e.target;
+  if (!panel.open || !panel.matches?.(".instructor-panel")) return;
+  loadInstructor().then((code) => code.build(panel), () => {
+    const wait = panel.querySelector(".instructor-wait");
+    if (wait) wait.textContent = "The instructor's tools could not be loaded. Check the connection, then close and open this panel again.";
+  });
+}, true);
 
 // Offline after one visit: once the page has loaded (never competing with
 // its first download), the service worker caches the whole site. A visit

@@ -132,6 +132,17 @@ test("every experiment's Simulation tab: zero CSP violations, the canvas drawn, 
   }
 });
 
+test("the Instructor panel, opened (its code fetched then) and used: zero CSP violations", () =>
+  withPage(lab, { initScript: RECORD_VIOLATIONS }, async (page) => {
+    await open(lab, page, "#/pid/simulation");
+    await page.click("article.exp:not([hidden]) details.instructor-panel > summary");
+    await page.check('input[data-lock="kp"]');
+    await page.fill(".instructor-note-input", "Watch the overshoot");
+    await page.click('[data-instructor="copy"]');
+    assert.match(await page.inputValue(".instructor-link"), /[?&]lock=kp&note=Watch%20the%20overshoot(&|$)/);
+    assert.deepEqual(await violations(page), [], "instructor panel");
+  }));
+
 test("a reading tab and the quiz, submitted: zero CSP violations", () =>
   withPage(lab, { initScript: RECORD_VIOLATIONS }, async (page) => {
     await open(lab, page, "#/pid/theory");

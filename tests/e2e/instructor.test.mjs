@@ -3,7 +3,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { DESKTOP, PHONE, open, readouts, runFor, runUntilReadout, screenshot, until, useLab, waitReady, withPage } from "./helpers.mjs";
+import { DESKTOP, PHONE, open, readouts, runFor, runUntilReadout, screenshot, until, useLab, waitReady, withPage, workerReady } from "./helpers.mjs";
 
 const lab = useLab();
 
@@ -168,6 +168,39 @@ test("the Instructor panel's link opened in a fresh page gives the same locks, h
     await until(second, () => location.hash.includes("quiz=123"));
   }));
 
+test("the open Instructor panel's link follows the state (the page's paced link writes) and a link followed resets the panel to it", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, "#/pid/simulation?kp=30");
+    await page.click("details.instructor-panel > summary");
+    await page.check('input[data-lock="kp"]');
+    const query = async () => {
+      const link = await page.inputValue(".instructor-link");
+      return new URLSearchParams(link.slice(link.indexOf("#")).split("?")[1]);
+    };
+    assert.equal((await query()).get("lock"), "kp");
+    // A parameter changed while the panel is open: the link has it once the
+    // page has written its own.
+    await page.fill('input[type=text][data-param="kd"]', "3");
+    await page.press('input[type=text][data-param="kd"]', "Enter");
+    await runFor(page, 500);
+    assert.equal(await hashParam(page, "kd"), "3");
+    const after = await query();
+    assert.equal(after.get("kd"), "3", "the link follows the state");
+    assert.equal(after.get("lock"), "kp", "and keeps the panel's choices");
+    // A link that sets the instructor's settings (and keeps the state: no
+    // parameter in it) puts the panel back to them.
+    await page.evaluate(() => { location.hash = "#/pid/simulation?lock=kd&note=Hi"; });
+    await until(page, () => document.querySelector('input[data-lock="kd"]').checked);
+    assert.equal(await page.isChecked('input[data-lock="kp"]'), false);
+    assert.equal(await page.inputValue(".instructor-note-input"), "Hi");
+    const followed = await query();
+    assert.deepEqual(
+      ["kp", "kd", "lock", "note"].map((k) => followed.get(k)),
+      ["30", "3", "kd", "Hi"],
+      `${await page.inputValue(".instructor-link")}`,
+    );
+  }));
+
 test("instructor UI screenshots: phone and dark", () =>
   withPage(lab, { viewport: PHONE, colorScheme: "dark", clock: true }, async (page) => {
     await open(lab, page, "#/pid/simulation?kp=5&lock=kp&hide=noise&note=Find%20the%20smallest%20Kp%20that%20overshoots.");
@@ -226,3 +259,67 @@ test("the Self-assessment tab's link (grading rules and the student's seed) keep
     assert.equal(q.get("attempts"), "2");
     assert.equal(await page.$eval('input[type=range][data-param="kp"]', (el) => el.disabled), true, "kp stays locked");
   }));
+
+test("the instructor panel's code is downloaded only when the panel is opened, once; offline after one visit it still opens", async () => {
+  const isPanelCode = (url) => /^instructor\.[0-9a-f]{8}\.js$/.test(new URL(url).pathname.split("/").pop());
+  await withPage(lab, { clock: true }, async (page) => {
+    const fetched = [];
+    page.on("request", (req) => isPanelCode(req.url()) && fetched.push(req.url()));
+    await open(lab, page, "#/pid/simulation?kp=30&lock=kd");
+    await page.waitForLoadState("networkidle");
+    assert.deepEqual(fetched, [], "a visit does not download the panel's code");
+    assert.equal(await page.locator("details.instructor-panel .instructor-link").count(), 0, "nor builds the panel");
+
+    // A host that serves something broken in its place: the panel says so,
+    // and opening it again tries again.
+    const broken = (route) =>
+      route.fulfill({ status: 200, contentType: "text/javascript", body: 'throw new Error("a broken copy");' });
+    await page.route(/\/instructor\.[0-9a-f]{8}\.js(\?.*)?$/, broken);
+    await page.click("details.instructor-panel > summary");
+    await until(page, () => /could not be loaded/.test(document.querySelector(".instructor-wait")?.textContent));
+    await page.unroute(/\/instructor\.[0-9a-f]{8}\.js(\?.*)?$/, broken);
+    await page.click("details.instructor-panel > summary");
+    assert.equal(await page.locator("details.instructor-panel").evaluate((d) => d.open), false);
+    fetched.length = 0;
+    await page.click("details.instructor-panel > summary");
+    assert.equal(await page.locator('input[data-lock="kd"]').isChecked(), true, "the panel starts from the link");
+    const query = (link) => new URLSearchParams(link.slice(link.indexOf("#")).split("?")[1]);
+    const first = query(await page.inputValue(".instructor-link"));
+    assert.deepEqual([first.get("kp"), first.get("lock")], ["30", "kd"]);
+    assert.equal(fetched.length, 1, `fetched once: ${fetched}`);
+
+    // Closed and opened again, and another experiment's panel (a new
+    // simulation, the same page): no new download.
+    await page.click("details.instructor-panel > summary");
+    await page.click("details.instructor-panel > summary");
+    await page.evaluate(() => { location.hash = "#/cartpole/simulation"; });
+    await page.waitForSelector('article.exp[data-experiment=cartpole]:not([hidden]) canvas.sim-canvas');
+    const cartpole = 'article.exp[data-experiment=cartpole] details.instructor-panel';
+    await page.click(`${cartpole} > summary`);
+    await page.locator(`${cartpole} .instructor-link`).waitFor();
+    assert.match(await page.inputValue(`${cartpole} .instructor-link`), /#\/cartpole\/simulation/);
+    assert.equal(fetched.length, 1, `and not again: ${fetched}`);
+  });
+
+  // Offline after one visit that never opened the panel: the service worker
+  // holds its code.
+  await withPage(lab, { serviceWorkers: "allow" }, async (page, context) => {
+    const fetched = [];
+    page.on("request", (req) => isPanelCode(req.url()) && fetched.push(req.url()));
+    await open(lab, page, "#/pid/simulation");
+    await workerReady(page);
+    assert.deepEqual(fetched, [], "not opened online");
+    await context.setOffline(true);
+    await page.evaluate(() => { location.hash = "#/pid/simulation?kp=7"; });
+    await page.reload();
+    await waitReady(page);
+    await page.click("details.instructor-panel > summary");
+    await page.check('input[data-hide="noise"]');
+    const link = await page.inputValue(".instructor-link");
+    assert.ok(link.startsWith(`${lab.server.base}index.html#/pid/simulation?`), link);
+    const q = new URLSearchParams(link.split("?")[1]);
+    assert.deepEqual([q.get("kp"), q.get("hide")], ["7", "noise"], link);
+    assert.equal(fetched.length, 1, `opened offline: ${fetched}`);
+    await context.setOffline(false);
+  });
+});

@@ -334,6 +334,8 @@ test("touch targets: on a touch screen every visible button, field, choice and s
     assert.ok(await page.evaluate(() => matchMedia("(pointer: coarse)").matches), "a coarse pointer");
     await openGroups(page);
     await page.$$eval(`${ART} details.instructor-panel`, (ds) => ds.forEach((d) => { d.open = true; }));
+    // The panel is built when first opened (its code is fetched then).
+    await page.locator(`${ART} details.instructor-panel .instructor-link`).waitFor({ state: "attached" });
     const small = await page.evaluate((art) => {
       const els = document.querySelectorAll(
         `.top summary, ${art} [role=tab], ${art} [data-panel=simulation] :is(button, input, select, summary)`,

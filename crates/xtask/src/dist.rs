@@ -43,15 +43,16 @@ pub fn dist() -> Result<PathBuf, String> {
     } else {
         println!("warning: web/ does not exist; dist/ holds only pkg/");
     }
-    step("minify main.js and style.css");
-    for file in ["main.js", "style.css"] {
+    step("minify main.js, style.css and instructor.js");
+    for file in ["main.js", "style.css", INSTRUCTOR_JS] {
         if dist.join(file).is_file() {
             crate::minify::minify_in_place(&root, &dist.join(file))?;
         }
     }
+    let instructor_js = name_by_content(&dist, INSTRUCTOR_JS)?;
     let shipped = ship_modules(&modules, &dist.join("pkg"))?;
     step("pages (navigation, home, one reading page per experiment)");
-    crate::pages::render_site(&dist, &shipped)?;
+    crate::pages::render_site(&dist, &shipped, instructor_js.as_deref())?;
     check_relative_urls(&dist)?;
     let version = stamp_version(&dist)?;
     step("service worker (offline cache)");
@@ -146,6 +147,28 @@ pub fn ensure_node_modules(root: &Path) -> Result<(), String> {
             .args(["ci", "--no-audit", "--no-fund"])
             .current_dir(root),
     )
+}
+
+/// The Instructor panel's code (`web/instructor.js`): not part of any
+/// page's download; `main.js` fetches it the first time a panel is opened,
+/// under the content-hashed name `index.html`'s `<meta name="lab-instructor">`
+/// gives (see [`name_by_content`]).
+pub const INSTRUCTOR_JS: &str = "instructor.js";
+
+/// Renames `dist/<name>` (`stem.ext`) to `stem.<content hash>.ext`, so a host
+/// may cache it for good and the service worker caches it by that name;
+/// returns the new name, `None` when the file is not there.
+fn name_by_content(dist: &Path, name: &str) -> Result<Option<String>, String> {
+    let path = dist.join(name);
+    if !path.is_file() {
+        return Ok(None);
+    }
+    let bytes = fs::read(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let (stem, ext) = name.rsplit_once('.').unwrap_or((name, ""));
+    let hashed = format!("{stem}.{}.{ext}", crate::modules::content_hash(&[&bytes]));
+    fs::rename(&path, dist.join(&hashed))
+        .map_err(|e| format!("cannot rename {} to {hashed}: {e}", path.display()))?;
+    Ok(Some(hashed))
 }
 
 fn copy_tree(from: &Path, to: &Path) -> Result<(), String> {
@@ -398,6 +421,53 @@ mod tests {
         let refused = ensure_node_modules(&checkout).unwrap_err();
         assert!(refused.contains("symbolic link"), "{refused}");
         assert!(elsewhere.join("kept").is_dir());
+        fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// `web/instructor.js` writes the links labcore's `route::parse` reads:
+    /// the same key names and note length (it cannot import them).
+    #[test]
+    fn instructor_js_uses_labcores_link_keys() {
+        use labcore::route;
+        let js = fs::read_to_string(util::root().join("web").join(INSTRUCTOR_JS)).unwrap();
+        for line in [
+            format!("const NOTE_MAX_CHARS = {};", route::NOTE_MAX_CHARS),
+            format!("const LOCK_KEY = \"{}\";", route::LOCK_KEY),
+            format!("const HIDE_KEY = \"{}\";", route::HIDE_KEY),
+            format!("const NOTE_KEY = \"{}\";", route::NOTE_KEY),
+            format!("const ANSWER_KEY_KEY = \"{}\";", route::ANSWER_KEY_KEY),
+            format!("const QUIZ_KEY = \"{}\";", route::QUIZ_KEY),
+            format!(
+                "const RULE_KEYS = [\"{}\", \"{}\"];",
+                route::ATTEMPTS_KEY,
+                route::SCORE_KEY
+            ),
+        ] {
+            assert!(js.contains(&line), "web/instructor.js lacks `{line}`");
+        }
+        for choice in route::AnswerKey::ALL {
+            assert!(
+                js.contains(&format!("<option value=\"{}\">", choice.slug())),
+                "{choice:?}"
+            );
+        }
+    }
+
+    /// A file named by its content: a hash in the name, the old name gone.
+    #[test]
+    fn name_by_content_puts_the_hash_in_the_name() {
+        let dir = std::env::temp_dir().join(format!("xtask-hash-name-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        fs::write(dir.join("instructor.js"), "export {};").unwrap();
+        let name = name_by_content(&dir, "instructor.js").unwrap().unwrap();
+        assert!(
+            crate::modules::is_content_hashed(Path::new(&name)),
+            "{name}"
+        );
+        assert!(name.starts_with("instructor.") && name.ends_with(".js"));
+        assert!(dir.join(&name).is_file() && !dir.join("instructor.js").exists());
+        assert_eq!(name_by_content(&dir, "missing.js").unwrap(), None);
         fs::remove_dir_all(&dir).unwrap();
     }
 

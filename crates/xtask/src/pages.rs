@@ -76,7 +76,14 @@ pub fn article_html(entry: &labcore::Entry) -> String {
 /// the policy and the `<meta>` tags that tell `main.js` where each reading
 /// page and wasm module are. `index.html` itself is the shell every page
 /// shares, so an experiment page does not download the home page's pictures.
-pub fn render_site(dist: &Path, modules: &[crate::modules::Shipped]) -> Result<(), String> {
+///
+/// `instructor_js` is the Instructor panel's code (a name in dist/), which
+/// `main.js` finds in `<meta name="lab-instructor" data-js="…">`.
+pub fn render_site(
+    dist: &Path,
+    modules: &[crate::modules::Shipped],
+    instructor_js: Option<&str>,
+) -> Result<(), String> {
     let pages = dist.join("pages");
     fs::create_dir_all(&pages).map_err(|e| format!("cannot create {}: {e}", pages.display()))?;
     let mut metas = String::new();
@@ -91,6 +98,11 @@ pub fn render_site(dist: &Path, modules: &[crate::modules::Shipped]) -> Result<(
             .map_err(|e| format!("cannot write pages/{name}: {e}"))?;
         metas.push_str(&format!(
             "<meta name=\"lab-page\" content=\"{id}\" data-href=\"pages/{name}\">\n"
+        ));
+    }
+    if let Some(js) = instructor_js {
+        metas.push_str(&format!(
+            "<meta name=\"lab-instructor\" data-js=\"{js}\">\n"
         ));
     }
     let mut module_metas = String::new();

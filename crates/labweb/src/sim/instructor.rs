@@ -1,19 +1,20 @@
 //! Instructor links on the Simulation tab: the note above the simulation,
-//! locked and hidden controls, the Presets menu and the Instructor panel
-//! that builds a link from the current state.
+//! locked and hidden controls, the Presets menu, and the placeholder of the
+//! Instructor panel that builds a link from the current state.
 //!
 //! What a link holds is parsed and checked in `labcore::route`
-//! ([`labcore::route::Instructor`]); this module only shows it and wires
-//! the panel. A teaching aid, not security: a student may edit the URL.
+//! ([`labcore::route::Instructor`]); this module only shows it. The panel
+//! itself is `web/instructor.js`, which a student never needs: `main.js`
+//! fetches it the first time the panel is opened and builds the panel from
+//! the placeholder ([`panel_html`], [`SimState::show_instructor`],
+//! [`SimState::link_written`]). A teaching aid, not security: a student may
+//! edit the URL.
 
 use super::SimState;
-use crate::dom::{self, escape, query, query_all, Listener};
-use labcore::route::{self, Instructor, NOTE_MAX_CHARS};
+use crate::dom::{self, escape, query, query_all};
+use labcore::route;
 use labcore::{Lab, ParamSpec};
-use std::cell::RefCell;
-use std::rc::Rc;
-use wasm_bindgen::{JsCast, JsValue};
-use web_sys::{Element, Event, HtmlInputElement, HtmlSelectElement};
+use web_sys::Event;
 
 /// A small padlock drawn inline (no image request), hidden from screen
 /// readers: the text beside it says "locked".
@@ -55,174 +56,31 @@ pub(super) fn presets_html(exp: &dyn Lab) -> String {
     )
 }
 
-/// The Instructor panel: a lock and a hide box per parameter, the note,
-/// the quiz seed, and the link they make with a Copy button.
+/// The Instructor panel's placeholder, which `web/instructor.js` fills
+/// with a lock and a hide box per parameter, the note, the quiz seed and
+/// the link they make: one `<data>` per parameter (its key, unit and label)
+/// and, from [`SimState::show_instructor`], the open link's settings.
 pub(super) fn panel_html(specs: &[ParamSpec]) -> String {
-    let rows: String = specs
+    let params: String = specs
         .iter()
         .map(|s| {
-            let label = escape(s.label);
-            let unit = if s.unit.is_empty() {
-                String::new()
-            } else {
-                format!(" <span class=\"unit\">({})</span>", escape(s.unit))
-            };
             format!(
-                "<tr><th scope=\"row\">{label}{unit}</th>\
-                 <td><input type=\"checkbox\" data-lock=\"{key}\" aria-label=\"Lock {label}\"></td>\
-                 <td><input type=\"checkbox\" data-hide=\"{key}\" aria-label=\"Hide {label}\"></td></tr>",
-                key = s.key,
+                "<data value=\"{}\" data-unit=\"{}\">{}</data>",
+                s.key,
+                escape(s.unit),
+                escape(s.label)
             )
         })
         .collect();
     format!(
         "<details class=\"instructor-panel\"><summary>Instructor</summary>\
-         <div class=\"instructor-body\">\
-         <p>Set up the simulation, then choose what your students may change. The link below opens \
-         this state with the locked controls shown but fixed, the hidden ones left out and your note \
-         above the simulation. It is a teaching aid, not a lock: a student can edit the link.</p>\
-         <div class=\"table-scroll\"><table class=\"instructor-params\"><caption>Parameters</caption>\
-         <thead><tr><th scope=\"col\">Parameter</th><th scope=\"col\">Lock</th><th scope=\"col\">Hide</th></tr></thead>\
-         <tbody>{rows}</tbody></table></div>\
-         <label class=\"instructor-field\">Note for the students (plain text, up to {NOTE_MAX_CHARS} characters)\
-         <input type=\"text\" class=\"instructor-note-input\" maxlength=\"{NOTE_MAX_CHARS}\" autocomplete=\"off\"></label>\
-         <label class=\"instructor-field\">Quiz seed (the same questions for the whole class; empty: each student draws their own)\
-         <input type=\"text\" class=\"instructor-quiz\" inputmode=\"numeric\" autocomplete=\"off\" spellcheck=\"false\"></label>\
-         <label class=\"instructor-field\">Expected answers in a student's lab report (by default never with a quiz seed, else after submission)\
-         <select class=\"instructor-key\"><option value=\"\">Default</option>\
-         <option value=\"never\">Never</option><option value=\"submitted\">After submission</option>\
-         <option value=\"always\">Always</option></select></label>\
-         <label class=\"instructor-field\">Link\
-         <input type=\"text\" class=\"instructor-link\" readonly></label>\
-         <p class=\"instructor-actions\"><button type=\"button\" class=\"mini\" data-instructor=\"copy\">Copy link</button> \
-         <span class=\"instructor-copied\" role=\"status\"></span></p>\
-         </div></details>"
-    )
-}
-
-/// Wires the Instructor panel: any change rebuilds the link; Copy copies it.
-pub(super) fn listen(
-    state: &Rc<RefCell<SimState>>,
-    panel: &Element,
-    listeners: &mut Vec<Listener>,
-) {
-    let Some(details) = query(panel, ".instructor-panel") else {
-        return;
-    };
-    for kind in ["input", "change", "toggle"] {
-        let s = state.clone();
-        listeners.push(Listener::new(details.as_ref(), kind, move |_| {
-            if let Ok(st) = s.try_borrow() {
-                st.sync_instructor_link();
-            }
-        }));
-    }
-    let s = state.clone();
-    listeners.push(Listener::new(details.as_ref(), "click", move |e: Event| {
-        let is_copy = e
-            .target()
-            .and_then(|t| t.dyn_into::<Element>().ok())
-            .and_then(|el| el.closest("[data-instructor=copy]").ok().flatten())
-            .is_some();
-        if !is_copy {
-            return;
-        }
-        let st = s.borrow();
-        st.sync_instructor_link();
-        let Some(field) = query(&st.panel, ".instructor-link")
-            .and_then(|f| f.dyn_into::<HtmlInputElement>().ok())
-        else {
-            return;
-        };
-        // Selected, so Ctrl+C works where the clipboard is not offered.
-        field.select();
-        let said = if copy_text(&field.value()) {
-            "Copied."
-        } else {
-            "Selected: press Ctrl+C (⌘C) to copy."
-        };
-        if let Some(out) = query(&st.panel, ".instructor-copied") {
-            out.set_text_content(Some(said));
-        }
-    }));
-}
-
-/// `navigator.clipboard.writeText(text)` where the browser offers it
-/// (secure contexts); `false` otherwise.
-fn copy_text(text: &str) -> bool {
-    let Ok(navigator) = js_sys::Reflect::get(&dom::window(), &JsValue::from_str("navigator"))
-    else {
-        return false;
-    };
-    let Ok(clipboard) = js_sys::Reflect::get(&navigator, &JsValue::from_str("clipboard")) else {
-        return false;
-    };
-    if clipboard.is_undefined() || clipboard.is_null() {
-        return false;
-    }
-    let Ok(write) = js_sys::Reflect::get(&clipboard, &JsValue::from_str("writeText")) else {
-        return false;
-    };
-    let Some(write) = write.dyn_ref::<js_sys::Function>() else {
-        return false;
-    };
-    match write.call1(&clipboard, &JsValue::from_str(text)) {
-        Ok(promise) => {
-            // A refusal (no permission) must not reach the console as an
-            // unhandled rejection: the field is selected anyway.
-            let ignore = wasm_bindgen::closure::Closure::once_into_js(|_: JsValue| {});
-            if let Some(catch) = js_sys::Reflect::get(&promise, &JsValue::from_str("catch"))
-                .ok()
-                .and_then(|c| c.dyn_into::<js_sys::Function>().ok())
-            {
-                let _ = catch.call1(&promise, &ignore);
-            }
-            true
-        }
-        Err(_) => false,
-    }
-}
-
-/// What the Instructor panel's form says: its locks, hides, note and seed.
-fn read_panel(panel: &Element) -> (Instructor, Option<u64>) {
-    let checked = |attr: &str| -> Vec<String> {
-        query_all(panel, &format!(".instructor-panel input[{attr}]"))
-            .into_iter()
-            .filter_map(|el| {
-                let input = el.dyn_into::<HtmlInputElement>().ok()?;
-                if input.checked() {
-                    input.get_attribute(attr)
-                } else {
-                    None
-                }
-            })
-            .collect()
-    };
-    let note = query(panel, ".instructor-note-input")
-        .and_then(|n| n.dyn_into::<HtmlInputElement>().ok())
-        .map(|n| n.value())
-        .unwrap_or_default();
-    let quiz = query(panel, ".instructor-quiz")
-        .and_then(|n| n.dyn_into::<HtmlInputElement>().ok())
-        .and_then(|n| n.value().trim().parse::<u64>().ok());
-    let answer_key = query(panel, ".instructor-key")
-        .and_then(|n| n.dyn_into::<HtmlSelectElement>().ok())
-        .and_then(|n| route::AnswerKey::from_slug(&n.value()));
-    (
-        Instructor {
-            locked: checked("data-lock"),
-            hidden: checked("data-hide"),
-            note: route::clean_note(&note).0,
-            answer_key,
-            ..Instructor::default()
-        },
-        quiz,
+         <div class=\"instructor-body\"><p class=\"instructor-wait\">Loading…</p><div hidden>{params}</div></div></details>"
     )
 }
 
 impl SimState {
     /// Shows the instructor's settings: the note, locked and hidden
-    /// controls, and fills the Instructor panel with them.
+    /// controls, and gives them to the Instructor panel.
     pub(super) fn show_instructor(&mut self) {
         let panel = &self.panel;
         if let Some(aside) = query(panel, ".instructor-note") {
@@ -295,64 +153,28 @@ impl SimState {
                 !(self.instructor.locked.is_empty() && self.instructor.hidden.is_empty()),
             );
         }
-        // The panel starts from the link that is open.
-        for el in query_all(panel, ".instructor-panel input[type=checkbox]") {
-            let Ok(input) = el.dyn_into::<HtmlInputElement>() else {
-                continue;
-            };
-            if let Some(key) = input.get_attribute("data-lock") {
-                input.set_checked(self.instructor.is_locked(&key));
-            } else if let Some(key) = input.get_attribute("data-hide") {
-                input.set_checked(self.instructor.is_hidden(&key));
-            }
+        // The Instructor panel starts from the link that is open.
+        if let Some(details) = query(panel, ".instructor-panel") {
+            let _ = details.set_attribute("data-instructor", &self.instructor_query().join("&"));
         }
-        if let Some(n) = query(panel, ".instructor-note-input")
-            .and_then(|n| n.dyn_into::<HtmlInputElement>().ok())
-        {
-            n.set_value(self.instructor.note.as_deref().unwrap_or(""));
-        }
-        if let Some(q) =
-            query(panel, ".instructor-quiz").and_then(|n| n.dyn_into::<HtmlInputElement>().ok())
-        {
-            q.set_value(&self.quiz_seed.map(|s| s.to_string()).unwrap_or_default());
-        }
-        if let Some(k) =
-            query(panel, ".instructor-key").and_then(|n| n.dyn_into::<HtmlSelectElement>().ok())
-        {
-            k.set_value(
-                self.instructor
-                    .answer_key
-                    .map_or("", route::AnswerKey::slug),
-            );
-        }
-        self.sync_instructor_link();
     }
 
-    /// The Instructor panel's link: the current state with the panel's
-    /// locks, hides, note and quiz seed, as a full address.
-    pub(super) fn sync_instructor_link(&self) {
-        let Some(details) = query(&self.panel, ".instructor-panel") else {
-            return;
-        };
-        if !details.has_attribute("open") {
-            return;
-        }
-        let (mut instructor, quiz) = read_panel(&self.panel);
-        // The panel has no field for the quiz's rules: the link's stay.
-        instructor.quiz = self.instructor.quiz;
-        let mut pairs = instructor.query();
-        pairs.extend(quiz.map(|s| format!("{}={s}", route::QUIZ_KEY)));
-        let hash = route::with_query(self.state_link(), &pairs);
-        let location = dom::window().location();
-        let base = location.href().unwrap_or_default();
-        let base = base.split('#').next().unwrap_or("");
-        if let Some(field) = query(&self.panel, ".instructor-link")
-            .and_then(|f| f.dyn_into::<HtmlInputElement>().ok())
-        {
-            let link = format!("{base}{hash}");
-            if field.value() != link {
-                field.set_value(&link);
-            }
+    /// The link's instructor pairs: the locks, hidden controls and note
+    /// ([`route::Instructor::query`]), then the quiz seed.
+    pub(super) fn instructor_query(&self) -> Vec<String> {
+        let mut pairs = self.instructor.query();
+        pairs.extend(self.quiz_seed.map(|s| format!("{}={s}", route::QUIZ_KEY)));
+        pairs
+    }
+
+    /// Tells an open Instructor panel that the page's link was written
+    /// (`lab-link`): it rebuilds its own link from it.
+    pub(super) fn link_written(&self) {
+        if let (Some(details), Ok(event)) = (
+            query(&self.panel, ".instructor-panel[open]"),
+            Event::new("lab-link"),
+        ) {
+            let _ = details.dispatch_event(&event);
         }
     }
 

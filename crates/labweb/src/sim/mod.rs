@@ -591,9 +591,7 @@ impl SimState {
     /// The link of the current state ([`SimState::state_link`]), then the
     /// instructor's locks, hidden controls and note, then the quiz seed.
     fn link(&self) -> String {
-        let mut pairs = self.instructor.query();
-        pairs.extend(self.quiz_seed.map(|s| format!("{}={s}", route::QUIZ_KEY)));
-        route::with_query(self.state_link(), &pairs)
+        route::with_query(self.state_link(), &self.instructor_query())
     }
 
     /// The link of the current state: the experiment's parameters, then the
@@ -667,11 +665,11 @@ impl SimState {
 
     fn write_hash(&mut self) {
         self.hash_dirty = false;
-        self.sync_instructor_link();
         let hash = self.link();
         if let Ok(history) = dom::window().history() {
             let _ = history.replace_state_with_url(&JsValue::NULL, "", Some(&hash));
         }
+        self.link_written();
     }
 }
 
@@ -838,7 +836,6 @@ impl SimView {
         let mut listeners = Vec::new();
         canvas_input::listen(&state, &canvas, &mut listeners);
         panel::listen(&state, panel, &mut listeners);
-        instructor::listen(&state, panel, &mut listeners);
         a11y::listen(&state, panel, &mut listeners);
         scrub::listen(&state, panel, &mut listeners);
         live::listen(&state, panel, &mut listeners);
