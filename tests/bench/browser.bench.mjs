@@ -7,7 +7,7 @@
 
 import { after, test } from "node:test";
 import os from "node:os";
-import { open, useLab, withPage } from "../e2e/helpers.mjs";
+import { builtExperimentIds, open, useLab, withPage } from "../e2e/helpers.mjs";
 
 const lab = useLab();
 const rows = [];
@@ -683,8 +683,6 @@ for (const phone of [false, true]) {
   });
 }
 
-/** Every experiment (issue 27: "The math" on all eleven). */
-const ALL_IDS = ["fk", "ik", "workspace", "diffdrive", "potential", "pid", "cartpole", "ekf", "astar", "rrtstar", "dls"];
 
 /**
  * Where the page is scrolled while "The math" is compared: to the top, the
@@ -699,7 +697,9 @@ const MATH_VIEWS = {
 
 test("the math panel, phone: running frame p95 open beside closed (A/B, same run)", async () => {
   const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
-  const ids = only?.length ? ALL_IDS.filter((id) => only.includes(id)) : ALL_IDS;
+  // Every experiment (issue 27: "The math" on all eleven), from the built site.
+  const all = builtExperimentIds();
+  const ids = only?.length ? all.filter((id) => only.includes(id)) : all;
   const context = await benchContext(true);
   try {
     for (const id of ids) {

@@ -358,3 +358,52 @@ fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
         "paused: the panel shows the state"
     );
 }
+
+/// Issue 27, cost: while a run changes only the numbers of "The math", the
+/// panel's MathML elements stay (their text nodes are rewritten, not the
+/// elements: new elements cost the page style and layout at every write),
+/// and the markup is exactly what a full write would give.
+#[wasm_bindgen_test]
+fn the_math_panels_numbers_are_rewritten_in_place_as_a_run_goes_on() {
+    mount("#/pid/simulation");
+    element(".live-math")
+        .style()
+        .set_property("position", "fixed")
+        .unwrap();
+    element(".live-math")
+        .style()
+        .set_property("top", "0")
+        .unwrap();
+    for _ in 0..30 {
+        frame(ONE_STEP_MS);
+    }
+    let numbers = ".live-math [data-equation=\"0\"] .equation-numbers";
+    let first_math = web_sys::window()
+        .unwrap()
+        .document()
+        .unwrap()
+        .query_selector(&format!("{numbers} math"))
+        .unwrap()
+        .expect("the numbers are MathML");
+    let before = element(numbers).inner_html();
+    for _ in 0..60 {
+        frame(ONE_STEP_MS);
+    }
+    let after = element(numbers).inner_html();
+    assert_ne!(after, before, "the run changed the numbers");
+    assert!(
+        first_math.is_connected(),
+        "the same MathML element, rewritten in place"
+    );
+    let full = labweb::inspect_sim(|exp, _| {
+        let eq = &exp.equations()[0];
+        labpage::math_panel::live_parts(eq, &exp.quantities(), &exp.readouts()).0
+    })
+    .unwrap();
+    labweb::paint_now();
+    assert_eq!(
+        element(numbers).inner_html(),
+        full,
+        "exactly the markup of a full write"
+    );
+}
