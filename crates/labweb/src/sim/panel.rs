@@ -559,7 +559,7 @@ impl SimState {
             }
             if let Some(block) = query(&self.panel, &format!("[data-equation=\"{i}\"]")) {
                 if let Some(numbers) = query(&block, ".equation-numbers") {
-                    write_html(&numbers, &shown.0, &now.0);
+                    numbers.set_inner_html(&now.0);
                 }
                 if let Some(result) = query(&block, ".equation-result") {
                     result.set_inner_html(&format!("= {}", now.1));
@@ -619,81 +619,9 @@ impl SimState {
     }
 }
 
-/// Writes `html` into `el`, which shows `old`: when the two differ in their
-/// text only (the same tags, other numbers: what a run changes in "The
-/// math"), by setting the text nodes that changed, in document order; else
-/// as new HTML. New text in old nodes costs the page far less style and
-/// layout than new MathML elements.
-fn write_html(el: &Element, old: &str, html: &str) {
-    if let (Some((tags_old, _)), Some((tags_new, texts))) = (split_text(old), split_text(html)) {
-        let mut nodes = Vec::new();
-        text_nodes(el, &mut nodes);
-        if tags_old == tags_new && nodes.len() == texts.len() {
-            for (node, text) in nodes.iter().zip(texts) {
-                if node.node_value().as_deref() != Some(text) {
-                    node.set_node_value(Some(text));
-                }
-            }
-            return;
-        }
-    }
-    el.set_inner_html(html);
-}
-
-/// Markup split into its tags (each text replaced by a mark) and its texts
-/// (the non-empty runs between tags); `None` with an entity, whose text
-/// the page would hold decoded.
-fn split_text(html: &str) -> Option<(String, Vec<&str>)> {
-    let (mut tags, mut texts) = (String::new(), Vec::new());
-    let mut rest = html;
-    while !rest.is_empty() {
-        let cut = rest.find('<').unwrap_or(rest.len());
-        let text = &rest[..cut];
-        if text.contains('&') {
-            return None;
-        }
-        if !text.is_empty() {
-            texts.push(text);
-            tags.push('\u{0}');
-        }
-        rest = &rest[cut..];
-        let end = rest.find('>').map_or(rest.len(), |e| e + 1);
-        tags.push_str(&rest[..end]);
-        rest = &rest[end..];
-    }
-    Some((tags, texts))
-}
-
-/// The text nodes under `node`, in document order.
-fn text_nodes(node: &web_sys::Node, out: &mut Vec<web_sys::Node>) {
-    let mut child = node.first_child();
-    while let Some(c) = child {
-        if c.node_type() == web_sys::Node::TEXT_NODE {
-            out.push(c.clone());
-        } else {
-            text_nodes(&c, out);
-        }
-        child = c.next_sibling();
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn split_text_separates_the_tags_from_the_numbers() {
-        let a = split_text("<math><mn>1.00</mn><mo>·</mo><mn>35</mn></math>").unwrap();
-        let b = split_text("<math><mn>0.98</mn><mo>·</mo><mn>36</mn></math>").unwrap();
-        assert_eq!(a.0, b.0, "the same tags");
-        assert_eq!(a.1, ["1.00", "·", "35"]);
-        assert_eq!(b.1, ["0.98", "·", "36"]);
-        // Another shape (a sign became an operator): other tags.
-        let c = split_text("<math><mo>−</mo><mn>0.98</mn></math>").unwrap();
-        assert_ne!(a.0, c.0);
-        // An entity is held decoded by the page: no text-only write.
-        assert!(split_text("<mi>a</mi>&amp;<mi>b</mi>").is_none());
-    }
 
     #[test]
     fn grouped_controls_go_under_one_collapsed_heading_after_the_others() {
