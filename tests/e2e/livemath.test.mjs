@@ -91,6 +91,9 @@ test("live math: every experiment's panel shows results equal to its readouts, a
     for (const { link, action, keys, name } of PANELS) {
       await open(lab, page, link);
       if (action) await page.locator(`button[data-action=${action}]`).click();
+      // Read as a student reads it, in view: out of the window the panel
+      // waits for the run to stop (issue 27, cost).
+      await page.locator(".live-math").scrollIntoViewIfNeeded();
       await runFor(page, 700);
       const texts = await equationTexts(page);
       assert.equal(texts.length, keys.length, `${link}: ${keys.length} equations`);
