@@ -527,13 +527,7 @@ impl SimState {
             let at_once = input_paint || !self.exp.animating();
             self.text_at_once = at_once;
             self.sync_dom();
-            let plots = scrub::shown_plots(
-                self.exp.as_ref(),
-                self.record_end.as_deref(),
-                &self.kept,
-                self.kept_serial,
-            );
-            self.plots.sync_text(&plots, time_ms, at_once);
+            self.with_shown_plots(|view, plots, _| view.sync_text(plots, time_ms, at_once));
             self.text_ms = time_ms;
             self.text_stale = false;
         }
@@ -546,32 +540,16 @@ impl SimState {
         // nor for a plot and the page's text together, unless forced.
         if self.plots_force {
             self.sync_cursors();
-            let plots = scrub::shown_plots(
-                self.exp.as_ref(),
-                self.record_end.as_deref(),
-                &self.kept,
-                self.kept_serial,
-            );
-            self.plots.draw(&plots, &self.palette, true);
+            self.with_shown_plots(|view, plots, palette| view.draw(plots, palette, true));
             self.plots_force = false;
             self.plots_stale = false;
         } else if self.plots_stale {
-            let plots = scrub::shown_plots(
-                self.exp.as_ref(),
-                self.record_end.as_deref(),
-                &self.kept,
-                self.kept_serial,
-            );
-            self.plots.draw(&plots, &self.palette, false);
+            self.with_shown_plots(|view, plots, palette| view.draw(plots, palette, false));
             self.plots_stale = false;
         } else if plots_due && (input_paint || !write_text) {
-            let plots = scrub::shown_plots(
-                self.exp.as_ref(),
-                self.record_end.as_deref(),
-                &self.kept,
-                self.kept_serial,
-            );
-            self.plots.draw_next(&plots, &self.palette, time_ms);
+            self.with_shown_plots(|view, plots, palette| {
+                view.draw_next(plots, palette, time_ms);
+            });
         }
         self.sync_notice(time_ms);
         self.sync_timebar(write_text || input_paint || self.jumped);
@@ -586,6 +564,22 @@ impl SimState {
         if busy {
             self.frame_times.record(dom::now_ms() - start, &self.canvas);
         }
+    }
+
+    /// Hands the plot view the plots as the page shows them
+    /// ([`scrub::shown_plots`]: the record's while the past is shown, with
+    /// the kept runs) and the palette.
+    fn with_shown_plots<R>(
+        &mut self,
+        f: impl FnOnce(&mut PlotView, &[labcore::plot::Plot], &Palette) -> R,
+    ) -> R {
+        let plots = scrub::shown_plots(
+            self.exp.as_ref(),
+            self.record_end.as_deref(),
+            &self.kept,
+            self.kept_serial,
+        );
+        f(&mut self.plots, &plots, &self.palette)
     }
 
     /// The link of the current state ([`SimState::state_link`]), then the
@@ -1060,14 +1054,10 @@ impl SimView {
         let st = &mut *st;
         st.finish_branch();
         st.sync_cursors();
-        let plots = scrub::shown_plots(
-            st.exp.as_ref(),
-            st.record_end.as_deref(),
-            &st.kept,
-            st.kept_serial,
-        );
-        st.plots.draw(&plots, &st.palette, true);
-        st.plots.sync_text(&plots, dom::now_ms(), true);
+        st.with_shown_plots(|view, plots, palette| {
+            view.draw(plots, palette, true);
+            view.sync_text(plots, dom::now_ms(), true);
+        });
         st.plots_force = false;
         st.sync_timebar(true);
         st.sync_marks();

@@ -262,13 +262,7 @@ pub(super) fn listen(
                 let mut st = s.borrow_mut();
                 let st = &mut *st;
                 let x = (kind != "pointerleave").then(|| f64::from(e.client_x()));
-                let plots = super::scrub::shown_plots(
-                    st.exp.as_ref(),
-                    st.record_end.as_deref(),
-                    &st.kept,
-                    st.kept_serial,
-                );
-                st.plots.hover(&canvas, x, &plots, &st.palette);
+                st.with_shown_plots(|view, plots, palette| view.hover(&canvas, x, plots, palette));
             }));
         }
     }
