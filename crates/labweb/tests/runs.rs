@@ -358,3 +358,69 @@ fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
         "paused: the panel shows the state"
     );
 }
+
+/// The texts of every element `selector` matches, in order.
+fn texts(selector: &str) -> Vec<String> {
+    let list = page::document().query_selector_all(selector).unwrap();
+    (0..list.length())
+        .filter_map(|i| list.item(i))
+        .map(|n| n.text_content().unwrap_or_default().trim().to_string())
+        .collect()
+}
+
+/// Issue 27, cost: while a run streams, the frame that writes the readouts
+/// writes none of "The math" panel's equations; the frames after it write
+/// them one each (no frame lays out the readouts and every formula
+/// together), with the numbers of that update: once they are through,
+/// every result is a readout on the page.
+#[wasm_bindgen_test]
+fn a_streaming_run_writes_the_math_panel_one_equation_a_frame_after_the_readouts() {
+    mount("#/ekf/simulation");
+    // Fixed at the window's top, the panel is in view (the test page is short).
+    let panel = element(".live-math");
+    panel.style().set_property("position", "fixed").unwrap();
+    panel.style().set_property("top", "0").unwrap();
+    let results = || texts(".live-math .equation-result");
+    let readouts = || texts(".readouts dd");
+    let equations = results().len();
+    assert!(equations >= 3, "ekf has several equations: {equations}");
+    for _ in 0..40 {
+        frame(ONE_STEP_MS);
+    }
+    let mut updates = 0;
+    for _ in 0..120 {
+        let (before_readouts, before_results) = (readouts(), results());
+        frame(ONE_STEP_MS);
+        if readouts() == before_readouts {
+            continue;
+        }
+        updates += 1;
+        assert_eq!(
+            results(),
+            before_results,
+            "the readouts' frame writes no equation"
+        );
+        let mut last = results();
+        for n in 1..=equations {
+            frame(ONE_STEP_MS);
+            let now = results();
+            let written = now.iter().zip(&last).filter(|(a, b)| a != b).count();
+            assert!(
+                written <= 1,
+                "frame {n} after the readouts wrote {written} equations"
+            );
+            last = now;
+        }
+        let shown = readouts();
+        for result in results() {
+            assert!(
+                result == "= --" || shown.iter().any(|r| format!("= {r}") == result),
+                "{result} is a readout on the page: {shown:?}"
+            );
+        }
+    }
+    assert!(
+        updates >= 4,
+        "the run wrote its text {updates} times in 2 s"
+    );
+}
