@@ -44,7 +44,7 @@ fn dragging_paints_a_gapless_wall_and_the_first_cell_decides_erase() {
     let (w, h) = (a.grid().width(), a.grid().height());
     for (i, &b) in a.grid().cells().iter().enumerate() {
         let (x, y) = (i % w, i / w);
-        assert_eq!(a.raster[(h - 1 - y) * w + x] == BLOCKED, b);
+        assert_eq!(a.raster()[(h - 1 - y) * w + x] == BLOCKED, b);
     }
 }
 
@@ -756,7 +756,7 @@ fn issue14_property_random_inputs_reload_exactly_from_the_link() {
 // ---- Procedure steps (assets/astar.json), each on the state the previous left ----
 
 fn count_state(a: &AStarGrid, state: crate::planning::astar::CellState) -> usize {
-    a.raster.iter().filter(|&&v| v == state as u8).count()
+    a.raster().iter().filter(|&&v| v == state as u8).count()
 }
 
 /// The state after Procedure steps 1..=k: each step's action (with its
@@ -1582,4 +1582,31 @@ fn astar_step_8_stepping_back_through_the_expansions_undoes_the_path_and_the_ope
     // And it is exactly the run's state there.
     let (_, again) = timeline.state_at(step - 6, step_once);
     assert_eq!(open_rows(again.as_ref()), rows);
+}
+
+/// The timeline replays up to hundreds of search steps to show one moment:
+/// a step only marks the raster stale, and the next read fills it from the
+/// search's cell states as they are then (rows flipped, y up), so a replay
+/// fills it once, and what is drawn is never behind the search.
+#[test]
+fn a_search_step_marks_the_raster_and_the_next_read_fills_it_from_the_search() {
+    let mut a = empty(20, 15);
+    a.action("plan").unwrap();
+    a.step(crate::clock::Clock::DT_S);
+    let first = a.raster().clone();
+    for _ in 0..5 {
+        a.step(crate::clock::Clock::DT_S);
+    }
+    assert!(a.raster_stale.get(), "stepped: stale");
+    assert_eq!(*a.raster.borrow(), first, "not filled by the steps themselves");
+    let mut states = Vec::new();
+    a.search.as_ref().unwrap().write_cell_states(&mut states);
+    let (w, h) = (a.grid().width(), a.grid().height());
+    let read = a.raster().clone();
+    assert!(!a.raster_stale.get(), "read: fresh");
+    assert_ne!(read, first, "the search moved on");
+    for (i, &s) in states.iter().enumerate() {
+        let (x, y) = (i % w, i / w);
+        assert_eq!(read[(h - 1 - y) * w + x], s, "cell ({x}, {y})");
+    }
 }

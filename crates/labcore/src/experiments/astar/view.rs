@@ -104,16 +104,17 @@ impl Presentation for AStarGrid {
     fn scene(&self, out: &mut Scene) {
         let (w, h) = (self.grid.width(), self.grid.height());
         let size = DVec2::new(w as f64, h as f64);
+        let raster = self.raster();
         // Kept by the page between frames: uploaded again only when a cell
         // changes (the version is a fingerprint of the cells).
         out.push(Item::VersionedRaster {
             id: RASTER_ID,
-            version: crate::scene::raster_version(&self.raster),
+            version: crate::scene::raster_version(&raster),
             min: DVec2::ZERO,
             cell_m: 1.0,
             cols: w,
             rows: h,
-            cells: self.raster.clone(),
+            cells: raster.clone(),
             palette: vec![
                 // CellState 1..4: open, closed, path, wall.
                 RasterColour {
@@ -740,30 +741,44 @@ impl AStarGrid {
     /// The raster showing only the walls.
     pub(super) fn walls_raster(&mut self) {
         let (w, h) = (self.grid.width(), self.grid.height());
-        self.raster.clear();
-        self.raster.resize(w * h, 0);
+        let raster = self.raster.get_mut();
+        raster.clear();
+        raster.resize(w * h, 0);
         for (y, row) in self.grid.cells().chunks(w).enumerate() {
             let r = (h - 1 - y) * w;
-            for (dst, &b) in self.raster[r..r + w].iter_mut().zip(row) {
+            for (dst, &b) in raster[r..r + w].iter_mut().zip(row) {
                 *dst = if b { BLOCKED } else { 0 };
             }
         }
+        self.raster_stale.set(false);
     }
 
-    /// The raster from the search's cell states (rows flipped to y up).
+    /// The raster is to show the search's cell states: it is filled from
+    /// them when next read ([`Self::raster`]).
     pub(super) fn search_raster(&mut self) {
-        let Some(search) = &self.search else {
-            return;
-        };
-        search.write_cell_states(&mut self.scratch);
-        let (w, h) = (self.grid.width(), self.grid.height());
-        if self.scratch.len() != w * h {
-            return;
+        if self.search.is_some() {
+            self.raster_stale.set(true);
         }
-        self.raster.resize(w * h, 0);
-        for (y, row) in self.scratch.chunks(w).enumerate() {
-            let r = (h - 1 - y) * w;
-            self.raster[r..r + w].copy_from_slice(row);
+    }
+
+    /// The raster of cell states as shown (row 0 at the bottom), filled
+    /// from the search first if a step changed it (rows flipped to y up).
+    pub(super) fn raster(&self) -> std::cell::Ref<'_, Vec<u8>> {
+        if self.raster_stale.replace(false) {
+            if let Some(search) = &self.search {
+                let mut scratch = self.scratch.borrow_mut();
+                search.write_cell_states(&mut scratch);
+                let (w, h) = (self.grid.width(), self.grid.height());
+                if scratch.len() == w * h {
+                    let mut raster = self.raster.borrow_mut();
+                    raster.resize(w * h, 0);
+                    for (y, row) in scratch.chunks(w).enumerate() {
+                        let r = (h - 1 - y) * w;
+                        raster[r..r + w].copy_from_slice(row);
+                    }
+                }
+            }
         }
+        self.raster.borrow()
     }
 }
