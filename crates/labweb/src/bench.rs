@@ -276,12 +276,7 @@ pub fn bench_plot(points: u32, frames: u32) -> f64 {
 /// before the timeline). Returns whether a simulation is mounted.
 #[wasm_bindgen]
 pub fn bench_timeline_recording(on: bool) -> bool {
-    crate::APP.with(|a| {
-        a.borrow()
-            .as_ref()
-            .and_then(|app| app.with_sim(|sim| sim.bench_timeline_recording(on)))
-            .is_some()
-    })
+    crate::with_mounted_sim(|sim| sim.bench_timeline_recording(on)).is_some()
 }
 
 /// Same-run A/B switch of the browser benchmark (issue 27, Cost): "The
@@ -290,12 +285,7 @@ pub fn bench_timeline_recording(on: bool) -> bool {
 /// Returns whether the mounted simulation has the panel.
 #[wasm_bindgen]
 pub fn bench_math_panel(open: bool) -> bool {
-    crate::APP.with(|a| {
-        a.borrow()
-            .as_ref()
-            .and_then(|app| app.with_sim(|sim| sim.bench_math_panel(open)))
-            .unwrap_or(false)
-    })
+    crate::with_mounted_sim(|sim| sim.bench_math_panel(open)).unwrap_or(false)
 }
 
 /// A detached canvas of `w` × `h` pixels and its 2D context (benchmarks).

@@ -75,11 +75,13 @@ pub fn paint_now() {
 /// with one of their own).
 #[doc(hidden)]
 pub fn inspect_sim<R>(f: impl FnOnce(&dyn labcore::Lab, u64) -> R) -> Option<R> {
-    APP.with(|a| {
-        a.borrow()
-            .as_ref()
-            .and_then(|app| app.with_sim(|sim| sim.inspect(f)))
-    })
+    with_mounted_sim(|sim| sim.inspect(f))
+}
+
+/// Calls `f` with the mounted simulation's view; `None` when none is
+/// mounted.
+fn with_mounted_sim<R>(f: impl FnOnce(&sim::SimView) -> R) -> Option<R> {
+    APP.with(|a| a.borrow().as_ref().and_then(|app| app.with_sim(f)))
 }
 
 /// Re-reads the location hash (used by tests; browsers call it on `hashchange`).
