@@ -230,9 +230,7 @@ test("phone (4× CPU throttle, 390×844, DPR 2): each experiment running", async
     await open(lab, page, "#/");
     ids = await page.$$eval("a.card[data-experiment]", (cards) => cards.map((c) => c.dataset.experiment));
   });
-  // PHONE_IDS=rrtstar,ik measures only those experiments.
-  const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
-  if (only?.length) ids = ids.filter((id) => only.includes(id));
+  ids = selectedIds(ids);
   const { viewport, deviceScaleFactor, hasTouch, cpuSlowdown, seconds } = PHONE_RUN;
   const context = await lab.browser.newContext({ viewport, deviceScaleFactor, hasTouch });
   await context.addInitScript(recordLongTaskTimes);
@@ -304,6 +302,12 @@ test("phone (4× CPU throttle, 390×844, DPR 2): each experiment running", async
 // the desktop and on the 4×-throttled phone stand-in.
 
 /** The experiments with a timeline, and what starts each one's run. */
+/** `all`, or only those named in PHONE_IDS (`PHONE_IDS=rrtstar,ik` measures only those experiments). */
+const selectedIds = (all) => {
+  const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
+  return only?.length ? all.filter((id) => only.includes(id)) : all;
+};
+
 const TIMELINE_IDS = ["diffdrive", "potential", "pid", "cartpole", "ekf", "rrtstar", "astar", "dls", "workspace"];
 
 /** Where a tap sets a goal or target (DLS iterates towards a new target). */
@@ -399,8 +403,7 @@ const scrubFrames = (page, count) =>
 for (const phone of [false, true]) {
   const where = phone ? `phone (${PHONE_RUN.cpuSlowdown}× CPU throttle)` : "desktop";
   test(`timeline, ${where}: scrub frame p95 beside running frame p95`, async () => {
-    const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
-    const ids = only?.length ? TIMELINE_IDS.filter((id) => only.includes(id)) : TIMELINE_IDS;
+    const ids = selectedIds(TIMELINE_IDS);
     const context = await lab.browser.newContext(
       phone
         ? { viewport: PHONE_RUN.viewport, deviceScaleFactor: PHONE_RUN.deviceScaleFactor, hasTouch: true }
@@ -624,6 +627,17 @@ async function openSimulation(context, id, phone) {
   return page;
 }
 
+/**
+ * Opens `id`'s Simulation tab and starts its run the way the phone
+ * benchmark does (experiments moved by keys are driven during the blocks).
+ */
+async function openRunning(context, id, phone) {
+  const page = await openSimulation(context, id, phone);
+  if (!DRIVEN_BY_KEYS.has(id)) await startRun(page, id);
+  await page.waitForTimeout(300);
+  return page;
+}
+
 /** A browser context for the desktop (1280×800) or the phone stand-in, timing every frame. */
 async function benchContext(phone) {
   const context = await lab.browser.newContext(
@@ -666,16 +680,13 @@ const driveByKeys = (page) => async (going) => {
 for (const phone of [false, true]) {
   const where = phone ? "phone" : "desktop";
   test(`timeline, ${where}: running frame p95 recording beside not recording (A/B, same run)`, async () => {
-    const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
-    const ids = only?.length ? TIMELINE_IDS.filter((id) => only.includes(id)) : TIMELINE_IDS;
+    const ids = selectedIds(TIMELINE_IDS);
     const context = await benchContext(phone);
     try {
       for (const id of ids) {
-        const page = await openSimulation(context, id, phone);
         // DLS is moved by keys here (its target), as on the phone above:
         // a tapped target is reached within a second.
-        if (!DRIVEN_BY_KEYS.has(id)) await startRun(page, id);
-        await page.waitForTimeout(300);
+        const page = await openRunning(context, id, phone);
         const ab = await compareAB(page, "bench_timeline_recording", {
           beforeBlock: keepRunning(page, id),
           drive: DRIVEN_BY_KEYS.has(id) ? driveByKeys(page) : undefined,
@@ -703,16 +714,12 @@ const MATH_VIEWS = {
 };
 
 test("the math panel, phone: running frame p95 open beside closed (A/B, same run)", async () => {
-  const only = process.env.PHONE_IDS?.split(",").filter(Boolean);
   // Every experiment (issue 27: "The math" on all eleven), from the built site.
-  const all = builtExperimentIds();
-  const ids = only?.length ? all.filter((id) => only.includes(id)) : all;
+  const ids = selectedIds(builtExperimentIds());
   const context = await benchContext(true);
   try {
     for (const id of ids) {
-      const page = await openSimulation(context, id, true);
-      if (!DRIVEN_BY_KEYS.has(id)) await startRun(page, id);
-      await page.waitForTimeout(300);
+      const page = await openRunning(context, id, true);
       const keep = keepRunning(page, id);
       for (const [view, scroll] of Object.entries(MATH_VIEWS)) {
         const ab = await compareAB(page, "bench_math_panel", {
