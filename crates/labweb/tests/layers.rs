@@ -385,3 +385,88 @@ fn a_backdrop_is_painted_once_while_it_stays_and_gives_the_pixels_of_a_full_redr
     }
     assert_eq!((counters().backdrop_draws, counters().composites), (1, 2));
 }
+
+/// A scrub shows other moments of the same tree, each a copy the timeline
+/// rebuilt (a new layer of the same lineage): the kept picture is brought
+/// over by the slots that differ, not redrawn, and is pixel for pixel a
+/// full redraw of that moment.
+#[wasm_bindgen_test]
+fn a_scrub_between_moments_of_one_tree_draws_what_differs_and_paints_a_full_redraw() {
+    let (_a, kept_ctx, palette) = setup("layers-scrub");
+    let (_b, full_ctx) = canvas("layers-scrub-full");
+    let mut parts = labweb::big_scene_parts();
+    let mut rng = labcore::Lcg64::new(4);
+    let mut layer = SegmentLayer::from_segments(parts.tree.segments[..2_000].to_vec());
+    let mut moments = Vec::new();
+    for _ in 0..40 {
+        for s in parts.tree.grow(200) {
+            layer.push(*s);
+        }
+        for _ in 0..20 {
+            let slot = (rng.next_f64() * layer.len() as f64) as usize;
+            let (a, _) = layer.segments()[slot];
+            let other = layer.segments()[(rng.next_f64() * layer.len() as f64) as usize].1;
+            layer.set(slot, (a, other));
+        }
+        // What a snapshot holds, and what a seek rebuilds from it: a copy
+        // with its own identity.
+        let mut copy = layer.clone();
+        copy.push(layer.segments()[0]);
+        moments.push(copy);
+    }
+    assert_ne!(moments[3].id(), moments[4].id());
+    assert_eq!(moments[3].lineage(), moments[4].lineage());
+    let mut last: Option<&SegmentLayer> = None;
+    let mut full_draws = 0u64;
+    for jump in 0..30 {
+        let mut i = (rng.next_f64() * moments.len() as f64) as usize;
+        if last.is_some_and(|l| l.id() == moments[i].id()) {
+            i = (i + 1) % moments.len();
+        }
+        let to = &moments[i];
+        full_draws += to.len() as u64;
+        paint(
+            &kept_ctx,
+            &kept(&parts, to, 1),
+            &viewport(),
+            W,
+            H,
+            1.0,
+            &palette,
+        );
+        last = Some(to);
+        if jump == 0 {
+            reset_counters();
+            full_draws = 0;
+        }
+    }
+    let c = counters();
+    // A jump from a late moment to a much earlier one redraws the small
+    // tree instead (fewer segments than erasing the difference).
+    assert_eq!(c.full_redraws + c.lineage_diffs, 29, "{c:?}");
+    assert!(c.lineage_diffs > 2 * c.full_redraws, "{c:?}");
+    assert!(
+        c.segments_drawn * 2 < full_draws,
+        "drawn {} of {full_draws} a redraw per jump would: {c:?}",
+        c.segments_drawn
+    );
+    let last = last.unwrap();
+    let mut full = Scene::default();
+    full.push(Item::Raster {
+        min: DVec2::ZERO,
+        cell_m: 100.0 / 512.0,
+        cols: 512,
+        rows: 512,
+        cells: parts.cells.clone(),
+        palette: parts.palette.clone(),
+    });
+    full.push(Item::Segments {
+        segments: last.segments().to_vec(),
+        width_px: 0.6,
+        role: Role::Path,
+    });
+    paint(&full_ctx, &full, &viewport(), W, H, 1.0, &palette);
+    let (k, f) = (pixels(&kept_ctx), pixels(&full_ctx));
+    let differ = k.chunks(4).zip(f.chunks(4)).filter(|(a, b)| a != b).count();
+    assert_eq!(differ, 0, "pixels that differ from a full redraw");
+}
