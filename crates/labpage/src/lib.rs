@@ -9,6 +9,7 @@
 //! labcore never does (the arrow runs `labpage -> labcore`).
 
 pub mod content_html;
+pub mod markup_runs;
 pub mod math_panel;
 pub mod report;
 
