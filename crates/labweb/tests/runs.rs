@@ -373,11 +373,7 @@ fn texts(selector: &str) -> Vec<String> {
 /// and the frames that write no readout write no equation either.
 #[wasm_bindgen_test]
 fn a_streaming_run_writes_the_math_panel_with_the_readouts() {
-    mount("#/ekf/simulation");
-    // Fixed at the window's top, the panel is in view (the test page is short).
-    let panel = element(".live-math");
-    panel.style().set_property("position", "fixed").unwrap();
-    panel.style().set_property("top", "0").unwrap();
+    mount_ekf_with_the_math_panel_in_view();
     let results = || texts(".live-math .equation-result");
     let readouts = || texts(".readouts dd");
     let equations = results().len();
@@ -424,10 +420,7 @@ fn a_streaming_run_writes_the_math_panel_with_the_readouts() {
 /// text changes, and each number stays where the markup puts it.
 #[wasm_bindgen_test]
 fn a_streaming_run_rewrites_the_numbers_of_an_equation_in_place() {
-    mount("#/ekf/simulation");
-    let panel = element(".live-math");
-    panel.style().set_property("position", "fixed").unwrap();
-    panel.style().set_property("top", "0").unwrap();
+    mount_ekf_with_the_math_panel_in_view();
     // Per formula: its elements' names in order (its shape), and its numbers.
     let formulas = || {
         web_sys_all(".live-math .equation-numbers")
@@ -497,6 +490,15 @@ fn a_streaming_run_rewrites_the_numbers_of_an_equation_in_place() {
             );
         }
     }
+}
+
+/// Mounts ekf's simulation with "The math" panel fixed at the window's top,
+/// in view (the test page is short).
+fn mount_ekf_with_the_math_panel_in_view() {
+    mount("#/ekf/simulation");
+    let panel = element(".live-math");
+    panel.style().set_property("position", "fixed").unwrap();
+    panel.style().set_property("top", "0").unwrap();
 }
 
 fn web_sys_all(selector: &str) -> Vec<web_sys::Element> {
