@@ -33,67 +33,6 @@ pub fn markup_runs(html: &str) -> Option<(String, Vec<String>)> {
     Some((skeleton, runs))
 }
 
-/// The markup `html` as its top-level nodes, in order: each element with
-/// everything inside it, and each text run between them (the child nodes an
-/// HTML parser makes of it, one an entry). `None` for markup
-/// [`markup_runs`] refuses, or with a tag left open or closed twice.
-///
-/// Two renderings whose shape differs in one place (a number that changed
-/// sign gains its parentheses) still share their other top-level nodes, so
-/// the page rewrites only the node that changed.
-#[must_use]
-pub fn top_level_nodes(html: &str) -> Option<Vec<&str>> {
-    let mut nodes = Vec::new();
-    let (mut depth, mut start, mut at) = (0usize, 0usize, 0usize);
-    while at < html.len() {
-        let rest = &html[at..];
-        if rest.starts_with("<!") {
-            return None;
-        }
-        if let Some(tag) = rest.strip_prefix('<') {
-            let end = rest.find('>')? + 1;
-            if tag.starts_with('/') {
-                depth = depth.checked_sub(1)?;
-                at += end;
-                if depth == 0 {
-                    nodes.push(&html[start..at]);
-                    start = at;
-                }
-                continue;
-            }
-            if depth == 0 && start < at {
-                nodes.push(&html[start..at]);
-                start = at;
-            }
-            // Void elements the lab writes (`<br>`, `<wbr>`) have no end tag.
-            let name: String = tag
-                .chars()
-                .take_while(|c| c.is_ascii_alphanumeric())
-                .collect();
-            let void = matches!(name.as_str(), "br" | "wbr" | "img" | "hr" | "input")
-                || rest[..end].ends_with("/>");
-            at += end;
-            if void {
-                if depth == 0 {
-                    nodes.push(&html[start..at]);
-                    start = at;
-                }
-            } else {
-                depth += 1;
-            }
-        } else {
-            at += rest.find('<').unwrap_or(rest.len());
-        }
-    }
-    if depth != 0 {
-        return None;
-    }
-    if start < html.len() {
-        nodes.push(&html[start..]);
-    }
-    Some(nodes)
-}
-
 /// Text with its character references decoded (the ones the lab writes).
 fn decode(text: &str) -> Option<String> {
     let mut out = String::with_capacity(text.len());
@@ -153,36 +92,6 @@ mod tests {
         assert_eq!(s, "\u{0}");
         assert_eq!(r, ["x < 3 && y > \"2\" 'λ"]);
         assert_eq!(markup_runs("").unwrap(), (String::new(), Vec::new()));
-    }
-
-    #[test]
-    fn top_level_nodes_are_the_elements_and_the_text_between_them() {
-        let html = "<span class=\"eq-part\"><math><mo>=</mo><mn>1</mn></math></span> <span><math><mo>(</mo><mn>2</mn></math></span>x<br>y";
-        assert_eq!(
-            top_level_nodes(html).unwrap(),
-            [
-                "<span class=\"eq-part\"><math><mo>=</mo><mn>1</mn></math></span>",
-                " ",
-                "<span><math><mo>(</mo><mn>2</mn></math></span>",
-                "x",
-                "<br>",
-                "y"
-            ]
-        );
-        assert_eq!(top_level_nodes("= 0.83").unwrap(), ["= 0.83"]);
-        assert!(top_level_nodes("").unwrap().is_empty());
-        assert!(top_level_nodes("<span><mn>1</mn>").is_none(), "left open");
-        assert!(
-            top_level_nodes("<mn>1</mn></span>").is_none(),
-            "closed twice"
-        );
-        // Every node's own runs are the whole's runs, in order.
-        let all: Vec<String> = top_level_nodes(html)
-            .unwrap()
-            .iter()
-            .flat_map(|n| markup_runs(n).unwrap().1)
-            .collect();
-        assert_eq!(all, markup_runs(html).unwrap().1);
     }
 
     #[test]

@@ -38,73 +38,28 @@ pub use labpage::content_html::escape;
 /// Replaces `el`'s content, the markup `old`, by the markup `new`. Where
 /// both have the same tags (an equation with other numbers in it) only the
 /// text nodes whose text changed are rewritten: no parse, no new elements
-/// for the browser to style and lay out from scratch. Where the shape
-/// changed in places (a number that changed sign gains its parentheses),
-/// each top-level node is treated so: only the ones whose tags changed are
-/// written anew. Otherwise (another structure, or a page whose nodes are
-/// not the markup's) `new` is written whole.
+/// for the browser to style and lay out from scratch. Otherwise (another
+/// structure, or a page whose text nodes are not the markup's runs) `new`
+/// is written whole.
 pub fn rewrite_markup(el: &Element, old: &str, new: &str) {
-    use labpage::markup_runs::top_level_nodes;
-    if rewrite_text(el, old, new) {
-        return;
-    }
-    if let (Some(olds), Some(news)) = (top_level_nodes(old), top_level_nodes(new)) {
-        let children = el.child_nodes();
-        let same_kinds = (0..children.length()).zip(&news).all(|(i, now)| {
-            children.item(i).is_some_and(|c| {
-                (c.node_type() == web_sys::Node::ELEMENT_NODE) == now.starts_with('<')
-            })
-        });
-        if olds.len() == news.len() && children.length() as usize == news.len() && same_kinds {
-            for (i, (was, now)) in olds.iter().zip(&news).enumerate() {
-                let Some(child) = children.item(i as u32) else {
-                    continue;
-                };
-                if was == now || rewrite_text(&child, was, now) {
-                    continue;
-                }
-                match child.dyn_ref::<Element>() {
-                    Some(element) => element.set_outer_html(now),
-                    None => {
-                        let text = labpage::markup_runs::markup_runs(now)
-                            .and_then(|(_, runs)| runs.into_iter().next());
-                        child.set_node_value(text.as_deref());
+    use labpage::markup_runs::markup_runs;
+    if let (Some((old_tags, old_runs)), Some((new_tags, new_runs))) =
+        (markup_runs(old), markup_runs(new))
+    {
+        if old_tags == new_tags {
+            let mut texts = Vec::with_capacity(new_runs.len());
+            text_nodes(el, &mut texts);
+            if texts.len() == new_runs.len() {
+                for ((node, was), now) in texts.iter().zip(&old_runs).zip(&new_runs) {
+                    if was != now {
+                        node.set_node_value(Some(now));
                     }
                 }
+                return;
             }
-            return;
         }
     }
     el.set_inner_html(new);
-}
-
-/// Rewrites the text nodes of `node` (which shows the markup `old`) to
-/// those of `new` when both have the same tags. Returns whether it did.
-fn rewrite_text(node: &web_sys::Node, old: &str, new: &str) -> bool {
-    use labpage::markup_runs::markup_runs;
-    let (Some((old_tags, old_runs)), Some((new_tags, new_runs))) =
-        (markup_runs(old), markup_runs(new))
-    else {
-        return false;
-    };
-    if old_tags != new_tags {
-        return false;
-    }
-    let mut texts = Vec::with_capacity(new_runs.len());
-    if node.node_type() == web_sys::Node::TEXT_NODE {
-        texts.push(node.clone());
-    } else {
-        text_nodes(node, &mut texts);
-    }
-    if texts.len() != new_runs.len() {
-        return false;
-    }
-    for ((text, was), now) in texts.iter().zip(&old_runs).zip(&new_runs) {
-        if was != now {
-            text.set_node_value(Some(now));
-        }
-    }
-    true
 }
 
 /// The text nodes under `node`, in document order.
