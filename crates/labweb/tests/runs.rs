@@ -373,7 +373,11 @@ fn texts(selector: &str) -> Vec<String> {
 /// and the frames that write no readout write no equation either.
 #[wasm_bindgen_test]
 fn a_streaming_run_writes_the_math_panel_with_the_readouts() {
-    mount_ekf_with_the_math_panel_in_view();
+    mount("#/ekf/simulation");
+    // Fixed at the window's top, the panel is in view (the test page is short).
+    let panel = element(".live-math");
+    panel.style().set_property("position", "fixed").unwrap();
+    panel.style().set_property("top", "0").unwrap();
     let results = || texts(".live-math .equation-result");
     let readouts = || texts(".readouts dd");
     let equations = results().len();
@@ -420,7 +424,10 @@ fn a_streaming_run_writes_the_math_panel_with_the_readouts() {
 /// text changes, and each number stays where the markup puts it.
 #[wasm_bindgen_test]
 fn a_streaming_run_rewrites_the_numbers_of_an_equation_in_place() {
-    mount_ekf_with_the_math_panel_in_view();
+    mount("#/ekf/simulation");
+    let panel = element(".live-math");
+    panel.style().set_property("position", "fixed").unwrap();
+    panel.style().set_property("top", "0").unwrap();
     // Per formula: its elements' names in order (its shape), and its numbers.
     let formulas = || {
         web_sys_all(".live-math .equation-numbers")
@@ -490,15 +497,6 @@ fn a_streaming_run_rewrites_the_numbers_of_an_equation_in_place() {
             );
         }
     }
-}
-
-/// Mounts ekf's simulation with "The math" panel fixed at the window's top,
-/// in view (the test page is short).
-fn mount_ekf_with_the_math_panel_in_view() {
-    mount("#/ekf/simulation");
-    let panel = element(".live-math");
-    panel.style().set_property("position", "fixed").unwrap();
-    panel.style().set_property("top", "0").unwrap();
 }
 
 fn web_sys_all(selector: &str) -> Vec<web_sys::Element> {
