@@ -9,7 +9,6 @@
 //! labcore never does (the arrow runs `labpage -> labcore`).
 
 pub mod content_html;
-pub mod markup_runs;
 pub mod math_panel;
 pub mod report;
 

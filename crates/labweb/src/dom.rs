@@ -35,46 +35,6 @@ pub fn query_all(root: &Element, selector: &str) -> Vec<Element> {
 
 pub use labpage::content_html::escape;
 
-/// Replaces `el`'s content, the markup `old`, by the markup `new`. Where
-/// both have the same tags (an equation with other numbers in it) only the
-/// text nodes whose text changed are rewritten: no parse, no new elements
-/// for the browser to style and lay out from scratch. Otherwise (another
-/// structure, or a page whose text nodes are not the markup's runs) `new`
-/// is written whole.
-pub fn rewrite_markup(el: &Element, old: &str, new: &str) {
-    use labpage::markup_runs::markup_runs;
-    if let (Some((old_tags, old_runs)), Some((new_tags, new_runs))) =
-        (markup_runs(old), markup_runs(new))
-    {
-        if old_tags == new_tags {
-            let mut texts = Vec::with_capacity(new_runs.len());
-            text_nodes(el, &mut texts);
-            if texts.len() == new_runs.len() {
-                for ((node, was), now) in texts.iter().zip(&old_runs).zip(&new_runs) {
-                    if was != now {
-                        node.set_node_value(Some(now));
-                    }
-                }
-                return;
-            }
-        }
-    }
-    el.set_inner_html(new);
-}
-
-/// The text nodes under `node`, in document order.
-fn text_nodes(node: &web_sys::Node, out: &mut Vec<web_sys::Node>) {
-    let mut child = node.first_child();
-    while let Some(c) = child {
-        if c.node_type() == web_sys::Node::TEXT_NODE {
-            out.push(c.clone());
-        } else {
-            text_nodes(&c, out);
-        }
-        child = c.next_sibling();
-    }
-}
-
 pub fn set_hidden(el: &Element, hidden: bool) {
     if let Some(h) = el.dyn_ref::<HtmlElement>() {
         h.set_hidden(hidden);
