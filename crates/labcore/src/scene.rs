@@ -9,9 +9,7 @@ use glam::DVec2;
 
 mod layer;
 pub mod style;
-pub use layer::{
-    diff_ops, raster_version, LayerMark, LayerOp, LayerPlan, Rewrite, Segment, SegmentLayer,
-};
+pub use layer::{raster_version, LayerMark, LayerOp, LayerPlan, Rewrite, Segment, SegmentLayer};
 pub use style::Role;
 
 /// The world rectangle shown on the canvas (y points up).

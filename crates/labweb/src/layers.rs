@@ -8,9 +8,7 @@
 //!   Each frame applies the layer's [`labcore::scene::LayerPlan`] (new slots,
 //!   rewritten slots) or, when the layer, its epoch, the viewport, the canvas
 //!   size, the device pixel ratio or the colour changed, redraws it from
-//!   scratch, or, for a copy of a layer it drew (another moment of the same
-//!   tree, rebuilt by the timeline: same lineage), erases and draws only
-//!   the slots that differ ([`labcore::scene::diff_ops`]). Counts make the result independent of the order of operations,
+//!   scratch. Counts make the result independent of the order of operations,
 //!   so the kept picture is byte for byte the one a full redraw makes, which is
 //!   the one [`labcore::Item::Segments`] makes today. Only the rectangle the
 //!   frame touched is uploaded (`putImageData` with a dirty rectangle) into the
@@ -27,7 +25,7 @@
 use crate::palette::{hex_rgb, Palette};
 use crate::viewport::{clip_segment, round_px, Viewport};
 use glam::DVec2;
-use labcore::scene::{diff_ops, LayerMark, LayerOp, LayerPlan, Segment, SegmentLayer};
+use labcore::scene::{LayerMark, LayerOp, SegmentLayer};
 use labcore::RasterColour;
 use std::cell::{Cell, RefCell};
 use wasm_bindgen::JsCast;
@@ -42,9 +40,6 @@ pub struct Counters {
     pub segments_erased: u64,
     /// Kept segment layers redrawn from scratch.
     pub full_redraws: u64,
-    /// Kept segment layers brought over from a copy of the same lineage by
-    /// the slots that differ.
-    pub lineage_diffs: u64,
     /// Uploads of segment-layer pixels to their canvas (`putImageData`).
     pub layer_uploads: u64,
     /// Pixels uploaded by those (the dirty rectangles' areas).
@@ -62,7 +57,6 @@ thread_local! {
         segments_drawn: 0,
         segments_erased: 0,
         full_redraws: 0,
-        lineage_diffs: 0,
         layer_uploads: 0,
         layer_upload_px: 0,
         raster_uploads: 0,
@@ -117,8 +111,6 @@ struct SegmentKey {
 struct SegmentCache {
     key: SegmentKey,
     mark: Option<LayerMark>,
-    /// The segments its picture shows, slot by slot (what a diff starts from).
-    drawn: Vec<Segment>,
     counts: Vec<u32>,
     rgba: Vec<u8>,
     canvas: HtmlCanvasElement,
@@ -320,15 +312,9 @@ pub(crate) fn paint_segment_layer(
     };
     SEGMENT_CACHES.with(|caches| {
         let mut caches = caches.borrow_mut();
-        // This layer's picture, else one of a copy of the same tree.
         let found = caches
             .iter()
-            .position(|c| c.mark.is_some_and(|m| m.id == layer.id()))
-            .or_else(|| {
-                caches
-                    .iter()
-                    .position(|c| c.mark.is_some_and(|m| m.lineage == layer.lineage()))
-            });
+            .position(|c| c.mark.is_some_and(|m| m.id == layer.id()));
         let mut cache = match found {
             Some(i) => caches.remove(i),
             None if caches.len() >= KEPT_SEGMENT_LAYERS => {
@@ -344,7 +330,6 @@ pub(crate) fn paint_segment_layer(
                 SegmentCache {
                     key,
                     mark: None,
-                    drawn: Vec::new(),
                     counts: Vec::new(),
                     rgba: Vec::new(),
                     canvas,
@@ -354,18 +339,8 @@ pub(crate) fn paint_segment_layer(
         };
         let since = cache.mark.filter(|_| cache.key == key);
         let plan = layer.plan(since.as_ref());
-        let sized = cache.counts.len() == w * h;
-        // A copy of the tree it shows (another moment): only what differs.
-        let diff = match (&plan, since) {
-            (LayerPlan::Full(now), Some(m)) if sized && m.id != layer.id() => {
-                diff_ops(&cache.drawn, now)
-            }
-            _ => None,
-        };
         let mut dirty = Dirty::EMPTY;
-        if diff.is_some() {
-            count(|c| c.lineage_diffs += 1);
-        } else if plan.is_full() || !sized {
+        if plan.is_full() || cache.counts.len() != w * h {
             cache.counts.clear();
             cache.counts.resize(w * h, 0);
             cache.rgba.clear();
@@ -390,11 +365,7 @@ pub(crate) fn paint_segment_layer(
                 dirty,
             };
             let to_px = |p: DVec2| viewport.to_px(p) * dpr;
-            let ops: Box<dyn Iterator<Item = LayerOp>> = match diff {
-                Some(ops) => Box::new(ops.into_iter()),
-                None => Box::new(plan.ops()),
-            };
-            for op in ops {
+            for op in plan.ops() {
                 match op {
                     LayerOp::Draw((a, b)) => {
                         cover.segment(to_px(a), to_px(b), true);
@@ -430,24 +401,6 @@ pub(crate) fn paint_segment_layer(
             c.segments_erased += erased;
             c.composites += 1;
         });
-        // What the picture shows now: the layer's segments. A plan that
-        // only appends and rewrites brings the copy over the same way.
-        match plan {
-            LayerPlan::Incremental {
-                drawn,
-                rewrites,
-                appended,
-            } if drawn == cache.drawn.len() => {
-                for r in rewrites.iter().filter(|r| (r.slot as usize) < drawn) {
-                    cache.drawn[r.slot as usize] = r.new;
-                }
-                cache.drawn.extend_from_slice(appended);
-            }
-            _ => {
-                cache.drawn.clear();
-                cache.drawn.extend_from_slice(layer.segments());
-            }
-        }
         cache.key = key;
         cache.mark = Some(layer.mark());
         ctx.set_image_smoothing_enabled(true);

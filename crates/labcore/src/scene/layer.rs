@@ -18,11 +18,7 @@
 //! random grow/rewire/clear sequences against that full list.
 //!
 //! Identity: every layer has an `id`, and cloning the layer's data gives the
-//! clone a fresh id but keeps its `lineage` (the id of the layer it was
-//! first copied from), so a painter can recognise a copy (a state the
-//! timeline rebuilt, an earlier moment of the same tree) and bring its
-//! picture over by the slots that differ ([`diff_ops`]) instead of
-//! redrawing it. The list is shared copy-on-write ([`Arc`]), so putting a
+//! clone a fresh id. The list is shared copy-on-write ([`Arc`]), so putting a
 //! layer in a [`super::Scene`] costs a pointer copy, and a model that changes
 //! a layer a scene still holds gets its own copy with a new identity (the
 //! painter then redraws it in full; never a wrong picture). The `epoch` counts
@@ -63,8 +59,6 @@ pub struct Rewrite {
 #[derive(Debug)]
 struct LayerData {
     id: u64,
-    /// The id of the layer this one was (at any remove) copied from.
-    lineage: u64,
     epoch: u64,
     segments: Vec<Segment>,
     /// Rewrites in order; `journal[k]` is rewrite number `journal_start + k`.
@@ -78,7 +72,6 @@ impl Clone for LayerData {
     fn clone(&self) -> Self {
         Self {
             id: fresh_id(),
-            lineage: self.lineage,
             epoch: self.epoch,
             segments: self.segments.clone(),
             journal: self.journal.clone(),
@@ -122,8 +115,6 @@ impl PartialEq for SegmentLayer {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LayerMark {
     pub id: u64,
-    /// The layer's [`SegmentLayer::lineage`].
-    pub lineage: u64,
     pub epoch: u64,
     pub len: usize,
     pub journal_end: u64,
@@ -194,11 +185,9 @@ impl SegmentLayer {
     /// An empty layer with a fresh identity.
     #[must_use]
     pub fn new() -> Self {
-        let id = fresh_id();
         Self {
             data: Arc::new(LayerData {
-                id,
-                lineage: id,
+                id: fresh_id(),
                 epoch: 0,
                 segments: Vec::new(),
                 journal: Vec::new(),
@@ -219,13 +208,6 @@ impl SegmentLayer {
     #[must_use]
     pub fn id(&self) -> u64 {
         self.data.id
-    }
-
-    /// The id of the layer this one descends from by copies: its own id
-    /// for a layer made new, the original's for a copy of a copy.
-    #[must_use]
-    pub fn lineage(&self) -> u64 {
-        self.data.lineage
     }
 
     /// How many times the layer was cleared.
@@ -255,7 +237,6 @@ impl SegmentLayer {
     pub fn mark(&self) -> LayerMark {
         LayerMark {
             id: self.data.id,
-            lineage: self.data.lineage,
             epoch: self.data.epoch,
             len: self.data.segments.len(),
             journal_end: self.data.journal_start + self.data.journal.len() as u64,
@@ -332,45 +313,6 @@ impl SegmentLayer {
             appended,
         }
     }
-}
-
-/// The operations that turn a picture of `drawn` (the segments a painter
-/// last drew, slot by slot) into a picture of `now`, when that is less work
-/// than drawing `now` from scratch: for each slot both hold with different
-/// segments, erase the old and draw the new; erase the slots only `drawn`
-/// has; draw the slots only `now` has. A counting painter (see the module
-/// documentation) then holds exactly the counts of a full redraw of `now`.
-///
-/// `None` when the operations would outnumber `now`'s segments (a full
-/// redraw is then no more work, and clears what the diff would have to
-/// erase one segment at a time).
-///
-/// This serves a layer the painter has not drawn but whose lineage it has
-/// (a moment the timeline rebuilt: the same tree, earlier or later): two
-/// moments of an RRT* tree share every slot below the smaller one except
-/// those rewired between them.
-#[must_use]
-pub fn diff_ops(drawn: &[Segment], now: &[Segment]) -> Option<Vec<LayerOp>> {
-    let common = drawn.len().min(now.len());
-    let budget = now.len();
-    let mut ops = Vec::new();
-    let mut cost = drawn.len().max(now.len()) - common;
-    if cost > budget {
-        return None;
-    }
-    for (old, new) in drawn[..common].iter().zip(&now[..common]) {
-        if old != new {
-            cost += 2;
-            if cost > budget {
-                return None;
-            }
-            ops.push(LayerOp::Erase(*old));
-            ops.push(LayerOp::Draw(*new));
-        }
-    }
-    ops.extend(drawn[common..].iter().map(|s| LayerOp::Erase(*s)));
-    ops.extend(now[common..].iter().map(|s| LayerOp::Draw(*s)));
-    Some(ops)
 }
 
 /// A version for a raster's cells: a 64-bit FNV-1a fingerprint of the bytes,
@@ -572,91 +514,6 @@ mod tests {
                 painter.fulls
             );
         }
-    }
-
-    #[test]
-    fn moments_of_one_tree_diff_to_the_counts_of_a_full_redraw_and_keep_their_lineage() {
-        for seed in 0..40 {
-            let mut rng = Lcg64::new(seed);
-            // A tree's moments as a timeline keeps them: copies taken as it
-            // grows and rewires.
-            let mut layer = SegmentLayer::new();
-            let mut moments = vec![layer.clone()];
-            for _ in 0..30 {
-                for _ in 0..(rng.next_f64() * 20.0) as usize {
-                    layer.push(seg(&mut rng));
-                }
-                for _ in 0..(rng.next_f64() * 4.0) as usize {
-                    if !layer.is_empty() {
-                        let slot = (rng.next_f64() * layer.len() as f64) as usize;
-                        layer.set(slot, seg(&mut rng));
-                    }
-                }
-                moments.push(layer.clone());
-                layer.push(seg(&mut rng));
-            }
-            for m in &moments {
-                assert_eq!(
-                    m.lineage(),
-                    moments[0].lineage(),
-                    "a copy keeps its lineage"
-                );
-            }
-            assert_ne!(SegmentLayer::new().lineage(), layer.lineage());
-            // Jump between random moments as a scrub does.
-            let mut shown: Vec<Segment> = Vec::new();
-            let mut counts = HashMap::new();
-            let (mut diffs, mut diff_ops_total, mut full_draws) = (0, 0, 0);
-            for _ in 0..60 {
-                let to = &moments[(rng.next_f64() * moments.len() as f64) as usize];
-                match diff_ops(&shown, to.segments()) {
-                    Some(ops) => {
-                        assert!(ops.len() <= to.len(), "never more work than a full redraw");
-                        diffs += 1;
-                        diff_ops_total += ops.len();
-                        for op in ops {
-                            let (s, d) = match op {
-                                LayerOp::Draw(s) => (s, 1),
-                                LayerOp::Erase(s) => (s, -1),
-                            };
-                            let c = counts.entry(key(&s)).or_insert(0i64);
-                            *c += d;
-                            assert!(*c >= 0, "seed {seed}: erased a segment that was not drawn");
-                        }
-                        counts.retain(|_, c| *c != 0);
-                    }
-                    None => {
-                        full_draws += to.len();
-                        counts = full_counts(to);
-                    }
-                }
-                assert_eq!(counts, full_counts(to), "seed {seed}");
-                shown = to.segments().to_vec();
-            }
-            assert!(diffs > 30, "seed {seed}: most jumps diff ({diffs} of 60)");
-            assert!(
-                diff_ops_total < 60 * layer.len(),
-                "{diff_ops_total} {full_draws}"
-            );
-        }
-        // The cases by hand: a slot rewired, a slot dropped, a slot added.
-        let (a, b, c) = (
-            (DVec2::ZERO, DVec2::X),
-            (DVec2::ZERO, DVec2::Y),
-            (DVec2::ONE, DVec2::Y),
-        );
-        assert_eq!(
-            diff_ops(&[a, a, a, b], &[a, c, a]),
-            Some(vec![LayerOp::Erase(a), LayerOp::Draw(c), LayerOp::Erase(b)])
-        );
-        assert_eq!(diff_ops(&[a, a], &[a, a, c]), Some(vec![LayerOp::Draw(c)]));
-        assert_eq!(diff_ops(&[a, a], &[a, a]), Some(vec![]));
-        assert_eq!(
-            diff_ops(&[b, b, b], &[a, a, a]),
-            None,
-            "6 operations against 3 draws"
-        );
-        assert_eq!(diff_ops(&[a; 10], &[a]), None, "9 erasures against 1 draw");
     }
 
     #[test]
