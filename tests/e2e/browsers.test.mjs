@@ -91,8 +91,16 @@ async function firefox() {
     // No update checks, telemetry or remote settings: nothing leaves the test server.
     extraPrefsFirefox: { "network.proxy.type": 0, "browser.shell.checkDefaultBrowser": false },
   });
-  const page = await browser.newPage();
-  await page.setViewport(DESKTOP);
+  let page;
+  try {
+    page = await browser.newPage();
+    await page.setViewport(DESKTOP);
+  } catch (e) {
+    // A driver this Firefox does not speak: fail the suite now, and leave no
+    // browser behind to keep the test file running.
+    await browser.close().catch(() => {});
+    throw new Error(`Firefox ${await browser.version().catch(() => "?")} refused the set-up (${e.message})`);
+  }
   const problems = [];
   page.on("console", (m) => {
     if (m.type() === "error") problems.push(`console error: ${m.text()}`);

@@ -111,6 +111,21 @@ test("live math: every experiment's panel shows results equal to its readouts, a
       }
       // At least one equation has a number to show once the run has gone on.
       assert.ok((await equationResults(page)).some((t) => t !== "= --"), `${link}: a result`);
+      // Each equation holds its own layout: its screen-reader twin (placed
+      // absolutely) is laid out in it, not from the page's root, and it
+      // spans the panel's width (its contained inline size is the panel's).
+      const boxes = await page.$$eval(".live-math .equation", (els) =>
+        els.map((e) => ({
+          twinIn: e.querySelector(".equation-text")?.offsetParent === e,
+          contain: getComputedStyle(e).contain,
+          width: e.getBoundingClientRect().width,
+          panel: e.parentElement.getBoundingClientRect().width,
+        })),
+      );
+      for (const b of boxes) {
+        assert.ok(b.twinIn && /layout/.test(b.contain), `${link}: an equation contains its layout: ${JSON.stringify(b)}`);
+        assert.ok(b.width > 0.8 * b.panel, `${link}: an equation spans the panel: ${JSON.stringify(b)}`);
+      }
       if (link.includes("sat=1")) {
         // The limit chose the other law: symbols and numbers both clamp.
         assert.match(texts[0], /^u = clamp\(Kp e \+ Ki ∫e − Kd ẏ, ±umax\) = clamp\(/);

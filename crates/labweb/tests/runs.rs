@@ -368,18 +368,12 @@ fn texts(selector: &str) -> Vec<String> {
         .collect()
 }
 
-/// Issue 27, cost: while a run streams, the frame that writes the readouts
-/// writes none of "The math" panel's equations; the frames after it write
-/// them one each (no frame lays out the readouts and every formula
-/// together), with the numbers of that update: once they are through,
-/// every result is a readout on the page.
+/// A streaming run writes "The math" panel with the readouts, in the same
+/// frame: at every frame each equation's result is a readout on the page,
+/// and the frames that write no readout write no equation either.
 #[wasm_bindgen_test]
-fn a_streaming_run_writes_the_math_panel_one_equation_a_frame_after_the_readouts() {
-    mount("#/ekf/simulation");
-    // Fixed at the window's top, the panel is in view (the test page is short).
-    let panel = element(".live-math");
-    panel.style().set_property("position", "fixed").unwrap();
-    panel.style().set_property("top", "0").unwrap();
+fn a_streaming_run_writes_the_math_panel_with_the_readouts() {
+    let _in_view = mount_ekf_with_the_math_panel_in_view();
     let results = || texts(".live-math .equation-result");
     let readouts = || texts(".readouts dd");
     let equations = results().len();
@@ -387,34 +381,25 @@ fn a_streaming_run_writes_the_math_panel_one_equation_a_frame_after_the_readouts
     for _ in 0..40 {
         frame(ONE_STEP_MS);
     }
-    let mut updates = 0;
+    let (mut updates, mut results_moved) = (0, 0);
     for _ in 0..120 {
         let (before_readouts, before_results) = (readouts(), results());
         frame(ONE_STEP_MS);
-        if readouts() == before_readouts {
+        let (shown, now) = (readouts(), results());
+        if shown == before_readouts {
+            assert_eq!(
+                now, before_results,
+                "no readout written, no equation either"
+            );
             continue;
         }
         updates += 1;
-        assert_eq!(
-            results(),
-            before_results,
-            "the readouts' frame writes no equation"
-        );
-        let mut last = results();
-        for n in 1..=equations {
-            frame(ONE_STEP_MS);
-            let now = results();
-            let written = now.iter().zip(&last).filter(|(a, b)| a != b).count();
-            assert!(
-                written <= 1,
-                "frame {n} after the readouts wrote {written} equations"
-            );
-            last = now;
+        if now != before_results {
+            results_moved += 1;
         }
-        let shown = readouts();
-        for result in results() {
+        for result in &now {
             assert!(
-                result == "= --" || shown.iter().any(|r| format!("= {r}") == result),
+                result == "= --" || shown.iter().any(|r| &format!("= {r}") == result),
                 "{result} is a readout on the page: {shown:?}"
             );
         }
@@ -423,4 +408,161 @@ fn a_streaming_run_writes_the_math_panel_one_equation_a_frame_after_the_readouts
         updates >= 4,
         "the run wrote its text {updates} times in 2 s"
     );
+    assert!(
+        results_moved >= 4,
+        "the equations followed: {results_moved}"
+    );
+}
+
+/// A streaming run rewrites an equation's numbers in place: while a term
+/// of a formula keeps its shape (no number in it changed sign), its
+/// elements stay the same ones (nothing is parsed anew for the browser to
+/// style), only their text changes, also when another term of the formula
+/// changed shape; and each number stays where the markup puts it.
+#[wasm_bindgen_test]
+fn a_streaming_run_rewrites_the_numbers_of_an_equation_in_place() {
+    let _in_view = mount_ekf_with_the_math_panel_in_view();
+    let (in_place, _) = terms_rewritten_while_running(900);
+    assert!(
+        in_place >= 10,
+        "terms whose numbers changed in place: {in_place}"
+    );
+    assert_numbers_are_their_twins();
+}
+
+/// The same where numbers change sign as the pole swings (cartpole's
+/// u = −Kx): a term that gains or loses its parentheses is written anew,
+/// the formula's other terms keep their elements.
+#[wasm_bindgen_test]
+fn a_number_that_changes_sign_rewrites_only_its_term() {
+    let _in_view = mount_with_the_math_panel_in_view("#/cartpole/simulation");
+    // A push sets the pole swinging.
+    element(".sim-actions button[data-action=nudge]").click();
+    frame(ONE_STEP_MS);
+    let (in_place, reshaped) = terms_rewritten_while_running(900);
+    assert!(
+        in_place >= 10,
+        "terms whose numbers changed in place: {in_place}"
+    );
+    assert!(reshaped >= 1, "a number changed sign: {reshaped}");
+    assert_numbers_are_their_twins();
+}
+
+/// Runs `frames` frames of the mounted simulation, checking after each that
+/// every term of "The math" that kept its shape (its elements' names in
+/// order) kept its elements. Returns how many terms changed their numbers
+/// in place, and how many changed shape.
+fn terms_rewritten_while_running(frames: usize) -> (usize, usize) {
+    let terms = || {
+        web_sys_all(".live-math .equation-numbers .eq-part")
+            .iter()
+            .map(|term| {
+                let all = term.query_selector_all("*").unwrap();
+                let shape: Vec<String> = (0..all.length())
+                    .filter_map(|i| all.get(i))
+                    .map(|n| n.node_name())
+                    .collect();
+                let mns = term.query_selector_all("mn").unwrap();
+                let mns: Vec<web_sys::Node> =
+                    (0..mns.length()).filter_map(|i| mns.get(i)).collect();
+                (shape, mns)
+            })
+            .collect::<Vec<_>>()
+    };
+    for _ in 0..20 {
+        frame(ONE_STEP_MS);
+    }
+    let (mut in_place, mut reshaped) = (0, 0);
+    for _ in 0..frames {
+        let before = terms();
+        let before_text: Vec<Vec<Option<String>>> = before
+            .iter()
+            .map(|(_, mns)| mns.iter().map(web_sys::Node::text_content).collect())
+            .collect();
+        frame(ONE_STEP_MS);
+        let after = terms();
+        assert_eq!(after.len(), before.len(), "as many terms");
+        for (i, ((shape, mns), (shape_was, mns_was))) in after.iter().zip(&before).enumerate() {
+            if shape != shape_was {
+                reshaped += 1;
+                continue;
+            }
+            assert!(
+                mns.iter()
+                    .zip(mns_was)
+                    .all(|(a, b)| a.is_same_node(Some(b))),
+                "term {i} kept its shape and its elements"
+            );
+            let text: Vec<Option<String>> = mns.iter().map(web_sys::Node::text_content).collect();
+            if text != before_text[i] {
+                in_place += 1;
+            }
+        }
+    }
+    (in_place, reshaped)
+}
+
+/// Every number of a formula is in its text twin, written from the same
+/// update: the text went to the right nodes.
+fn assert_numbers_are_their_twins() {
+    for block in web_sys_all(".live-math [data-equation]") {
+        let twin = block
+            .query_selector(".equation-text")
+            .unwrap()
+            .and_then(|t| t.text_content())
+            .unwrap_or_default();
+        let mns = block.query_selector_all(".equation-numbers mn").unwrap();
+        for i in 0..mns.length() {
+            let n = mns
+                .get(i)
+                .and_then(|n| n.text_content())
+                .unwrap_or_default();
+            assert!(
+                !n.is_empty() && twin.contains(&n),
+                "{n:?} is a number of {twin:?}"
+            );
+        }
+    }
+}
+
+/// Mounts ekf's simulation with "The math" panel fixed at the window's top,
+/// in view (the test page is short).
+#[must_use]
+fn mount_ekf_with_the_math_panel_in_view() -> MathInView {
+    mount_with_the_math_panel_in_view("#/ekf/simulation")
+}
+
+/// Mounts `route` with "The math" panel fixed at the window's top, in view,
+/// by a style rule (which also holds for a panel written anew when another
+/// set of equations applies) that lasts as long as the returned guard.
+#[must_use]
+fn mount_with_the_math_panel_in_view(route: &str) -> MathInView {
+    mount(route);
+    let document = web_sys::window().unwrap().document().unwrap();
+    let style = document.create_element("style").unwrap();
+    style.set_text_content(Some(".live-math { position: fixed; top: 0; }"));
+    document.body().unwrap().append_child(&style).unwrap();
+    MathInView(style)
+}
+
+/// The rule that keeps "The math" in view; dropped, it is gone.
+struct MathInView(web_sys::Element);
+
+impl Drop for MathInView {
+    fn drop(&mut self) {
+        self.0.remove();
+    }
+}
+
+fn web_sys_all(selector: &str) -> Vec<web_sys::Element> {
+    let list = web_sys::window()
+        .unwrap()
+        .document()
+        .unwrap()
+        .query_selector_all(selector)
+        .unwrap();
+    (0..list.length())
+        .filter_map(|i| list.get(i))
+        .filter_map(|n| n.dyn_into::<web_sys::Element>().ok())
+        .collect()
 }

@@ -13,6 +13,10 @@ const CHROMEDRIVER: &str = "/usr/bin/chromedriver";
 const INSTALL_HINT: &str =
     "install the Debian packages chromium and chromium-driver (sudo apt-get install chromium chromium-driver)";
 /// The Debian packages of the real servers `tests/hosts/` runs README's recipes on.
+/// `node --test` flags for the browser suites: a test fails after 10 min
+/// (the longest, axe over every tab, takes about 1 min), and a test file
+/// exits once its tests are done, whatever child process is left running.
+const NODE_TEST_WATCHDOG: [&str; 2] = ["--test-timeout=600000", "--test-force-exit"];
 const SERVER_PACKAGES: [&str; 3] = ["nginx", "libnginx-mod-http-brotli-static", "apache2"];
 /// What those packages install that the suite uses.
 const SERVER_FILES: [&str; 3] = [
@@ -160,9 +164,15 @@ pub fn test(opts: Options) -> Result<(), String> {
             // busy (8 min 18 s -> 5 min 30 s here). No test asserts a time.
             // The suite serves dist/ with this very binary (`serve --dir`):
             // one server, one table of media types and cache headers.
+            // A test that hangs (a browser that stops answering its driver)
+            // fails after ten minutes, and a file whose tests are done exits
+            // even if a child process it started lingers: a hang reads as a
+            // failure with its name, not as a CI run out of time.
             util::run(
                 Command::new("node")
-                    .args(["--test", "--test-concurrency=2", "tests/e2e/"])
+                    .args(["--test", "--test-concurrency=2"])
+                    .args(NODE_TEST_WATCHDOG)
+                    .arg("tests/e2e/")
                     .env("LAB_XTASK", xtask_binary()?)
                     .current_dir(util::root()),
             )
@@ -191,7 +201,9 @@ pub fn test(opts: Options) -> Result<(), String> {
             }
             util::run(
                 Command::new("node")
-                    .args(["--test", "tests/hosts/"])
+                    .arg("--test")
+                    .args(NODE_TEST_WATCHDOG)
+                    .arg("tests/hosts/")
                     .current_dir(util::root()),
             )
         }),
