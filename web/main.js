@@ -180,6 +180,35 @@ window.labShowArticle = function showArticle(article, tab) {
   document.title = `${article.querySelector("h1")?.textContent ?? ""} — Robotics virtual lab`;
 };
 // labShowArticle: end
+
+// labRewriteMarkup: begin
+// Writes `html` into `el` as innerHTML would, but keeps the nodes that stay:
+// where the new markup has a node of the same name and attributes at the
+// same place, the node is kept and its children are compared in turn; a
+// text that changed is rewritten in place. "The math" panel writes a running
+// simulation's numbers with it (labweb's `dom::rewrite_markup`): only the
+// numbers' text is laid out and repainted, not formulas parsed anew.
+// Self-contained, like labShowArticle (the wasm's test pages run this text).
+window.labRewriteMarkup = function rewriteMarkup(el, html) {
+  const parsed = document.createElement("template");
+  parsed.innerHTML = html;
+  const attributes = (node) => [...(node.attributes ?? [])].map((a) => `${a.name}=${a.value}`).join("\n");
+  const keep = (old, now) => {
+    const was = old.childNodes;
+    const fresh = now.childNodes;
+    if (was.length !== fresh.length) return old.replaceChildren(...fresh);
+    // From the end: a node moved into `old` leaves `fresh`, not its earlier nodes.
+    for (let i = fresh.length - 1; i >= 0; i--) {
+      const [a, b] = [was[i], fresh[i]];
+      if (a.nodeName !== b.nodeName || attributes(a) !== attributes(b)) a.replaceWith(b);
+      else if (a.nodeType !== Node.ELEMENT_NODE) {
+        if (a.nodeValue !== b.nodeValue) a.nodeValue = b.nodeValue;
+      } else keep(a, b);
+    }
+  };
+  keep(el, parsed.content);
+};
+// labRewriteMarkup: end
 const showStatic = window.labShowArticle;
 
 const pageFailed = (error) =>

@@ -47,6 +47,26 @@ extern "C" {
     /// page or a tab is shown (main.js shows it before the wasm runs).
     #[wasm_bindgen(catch, js_namespace = window, js_name = labShowArticle)]
     fn show_article_js(article: Option<&Element>, tab: &str) -> Result<(), JsValue>;
+
+    /// `window.labRewriteMarkup`, defined in `web/main.js`: writes markup
+    /// into an element keeping the nodes that stay.
+    #[wasm_bindgen(catch, js_namespace = window, js_name = labRewriteMarkup)]
+    fn rewrite_markup_js(el: &Element, html: &str) -> Result<(), JsValue>;
+}
+
+/// Writes `html` into `el` as `innerHTML` would, keeping every element the
+/// new markup keeps (same name and attributes at the same place) and
+/// rewriting in place only the text that changed. "The math" panel writes a
+/// streaming run's numbers this way: the browser then lays out and repaints
+/// the numbers, not a formula parsed anew. The code is `web/main.js`'s
+/// `labRewriteMarkup` (the browser's own parser reads the markup); without
+/// it, `innerHTML`.
+pub fn rewrite_markup(el: &Element, html: &str) {
+    #[cfg(feature = "reading")]
+    install_from_main_js("labRewriteMarkup");
+    if rewrite_markup_js(el, html).is_err() {
+        el.set_inner_html(html);
+    }
 }
 
 /// Shows the home page (`article` `None`), or `article` on the tab `tab`
@@ -57,29 +77,29 @@ extern "C" {
 /// it from main.js's text.
 pub fn show_article(article: Option<&Element>, tab: &str) {
     #[cfg(feature = "reading")]
-    install_show_article();
+    install_from_main_js("labShowArticle");
     if let Err(e) = show_article_js(article, tab) {
         web_sys::console::error_2(&"labShowArticle (web/main.js) failed:".into(), &e);
     }
 }
 
-/// On a test page (no main.js): defines `window.labShowArticle` from
-/// main.js's own text, so the tests run the code the site ships.
+/// On a test page (no main.js): defines `window.<name>` from main.js's own
+/// text (between its `// <name>: begin` and `// <name>: end` lines), so the
+/// tests run the code the site ships.
 #[cfg(feature = "reading")]
-fn install_show_article() {
+fn install_from_main_js(name: &str) {
     const MAIN_JS: &str = include_str!("../../../web/main.js");
-    let present =
-        js_sys::Reflect::get(&window(), &"labShowArticle".into()).is_ok_and(|f| f.is_function());
+    let present = js_sys::Reflect::get(&window(), &name.into()).is_ok_and(|f| f.is_function());
     if present {
         return;
     }
-    let begin = MAIN_JS
-        .find("// labShowArticle: begin")
-        .expect("main.js marks labShowArticle");
-    let end = MAIN_JS
-        .find("// labShowArticle: end")
-        .expect("main.js marks labShowArticle");
-    let _ = js_sys::Function::new_no_args(&MAIN_JS[begin..end]).call0(&JsValue::NULL);
+    let marked = |mark: &str| {
+        MAIN_JS
+            .find(&format!("// {name}: {mark}"))
+            .unwrap_or_else(|| panic!("main.js marks {name}"))
+    };
+    let code = &MAIN_JS[marked("begin")..marked("end")];
+    let _ = js_sys::Function::new_no_args(code).call0(&JsValue::NULL);
 }
 
 /// Runs `f` in a task of its own (after the current one), so long work is

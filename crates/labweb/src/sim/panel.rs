@@ -508,15 +508,12 @@ impl SimState {
     }
 
     /// Writes the parts of "The math" panel whose text changed: each
-    /// equation's substituted form, its result and its text twin.
-    ///
-    /// While a run streams, this frame writes the readouts and none of the
-    /// equations: their parts, as of this update, wait in
-    /// [`SimState::math_pending`] and the next frames write them one each
-    /// ([`SimState::write_next_equation`]), so no frame pays for laying out
-    /// the readouts and every formula together (on the phone stand-in that
-    /// frame was twice the closed page's). After an input, at a pause or
-    /// when the run stops, everything is written at once.
+    /// equation's substituted form, its result and its text twin, with the
+    /// readouts (so every result on the page is a readout on the page).
+    /// Where an equation keeps its shape only its numbers' text nodes are
+    /// rewritten ([`dom::rewrite_markup`]), and each equation contains its
+    /// own layout (the stylesheet), so a streaming run's update lays out
+    /// and repaints the equations, not the page.
     ///
     /// While a run streams and the panel is out of the window (on a phone,
     /// below the scene), nothing is written: every write there costs the
@@ -528,7 +525,6 @@ impl SimState {
         if self.bench_math_closed {
             return;
         }
-        self.math_pending.clear();
         if !self.text_at_once && !self.math_on_screen {
             return;
         }
@@ -558,38 +554,25 @@ impl SimState {
         for (i, eq) in equations.iter().enumerate() {
             let now = labpage::math_panel::live_parts(eq, &quantities, readouts);
             if self.shown_math[i] != now {
-                self.math_pending.push((i, now));
+                self.write_equation(i, now);
             }
-        }
-        if self.text_at_once {
-            while self.write_next_equation() {}
-        } else {
-            // Written first in the next frame.
-            self.math_pending.reverse();
         }
     }
 
-    /// Writes the next equation [`SimState::sync_math`] left for a later
-    /// frame. Returns whether there was one.
-    pub(super) fn write_next_equation(&mut self) -> bool {
-        let Some((i, parts)) = self.math_pending.pop() else {
-            return false;
-        };
+    /// Writes equation `i`'s changing parts (see [`SimState::sync_math`]).
+    fn write_equation(&mut self, i: usize, parts: (String, String, String)) {
         if let Some(block) = query(&self.panel, &format!("[data-equation=\"{i}\"]")) {
             if let Some(numbers) = query(&block, ".equation-numbers") {
-                numbers.set_inner_html(&parts.0);
+                dom::rewrite_markup(&numbers, &parts.0);
             }
             if let Some(result) = query(&block, ".equation-result") {
-                result.set_inner_html(&format!("= {}", parts.1));
+                dom::rewrite_markup(&result, &format!("= {}", parts.1));
             }
             if let Some(text) = query(&block, ".equation-text") {
-                text.set_inner_html(&parts.2);
+                dom::rewrite_markup(&text, &parts.2);
             }
         }
-        if let Some(shown) = self.shown_math.get_mut(i) {
-            *shown = parts;
-        }
-        true
+        self.shown_math[i] = parts;
     }
 
     /// Whether "The math" panel is in the window now (read with the plots'
