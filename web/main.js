@@ -188,8 +188,34 @@ window.labShowArticle = function showArticle(article, tab) {
 // text that changed is rewritten in place. "The math" panel writes a running
 // simulation's numbers with it (labweb's `dom::rewrite_markup`): only the
 // numbers' text is laid out and repainted, not formulas parsed anew.
-// Self-contained, like labShowArticle (the wasm's test pages run this text).
+// Markup with the very tags of the last write, whose texts the parser took
+// as they are (checked at that write), needs no parse: its texts go to the
+// same text nodes. Self-contained, like labShowArticle (the wasm's test
+// pages run this text).
+const shapeOf = new WeakMap();
 window.labRewriteMarkup = function rewriteMarkup(el, html) {
+  const tags = html.match(/<[^>]*>/g)?.join("") ?? "";
+  const named = { amp: "&", lt: "<", gt: ">", quot: '"' };
+  const runs = html
+    .split(/<[^>]*>/)
+    .filter((t) => t !== "")
+    .map((t) =>
+      t.replace(/&(?:#x([\da-f]+)|#(\d+)|(amp|lt|gt|quot));/gi, (_, hex, dec, name) =>
+        name ? named[name.toLowerCase()] : String.fromCodePoint(hex ? Number.parseInt(hex, 16) : Number(dec)),
+      ),
+    );
+  const texts = [];
+  const textsOf = () => {
+    const walk = document.createTreeWalker(el, NodeFilter.SHOW_TEXT);
+    while (walk.nextNode()) texts.push(walk.currentNode);
+    return texts;
+  };
+  if (shapeOf.get(el) === tags && !runs.some((t) => t.includes("&")) && textsOf().length === runs.length) {
+    runs.forEach((t, i) => {
+      if (texts[i].data !== t) texts[i].data = t;
+    });
+    return;
+  }
   const parsed = document.createElement("template");
   parsed.innerHTML = html;
   const attributes = (node) => [...(node.attributes ?? [])].map((a) => `${a.name}=${a.value}`).join("\n");
@@ -207,6 +233,10 @@ window.labRewriteMarkup = function rewriteMarkup(el, html) {
     }
   };
   keep(el, parsed.content);
+  texts.length = 0;
+  const exact = textsOf().length === runs.length && texts.every((n, i) => n.data === runs[i]);
+  if (exact) shapeOf.set(el, tags);
+  else shapeOf.delete(el);
 };
 // labRewriteMarkup: end
 const showStatic = window.labShowArticle;

@@ -448,6 +448,57 @@ fn a_number_that_changes_sign_rewrites_only_its_term() {
     assert_numbers_are_their_twins();
 }
 
+/// `dom::rewrite_markup` (main.js's `labRewriteMarkup`) leaves what
+/// `innerHTML` would, whatever came before: the same tags with other texts
+/// (entities among them, the shape's fast path), another shape, another
+/// attribute, a text that became empty, a reference it does not decode, an
+/// element's text that gains a `<`.
+#[wasm_bindgen_test]
+fn rewriting_markup_in_place_leaves_what_inner_html_would() {
+    let document = web_sys::window().unwrap().document().unwrap();
+    let kept = document.create_element("div").unwrap();
+    let fresh = document.create_element("div").unwrap();
+    let term = |n: &str| {
+        format!(
+            "<span class=\"eq-part\"><math><mo>=</mo><mn>{n}</mn><mo>&#x2061;</mo><mi>cos</mi></math></span> <span>m</span>"
+        )
+    };
+    let steps = [
+        term("1.00"),
+        term("1.25"),
+        term("&lt;2"),
+        term("3&#955;"),
+        term(""),
+        term("4"),
+        term("5&nbsp;6"),
+        term("7&amp;8"),
+        term("9"),
+        "<span class=\"eq-part\"><math><mo>(</mo><mn>-1</mn><mo>)</mo></math></span> <span>m</span>".into(),
+        "<span class=\"other\"><math><mo>(</mo><mn>-2</mn><mo>)</mo></math></span> <span>m</span>".into(),
+        "plain text &quot;q&quot; &#39;".into(),
+        "plain text again".into(),
+        String::new(),
+        term("10"),
+    ];
+    for (i, html) in steps.iter().enumerate() {
+        let numbers_before = kept.query_selector("mn").unwrap();
+        labweb::dom::rewrite_markup(&kept, html);
+        fresh.set_inner_html(html);
+        assert_eq!(kept.inner_html(), fresh.inner_html(), "step {i}: {html}");
+        if i == 1 || i == 8 {
+            let numbers_after = kept.query_selector("mn").unwrap();
+            assert!(
+                numbers_after.is_some()
+                    && numbers_after
+                        .as_ref()
+                        .unwrap()
+                        .is_same_node(numbers_before.as_ref().map(|n| n.as_ref())),
+                "step {i}: the number's element is kept"
+            );
+        }
+    }
+}
+
 /// Runs `frames` frames of the mounted simulation, checking after each that
 /// every term of "The math" that kept its shape (its elements' names in
 /// order) kept its elements. Returns how many terms changed their numbers
