@@ -267,6 +267,11 @@ struct SimState {
     /// "The math" panel's changing parts as last written, an entry per
     /// equation: the substituted form, the result and the text twin.
     shown_math: Vec<(String, String, String)>,
+    /// Equations a streaming run's text update left to write, with their
+    /// parts as of that update: written one a frame in the frames after it
+    /// ([`SimState::write_next_equation`]), so no frame lays out the
+    /// readouts and every formula together.
+    math_pending: Vec<(usize, (String, String, String))>,
     /// Which equations the panel was written for (the slice's address): a
     /// parameter may choose another set (pid's actuator limit).
     shown_equations: usize,
@@ -530,6 +535,8 @@ impl SimState {
             self.with_shown_plots(|view, plots, _| view.sync_text(plots, time_ms, at_once));
             self.text_ms = time_ms;
             self.text_stale = false;
+        } else {
+            self.write_next_equation();
         }
         self.sync_marks();
         if self.jumped {
@@ -798,6 +805,7 @@ impl SimView {
             shown_hint: None,
             shown_tables: Vec::new(),
             shown_math: Vec::new(),
+            math_pending: Vec::new(),
             shown_equations: equations,
             math_on_screen: true,
             text_at_once: true,
@@ -1030,6 +1038,7 @@ impl SimView {
         let mut st = self.state.borrow_mut();
         st.bench_math_closed = !open;
         st.shown_math.clear();
+        st.math_pending.clear();
         let Some(section) = query(&st.panel, ".live-math") else {
             return false;
         };
