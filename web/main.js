@@ -193,24 +193,21 @@ window.labShowArticle = function showArticle(article, tab) {
 // same text nodes. Self-contained, like labShowArticle (the wasm's test
 // pages run this text).
 const shapeOf = new WeakMap();
+const entities = document.createElement("textarea");
 window.labRewriteMarkup = function rewriteMarkup(el, html) {
   const tags = html.match(/<[^>]*>/g)?.join("") ?? "";
-  const named = { amp: "&", lt: "<", gt: ">", quot: '"' };
+  // The texts between the tags, with their character references decoded.
   const runs = html
     .split(/<[^>]*>/)
-    .filter((t) => t !== "")
-    .map((t) =>
-      t.replace(/&(?:#x([\da-f]+)|#(\d+)|(amp|lt|gt|quot));/gi, (_, hex, dec, name) =>
-        name ? named[name.toLowerCase()] : String.fromCodePoint(hex ? Number.parseInt(hex, 16) : Number(dec)),
-      ),
-    );
+    .filter((t) => t)
+    .map((t) => (t.includes("&") ? ((entities.innerHTML = t), entities.value) : t));
   const texts = [];
   const textsOf = () => {
     const walk = document.createTreeWalker(el, NodeFilter.SHOW_TEXT);
     while (walk.nextNode()) texts.push(walk.currentNode);
-    return texts;
+    return texts.length === runs.length;
   };
-  if (shapeOf.get(el) === tags && !runs.some((t) => t.includes("&")) && textsOf().length === runs.length) {
+  if (shapeOf.get(el) === tags && textsOf()) {
     runs.forEach((t, i) => {
       if (texts[i].data !== t) texts[i].data = t;
     });
@@ -234,8 +231,7 @@ window.labRewriteMarkup = function rewriteMarkup(el, html) {
   };
   keep(el, parsed.content);
   texts.length = 0;
-  const exact = textsOf().length === runs.length && texts.every((n, i) => n.data === runs[i]);
-  if (exact) shapeOf.set(el, tags);
+  if (textsOf() && texts.every((n, i) => n.data === runs[i])) shapeOf.set(el, tags);
   else shapeOf.delete(el);
 };
 // labRewriteMarkup: end
