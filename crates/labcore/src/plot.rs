@@ -3,8 +3,14 @@
 //! data table and exports CSV.
 //!
 //! A [`Plot`] keeps its full data ([`Series`] are never decimated here); the
-//! page draws at most a few points per pixel column with [`decimate_min_max`]
-//! and exports everything with [`Plot::to_csv`].
+//! page draws a dense series as one rectangle per pixel column with
+//! [`column_spans`], the lab report's SVG at most a few points per column
+//! with [`decimate_min_max`], and both export everything with
+//! [`Plot::to_csv`].
+
+mod columns;
+
+pub use columns::{column_spans, dash_is_on};
 
 use crate::units::format_number;
 

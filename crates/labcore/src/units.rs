@@ -341,6 +341,14 @@ pub fn parse_number(text: &str) -> Option<f64> {
     read_number(text).ok().map(|r| r.value)
 }
 
+/// 10^`k`, correctly rounded (`10f64.powf(k)` may be an ulp off), read from its
+/// decimal text: the page's float parser is in every wasm module already,
+/// where `powf` would add libm's `pow` (about 1 KB gzip) to it.
+#[must_use]
+pub fn power_of_ten(k: i32) -> f64 {
+    format!("1e{k}").parse().unwrap_or(f64::NAN)
+}
+
 /// Formats with at most `decimals` places, trailing zeros trimmed, `-0` as `0`.
 #[must_use]
 pub fn format_number(value: f64, decimals: usize) -> String {
@@ -447,6 +455,24 @@ pub fn format_point(p: DVec2) -> String {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn power_of_ten_is_powf_of_ten_for_every_finite_decade() {
+        // Exact where 10^k is a double (k ≤ 22), and within an ulp of powf
+        // everywhere (powf itself may be an ulp off).
+        for k in 0..=22u32 {
+            assert_eq!(power_of_ten(k as i32), 10u128.pow(k) as f64, "10^{k}");
+        }
+        for k in -307..=308 {
+            let (p, q) = (power_of_ten(k), 10f64.powf(f64::from(k)));
+            assert!(
+                (p - q).abs() <= p * f64::EPSILON,
+                "10^{k}: {p:e} against {q:e}"
+            );
+        }
+        assert_eq!(power_of_ten(400), f64::INFINITY);
+        assert_eq!(power_of_ten(-400), 0.0);
+    }
+
     use super::*;
 
     /// Hand-computed: the binary value nearest 9.995 is 9.99499999999999921840…,

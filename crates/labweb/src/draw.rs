@@ -585,7 +585,7 @@ const EDGE_INSET_PX: f64 = 14.0;
 #[must_use]
 pub fn scale_bar_m(scale_px_per_m: f64, max_px: f64) -> f64 {
     let limit_m = max_px / scale_px_per_m.max(1e-12);
-    let decade = 10f64.powf(limit_m.log10().floor());
+    let decade = labcore::units::power_of_ten(limit_m.log10().floor() as i32);
     [5.0, 2.0, 1.0]
         .iter()
         .map(|f| f * decade)
