@@ -239,7 +239,7 @@ impl<'a> Writer<'a> {
                 self.expr(a, 2);
                 // Symbols multiply by juxtaposition (L₁ cos θ₁); numbers need a dot.
                 if self.form == Form::Symbols {
-                    self.put("<mo>&#x2062;</mo>", " ");
+                    self.put("<mo>\u{2062}</mo>", " ");
                 } else {
                     self.put("<mo>·</mo>", "·");
                 }
@@ -266,9 +266,9 @@ impl<'a> Writer<'a> {
                 // A thin space after the name, as TeX sets `\cos\theta`
                 // (browsers add none for the function-application operator).
                 if precedence(a) >= 4 {
-                    self.put("<mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace>", " ");
+                    self.put("<mo>\u{2061}</mo><mspace width=\"0.1667em\"></mspace>", " ");
                 } else {
-                    self.put("<mo>&#x2061;</mo>", " ");
+                    self.put("<mo>\u{2061}</mo>", " ");
                 }
                 self.expr(a, 4);
             }
@@ -284,7 +284,7 @@ impl<'a> Writer<'a> {
             }
             Expr::Acos(a) => {
                 self.token("mi", "arccos");
-                self.put("<mo>&#x2061;</mo><mo>(</mo>", "(");
+                self.put("<mo>\u{2061}</mo><mo>(</mo>", "(");
                 self.expr(a, 0);
                 self.put("<mo>)</mo>", ")");
             }
@@ -385,10 +385,10 @@ mod tests {
         let html = panel_html(&[EQ], &quantities(35.0), &readouts);
         assert!(html.contains("<h3 id=\"live-math-title\">The math</h3>"));
         assert!(html.contains(
-            "<mi>x</mi><mo>=</mo><mrow data-live=\"l\" tabindex=\"0\"><msub><mi>L</mi><mn>1</mn></msub></mrow><mo>&#x2062;</mo><mi>cos</mi>"
+            "<mi>x</mi><mo>=</mo><mrow data-live=\"l\" tabindex=\"0\"><msub><mi>L</mi><mn>1</mn></msub></mrow><mo>\u{2062}</mo><mi>cos</mi>"
         ));
         assert!(html
-            .contains("<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn><mo>·</mo><mi>cos</mi><mo>&#x2061;</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math>"));
+            .contains("<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn><mo>·</mo><mi>cos</mi><mo>\u{2061}</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math>"));
         assert!(html.contains("= 0.819 m"));
         assert!(html.contains("x = L1 cos θ1 = 1.00·cos 35° = 0.819 m"));
     }
