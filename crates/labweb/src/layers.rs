@@ -341,10 +341,15 @@ pub(crate) fn paint_segment_layer(
         let plan = layer.plan(since.as_ref());
         let mut dirty = Dirty::EMPTY;
         if plan.is_full() || cache.counts.len() != w * h {
-            cache.counts.clear();
-            cache.counts.resize(w * h, 0);
-            cache.rgba.clear();
-            cache.rgba.resize(w * h * 4, 0);
+            // Zeroed as whole slices (one `memory.fill` each): `resize`
+            // after `clear` wrote them element by element.
+            if cache.counts.len() == w * h {
+                cache.counts.fill(0);
+                cache.rgba.fill(0);
+            } else {
+                cache.counts = vec![0; w * h];
+                cache.rgba = vec![0; w * h * 4];
+            }
             if cache.canvas.width() != w as u32 || cache.canvas.height() != h as u32 {
                 cache.canvas.set_width(w as u32);
                 cache.canvas.set_height(h as u32);
