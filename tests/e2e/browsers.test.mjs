@@ -237,93 +237,111 @@ function inkBox(image, blank, rect) {
 async function accentInk(b, id) {
   const out = [];
   for (let k = 0; k < 4; k++) {
-    const scrolled = await b.evaluate(
-      (x, i) => {
-        const art = document.querySelector(`article.exp[data-experiment="${x}"]:not([hidden])`);
-        const maths = [];
-        for (const m of art.querySelectorAll("[role=tabpanel]:not([hidden]) mover")) {
-          const math = m.closest("math");
-          if (!maths.includes(math)) maths.push(math);
-        }
-        const math = maths[i];
-        if (!math) return null;
-        math.scrollIntoView({ block: "center" });
-        return 1;
-      },
-      id,
-      k,
-    );
-    if (!scrolled) break;
-    // The page may still move (a new page's focus): measure once it stands
-    // still. A stays-still wait of two frames and 150 ms, on purpose: the
-    // drivers of Firefox and WebKit offer no scroll-end event to await.
-    await b.evaluate(() => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(() => ok(1), 150)))));
-    const movers = await b.evaluate(
-      (x, i) => {
-        const art = document.querySelector(`article.exp[data-experiment="${x}"]:not([hidden])`);
-        const maths = [];
-        for (const m of art.querySelectorAll("[role=tabpanel]:not([hidden]) mover")) {
-          const math = m.closest("math");
-          if (!maths.includes(math)) maths.push(math);
-        }
-        const math = maths[i];
-        math.scrollIntoView({ block: "center" });
-        const k = devicePixelRatio;
-        return [...math.querySelectorAll("mover")].map((m) => {
-          const r = m.getBoundingClientRect();
-          const em = Number.parseFloat(getComputedStyle(m).fontSize);
-          // Room above for an accent drawn too high, and to each side.
-          return {
-            text: m.textContent,
-            em: em * k,
-            rect: { x: (r.x - 0.4 * em) * k, y: (r.y - 1.2 * em) * k, width: (r.width + 0.8 * em) * k, height: (r.height + 1.2 * em) * k },
-          };
-        });
-      },
-      id,
-      k,
-    );
-    const hide = (part) =>
-      b.evaluate((x, i, p) => {
-        const art = document.querySelector(`article.exp[data-experiment="${x}"]:not([hidden])`);
-        const maths = [];
-        for (const m of art.querySelectorAll("[role=tabpanel]:not([hidden]) mover")) {
-          const math = m.closest("math");
-          if (!maths.includes(math)) maths.push(math);
-        }
-        // Everything of the formula but the part looked at is hidden.
-        const math = maths[i];
-        for (const el of math.querySelectorAll("*")) el.style.visibility = p === "" ? "" : "hidden";
-        for (const m of math.querySelectorAll("mover")) {
-          const keep = p === "base" ? m.firstElementChild : p === "accent" ? m.lastElementChild : null;
-          if (keep) for (const el of [keep, ...keep.querySelectorAll("*")]) el.style.visibility = "visible";
-        }
-        // Two frames and a little more (a stays-still wait, on purpose):
-        // WebKitGTK's screenshot can show the frame before, and nothing in
-        // the page says when the screenshot has caught up.
-        return new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(() => ok(1), 150))));
-      }, id, k, part);
-    await hide("none");
-    const blank = await b.screenshot();
-    await hide("base");
-    const bases = await b.screenshot();
-    await hide("accent");
-    const accents = await b.screenshot();
-    await hide("");
-    for (const m of movers) {
-      const base = inkBox(bases, blank, m.rect);
-      const accent = inkBox(accents, blank, m.rect);
-      if (!base || !accent) {
-        out.push({ text: m.text, missing: !base ? "letter" : "accent" });
-        continue;
-      }
-      const round = (v) => Math.round(v * 100) / 100;
-      out.push({
-        text: m.text,
-        gap: round((base.top - accent.bottom) / m.em),
-        shift: round(((accent.left + accent.right) / 2 - (base.left + base.right) / 2) / m.em),
-      });
+    // A formula measured wrong is measured again, up to three times in all:
+    // under load Firefox's screenshot can still show the frame before the
+    // parts were hidden (a letter "missing" in CI once, at stop 35), which
+    // passes on a second look; an accent really drawn astray stays astray.
+    let found = null;
+    for (let attempt = 0; attempt < ACCENT_ATTEMPTS; attempt++) {
+      found = await accentInkOfFormula(b, id, k);
+      if (!found || !found.some(accentAstray)) break;
+      console.log(`# ${b.name} ${id} formula ${k}: measured again after ${JSON.stringify(found.filter(accentAstray))}`);
     }
+    if (!found) break;
+    out.push(...found);
+  }
+  return out;
+}
+
+/** The accents of `id`'s k-th formula with accents (see `accentInk`), or null when there is none. */
+async function accentInkOfFormula(b, id, k) {
+  const out = [];
+  const scrolled = await b.evaluate(
+    (x, i) => {
+      const art = document.querySelector(`article.exp[data-experiment="${x}"]:not([hidden])`);
+      const maths = [];
+      for (const m of art.querySelectorAll("[role=tabpanel]:not([hidden]) mover")) {
+        const math = m.closest("math");
+        if (!maths.includes(math)) maths.push(math);
+      }
+      const math = maths[i];
+      if (!math) return null;
+      math.scrollIntoView({ block: "center" });
+      return 1;
+    },
+    id,
+    k,
+  );
+  if (!scrolled) return null;
+  // The page may still move (a new page's focus): measure once it stands
+  // still. A stays-still wait of two frames and 150 ms, on purpose: the
+  // drivers of Firefox and WebKit offer no scroll-end event to await.
+  await b.evaluate(() => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(() => ok(1), 150)))));
+  const movers = await b.evaluate(
+    (x, i) => {
+      const art = document.querySelector(`article.exp[data-experiment="${x}"]:not([hidden])`);
+      const maths = [];
+      for (const m of art.querySelectorAll("[role=tabpanel]:not([hidden]) mover")) {
+        const math = m.closest("math");
+        if (!maths.includes(math)) maths.push(math);
+      }
+      const math = maths[i];
+      math.scrollIntoView({ block: "center" });
+      const k = devicePixelRatio;
+      return [...math.querySelectorAll("mover")].map((m) => {
+        const r = m.getBoundingClientRect();
+        const em = Number.parseFloat(getComputedStyle(m).fontSize);
+        // Room above for an accent drawn too high, and to each side.
+        return {
+          text: m.textContent,
+          em: em * k,
+          rect: { x: (r.x - 0.4 * em) * k, y: (r.y - 1.2 * em) * k, width: (r.width + 0.8 * em) * k, height: (r.height + 1.2 * em) * k },
+        };
+      });
+    },
+    id,
+    k,
+  );
+  const hide = (part) =>
+    b.evaluate((x, i, p) => {
+      const art = document.querySelector(`article.exp[data-experiment="${x}"]:not([hidden])`);
+      const maths = [];
+      for (const m of art.querySelectorAll("[role=tabpanel]:not([hidden]) mover")) {
+        const math = m.closest("math");
+        if (!maths.includes(math)) maths.push(math);
+      }
+      // Everything of the formula but the part looked at is hidden.
+      const math = maths[i];
+      for (const el of math.querySelectorAll("*")) el.style.visibility = p === "" ? "" : "hidden";
+      for (const m of math.querySelectorAll("mover")) {
+        const keep = p === "base" ? m.firstElementChild : p === "accent" ? m.lastElementChild : null;
+        if (keep) for (const el of [keep, ...keep.querySelectorAll("*")]) el.style.visibility = "visible";
+      }
+      // Two frames and a little more (a stays-still wait, on purpose):
+      // WebKitGTK's screenshot can show the frame before, and nothing in
+      // the page says when the screenshot has caught up.
+      return new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(() => ok(1), 150))));
+    }, id, k, part);
+  await hide("none");
+  const blank = await b.screenshot();
+  await hide("base");
+  const bases = await b.screenshot();
+  await hide("accent");
+  const accents = await b.screenshot();
+  await hide("");
+  for (const m of movers) {
+    const base = inkBox(bases, blank, m.rect);
+    const accent = inkBox(accents, blank, m.rect);
+    if (!base || !accent) {
+      out.push({ text: m.text, missing: !base ? "letter" : "accent" });
+      continue;
+    }
+    const round = (v) => Math.round(v * 100) / 100;
+    out.push({
+      text: m.text,
+      gap: round((base.top - accent.bottom) / m.em),
+      shift: round(((accent.left + accent.right) / 2 - (base.left + base.right) / 2) / m.em),
+    });
   }
   return out;
 }
@@ -394,6 +412,10 @@ const ACCENT_PAGES = ["cartpole", "ekf"];
 /** Most an accent's ink may float above its letter's, and be off its centre (em). */
 const GAP_MAX_EM = 0.45;
 const SHIFT_MAX_EM = 0.3;
+/** How many times one formula's accents are measured before a wrong measurement stands. */
+const ACCENT_ATTEMPTS = 3;
+/** Whether an accent measured by `accentInk` is missing, or away from its letter. */
+const accentAstray = (a) => a.missing || a.gap > GAP_MAX_EM || a.gap < 0 || Math.abs(a.shift) > SHIFT_MAX_EM;
 /** Crops of each accent page per browser, for the side-by-side picture. */
 const accentPictures = {};
 
@@ -477,7 +499,7 @@ for (const [name, launch, available] of [
         // Kept for the side-by-side picture, also when the check below fails.
         accentPictures[id] ??= {};
         accentPictures[id][b.name] = await accentCrops(b, id);
-        const astray = ink.filter((a) => a.missing || a.gap > GAP_MAX_EM || a.gap < 0 || Math.abs(a.shift) > SHIFT_MAX_EM);
+        const astray = ink.filter(accentAstray);
         assert.deepEqual(astray, [], `${id}: accents away from their letter`);
         assert.deepEqual(await b.problems(), [], `${id}: the page reported problems`);
       });
@@ -498,7 +520,7 @@ test("accents side by side in Chromium, Firefox and WebKit", { skip: ids.length 
       for (const [browser, image] of Object.entries(shots)) save(`browsers-accents-${id}-${browser}`, enlarged(image));
       // Left to right: Chromium, Firefox, WebKit.
       save(`browsers-accents-${id}`, enlarged(sideBySide(Object.values(shots), 24)));
-      const astray = ink.filter((a) => a.missing || a.gap > GAP_MAX_EM || a.gap < 0 || Math.abs(a.shift) > SHIFT_MAX_EM);
+      const astray = ink.filter(accentAstray);
       assert.deepEqual(astray, [], `${id}: accents away from their letter in Chromium`);
     }
   } finally {
