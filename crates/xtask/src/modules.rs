@@ -154,6 +154,8 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
     // XTASK_BENCH_EXPORTS=1 (`cargo xtask bench --browser`) adds the paint
     // benchmarks' exports to every module; shipped modules go without.
     let bench_exports = std::env::var_os(BENCH_EXPORTS_VAR).is_some();
+    let profile_names = std::env::var("XTASK_WASM_OPT")
+        .is_ok_and(|level| level.split_whitespace().any(|flag| flag == "-g"));
     let parts: Vec<(&'static str, Vec<&'static str>)> = if per_experiment {
         CATALOGUE
             .iter()
@@ -208,6 +210,9 @@ pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
             // The library defaults this to `true` (the CLI to `false`): without the
             // default URL, `init()` has nothing to fetch (TOOLCHAIN.md, trap 2).
             .omit_default_module_path(false)
+            // Names kept for a profile (`XTASK_WASM_OPT="-O3 -g"`): without
+            // this wasm-bindgen drops the name section before wasm-opt sees it.
+            .keep_debug(profile_names)
             .generate(&glue_dir)
             .map_err(|e| format!("wasm-bindgen on {}: {e:#}", input.display()))?;
         // wasm-opt and the minifier run beside the next module's cargo
