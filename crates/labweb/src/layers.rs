@@ -38,8 +38,11 @@ pub struct Counters {
     pub segments_drawn: u64,
     /// Segments erased from kept segment layers (rewired edges).
     pub segments_erased: u64,
-    /// Kept segment layers redrawn from scratch.
+    /// Kept segment layers redrawn from scratch (without coverage counts).
     pub full_redraws: u64,
+    /// Kept segment layers redrawn from scratch with coverage counts, for
+    /// an erase after a full redraw that did not count.
+    pub recounts: u64,
     /// Uploads of segment-layer pixels to their canvas (`putImageData`).
     pub layer_uploads: u64,
     /// Pixels uploaded by those (the dirty rectangles' areas).
@@ -57,6 +60,7 @@ thread_local! {
         segments_drawn: 0,
         segments_erased: 0,
         full_redraws: 0,
+        recounts: 0,
         layer_uploads: 0,
         layer_upload_px: 0,
         raster_uploads: 0,
@@ -111,7 +115,12 @@ struct SegmentKey {
 struct SegmentCache {
     key: SegmentKey,
     mark: Option<LayerMark>,
+    /// Coverage per device pixel; meaningful only while `counted`.
     counts: Vec<u32>,
+    /// Whether `counts` hold the picture's coverage. A full redraw lights
+    /// its pixels without counting (a scrub redraws in full every frame and
+    /// never erases); the first plan that erases draws again, counting.
+    counted: bool,
     rgba: Vec<u8>,
     canvas: HtmlCanvasElement,
     ctx: CanvasRenderingContext2d,
@@ -235,6 +244,15 @@ impl Dirty {
     }
 }
 
+/// `buffer` as `len` zeros, in place when it has that length already.
+fn zeroed<T: Copy + Default>(buffer: &mut Vec<T>, len: usize) {
+    if buffer.len() == len {
+        buffer.fill(T::default());
+    } else {
+        *buffer = vec![T::default(); len];
+    }
+}
+
 /// A coverage-counted RGBA image that segments are drawn into and erased from.
 struct Coverage<'a> {
     counts: &'a mut [u32],
@@ -243,6 +261,8 @@ struct Coverage<'a> {
     h: usize,
     pixel: [u8; 4],
     thick: bool,
+    /// Counting coverage (needed to erase); otherwise a draw only lights.
+    counting: bool,
     dirty: Dirty,
 }
 
@@ -252,6 +272,11 @@ impl Coverage<'_> {
             return;
         }
         let i = y as usize * self.w + x as usize;
+        if !self.counting {
+            debug_assert!(draw, "an erase without coverage counts");
+            self.rgba[i * 4..i * 4 + 4].copy_from_slice(&self.pixel);
+            return;
+        }
         let c = &mut self.counts[i];
         if draw {
             *c += 1;
@@ -331,6 +356,7 @@ pub(crate) fn paint_segment_layer(
                     key,
                     mark: None,
                     counts: Vec::new(),
+                    counted: false,
                     rgba: Vec::new(),
                     canvas,
                     ctx: octx,
@@ -338,17 +364,28 @@ pub(crate) fn paint_segment_layer(
             }
         };
         let since = cache.mark.filter(|_| cache.key == key);
-        let plan = layer.plan(since.as_ref());
+        let mut plan = layer.plan(since.as_ref());
+        let mut full = plan.is_full() || cache.rgba.len() != w * h * 4;
+        let counting = if full {
+            false
+        } else if cache.counted || !plan.erases() {
+            cache.counted
+        } else {
+            // An erase needs the counts the last full redraw skipped.
+            plan = layer.plan(None);
+            full = true;
+            count(|c| c.recounts += 1);
+            true
+        };
         let mut dirty = Dirty::EMPTY;
-        if plan.is_full() || cache.counts.len() != w * h {
+        if full {
             // Zeroed as whole slices (one `memory.fill` each): `resize`
             // after `clear` wrote them element by element.
-            if cache.counts.len() == w * h {
-                cache.counts.fill(0);
-                cache.rgba.fill(0);
+            zeroed(&mut cache.rgba, w * h * 4);
+            if counting {
+                zeroed(&mut cache.counts, w * h);
             } else {
-                cache.counts = vec![0; w * h];
-                cache.rgba = vec![0; w * h * 4];
+                count(|c| c.full_redraws += 1);
             }
             if cache.canvas.width() != w as u32 || cache.canvas.height() != h as u32 {
                 cache.canvas.set_width(w as u32);
@@ -356,8 +393,8 @@ pub(crate) fn paint_segment_layer(
             }
             dirty.add(0, 0);
             dirty.add(w as i64 - 1, h as i64 - 1);
-            count(|c| c.full_redraws += 1);
         }
+        cache.counted = counting;
         let (mut drawn, mut erased) = (0u64, 0u64);
         {
             let mut cover = Coverage {
@@ -367,6 +404,7 @@ pub(crate) fn paint_segment_layer(
                 h,
                 pixel: key.pixel,
                 thick: key.thick,
+                counting,
                 dirty,
             };
             let to_px = |p: DVec2| viewport.to_px(p) * dpr;
@@ -385,15 +423,18 @@ pub(crate) fn paint_segment_layer(
             dirty = cover.dirty;
         }
         if let Some((x, y, dw, dh)) = dirty.rect(w, h) {
+            // Only the dirty rows are copied out of wasm memory (the image
+            // is built from a copy of its bytes): a frame that grows a tree
+            // by a few edges copied the whole picture before.
             if let Ok(image) = web_sys::ImageData::new_with_u8_clamped_array_and_sh(
-                wasm_bindgen::Clamped(&cache.rgba),
+                wasm_bindgen::Clamped(&cache.rgba[y * w * 4..(y + dh) * w * 4]),
                 w as u32,
-                h as u32,
+                dh as u32,
             ) {
                 let _ = cache
                     .ctx
                     .put_image_data_with_dirty_x_and_dirty_y_and_dirty_width_and_dirty_height(
-                        &image, 0.0, 0.0, x as f64, y as f64, dw as f64, dh as f64,
+                        &image, 0.0, y as f64, x as f64, 0.0, dw as f64, dh as f64,
                     );
                 count(|c| {
                     c.layer_uploads += 1;

@@ -224,8 +224,22 @@ fn kept_layers_paint_the_pixels_of_a_full_redraw() {
     }
     let c = counters();
     assert!(c.segments_erased >= 30 * 25, "rewires are erased: {c:?}");
-    // The first frame, the zoom in and the zoom out.
-    assert_eq!(c.full_redraws, 3, "{c:?}");
+    // The first frame, the zoom in and the zoom out; each is drawn again,
+    // counting coverage, at the next frame's first erase.
+    assert_eq!((c.full_redraws, c.recounts), (3, 3), "{c:?}");
+    assert_same_as_full_redraw(&kept_ctx, &full_ctx, &parts, &layer, &palette);
+}
+
+/// Paints `parts`' raster and all of `layer`'s segments from scratch on
+/// `full_ctx` (the plain painter) and asserts that `kept_ctx` shows the same
+/// pixels, and not a blank picture.
+fn assert_same_as_full_redraw(
+    kept_ctx: &CanvasRenderingContext2d,
+    full_ctx: &CanvasRenderingContext2d,
+    parts: &labweb::BigScene,
+    layer: &SegmentLayer,
+    palette: &Palette,
+) {
     let mut full = Scene::default();
     full.push(Item::Raster {
         min: DVec2::ZERO,
@@ -240,14 +254,83 @@ fn kept_layers_paint_the_pixels_of_a_full_redraw() {
         width_px: 0.6,
         role: Role::Path,
     });
-    paint(&full_ctx, &full, &viewport(), W, H, 1.0, &palette);
-    let (k, f) = (pixels(&kept_ctx), pixels(&full_ctx));
+    paint(full_ctx, &full, &viewport(), W, H, 1.0, palette);
+    let (k, f) = (pixels(kept_ctx), pixels(full_ctx));
     let differ = k.chunks(4).zip(f.chunks(4)).filter(|(a, b)| a != b).count();
     assert_eq!(differ, 0, "pixels that differ from a full redraw");
     assert!(
         f.chunks(4).any(|p| p != &f[0..4]),
         "the picture is not blank"
     );
+}
+
+/// A scrub shows a different layer every frame (a state restored from the
+/// timeline is a copy, with its own identity), so every frame is a full
+/// redraw, and none of them counts coverage: only erasing needs the counts.
+/// The first frame that erases after them draws once more, counting, and
+/// the picture stays the one a full redraw makes.
+#[wasm_bindgen_test]
+fn a_scrub_redraws_without_coverage_counts_and_the_first_erase_after_it_counts_once() {
+    let (_a, kept_ctx, palette) = setup("layers-scrub");
+    let (_b, full_ctx) = canvas("layers-scrub-full");
+    let parts = labweb::big_scene_parts();
+    let mut rng = labcore::Lcg64::new(5);
+    let mut layer = SegmentLayer::new();
+    for frame in 0..6 {
+        let len = 2_000 + (rng.next_f64() * 18_000.0) as usize;
+        layer = SegmentLayer::from_segments(parts.tree.segments[..len].to_vec());
+        paint(
+            &kept_ctx,
+            &kept(&parts, &layer, 1),
+            &viewport(),
+            W,
+            H,
+            1.0,
+            &palette,
+        );
+        assert_eq!(counters().full_redraws, frame + 1, "frame {frame}");
+    }
+    for _ in 0..3 {
+        // Run on from the last moment scrubbed to: grow and rewire.
+        layer.push(parts.tree.segments[layer.len()]);
+        for _ in 0..20 {
+            let slot = (rng.next_f64() * layer.len() as f64) as usize;
+            let (a, _) = layer.segments()[slot];
+            let other = layer.segments()[(rng.next_f64() * layer.len() as f64) as usize].1;
+            layer.set(slot, (a, other));
+        }
+        paint(
+            &kept_ctx,
+            &kept(&parts, &layer, 1),
+            &viewport(),
+            W,
+            H,
+            1.0,
+            &palette,
+        );
+    }
+    let c = counters();
+    assert_eq!((c.full_redraws, c.recounts), (6, 1), "{c:?}");
+    assert!(
+        c.segments_erased >= 2 * 15,
+        "the later rewires are erased: {c:?}"
+    );
+    // One short edge in the middle: only its rows go up, at their place.
+    reset_counters();
+    layer.push((DVec2::new(40.0, 40.0), DVec2::new(46.0, 43.0)));
+    paint(
+        &kept_ctx,
+        &kept(&parts, &layer, 1),
+        &viewport(),
+        W,
+        H,
+        1.0,
+        &palette,
+    );
+    let c = counters();
+    assert_eq!((c.layer_uploads, c.segments_drawn), (1, 1), "{c:?}");
+    assert!(c.layer_upload_px < (W * H / 100.0) as u64, "{c:?}");
+    assert_same_as_full_redraw(&kept_ctx, &full_ctx, &parts, &layer, &palette);
 }
 
 /// A small layer (a tree's first batches) is kept too: its first frame draws

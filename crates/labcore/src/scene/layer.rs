@@ -172,6 +172,18 @@ impl LayerPlan<'_> {
             .chain(appended.iter().map(|s| LayerOp::Draw(*s)))
     }
 
+    /// True when the plan erases a segment: it rewrites a slot the painter
+    /// had drawn. Only an erase needs the painter's coverage counts.
+    #[must_use]
+    pub fn erases(&self) -> bool {
+        match *self {
+            LayerPlan::Full(_) => false,
+            LayerPlan::Incremental {
+                drawn, rewrites, ..
+            } => rewrites.iter().any(|r| (r.slot as usize) < drawn),
+        }
+    }
+
     /// How many segments the plan draws (strokes), erasures not counted.
     #[must_use]
     pub fn draws(&self) -> usize {
@@ -445,6 +457,30 @@ mod tests {
                 // Slot 20 was never drawn: only its current segment.
                 LayerOp::Draw(c),
             ]
+        );
+        assert!(layer.plan(Some(&mark)).erases());
+    }
+
+    #[test]
+    fn only_a_rewrite_of_a_drawn_slot_makes_a_plan_erase() {
+        let a = (DVec2::ZERO, DVec2::X);
+        let b = (DVec2::ZERO, DVec2::Y);
+        let mut layer = SegmentLayer::from_segments(vec![a; 4]);
+        assert!(!layer.plan(None).erases(), "a full redraw only draws");
+        let mark = layer.mark();
+        layer.push(a);
+        assert!(!layer.plan(Some(&mark)).erases(), "appending only draws");
+        assert!(layer.set(4, b));
+        assert!(
+            !layer.plan(Some(&mark)).erases(),
+            "a slot added since the mark was never drawn"
+        );
+        assert!(layer.set(0, b));
+        let plan = layer.plan(Some(&mark));
+        assert!(plan.erases());
+        assert_eq!(
+            plan.erases(),
+            plan.ops().any(|op| matches!(op, LayerOp::Erase(_)))
         );
     }
 
