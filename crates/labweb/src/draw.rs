@@ -900,11 +900,10 @@ fn paint_raster(
 }
 
 thread_local! {
-    /// A small off-screen canvas reused for heatmaps.
-    static HEATMAP_CANVAS: Option<web_sys::HtmlCanvasElement> = crate::dom::document()
-        .create_element("canvas")
-        .ok()
-        .and_then(|c| wasm_bindgen::JsCast::dyn_into(c).ok());
+    /// The off-screen canvases (and contexts) every blit goes through: one
+    /// for crisp blits, one for smoothed ones (see [`blit_to`]).
+    static BLIT_CANVASES: [Option<(web_sys::HtmlCanvasElement, CanvasRenderingContext2d)>; 2] =
+        [crate::layers::offscreen(), crate::layers::offscreen()];
 }
 
 /// Density cells as one RGBA image (alpha grows with density), drawn scaled
@@ -961,8 +960,14 @@ fn blit(
     blit_to(ctx, rgba, (cols, rows), rect, false);
 }
 
-/// Puts `rgba` (`w` × `h` pixels) on the reused off-screen canvas and draws
+/// Puts `rgba` (`w` × `h` pixels) on a reused off-screen canvas and draws
 /// it into `(x, y, width, height)` (CSS pixels) with one `drawImage`.
+///
+/// A crisp blit (nearest pixel) uses the top-left `w` × `h` of a canvas that
+/// only grows: a streaming cloud's box changes size at every frame, and
+/// resizing a canvas reallocates it (about 1 ms a frame on the phone
+/// stand-in). A smoothed blit would sample past that corner's edge, so it
+/// has its own canvas of exactly its size.
 fn blit_to(
     ctx: &CanvasRenderingContext2d,
     rgba: &[u8],
@@ -970,20 +975,21 @@ fn blit_to(
     (x, y, width, height): (f64, f64, f64, f64),
     smooth: bool,
 ) {
-    HEATMAP_CANVAS.with(|offscreen| {
-        let Some(offscreen) = offscreen else { return };
-        if offscreen.width() != w as u32 || offscreen.height() != h as u32 {
-            offscreen.set_width(w as u32);
-            offscreen.set_height(h as u32);
-        }
-        let Some(octx) = offscreen
-            .get_context("2d")
-            .ok()
-            .flatten()
-            .and_then(|c| wasm_bindgen::JsCast::dyn_into::<CanvasRenderingContext2d>(c).ok())
-        else {
+    BLIT_CANVASES.with(|canvases| {
+        let Some((offscreen, octx)) = &canvases[usize::from(smooth)] else {
             return;
         };
+        let (cw, ch) = (offscreen.width() as usize, offscreen.height() as usize);
+        let (nw, nh) = if smooth {
+            (w, h)
+        } else {
+            (cw.max(w), ch.max(h))
+        };
+        if (nw, nh) != (cw, ch) {
+            offscreen.set_width(nw as u32);
+            offscreen.set_height(nh as u32);
+            crate::layers::count(|c| c.blit_resizes += 1);
+        }
         let Ok(image) = web_sys::ImageData::new_with_u8_clamped_array_and_sh(
             wasm_bindgen::Clamped(rgba),
             w as u32,
@@ -993,8 +999,9 @@ fn blit_to(
         };
         let _ = octx.put_image_data(&image, 0.0, 0.0);
         ctx.set_image_smoothing_enabled(smooth);
-        let _ =
-            ctx.draw_image_with_html_canvas_element_and_dw_and_dh(offscreen, x, y, width, height);
+        let _ = ctx.draw_image_with_html_canvas_element_and_sw_and_sh_and_dx_and_dy_and_dw_and_dh(
+            offscreen, 0.0, 0.0, w as f64, h as f64, x, y, width, height,
+        );
     });
 }
 

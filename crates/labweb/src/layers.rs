@@ -53,6 +53,9 @@ pub struct Counters {
     pub composites: u64,
     /// Backdrops painted into their kept picture.
     pub backdrop_draws: u64,
+    /// Resizes of the off-screen canvas a blit goes through (each one
+    /// reallocates it).
+    pub blit_resizes: u64,
 }
 
 thread_local! {
@@ -66,6 +69,7 @@ thread_local! {
         raster_uploads: 0,
         composites: 0,
         backdrop_draws: 0,
+        blit_resizes: 0,
     }) };
     static SEGMENT_CACHES: RefCell<Vec<SegmentCache>> = const { RefCell::new(Vec::new()) };
     static RASTER_CACHES: RefCell<Vec<RasterCache>> = const { RefCell::new(Vec::new()) };
@@ -88,7 +92,7 @@ pub fn forget_all() {
     RASTER_CACHES.with(|c| c.borrow_mut().clear());
 }
 
-fn count(f: impl FnOnce(&mut Counters)) {
+pub(crate) fn count(f: impl FnOnce(&mut Counters)) {
     COUNTERS.with(|c| {
         let mut v = c.get();
         f(&mut v);
@@ -127,7 +131,7 @@ struct SegmentCache {
 }
 
 /// A detached canvas and its 2D context.
-fn offscreen() -> Option<(HtmlCanvasElement, CanvasRenderingContext2d)> {
+pub(crate) fn offscreen() -> Option<(HtmlCanvasElement, CanvasRenderingContext2d)> {
     let canvas: HtmlCanvasElement = crate::dom::document()
         .create_element("canvas")
         .ok()?

@@ -468,3 +468,64 @@ fn a_backdrop_is_painted_once_while_it_stays_and_gives_the_pixels_of_a_full_redr
     }
     assert_eq!((counters().backdrop_draws, counters().composites), (1, 2));
 }
+
+/// A streaming cloud of dots (the workspace sweep) is one crisp blit of its
+/// bounding box, which changes size at every frame. The canvas the blit
+/// goes through only grows, so a smaller cloud after a bigger one does not
+/// resize it, and the smaller cloud's picture shows none of the bigger one.
+#[wasm_bindgen_test]
+fn crisp_blits_of_a_shrinking_cloud_keep_their_canvas_and_only_their_own_pixels() {
+    let (_a, big_ctx, palette) = setup("blit-big");
+    let (_b, small_ctx) = canvas("blit-small");
+    let cloud = |from: f64, span: f64| {
+        let mut rng = labcore::Lcg64::new(3);
+        let points: Vec<DVec2> = (0..5_000)
+            .map(|_| DVec2::new(from + rng.next_f64() * span, from + rng.next_f64() * span))
+            .collect();
+        let mut scene = Scene::default();
+        scene.push(Item::Points {
+            points,
+            radius_px: 1.0,
+            role: Role::Visited,
+        });
+        scene
+    };
+    // Drawn first, before the big cloud grows the blit canvas.
+    let (_r, reference_ctx) = canvas("blit-reference");
+    let paint_cloud = |ctx: &CanvasRenderingContext2d, scene: &Scene| {
+        paint(ctx, scene, &viewport(), W, H, 1.0, &palette);
+    };
+    paint_cloud(&reference_ctx, &cloud(40.0, 5.0));
+    paint_cloud(&big_ctx, &cloud(0.0, 100.0));
+    reset_counters();
+    paint_cloud(&small_ctx, &cloud(40.0, 5.0));
+    assert_eq!(counters().blit_resizes, 0, "{:?}", counters());
+    assert!(
+        pixels(&small_ctx) == pixels(&reference_ctx),
+        "the small cloud after the big one is drawn as before it"
+    );
+    // The small cloud covers world 40..45 m: pixels 6 px/m from the
+    // viewport's left edge, well inside x 300..400 px and y 300..400 px.
+    let v = viewport();
+    let (lo, hi) = (
+        v.to_px(DVec2::new(40.0, 45.0)),
+        v.to_px(DVec2::new(45.0, 40.0)),
+    );
+    let p = pixels(&small_ctx);
+    // The canvas is painted with its background first: a corner's pixel.
+    let background = &p[0..4];
+    let (mut inside, mut outside) = (0, 0);
+    for (i, px) in p.chunks(4).enumerate() {
+        let (x, y) = ((i % W as usize) as f64, (i / W as usize) as f64);
+        let near = x >= lo.x - 2.0 && x <= hi.x + 2.0 && y >= lo.y - 2.0 && y <= hi.y + 2.0;
+        if px != background {
+            if near {
+                inside += 1;
+            } else {
+                outside += 1;
+            }
+        }
+    }
+    assert!(inside > 100, "the small cloud is drawn: {inside} pixels");
+    assert_eq!(outside, 0, "pixels lit outside the small cloud's box");
+}
