@@ -92,12 +92,18 @@ pub fn forget_all() {
     RASTER_CACHES.with(|c| c.borrow_mut().clear());
 }
 
+/// Adds to the counters: only in builds with the `bench-exports` feature
+/// (the wasm tests and the browser benchmark); a shipped module counts
+/// nothing, and carries no code for it.
 pub(crate) fn count(f: impl FnOnce(&mut Counters)) {
+    #[cfg(feature = "bench-exports")]
     COUNTERS.with(|c| {
         let mut v = c.get();
         f(&mut v);
         c.set(v);
     });
+    #[cfg(not(feature = "bench-exports"))]
+    let _ = f;
 }
 
 /// Segment layers kept at once (each holds a count and an RGBA value per
