@@ -46,7 +46,11 @@ test("live math: fk's panel writes x and y with the student's numbers, and they 
     }
     assert.match(x, /= 1\.00·cos 60\.0° \+ 0\.80·cos \(60\.0° \+ 60\.0°\) = 0\.100 m$/);
     // MathML is drawn; assistive technology reads the text twin instead.
-    assert.equal(await page.locator(".live-math .equation-forms math").count(), 6, "x and y: the symbols, then a <math> a term");
+    // x and y alike: the symbols a <math> a term (2); the numbers a <math> a
+    // factor of each term and one more for the bracketed sum's second term
+    // ("1.00", "·cos 35.0°", "+0.80", "·cos(35.0°", "+60.0°)": 5), so that a
+    // line can break between them.
+    assert.equal(await page.locator(".live-math .equation-forms math").count(), 14, "x and y: 2 + 5 <math> each");
     // The numbers and results are hidden from it; the symbols stay reachable
     // (each quantity's symbol takes the keyboard's focus, issue 27 §3).
     assert.equal(await page.locator(".live-math .equation-forms > [aria-hidden=true]").count(), 4);
@@ -142,9 +146,9 @@ test("live math: every experiment's panel shows results equal to its readouts, a
     }
   }));
 
-test("live math: on a phone every panel sits with the readouts and fits the width", () =>
+test("live math: on a phone every panel sits with the readouts and every formula wraps to its width", () =>
   withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true, isMobile: true, clock: true }, async (page) => {
-    for (const { link, action, name } of PANELS.filter((p) => ["ekf", "potential", "cartpole", "dls"].some((id) => p.link.includes(id)))) {
+    for (const { link, action, name } of PANELS) {
       await open(lab, page, link);
       if (action) await page.locator(`button[data-action=${action}]`).click();
       await runFor(page, 700);
@@ -153,8 +157,23 @@ test("live math: on a phone every panel sits with the readouts and fits the widt
       assert.ok(mathBox.y >= readoutsBox.y + readoutsBox.height - 1, `${link}: below the readouts`);
       assert.ok(mathBox.y - (readoutsBox.y + readoutsBox.height) < 40, `${link}: right after them`);
       assert.ok(mathBox.x >= 0 && mathBox.x + mathBox.width <= 390, `${link}: within the phone's width`);
+      // Every box of every formula (symbols and numbers) lies within its
+      // paragraph: the lines break between terms and factors, none scrolls.
+      const astray = await page.$$eval(".live-math .equation-forms", (forms) =>
+        forms.flatMap((f) => {
+          const box = f.getBoundingClientRect();
+          const out = [...f.querySelectorAll("math")].filter((m) => {
+            const r = m.getBoundingClientRect();
+            return r.left < box.left - 0.5 || r.right > box.right + 0.5;
+          });
+          return out.map((m) => m.textContent).concat(f.scrollWidth > f.clientWidth ? [`scrolls: ${f.textContent}`] : []);
+        }),
+      );
+      assert.deepEqual(astray, [], `${link}: formula boxes past the panel's width`);
       await page.locator(".live-math").scrollIntoViewIfNeeded();
-      await screenshot(page, `livemath-${name ?? link.split("/")[1]}-390`);
+      if (["ekf", "potential", "cartpole", "dls", "workspace"].some((id) => link.includes(id))) {
+        await screenshot(page, `livemath-${name ?? link.split("/")[1]}-390`);
+      }
     }
   }));
 

@@ -20,22 +20,23 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
     );
     for (i, eq) in equations.iter().enumerate() {
         let (numbers, result, text) = live_parts(eq, quantities, readouts);
-        let mut symbols = Writer::new(Target::MathMl, Form::Symbols, quantities);
+        let mut lead = Writer::new(Target::MathMl, Form::Symbols, quantities);
         // The result's symbol points at what it names too, when a quantity
         // carries the equation's key (rrtstar's r, dls's |e|).
         if quantities.iter().any(|q| q.key == eq.key) {
-            symbols.expr(&Expr::Var(eq.key), 0);
+            lead.expr(&Expr::Var(eq.key), 0);
         } else {
-            symbols.symbol(eq.symbol);
+            lead.symbol(eq.symbol);
         }
-        symbols.put("<mo>=</mo>", "");
-        symbols.expr(&eq.expr, 0);
+        lead.put("<mo>=</mo>", "");
+        let mut symbols = Writer::new(Target::MathMl, Form::Symbols, quantities);
+        symbols.parts(&lead.out, &eq.expr);
         let _ = write!(
             out,
             "<div class=\"equation\" data-equation=\"{i}\" data-key=\"{key}\">\
              <p class=\"equation-caption\">{caption}</p>\
              <p class=\"equation-forms\">\
-             <span class=\"eq-part\"><math>{symbols}</math></span> \
+             {symbols} \
              <span class=\"equation-numbers\" aria-hidden=\"true\">{numbers}</span> \
              <span class=\"equation-result\" aria-hidden=\"true\">= {result}</span></p>\
              <p class=\"sr-only equation-text\">{text}</p></div>",
@@ -78,37 +79,13 @@ pub fn live_parts(
 }
 
 /// The substituted form as MathML that may wrap between the terms of its
-/// top-level sum: `<math>= 1.00·cos 35°</math> <math>+ 0.80·cos 95°</math>`,
+/// top-level sum and between the factors of each term's product:
+/// `<math>= 1.00</math><wbr><math>· cos 35°</math> <math>+ 0.80</math>…`,
 /// each in its own box (a `<math>` element never breaks inside itself).
 #[must_use]
 pub fn wrapping_mathml(expr: &Expr, quantities: &[Quantity]) -> String {
-    let mut terms: Vec<(&str, &Expr)> = Vec::new();
-    let mut rest = expr;
-    loop {
-        match *rest {
-            Expr::Add(a, b) => {
-                terms.push(("+", b));
-                rest = a;
-            }
-            Expr::Sub(a, b) => {
-                terms.push(("−", b));
-                rest = a;
-            }
-            _ => {
-                terms.push(("=", rest));
-                break;
-            }
-        }
-    }
     let mut w = Writer::new(Target::MathMl, Form::Numbers, quantities);
-    for (i, (op, term)) in terms.iter().rev().enumerate() {
-        if i > 0 {
-            w.out.push(' ');
-        }
-        let _ = write!(w.out, "<span class=\"eq-part\"><math><mo>{op}</mo>");
-        w.expr(term, 2);
-        w.out.push_str("</math></span>");
-    }
+    w.parts("<mo>=</mo>", expr);
     w.out
 }
 
@@ -133,6 +110,11 @@ struct Writer<'a> {
     to: Target,
     form: Form,
     quantities: &'a [Quantity],
+    /// Writing a term of [`Writer::parts`]: sums (and with numbers,
+    /// products) break into boxes.
+    flowing: bool,
+    /// Term boxes nested in the current term and still open.
+    open: usize,
 }
 
 impl<'a> Writer<'a> {
@@ -142,6 +124,8 @@ impl<'a> Writer<'a> {
             to,
             form,
             quantities,
+            flowing: false,
+            open: 0,
         }
     }
 
@@ -193,7 +177,7 @@ impl<'a> Writer<'a> {
         };
         let bracket = negative && outer > 0;
         if bracket {
-            self.put("<mo>(</mo>", "(");
+            self.bracket(true);
         }
         if negative {
             self.put("<mo>−</mo>", "−");
@@ -203,15 +187,98 @@ impl<'a> Writer<'a> {
         let degrees = if q.unit == "°" { "°" } else { "" };
         self.token("mn", &format!("{digits}{degrees}"));
         if bracket {
-            self.put("<mo>)</mo>", ")");
+            self.bracket(false);
         }
     }
 
+    /// `lead` and `expr` (MathML) as boxes a line may break between: one
+    /// for each term of its top-level sum, led by its sign (the first by
+    /// `lead`), separated by spaces; with numbers, a term's product also
+    /// breaks between its factors, each led by its dot (`<wbr>`, no space).
+    /// The sums inside a term break between their terms the same way (see
+    /// [`Writer::expr`]), each further term a box nested in the current one;
+    /// a fraction, a root's bar, a square and, with symbols, a product
+    /// never break.
+    ///
+    /// A term sits in an `eq-term` box (an inline block no wider than the
+    /// line, `style.css`), so a line breaks between a sum's terms first and
+    /// inside a term only when the term alone is wider than the line.
+    fn parts(&mut self, lead: &str, expr: &Expr) {
+        let term = match *expr {
+            Expr::Add(a, b) | Expr::Sub(a, b) => {
+                self.parts(lead, a);
+                self.out.push(' ');
+                b
+            }
+            _ => expr,
+        };
+        self.out.push_str(TERM_OPEN);
+        self.term_lead(expr, lead);
+        (self.open, self.flowing) = (0, true);
+        self.expr(term, 2);
+        self.flowing = false;
+        self.out.push_str(PART_CLOSE);
+        for _ in 0..=self.open {
+            self.out.push_str("</span>");
+        }
+    }
+
+    /// What leads the last term of `sum` in its box: its sign, spaced as a
+    /// binary one (MathML takes an operator that starts a `<math>` for a
+    /// prefix sign, set tight; the space between the boxes stands before
+    /// it), or `lead` when `sum` is not a sum.
+    fn term_lead(&mut self, sum: &Expr, lead: &str) {
+        self.out.push_str(match sum {
+            Expr::Add(..) => "<mo rspace=\"0.2222em\">+</mo>",
+            Expr::Sub(..) => "<mo rspace=\"0.2222em\">−</mo>",
+            _ => lead,
+        });
+    }
+
+    /// A bracket: with numbers of one size (`stretchy="false"`), since a
+    /// stretchy bracket grows to the row it stands in and a bracket's two
+    /// halves may stand in different boxes ([`Writer::parts`]).
+    fn bracket(&mut self, open: bool) {
+        let flat = self.form == Form::Numbers;
+        let mathml = match (open, flat) {
+            (true, true) => "<mo stretchy=\"false\">(</mo>",
+            (false, true) => "<mo stretchy=\"false\">)</mo>",
+            (true, false) => "<mo>(</mo>",
+            (false, false) => "<mo>)</mo>",
+        };
+        self.put(mathml, if open { "(" } else { ")" });
+    }
+
+    /// Whether a quotient with numerator `a` is written on the line,
+    /// `(a) / (b)`, rather than as a fraction: with numbers, when `a` is a
+    /// sum, so that it may break between its terms ([`Writer::parts`]): a
+    /// fraction never breaks, and a sum of numbers over a fraction bar is
+    /// wider than a phone's column (ik's law of cosines).
+    fn inline_division(&self, a: &Expr) -> bool {
+        self.form == Form::Numbers && matches!(a, Expr::Add(..) | Expr::Sub(..))
+    }
+
     /// `expr`, bracketed when it binds less tightly than `outer` asks.
+    ///
+    /// While [`Writer::flowing`], a sum closes the open part after each
+    /// term but the last and opens a box for the next (nested in the box
+    /// open where the sum starts), and with numbers a product opens a part
+    /// for each factor, led by its dot.
     fn expr(&mut self, expr: &Expr, outer: u8) {
+        let start = self.open;
+        let flowing = self.flowing;
+        // What MathML nests (a fraction, a root, a square) never breaks; nor
+        // does a product of symbols (juxtaposition).
+        let symbols = self.form == Form::Symbols;
+        self.flowing &= match *expr {
+            Expr::Sq(_) => false,
+            Expr::Sqrt(_) | Expr::Mul(..) => !symbols,
+            Expr::Div(a, _) => self.inline_division(a),
+            _ => true,
+        };
         let paren = precedence(expr) < outer;
         if paren {
-            self.put("<mo>(</mo>", "(");
+            self.bracket(true);
         }
         match *expr {
             Expr::Var(key) => match self.quantities.iter().find(|q| q.key == key) {
@@ -228,7 +295,17 @@ impl<'a> Writer<'a> {
             Expr::Num(_, text) => self.token("mn", text),
             Expr::Add(a, b) | Expr::Sub(a, b) => {
                 self.expr(a, 1);
-                if matches!(expr, Expr::Add(..)) {
+                if self.flowing {
+                    // Closes the previous term's box (and what it nested).
+                    self.out.push_str(PART_CLOSE);
+                    for _ in start..self.open {
+                        self.out.push_str("</span>");
+                    }
+                    self.out.push(' ');
+                    self.out.push_str(TERM_OPEN);
+                    self.term_lead(expr, "");
+                    self.open = start + 1;
+                } else if matches!(expr, Expr::Add(..)) {
                     self.put("<mo>+</mo>", " + ");
                 } else {
                     self.put("<mo>−</mo>", " − ");
@@ -236,14 +313,31 @@ impl<'a> Writer<'a> {
                 self.expr(b, 2);
             }
             Expr::Mul(a, b) => {
-                self.expr(a, 2);
                 // Symbols multiply by juxtaposition (L₁ cos θ₁); numbers need a dot.
-                if self.form == Form::Symbols {
+                self.expr(a, 2);
+                if symbols {
                     self.put("<mo>\u{2062}</mo>", " ");
+                } else if self.flowing {
+                    // A dot that leads its box is a prefix operator to
+                    // MathML: the spacing it has between two factors is set
+                    // by hand.
+                    self.out.push_str(
+                        "</math></span><wbr><span class=\"eq-part\"><math>\
+                         <mo lspace=\"0.2222em\" rspace=\"0.2222em\">·</mo>",
+                    );
                 } else {
                     self.put("<mo>·</mo>", "·");
                 }
                 self.expr(b, 3);
+            }
+            Expr::Div(a, b) if self.inline_division(a) => {
+                self.bracket(true);
+                self.expr(a, 0);
+                self.bracket(false);
+                self.put("<mo>/</mo>", " / ");
+                self.bracket(true);
+                self.expr(b, 0);
+                self.bracket(false);
             }
             Expr::Div(a, b) => {
                 self.put("<mfrac><mrow>", "(");
@@ -272,6 +366,12 @@ impl<'a> Writer<'a> {
                 }
                 self.expr(a, 4);
             }
+            Expr::Sqrt(a) if self.form == Form::Numbers => {
+                self.put("<mo>√</mo>", "√");
+                self.bracket(true);
+                self.expr(a, 0);
+                self.bracket(false);
+            }
             Expr::Sqrt(a) => {
                 self.put("<msqrt>", "√(");
                 self.expr(a, 0);
@@ -284,31 +384,41 @@ impl<'a> Writer<'a> {
             }
             Expr::Acos(a) => {
                 self.token("mi", "arccos");
-                self.put("<mo>\u{2061}</mo><mo>(</mo>", "(");
+                self.put("<mo>\u{2061}</mo>", "");
+                self.bracket(true);
                 self.expr(a, 0);
-                self.put("<mo>)</mo>", ")");
+                self.bracket(false);
             }
             Expr::Clamp(a, b) | Expr::Max(a, b) | Expr::Min(a, b) => {
                 let clamp = matches!(expr, Expr::Clamp(..));
-                let name = match expr {
-                    Expr::Clamp(..) => "clamp",
-                    Expr::Max(..) => "max",
-                    _ => "min",
-                };
-                self.token("mi", name);
-                self.put("<mo>(</mo>", "(");
+                self.token("mi", function_name(expr));
+                self.bracket(true);
                 self.expr(a, 0);
                 self.put("<mo separator=\"true\">,</mo>", ", ");
                 if clamp {
                     self.put("<mo>±</mo>", "±");
                 }
                 self.expr(b, if clamp { 4 } else { 0 });
-                self.put("<mo>)</mo>", ")");
+                self.bracket(false);
             }
         }
         if paren {
-            self.put("<mo>)</mo>", ")");
+            self.bracket(false);
         }
+        self.flowing = flowing;
+    }
+}
+
+/// Opens a term's box and its first part (see [`Writer::parts`]).
+const TERM_OPEN: &str = "<span class=\"eq-term\"><span class=\"eq-part\"><math>";
+/// Closes a part.
+const PART_CLOSE: &str = "</math></span>";
+/// The name of a `clamp`, `max` or `min` (`min` for anything else).
+fn function_name(expr: &Expr) -> &'static str {
+    match expr {
+        Expr::Clamp(..) => "clamp",
+        Expr::Max(..) => "max",
+        _ => "min",
     }
 }
 
@@ -387,10 +497,193 @@ mod tests {
         assert!(html.contains(
             "<mi>x</mi><mo>=</mo><mrow data-live=\"l\" tabindex=\"0\"><msub><mi>L</mi><mn>1</mn></msub></mrow><mo>\u{2062}</mo><mi>cos</mi>"
         ));
-        assert!(html
-            .contains("<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn><mo>·</mo><mi>cos</mi><mo>\u{2061}</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math>"));
+        assert!(html.contains(
+            "<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn></math></span><wbr>\
+             <span class=\"eq-part\"><math><mo lspace=\"0.2222em\" rspace=\"0.2222em\">·</mo>\
+             <mi>cos</mi><mo>\u{2061}</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math></span>"
+        ));
         assert!(html.contains("= 0.819 m"));
         assert!(html.contains("x = L1 cos θ1 = 1.00·cos 35° = 0.819 m"));
+    }
+
+    #[test]
+    fn a_product_of_numbers_may_wrap_between_its_factors_and_symbols_between_terms() {
+        // 2.0·(−0.25)·2.0 − 2.0: the dots lead their boxes, joined by <wbr>,
+        // inside their term's box.
+        const P: Expr = Expr::Sub(&Expr::Mul(&Expr::Mul(&L, &T), &L), &L);
+        let q = [
+            Quantity::new("l", "L", 2.0, 1, ""),
+            Quantity::new("t", "e", -0.25, 2, ""),
+        ];
+        let dot = "<mo lspace=\"0.2222em\" rspace=\"0.2222em\">·</mo>";
+        let (open, close) = (
+            "<mo stretchy=\"false\">(</mo>",
+            "<mo stretchy=\"false\">)</mo>",
+        );
+        assert_eq!(
+            wrapping_mathml(&P, &q),
+            format!(
+                "<span class=\"eq-term\">\
+                 <span class=\"eq-part\"><math><mo>=</mo><mn>2.0</mn></math></span><wbr>\
+                 <span class=\"eq-part\"><math>{dot}{open}<mo>−</mo><mn>0.25</mn>{close}</math></span><wbr>\
+                 <span class=\"eq-part\"><math>{dot}<mn>2.0</mn></math></span></span> \
+                 <span class=\"eq-term\"><span class=\"eq-part\"><math><mo rspace=\"0.2222em\">−</mo><mn>2.0</mn></math></span></span>"
+            )
+        );
+        // Symbols: a box a term, products by juxtaposition inside it.
+        let html = panel_html(&[Equation { expr: P, ..EQ }], &q, &[]);
+        let symbols =
+            &html[html.find("equation-forms").unwrap()..html.find("equation-numbers").unwrap()];
+        assert_eq!(symbols.matches("<math>").count(), 2, "{symbols}");
+        assert!(
+            symbols.contains("<mo>\u{2062}</mo>") && !symbols.contains('·'),
+            "{symbols}"
+        );
+        assert!(
+            symbols.contains(
+                "</math></span></span> <span class=\"eq-term\"><span class=\"eq-part\"><math><mo rspace=\"0.2222em\">−</mo>"
+            ),
+            "{symbols}"
+        );
+    }
+
+    #[test]
+    fn the_sums_inside_a_bracket_and_a_max_break_in_boxes_nested_in_their_term() {
+        // max(0, 2·L − (L + L)) with L = 2.0.
+        const R: Expr = Expr::Max(
+            &Expr::Num(0.0, "0"),
+            &Expr::Sub(&Expr::Mul(&Expr::Num(2.0, "2"), &L), &Expr::Add(&L, &L)),
+        );
+        let q = [Quantity::new("l", "L", 2.0, 1, "")];
+        let dot = "<mo lspace=\"0.2222em\" rspace=\"0.2222em\">·</mo>";
+        let (open, close) = (
+            "<mo stretchy=\"false\">(</mo>",
+            "<mo stretchy=\"false\">)</mo>",
+        );
+        let part = |m: &str| format!("<span class=\"eq-part\"><math>{m}</math></span>");
+        let term = "<span class=\"eq-term\">";
+        assert_eq!(
+            wrapping_mathml(&R, &q),
+            [
+                term,
+                &part(&format!(
+                    "<mo>=</mo><mi>max</mi>{open}<mn>0</mn><mo separator=\"true\">,</mo><mn>2</mn>"
+                )),
+                "<wbr>",
+                &part(&format!("{dot}<mn>2.0</mn>")),
+                " ",
+                term,
+                &part(&format!("<mo rspace=\"0.2222em\">−</mo>{open}<mn>2.0</mn>")),
+                " ",
+                term,
+                &part(&format!(
+                    "<mo rspace=\"0.2222em\">+</mo><mn>2.0</mn>{close}{close}"
+                )),
+                "</span></span></span>",
+            ]
+            .concat()
+        );
+    }
+
+    #[test]
+    fn with_numbers_a_root_and_a_sum_over_a_number_are_written_on_the_line_and_break() {
+        // √(L² + L²) and (L − L) / (2·L): with symbols a radical and a fraction.
+        const ROOT: Expr = Expr::Sqrt(&Expr::Add(&Expr::Sq(&L), &Expr::Sq(&L)));
+        const QUOTIENT: Expr = Expr::Div(&Expr::Sub(&L, &L), &Expr::Mul(&Expr::Num(2.0, "2"), &L));
+        const RATIO: Expr = Expr::Div(&L, &L);
+        let q = [Quantity::new("l", "L", 2.0, 1, "")];
+        let root = wrapping_mathml(&ROOT, &q);
+        assert!(root.starts_with("<span class=\"eq-term\"><span class=\"eq-part\"><math><mo>=</mo><mo>√</mo><mo stretchy=\"false\">(</mo>"), "{root}");
+        assert_eq!(
+            root.matches("<span class=\"eq-term\">").count(),
+            2,
+            "a box a term: {root}"
+        );
+        assert!(!root.contains("msqrt"), "{root}");
+        let quotient = wrapping_mathml(&QUOTIENT, &q);
+        assert!(
+            quotient.contains(
+                "<mo stretchy=\"false\">)</mo><mo>/</mo><mo stretchy=\"false\">(</mo><mn>2</mn>"
+            ),
+            "{quotient}"
+        );
+        assert!(!quotient.contains("mfrac"), "{quotient}");
+        // A quotient of single numbers stays a fraction, and symbols keep theirs.
+        assert!(wrapping_mathml(&RATIO, &q).contains("<mfrac>"));
+        let mut symbols = Writer::new(Target::MathMl, Form::Symbols, &q);
+        symbols.parts("<mo>=</mo>", &ROOT);
+        symbols.parts("<mo>=</mo>", &QUOTIENT);
+        assert!(
+            symbols.out.contains("<msqrt>") && symbols.out.contains("<mfrac>"),
+            "{}",
+            symbols.out
+        );
+    }
+
+    /// Tags out, the text left (`<mo>(</mo><mn>2</mn>` gives `(2`).
+    fn tokens(markup: &str) -> String {
+        let mut out = String::new();
+        let mut in_tag = false;
+        for c in markup.chars() {
+            match c {
+                '<' => in_tag = true,
+                '>' => in_tag = false,
+                ' ' => {}
+                c if !in_tag => out.push(c),
+                _ => {}
+            }
+        }
+        out
+    }
+
+    /// Every equation of every experiment, split into boxes, is well formed
+    /// (spans and `<math>` elements balanced, no span inside a `<math>`) and
+    /// says what the equation written whole says.
+    #[test]
+    fn every_equation_split_into_boxes_is_well_formed_and_says_the_same() {
+        for entry in crate::registry() {
+            let mut exp = (entry.make)();
+            exp.preview();
+            let quantities = exp.quantities();
+            for (eq, form) in exp
+                .equations()
+                .iter()
+                .flat_map(|eq| [(eq, Form::Numbers), (eq, Form::Symbols)])
+            {
+                let mut parts = Writer::new(Target::MathMl, form, &quantities);
+                parts.parts("<mo>=</mo>", &eq.expr);
+                let split = parts.out;
+                let mut whole = Writer::new(Target::MathMl, form, &quantities);
+                whole.put("<mo>=</mo>", "");
+                whole.expr(&eq.expr, 0);
+                assert_eq!(
+                    tokens(&split),
+                    tokens(&whole.out),
+                    "{}: {}",
+                    entry.id,
+                    eq.key
+                );
+                let (mut spans, mut in_math) = (0i32, false);
+                let mut rest = split.as_str();
+                while let Some(at) = rest.find('<') {
+                    rest = &rest[at..];
+                    let tag = &rest[..rest.find('>').unwrap() + 1];
+                    match tag {
+                        t if t.starts_with("<span") => {
+                            assert!(!in_math, "{}: a span inside <math>: {split}", eq.key);
+                            spans += 1;
+                        }
+                        "</span>" => spans -= 1,
+                        "<math>" => in_math = true,
+                        "</math>" => in_math = false,
+                        _ => {}
+                    }
+                    assert!(spans >= 0, "{}: {split}", eq.key);
+                    rest = &rest[tag.len()..];
+                }
+                assert_eq!((spans, in_math), (0, false), "{}: {split}", eq.key);
+            }
+        }
     }
 
     #[test]
@@ -398,9 +691,9 @@ mod tests {
         const SUM: Expr = Expr::Sub(&Expr::Add(&L, &T), &L);
         assert_eq!(
             wrapping_mathml(&SUM, &quantities(35.0)),
-            "<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn></math></span> \
-             <span class=\"eq-part\"><math><mo>+</mo><mn>35°</mn></math></span> \
-             <span class=\"eq-part\"><math><mo>−</mo><mn>1.00</mn></math></span>"
+            "<span class=\"eq-term\"><span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn></math></span></span> \
+             <span class=\"eq-term\"><span class=\"eq-part\"><math><mo rspace=\"0.2222em\">+</mo><mn>35°</mn></math></span></span> \
+             <span class=\"eq-term\"><span class=\"eq-part\"><math><mo rspace=\"0.2222em\">−</mo><mn>1.00</mn></math></span></span>"
         );
     }
 
@@ -445,7 +738,8 @@ mod tests {
         w.expr(&P, 0);
         assert_eq!(
             w.out,
-            "<mn>2.0</mn><mo>·</mo><mo>(</mo><mo>−</mo><mn>0.5</mn><mo>)</mo>"
+            "<mn>2.0</mn><mo>·</mo><mo stretchy=\"false\">(</mo><mo>−</mo><mn>0.5</mn>\
+             <mo stretchy=\"false\">)</mo>"
         );
     }
 
