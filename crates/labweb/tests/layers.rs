@@ -200,13 +200,7 @@ fn kept_layers_paint_the_pixels_of_a_full_redraw() {
         for s in parts.tree.grow(150) {
             layer.push(*s);
         }
-        // Rewire: move some drawn edges' ends to another node.
-        for _ in 0..30 {
-            let slot = (rng.next_f64() * layer.len() as f64) as usize;
-            let (a, _) = layer.segments()[slot];
-            let other = layer.segments()[(rng.next_f64() * layer.len() as f64) as usize].1;
-            layer.set(slot, (a, other));
-        }
+        rewire(&mut layer, &mut rng, 30);
         let view = if (10..14).contains(&frame) {
             zoomed
         } else {
@@ -228,6 +222,17 @@ fn kept_layers_paint_the_pixels_of_a_full_redraw() {
     // counting coverage, at the next frame's first erase.
     assert_eq!((c.full_redraws, c.recounts), (3, 3), "{c:?}");
     assert_same_as_full_redraw(&kept_ctx, &full_ctx, &parts, &layer, &palette);
+}
+
+/// Rewires `n` random slots of `layer`, as RRT* does: a drawn edge's end
+/// moves to another node.
+fn rewire(layer: &mut SegmentLayer, rng: &mut labcore::Lcg64, n: usize) {
+    for _ in 0..n {
+        let slot = (rng.next_f64() * layer.len() as f64) as usize;
+        let (a, _) = layer.segments()[slot];
+        let other = layer.segments()[(rng.next_f64() * layer.len() as f64) as usize].1;
+        layer.set(slot, (a, other));
+    }
 }
 
 /// Paints `parts`' raster and all of `layer`'s segments from scratch on
@@ -275,39 +280,29 @@ fn a_scrub_redraws_without_coverage_counts_and_the_first_erase_after_it_counts_o
     let (_b, full_ctx) = canvas("layers-scrub-full");
     let parts = labweb::big_scene_parts();
     let mut rng = labcore::Lcg64::new(5);
-    let mut layer = SegmentLayer::new();
-    for frame in 0..6 {
-        let len = 2_000 + (rng.next_f64() * 18_000.0) as usize;
-        layer = SegmentLayer::from_segments(parts.tree.segments[..len].to_vec());
+    let paint_kept = |layer: &SegmentLayer| {
         paint(
             &kept_ctx,
-            &kept(&parts, &layer, 1),
+            &kept(&parts, layer, 1),
             &viewport(),
             W,
             H,
             1.0,
             &palette,
         );
+    };
+    let mut layer = SegmentLayer::new();
+    for frame in 0..6 {
+        let len = 2_000 + (rng.next_f64() * 18_000.0) as usize;
+        layer = SegmentLayer::from_segments(parts.tree.segments[..len].to_vec());
+        paint_kept(&layer);
         assert_eq!(counters().full_redraws, frame + 1, "frame {frame}");
     }
     for _ in 0..3 {
         // Run on from the last moment scrubbed to: grow and rewire.
         layer.push(parts.tree.segments[layer.len()]);
-        for _ in 0..20 {
-            let slot = (rng.next_f64() * layer.len() as f64) as usize;
-            let (a, _) = layer.segments()[slot];
-            let other = layer.segments()[(rng.next_f64() * layer.len() as f64) as usize].1;
-            layer.set(slot, (a, other));
-        }
-        paint(
-            &kept_ctx,
-            &kept(&parts, &layer, 1),
-            &viewport(),
-            W,
-            H,
-            1.0,
-            &palette,
-        );
+        rewire(&mut layer, &mut rng, 20);
+        paint_kept(&layer);
     }
     let c = counters();
     assert_eq!((c.full_redraws, c.recounts), (6, 1), "{c:?}");
@@ -318,15 +313,7 @@ fn a_scrub_redraws_without_coverage_counts_and_the_first_erase_after_it_counts_o
     // One short edge in the middle: only its rows go up, at their place.
     reset_counters();
     layer.push((DVec2::new(40.0, 40.0), DVec2::new(46.0, 43.0)));
-    paint(
-        &kept_ctx,
-        &kept(&parts, &layer, 1),
-        &viewport(),
-        W,
-        H,
-        1.0,
-        &palette,
-    );
+    paint_kept(&layer);
     let c = counters();
     assert_eq!((c.layer_uploads, c.segments_drawn), (1, 1), "{c:?}");
     assert!(c.layer_upload_px < (W * H / 100.0) as u64, "{c:?}");
