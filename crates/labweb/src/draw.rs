@@ -7,7 +7,6 @@
 use crate::palette::hex_rgb;
 pub use crate::palette::Palette;
 pub use crate::viewport::Viewport;
-use crate::viewport::{clip_segment, round_px};
 use glam::DVec2;
 use labcore::scene::style;
 use labcore::{Item, RasterColour, Role, Scene};
@@ -790,25 +789,15 @@ fn paint_segments_raster(
         let mut rgba = buffer.borrow_mut();
         rgba.clear();
         rgba.resize(w * h * 4, 0);
-        let mut plot = |x: i64, y: i64| {
-            if x >= 0 && y >= 0 && (x as usize) < w && (y as usize) < h {
-                let i = (y as usize * w + x as usize) * 4;
-                rgba[i..i + 4].copy_from_slice(&pixel);
-            }
-        };
-        for (a, b) in segments {
-            let (a, b) = (viewport.to_px(*a) * dpr, viewport.to_px(*b) * dpr);
-            let Some((a, b)) = clip_segment(a, b, w as f64 - 1.0, h as f64 - 1.0) else {
-                continue;
-            };
-            labcore::bresenham::line(round_px(a), round_px(b), |x, y| {
-                plot(x, y);
-                if thick {
-                    plot(x + 1, y);
-                    plot(x, y + 1);
-                }
-            });
-        }
+        crate::layers::light_segments(
+            &mut rgba,
+            (w, h),
+            pixel,
+            thick,
+            segments
+                .iter()
+                .map(|(a, b)| (viewport.to_px(*a) * dpr, viewport.to_px(*b) * dpr)),
+        );
         blit_to(ctx, &rgba, (w, h), (0.0, 0.0, css_w, css_h), true);
     });
 }

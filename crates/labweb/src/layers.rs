@@ -324,6 +324,31 @@ impl Coverage<'_> {
     }
 }
 
+/// Lights in `rgba` (`w` × `h` pixels) the device pixels of each segment
+/// (device pixels), as a kept layer's full redraw does: the plain painter of
+/// a big batch of segments ([`crate::draw`]) and the kept layers share it.
+pub(crate) fn light_segments(
+    rgba: &mut [u8],
+    (w, h): (usize, usize),
+    pixel: [u8; 4],
+    thick: bool,
+    segments: impl IntoIterator<Item = (DVec2, DVec2)>,
+) {
+    let mut cover = Coverage {
+        counts: &mut [],
+        rgba,
+        w,
+        h,
+        pixel,
+        thick,
+        counting: false,
+        dirty: Dirty::EMPTY,
+    };
+    for (a, b) in segments {
+        cover.segment(a, b, true);
+    }
+}
+
 /// Paints a kept segment layer (see the module documentation) onto `ctx`, whose CSS size is
 /// `css_w` × `css_h` at `dpr` device pixels per CSS pixel.
 pub(crate) fn paint_segment_layer(
