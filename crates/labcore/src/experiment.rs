@@ -715,6 +715,14 @@ pub trait Experiment {
     fn state_bytes(&self) -> usize {
         crate::plot::plots_bytes(self.plots())
     }
+    /// How many units of work one step is, as the timeline replays it: an
+    /// experiment whose step runs a batch (RRT*'s iterations per frame)
+    /// says how big, and the timeline snapshots it that many times more
+    /// often ([`crate::timeline::Timeline::first_interval`]), so a scrub
+    /// replays about as much work in every experiment. Default: 1.
+    fn step_weight(&self) -> u64 {
+        1
+    }
 }
 
 /// What is shown of an experiment (its `view.rs`): the view box, the display

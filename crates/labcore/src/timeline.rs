@@ -76,10 +76,24 @@ pub struct Timeline {
 }
 
 impl Timeline {
-    /// The first snapshot interval, steps (0.53 s at 60 steps a second).
+    /// The first snapshot interval of an experiment whose step weighs 1
+    /// ([`Timeline::first_interval`]), steps (0.53 s at 60 steps a second).
     pub const FIRST_INTERVAL: u64 = 32;
     /// What the snapshots may hold, bytes (estimated; see the module).
     pub const BUDGET_BYTES: usize = 16 << 20;
+
+    /// The shortest first interval, steps.
+    pub const MIN_FIRST_INTERVAL: u64 = 4;
+
+    /// The first snapshot interval for `exp`, steps: [`Self::FIRST_INTERVAL`]
+    /// divided by its [`crate::Experiment::step_weight`] (rounded up to a
+    /// power of two), at least [`Self::MIN_FIRST_INTERVAL`]. A power of two,
+    /// as the doubling needs.
+    #[must_use]
+    pub fn first_interval(exp: &dyn Lab) -> u64 {
+        let weight = exp.step_weight().clamp(1, Self::FIRST_INTERVAL);
+        (Self::FIRST_INTERVAL / weight.next_power_of_two()).max(Self::MIN_FIRST_INTERVAL)
+    }
 
     /// A timeline starting at `exp`, which shows step `step` (0 after a
     /// reset).
@@ -96,7 +110,7 @@ impl Timeline {
             bytes: first.bytes,
             snaps: vec![first],
             end: step,
-            interval: Self::FIRST_INTERVAL,
+            interval: Self::first_interval(exp),
             dirty: false,
             budget_bytes,
             last_replay: 0,

@@ -612,3 +612,37 @@ fn dragging_the_timeline_writes_the_link_once_it_stops_and_the_text_at_its_pace(
         hash()
     );
 }
+
+/// Issue 26 §4, running frames: RRT*'s step grows a batch of iterations, so
+/// its timeline snapshots it every few steps (`Timeline::first_interval`).
+/// A snapshot takes its own copy of the tree's edge layer, so the growing
+/// run keeps its layer and the page draws only new and rewired edges: no
+/// frame redraws the whole tree while the run grows and is recorded.
+#[wasm_bindgen_test]
+fn a_recorded_rrt_star_run_draws_only_its_new_edges_between_snapshots() {
+    use labweb::layers::{counters, reset_counters};
+    mount("#/rrtstar/simulation");
+    element("[data-action=grow]").click();
+    frame(ONE_STEP_MS);
+    labweb::paint_now();
+    let interval =
+        labweb::inspect_sim(|exp, _| labcore::timeline::Timeline::first_interval(exp)).unwrap();
+    assert!(
+        interval < labcore::timeline::Timeline::FIRST_INTERVAL,
+        "{interval}"
+    );
+    reset_counters();
+    let before = steps_shown();
+    for _ in 0..40 {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    let steps = steps_shown() - before;
+    assert!(
+        steps >= 4 * interval,
+        "{steps} steps, {interval} a snapshot"
+    );
+    let c = counters();
+    assert_eq!(c.full_redraws, 0, "{c:?}");
+    assert!(c.segments_drawn > 0, "{c:?}");
+}

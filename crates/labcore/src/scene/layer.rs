@@ -208,6 +208,18 @@ impl SegmentLayer {
         }
     }
 
+    /// A copy that is a layer of its own, with a fresh identity, sharing
+    /// nothing with this one. What a copy of the model that keeps the layer
+    /// takes (a timeline snapshot): sharing the list instead would make the
+    /// original's next change copy it, under a new identity, and the painter
+    /// would redraw the original's picture in full.
+    #[must_use]
+    pub fn detached(&self) -> Self {
+        Self {
+            data: Arc::new(LayerData::clone(&self.data)),
+        }
+    }
+
     /// An empty layer holding `segments`.
     #[must_use]
     pub fn from_segments(segments: Vec<Segment>) -> Self {
@@ -352,6 +364,33 @@ mod tests {
     use super::*;
     use crate::rng::Lcg64;
     use std::collections::HashMap;
+
+    #[test]
+    fn a_detached_copy_is_its_own_layer_and_the_original_keeps_drawing_incrementally() {
+        let a = (DVec2::ZERO, DVec2::ONE);
+        let b = (DVec2::ONE, DVec2::new(2.0, 0.0));
+        let mut live = SegmentLayer::from_segments(vec![a]);
+        let (id, drawn) = (live.id(), live.mark());
+        let copy = live.detached();
+        assert_ne!(copy.id(), id);
+        assert_eq!(copy, live, "the same segments");
+        // The original is not shared, so changing it keeps its identity and
+        // a painter that drew it gets only the new slot.
+        live.push(b);
+        assert_eq!(live.id(), id);
+        assert_eq!(
+            live.plan(Some(&drawn)).ops().collect::<Vec<_>>(),
+            [LayerOp::Draw(b)]
+        );
+        // A shared one (a plain clone) changes identity on its next change.
+        let shared = live.clone();
+        live.push(a);
+        assert_ne!(live.id(), id);
+        assert_eq!(shared.id(), id);
+        // A painter that drew the original never takes the copy for it.
+        assert!(copy.plan(Some(&drawn)).is_full());
+        assert_eq!(copy.plan(Some(&copy.mark())).ops().count(), 0);
+    }
 
     fn seg(rng: &mut Lcg64) -> Segment {
         // Coarse coordinates so repeats (and no-op rewrites) happen.

@@ -234,8 +234,11 @@ enum Drag {
     },
 }
 
-/// One planner's tree in the current run.
-#[derive(Clone, Debug)]
+/// One planner's tree in the current run. A copy (a timeline snapshot)
+/// takes its own edge layer ([`SegmentLayer::detached`]), so the run it was
+/// taken from keeps its layer's identity and the page keeps drawing only new
+/// and rewired edges.
+#[derive(Debug)]
 struct Run {
     planner: Planner,
     tree: RrtStar,
@@ -243,6 +246,16 @@ struct Run {
     /// edge from its parent. Kept in step with `tree` by [`Run::grow`], so the
     /// page strokes only new and rewired edges each frame.
     edges: SegmentLayer,
+}
+
+impl Clone for Run {
+    fn clone(&self) -> Self {
+        Self {
+            planner: self.planner,
+            tree: self.tree.clone(),
+            edges: self.edges.detached(),
+        }
+    }
 }
 
 impl Run {
@@ -932,6 +945,11 @@ impl Experiment for RrtStarField {
     fn state_bytes(&self) -> usize {
         let nodes: usize = self.runs.iter().map(|r| r.tree.len()).sum();
         nodes * 72 + crate::plot::plots_bytes(&self.plots)
+    }
+
+    /// A step grows a batch of iterations.
+    fn step_weight(&self) -> u64 {
+        self.batch as u64
     }
 
     fn animating(&self) -> bool {
