@@ -171,16 +171,17 @@ impl<'a> Writer<'a> {
     /// operation, degrees with their sign.
     fn number(&mut self, q: &Quantity, outer: u8) {
         let number = q.number_text();
+        // "--" (no value) is not a negative number.
         let (negative, digits) = match number.strip_prefix('-') {
-            Some(rest) => (true, rest),
-            None => (false, number.as_str()),
+            Some(rest) if rest.starts_with(|c: char| c.is_ascii_digit()) => (true, rest),
+            _ => (false, number.as_str()),
         };
         let bracket = negative && outer > 0;
         if bracket {
             self.bracket(true);
         }
         if negative {
-            self.put("<mo>−</mo>", "−");
+            self.put(UNARY_MINUS, "−");
         }
         // The degree sign inside the number: as a trailing `<mo>` Chromium
         // may leave it out at the end of a `<math>`.
@@ -347,7 +348,7 @@ impl<'a> Writer<'a> {
                 self.put("</mrow></mfrac>", ")");
             }
             Expr::Neg(a) => {
-                self.put("<mo>−</mo>", "−");
+                self.put(UNARY_MINUS, "−");
                 self.expr(a, 3);
             }
             Expr::Cos(a) | Expr::Sin(a) | Expr::CosRad(a) | Expr::Ln(a) => {
@@ -413,6 +414,10 @@ impl<'a> Writer<'a> {
 const TERM_OPEN: &str = "<span class=\"eq-term\"><span class=\"eq-part\"><math>";
 /// Closes a part.
 const PART_CLOSE: &str = "</math></span>";
+/// A sign that makes a number or a factor negative: no space either side,
+/// as TeX sets a unary minus. A plain `<mo>` after another token is an
+/// infix operator to MathML, spaced as in a − b: "( − 0.16)".
+const UNARY_MINUS: &str = "<mo lspace=\"0\" rspace=\"0\">−</mo>";
 /// The name of a `clamp`, `max` or `min` (`min` for anything else).
 fn function_name(expr: &Expr) -> &'static str {
     match expr {
@@ -525,7 +530,7 @@ mod tests {
             format!(
                 "<span class=\"eq-term\">\
                  <span class=\"eq-part\"><math><mo>=</mo><mn>2.0</mn></math></span><wbr>\
-                 <span class=\"eq-part\"><math>{dot}{open}<mo>−</mo><mn>0.25</mn>{close}</math></span><wbr>\
+                 <span class=\"eq-part\"><math>{dot}{open}<mo lspace=\"0\" rspace=\"0\">−</mo><mn>0.25</mn>{close}</math></span><wbr>\
                  <span class=\"eq-part\"><math>{dot}<mn>2.0</mn></math></span></span> \
                  <span class=\"eq-term\"><span class=\"eq-part\"><math><mo rspace=\"0.2222em\">−</mo><mn>2.0</mn></math></span></span>"
             )
@@ -738,7 +743,7 @@ mod tests {
         w.expr(&P, 0);
         assert_eq!(
             w.out,
-            "<mn>2.0</mn><mo>·</mo><mo stretchy=\"false\">(</mo><mo>−</mo><mn>0.5</mn>\
+            "<mn>2.0</mn><mo>·</mo><mo stretchy=\"false\">(</mo><mo lspace=\"0\" rspace=\"0\">−</mo><mn>0.5</mn>\
              <mo stretchy=\"false\">)</mo>"
         );
     }
