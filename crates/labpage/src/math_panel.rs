@@ -167,8 +167,8 @@ impl<'a> Writer<'a> {
         }
     }
 
-    /// A quantity's number as shown, a negative one bracketed inside an
-    /// operation, degrees with their sign.
+    /// A quantity's number as shown, a negative one (or a missing one)
+    /// bracketed inside an operation, degrees with their sign.
     fn number(&mut self, q: &Quantity, outer: u8) {
         let number = q.number_text();
         // "--" (no value) is not a negative number.
@@ -176,7 +176,9 @@ impl<'a> Writer<'a> {
             Some(rest) if rest.starts_with(|c: char| c.is_ascii_digit()) => (true, rest),
             _ => (false, number.as_str()),
         };
-        let bracket = negative && outer > 0;
+        // Bracketed inside an operation: a negative number, and "--" too,
+        // so a missing value squared reads (--)².
+        let bracket = (negative || !q.value.is_finite()) && outer > 0;
         if bracket {
             self.bracket(true);
         }
@@ -725,6 +727,25 @@ mod tests {
         ];
         const P: Expr = Expr::Mul(&L, &T);
         assert_eq!(text(&P, Form::Numbers, &negative), "2.0·(−0.25)");
+    }
+
+    #[test]
+    fn a_negative_number_takes_a_unary_minus_and_a_missing_one_reads_dashes_in_brackets() {
+        const SQ: Expr = Expr::Sq(&T);
+        let missing = [Quantity::new("t", "x", f64::NAN, 2, "m")];
+        assert_eq!(text(&SQ, Form::Numbers, &missing), "(--)²");
+        let mut w = Writer::new(Target::MathMl, Form::Numbers, &missing);
+        w.expr(&SQ, 0);
+        assert!(!w.out.contains('−'), "{}", w.out);
+        let negative = [Quantity::new("t", "x", -0.5, 2, "m")];
+        let mut w = Writer::new(Target::MathMl, Form::Numbers, &negative);
+        w.expr(&SQ, 0);
+        assert!(
+            w.out
+                .contains("<mo lspace=\"0\" rspace=\"0\">−</mo><mn>0.50</mn>"),
+            "{}",
+            w.out
+        );
     }
 
     #[test]
