@@ -58,6 +58,12 @@ impl Snapshot {
     }
 }
 
+// The doubling keeps snapshots at multiples of the interval: both bounds of
+// the first interval are powers of two, so every interval is one.
+const _: () = assert!(
+    Timeline::FIRST_INTERVAL.is_power_of_two() && Timeline::MIN_FIRST_INTERVAL.is_power_of_two()
+);
+
 /// The recorded run: snapshots from [`Timeline::first`] to [`Timeline::end`]
 /// (see the module's documentation).
 pub struct Timeline {

@@ -16,7 +16,10 @@ macro_rules! content_file {
         include_str!(concat!("../../../../assets/", $id, ".json"))
     };
 }
+// Unused in a build with no experiment (the lab report's module,
+// `LAB_EXPERIMENTS=`), whose registry is empty.
 #[cfg(not(feature = "reading"))]
+#[allow(unused_macros)]
 macro_rules! content_file {
     ($id:literal) => {
         ""

@@ -69,13 +69,15 @@ struct LayerData {
 impl Clone for LayerData {
     /// A copy is a different layer: it gets its own identity, so a painter
     /// that drew the original never mistakes the copy's changes for its own.
+    /// Its journal starts empty where the original's ends: a painter meets
+    /// the copy with a full redraw, so no plan reads the rewrites before it.
     fn clone(&self) -> Self {
         Self {
             id: fresh_id(),
             epoch: self.epoch,
             segments: self.segments.clone(),
-            journal: self.journal.clone(),
-            journal_start: self.journal_start,
+            journal: Vec::new(),
+            journal_start: self.journal_start + self.journal.len() as u64,
         }
     }
 }
