@@ -256,6 +256,10 @@ struct SimState {
     /// A pointer holds the timeline slider: its moves are a stream
     /// ([`SimState::text_paced`]) until it lets go.
     scrub_dragging: bool,
+    /// The dragged timeline slider moved since the last frame.
+    scrub_moved: bool,
+    /// The frame (animation-frame time, ms) after its last move.
+    scrub_moved_ms: f64,
     shown_status: Option<labcore::Status>,
     notices: NoticeShelf,
     /// Serial of the notice on screen.
@@ -310,6 +314,8 @@ struct SimState {
     /// The timeline slider and what it shows: (first, last, shown) step.
     scrub_slider: Option<Element>,
     shown_scrub: (u64, u64, u64),
+    /// The (first, last, shown) step the slider's `aria-valuetext` names.
+    shown_valuetext: (u64, u64, u64),
     /// The marked moments of the run ([`marks`]).
     marks: marks::MarkState,
     /// The run's last state while the scene shows the past: its plots are
@@ -418,7 +424,13 @@ impl SimState {
         // layout is still clean; read after the readouts are written, each
         // would make the browser lay the page out again mid-frame.
         self.finish_branch();
-        let plots_due = self.plots_force || self.plots_stale || self.plots.due(time_ms);
+        if std::mem::take(&mut self.scrub_moved) {
+            self.scrub_moved_ms = time_ms;
+        }
+        // A dragged timeline keeps the plots' pictures until it rests.
+        let plots_due = self.plots_force
+            || self.plots_stale
+            || (!self.scrub_moving(time_ms) && self.plots.due(time_ms));
         if plots_due {
             self.plots.measure();
         }
@@ -560,6 +572,9 @@ impl SimState {
         }
         self.sync_notice(time_ms);
         self.sync_timebar(write_text || input_paint || self.jumped);
+        if write_text || input_paint {
+            self.sync_valuetext();
+        }
         self.jumped = false;
         if self.hash_dirty
             && time_ms - self.last_hash_ms >= HASH_INTERVAL_MS
@@ -798,6 +813,8 @@ impl SimView {
             text_stale: false,
             text_paced: false,
             scrub_dragging: false,
+            scrub_moved: false,
+            scrub_moved_ms: f64::NEG_INFINITY,
             shown_status: None,
             notices: NoticeShelf::default(),
             shown_notice: None,
@@ -825,6 +842,7 @@ impl SimView {
             run_to_end: None,
             scrub_slider: query(panel, ".tb-scrub"),
             shown_scrub: (0, 0, u64::MAX),
+            shown_valuetext: (0, 0, u64::MAX),
             marks: marks::MarkState::default(),
             record_end: None,
             kept: Vec::new(),

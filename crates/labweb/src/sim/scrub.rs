@@ -36,6 +36,10 @@ pub(super) const RUN_TO_END_BUDGET_MS: f64 = 30.0;
 /// has not ended by then: a run that never ends is not run forever.
 pub(super) const RUN_TO_END_MAX_STEPS: u64 = 10 * 60 * 60;
 
+/// How long a dragged timeline slider must rest before the plots whose
+/// picture changed are repainted, milliseconds ([`SimState::scrub_moving`]).
+pub(super) const SCRUB_REST_MS: f64 = 150.0;
+
 /// Step back and Run to end (beside Step).
 pub(super) const BUTTONS_HTML: &str = "<button type=\"button\" data-time=\"back\" aria-keyshortcuts=\",\" title=\"One step back (key ,)\">\
      <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M14 2v12l-8-6zM2 2h3v12H2z\"/></svg> <span class=\"tb-text\">Back</span></button>\
@@ -107,10 +111,11 @@ pub(super) fn shown_plots<'a>(
                 // The record still holds that moment: a window around it.
                 Some(first) if x >= first => {
                     let lo = (x - 0.5 * w).max(first);
+                    // Another window is another picture (a plot is drawn
+                    // again when its revision or its window changed); the
+                    // cursor alone moving is not
+                    // ([`crate::plot_view::PlotView::set_cursor`]).
                     plot.window = XWindow::Fixed(lo, lo + w);
-                    // Another window is another picture; the cursor alone
-                    // moving is not ([`crate::plot_view::PlotView::set_cursor`]).
-                    plot.revision ^= lo.to_bits().rotate_left(29);
                 }
                 // The record has let that moment go (a long run keeps a
                 // window's worth of samples): the plot as the run showed it
@@ -164,12 +169,16 @@ pub(super) fn listen(
         // text's pace, the link is written once it stops (a link a frame
         // costs Chromium 10–17 ms each, and Safari refuses more than 100 in
         // 30 s), and the plots whose picture changed (a rolling window that
-        // moved) are repainted at the plots' pace, one a frame; the cursors
-        // and the time follow every frame. A single move (a tap on the
-        // track, a value typed by a test) writes everything at once.
+        // moved) keep it while the drag moves, then are repainted at the
+        // plots' pace, one a frame, once it rests for SCRUB_REST_MS (a plot
+        // paint is 12–16 ms on the 4×-throttled phone: a drag painting them
+        // moved in jerks); the scene, the cursors and the time follow every
+        // frame. A single move (a tap on the track, a value typed by a
+        // test) writes everything at once.
         if st.scrub_dragging {
             st.text_paced = true;
             st.plots_stale = false;
+            st.scrub_moved = true;
         }
     }));
     let s = state.clone();
@@ -457,8 +466,9 @@ impl SimState {
 
     /// What a jump in time redraws: the scene, the plots' cursors (a plot
     /// itself only where its picture changed: a rolling window that moved,
-    /// the record's end shown again), the controls (the parameters may have
-    /// been others then), the text and the link.
+    /// the record's end shown again), the controls whose parameter was
+    /// another then (the next text write compares each with what it shows),
+    /// the text and the link.
     ///
     /// Nothing is written to the page here, in the input's handler: the
     /// next frame writes it all after reading the layout (a write here
@@ -468,7 +478,6 @@ impl SimState {
         self.plots_stale = true;
         self.jumped = true;
         self.hash_dirty = true;
-        self.shown_values.iter_mut().for_each(|v| *v = None);
     }
 
     /// Step back (the button and `,`): one model step earlier.
@@ -581,26 +590,56 @@ impl SimState {
 
     /// Brings the slider up to date: its range (the record), its value (the
     /// step shown) and its spoken value, the time and the main readout.
+    ///
+    /// While a pointer drags the slider its `aria-valuetext` (which reads
+    /// the main readout: every readout computed) waits for the page's text
+    /// ([`SimState::sync_valuetext`], at the text's pace and when the drag
+    /// ends); its range and value follow every frame, each written only
+    /// when it changed.
     pub(super) fn sync_scrub(&mut self) {
         let Some(tl) = &self.timeline else {
             return;
         };
         let now = (tl.first(), tl.end(), self.clock.steps());
-        if now == self.shown_scrub {
+        if now != self.shown_scrub {
+            let shown = std::mem::replace(&mut self.shown_scrub, now);
+            let Some(slider) = self
+                .scrub_slider
+                .as_ref()
+                .and_then(|s| s.dyn_ref::<HtmlInputElement>())
+            else {
+                return;
+            };
+            if (now.0, now.1) != (shown.0, shown.1) {
+                let _ = slider.set_attribute("min", &now.0.to_string());
+                let _ = slider.set_attribute("max", &now.1.to_string());
+            }
+            let value = now.2.to_string();
+            if slider.value() != value {
+                slider.set_value(&value);
+            }
+        }
+        if !self.scrub_dragging {
+            self.sync_valuetext();
+        }
+    }
+
+    /// Writes the slider's `aria-valuetext` ([`SimState::moment_text`]) if
+    /// the moment it names, or the record around it, changed since.
+    pub(super) fn sync_valuetext(&mut self) {
+        if self.shown_valuetext == self.shown_scrub {
             return;
         }
-        self.shown_scrub = now;
-        let Some(slider) = self
-            .scrub_slider
-            .as_ref()
-            .and_then(|s| s.dyn_ref::<HtmlInputElement>())
-        else {
-            return;
-        };
-        let _ = slider.set_attribute("min", &now.0.to_string());
-        let _ = slider.set_attribute("max", &now.1.to_string());
-        slider.set_value(&now.2.to_string());
-        let text = self.moment_text();
-        let _ = slider.set_attribute("aria-valuetext", &text);
+        self.shown_valuetext = self.shown_scrub;
+        if let Some(slider) = &self.scrub_slider {
+            let _ = slider.set_attribute("aria-valuetext", &self.moment_text());
+        }
+    }
+
+    /// Whether a pointer drags the timeline slider and moved it less than
+    /// [`SCRUB_REST_MS`] before `now_ms`: the plots keep their pictures
+    /// (their cursors move over them) until it rests or lets go.
+    pub(super) fn scrub_moving(&self, now_ms: f64) -> bool {
+        self.scrub_dragging && now_ms - self.scrub_moved_ms < SCRUB_REST_MS
     }
 }
