@@ -723,6 +723,15 @@ pub trait Experiment {
     fn step_weight(&self) -> u64 {
         1
     }
+    /// The timeline is about to replay steps of this copy and read it only
+    /// after [`Experiment::end_replay`] ([`crate::timeline::Timeline::state_at`]):
+    /// a step may put off what it derives from the state alone (pid's step
+    /// metrics scan the whole response, every step) until then. Default:
+    /// nothing.
+    fn begin_replay(&mut self) {}
+    /// The replay is over: derive what its steps put off, so the state is
+    /// bit for bit the one the live run had at that step. Default: nothing.
+    fn end_replay(&mut self) {}
 }
 
 /// What is shown of an experiment (its `view.rs`): the view box, the display

@@ -238,8 +238,12 @@ impl Timeline {
         let snap = &self.snaps[i];
         let mut lab = snap.lab.snapshot();
         let replay = step - snap.step;
-        for _ in 0..replay {
-            step_once(lab.as_mut());
+        if replay > 0 {
+            lab.begin_replay();
+            for _ in 0..replay {
+                step_once(lab.as_mut());
+            }
+            lab.end_replay();
         }
         self.last_replay = replay;
         self.worst_replay = self.worst_replay.max(replay);

@@ -285,6 +285,11 @@ pub struct PidControl {
     /// setpoint instead (how far it went past it, its peak), so an unstable
     /// run reports what it reached.
     setpoint_info: Option<StepInfo>,
+    /// The timeline replays this copy ([`Experiment::begin_replay`]): its
+    /// steps leave the metrics to [`Experiment::end_replay`].
+    replaying: bool,
+    /// A replayed step left the metrics and markers to compute.
+    metrics_stale: bool,
     notices: Notices,
     pins: Vec<Pin>,
     pins_made: usize,
@@ -362,6 +367,8 @@ impl Default for PidControl {
             stability: Memo::default(),
             info: Err(NoMetrics::NotYet),
             setpoint_info: None,
+            replaying: false,
+            metrics_stale: false,
             notices: Notices::default(),
             pins: Vec::new(),
             pins_made: 0,
@@ -853,8 +860,28 @@ impl Experiment for PidControl {
                 break;
             }
         }
-        self.update_metrics();
+        // The metrics are a function of the response so far and the run's
+        // state alone: a replay computes them once, at its end.
+        if self.replaying {
+            self.metrics_stale = true;
+        } else {
+            self.update_metrics();
+        }
         self.plots.iter_mut().for_each(Plot::touch);
+    }
+
+    fn begin_replay(&mut self) {
+        self.replaying = true;
+    }
+
+    /// The metrics and markers of the response so far: what the last
+    /// replayed step would have computed, since the state has not moved
+    /// since (a step after the run went quiet changes nothing).
+    fn end_replay(&mut self) {
+        self.replaying = false;
+        if std::mem::take(&mut self.metrics_stale) {
+            self.update_metrics();
+        }
     }
 
     fn animated(&self) -> bool {

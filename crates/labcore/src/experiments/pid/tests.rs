@@ -1478,3 +1478,38 @@ fn pid_step_9_scrubbing_back_to_the_peak_reads_the_overshoot_the_damping_predict
     assert_eq!(marked[0].1[0], (t_peak, x_peak));
     assert_eq!(x_peak, top);
 }
+
+/// The timeline's replay leaves the step metrics (a scan of the whole
+/// response) to its end: the state it rebuilds at any step, before, at and
+/// after the run goes quiet, has the live run's metrics (its readouts and
+/// status), markers and plots, bit for bit.
+#[test]
+fn a_replay_computes_the_metrics_once_at_its_end_exactly_as_the_live_run_had_them() {
+    use crate::timeline::Timeline;
+    use crate::Lab;
+    let mut e = PidControl::default();
+    set_params(
+        &mut e,
+        &[("kp", 25.0), ("ki", 0.0), ("kd", 2.0), ("c", 1.0), ("noise", 0.0), ("tf", 0.0)],
+    );
+    let mut timeline = Timeline::new(&e as &dyn Lab, 0);
+    let mut live = Vec::new();
+    let mut quiet_at = None;
+    for k in 1..=1500u64 {
+        e.step(1.0 / 60.0);
+        timeline.stepped(&e as &dyn Lab);
+        live.push((e.status(), e.plots().to_vec(), e.readouts()));
+        if quiet_at.is_none() && !e.animating() {
+            quiet_at = Some(k);
+        }
+    }
+    let quiet_at = quiet_at.expect("the run goes quiet within 25 s");
+    let step_once = &mut |lab: &mut dyn Lab| lab.step(1.0 / 60.0);
+    for k in (1..=1500u64).filter(|k| k % 7 == 3 || k.abs_diff(quiet_at) <= 40) {
+        let (_, lab) = timeline.state_at(k, step_once);
+        let (status, plots, readouts) = &live[k as usize - 1];
+        assert_eq!(&lab.status(), status, "step {k}: status");
+        assert_eq!(lab.plots(), plots.as_slice(), "step {k}: plots and markers");
+        assert_eq!(&lab.readouts(), readouts, "step {k}: readouts");
+    }
+}
