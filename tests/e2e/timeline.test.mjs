@@ -110,3 +110,52 @@ test("timeline: the time bar with its slider on a phone (pid, astar)", () =>
     await page.locator(".tb-scrub").scrollIntoViewIfNeeded();
     await screenshot(page, "timeline-astar-phone");
   }));
+
+test("timeline: a real drag of the slider moves the scene at once, keeps the plots' pictures while it moves and repaints them at rest (cartpole)", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, "#/cartpole/simulation");
+    await page.locator("button[data-time=end]").click();
+    // Run to end is done when the steps stop growing.
+    await runUntil(
+      page,
+      () => {
+        const n = Number(document.querySelector("canvas.sim-canvas").dataset.steps);
+        const done = n > 0 && n === window.__lastSteps;
+        window.__lastSteps = n;
+        return done;
+      },
+      null,
+      { sliceMs: 200, what: "the end of Run to end" },
+    );
+    const end = await steps(page);
+    assert.ok(end / 60 > 25, `a run longer than the plots' 20 s window: ${end} steps`);
+    const picture = () => page.locator("figure[data-plot=angle] canvas.plot-canvas").getAttribute("data-layout");
+    const atEnd = await picture();
+    const slider = page.locator(".tb-scrub");
+    await slider.scrollIntoViewIfNeeded();
+    const box = await slider.boundingBox();
+    const y = box.y + box.height / 2;
+    // The thumb sits at the right end (the run's last step).
+    await page.mouse.move(box.x + box.width - 6, y);
+    await page.mouse.down();
+    const seen = [];
+    for (let i = 1; i <= 8; i++) {
+      await page.mouse.move(box.x + box.width * (1 - 0.1 * i), y, { steps: 2 });
+      await settle(page);
+      seen.push(await steps(page));
+      assert.equal(await picture(), atEnd, `move ${i}: the plot keeps its picture while the drag moves`);
+    }
+    assert.ok(seen.every((s, i) => i === 0 || s < seen[i - 1]), `the scene follows every move back: ${seen}`);
+    // The pointer rests, still down: the plots follow the moment shown.
+    await page.clock.runFor(1200);
+    assert.notEqual(await picture(), atEnd, "the plot is repainted once the drag rests");
+    await page.mouse.up();
+    await settle(page);
+    const k = await steps(page);
+    const t = (k / 60).toFixed(2);
+    assert.equal(await page.locator(".tb-time").textContent(), `t = ${t} s`);
+    const spoken = await slider.getAttribute("aria-valuetext");
+    assert.ok(spoken.startsWith(`t = ${t} s, `), `the slider names the moment it stopped at: ${spoken}`);
+    const cursor = page.locator("figure[data-plot=angle] .plot-cursor");
+    assert.equal(await cursor.isVisible(), true, "the cursor is on the repainted plot");
+  }));
