@@ -171,16 +171,23 @@ fn scrub_replay_bound_any_step_replays_at_most_the_interval_less_one() {
     }
 }
 
-/// RRT*'s step grows a batch of iterations (24 by default), so its first
-/// interval is shorter: a scrub replays about as many iterations as a
-/// 32-step interval replays steps elsewhere, not 24 times that.
+/// RRT*'s step grows a batch of iterations (24 by default), and the
+/// workspace sweep's samples a hundredth of its poses (weight 4), so their
+/// first intervals are shorter: a scrub replays about as much work as a
+/// 32-step interval replays elsewhere, not 24 (or 4) times that.
 #[test]
 fn scrub_replay_bound_a_step_that_runs_a_batch_is_snapshot_more_often() {
     let rrt = labcore::testkit::open("rrtstar");
     assert_eq!(rrt.step_weight(), 24);
     assert_eq!(Timeline::first_interval(rrt.as_ref()), 4);
     assert_eq!(Timeline::new(rrt.as_ref(), 0).interval(), 4);
-    for id in evolving_ids().into_iter().filter(|id| *id != "rrtstar") {
+    let sweep = labcore::testkit::open("workspace");
+    assert_eq!(sweep.step_weight(), 4);
+    assert_eq!(Timeline::first_interval(sweep.as_ref()), 8);
+    for id in evolving_ids()
+        .into_iter()
+        .filter(|id| !["rrtstar", "workspace"].contains(id))
+    {
         let exp = labcore::testkit::open(id);
         assert_eq!(
             Timeline::first_interval(exp.as_ref()),
