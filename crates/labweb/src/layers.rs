@@ -73,6 +73,28 @@ thread_local! {
     }) };
     static SEGMENT_CACHES: RefCell<Vec<SegmentCache>> = const { RefCell::new(Vec::new()) };
     static RASTER_CACHES: RefCell<Vec<RasterCache>> = const { RefCell::new(Vec::new()) };
+    static DRAFT: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Paints kept segment layers as drafts until set back ([`draft_dpr`]):
+/// the scene of a timeline drag that is still moving, where every frame
+/// shows another tree and redraws it in full.
+pub(crate) fn set_draft(draft: bool) {
+    DRAFT.with(|d| d.set(draft));
+}
+
+/// The pixel ratio a kept segment layer is drawn at: the canvas's, or at
+/// most 1 for a draft ([`set_draft`]). On a phone at DPR 2 a draft lights a
+/// quarter of the pixels and its lines are one pixel wide: RRT*'s tree of
+/// 4,000 edges redrawn for each position of a drag cost 11 ms of a 4×
+/// throttled frame, nearly all of it per-pixel writes. The frame after the
+/// drag rests draws it sharp again.
+fn draft_dpr(dpr: f64) -> f64 {
+    if DRAFT.with(Cell::get) {
+        dpr.min(1.0)
+    } else {
+        dpr
+    }
 }
 
 /// The work counted since the last [`reset_counters`].
@@ -360,6 +382,7 @@ pub(crate) fn paint_segment_layer(
     (css_w, css_h): (f64, f64),
     dpr: f64,
 ) {
+    let dpr = draft_dpr(dpr);
     let w = (css_w * dpr).round().max(1.0) as usize;
     let h = (css_h * dpr).round().max(1.0) as usize;
     let [r, g, b] = hex_rgb(colour);

@@ -728,3 +728,54 @@ fn a_recorded_rrt_star_run_draws_only_its_new_edges_between_snapshots() {
     assert_eq!(c.full_redraws, 0, "{c:?}");
     assert!(c.segments_drawn > 0, "{c:?}");
 }
+
+/// Issue 26 §4, a drag over RRT*'s tree on a phone's DPR-2 screen: each
+/// position shows another tree, redrawn in full (4,000 edges, 11 ms of a
+/// 4×-throttled frame, nearly all per-pixel writes). While the drag moves,
+/// the tree is drawn as a draft at one device pixel per CSS pixel (a
+/// quarter of the pixels); once it rests, sharp at the screen's ratio.
+#[wasm_bindgen_test]
+fn a_moving_drag_draws_the_tree_as_a_draft_and_a_resting_one_sharp() {
+    use labweb::layers::{counters, reset_counters};
+    js_sys::eval(
+        "Object.defineProperty(window, 'devicePixelRatio', { value: 2, configurable: true })",
+    )
+    .unwrap();
+    mount("#/rrtstar/simulation");
+    element("[data-action=grow]").click();
+    for _ in 0..60 {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    let end = steps_shown();
+    assert!(end >= 40, "{end} steps");
+    let slider: HtmlInputElement = element(".tb-scrub").dyn_into().unwrap();
+    slider_event("pointerdown");
+    let mut drafts = Vec::new();
+    for k in [end / 2, end / 3, end / 4, end / 5] {
+        slider.set_value(&k.to_string());
+        slider_event("input");
+        reset_counters();
+        frame(ONE_STEP_MS);
+        assert_eq!(steps_shown(), k, "the scene follows every move");
+        drafts.push(counters().layer_upload_px);
+    }
+    // The pointer rests (still down) for more than 150 ms.
+    reset_counters();
+    for _ in 0..12 {
+        frame(ONE_STEP_MS);
+    }
+    let sharp = counters().layer_upload_px;
+    slider_event("change");
+    frame(ONE_STEP_MS);
+    js_sys::eval("delete window.devicePixelRatio").unwrap();
+    let most = drafts.iter().copied().max().unwrap_or(0);
+    assert!(
+        drafts.iter().all(|&px| px > 0),
+        "each move draws the tree: {drafts:?}"
+    );
+    assert!(
+        sharp >= 3 * most,
+        "at rest the tree is drawn at DPR 2, four times the pixels of a draft: {sharp} px against {drafts:?}"
+    );
+}

@@ -260,6 +260,12 @@ struct SimState {
     scrub_moved: bool,
     /// The frame (animation-frame time, ms) after its last move.
     scrub_moved_ms: f64,
+    /// The next paint draws the scene's kept layers as drafts (a moving
+    /// timeline drag: [`crate::layers::set_draft`]).
+    scene_draft: bool,
+    /// The scene on the canvas has draft layers: painted again, sharp,
+    /// once the drag rests.
+    scene_drafted: bool,
     shown_status: Option<labcore::Status>,
     notices: NoticeShelf,
     /// Serial of the notice on screen.
@@ -426,6 +432,10 @@ impl SimState {
         self.finish_branch();
         if std::mem::take(&mut self.scrub_moved) {
             self.scrub_moved_ms = time_ms;
+        }
+        self.scene_draft = self.scrub_moving(time_ms);
+        if self.scene_drafted && !self.scene_draft {
+            self.needs_paint = true;
         }
         // A dragged timeline keeps the plots' pictures until it rests.
         let plots_due = self.plots_force
@@ -654,6 +664,7 @@ impl SimState {
             run.ghosts(&mut self.scene);
         }
         self.push_focus_ring();
+        crate::layers::set_draft(self.scene_draft);
         paint_with_backdrop(
             &self.ctx,
             &self.scene,
@@ -664,6 +675,8 @@ impl SimState {
             &self.palette,
             &mut self.backdrop,
         );
+        crate::layers::set_draft(false);
+        self.scene_drafted = self.scene_draft;
         if let Some(key) = &self.live_key {
             crate::draw::paint_tags(
                 &self.ctx,
@@ -815,6 +828,8 @@ impl SimView {
             scrub_dragging: false,
             scrub_moved: false,
             scrub_moved_ms: f64::NEG_INFINITY,
+            scene_draft: false,
+            scene_drafted: false,
             shown_status: None,
             notices: NoticeShelf::default(),
             shown_notice: None,
@@ -1076,6 +1091,7 @@ impl SimView {
         let mut st = self.state.borrow_mut();
         st.plots.measure();
         st.resize();
+        st.scene_draft = false;
         st.paint();
         st.text_at_once = true;
         st.sync_dom();
