@@ -6,9 +6,7 @@
 use crate::dom::{self, escape, query, query_all};
 use crate::draw::Palette;
 use crate::viewport::clip_segment;
-use labcore::plot::{
-    column_spans, dash_is_on, log_ticks, nice_ticks, Axis, Plot, SeriesRole, XWindow,
-};
+use labcore::plot::{column_spans, dash_is_on, log_ticks, nice_ticks, Axis, Plot, SeriesRole};
 use labcore::scene::style::{BAND_OPACITY, PLOT_BAND, REF_LINE_DASH_PX};
 use labcore::units::{format_number, power_of_ten};
 use labcore::Role;
@@ -509,8 +507,7 @@ struct Drawn {
     /// The context painted on: the canvas's own, or the off-screen one.
     ctx: CanvasRenderingContext2d,
     surface: Surface,
-    /// The picture painted: the plot's revision and its window.
-    revision: Option<(u64, XWindow)>,
+    revision: Option<u64>,
     size: (f64, f64, f64),
     /// The canvas size (CSS px) and pixel ratio read by [`PlotView::measure`].
     measured: (f64, f64, f64),
@@ -984,10 +981,7 @@ impl Drawn {
         if let Some((px, t, h)) = place {
             let style = el.style();
             let _ = style.set_property("transform", &format!("translate({px:.1}px,{t:.1}px)"));
-            // The height changes with the plot's frame, not with the moment.
-            if self.shown.cursor.is_none_or(|(_, _, shown_h)| shown_h != h) {
-                let _ = style.set_property("height", &format!("{h:.1}px"));
-            }
+            let _ = style.set_property("height", &format!("{h:.1}px"));
         }
         if self.shown.cursor.is_some() != place.is_some() {
             dom::set_hidden(el, place.is_none());
@@ -1009,7 +1003,7 @@ impl Drawn {
     /// Whether the plot's data or the measured size differ from what is drawn.
     fn stale(&self, plot: &Plot) -> bool {
         self.measured.0 >= 1.0
-            && (self.revision != Some((plot.revision, plot.window)) || self.size != self.measured)
+            && (self.revision != Some(plot.revision) || self.size != self.measured)
     }
 
     /// Paints the plot at the measured size and brings the figure's legend,
@@ -1027,7 +1021,7 @@ impl Drawn {
             );
             self.size = size;
         }
-        self.revision = Some((plot.revision, plot.window));
+        self.revision = Some(plot.revision);
         let (frame, layout) = paint_plot_layout(
             &self.ctx,
             plot,

@@ -277,8 +277,14 @@ fn optimise(root: &Path, wasm: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// Custom sections left out of every optimised module: rustc's
+/// `producers` (its version) and `target_features` (read by tools, never by
+/// a browser; wasm-opt is given [`WASM_FEATURES`] instead). About 225 bytes
+/// of gzip a module, measured on the modules of `41f4345` (210–242 B).
+const STRIPPED_SECTIONS: &[&str] = &["--strip-producers", "--strip-target-features"];
+
 /// Runs npm binaryen's `wasm-opt` at `level` with [`WASM_FEATURES`] on
-/// `input`, writing `output`.
+/// `input`, writing `output` without the [`STRIPPED_SECTIONS`].
 pub fn wasm_opt(root: &Path, input: &Path, output: &Path, level: &str) -> Result<(), String> {
     let bin = root.join("node_modules/.bin/wasm-opt");
     if !bin.exists() {
@@ -293,6 +299,7 @@ pub fn wasm_opt(root: &Path, input: &Path, output: &Path, level: &str) -> Result
             // for a profile).
             .args(level.split_whitespace())
             .args(WASM_FEATURES)
+            .args(STRIPPED_SECTIONS)
             .arg(input)
             .arg("-o")
             .arg(output),

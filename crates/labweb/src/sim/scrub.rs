@@ -111,11 +111,12 @@ pub(super) fn shown_plots<'a>(
                 // The record still holds that moment: a window around it.
                 Some(first) if x >= first => {
                     let lo = (x - 0.5 * w).max(first);
-                    // Another window is another picture (a plot is drawn
-                    // again when its revision or its window changed); the
-                    // cursor alone moving is not
-                    // ([`crate::plot_view::PlotView::set_cursor`]).
                     plot.window = XWindow::Fixed(lo, lo + w);
+                    // Another window is another picture; the cursor alone
+                    // moving is not ([`crate::plot_view::PlotView::set_cursor`]).
+                    // The low bit set, a window from 0 changes it too (it
+                    // was taken for the record's own picture).
+                    plot.revision ^= (lo.to_bits() | 1).rotate_left(29);
                 }
                 // The record has let that moment go (a long run keeps a
                 // window's worth of samples): the plot as the run showed it
@@ -614,10 +615,7 @@ impl SimState {
                 let _ = slider.set_attribute("min", &now.0.to_string());
                 let _ = slider.set_attribute("max", &now.1.to_string());
             }
-            let value = now.2.to_string();
-            if slider.value() != value {
-                slider.set_value(&value);
-            }
+            slider.set_value(&now.2.to_string());
         }
         if !self.scrub_dragging {
             self.sync_valuetext();
