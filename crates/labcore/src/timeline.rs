@@ -227,7 +227,10 @@ impl Timeline {
     /// [`Timeline::end`]) and the step it is at: a copy of the latest
     /// snapshot at or before it, stepped on by `step_once` (one fixed step;
     /// the shell's keeps the instructor's locks) at most
-    /// [`Timeline::interval`] − 1 times.
+    /// [`Timeline::interval`] − 1 times, between
+    /// [`crate::Experiment::begin_replay`] and `end_replay`. `step_once`
+    /// must only step: what a step derives from the state (pid's metrics)
+    /// may be put off until the replay ends.
     pub fn state_at(
         &mut self,
         step: u64,

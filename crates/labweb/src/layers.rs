@@ -73,14 +73,21 @@ thread_local! {
     }) };
     static SEGMENT_CACHES: RefCell<Vec<SegmentCache>> = const { RefCell::new(Vec::new()) };
     static RASTER_CACHES: RefCell<Vec<RasterCache>> = const { RefCell::new(Vec::new()) };
-    static DRAFT: Cell<bool> = const { Cell::new(false) };
+    /// Drafts asked for ([`set_draft`]), and whether a layer was drawn as one.
+    static DRAFT: Cell<(bool, bool)> = const { Cell::new((false, false)) };
 }
 
 /// Paints kept segment layers as drafts until set back ([`draft_dpr`]):
 /// the scene of a timeline drag that is still moving, where every frame
 /// shows another tree and redraws it in full.
 pub(crate) fn set_draft(draft: bool) {
-    DRAFT.with(|d| d.set(draft));
+    DRAFT.with(|d| d.set((draft, false)));
+}
+
+/// Whether a layer was drawn as a draft since [`set_draft`] (the scene is
+/// to be painted again, sharp, once the drag rests).
+pub(crate) fn drafted() -> bool {
+    DRAFT.with(|d| d.get().1)
 }
 
 /// The pixel ratio a kept segment layer is drawn at: the canvas's, or at
@@ -90,11 +97,13 @@ pub(crate) fn set_draft(draft: bool) {
 /// throttled frame, nearly all of it per-pixel writes. The frame after the
 /// drag rests draws it sharp again.
 fn draft_dpr(dpr: f64) -> f64 {
-    if DRAFT.with(Cell::get) {
-        dpr.min(1.0)
-    } else {
-        dpr
-    }
+    DRAFT.with(|d| match d.get() {
+        (true, _) if dpr > 1.0 => {
+            d.set((true, true));
+            1.0
+        }
+        _ => dpr,
+    })
 }
 
 /// The work counted since the last [`reset_counters`].

@@ -737,10 +737,21 @@ fn a_recorded_rrt_star_run_draws_only_its_new_edges_between_snapshots() {
 #[wasm_bindgen_test]
 fn a_moving_drag_draws_the_tree_as_a_draft_and_a_resting_one_sharp() {
     use labweb::layers::{counters, reset_counters};
+    // The screen's ratio, put back when the test ends, passed or not.
+    struct ScreenRatio;
+    impl Drop for ScreenRatio {
+        fn drop(&mut self) {
+            let _ =
+                js_sys::eval("Object.defineProperty(window, 'devicePixelRatio', window.__dprWas)");
+        }
+    }
     js_sys::eval(
-        "Object.defineProperty(window, 'devicePixelRatio', { value: 2, configurable: true })",
+        "window.__dprWas = Object.getOwnPropertyDescriptor(window, 'devicePixelRatio') \
+         || Object.getOwnPropertyDescriptor(Object.getPrototypeOf(window), 'devicePixelRatio'); \
+         Object.defineProperty(window, 'devicePixelRatio', { value: 2, configurable: true })",
     )
     .unwrap();
+    let _ratio = ScreenRatio;
     mount("#/rrtstar/simulation");
     element("[data-action=grow]").click();
     for _ in 0..60 {
@@ -768,7 +779,6 @@ fn a_moving_drag_draws_the_tree_as_a_draft_and_a_resting_one_sharp() {
     let sharp = counters().layer_upload_px;
     slider_event("change");
     frame(ONE_STEP_MS);
-    js_sys::eval("delete window.devicePixelRatio").unwrap();
     let most = drafts.iter().copied().max().unwrap_or(0);
     assert!(
         drafts.iter().all(|&px| px > 0),

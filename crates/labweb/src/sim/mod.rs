@@ -263,7 +263,7 @@ struct SimState {
     /// The next paint draws the scene's kept layers as drafts (a moving
     /// timeline drag: [`crate::layers::set_draft`]).
     scene_draft: bool,
-    /// The scene on the canvas has draft layers: painted again, sharp,
+    /// A layer of the scene on the canvas is a draft: painted again, sharp,
     /// once the drag rests.
     scene_drafted: bool,
     shown_status: Option<labcore::Status>,
@@ -664,7 +664,9 @@ impl SimState {
             run.ghosts(&mut self.scene);
         }
         self.push_focus_ring();
-        crate::layers::set_draft(self.scene_draft);
+        // Not under a kept backdrop: its picture would keep the draft (no
+        // backdrop holds a segment layer today).
+        crate::layers::set_draft(self.scene_draft && self.scene.backdrop == 0);
         paint_with_backdrop(
             &self.ctx,
             &self.scene,
@@ -675,8 +677,8 @@ impl SimState {
             &self.palette,
             &mut self.backdrop,
         );
+        self.scene_drafted = crate::layers::drafted();
         crate::layers::set_draft(false);
-        self.scene_drafted = self.scene_draft;
         if let Some(key) = &self.live_key {
             crate::draw::paint_tags(
                 &self.ctx,

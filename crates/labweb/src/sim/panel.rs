@@ -188,6 +188,7 @@ pub(super) fn listen(
                 let marked = st.marked_states();
                 crate::report_view::download(&st.panel, st.exp.as_ref(), &st.link(), &marked);
             } else if attr("data-export").as_deref() == Some("png") {
+                st.scene_draft = false;
                 st.paint();
                 export_png(&st.canvas, &format!("{}.png", st.file_stem()));
             } else if let Some(key) = attr("data-plot-csv") {

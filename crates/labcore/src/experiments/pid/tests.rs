@@ -1480,11 +1480,11 @@ fn pid_step_9_scrubbing_back_to_the_peak_reads_the_overshoot_the_damping_predict
 }
 
 /// The timeline's replay leaves the step metrics (a scan of the whole
-/// response) to its end: the state it rebuilds at any step, before, at and
-/// after the run goes quiet, has the live run's metrics (its readouts and
-/// status), markers and plots, bit for bit.
+/// response) to its end (`Experiment::end_replay`): the state it rebuilds at
+/// any step, before, at and after the run goes quiet, still has the live
+/// run's metrics (its readouts and status), markers and plots, bit for bit.
 #[test]
-fn a_replay_computes_the_metrics_once_at_its_end_exactly_as_the_live_run_had_them() {
+fn a_replayed_state_has_the_live_runs_metrics_and_markers_before_and_after_the_run_goes_quiet() {
     use crate::timeline::Timeline;
     use crate::Lab;
     let mut e = PidControl::default();
