@@ -433,14 +433,14 @@ impl SimState {
         if std::mem::take(&mut self.scrub_moved) {
             self.scrub_moved_ms = time_ms;
         }
+        // A moving drag of the timeline draws drafts and keeps the plots'
+        // pictures until it rests.
         self.scene_draft = self.scrub_moving(time_ms);
         if self.scene_drafted && !self.scene_draft {
             self.needs_paint = true;
         }
-        // A dragged timeline keeps the plots' pictures until it rests.
-        let plots_due = self.plots_force
-            || self.plots_stale
-            || (!self.scrub_moving(time_ms) && self.plots.due(time_ms));
+        let plots_due =
+            self.plots_force || self.plots_stale || (!self.scene_draft && self.plots.due(time_ms));
         if plots_due {
             self.plots.measure();
         }
