@@ -35,6 +35,15 @@ pub fn query_all(root: &Element, selector: &str) -> Vec<Element> {
 
 pub use labpage::content_html::escape;
 
+/// Writes `text` into an element that holds only text, rewriting its text
+/// node in place ([`rewrite_markup`]). `textContent` would replace the node:
+/// the browser then drops and rebuilds its layout box and re-checks every
+/// `:has()` rule of the elements above it, each frame the timeline's time
+/// changes.
+pub fn set_text(el: &Element, text: &str) {
+    rewrite_markup(el, &escape(text));
+}
+
 pub fn set_hidden(el: &Element, hidden: bool) {
     if let Some(h) = el.dyn_ref::<HtmlElement>() {
         h.set_hidden(hidden);

@@ -984,7 +984,13 @@ impl Drawn {
             let _ = style.set_property("height", &format!("{h:.1}px"));
         }
         if self.shown.cursor.is_some() != place.is_some() {
-            dom::set_hidden(el, place.is_none());
+            // Hidden by `visibility` once first shown, not by the `hidden`
+            // attribute: the style sheet's `:has()` rules name `hidden`, so
+            // each toggle would re-style the page's sections above it.
+            el.set_hidden(false);
+            let _ = el
+                .style()
+                .set_property("visibility", if place.is_some() { "" } else { "hidden" });
         }
         self.shown.cursor = place;
     }
@@ -994,7 +1000,7 @@ impl Drawn {
         if let Some(summary) = &self.parts.summary {
             let text = plot.summary();
             if self.shown.summary.as_deref() != Some(text.as_str()) {
-                summary.set_text_content(Some(&text));
+                dom::set_text(summary, &text);
                 self.shown.summary = Some(text);
             }
         }

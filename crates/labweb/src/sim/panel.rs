@@ -490,7 +490,7 @@ impl SimState {
         {
             if *shown != r.value {
                 if let Some(dd) = dd {
-                    dd.set_text_content(Some(&r.value));
+                    dom::set_text(dd, &r.value);
                 }
                 shown.clone_from(&r.value);
             }

@@ -2,7 +2,7 @@
 //! step, playback speed, reset and the simulated time.
 
 use super::SimState;
-use crate::dom::query;
+use crate::dom::{self, query};
 use labcore::clock::{Clock, SPEEDS};
 use labcore::Phase;
 use wasm_bindgen::JsCast;
@@ -263,7 +263,7 @@ impl SimState {
             let text = format!("t = {:.2} s{held}", self.clock.time_s());
             if text != self.shown_time_text {
                 if let Some(out) = &self.time_output {
-                    out.set_text_content(Some(&text));
+                    dom::set_text(out, &text);
                 }
                 self.shown_time_text = text;
             }
