@@ -981,7 +981,10 @@ impl Drawn {
         if let Some((px, t, h)) = place {
             let style = el.style();
             let _ = style.set_property("transform", &format!("translate({px:.1}px,{t:.1}px)"));
-            let _ = style.set_property("height", &format!("{h:.1}px"));
+            // A scrub moves the cursor; its height stays.
+            if self.shown.cursor.map(|c| c.2) != Some(h) {
+                let _ = style.set_property("height", &format!("{h:.1}px"));
+            }
         }
         if self.shown.cursor.is_some() != place.is_some() {
             // Hidden by `visibility` once first shown, not by the `hidden`
