@@ -39,7 +39,8 @@ pub use labpage::content_html::escape;
 /// node in place ([`rewrite_markup`]). `textContent` would replace the node:
 /// the browser then drops and rebuilds its layout box and re-checks every
 /// `:has()` rule of the elements above it, each frame the timeline's time
-/// changes.
+/// changes. The text goes through the HTML parser, which reads `\r` as
+/// `\n` and drops NUL: no page text holds either.
 pub fn set_text(el: &Element, text: &str) {
     rewrite_markup(el, &escape(text));
 }

@@ -978,22 +978,24 @@ impl Drawn {
         if self.shown.cursor == place {
             return;
         }
-        if let Some((px, t, h)) = place {
-            let style = el.style();
-            let _ = style.set_property("transform", &format!("translate({px:.1}px,{t:.1}px)"));
-            // A scrub moves the cursor; its height stays.
-            if self.shown.cursor.map(|c| c.2) != Some(h) {
-                let _ = style.set_property("height", &format!("{h:.1}px"));
-            }
-        }
+        // Hidden by `visibility` once first shown, not by the `hidden`
+        // attribute: the style sheet's `:has()` rules name `hidden`, so each
+        // toggle would re-style the page's sections above it. Hidden, it
+        // still takes room: at the box's corner with no height, where no
+        // resize pushes it past the plot. (The browser skips a property
+        // written again with the same value.)
+        let (transform, height) = place.map_or(("none".into(), "0".into()), |(px, t, h)| {
+            (
+                format!("translate({px:.1}px,{t:.1}px)"),
+                format!("{h:.1}px"),
+            )
+        });
+        let style = el.style();
+        let _ = style.set_property("transform", &transform);
+        let _ = style.set_property("height", &height);
         if self.shown.cursor.is_some() != place.is_some() {
-            // Hidden by `visibility` once first shown, not by the `hidden`
-            // attribute: the style sheet's `:has()` rules name `hidden`, so
-            // each toggle would re-style the page's sections above it.
             el.set_hidden(false);
-            let _ = el
-                .style()
-                .set_property("visibility", if place.is_some() { "" } else { "hidden" });
+            let _ = style.set_property("visibility", if place.is_some() { "" } else { "hidden" });
         }
         self.shown.cursor = place;
     }

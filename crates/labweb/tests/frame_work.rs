@@ -81,6 +81,14 @@ if (!window.__spy) {
       return orig.apply(this, a);
     };
   }
+  // Nodes replaced by a text write that cannot reuse its node (empty to text).
+  for (const [proto, m] of [[Element.prototype, "replaceChildren"], [Element.prototype, "replaceWith"], [CharacterData.prototype, "replaceWith"]]) {
+    const orig = proto[m];
+    proto[m] = function (...a) {
+      if (this.isConnected) { bump(`dom.${m}`); bump("dom.writes"); bump("dom.text"); spy.dirty = true; }
+      return orig.apply(this, a);
+    };
+  }
   const rect = Element.prototype.getBoundingClientRect;
   Element.prototype.getBoundingClientRect = function () {
     bump("dom.sizeReads");

@@ -350,6 +350,12 @@ fn a_scrub_rewrites_text_in_place_and_hides_a_cursor_without_the_hidden_attribut
         cursor.style().get_property_value("visibility").unwrap(),
         "hidden"
     );
+    // Hidden, it takes no room where a resize could push it past the plot.
+    assert_eq!(
+        cursor.style().get_property_value("transform").unwrap(),
+        "none"
+    );
+    assert_eq!(cursor.style().get_property_value("height").unwrap(), "0px");
     scrub_to(40);
     assert_eq!(cursor.style().get_property_value("visibility").unwrap(), "");
 }
