@@ -159,9 +159,12 @@ fn default_grid() -> OccupancyGrid {
 }
 
 /// A 1 × 1 grid; `OccupancyGrid::new` only fails for 0 or huge sizes, so
-/// this is never used with the constant sizes above.
+/// this is never used with the constant sizes above. (Not `expect`: it
+/// would print the error with `Debug`, whose character escaping costs the
+/// wasm about 2 KB.)
 fn unreachable_grid() -> OccupancyGrid {
-    OccupancyGrid::from_cells(1, 1, vec![false]).expect("a 1 × 1 grid is valid")
+    OccupancyGrid::from_cells(1, 1, vec![false])
+        .unwrap_or_else(|_| unreachable!("a 1 × 1 grid is valid"))
 }
 
 /// What a pointer drag does.
