@@ -171,11 +171,15 @@ impl Clock {
 /// The entry of [`SPEEDS`] closest to `speed` (in ratio).
 #[must_use]
 pub fn nearest_speed(speed: f64) -> f64 {
-    let target = speed.max(1e-9).ln();
+    let target = crate::math::ln(speed.max(1e-9));
     SPEEDS
         .iter()
         .copied()
-        .min_by(|a, b| (a.ln() - target).abs().total_cmp(&(b.ln() - target).abs()))
+        .min_by(|a, b| {
+            (crate::math::ln(*a) - target)
+                .abs()
+                .total_cmp(&(crate::math::ln(*b) - target).abs())
+        })
         .unwrap_or(1.0)
 }
 

@@ -7,56 +7,76 @@
 //! same pure-Rust code on every target — so a run is bit-identical natively
 //! and in the browser. (`sqrt` is exactly rounded by IEEE 754 everywhere and
 //! stays as it is.)
+//!
+//! In wasm each function stays one function (`inline(never)`): inlined,
+//! libm's argument reduction was copied into every caller, and the module
+//! grew by kilobytes.
 
 /// `(sin x, cos x)`, x in radians.
-#[inline]
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
 #[must_use]
 pub fn sin_cos(x: f64) -> (f64, f64) {
     libm::sincos(x)
 }
 
-#[inline]
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
 #[must_use]
 pub fn sin(x: f64) -> f64 {
     libm::sin(x)
 }
 
-#[inline]
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
 #[must_use]
 pub fn cos(x: f64) -> f64 {
     libm::cos(x)
 }
 
 /// Four-quadrant arctangent of `y / x`, in `[-π, π]`.
-#[inline]
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
 #[must_use]
 pub fn atan2(y: f64, x: f64) -> f64 {
     libm::atan2(y, x)
 }
 
 /// `√(x² + y²)` without overflow.
-#[inline]
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
 #[must_use]
 pub fn hypot(x: f64, y: f64) -> f64 {
     libm::hypot(x, y)
 }
 
 /// Natural logarithm.
-#[inline]
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
 #[must_use]
 pub fn ln(x: f64) -> f64 {
     libm::log(x)
 }
 
+/// Base-10 logarithm.
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
+#[must_use]
+pub fn log10(x: f64) -> f64 {
+    libm::log10(x)
+}
+
 /// `eˣ`.
-#[inline]
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
 #[must_use]
 pub fn exp(x: f64) -> f64 {
     libm::exp(x)
 }
 
 /// Cube root.
-#[inline]
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
 #[must_use]
 pub fn cbrt(x: f64) -> f64 {
     libm::cbrt(x)
@@ -79,5 +99,11 @@ mod tests {
         }
         assert_eq!(atan2(0.0, -1.0), std::f64::consts::PI);
         assert_eq!(cbrt(27.0), 3.0);
+        for k in -300..=300 {
+            // Exact at powers of ten: plots and readouts take floor/ceil of it.
+            let x: f64 = format!("1e{k}").parse().unwrap();
+            assert_eq!(log10(x), f64::from(k), "log10(1e{k})");
+        }
+        assert!((ln(10.0) - 10f64.ln()).abs() <= f64::EPSILON);
     }
 }

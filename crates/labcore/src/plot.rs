@@ -447,7 +447,7 @@ pub fn nice_ticks(lo: f64, hi: f64, max_ticks: usize) -> Vec<f64> {
         (lo - pad, hi + pad)
     };
     let raw = (hi - lo) / (max_ticks - 1) as f64;
-    let mag = 10f64.powi(raw.log10().floor() as i32);
+    let mag = 10f64.powi(crate::math::log10(raw).floor() as i32);
     // Tolerate float noise at the ends: 0.35 / 0.05 is 6.999….
     let first_of = |s: f64| (lo / s - 1e-9).ceil();
     let last_of = |s: f64| (hi / s + 1e-9).floor();
@@ -462,7 +462,7 @@ pub fn nice_ticks(lo: f64, hi: f64, max_ticks: usize) -> Vec<f64> {
         .map(|k| {
             let v = k as f64 * step;
             // Snap float noise (0.30000000000000004 → 0.3) to the step's decimals.
-            let decimals = (-step.log10().floor()).max(0.0) as i32;
+            let decimals = (-crate::math::log10(step).floor()).max(0.0) as i32;
             let scale = 10f64.powi(decimals);
             (v * scale).round() / scale
         })
@@ -476,7 +476,10 @@ pub fn log_ticks(lo: f64, hi: f64, max_ticks: usize) -> Vec<f64> {
     if !(lo > 0.0 && hi >= lo && hi.is_finite()) || max_ticks == 0 {
         return Vec::new();
     }
-    let (a, b) = (lo.log10().ceil() as i32, hi.log10().floor() as i32);
+    let (a, b) = (
+        crate::math::log10(lo).ceil() as i32,
+        crate::math::log10(hi).floor() as i32,
+    );
     if b < a {
         return vec![lo, hi];
     }

@@ -138,3 +138,55 @@ fn a_test_kit_every_experiments_tests_use_it_and_copy_none_of_its_helpers() {
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
+
+/// One home for transcendental functions: the code the browser runs
+/// (labcore, labweb, labpage outside their tests) calls sin, cos, atan2,
+/// logarithms, exponentials and powers through `labcore::math` (the `libm`
+/// crate), never through `f64`'s methods. `f64::sin` is the platform's C
+/// library natively and compiler-builtins' port in wasm: a run could differ
+/// in the last bit between the two, and a module that used both carried two
+/// copies of the functions (3.4 KB gzip in diffdrive and potential's).
+#[test]
+fn transcendental_functions_go_through_labcore_math() {
+    const STD_CALLS: [&str; 16] = [
+        ".sin()",
+        ".cos()",
+        ".tan()",
+        ".sin_cos()",
+        ".atan2(",
+        ".atan()",
+        ".asin()",
+        ".acos()",
+        ".ln()",
+        ".log10()",
+        ".log2()",
+        ".exp()",
+        ".powf(",
+        ".hypot(",
+        ".cbrt()",
+        ".tanh()",
+    ];
+    let mut found = Vec::new();
+    for krate in ["labcore/src", "labweb/src", "labpage/src"] {
+        for file in rust_files(&crates_dir().join(krate)) {
+            let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            if matches!(name, "tests.rs" | "testkit.rs") {
+                continue;
+            }
+            let text = fs::read_to_string(&file).unwrap_or_default();
+            // A file's own tests (`#[cfg(test)]` to the end) may compare with std.
+            let shipped = text.split("#[cfg(test)]").next().unwrap_or("");
+            for (n, line) in shipped.lines().enumerate() {
+                let code = line.split("//").next().unwrap_or("");
+                if STD_CALLS.iter().any(|c| code.contains(c)) {
+                    found.push(format!("{}:{}: {}", file.display(), n + 1, line.trim()));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "call these through labcore::math:\n{}",
+        found.join("\n")
+    );
+}

@@ -31,13 +31,14 @@
 use crate::content::Content;
 use crate::content_html::escape;
 use crate::experiment::{Lab, ParamKind, ParamSpec, Readout, Status, Tone};
+use crate::math;
 use crate::plot::{decimate_min_max, log_ticks, nice_ticks, Axis, Plot, Series, SeriesRole};
 use crate::quiz::{grade, score_percent, Prepared, PreparedKind, Response};
 pub use crate::route::AnswerKey;
 use crate::scene::style::{BAND_OPACITY, CANVAS, PLOT_BAND, REF_LINE_DASH_PX};
 use crate::scene::{Role, Scene, ViewBox};
 use crate::table::Table;
-use crate::units::format_number;
+use crate::units::{format_number, power_of_ten};
 use std::fmt::Write as _;
 
 mod scene_svg;
@@ -730,7 +731,7 @@ fn step_decimals(step: f64) -> usize {
 /// `10ᵏ` for a log axis tick.
 fn power_label(v: f64) -> String {
     const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
-    let k = v.log10().round() as i32;
+    let k = math::log10(v).round() as i32;
     if (-2..=3).contains(&k) {
         return format_number(v, 2);
     }
@@ -776,7 +777,7 @@ struct PlotMap {
 impl PlotMap {
     fn fy(&self, v: f64) -> f64 {
         if self.log {
-            v.max(1e-300).log10()
+            math::log10(v.max(1e-300))
         } else {
             v
         }
@@ -838,9 +839,9 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
     if log {
         y0 = y0.max(1e-300);
         y1 = y1.max(y0);
-        let (a, b) = (y0.log10().floor(), y1.log10().ceil());
-        y0 = 10f64.powf(a);
-        y1 = 10f64.powf(if b > a { b } else { a + 1.0 });
+        let (a, b) = (math::log10(y0).floor(), math::log10(y1).ceil());
+        y0 = power_of_ten(a as i32);
+        y1 = power_of_ten((if b > a { b } else { a + 1.0 }) as i32);
     } else {
         let (a, b) = widen(y0, y1);
         let pad = (b - a) * 0.05;

@@ -8,6 +8,7 @@ use crate::palette::hex_rgb;
 pub use crate::palette::Palette;
 pub use crate::viewport::Viewport;
 use glam::DVec2;
+use labcore::math;
 use labcore::scene::style;
 use labcore::{Item, RasterColour, Role, Scene};
 use std::f64::consts::TAU;
@@ -445,7 +446,7 @@ impl Canvas<'_> {
         let ra = semi_axis_a.length() * self.viewport.scale_px_per_m;
         let rb = semi_axis_b.length() * self.viewport.scale_px_per_m;
         // Screen y is flipped, so the rotation angle changes sign.
-        let rotation = -semi_axis_a.y.atan2(semi_axis_a.x);
+        let rotation = -math::atan2(semi_axis_a.y, semi_axis_a.x);
         ctx.begin_path();
         let _ = ctx.ellipse(c.x, c.y, ra.max(0.5), rb.max(0.5), rotation, 0.0, TAU);
         ctx.set_fill_style_str(self.colour(role));
@@ -584,7 +585,7 @@ const EDGE_INSET_PX: f64 = 14.0;
 #[must_use]
 pub fn scale_bar_m(scale_px_per_m: f64, max_px: f64) -> f64 {
     let limit_m = max_px / scale_px_per_m.max(1e-12);
-    let decade = labcore::units::power_of_ten(limit_m.log10().floor() as i32);
+    let decade = labcore::units::power_of_ten(math::log10(limit_m).floor() as i32);
     [5.0, 2.0, 1.0]
         .iter()
         .map(|f| f * decade)
@@ -656,7 +657,7 @@ pub fn off_view_mark(p: DVec2, size: (f64, f64), inset: f64) -> Option<(DVec2, f
         f64::INFINITY
     };
     let t = tx.min(ty);
-    Some((c + d * t, d.y.atan2(d.x)))
+    Some((c + d * t, math::atan2(d.y, d.x)))
 }
 
 /// An arrowhead on the canvas edge pointing at a point outside the view, with
@@ -675,7 +676,8 @@ fn paint_off_view(
         return;
     };
     let colour = palette.colour(role).to_owned();
-    let u = DVec2::new(angle.cos(), angle.sin());
+    let (sin, cos) = math::sin_cos(angle);
+    let u = DVec2::new(cos, sin);
     let n = DVec2::new(-u.y, u.x);
     let back = tip - u * 14.0;
     ctx.begin_path();

@@ -6,6 +6,7 @@
 use crate::dom::{self, escape, query, query_all};
 use crate::draw::Palette;
 use crate::viewport::clip_segment;
+use labcore::math;
 use labcore::plot::{column_spans, dash_is_on, log_ticks, nice_ticks, Axis, Plot, SeriesRole};
 use labcore::scene::style::{BAND_OPACITY, PLOT_BAND, REF_LINE_DASH_PX};
 use labcore::units::{format_number, power_of_ten};
@@ -180,7 +181,7 @@ impl Rect {
     fn distance_to(&self, p: (f64, f64)) -> f64 {
         let dx = (self.x - p.0).max(p.0 - (self.x + self.w)).max(0.0);
         let dy = (self.y - p.1).max(p.1 - (self.y + self.h)).max(0.0);
-        dx.hypot(dy)
+        (dx * dx + dy * dy).sqrt()
     }
 }
 
@@ -345,7 +346,7 @@ pub fn tick_labels(ticks: &[f64], log: bool) -> Vec<String> {
     let biggest = ticks.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let scientific = biggest >= 1e5 || (biggest > 0.0 && biggest < 1e-3);
     let exp = if scientific {
-        biggest.log10().floor() as i32
+        math::log10(biggest).floor() as i32
     } else {
         0
     };
@@ -482,9 +483,9 @@ impl Frame {
         let (_, t, _, h) = self.rect;
         let (a, b, v) = if self.log {
             (
-                self.y.0.log10(),
-                self.y.1.log10(),
-                y.max(f64::MIN_POSITIVE).log10(),
+                math::log10(self.y.0),
+                math::log10(self.y.1),
+                math::log10(y.max(f64::MIN_POSITIVE)),
             )
         } else {
             (self.y.0, self.y.1, y)
@@ -1141,7 +1142,7 @@ fn axis_title(label: &str, unit: &str) -> String {
 
 fn tick_label(v: f64, log: bool) -> String {
     if log || (v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3)) {
-        let exp = v.abs().log10().floor() as i32;
+        let exp = math::log10(v.abs()).floor() as i32;
         let mant = v / 10f64.powi(exp);
         if (mant - 1.0).abs() < 1e-9 {
             format!("1e{exp}")
@@ -1224,8 +1225,8 @@ pub(crate) fn paint_plot_layout(
     let (mut y0, mut y1) = plot.y_range(x_range).unwrap_or((0.0, 1.0));
     let log = plot.log_y && y0 > 0.0;
     if log {
-        y0 = power_of_ten(y0.log10().floor() as i32);
-        y1 = power_of_ten(y1.log10().ceil().max(y0.log10() + 1.0) as i32);
+        y0 = power_of_ten(math::log10(y0).floor() as i32);
+        y1 = power_of_ten(math::log10(y1).ceil().max(math::log10(y0) + 1.0) as i32);
     } else {
         let pad = ((y1 - y0) * 0.08).max(if y1 == y0 {
             y0.abs().max(1.0) * 0.1

@@ -10,9 +10,10 @@
 
 use super::n;
 use crate::content_html::escape;
+use crate::math;
 use crate::scene::style::{self, CANVAS};
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
-use crate::units::format_number;
+use crate::units::{format_number, power_of_ten};
 use glam::DVec2;
 use std::fmt::Write as _;
 
@@ -401,7 +402,7 @@ fn ellipse_svg(
     let ra = (semi_axis_a.length() * m.scale).max(0.5);
     let rb = (semi_axis_b.length() * m.scale).max(0.5);
     // Picture y points down, so the angle changes sign.
-    let deg = -semi_axis_a.y.atan2(semi_axis_a.x).to_degrees();
+    let deg = -math::atan2(semi_axis_a.y, semi_axis_a.x).to_degrees();
     let _ = write!(
         s,
         "<ellipse cx=\"0\" cy=\"0\" rx=\"{}\" ry=\"{}\" transform=\"translate({} {}) rotate({})\" \
@@ -711,7 +712,7 @@ fn arrow_path(m: &Map, from: DVec2, to: DVec2, width_px: f64) -> String {
 /// (1, 2 or 5 × 10ᵏ m) at most 120 units long.
 fn scale_bar(s: &mut String, scale: f64, h: f64) {
     let limit_m = 120.0 / scale.max(1e-12);
-    let decade = 10f64.powf(limit_m.log10().floor());
+    let decade = power_of_ten(math::log10(limit_m).floor() as i32);
     let Some(len_m) = [5.0, 2.0, 1.0]
         .iter()
         .map(|k| k * decade)

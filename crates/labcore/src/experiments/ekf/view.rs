@@ -414,7 +414,7 @@ impl Presentation for EkfExperiment {
 /// the Procedure); the magnitude form outside 10⁻³…10³ m².
 pub(super) fn trace_text(trace_m2: f64) -> String {
     if (1e-3..1e3).contains(&trace_m2) {
-        let decimals = (3 - trace_m2.log10().floor() as i32).max(0) as usize;
+        let decimals = (3 - crate::math::log10(trace_m2).floor() as i32).max(0) as usize;
         format!("{} m²", format_fixed(trace_m2, decimals))
     } else {
         format!("{} m²", format_magnitude(trace_m2))
