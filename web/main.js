@@ -195,6 +195,14 @@ window.labShowArticle = function showArticle(article, tab) {
 const shapeOf = new WeakMap();
 const entities = document.createElement("textarea");
 window.labRewriteMarkup = function rewriteMarkup(el, html) {
+  // Plain text into an element that holds one text node (the time bar's
+  // time, a readout, the badge: every frame of a scrub): that node's text,
+  // without the parse below.
+  const only = el.firstChild;
+  if (only?.nodeType === Node.TEXT_NODE && !only.nextSibling && !/[<&]/.test(html)) {
+    if (only.data !== html) only.data = html;
+    return;
+  }
   const tags = html.match(/<[^>]*>/g)?.join("") ?? "";
   // The texts between the tags, with their character references decoded.
   const runs = html
