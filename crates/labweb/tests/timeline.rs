@@ -840,3 +840,68 @@ fn a_moving_drag_draws_the_tree_as_a_draft_and_a_resting_one_sharp() {
         "at rest the tree is drawn at DPR 2, four times the pixels of a draft: {sharp} px against {drafts:?}"
     );
 }
+
+/// Writes of the timeline slider's `value` property since the page loaded
+/// (a spy on `HTMLInputElement.prototype.value`, installed once).
+fn slider_value_writes() -> u32 {
+    js_sys::eval(
+        "(() => {
+          if (window.__scrubValueWrites === undefined) {
+            window.__scrubValueWrites = 0;
+            const d = Object.getOwnPropertyDescriptor(HTMLInputElement.prototype, 'value');
+            Object.defineProperty(HTMLInputElement.prototype, 'value', {
+              configurable: true,
+              get: d.get,
+              set(v) { if (this.classList.contains('tb-scrub')) window.__scrubValueWrites++; d.set.call(this, v); },
+            });
+          }
+          return window.__scrubValueWrites;
+        })()",
+    )
+    .ok()
+    .and_then(|v| v.as_f64())
+    .map_or(0, |n| n as u32)
+}
+
+/// A drag moves the slider itself: the frames after its moves do not write
+/// the value back (a range input given a value lays its thumb out again),
+/// yet the slider follows a step taken by a key.
+#[wasm_bindgen_test]
+fn a_scrub_frame_leaves_the_slider_it_moved_alone_and_a_key_step_moves_it() {
+    mount("#/pid/simulation");
+    for _ in 0..150 {
+        frame(ONE_STEP_MS);
+    }
+    let slider: HtmlInputElement = element(".tb-scrub").dyn_into().unwrap();
+    slider_value_writes();
+    slider_event("pointerdown");
+    // The first move into the past may write the range and value (the
+    // record's end committed at the move); the moves after it, none.
+    slider.set_value("96");
+    slider_event("input");
+    frame(ONE_STEP_MS);
+    for k in (30..=90).rev().step_by(6) {
+        slider.set_value(&k.to_string());
+        let before = slider_value_writes();
+        slider_event("input");
+        frame(ONE_STEP_MS);
+        labweb::paint_now();
+        assert_eq!(steps_shown(), k, "the scene follows the move");
+        assert_eq!(
+            slider_value_writes() - before,
+            0,
+            "the frame after a move to step {k} wrote the slider's value"
+        );
+        assert_eq!(slider.value(), k.to_string());
+    }
+    slider_event("change");
+    frame(ONE_STEP_MS);
+    // Step back with the key: the slider is told.
+    let before = slider_value_writes();
+    press_key_on_canvas(",");
+    labweb::paint_now();
+    let now = steps_shown();
+    assert!(now < 30, "one step back from 30: {now}");
+    assert!(slider_value_writes() > before, "Step back wrote the value");
+    assert_eq!(slider.value(), now.to_string());
+}
