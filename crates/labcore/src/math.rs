@@ -58,6 +58,14 @@ pub fn ln(x: f64) -> f64 {
     libm::log(x)
 }
 
+/// `ln(1 + x)`, accurate for small `x`.
+#[cfg_attr(target_arch = "wasm32", inline(never))]
+#[cfg_attr(not(target_arch = "wasm32"), inline)]
+#[must_use]
+pub fn ln_1p(x: f64) -> f64 {
+    libm::log1p(x)
+}
+
 /// Base-10 logarithm.
 #[cfg_attr(target_arch = "wasm32", inline(never))]
 #[cfg_attr(not(target_arch = "wasm32"), inline)]
@@ -105,5 +113,8 @@ mod tests {
             assert_eq!(log10(x), f64::from(k), "log10(1e{k})");
         }
         assert!((ln(10.0) - 10f64.ln()).abs() <= f64::EPSILON);
+        assert_eq!(ln_1p(0.0), 0.0);
+        assert!((ln_1p(1e-12) - 1e-12).abs() <= 1e-24);
+        assert!((ln_1p(9.0) - 10f64.ln()).abs() <= 2.0 * f64::EPSILON);
     }
 }

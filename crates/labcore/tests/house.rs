@@ -141,31 +141,25 @@ fn a_test_kit_every_experiments_tests_use_it_and_copy_none_of_its_helpers() {
 
 /// One home for transcendental functions: the code the browser runs
 /// (labcore, labweb, labpage outside their tests) calls sin, cos, atan2,
-/// logarithms, exponentials and powers through `labcore::math` (the `libm`
-/// crate), never through `f64`'s methods. `f64::sin` is the platform's C
-/// library natively and compiler-builtins' port in wasm: a run could differ
-/// in the last bit between the two, and a module that used both carried two
-/// copies of the functions (3.4 KB gzip in diffdrive and potential's).
+/// logarithms, exponentials and real powers through `labcore::math` (the
+/// `libm` crate), never through `f64`'s methods. `f64::sin` is the
+/// platform's C library natively and compiler-builtins' port in wasm: a run
+/// could differ in the last bit between the two, and a module that used
+/// both carried two copies of the functions (3.4 KB gzip in diffdrive and
+/// potential's). `powi` (repeated multiplication) and `sqrt` (exactly
+/// rounded everywhere) may stay.
 #[test]
 fn transcendental_functions_go_through_labcore_math() {
-    const STD_CALLS: [&str; 16] = [
-        ".sin()",
-        ".cos()",
-        ".tan()",
-        ".sin_cos()",
-        ".atan2(",
-        ".atan()",
-        ".asin()",
-        ".acos()",
-        ".ln()",
-        ".log10()",
-        ".log2()",
-        ".exp()",
-        ".powf(",
-        ".hypot(",
-        ".cbrt()",
-        ".tanh()",
+    const FUNCTIONS: [&str; 24] = [
+        "sin", "cos", "tan", "sin_cos", "atan2", "atan", "asin", "acos", "sinh", "cosh", "tanh",
+        "asinh", "acosh", "atanh", "ln", "ln_1p", "log", "log10", "log2", "exp", "exp_m1", "exp2",
+        "powf", "hypot",
     ];
+    let calls: Vec<String> = FUNCTIONS
+        .iter()
+        .flat_map(|f| [format!(".{f}("), format!("f64::{f}(")])
+        .chain(std::iter::once(".cbrt(".to_owned()))
+        .collect();
     let mut found = Vec::new();
     for krate in ["labcore/src", "labweb/src", "labpage/src"] {
         for file in rust_files(&crates_dir().join(krate)) {
@@ -174,11 +168,9 @@ fn transcendental_functions_go_through_labcore_math() {
                 continue;
             }
             let text = fs::read_to_string(&file).unwrap_or_default();
-            // A file's own tests (`#[cfg(test)]` to the end) may compare with std.
-            let shipped = text.split("#[cfg(test)]").next().unwrap_or("");
-            for (n, line) in shipped.lines().enumerate() {
+            for (n, line) in shipped_lines(&text) {
                 let code = line.split("//").next().unwrap_or("");
-                if STD_CALLS.iter().any(|c| code.contains(c)) {
+                if calls.iter().any(|c| code.contains(c.as_str())) {
                     found.push(format!("{}:{}: {}", file.display(), n + 1, line.trim()));
                 }
             }
@@ -189,4 +181,41 @@ fn transcendental_functions_go_through_labcore_math() {
         "call these through labcore::math:\n{}",
         found.join("\n")
     );
+}
+
+/// The lines of a Rust source that are compiled outside tests, numbered
+/// from 0: each `#[cfg(test)]` item (a `mod tests { … }`, a function, a
+/// `mod tests;` declaration) is left out, up to its closing brace or its
+/// semicolon; the code after it is kept. Braces are counted as written
+/// (one in a string or character literal would throw the count off).
+fn shipped_lines(text: &str) -> Vec<(usize, &str)> {
+    let mut out = Vec::new();
+    let mut lines = text.lines().enumerate();
+    while let Some((n, line)) = lines.next() {
+        if line.trim() != "#[cfg(test)]" {
+            out.push((n, line));
+            continue;
+        }
+        // Skip the item: attributes and doc lines, then to its end.
+        let mut depth = 0i64;
+        let mut opened = false;
+        for (_, item) in lines.by_ref() {
+            let code = item.split("//").next().unwrap_or("");
+            depth += code.matches('{').count() as i64 - code.matches('}').count() as i64;
+            opened |= code.contains('{');
+            let attribute =
+                item.trim_start().starts_with("#[") || item.trim_start().starts_with("//");
+            if (opened && depth <= 0) || (!opened && !attribute && code.trim_end().ends_with(';')) {
+                break;
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn shipped_lines_leave_out_test_items_and_keep_what_follows() {
+    let source = "fn a() {}\n#[cfg(test)]\nmod tests;\nfn b() {}\n#[cfg(test)]\n#[must_use]\nfn only_tests() -> u8 {\n    { 1 }\n}\nfn c() {}\n#[cfg(test)]\nmod tests {\n    fn t() {}\n}\n";
+    let kept: Vec<&str> = shipped_lines(source).into_iter().map(|(_, l)| l).collect();
+    assert_eq!(kept, ["fn a() {}", "fn b() {}", "fn c() {}"]);
 }

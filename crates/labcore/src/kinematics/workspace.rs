@@ -339,10 +339,10 @@ impl DensityGrid {
         if self.max == 0 {
             return vec![0.0; self.counts.len()];
         }
-        let denom = (f64::from(self.max)).ln_1p();
+        let denom = crate::math::ln_1p(f64::from(self.max));
         self.counts
             .iter()
-            .map(|&c| ((f64::from(c)).ln_1p() / denom).clamp(0.0, 1.0) as f32)
+            .map(|&c| (crate::math::ln_1p(f64::from(c)) / denom).clamp(0.0, 1.0) as f32)
             .collect()
     }
 }
