@@ -195,11 +195,14 @@ window.labShowArticle = function showArticle(article, tab) {
 const shapeOf = new WeakMap();
 const entities = document.createElement("textarea");
 window.labRewriteMarkup = function rewriteMarkup(el, html) {
+  // A `\r` or NUL always goes through the parser, which reads `\r` as `\n`
+  // and drops NUL; no text written here holds either.
+  const parserAlike = !/[\r\0]/.test(html);
   // Plain text into an element that holds one text node (the time bar's
   // time, a readout, the badge: every frame of a scrub): that node's text,
   // without the parse below.
   const only = el.firstChild;
-  if (only?.nodeType === Node.TEXT_NODE && !only.nextSibling && !/[<&]/.test(html)) {
+  if (parserAlike && only?.nodeType === Node.TEXT_NODE && !only.nextSibling && !/[<&]/.test(html)) {
     if (only.data !== html) only.data = html;
     return;
   }
@@ -215,7 +218,7 @@ window.labRewriteMarkup = function rewriteMarkup(el, html) {
     while (walk.nextNode()) texts.push(walk.currentNode);
     return texts.length === runs.length;
   };
-  if (shapeOf.get(el) === tags && textsOf()) {
+  if (parserAlike && shapeOf.get(el) === tags && textsOf()) {
     runs.forEach((t, i) => {
       if (texts[i].data !== t) texts[i].data = t;
     });

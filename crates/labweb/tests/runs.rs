@@ -460,7 +460,8 @@ fn a_number_that_changes_sign_rewrites_only_its_term() {
 /// the same tags with other texts
 /// (entities among them, the shape's fast path), another shape, another
 /// attribute, a text that became empty, a reference it does not decode, an
-/// element's text that gains a `<`.
+/// element's text that gains a `<`, plain text into a lone text node (with
+/// a `\r` or NUL, which the parser rewrites).
 #[wasm_bindgen_test]
 fn rewriting_markup_in_place_leaves_what_inner_html_would() {
     let document = web_sys::window().unwrap().document().unwrap();
@@ -488,6 +489,12 @@ fn rewriting_markup_in_place_leaves_what_inner_html_would() {
         "<span class=\"other\"><math><mo>(</mo><mn>-2</mn><mo>)</mo></math></span> <span>m</span>".into(),
         "plain text &quot;q&quot; &#39;".into(),
         "plain text again".into(),
+        // Plain text into a lone text node: written to it without a parse,
+        // but a `\r` or NUL still goes through the parser, as innerHTML.
+        "plain once more".into(),
+        "line\r\nbreak".into(),
+        "nul\u{0}byte".into(),
+        "plain at last".into(),
         String::new(),
         term("10"),
     ];
@@ -496,6 +503,13 @@ fn rewriting_markup_in_place_leaves_what_inner_html_would() {
         labweb::dom::rewrite_markup(&kept, html);
         fresh.set_inner_html(html);
         assert_eq!(kept.inner_html(), fresh.inner_html(), "step {i}: {html}");
+        if !html.is_empty() {
+            assert_eq!(
+                kept.child_nodes().length(),
+                fresh.child_nodes().length(),
+                "step {i}: {html}"
+            );
+        }
         if i == 2 || i == 9 {
             let numbers_after = kept.query_selector("mn").unwrap();
             assert!(
