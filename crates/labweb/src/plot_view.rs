@@ -983,17 +983,17 @@ impl Drawn {
         // attribute: the style sheet's `:has()` rules name `hidden`, so each
         // toggle would re-style the page's sections above it. Hidden, it
         // still takes room: at the box's corner with no height, where no
-        // resize pushes it past the plot. (The browser skips a property
-        // written again with the same value.)
-        let (transform, height) = place.map_or(("none".into(), "0".into()), |(px, t, h)| {
-            (
-                format!("translate({px:.1}px,{t:.1}px)"),
-                format!("{h:.1}px"),
-            )
-        });
+        // resize pushes it past the plot. A scrub moves it; its height is
+        // written only when it changes (shown or hidden, a resized plot).
         let style = el.style();
+        let transform = place.map_or("none".into(), |(px, t, _)| {
+            format!("translate({px:.1}px,{t:.1}px)")
+        });
         let _ = style.set_property("transform", &transform);
-        let _ = style.set_property("height", &height);
+        let height = |p: Option<(f64, f64, f64)>| p.map_or(0.0, |c| c.2);
+        if self.shown.cursor.is_none() || height(self.shown.cursor) != height(place) {
+            let _ = style.set_property("height", &format!("{:.1}px", height(place)));
+        }
         if self.shown.cursor.is_some() != place.is_some() {
             el.set_hidden(false);
             let _ = style.set_property("visibility", if place.is_some() { "" } else { "hidden" });

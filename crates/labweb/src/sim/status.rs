@@ -92,9 +92,17 @@ impl SimState {
         }
         if Some(&status) != self.shown_status.as_ref() {
             if let Some(badge) = query(&self.panel, ".sim-status") {
+                // A scrub changes the text at each jump; the tone and phase,
+                // which the style sheet selects on, seldom: an attribute
+                // written re-styles the badge even with the same value.
+                let was = self.shown_status.as_ref();
                 dom::set_text(&badge, &status.text);
-                let _ = badge.set_attribute("data-tone", tone_name(status.tone));
-                let _ = badge.set_attribute("data-phase", phase_name(status.phase));
+                if was.map(|s| s.tone) != Some(status.tone) {
+                    let _ = badge.set_attribute("data-tone", tone_name(status.tone));
+                }
+                if was.map(|s| s.phase) != Some(status.phase) {
+                    let _ = badge.set_attribute("data-phase", phase_name(status.phase));
+                }
             }
             self.shown_status = Some(status);
         }
