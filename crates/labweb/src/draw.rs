@@ -16,13 +16,17 @@ use wasm_bindgen::JsValue;
 use web_sys::CanvasRenderingContext2d;
 
 fn set_dash(ctx: &CanvasRenderingContext2d, dashed: bool) {
-    let pattern = js_sys::Array::new();
-    if dashed {
-        for d in style::DASH_PX {
-            pattern.push(&JsValue::from_f64(d));
-        }
+    // The two patterns are built once: a new array (and a call per entry)
+    // for every line cost 0.2 ms of a workspace scrub frame.
+    thread_local! {
+        static PATTERNS: [js_sys::Array; 2] = [
+            js_sys::Array::new(),
+            style::DASH_PX.iter().map(|&d| JsValue::from_f64(d)).collect(),
+        ];
     }
-    let _ = ctx.set_line_dash(&pattern);
+    PATTERNS.with(|p| {
+        let _ = ctx.set_line_dash(&p[usize::from(dashed)]);
+    });
 }
 
 /// The font of scene labels.
@@ -845,6 +849,7 @@ fn paint_points_raster(
         let mut rgba = buffer.borrow_mut();
         rgba.clear();
         rgba.resize(w * h * 4, 0);
+        let pixels = rgba.as_chunks_mut::<4>().0;
         for p in points {
             let q = viewport.to_px(*p);
             if !q.is_finite() {
@@ -853,8 +858,7 @@ fn paint_points_raster(
             let (cx, cy) = (q.x.round() as i64 - x0, q.y.round() as i64 - y0);
             for y in (cy - half + 1).max(0)..(cy + half).min(h as i64) {
                 for x in (cx - half + 1).max(0)..(cx + half).min(w as i64) {
-                    let i = (y as usize * w + x as usize) * 4;
-                    rgba[i..i + 4].copy_from_slice(&pixel);
+                    pixels[y as usize * w + x as usize] = pixel;
                 }
             }
         }
@@ -916,12 +920,13 @@ fn paint_heatmap(
     let [r, g, b] = hex_rgb(colour);
     // Image rows run top-down; density rows run bottom-up (row 0 at min.y).
     let mut rgba = vec![0u8; cols * rows * 4];
+    let pixels = rgba.as_chunks_mut::<4>().0;
     for row in 0..rows {
         for col in 0..cols {
             let v = values[row * cols + col];
             if v > 0.0 {
-                let i = ((rows - 1 - row) * cols + col) * 4;
-                rgba[i..i + 4].copy_from_slice(&[r, g, b, (40.0 + 200.0 * v.min(1.0)) as u8]);
+                pixels[(rows - 1 - row) * cols + col] =
+                    [r, g, b, (40.0 + 200.0 * v.min(1.0)) as u8];
             }
         }
     }

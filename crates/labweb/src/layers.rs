@@ -313,21 +313,24 @@ impl Coverage<'_> {
             return;
         }
         let i = y as usize * self.w + x as usize;
+        // One 4-byte store a pixel: `copy_from_slice` on a sub-slice was a
+        // call with its own length check for every pixel of every line.
+        let pixels = self.rgba.as_chunks_mut::<4>().0;
         if !self.counting {
             debug_assert!(draw, "an erase without coverage counts");
-            self.rgba[i * 4..i * 4 + 4].copy_from_slice(&self.pixel);
+            pixels[i] = self.pixel;
             return;
         }
         let c = &mut self.counts[i];
         if draw {
             *c += 1;
             if *c == 1 {
-                self.rgba[i * 4..i * 4 + 4].copy_from_slice(&self.pixel);
+                pixels[i] = self.pixel;
             }
         } else if *c > 0 {
             *c -= 1;
             if *c == 0 {
-                self.rgba[i * 4..i * 4 + 4].fill(0);
+                pixels[i] = [0; 4];
             }
         }
     }
@@ -549,11 +552,12 @@ pub(crate) fn raster_rgba(
 ) {
     rgba.clear();
     rgba.resize(cols * rows * 4, 0);
+    let pixels = rgba.as_chunks_mut::<4>().0;
     for row in 0..rows {
-        let out_row = (rows - 1 - row) * cols * 4;
-        for (col, &state) in cells[row * cols..(row + 1) * cols].iter().enumerate() {
+        let out_row = &mut pixels[(rows - 1 - row) * cols..(rows - row) * cols];
+        for (out, &state) in out_row.iter_mut().zip(&cells[row * cols..(row + 1) * cols]) {
             if let Some(c) = (state as usize).checked_sub(1).and_then(|i| lut.get(i)) {
-                rgba[out_row + col * 4..out_row + col * 4 + 4].copy_from_slice(c);
+                *out = *c;
             }
         }
     }
