@@ -516,3 +516,41 @@ fn crisp_blits_of_a_shrinking_cloud_keep_their_canvas_and_only_their_own_pixels(
     assert!(inside > 100, "the small cloud is drawn: {inside} pixels");
     assert_eq!(outside, 0, "pixels lit outside the small cloud's box");
 }
+
+/// The dash patterns are built once and handed to every line
+/// (`draw::set_dash`): a dashed line after a solid one is dashed again,
+/// with the same pattern, and draws the same pixels as the first.
+#[wasm_bindgen_test]
+fn a_dashed_line_after_a_solid_one_is_dashed_again_with_the_same_pixels() {
+    let (_c, ctx, palette) = setup("layers-dash");
+    let line = |dashed: bool| {
+        let mut scene = Scene::default();
+        scene.push(Item::Polyline {
+            points: vec![DVec2::new(5.0, 50.0), DVec2::new(95.0, 50.0)],
+            width_px: 2.0,
+            role: Role::Path,
+            dashed,
+            closed: false,
+        });
+        scene
+    };
+    let dash = |ctx: &CanvasRenderingContext2d| -> Vec<f64> {
+        ctx.get_line_dash()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    paint(&ctx, &line(true), &viewport(), W, H, 1.0, &palette);
+    assert_eq!(dash(&ctx), labcore::scene::style::DASH_PX.to_vec());
+    let first = pixels(&ctx);
+    paint(&ctx, &line(false), &viewport(), W, H, 1.0, &palette);
+    assert!(dash(&ctx).is_empty());
+    let solid = pixels(&ctx);
+    assert_ne!(
+        first, solid,
+        "a solid line lights the gaps of the dashed one"
+    );
+    paint(&ctx, &line(true), &viewport(), W, H, 1.0, &palette);
+    assert_eq!(dash(&ctx), labcore::scene::style::DASH_PX.to_vec());
+    assert_eq!(pixels(&ctx), first);
+}
