@@ -92,6 +92,7 @@ if (!window.__spy) {
   const rect = Element.prototype.getBoundingClientRect;
   Element.prototype.getBoundingClientRect = function () {
     bump("dom.sizeReads");
+    if (this.classList && this.classList.contains("sim-canvas")) bump("dom.simCanvasSizeReads");
     if (spy.dirty) bump("dom.forcedLayouts");
     spy.dirty = false;
     return rect.call(this);
@@ -688,4 +689,46 @@ fn dispatch_on_canvas(event: &web_sys::Event) {
         .unwrap()
         .dispatch_event(event)
         .unwrap();
+}
+
+/// Resolves at the browser's next animation frame (after its rendering
+/// steps, where a `ResizeObserver` is told of a resize).
+async fn next_browser_frame() {
+    let promise = js_sys::Promise::new(&mut |resolve, _| {
+        let _ = web_sys::window().unwrap().request_animation_frame(&resolve);
+    });
+    wasm_bindgen_futures::JsFuture::from(promise).await.unwrap();
+}
+
+#[wasm_bindgen_test]
+async fn a_frame_reads_the_canvas_size_only_after_the_canvas_was_resized() {
+    let view = mount(Streamer::new(1, 10));
+    // Let the observer report the canvas's first size.
+    next_browser_frame().await;
+    next_browser_frame().await;
+    press_play();
+    reset_counts();
+    run_frames(&view, 0..30);
+    assert_eq!(
+        count("dom.simCanvasSizeReads"),
+        0,
+        "running frames read the canvas's size"
+    );
+    let canvas: web_sys::HtmlCanvasElement = document()
+        .query_selector("#lab-under-test canvas.sim-canvas")
+        .unwrap()
+        .unwrap()
+        .dyn_into()
+        .unwrap();
+    let dpr = web_sys::window().unwrap().device_pixel_ratio().max(1.0);
+    assert_eq!(canvas.width(), (360.0 * dpr).round() as u32);
+    canvas.style().set_property("width", "300px").unwrap();
+    next_browser_frame().await;
+    next_browser_frame().await;
+    // The observer read the new size (where layout was clean anyway): the
+    // backing store follows it, and the frames still read nothing.
+    reset_counts();
+    run_frames(&view, 30..60);
+    assert_eq!(canvas.width(), (300.0 * dpr).round() as u32);
+    assert_eq!(count("dom.simCanvasSizeReads"), 0);
 }

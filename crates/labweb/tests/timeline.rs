@@ -611,6 +611,7 @@ fn dragging_the_timeline_writes_the_link_once_it_stops_and_the_text_at_its_pace(
     slider_event("pointerdown");
     let mut links = Vec::new();
     let mut readouts = Vec::new();
+    let mut cursor_attrs = Vec::new();
     // 40 moves, one a frame (0.67 s): back from step 100 to step 22.
     for k in (22..=100).rev().step_by(2) {
         slider.set_value(&k.to_string());
@@ -619,7 +620,15 @@ fn dragging_the_timeline_writes_the_link_once_it_stops_and_the_text_at_its_pace(
         assert_eq!(steps_shown(), k, "the scene follows every move");
         links.push(hash());
         readouts.push(text("dl.readouts"));
+        cursor_attrs.push(cursor_of("response"));
     }
+    // The cursor's `data-cursor` (a re-style of the canvas at each write)
+    // keeps the text's pace too; the cursor itself moves at every frame.
+    cursor_attrs.dedup();
+    assert!(
+        (2..=6).contains(&cursor_attrs.len()),
+        "data-cursor at the text's pace over 0.67 s: {cursor_attrs:?}"
+    );
     links.dedup();
     assert_eq!(links.len(), 1, "no link written during the drag: {links:?}");
     readouts.dedup();
@@ -632,6 +641,9 @@ fn dragging_the_timeline_writes_the_link_once_it_stops_and_the_text_at_its_pace(
     frame(ONE_STEP_MS);
     let entry = labcore::find("pid").unwrap();
     let expected = left_alone(entry, 22);
+    for (key, x) in plot_xs_of(expected.as_ref()) {
+        assert_eq!(cursor_of(key), x, "{key}'s data-cursor at once on release");
+    }
     let shown_readouts = text("dl.readouts");
     for r in expected.readouts() {
         assert!(

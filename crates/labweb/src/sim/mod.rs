@@ -210,6 +210,11 @@ struct SimState {
     viewport: Viewport,
     css_size: (f64, f64),
     dpr: f64,
+    /// Set by the canvas's `ResizeObserver`: `css_size` is to be read again.
+    /// Between resizes a frame reads no layout for it (a size read after
+    /// an input, a scrub's slider moved, made the browser lay out what the
+    /// input changed mid-frame, then again after it).
+    size_stale: Rc<Cell<bool>>,
     pressed_pointer: Option<i32>,
     /// A touch that started off every handle: a tap if it lifts in place, a
     /// scroll if the browser takes it, a drag if it moves sideways.
@@ -380,7 +385,20 @@ impl FrameTimes {
 }
 
 impl SimState {
+    /// Reads the canvas's size only when it may have changed
+    /// ([`SimState::size_stale`], no size yet, another pixel ratio), then
+    /// fits the view as [`SimState::resize`] does.
+    fn resize_if_needed(&mut self) {
+        let dpr = dom::window().device_pixel_ratio().max(1.0);
+        if self.size_stale.get() || self.css_size.0 < 1.0 || dpr != self.dpr {
+            self.resize();
+        } else {
+            self.fit_view();
+        }
+    }
+
     fn resize(&mut self) {
+        self.size_stale.set(false);
         let rect = self.canvas.get_bounding_client_rect();
         let (w, h) = (rect.width(), rect.height());
         let dpr = dom::window().device_pixel_ratio().max(1.0);
@@ -395,6 +413,16 @@ impl SimState {
             self.needs_paint = true;
             // The experiment may pick a view that keeps cells finger-sized.
             self.exp.viewport_px(w, h);
+        }
+        self.fit_view();
+    }
+
+    /// Fits the experiment's view (it may change with the state) into the
+    /// canvas's size.
+    fn fit_view(&mut self) {
+        let (w, h) = self.css_size;
+        if w < 1.0 || h < 1.0 {
+            return;
         }
         let view = self.exp.view();
         if view != self.shown_view {
@@ -539,7 +567,7 @@ impl SimState {
             || ((stopped || self.phase != phase_before) && !streaming)
             || time_ms - self.text_ms >= TEXT_INTERVAL_MS;
         if self.needs_paint {
-            self.resize();
+            self.resize_if_needed();
             self.paint();
             self.text_stale = true;
             self.needs_paint = false;
@@ -564,6 +592,9 @@ impl SimState {
         if self.jumped {
             self.sync_cursors();
         }
+        // The cursors' `data-cursor` follows with the text (and with a
+        // forced repaint of the plots, below).
+        let cursor_attrs_due = write_text || input_paint || self.plots_force;
         // Plots follow the data, each at most every PLOT_INTERVAL_MS and
         // one a frame (they take turns), so no frame pays for all of them;
         // nor for a plot and the page's text together, unless forced.
@@ -579,6 +610,9 @@ impl SimState {
             self.with_shown_plots(|view, plots, palette| {
                 view.draw_next(plots, palette, time_ms);
             });
+        }
+        if cursor_attrs_due {
+            self.plots.sync_cursor_attrs();
         }
         self.sync_notice(time_ms);
         self.sync_timebar(write_text || input_paint || self.jumped);
@@ -804,6 +838,7 @@ impl SimView {
             palette,
             viewport: Viewport::fit(view, 1.0, 1.0),
             css_size: (0.0, 0.0),
+            size_stale: Rc::new(Cell::new(true)),
             dpr: 1.0,
             pressed_pointer: None,
             pending_touch: None,
@@ -904,7 +939,9 @@ impl SimView {
         ));
 
         let s = state.clone();
+        let size_stale = state.borrow().size_stale.clone();
         let closure = Closure::<dyn FnMut(js_sys::Array)>::new(move |_entries: js_sys::Array| {
+            size_stale.set(true);
             if let Ok(mut st) = s.try_borrow_mut() {
                 st.resize();
                 st.needs_paint = true;
@@ -1105,6 +1142,7 @@ impl SimView {
             view.sync_text(plots, dom::now_ms(), true);
         });
         st.plots_force = false;
+        st.plots.sync_cursor_attrs();
         st.sync_timebar(true);
         st.sync_marks();
         if st.plots_force {
