@@ -725,10 +725,35 @@ async fn a_frame_reads_the_canvas_size_only_after_the_canvas_was_resized() {
     canvas.style().set_property("width", "300px").unwrap();
     next_browser_frame().await;
     next_browser_frame().await;
-    // The observer read the new size (where layout was clean anyway): the
-    // backing store follows it, and the frames still read nothing.
+    // The observer read the new size (where layout was clean anyway) and
+    // painted the scene at once: the resized canvas, cleared by its new
+    // size, is never shown blank.
+    let ctx: web_sys::CanvasRenderingContext2d = canvas
+        .get_context("2d")
+        .unwrap()
+        .unwrap()
+        .dyn_into()
+        .unwrap();
+    let corner = ctx.get_image_data(1.0, 1.0, 1.0, 1.0).unwrap().data().0;
+    assert_eq!(corner[3], 255, "the resized canvas was painted: {corner:?}");
+    // The backing store follows it, and the frames still read nothing.
     reset_counts();
     run_frames(&view, 30..60);
     assert_eq!(canvas.width(), (300.0 * dpr).round() as u32);
     assert_eq!(count("dom.simCanvasSizeReads"), 0);
+    // Resized while hidden (another tab shown: the observer sees 0 × 0):
+    // the first frame once shown reads and uses the new size, before the
+    // observer has said anything.
+    let panel: web_sys::HtmlElement = document()
+        .get_element_by_id("lab-under-test")
+        .unwrap()
+        .dyn_into()
+        .unwrap();
+    panel.style().set_property("display", "none").unwrap();
+    next_browser_frame().await;
+    next_browser_frame().await;
+    canvas.style().set_property("width", "280px").unwrap();
+    panel.style().remove_property("display").unwrap();
+    view.frame_at(frame_ms(60));
+    assert_eq!(canvas.width(), (280.0 * dpr).round() as u32);
 }

@@ -391,21 +391,25 @@ impl SimState {
     fn resize_if_needed(&mut self) {
         let dpr = dom::window().device_pixel_ratio().max(1.0);
         if self.size_stale.get() || self.css_size.0 < 1.0 || dpr != self.dpr {
-            self.resize();
+            let _ = self.resize();
         } else {
             self.fit_view();
         }
     }
 
-    fn resize(&mut self) {
-        self.size_stale.set(false);
+    /// Reads the canvas's size and pixel ratio; when they changed, sizes its
+    /// backing store (which clears it) and returns true. A zero size (the
+    /// tab hidden) changes nothing and leaves the size to be read again.
+    fn resize(&mut self) -> bool {
         let rect = self.canvas.get_bounding_client_rect();
         let (w, h) = (rect.width(), rect.height());
         let dpr = dom::window().device_pixel_ratio().max(1.0);
         if w < 1.0 || h < 1.0 {
-            return;
+            return false;
         }
-        if (w, h) != self.css_size || dpr != self.dpr {
+        self.size_stale.set(false);
+        let changed = (w, h) != self.css_size || dpr != self.dpr;
+        if changed {
             self.css_size = (w, h);
             self.dpr = dpr;
             self.canvas.set_width((w * dpr).round() as u32);
@@ -415,6 +419,7 @@ impl SimState {
             self.exp.viewport_px(w, h);
         }
         self.fit_view();
+        changed
     }
 
     /// Fits the experiment's view (it may change with the state) into the
@@ -943,7 +948,13 @@ impl SimView {
         let closure = Closure::<dyn FnMut(js_sys::Array)>::new(move |_entries: js_sys::Array| {
             size_stale.set(true);
             if let Ok(mut st) = s.try_borrow_mut() {
-                st.resize();
+                // A new size clears the canvas: the scene is painted again
+                // here, in the rendering step that shows the new size, so
+                // no frame shows it blank (a running frame had painted at
+                // the old size just before).
+                if st.resize() {
+                    st.paint();
+                }
                 st.needs_paint = true;
             }
         });
@@ -972,6 +983,8 @@ impl SimView {
                 let mut st = s.borrow_mut();
                 st.last_time_ms = None;
                 st.needs_paint = true;
+                // The canvas may have been resized while its tab was hidden.
+                st.size_stale.set(true);
             }
             self.running = Some(AnimationLoop::start(move |t| {
                 // Browsers stop animation frames for hidden pages; this guards the rest.
@@ -1129,7 +1142,7 @@ impl SimView {
     pub fn paint_now(&self) {
         let mut st = self.state.borrow_mut();
         st.plots.measure();
-        st.resize();
+        let _ = st.resize();
         st.scene_draft = false;
         st.paint();
         st.text_at_once = true;
