@@ -917,3 +917,38 @@ fn a_scrub_frame_leaves_the_slider_it_moved_alone_and_a_key_step_moves_it() {
     assert!(slider_value_writes() > before, "Step back wrote the value");
     assert_eq!(slider.value(), now.to_string());
 }
+
+/// A*'s table (the open list as it was) follows a scrub with its nodes
+/// kept: only the texts that changed are rewritten (`dom::rewrite_markup`),
+/// so a table is not parsed anew at every text frame of a drag, and a
+/// student's focus on it stays.
+#[wasm_bindgen_test]
+fn a_scrub_rewrites_the_astar_table_in_place() {
+    mount("#/astar/simulation");
+    let end = plan_and_run_to_end();
+    let model_text = || {
+        labweb::inspect_sim(|exp, _| {
+            exp.tables()
+                .iter()
+                .map(|t| {
+                    let rows: String = t.rows.iter().map(|r| r.concat()).collect();
+                    format!("{}{}{rows}", t.caption, t.columns.concat())
+                })
+                .collect::<String>()
+        })
+        .unwrap()
+    };
+    scrub_to(end / 2);
+    let table = element(".tables table");
+    let first = text(".tables");
+    assert!(!first.is_empty(), "A* shows a table");
+    assert_eq!(first, model_text());
+    scrub_to(end / 4);
+    let second = text(".tables");
+    assert_eq!(second, model_text());
+    assert_ne!(second, first, "the table changed between the two moments");
+    assert!(
+        element(".tables table").is_same_node(Some(&table)),
+        "the table kept its element"
+    );
+}
