@@ -246,6 +246,34 @@ window.labRewriteMarkup = function rewriteMarkup(el, html) {
   else shapeOf.delete(el);
 };
 // labRewriteMarkup: end
+// labWatchBox: begin
+// Tells `onChange(width, height, inWindow)` what the browser's observers see
+// of `el` each time it changes: its size (CSS px, a ResizeObserver) and
+// whether any of it is in the window (an IntersectionObserver; true until
+// that has reported). They report after the browser laid the page out, so
+// a frame that uses these reads no size and never makes the browser lay the
+// page out in the middle of it. Returns the function that stops watching.
+// Self-contained, like labRewriteMarkup (the wasm's test pages run this text).
+window.labWatchBox = function watchBox(el, onChange) {
+  let width = 0;
+  let height = 0;
+  let inWindow = true;
+  const sized = new ResizeObserver((entries) => {
+    ({ width, height } = entries[entries.length - 1].contentRect);
+    onChange(width, height, inWindow);
+  });
+  const seen = new IntersectionObserver((entries) => {
+    inWindow = entries[entries.length - 1].isIntersecting;
+    onChange(width, height, inWindow);
+  });
+  sized.observe(el);
+  seen.observe(el);
+  return () => {
+    sized.disconnect();
+    seen.disconnect();
+  };
+};
+// labWatchBox: end
 const showStatic = window.labShowArticle;
 
 const pageFailed = (error) =>

@@ -3,6 +3,8 @@
 //! Every listener is a [`Listener`]: dropping it removes the listener and frees
 //! its closure, so leaving an experiment leaks nothing (no `Closure::forget`).
 
+use std::cell::Cell;
+use std::rc::Rc;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 use web_sys::{Document, Element, Event, EventTarget, HtmlElement, Window};
@@ -77,6 +79,77 @@ extern "C" {
     /// into an element keeping the nodes that stay.
     #[wasm_bindgen(catch, js_namespace = window, js_name = labRewriteMarkup)]
     fn rewrite_markup_js(el: &Element, html: &str) -> Result<(), JsValue>;
+
+    /// `window.labWatchBox`, defined in `web/main.js`: calls `on_change`
+    /// with an element's size and whether it is in the window whenever the
+    /// browser's observers see either change; returns the function that
+    /// stops it.
+    #[wasm_bindgen(catch, js_namespace = window, js_name = labWatchBox)]
+    fn watch_box_js(
+        el: &Element,
+        on_change: &Closure<dyn FnMut(f64, f64, bool)>,
+    ) -> Result<js_sys::Function, JsValue>;
+}
+
+/// What the browser's observers last saw of a watched element
+/// ([`watch_box`]): its size in CSS px and whether any of it is in the
+/// window.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SeenBox {
+    /// Width, CSS px (0 until the element was laid out with a size).
+    pub width: f64,
+    /// Height, CSS px.
+    pub height: f64,
+    /// Whether some of it is in the window (true until first told).
+    pub in_window: bool,
+}
+
+impl SeenBox {
+    /// Laid out with a size and in the window.
+    #[must_use]
+    pub fn on_screen(&self) -> bool {
+        self.height > 0.0 && self.in_window
+    }
+}
+
+/// An element watched by [`watch_box`]; dropped, the watch stops.
+pub struct BoxWatch {
+    /// The latest report; `None` before the first.
+    pub seen: Rc<Cell<Option<SeenBox>>>,
+    stop: js_sys::Function,
+    _on_change: Closure<dyn FnMut(f64, f64, bool)>,
+}
+
+impl Drop for BoxWatch {
+    fn drop(&mut self) {
+        let _ = self.stop.call0(&JsValue::NULL);
+    }
+}
+
+/// Watches `el`'s size and whether it is in the window with the browser's
+/// observers (`web/main.js`'s `labWatchBox`), so a frame learns both
+/// without reading a size: a read after the page changed (a slider moved,
+/// a text written) makes the browser lay the whole page out at once, in the
+/// frame. `None` where the observers are missing.
+#[must_use]
+pub fn watch_box(el: &Element) -> Option<BoxWatch> {
+    #[cfg(feature = "reading")]
+    install_from_main_js("labWatchBox");
+    let seen = Rc::new(Cell::new(None));
+    let told = seen.clone();
+    let on_change = Closure::<dyn FnMut(f64, f64, bool)>::new(move |width, height, in_window| {
+        told.set(Some(SeenBox {
+            width,
+            height,
+            in_window,
+        }));
+    });
+    let stop = watch_box_js(el, &on_change).ok()?;
+    Some(BoxWatch {
+        seen,
+        stop,
+        _on_change: on_change,
+    })
 }
 
 /// Writes `html` into `el` as `innerHTML` would, keeping every element the

@@ -528,6 +528,8 @@ struct Drawn {
     /// Whether its canvas was in the window at the last
     /// [`PlotView::measure`].
     on_screen: bool,
+    /// The browser's observers watching its canvas (size, in the window).
+    watch: Option<dom::BoxWatch>,
     parts: Parts,
     shown: Shown,
     /// The run's marked moments on this plot, in its units (see
@@ -680,6 +682,7 @@ impl PlotView {
                     legend: vec![None; parts.legend.len()],
                     ..Shown::default()
                 };
+                let watch = dom::watch_box(canvas.as_ref());
                 Some(Drawn {
                     key: Box::leak(key.into_boxed_str()),
                     figure,
@@ -697,6 +700,7 @@ impl PlotView {
                     cursor_attr: None,
                     labels: LabelMemory::default(),
                     on_screen: true,
+                    watch,
                     parts,
                     shown,
                     marks: Vec::new(),
@@ -723,21 +727,33 @@ impl PlotView {
             .collect()
     }
 
-    /// Reads every plot canvas's size. Call it before the frame writes to the
-    /// page: reading a size after a write forces the browser to lay the page
-    /// out again in the middle of the frame.
+    /// Takes every plot canvas's size and whether it is in the window from
+    /// what the browser's observers last told ([`dom::watch_box`]); it reads
+    /// them only for a canvas not seen with a size yet (just mounted, or
+    /// shown again). Call it before the frame writes to the page: reading a
+    /// size after a write forces the browser to lay the page out again in
+    /// the middle of the frame.
     pub fn measure(&mut self) {
         if self.plots.is_empty() {
             return;
         }
         let window = dom::window();
         let dpr = window.device_pixel_ratio().max(1.0);
-        let view_h = window
-            .inner_height()
-            .ok()
-            .and_then(|h| h.as_f64())
-            .unwrap_or(f64::INFINITY);
+        let mut view_h = None;
         for drawn in &mut self.plots {
+            let seen = drawn.watch.as_ref().and_then(|w| w.seen.get());
+            if let Some(seen) = seen.filter(|s| s.width >= 1.0 && s.height >= 1.0) {
+                drawn.measured = (seen.width, seen.height, dpr);
+                drawn.on_screen = seen.on_screen();
+                continue;
+            }
+            let view_h = *view_h.get_or_insert_with(|| {
+                window
+                    .inner_height()
+                    .ok()
+                    .and_then(|h| h.as_f64())
+                    .unwrap_or(f64::INFINITY)
+            });
             let rect = drawn.canvas.get_bounding_client_rect();
             drawn.measured = (rect.width(), rect.height(), dpr);
             // Scrolled out of view (or in a hidden panel: no size).

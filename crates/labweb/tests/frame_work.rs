@@ -17,6 +17,9 @@ use wasm_bindgen_test::*;
 
 wasm_bindgen_test_configure!(run_in_browser);
 
+mod page;
+use page::observers_report;
+
 fn document() -> web_sys::Document {
     web_sys::window().unwrap().document().unwrap()
 }
@@ -313,6 +316,9 @@ fn four_streaming_plots_take_turns_one_paint_a_frame_each_about_every_66_ms() {
     assert!(total >= 4 * 26, "{total} plot paints in 120 frames");
 }
 
+/// Plot b's canvas in [`a_plot_out_of_view_is_painted_once_a_second_and_at_once_when_it_comes_back`].
+const B_CANVAS: &str = "#lab-under-test figure[data-plot=\"b\"] canvas";
+
 /// Paints since the last [`reset_counts`] of the plot whose canvas is
 /// `width_px` device pixels wide.
 fn plot_paints_at_width(width_px: u32) -> u32 {
@@ -327,12 +333,12 @@ fn plot_paints_at_width(width_px: u32) -> u32 {
 }
 
 #[wasm_bindgen_test]
-fn a_plot_out_of_view_is_painted_once_a_second_and_at_once_when_it_comes_back() {
+async fn a_plot_out_of_view_is_painted_once_a_second_and_at_once_when_it_comes_back() {
     let view = mount(Streamer::new(2, 200));
     // Plot b's canvas is narrower than plot a's, to tell their paints apart.
     let b_style = |css: &str| {
         document()
-            .query_selector("#lab-under-test figure[data-plot=\"b\"] canvas")
+            .query_selector(B_CANVAS)
             .unwrap()
             .unwrap()
             .set_attribute("style", &format!("width: 300px; {css}"))
@@ -343,8 +349,10 @@ fn a_plot_out_of_view_is_painted_once_a_second_and_at_once_when_it_comes_back() 
     let dpr = web_sys::window().unwrap().device_pixel_ratio();
     let (a_px, b_px) = ((360.0 * dpr).round() as u32, (300.0 * dpr).round() as u32);
     run_frames(&view, 0..10);
-    // Plot b scrolls far below the window.
+    // Plot b scrolls far below the window (the browser's observers tell the
+    // page after its next layout).
     b_style("margin-top: 20000px");
+    observers_report(B_CANVAS).await;
     reset_counts();
     // Two seconds of streaming.
     run_frames(&view, 10..130);
@@ -356,6 +364,7 @@ fn a_plot_out_of_view_is_painted_once_a_second_and_at_once_when_it_comes_back() 
     // Scrolled back into view: painted as soon as the plots are measured
     // again, within PLOT_INTERVAL_MS (four frames).
     b_style("");
+    observers_report(B_CANVAS).await;
     reset_counts();
     run_frames(&view, 130..134);
     assert_eq!(
@@ -627,11 +636,14 @@ fn key_on_canvas(key: &str) {
 /// pace (before, every start and stop wrote it: 20 times a second).
 #[cfg(feature = "reading")]
 #[wasm_bindgen_test]
-fn a_held_key_whose_presses_start_and_end_motions_writes_the_text_at_the_pace() {
+async fn a_held_key_whose_presses_start_and_end_motions_writes_the_text_at_the_pace() {
     // With the target chosen ([) and moved as a handle, and without (the
     // arrows nudge what the experiment moves by default).
     for choose_handle in [true, false] {
         let view = mount_experiment(labcore::experiments::ik::InverseKinematics::default(), "ik");
+        // "The math" panel is below the window: the browser's observers tell
+        // the page so, and a stream of input does not write it.
+        observers_report("#lab-under-test .live-math").await;
         view.frame_at(frame_ms(0));
         if choose_handle {
             key_on_canvas("]");

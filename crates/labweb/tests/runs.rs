@@ -15,8 +15,8 @@ use wasm_bindgen_test::*;
 
 mod page;
 use page::{
-    attr, element, frame, hash, js, left_alone, mount, press_key_on_canvas, shown, snapshot, text,
-    ONE_STEP_MS,
+    attr, element, frame, hash, js, left_alone, mount, observers_report, press_key_on_canvas,
+    shown, snapshot, text, ONE_STEP_MS,
 };
 
 wasm_bindgen_test_configure!(run_in_browser);
@@ -287,7 +287,7 @@ fn math_result() -> String {
 /// is back in view the run's pace writes it again, and when the run stops
 /// it shows the last state's numbers, seen or not.
 #[wasm_bindgen_test]
-fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
+async fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
     mount("#/pid/simulation");
     // The test page is short: the panel starts below the window. Fixed at
     // the window's top, it is in view.
@@ -303,6 +303,7 @@ fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
         }
     };
     in_view(true);
+    observers_report(".live-math").await;
     for _ in 0..30 {
         frame(ONE_STEP_MS);
     }
@@ -316,10 +317,11 @@ fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
         seen.len() >= 3,
         "in view, written at the run's pace: {seen:?}"
     );
-    // Out of the window: a second of the run writes nothing.
-    // (Seen out of the window from the next measure of the plots, at most
-    // a plot interval on.)
+    // Out of the window: a second of the run writes nothing. (The browser's
+    // observers tell the page after its next layout; the frame reads no
+    // place.)
     in_view(false);
+    observers_report(".live-math").await;
     for _ in 0..5 {
         frame(ONE_STEP_MS);
     }
@@ -330,6 +332,7 @@ fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
     }
     // Back in view: written again within the text's pace.
     in_view(true);
+    observers_report(".live-math").await;
     for _ in 0..20 {
         frame(ONE_STEP_MS);
     }
@@ -337,6 +340,7 @@ fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
     // Out of the window again, then the run is paused: the last state's
     // numbers are written anyway.
     in_view(false);
+    observers_report(".live-math").await;
     for _ in 0..20 {
         frame(ONE_STEP_MS);
     }
@@ -356,6 +360,54 @@ fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams() {
         math_result(),
         format!("= {force}"),
         "paused: the panel shows the state"
+    );
+}
+
+/// A frame reads no element's place or size (`getBoundingClientRect`):
+/// after an input (a timeline scrub, a slider) the page's layout is stale,
+/// and one read makes the browser lay the whole page out in the middle of
+/// the frame (2–3 ms of a throttled phone's scrub frame for "The math"
+/// panel, 18–23 ms for the plots). The browser's observers tell the page
+/// the sizes and what is in the window instead.
+#[wasm_bindgen_test]
+async fn scrub_frames_read_no_size_once_the_observers_have_reported() {
+    let _in_view = mount_with_the_math_panel_in_view("#/pid/simulation");
+    observers_report(".live-math").await;
+    observers_report("figure.plot canvas").await;
+    for _ in 0..120 {
+        frame(ONE_STEP_MS);
+    }
+    js("window.__sizeReads = 0; if (!window.__countingReads) { window.__countingReads = true; \
+        const read = Element.prototype.getBoundingClientRect; \
+        Element.prototype.getBoundingClientRect = function () { window.__sizeReads += 1; return read.call(this); }; }");
+    let slider: web_sys::HtmlInputElement = element(".tb-scrub").dyn_into().unwrap();
+    let (lo, hi): (f64, f64) = (slider.min().parse().unwrap(), slider.max().parse().unwrap());
+    assert!(hi - lo >= 60.0, "a run to scrub: {lo}..{hi}");
+    let bubbling = |kind: &str| {
+        let init = web_sys::EventInit::new();
+        init.set_bubbles(true);
+        web_sys::Event::new_with_event_init_dict(kind, &init).unwrap()
+    };
+    // A drag over the whole run, the slider let go, then more frames (the
+    // plots and the panel are written again once it rests).
+    slider.dispatch_event(&bubbling("pointerdown")).unwrap();
+    for i in 0..60 {
+        let v = lo + (hi - lo) * f64::from((i * 37) % 60) / 59.0;
+        slider.set_value(&format!("{}", v.round()));
+        slider.dispatch_event(&bubbling("input")).unwrap();
+        frame(ONE_STEP_MS);
+    }
+    slider.dispatch_event(&bubbling("change")).unwrap();
+    for _ in 0..30 {
+        frame(ONE_STEP_MS);
+    }
+    let reads = js("const n = window.__sizeReads; window.__sizeReads = 0; return n")
+        .as_f64()
+        .unwrap();
+    assert_eq!(reads, 0.0, "size reads in 90 frames of a scrub");
+    assert!(
+        !math_result().is_empty() && shown().0 > 0,
+        "the scrub showed its moment"
     );
 }
 

@@ -293,6 +293,9 @@ struct SimState {
     /// Whether "The math" panel was in the window at the last
     /// [`SimState::measure_math`] (true until measured).
     math_on_screen: bool,
+    /// The browser's observers watching "The math" panel (its size, and
+    /// whether it is in the window), so no frame reads its place.
+    math_watch: Option<dom::BoxWatch>,
     /// The text being written follows an input or the end of a motion
     /// (not a run's pace): every part is written, seen or not.
     text_at_once: bool,
@@ -882,6 +885,7 @@ impl SimView {
             math_pending: Vec::new(),
             shown_equations: equations,
             math_on_screen: true,
+            math_watch: query(panel, ".live-math").and_then(|s| dom::watch_box(&s)),
             text_at_once: true,
             live_key: None,
             shown_view: labcore::ViewBox::centered(0.0),

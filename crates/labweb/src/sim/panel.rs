@@ -554,6 +554,8 @@ impl SimState {
                     &quantities,
                     readouts,
                 ));
+                // The observers watched the element just replaced.
+                self.math_watch = query(&self.panel, ".live-math").and_then(|s| dom::watch_box(&s));
             }
             self.shown_equations = set;
             self.shown_math.clear();
@@ -602,14 +604,8 @@ impl SimState {
     /// Whether "The math" panel is in the window now (read with the plots'
     /// sizes, before the frame writes anything).
     pub(super) fn measure_math(&mut self) {
-        if let Some(section) = query(&self.panel, ".live-math") {
-            let rect = section.get_bounding_client_rect();
-            let view_h = dom::window()
-                .inner_height()
-                .ok()
-                .and_then(|h| h.as_f64())
-                .unwrap_or(f64::INFINITY);
-            self.math_on_screen = rect.height() > 0.0 && rect.bottom() > 0.0 && rect.top() < view_h;
+        if let Some(seen) = self.math_watch.as_ref().and_then(|w| w.seen.get()) {
+            self.math_on_screen = seen.on_screen();
         }
     }
 

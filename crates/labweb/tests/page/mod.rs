@@ -146,3 +146,21 @@ pub fn press_key_on_canvas(key: &str) {
 pub fn hash() -> String {
     web_sys::window().unwrap().location().hash().unwrap()
 }
+
+/// Resolves once the browser's intersection observers have looked at the
+/// element `selector` matches again and told the page: a fresh observer
+/// reports after a rendering step that saw the page as it is now, and a
+/// second fresh one after a later step, by which time every older
+/// observer's report from the first step has run (they queue their reports
+/// in the same task source).
+pub async fn observers_report(selector: &str) {
+    for _ in 0..2 {
+        let promise = js(&format!(
+            "return new Promise((r) => {{ const o = new IntersectionObserver(() => {{ o.disconnect(); r(); }}); \
+             o.observe(document.querySelector('{selector}')); }})"
+        ));
+        wasm_bindgen_futures::JsFuture::from(js_sys::Promise::from(promise))
+            .await
+            .unwrap();
+    }
+}
