@@ -254,21 +254,26 @@ window.labRewriteMarkup = function rewriteMarkup(el, html) {
 // a frame that uses these reads no size and never makes the browser lay the
 // page out in the middle of it. Returns the function that stops watching.
 // Self-contained, like labRewriteMarkup (the wasm's test pages run this text).
+// Once stopped it never calls `onChange` again: an IntersectionObserver may
+// still deliver a report it queued before `disconnect`, and the page frees
+// `onChange` when it stops watching.
 window.labWatchBox = function watchBox(el, onChange) {
   let width = 0;
   let height = 0;
   let inWindow = true;
+  let watching = true;
   const sized = new ResizeObserver((entries) => {
     ({ width, height } = entries[entries.length - 1].contentRect);
-    onChange(width, height, inWindow);
+    if (watching) onChange(width, height, inWindow);
   });
   const seen = new IntersectionObserver((entries) => {
     inWindow = entries[entries.length - 1].isIntersecting;
-    onChange(width, height, inWindow);
+    if (watching) onChange(width, height, inWindow);
   });
   sized.observe(el);
   seen.observe(el);
   return () => {
+    watching = false;
     sized.disconnect();
     seen.disconnect();
   };

@@ -769,3 +769,46 @@ async fn a_frame_reads_the_canvas_size_only_after_the_canvas_was_resized() {
     view.frame_at(frame_ms(60));
     assert_eq!(canvas.width(), (280.0 * dpr).round() as u32);
 }
+
+/// A watch stopped by dropping it (an experiment left, "The math" panel
+/// written anew) is never called again, even by a report its
+/// `IntersectionObserver` queued before `disconnect`: the page has freed
+/// the closure, and calling it would throw.
+#[wasm_bindgen_test]
+fn a_dropped_box_watch_ignores_a_report_queued_before_it_stopped() {
+    // Observers that keep their callbacks for the test to call.
+    js_sys::Function::new_no_args(
+        "window.__observers = { real: [window.ResizeObserver, window.IntersectionObserver], calls: [] };
+         const fake = (kind) => class { constructor(cb) { window.__observers.calls.push([kind, cb]); }
+           observe() {} disconnect() {} };
+         window.ResizeObserver = fake('resize');
+         window.IntersectionObserver = fake('seen');",
+    )
+    .call0(&JsValue::NULL)
+    .unwrap();
+    let el = document().create_element("div").unwrap();
+    let watch = labweb::dom::watch_box(&el);
+    let restore_and_report = |report: bool| {
+        js_sys::Function::new_with_args(
+            "report",
+            "const { real, calls } = window.__observers;
+             [window.ResizeObserver, window.IntersectionObserver] = real;
+             if (!report) return;
+             for (const [kind, cb] of calls) cb(kind === 'resize'
+               ? [{ contentRect: { width: 120, height: 80 } }]
+               : [{ isIntersecting: false }]);",
+        )
+        .call1(&JsValue::NULL, &JsValue::from_bool(report))
+        .unwrap();
+    };
+    let Some(watch) = watch else {
+        restore_and_report(false);
+        panic!("labWatchBox is installed from main.js on the test page");
+    };
+    let seen = watch.seen.clone();
+    drop(watch);
+    // The reports arrive after the watch stopped: nothing throws, nothing
+    // is recorded.
+    restore_and_report(true);
+    assert_eq!(seen.get(), None);
+}
