@@ -263,7 +263,12 @@ window.labWatchBox = function watchBox(el, onChange) {
   let inWindow = true;
   let watching = true;
   const sized = new ResizeObserver((entries) => {
+    const shown = height === 0;
     ({ width, height } = entries[entries.length - 1].contentRect);
+    // Shown again (a tab, a panel): in the window until the other observer,
+    // which reports later, says otherwise; its last word was about a box
+    // that was not laid out.
+    if (shown && height > 0) inWindow = true;
     if (watching) onChange(width, height, inWindow);
   });
   const seen = new IntersectionObserver((entries) => {

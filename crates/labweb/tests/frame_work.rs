@@ -770,13 +770,9 @@ async fn a_frame_reads_the_canvas_size_only_after_the_canvas_was_resized() {
     assert_eq!(canvas.width(), (280.0 * dpr).round() as u32);
 }
 
-/// A watch stopped by dropping it (an experiment left, "The math" panel
-/// written anew) is never called again, even by a report its
-/// `IntersectionObserver` queued before `disconnect`: the page has freed
-/// the closure, and calling it would throw.
-#[wasm_bindgen_test]
-fn a_dropped_box_watch_ignores_a_report_queued_before_it_stopped() {
-    // Observers that keep their callbacks for the test to call.
+/// Replaces the browser's `ResizeObserver` and `IntersectionObserver` by
+/// fakes that keep their callbacks, for [`report_to_watches`] to call.
+fn fake_observers() {
     js_sys::Function::new_no_args(
         "window.__observers = { real: [window.ResizeObserver, window.IntersectionObserver], calls: [] };
          const fake = (kind) => class { constructor(cb) { window.__observers.calls.push([kind, cb]); }
@@ -786,29 +782,80 @@ fn a_dropped_box_watch_ignores_a_report_queued_before_it_stopped() {
     )
     .call0(&JsValue::NULL)
     .unwrap();
-    let el = document().create_element("div").unwrap();
-    let watch = labweb::dom::watch_box(&el);
-    let restore_and_report = |report: bool| {
-        js_sys::Function::new_with_args(
-            "report",
-            "const { real, calls } = window.__observers;
-             [window.ResizeObserver, window.IntersectionObserver] = real;
-             if (!report) return;
-             for (const [kind, cb] of calls) cb(kind === 'resize'
-               ? [{ contentRect: { width: 120, height: 80 } }]
-               : [{ isIntersecting: false }]);",
-        )
-        .call1(&JsValue::NULL, &JsValue::from_bool(report))
-        .unwrap();
-    };
-    let Some(watch) = watch else {
-        restore_and_report(false);
-        panic!("labWatchBox is installed from main.js on the test page");
-    };
+}
+
+/// Puts the browser's observers back.
+fn real_observers() {
+    js_sys::Function::new_no_args(
+        "[window.ResizeObserver, window.IntersectionObserver] = window.__observers.real;",
+    )
+    .call0(&JsValue::NULL)
+    .unwrap();
+}
+
+/// Calls every faked observer's callback: a size (CSS px) for the resize
+/// observers, in the window or not for the others.
+fn report_to_watches(size: Option<(f64, f64)>, in_window: Option<bool>) -> Result<(), JsValue> {
+    js_sys::Function::new_with_args(
+        "w, h, seen",
+        "for (const [kind, cb] of window.__observers.calls) {
+           if (kind === 'resize' && w !== undefined) cb([{ contentRect: { width: w, height: h } }]);
+           if (kind === 'seen' && seen !== undefined) cb([{ isIntersecting: seen }]);
+         }",
+    )
+    .call3(
+        &JsValue::NULL,
+        &size.map_or(JsValue::UNDEFINED, |s| s.0.into()),
+        &size.map_or(JsValue::UNDEFINED, |s| s.1.into()),
+        &in_window.map_or(JsValue::UNDEFINED, JsValue::from_bool),
+    )
+    .map(|_| ())
+}
+
+/// A watch stopped by dropping it (an experiment left, "The math" panel
+/// written anew) is never called again, even by a report its
+/// `IntersectionObserver` queued before `disconnect`: the page has freed
+/// the closure, and calling it would throw.
+#[wasm_bindgen_test]
+fn a_dropped_box_watch_ignores_a_report_queued_before_it_stopped() {
+    fake_observers();
+    let watch = labweb::dom::watch_box(&document().create_element("div").unwrap());
+    real_observers();
+    let watch = watch.expect("labWatchBox is installed from main.js on the test page");
     let seen = watch.seen.clone();
     drop(watch);
     // The reports arrive after the watch stopped: nothing throws, nothing
     // is recorded.
-    restore_and_report(true);
+    report_to_watches(Some((120.0, 80.0)), Some(false)).unwrap();
     assert_eq!(seen.get(), None);
+}
+
+/// A box shown again (its tab, its panel) counts as in the window from the
+/// size report, which comes first: the other observer's last word, "not in
+/// the window", was about the box while it had no size. Otherwise a frame
+/// between the two reports would paint its plots once a second.
+#[wasm_bindgen_test]
+fn a_box_shown_again_is_in_the_window_until_told_otherwise() {
+    fake_observers();
+    let watch = labweb::dom::watch_box(&document().create_element("div").unwrap());
+    real_observers();
+    let watch = watch.expect("labWatchBox is installed from main.js on the test page");
+    let seen = || watch.seen.get().map(|s| (s.width, s.height, s.in_window));
+    report_to_watches(Some((120.0, 80.0)), Some(true)).unwrap();
+    assert_eq!(seen(), Some((120.0, 80.0, true)));
+    // Hidden: no size, and out of the window.
+    report_to_watches(Some((0.0, 0.0)), Some(false)).unwrap();
+    assert_eq!(seen(), Some((0.0, 0.0, false)));
+    // Shown again: the size comes first.
+    report_to_watches(Some((120.0, 80.0)), None).unwrap();
+    assert_eq!(seen(), Some((120.0, 80.0, true)));
+    // Scrolled out while it keeps its size.
+    report_to_watches(None, Some(false)).unwrap();
+    assert_eq!(seen(), Some((120.0, 80.0, false)));
+    report_to_watches(Some((100.0, 80.0)), None).unwrap();
+    assert_eq!(
+        seen(),
+        Some((100.0, 80.0, false)),
+        "resized, still out of the window"
+    );
 }

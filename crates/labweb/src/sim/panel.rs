@@ -601,10 +601,25 @@ impl SimState {
         true
     }
 
-    /// Whether "The math" panel is in the window now (read with the plots'
-    /// sizes, before the frame writes anything).
+    /// Whether "The math" panel is in the window now, as the browser's
+    /// observers last told ([`dom::watch_box`]); read, before the frame
+    /// writes anything, only where there are none.
     pub(super) fn measure_math(&mut self) {
-        if let Some(seen) = self.math_watch.as_ref().and_then(|w| w.seen.get()) {
+        let Some(watch) = &self.math_watch else {
+            // No observers (a page without main.js's helper): read it.
+            if let Some(section) = query(&self.panel, ".live-math") {
+                let rect = section.get_bounding_client_rect();
+                let view_h = dom::window()
+                    .inner_height()
+                    .ok()
+                    .and_then(|h| h.as_f64())
+                    .unwrap_or(f64::INFINITY);
+                self.math_on_screen =
+                    rect.height() > 0.0 && rect.bottom() > 0.0 && rect.top() < view_h;
+            }
+            return;
+        };
+        if let Some(seen) = watch.seen.get() {
             self.math_on_screen = seen.on_screen();
         }
     }

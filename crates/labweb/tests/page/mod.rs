@@ -156,8 +156,10 @@ pub fn hash() -> String {
 pub async fn observers_report(selector: &str) {
     for _ in 0..2 {
         let promise = js(&format!(
-            "return new Promise((r) => {{ const o = new IntersectionObserver(() => {{ o.disconnect(); r(); }}); \
-             o.observe(document.querySelector('{selector}')); }})"
+            "return new Promise((r, fail) => {{ const el = document.querySelector('{selector}'); \
+             if (!el) return fail(new Error('no element matches {selector}')); \
+             setTimeout(() => fail(new Error('no observer report for {selector} in 10 s')), 10000); \
+             const o = new IntersectionObserver(() => {{ o.disconnect(); r(); }}); o.observe(el); }})"
         ));
         wasm_bindgen_futures::JsFuture::from(js_sys::Promise::from(promise))
             .await
