@@ -770,9 +770,10 @@ async fn a_frame_reads_the_canvas_size_only_after_the_canvas_was_resized() {
     assert_eq!(canvas.width(), (280.0 * dpr).round() as u32);
 }
 
-/// Replaces the browser's `ResizeObserver` and `IntersectionObserver` by
-/// fakes that keep their callbacks, for [`report_to_watches`] to call.
-fn fake_observers() {
+/// A watch of a new element whose observers are fakes that keep their
+/// callbacks, for [`report_to_watches`] to call (the browser's own are put
+/// back at once).
+fn watch_with_fake_observers() -> labweb::dom::BoxWatch {
     js_sys::Function::new_no_args(
         "window.__observers = { real: [window.ResizeObserver, window.IntersectionObserver], calls: [] };
          const fake = (kind) => class { constructor(cb) { window.__observers.calls.push([kind, cb]); }
@@ -782,15 +783,13 @@ fn fake_observers() {
     )
     .call0(&JsValue::NULL)
     .unwrap();
-}
-
-/// Puts the browser's observers back.
-fn real_observers() {
+    let watch = labweb::dom::watch_box(&document().create_element("div").unwrap());
     js_sys::Function::new_no_args(
         "[window.ResizeObserver, window.IntersectionObserver] = window.__observers.real;",
     )
     .call0(&JsValue::NULL)
     .unwrap();
+    watch.expect("labWatchBox is installed from main.js on the test page")
 }
 
 /// Calls every faked observer's callback: a size (CSS px) for the resize
@@ -818,10 +817,7 @@ fn report_to_watches(size: Option<(f64, f64)>, in_window: Option<bool>) -> Resul
 /// the closure, and calling it would throw.
 #[wasm_bindgen_test]
 fn a_dropped_box_watch_ignores_a_report_queued_before_it_stopped() {
-    fake_observers();
-    let watch = labweb::dom::watch_box(&document().create_element("div").unwrap());
-    real_observers();
-    let watch = watch.expect("labWatchBox is installed from main.js on the test page");
+    let watch = watch_with_fake_observers();
     let seen = watch.seen.clone();
     drop(watch);
     // The reports arrive after the watch stopped: nothing throws, nothing
@@ -836,10 +832,7 @@ fn a_dropped_box_watch_ignores_a_report_queued_before_it_stopped() {
 /// between the two reports would paint its plots once a second.
 #[wasm_bindgen_test]
 fn a_box_shown_again_is_in_the_window_until_told_otherwise() {
-    fake_observers();
-    let watch = labweb::dom::watch_box(&document().create_element("div").unwrap());
-    real_observers();
-    let watch = watch.expect("labWatchBox is installed from main.js on the test page");
+    let watch = watch_with_fake_observers();
     let seen = || watch.seen.get().map(|s| (s.width, s.height, s.in_window));
     report_to_watches(Some((120.0, 80.0)), Some(true)).unwrap();
     assert_eq!(seen(), Some((120.0, 80.0, true)));
