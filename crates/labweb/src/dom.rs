@@ -112,6 +112,26 @@ impl SeenBox {
     }
 }
 
+/// Reads `el`'s size and whether some of it is in the window now, as the
+/// observers of [`watch_box`] would tell (vertically: a box scrolled above
+/// or below the window, or hidden with no size, is out). A read after the
+/// page changed lays the page out at once: use it only where no watch has
+/// told yet.
+#[must_use]
+pub fn read_box(el: &Element) -> SeenBox {
+    let rect = el.get_bounding_client_rect();
+    let view_h = window()
+        .inner_height()
+        .ok()
+        .and_then(|h| h.as_f64())
+        .unwrap_or(f64::INFINITY);
+    SeenBox {
+        width: rect.width(),
+        height: rect.height(),
+        in_window: rect.bottom() > 0.0 && rect.top() < view_h,
+    }
+}
+
 /// An element watched by [`watch_box`]; dropped, the watch stops.
 pub struct BoxWatch {
     /// The latest report; `None` before the first.

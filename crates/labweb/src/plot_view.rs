@@ -737,27 +737,15 @@ impl PlotView {
         if self.plots.is_empty() {
             return;
         }
-        let window = dom::window();
-        let dpr = window.device_pixel_ratio().max(1.0);
-        let mut view_h = None;
+        let dpr = dom::window().device_pixel_ratio().max(1.0);
         for drawn in &mut self.plots {
             let seen = drawn.watch.as_ref().and_then(|w| w.seen.get());
-            if let Some(seen) = seen.filter(|s| s.width >= 1.0 && s.height >= 1.0) {
-                drawn.measured = (seen.width, seen.height, dpr);
-                drawn.on_screen = seen.on_screen();
-                continue;
-            }
-            let view_h = *view_h.get_or_insert_with(|| {
-                window
-                    .inner_height()
-                    .ok()
-                    .and_then(|h| h.as_f64())
-                    .unwrap_or(f64::INFINITY)
-            });
-            let rect = drawn.canvas.get_bounding_client_rect();
-            drawn.measured = (rect.width(), rect.height(), dpr);
+            let seen = seen
+                .filter(|s| s.width >= 1.0 && s.height >= 1.0)
+                .unwrap_or_else(|| dom::read_box(drawn.canvas.as_ref()));
+            drawn.measured = (seen.width, seen.height, dpr);
             // Scrolled out of view (or in a hidden panel: no size).
-            drawn.on_screen = rect.height() > 0.0 && rect.bottom() > 0.0 && rect.top() < view_h;
+            drawn.on_screen = seen.on_screen();
         }
     }
 

@@ -605,21 +605,12 @@ impl SimState {
     /// observers last told ([`dom::watch_box`]); read, before the frame
     /// writes anything, only where there are none.
     pub(super) fn measure_math(&mut self) {
-        let Some(watch) = &self.math_watch else {
+        let seen = match &self.math_watch {
+            Some(watch) => watch.seen.get(),
             // No observers (a page without main.js's helper): read it.
-            if let Some(section) = query(&self.panel, ".live-math") {
-                let rect = section.get_bounding_client_rect();
-                let view_h = dom::window()
-                    .inner_height()
-                    .ok()
-                    .and_then(|h| h.as_f64())
-                    .unwrap_or(f64::INFINITY);
-                self.math_on_screen =
-                    rect.height() > 0.0 && rect.bottom() > 0.0 && rect.top() < view_h;
-            }
-            return;
+            None => query(&self.panel, ".live-math").map(|s| dom::read_box(&s)),
         };
-        if let Some(seen) = watch.seen.get() {
+        if let Some(seen) = seen {
             self.math_on_screen = seen.on_screen();
         }
     }
