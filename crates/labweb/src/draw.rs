@@ -6,6 +6,7 @@
 
 use crate::palette::hex_rgb;
 pub use crate::palette::Palette;
+use crate::viewport::nearest_px;
 pub use crate::viewport::Viewport;
 use glam::DVec2;
 use labcore::math;
@@ -827,17 +828,20 @@ fn paint_points_raster(
     let [r, g, b] = hex_rgb(colour);
     let pixel = [r, g, b, 140];
     let half = radius_px.round().max(1.0) as i64;
-    // The dots' bounding box in whole CSS pixels, within the canvas.
+    // Each dot's nearest CSS pixel, worked out once; and their bounding box
+    // in whole CSS pixels, within the canvas.
+    let centres: Vec<(i64, i64)> = points
+        .iter()
+        .map(|p| viewport.to_px(*p))
+        .filter(|q| q.is_finite())
+        .map(|q| (nearest_px(q.x), nearest_px(q.y)))
+        .collect();
     let (mut x0, mut y0, mut x1, mut y1) = (i64::MAX, i64::MAX, i64::MIN, i64::MIN);
-    for p in points {
-        let q = viewport.to_px(*p);
-        if q.is_finite() {
-            let (cx, cy) = (q.x.round() as i64, q.y.round() as i64);
-            x0 = x0.min(cx - half + 1);
-            y0 = y0.min(cy - half + 1);
-            x1 = x1.max(cx + half);
-            y1 = y1.max(cy + half);
-        }
+    for &(cx, cy) in &centres {
+        x0 = x0.min(cx - half + 1);
+        y0 = y0.min(cy - half + 1);
+        x1 = x1.max(cx + half);
+        y1 = y1.max(cy + half);
     }
     let (x0, y0) = (x0.max(0), y0.max(0));
     let (x1, y1) = (x1.min(css_w.ceil() as i64), y1.min(css_h.ceil() as i64));
@@ -850,12 +854,8 @@ fn paint_points_raster(
         rgba.clear();
         rgba.resize(w * h * 4, 0);
         let pixels = rgba.as_chunks_mut::<4>().0;
-        for p in points {
-            let q = viewport.to_px(*p);
-            if !q.is_finite() {
-                continue;
-            }
-            let (cx, cy) = (q.x.round() as i64 - x0, q.y.round() as i64 - y0);
+        for &(cx, cy) in &centres {
+            let (cx, cy) = (cx - x0, cy - y0);
             for y in (cy - half + 1).max(0)..(cy + half).min(h as i64) {
                 for x in (cx - half + 1).max(0)..(cx + half).min(w as i64) {
                     pixels[y as usize * w + x as usize] = pixel;

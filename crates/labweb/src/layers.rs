@@ -343,12 +343,11 @@ impl Coverage<'_> {
         };
         // The line's bounding box, one pixel more right and down when thick.
         let grow = i64::from(self.thick);
-        let (ax, ay) = (a.x.round() as i64, a.y.round() as i64);
-        let (bx, by) = (b.x.round() as i64, b.y.round() as i64);
+        let ((ax, ay), (bx, by)) = (round_px(a), round_px(b));
         self.dirty.add(ax.min(bx), ay.min(by));
         self.dirty.add(ax.max(bx) + grow, ay.max(by) + grow);
         let thick = self.thick;
-        labcore::bresenham::line(round_px(a), round_px(b), |x, y| {
+        labcore::bresenham::line((ax, ay), (bx, by), |x, y| {
             self.touch(x, y, draw);
             if thick {
                 self.touch(x + 1, y, draw);

@@ -334,16 +334,25 @@ impl DensityGrid {
 
     /// Values in `[0, 1]` per cell (row-major from `min`, row 0 at `min.y`),
     /// log-scaled: `ln(1 + c) / ln(1 + c_max)`; all 0 when empty.
+    ///
+    /// Counts are small whole numbers (a few dozen per cell for the default
+    /// sweep), so each distinct count's value is worked out once, in a table
+    /// indexed by the count, rather than a logarithm per cell: the same
+    /// values, and a scrub frame of the sweep no longer spends 0.05 ms
+    /// (unthrottled) on 10,000 logarithms.
     #[must_use]
     pub fn normalized(&self) -> Vec<f32> {
         if self.max == 0 {
             return vec![0.0; self.counts.len()];
         }
         let denom = crate::math::ln_1p(f64::from(self.max));
-        self.counts
-            .iter()
-            .map(|&c| (crate::math::ln_1p(f64::from(c)) / denom).clamp(0.0, 1.0) as f32)
-            .collect()
+        let value = |c: u32| (crate::math::ln_1p(f64::from(c)) / denom).clamp(0.0, 1.0) as f32;
+        if self.max as usize > self.counts.len() {
+            // More distinct counts possible than cells: no table.
+            return self.counts.iter().map(|&c| value(c)).collect();
+        }
+        let table: Vec<f32> = (0..=self.max).map(value).collect();
+        self.counts.iter().map(|&c| table[c as usize]).collect()
     }
 }
 
@@ -579,6 +588,38 @@ mod tests {
         g.clear();
         assert_eq!(g.total(), 0);
         assert!(g.normalized().iter().all(|&v| v == 0.0));
+    }
+
+    /// `normalized`'s table (one logarithm per distinct count) gives each
+    /// cell exactly `ln(1 + c) / ln(1 + c_max)`, in a grid with more cells
+    /// than its largest count and in one with fewer (no table).
+    #[test]
+    fn density_normalized_is_the_log_formula_per_cell_with_or_without_its_table() {
+        let lengths = [1.0, 0.8, 0.5];
+        let mut s = WorkspaceSampler::new(lengths, SamplingMode::MonteCarlo { seed: 4 }, 20_000);
+        let tips = run_all(&mut s, 5_000);
+        for cells in [64, 2] {
+            let mut g = DensityGrid::new(2.3, cells);
+            g.add_all(&tips);
+            assert_eq!(
+                g.max_count() as usize > cells * cells,
+                cells == 2,
+                "the 2 × 2 grid's counts outnumber its cells"
+            );
+            let denom = crate::math::ln_1p(f64::from(g.max_count()));
+            let v = g.normalized();
+            for row in 0..cells {
+                for col in 0..cells {
+                    let c = f64::from(g.count(col, row));
+                    let want = (crate::math::ln_1p(c) / denom).clamp(0.0, 1.0) as f32;
+                    assert_eq!(
+                        v[row * cells + col].to_bits(),
+                        want.to_bits(),
+                        "cell ({col}, {row})"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
