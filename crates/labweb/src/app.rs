@@ -40,6 +40,10 @@ impl App {
     /// hash. Returns `None` when the page has no `#app` element.
     pub fn boot(on_hash_change: impl FnMut(Event) + 'static + Clone) -> Option<Self> {
         let root = dom::by_id("app")?;
+        // The site's pages are built with their menu; a test page (every
+        // experiment's reading content built in) gets it here. A shipped
+        // module carries no menu, as it carries no reading content.
+        #[cfg(feature = "reading")]
         if let Some(nav) = dom::by_id("lab-nav") {
             if query(&nav, "details").is_none() {
                 nav.set_inner_html(&content_html::nav());

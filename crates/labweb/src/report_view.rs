@@ -16,7 +16,7 @@
 //! (`labreport:<id>`), so they survive a reload and fill the next report.
 //! [`report_quiz_score`] serves the site's "Check a report" page.
 
-use crate::dom::{self, escape, query};
+use crate::dom::{self, escape, query, query_all};
 use crate::plot_view;
 use crate::quiz_view::{self, Attempt};
 use labcore::quiz::Response;
@@ -96,6 +96,22 @@ pub fn remember(panel: &Element, id: &str) -> String {
     text
 }
 
+/// The aim's paragraphs (inline HTML) from the Aim tab of `panel`'s
+/// article: a shipped module carries no reading content (the page has it).
+fn aim_on_page(panel: &Element) -> Vec<String> {
+    panel
+        .closest("article.exp")
+        .ok()
+        .flatten()
+        .map(|article| {
+            query_all(&article, "[data-panel=aim] > p")
+                .iter()
+                .map(Element::inner_html)
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
 /// Builds `<id>-report.html` from the experiment's current state and offers
 /// it as a download. `panel` is the Simulation panel (its article holds the
 /// quiz); `hash` is the link of the state shown (`#/pid/simulation?…`, with
@@ -132,7 +148,7 @@ pub fn download(panel: &Element, exp: &dyn Lab, hash: &str, marked: &[(f64, Box<
             state: state.as_ref(),
         })
         .collect();
-    let sheet = report::wire::encode(&Sheet::of(&Report {
+    let mut sheet = Sheet::of(&Report {
         experiment: exp,
         marks: &marks,
         content,
@@ -153,8 +169,15 @@ pub fn download(panel: &Element, exp: &dyn Lab, hash: &str, marked: &[(f64, Box<
             observations,
         },
         answer_key,
-    }));
-    make_file(&sheet, report::file_name(exp.id()), panel);
+    });
+    if sheet.aim.is_empty() {
+        sheet.aim = aim_on_page(panel);
+    }
+    make_file(
+        &report::wire::encode(&sheet),
+        report::file_name(exp.id()),
+        panel,
+    );
 }
 
 /// The page's bridge to the report module (`main.js`): `labReport(bytes,
