@@ -284,6 +284,14 @@ window.labWatchBox = function watchBox(el, onChange) {
   };
 };
 // labWatchBox: end
+// labWhenIdle: begin
+// Sends `el` the event "lab-idle" once the browser's main thread is idle
+// between frames (requestIdleCallback), `timeoutMs` later at the latest on a
+// busy page. Returns false where the browser has no idle callbacks (WebKit's
+// Safari). Self-contained, like labRewriteMarkup.
+window.labWhenIdle = (el, timeoutMs) =>
+  !!window.requestIdleCallback?.(() => el.dispatchEvent(new Event("lab-idle")), { timeout: timeoutMs });
+// labWhenIdle: end
 const showStatic = window.labShowArticle;
 
 const pageFailed = (error) =>

@@ -84,6 +84,9 @@ extern "C" {
     /// with an element's size and whether it is in the window whenever the
     /// browser's observers see either change; returns the function that
     /// stops it.
+    /// `window.labWhenIdle`, defined in `web/main.js` ([`when_idle`]).
+    #[wasm_bindgen(catch, js_namespace = window, js_name = labWhenIdle)]
+    fn when_idle_js(el: &Element, timeout_ms: u32) -> Result<bool, JsValue>;
     #[wasm_bindgen(catch, js_namespace = window, js_name = labWatchBox)]
     fn watch_box_js(
         el: &Element,
@@ -233,6 +236,16 @@ pub fn defer(f: impl FnOnce() + 'static) {
 pub fn next_frame(f: impl FnOnce() + 'static) {
     let callback = Closure::once_into_js(f);
     let _ = window().request_animation_frame(callback.unchecked_ref());
+}
+
+/// Sends `el` the event `lab-idle` once the browser's main thread is idle
+/// between frames (`requestIdleCallback`), `timeout_ms` later at the latest
+/// on a busy page. The code is `web/main.js`'s `labWhenIdle`. Returns false
+/// where the browser has no idle callbacks (WebKit's Safari).
+pub fn when_idle(el: &Element, timeout_ms: u32) -> bool {
+    #[cfg(feature = "reading")]
+    install_from_main_js("labWhenIdle");
+    when_idle_js(el, timeout_ms).unwrap_or(false)
 }
 
 /// Performance clock in milliseconds.

@@ -283,10 +283,21 @@ struct SimState {
     /// equation: the substituted form, the result and the text twin.
     shown_math: Vec<(String, String, String)>,
     /// Equations a streaming run's text update left to write, with their
-    /// parts as of that update: written one a frame in the frames after it
+    /// parts as of that update: written together when the browser is idle
+    /// after the frame ([`SimState::math_idle`]), or where it cannot tell,
+    /// one a frame in the frames after it
     /// ([`SimState::write_next_equation`]), so no frame lays out the
     /// readouts and every formula together.
     math_pending: Vec<(usize, (String, String, String))>,
+    /// The idle-time call that writes [`SimState::math_pending`] and lays
+    /// the page out then ([`SimState::write_math_when_idle`]) is asked for.
+    math_idle_asked: bool,
+    /// The height (CSS px) "The math" panel is held at while a run streams
+    /// ([`SimState::write_math_when_idle`]); 0 when not held.
+    math_held_px: i32,
+    /// A streaming run's text update left the readouts for the idle time,
+    /// with the panel's equations ([`SimState::write_math_when_idle`]).
+    readouts_in_idle: bool,
     /// Which equations the panel was written for (the slice's address): a
     /// parameter may choose another set (pid's actuator limit).
     shown_equations: usize,
@@ -299,6 +310,10 @@ struct SimState {
     /// The text being written follows an input or the end of a motion
     /// (not a run's pace): every part is written, seen or not.
     text_at_once: bool,
+    /// The text being written follows a single input (a click, a typed
+    /// value, a scrub), not the pace of a run or of a stream of input: the
+    /// page shows it in the same frame.
+    text_by_input: bool,
     /// The key of the live quantity whose symbol is hovered or focused: its
     /// tagged parts of the scene are drawn as a halo.
     live_key: Option<String>,
@@ -589,11 +604,12 @@ impl SimState {
         if write_text {
             let at_once = input_paint || !self.exp.animating();
             self.text_at_once = at_once;
+            self.text_by_input = input_paint;
             self.sync_dom();
             self.with_shown_plots(|view, plots, _| view.sync_text(plots, time_ms, at_once));
             self.text_ms = time_ms;
             self.text_stale = false;
-        } else {
+        } else if !self.math_idle_asked {
             self.write_next_equation();
         }
         self.sync_marks();
@@ -883,10 +899,14 @@ impl SimView {
             shown_tables: Vec::new(),
             shown_math: Vec::new(),
             math_pending: Vec::new(),
+            math_idle_asked: false,
+            math_held_px: 0,
+            readouts_in_idle: false,
             shown_equations: equations,
             math_on_screen: true,
             math_watch: query(panel, ".live-math").and_then(|s| dom::watch_box(&s)),
             text_at_once: true,
+            text_by_input: true,
             live_key: None,
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
@@ -1049,6 +1069,7 @@ impl SimView {
         // the next frame: until then they would show (and announce) the
         // constructor's state the page was mounted with.
         st.text_at_once = true;
+        st.text_by_input = true;
         st.sync_dom();
         notices
     }
@@ -1150,6 +1171,7 @@ impl SimView {
         st.scene_draft = false;
         st.paint();
         st.text_at_once = true;
+        st.text_by_input = true;
         st.sync_dom();
         let st = &mut *st;
         st.finish_branch();

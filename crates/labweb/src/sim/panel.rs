@@ -17,6 +17,14 @@ pub(super) fn listen(
     panel: &Element,
     listeners: &mut Vec<Listener>,
 ) {
+    // The browser is idle after a frame that left "The math" panel to it
+    // ([`SimState::sync_math`]).
+    let s = state.clone();
+    listeners.push(Listener::new(panel.as_ref(), "lab-idle", move |_| {
+        if let Ok(mut st) = s.try_borrow_mut() {
+            st.write_math_when_idle();
+        }
+    }));
     if let Some(form) = query(panel, ".sim-controls") {
         // Enter in a number box applies it (on change) and never submits the
         // form (which would reload the page); a listener, not an inline
@@ -481,24 +489,15 @@ impl SimState {
                 .map(|r| query(&self.panel, &format!("[data-readout=\"{}\"]", r.key)))
                 .collect();
         }
-        // Only a value whose text changed is written: a write makes the
-        // browser lay the page out again.
-        for ((r, shown), dd) in readouts
-            .iter()
-            .zip(self.shown_readouts.iter_mut())
-            .zip(&self.readout_elements)
-        {
-            if *shown != r.value {
-                if let Some(dd) = dd {
-                    dom::set_text(dd, &r.value);
-                }
-                shown.clone_from(&r.value);
-            }
+        // Written with the panel's equations, whose results they are, when
+        // the browser is idle: both change in the same frame.
+        self.readouts_in_idle = self.sync_math(&readouts);
+        if !self.readouts_in_idle {
+            self.write_readouts(&readouts);
         }
         self.sync_status();
         self.sync_hint();
         let tables = self.exp.tables();
-        self.sync_math(&readouts);
         if tables != self.shown_tables {
             // Rewritten in place (`dom::rewrite_markup`): A*'s table of the
             // open list changes its numbers at every expansion, and parsing
@@ -511,38 +510,64 @@ impl SimState {
         self.sync_move_form();
     }
 
-    /// Writes the parts of "The math" panel whose text changed: each
-    /// equation's substituted form, its result and its text twin.
+    /// Writes the readouts whose text changed: a write makes the browser
+    /// lay the page out again.
+    fn write_readouts(&mut self, readouts: &[labcore::Readout]) {
+        for ((r, shown), dd) in readouts
+            .iter()
+            .zip(self.shown_readouts.iter_mut())
+            .zip(&self.readout_elements)
+        {
+            if *shown != r.value {
+                if let Some(dd) = dd {
+                    dom::set_text(dd, &r.value);
+                }
+                shown.clone_from(&r.value);
+            }
+        }
+    }
+
+    /// Works out the parts of "The math" panel whose text changed (each
+    /// equation's substituted form, its result and its text twin) and
+    /// writes them, now or in the browser's idle time. Returns whether it
+    /// left them, and so the readouts, to the idle time.
     ///
-    /// While a run streams, this frame writes the readouts and none of the
-    /// equations: their parts, as of this update, wait in
-    /// [`SimState::math_pending`] and the next frames write them one each
-    /// ([`SimState::write_next_equation`]), so no frame pays for laying out
-    /// the readouts and every formula together (traced on the phone
-    /// stand-in, ekf: the worst frame's layout fell from 23–35 ms to 10–19
-    /// at 4×). After an input, at a pause or when the run stops, everything
-    /// is written at once. Where an equation keeps its shape only its
-    /// numbers' text is rewritten ([`dom::rewrite_markup`]), and each
-    /// equation is its text twin's containing block (the stylesheet).
+    /// - **A single input** (a click, a typed value, the end of a drag):
+    ///   written now, in the frame that shows it.
+    /// - **The pace of a run or of a stream of input** (a drag, a held key,
+    ///   a timeline scrub): left in [`SimState::math_pending`] for the
+    ///   browser's idle time after the frame, and written then with the
+    ///   readouts and laid out there ([`SimState::write_math_when_idle`]).
+    ///   Written in a frame, each formula made the browser lay the whole
+    ///   page out in it (0.6–1.3 ms unthrottled), four times a second per
+    ///   equation (issue 27, cost).
+    /// - **Where the browser has no idle callbacks** (WebKit): the frames
+    ///   after it write them one each ([`SimState::write_next_equation`]),
+    ///   so no frame pays for the readouts and every formula together
+    ///   (traced on the phone stand-in, ekf: the worst frame's layout fell
+    ///   from 23–35 ms to 10–19 at 4×); at a pause or the end of a motion,
+    ///   all at once.
+    /// - **A streaming run with the panel out of the window** (on a phone,
+    ///   below the scene): nothing is written, every write there costing
+    ///   the page a style and layout pass for nothing. The next write after
+    ///   it scrolls in, or the one when the run stops, brings it up to date.
     ///
-    /// While a run streams and the panel is out of the window (on a phone,
-    /// below the scene), nothing is written: every write there costs the
-    /// page a style and layout pass of the formulas for nothing. The next
-    /// write after it scrolls in, or the one when the run stops, brings it
-    /// up to date.
-    fn sync_math(&mut self, readouts: &[labcore::Readout]) {
+    /// Where an equation keeps its shape only its numbers' text is
+    /// rewritten ([`dom::rewrite_markup`]), and each equation is its text
+    /// twin's containing block (the stylesheet).
+    fn sync_math(&mut self, readouts: &[labcore::Readout]) -> bool {
         #[cfg(feature = "bench-exports")]
         if self.bench_math_closed {
-            return;
+            return false;
         }
         self.math_pending.clear();
         if !self.text_at_once && !self.math_on_screen {
-            return;
+            return false;
         }
         let set = self.exp.equations().as_ptr() as usize;
         let equations = super::panel_equations(self.exp.as_ref());
         if equations.is_empty() {
-            return;
+            return false;
         }
         let quantities = self.exp.quantities();
         if set != self.shown_equations {
@@ -559,6 +584,8 @@ impl SimState {
             }
             self.shown_equations = set;
             self.shown_math.clear();
+            // The new panel holds no height.
+            self.math_held_px = 0;
         }
         self.shown_math.resize(
             equations.len(),
@@ -570,11 +597,83 @@ impl SimState {
                 self.math_pending.push((i, now));
             }
         }
+        // Written in this order, the first first.
+        self.math_pending.reverse();
+        // A text update at the pace of a run or of a stream of input (a
+        // drag, a held key, a timeline scrub) waits for the idle time; at
+        // the latest by the next update. (A streaming run's panel out of the
+        // window is not written at all, above.)
+        if !self.text_by_input && !self.math_pending.is_empty() {
+            if !self.math_idle_asked {
+                // Its `lab-idle` event calls write_math_when_idle ([`listen`]).
+                self.math_idle_asked = dom::when_idle(&self.panel, super::TEXT_INTERVAL_MS as u32);
+            }
+            if self.math_idle_asked {
+                return true;
+            }
+        }
         if self.text_at_once {
             while self.write_next_equation() {}
-        } else {
-            // Written first in the next frame.
-            self.math_pending.reverse();
+            self.release_math_height();
+        }
+        false
+    }
+
+    /// Writes the readouts and every equation [`SimState::sync_math`] left,
+    /// in the browser's idle time after a frame, and has the page laid out there
+    /// (a read of the panel's height), so the next frame only paints the
+    /// numbers that changed.
+    ///
+    /// While the run streams, the panel keeps the tallest height it had
+    /// ([`SimState::math_held_px`]): a substituted form that wraps onto one
+    /// line fewer would move everything below the panel up, and back down
+    /// at the next update. A student reading a plot below saw it jump four
+    /// times a second, and the browser painted the whole page again each
+    /// time (ekf on a phone: 2.2 ms of paint, unthrottled, against 0.4 ms
+    /// for the equations alone).
+    fn write_math_when_idle(&mut self) {
+        self.math_idle_asked = false;
+        if std::mem::take(&mut self.readouts_in_idle) {
+            // No step ran since the frame that left them.
+            let readouts = self.exp.readouts();
+            self.write_readouts(&readouts);
+        }
+        let mut wrote = false;
+        while self.write_next_equation() {
+            wrote = true;
+        }
+        if !wrote {
+            return;
+        }
+        let Some(section) = query(&self.panel, ".live-math") else {
+            return;
+        };
+        let Some(section) = section.dyn_ref::<web_sys::HtmlElement>() else {
+            return;
+        };
+        let height_px = section.offset_height();
+        if self.text_at_once {
+            // The motion ended: nothing is to keep its place.
+            self.release_math_height();
+        } else if height_px > self.math_held_px {
+            self.math_held_px = height_px;
+            let _ = section
+                .style()
+                .set_property("min-height", &format!("{height_px}px"));
+        }
+    }
+
+    /// Lets "The math" panel take its own height again
+    /// ([`SimState::write_math_when_idle`] held it while a run streamed).
+    fn release_math_height(&mut self) {
+        if self.math_held_px == 0 {
+            return;
+        }
+        self.math_held_px = 0;
+        if let Some(section) = query(&self.panel, ".live-math") {
+            if let Some(section) = section.dyn_ref::<web_sys::HtmlElement>() {
+                let _ = section.style().remove_property("min-height");
+            }
         }
     }
 

@@ -204,8 +204,10 @@ pub(super) fn listen(
             let mut st = s.borrow_mut();
             if st.scrub_dragging {
                 st.scrub_dragging = false;
-                // The moment it stopped at, written at once.
+                // The moment it stopped at, written at once (also when the
+                // last move came in the same frame).
                 st.needs_paint = true;
+                st.text_paced = false;
                 st.plots_stale = true;
             }
         }));

@@ -21,19 +21,26 @@ pub fn js(body: &str) -> JsValue {
         .unwrap()
 }
 
-/// Replaces `requestAnimationFrame` by a queue (once): `__frame(t)` runs the
-/// callbacks queued so far with frame time `t` (ms).
+/// Replaces `requestAnimationFrame` and `requestIdleCallback` by queues
+/// (once): `__frame(t)` runs the frame callbacks queued so far with frame
+/// time `t` (ms), and `__idle()` the idle callbacks, as a browser does
+/// after a frame.
 pub const FRAME_QUEUE: &str = r#"
 if (!window.__frames) {
   const queue = (window.__frames = new Map());
+  const idle = (window.__idles = new Map());
   let next = 0;
   window.requestAnimationFrame = (cb) => { queue.set(++next, cb); return next; };
   window.cancelAnimationFrame = (id) => { queue.delete(id); };
-  window.__frame = (t) => {
-    const due = [...queue.values()];
-    queue.clear();
-    for (const cb of due) cb(t);
+  window.requestIdleCallback = (cb) => { idle.set(++next, cb); return next; };
+  window.cancelIdleCallback = (id) => { idle.delete(id); };
+  const run = (q, arg) => {
+    const due = [...q.values()];
+    q.clear();
+    for (const cb of due) cb(arg);
   };
+  window.__frame = (t) => run(queue, t);
+  window.__idle = () => run(idle, { didTimeout: false, timeRemaining: () => 50 });
 }
 "#;
 
@@ -42,8 +49,16 @@ thread_local! {
     static NOW_MS: Cell<f64> = const { Cell::new(1000.0) };
 }
 
-/// One animation frame, `gap_ms` after the last.
+/// One animation frame, `gap_ms` after the last, and the idle time after
+/// it ([`idle`]).
 pub fn frame(gap_ms: f64) {
+    frame_alone(gap_ms);
+    idle();
+}
+
+/// One animation frame, `gap_ms` after the last, with no idle time after
+/// it (yet).
+pub fn frame_alone(gap_ms: f64) {
     let t = NOW_MS.with(|n| {
         n.set(n.get() + gap_ms);
         n.get()
@@ -51,6 +66,12 @@ pub fn frame(gap_ms: f64) {
     js_sys::Function::new_with_args("t", "window.__frame(t)")
         .call1(&JsValue::NULL, &JsValue::from_f64(t))
         .unwrap();
+}
+
+/// The browser's idle time between frames: the idle callbacks asked for so
+/// far run.
+pub fn idle() {
+    js("window.__idle()");
 }
 
 /// A frame gap that gives one fixed step per frame at 1× for hundreds of
