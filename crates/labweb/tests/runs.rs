@@ -276,6 +276,55 @@ async fn a_change_just_before_leaving_the_tab_survives_back() {
     assert!(hash().contains("kp=40"), "{}", hash());
 }
 
+/// A drag of the timeline slider of the mounted run (at least 60 steps
+/// long): grabbed with `pointerdown`, moved with `input` events.
+struct ScrubDrag {
+    slider: web_sys::HtmlInputElement,
+    lo: f64,
+    hi: f64,
+}
+
+impl ScrubDrag {
+    fn grab() -> Self {
+        let slider: web_sys::HtmlInputElement = element(".tb-scrub").dyn_into().unwrap();
+        let (lo, hi) = (slider.min().parse().unwrap(), slider.max().parse().unwrap());
+        assert!(hi - lo >= 60.0, "a run to scrub: {lo}..{hi}");
+        let drag = Self { slider, lo, hi };
+        drag.send("pointerdown");
+        drag
+    }
+
+    /// A bubbling event of `kind` on the slider.
+    fn send(&self, kind: &str) {
+        let init = web_sys::EventInit::new();
+        init.set_bubbles(true);
+        let event = web_sys::Event::new_with_event_init_dict(kind, &init).unwrap();
+        self.slider.dispatch_event(&event).unwrap();
+    }
+
+    fn move_to(&self, step: f64) {
+        self.slider.set_value(&format!("{}", step.round()));
+        self.send("input");
+    }
+
+    /// The `i`-th of 60 positions spread over the whole run, out of order.
+    fn move_to_spread(&self, i: i32) {
+        self.move_to(self.lo + (self.hi - self.lo) * f64::from((i * 37) % 60) / 59.0);
+    }
+}
+
+/// pid's force readout as the page's run has it now.
+fn pid_force() -> String {
+    labweb::inspect_sim(|exp, _| {
+        exp.readouts()
+            .into_iter()
+            .find(|r| r.key == "force")
+            .map(|r| r.value)
+    })
+    .unwrap()
+    .expect("pid has a force readout")
+}
+
 /// The first equation's result in "The math" panel.
 fn math_result() -> String {
     text(".live-math [data-equation=\"0\"] .equation-result")
@@ -348,14 +397,7 @@ async fn the_math_panel_out_of_the_window_is_not_rewritten_while_a_run_streams()
     for _ in 0..3 {
         frame(ONE_STEP_MS);
     }
-    let force = labweb::inspect_sim(|exp, _| {
-        exp.readouts()
-            .into_iter()
-            .find(|r| r.key == "force")
-            .map(|r| r.value)
-    })
-    .unwrap()
-    .expect("pid has a force readout");
+    let force = pid_force();
     assert_eq!(
         math_result(),
         format!("= {force}"),
@@ -380,24 +422,14 @@ async fn scrub_frames_read_no_size_once_the_observers_have_reported() {
     js("window.__sizeReads = 0; if (!window.__countingReads) { window.__countingReads = true; \
         const read = Element.prototype.getBoundingClientRect; \
         Element.prototype.getBoundingClientRect = function () { window.__sizeReads += 1; return read.call(this); }; }");
-    let slider: web_sys::HtmlInputElement = element(".tb-scrub").dyn_into().unwrap();
-    let (lo, hi): (f64, f64) = (slider.min().parse().unwrap(), slider.max().parse().unwrap());
-    assert!(hi - lo >= 60.0, "a run to scrub: {lo}..{hi}");
-    let bubbling = |kind: &str| {
-        let init = web_sys::EventInit::new();
-        init.set_bubbles(true);
-        web_sys::Event::new_with_event_init_dict(kind, &init).unwrap()
-    };
     // A drag over the whole run, the slider let go, then more frames (the
     // plots and the panel are written again once it rests).
-    slider.dispatch_event(&bubbling("pointerdown")).unwrap();
+    let scrub = ScrubDrag::grab();
     for i in 0..60 {
-        let v = lo + (hi - lo) * f64::from((i * 37) % 60) / 59.0;
-        slider.set_value(&format!("{}", v.round()));
-        slider.dispatch_event(&bubbling("input")).unwrap();
+        scrub.move_to_spread(i);
         frame(ONE_STEP_MS);
     }
-    slider.dispatch_event(&bubbling("change")).unwrap();
+    scrub.send("change");
     for _ in 0..30 {
         frame(ONE_STEP_MS);
     }
@@ -515,20 +547,10 @@ fn a_scrub_drag_leaves_the_math_panel_to_the_idle_time() {
     }
     element("button[data-time=play]").click();
     frame(ONE_STEP_MS);
-    let slider: web_sys::HtmlInputElement = element(".tb-scrub").dyn_into().unwrap();
-    let (lo, hi): (f64, f64) = (slider.min().parse().unwrap(), slider.max().parse().unwrap());
-    assert!(hi - lo >= 60.0, "a run to scrub: {lo}..{hi}");
-    let bubbling = |kind: &str| {
-        let init = web_sys::EventInit::new();
-        init.set_bubbles(true);
-        web_sys::Event::new_with_event_init_dict(kind, &init).unwrap()
-    };
-    slider.dispatch_event(&bubbling("pointerdown")).unwrap();
+    let scrub = ScrubDrag::grab();
     let mut written_in_idle = 0;
     for i in 0..60 {
-        let v = lo + (hi - lo) * f64::from((i * 37) % 60) / 59.0;
-        slider.set_value(&format!("{}", v.round()));
-        slider.dispatch_event(&bubbling("input")).unwrap();
+        scrub.move_to_spread(i);
         let before = math_result();
         frame_alone(ONE_STEP_MS);
         assert_eq!(math_result(), before, "scrub frame {i} wrote the panel");
@@ -542,18 +564,10 @@ fn a_scrub_drag_leaves_the_math_panel_to_the_idle_time() {
         "the idle time wrote the panel {written_in_idle} times in a 1 s drag"
     );
     // Let go at another moment: its frame writes the panel at once.
-    slider.set_value(&format!("{}", lo.round()));
-    slider.dispatch_event(&bubbling("input")).unwrap();
-    slider.dispatch_event(&bubbling("change")).unwrap();
+    scrub.move_to(scrub.lo);
+    scrub.send("change");
     frame_alone(ONE_STEP_MS);
-    let force = labweb::inspect_sim(|exp, _| {
-        exp.readouts()
-            .into_iter()
-            .find(|r| r.key == "force")
-            .map(|r| r.value)
-    })
-    .unwrap()
-    .expect("pid has a force readout");
+    let force = pid_force();
     assert_eq!(
         math_result(),
         format!("= {force}"),
