@@ -236,6 +236,29 @@ impl Timeline {
         step: u64,
         step_once: &mut dyn FnMut(&mut dyn Lab),
     ) -> (u64, Box<dyn Lab>) {
+        let (step, replay, lab) = self.rebuild(step, step_once);
+        self.last_replay = replay;
+        self.worst_replay = self.worst_replay.max(replay);
+        (step, lab)
+    }
+
+    /// [`Timeline::state_at`] without counting its replay: the page's
+    /// rehearsal of a scrub, in idle time before the first one, so the
+    /// browser has compiled the code a scrub runs (WebAssembly functions
+    /// are compiled on their first call) before a student drags.
+    pub fn peek_at(&self, step: u64, step_once: &mut dyn FnMut(&mut dyn Lab)) -> Box<dyn Lab> {
+        self.rebuild(step, step_once).2
+    }
+
+    /// The step `step` clamped to the record, the steps replayed to reach
+    /// it, and the state there (see [`Timeline::state_at`]). One function
+    /// for both callers: the code a rehearsal compiles is the scrub's own.
+    #[inline(never)]
+    fn rebuild(
+        &self,
+        step: u64,
+        step_once: &mut dyn FnMut(&mut dyn Lab),
+    ) -> (u64, u64, Box<dyn Lab>) {
         let step = step.max(self.first()).min(self.end);
         let i = self.snaps.partition_point(|s| s.step <= step).max(1) - 1;
         let snap = &self.snaps[i];
@@ -248,9 +271,7 @@ impl Timeline {
             }
             lab.end_replay();
         }
-        self.last_replay = replay;
-        self.worst_replay = self.worst_replay.max(replay);
-        (step, lab)
+        (step, replay, lab)
     }
 
     /// Moves `exp`, which shows step `from`, on to step `to` along the

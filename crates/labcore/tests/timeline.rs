@@ -171,6 +171,37 @@ fn scrub_replay_bound_any_step_replays_at_most_the_interval_less_one() {
     }
 }
 
+/// A peek (the page's rehearsal of a scrub) rebuilds the very state a
+/// scrub would, and leaves the record's counts as they were.
+#[test]
+fn scrub_rehearsal_a_peek_is_the_scrubs_state_and_counts_nothing() {
+    for id in evolving_ids() {
+        let (seen, mut timeline) = live_run(id, 5, 200, 64 << 10);
+        let mut rng = Lcg64::new(31);
+        for _ in 0..10 {
+            let k = rng.int(timeline.first() as i64, seen.len() as i64 - 1) as u64;
+            let (last, worst) = (timeline.last_replay(), timeline.worst_replay());
+            let peeked = timeline.peek_at(k, &mut step_once);
+            assert_eq!(
+                (timeline.last_replay(), timeline.worst_replay()),
+                (last, worst),
+                "{id}: a peek at {k} counted its replay"
+            );
+            assert_eq!(
+                shown(peeked.as_ref()),
+                seen[k as usize],
+                "{id}: peek at {k}"
+            );
+            let (_, lab) = timeline.state_at(k, &mut step_once);
+            assert_eq!(
+                shown(lab.as_ref()),
+                shown(peeked.as_ref()),
+                "{id}: step {k}"
+            );
+        }
+    }
+}
+
 /// RRT*'s step grows a batch of iterations (24 by default), and the
 /// workspace sweep's samples a hundredth of its poses (weight 4), so their
 /// first intervals are shorter: a scrub replays about as much work as a
