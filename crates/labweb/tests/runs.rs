@@ -845,3 +845,60 @@ fn web_sys_all(selector: &str) -> Vec<web_sys::Element> {
         .filter_map(|n| n.dyn_into::<web_sys::Element>().ok())
         .collect()
 }
+
+/// Issue 26, cost: once the record holds a replay to go back to, the
+/// browser's idle time rehearses a scrub (its code compiled before a
+/// student's first drag), and nothing shown changes: not the model, not
+/// the time, not the timeline, not a pixel of the scene.
+#[wasm_bindgen_test]
+fn a_scrub_is_rehearsed_in_idle_time_and_changes_nothing_shown() {
+    mount("#/pid/simulation");
+    let canvas: web_sys::HtmlCanvasElement = element("canvas.sim-canvas").dyn_into().unwrap();
+    let rehearsed = || canvas.has_attribute("data-scrub-rehearsed");
+    let slider: web_sys::HtmlInputElement = element(".tb-scrub").dyn_into().unwrap();
+    let seen = || {
+        (
+            labweb::inspect_sim(|exp, steps| (page::snapshot(exp), steps)).unwrap(),
+            text(".tb-time"),
+            (slider.min(), slider.max(), slider.value()),
+            canvas.to_data_url().unwrap(),
+            hash(),
+        )
+    };
+    // A record shorter than two snapshot intervals has nothing to rehearse.
+    for _ in 0..30 {
+        frame(ONE_STEP_MS);
+    }
+    assert!(!rehearsed(), "30 steps: too short to rehearse");
+    let mut frames = 0;
+    while js("return window.__idles.size").as_f64().unwrap() == 0.0 || !rehearsal_due() {
+        frame_alone(ONE_STEP_MS);
+        frames += 1;
+        assert!(frames < 200, "the rehearsal is asked for");
+    }
+    let before = seen();
+    idle();
+    assert!(rehearsed(), "the idle time rehearsed a scrub");
+    assert!(
+        before == seen(),
+        "the rehearsal changed what the page shows"
+    );
+    // A scrub after it is exact, as ever.
+    let drag = ScrubDrag::grab();
+    drag.move_to(drag.lo + 0.5 * (drag.hi - drag.lo));
+    drag.send("change");
+    frame(ONE_STEP_MS);
+    let (steps, model) = labweb::inspect_sim(|exp, steps| (steps, page::snapshot(exp))).unwrap();
+    let entry = labcore::registry().iter().find(|e| e.id == "pid").unwrap();
+    assert_eq!(
+        model,
+        page::snapshot(page::left_alone(entry, steps).as_ref())
+    );
+}
+
+/// Whether the page has asked for the rehearsal of a scrub (its record is
+/// two snapshot intervals long).
+fn rehearsal_due() -> bool {
+    labweb::inspect_sim(|_, steps| steps >= 2 * labcore::timeline::Timeline::FIRST_INTERVAL)
+        .unwrap()
+}

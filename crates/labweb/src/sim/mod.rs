@@ -298,6 +298,11 @@ struct SimState {
     /// A streaming run's text update left the readouts for the idle time,
     /// with the panel's equations ([`SimState::write_math_when_idle`]).
     readouts_in_idle: bool,
+    /// The idle-time rehearsal of a scrub ([`SimState::rehearse_scrub`])
+    /// is asked for.
+    rehearse_asked: bool,
+    /// A scrub was rehearsed (or done): the browser has compiled its code.
+    scrub_rehearsed: bool,
     /// Which equations the panel was written for (the slice's address): a
     /// parameter may choose another set (pid's actuator limit).
     shown_equations: usize,
@@ -654,6 +659,7 @@ impl SimState {
         if busy {
             self.frame_times.record(dom::now_ms() - start, &self.canvas);
         }
+        self.ask_for_scrub_rehearsal();
     }
 
     /// Hands the plot view the plots as the page shows them
@@ -902,6 +908,8 @@ impl SimView {
             math_idle_asked: false,
             math_held_px: 0,
             readouts_in_idle: false,
+            rehearse_asked: false,
+            scrub_rehearsed: false,
             shown_equations: equations,
             math_on_screen: true,
             math_watch: query(panel, ".live-math").and_then(|s| dom::watch_box(&s)),

@@ -18,11 +18,16 @@ pub(super) fn listen(
     listeners: &mut Vec<Listener>,
 ) {
     // The browser is idle after a frame that left "The math" panel to it
-    // ([`SimState::sync_math`]).
+    // ([`SimState::sync_math`]), or that asked for a scrub's rehearsal.
     let s = state.clone();
     listeners.push(Listener::new(panel.as_ref(), "lab-idle", move |_| {
         if let Ok(mut st) = s.try_borrow_mut() {
-            st.write_math_when_idle();
+            if st.math_idle_asked {
+                st.write_math_when_idle();
+            }
+            if st.rehearse_asked {
+                st.rehearse_scrub();
+            }
         }
     }));
     if let Some(form) = query(panel, ".sim-controls") {

@@ -40,6 +40,10 @@ pub(super) const RUN_TO_END_MAX_STEPS: u64 = 10 * 60 * 60;
 /// picture changed are repainted, milliseconds ([`SimState::scrub_moving`]).
 pub(super) const SCRUB_REST_MS: f64 = 150.0;
 
+/// How long the rehearsal of a scrub ([`SimState::rehearse_scrub`]) waits
+/// for the browser to be idle, milliseconds.
+pub(super) const REHEARSAL_TIMEOUT_MS: u32 = 2000;
+
 /// Step back and Run to end (beside Step).
 pub(super) const BUTTONS_HTML: &str = "<button type=\"button\" data-time=\"back\" aria-keyshortcuts=\",\" title=\"One step back (key ,)\">\
      <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M14 2v12l-8-6zM2 2h3v12H2z\"/></svg> <span class=\"tb-text\">Back</span></button>\
@@ -444,6 +448,60 @@ impl SimState {
         }
     }
 
+    /// Asks for a rehearsal of a scrub in the browser's idle time
+    /// ([`SimState::rehearse_scrub`]), once, when the record first holds a
+    /// replay to go back to.
+    pub(super) fn ask_for_scrub_rehearsal(&mut self) {
+        if self.scrub_rehearsed || self.rehearse_asked {
+            return;
+        }
+        let Some(tl) = &self.timeline else {
+            return;
+        };
+        if tl.end() - tl.first() < 2 * tl.interval() {
+            return;
+        }
+        // Where the browser has no idle callbacks, nothing is rehearsed.
+        self.rehearse_asked = dom::when_idle(&self.panel, REHEARSAL_TIMEOUT_MS);
+        self.scrub_rehearsed = !self.rehearse_asked;
+    }
+
+    /// Rehearses a scrub, once, in the browser's idle time: rebuilds a past
+    /// state ([`Timeline::peek_at`]: a snapshot copied, one interval less one
+    /// step replayed), its display list, text and plots, and drops them.
+    /// Nothing the student sees changes (the canvas says
+    /// `data-scrub-rehearsed`, for tests). A WebAssembly function is compiled on
+    /// its first call: on the 4×-throttled phone stand-in, the first frame of
+    /// a student's first drag spent 9 of its 23 ms compiling, and RRT*'s
+    /// next four frames ran 2–3 times slower than later ones while the
+    /// browser compiled their code again, optimised. After the rehearsal,
+    /// the drag's frames are the code's own cost.
+    pub(super) fn rehearse_scrub(&mut self) {
+        self.rehearse_asked = false;
+        self.scrub_rehearsed = true;
+        let Some(tl) = &self.timeline else {
+            return;
+        };
+        let (first, end, k) = (tl.first(), tl.end(), tl.interval());
+        // Periodic snapshots fall on multiples of the interval: a step just
+        // before one replays the most.
+        let middle = first + (end - first) / 2;
+        let step = (middle - middle % k + k - 1).clamp(first, end);
+        let lab = tl.peek_at(step, &mut step_once);
+        let mut scene = labcore::scene::Scene::default();
+        lab.scene(&mut scene);
+        std::hint::black_box((lab.readouts(), lab.status(), lab.tables(), scene));
+        let plots = shown_plots(
+            lab.as_ref(),
+            Some(self.record_end.as_deref().unwrap_or(self.exp.as_ref())),
+            &self.kept,
+            self.kept_serial,
+        );
+        std::hint::black_box(plots);
+        // For tests (like `data-steps`): the student sees nothing of it.
+        let _ = self.canvas.set_attribute("data-scrub-rehearsed", "");
+    }
+
     /// Goes to step `step` of the run (clamped to the record) and pauses
     /// there: the scene, readouts, status, tables and plots as they were.
     pub(super) fn seek(&mut self, step: u64) {
@@ -453,6 +511,8 @@ impl SimState {
         tl.commit(self.exp.as_ref());
         let (at, lab) = tl.state_at(step, &mut step_once);
         let end = tl.end();
+        // A scrub's code has run: no rehearsal is wanted.
+        self.scrub_rehearsed = true;
         let shown = std::mem::replace(&mut self.exp, lab);
         // The run's last state is kept while the past is shown (its plots
         // are drawn; an input there keeps it as the run left behind).
