@@ -265,10 +265,16 @@ window.labWatchBox = function watchBox(el, onChange) {
   const sized = new ResizeObserver((entries) => {
     const shown = height === 0;
     ({ width, height } = entries[entries.length - 1].contentRect);
-    // Shown again (a tab, a panel): in the window until the other observer,
-    // which reports later, says otherwise; its last word was about a box
-    // that was not laid out.
-    if (shown && height > 0) inWindow = true;
+    // Shown again (a tab, a panel): in the window until the other observer
+    // says otherwise; its last word was about a box that was not laid out.
+    // It speaks again only when its answer changes, and a box that left the
+    // window hidden and came back still out of it would stay "in" for good:
+    // observed afresh, it reports the box as it is now.
+    if (shown && height > 0) {
+      inWindow = true;
+      seen.unobserve(el);
+      seen.observe(el);
+    }
     if (watching) onChange(width, height, inWindow);
   });
   const seen = new IntersectionObserver((entries) => {

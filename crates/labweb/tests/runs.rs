@@ -330,6 +330,49 @@ fn math_result() -> String {
     text(".live-math [data-equation=\"0\"] .equation-result")
 }
 
+/// Issue 27, cost: a tab switch hides "The math" panel and shows it again.
+/// Out of the window before and after (below the scene on a phone), the
+/// panel stays unwritten while the run streams: the browser's intersection
+/// observer says nothing when its answer has not changed, so the page asks
+/// it afresh once the panel is shown again (`labWatchBox` in web/main.js).
+/// Before, the page took the panel for seen after every tab switch and
+/// wrote it four times a second, off-screen.
+#[wasm_bindgen_test]
+async fn the_math_panel_out_of_the_window_stays_unwritten_after_a_tab_switch() {
+    mount("#/pid/simulation");
+    // The test page is short: the panel starts below the window.
+    observers_report(".live-math").await;
+    for _ in 0..30 {
+        frame(ONE_STEP_MS);
+    }
+    let unwritten = |why: &str| {
+        let before = math_result();
+        for _ in 0..60 {
+            frame(ONE_STEP_MS);
+            assert_eq!(math_result(), before, "{why}: not rewritten");
+        }
+    };
+    unwritten("out of the window");
+    for tab in ["theory", "procedure"] {
+        click_tab(tab).await;
+        frame(ONE_STEP_MS);
+        click_tab("simulation").await;
+        observers_report(".live-math").await;
+        frame(ONE_STEP_MS);
+        unwritten(&format!("back from {tab}, still out of the window"));
+    }
+    // In view, it is written at the run's pace, as ever.
+    let panel = element(".live-math");
+    panel.style().set_property("position", "fixed").unwrap();
+    panel.style().set_property("top", "0").unwrap();
+    observers_report(".live-math").await;
+    let before = math_result();
+    for _ in 0..30 {
+        frame(ONE_STEP_MS);
+    }
+    assert_ne!(math_result(), before, "in view: written again");
+}
+
 /// Issue 27, cost: while a run streams and "The math" panel is out of the
 /// window (below the scene on a phone), the panel is not written (each
 /// write costs the page a style and layout pass of its formulas); once it
