@@ -472,10 +472,10 @@ impl SimState {
     /// Nothing the student sees changes (the canvas says
     /// `data-scrub-rehearsed`, for tests). A WebAssembly function is compiled on
     /// its first call: on the 4×-throttled phone stand-in, the first frame of
-    /// a student's first drag spent 9 of its 23 ms compiling, and RRT*'s
-    /// next four frames ran 2–3 times slower than later ones while the
-    /// browser compiled their code again, optimised. After the rehearsal,
-    /// the drag's frames are the code's own cost.
+    /// a student's first drag spent about 9 of its 23 ms compiling (RRT*);
+    /// after the rehearsal, that frame's compiling took 1.1 ms. (The next
+    /// few frames, which the browser runs while it optimises the code, stay
+    /// as they were.)
     pub(super) fn rehearse_scrub(&mut self) {
         self.rehearse_asked = false;
         self.scrub_rehearsed = true;
