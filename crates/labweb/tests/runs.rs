@@ -939,6 +939,28 @@ fn a_scrub_is_rehearsed_in_idle_time_and_changes_nothing_shown() {
     );
 }
 
+/// A scrub that comes before the idle time leaves the rehearsal nothing to
+/// do: its code has run.
+#[wasm_bindgen_test]
+fn a_scrub_before_the_idle_time_needs_no_rehearsal() {
+    mount("#/pid/simulation");
+    let canvas = element("canvas.sim-canvas");
+    let mut frames = 0;
+    while js("return window.__idles.size").as_f64().unwrap() == 0.0 || !rehearsal_due() {
+        frame_alone(ONE_STEP_MS);
+        frames += 1;
+        assert!(frames < 200, "the rehearsal is asked for");
+    }
+    let drag = ScrubDrag::grab();
+    drag.move_to(drag.lo + 0.25 * (drag.hi - drag.lo));
+    drag.send("change");
+    idle();
+    assert!(
+        !canvas.has_attribute("data-scrub-rehearsed"),
+        "the idle time rehearsed a scrub after a real one"
+    );
+}
+
 /// Whether the page has asked for the rehearsal of a scrub (its record is
 /// two snapshot intervals long).
 fn rehearsal_due() -> bool {

@@ -478,7 +478,10 @@ impl SimState {
     /// as they were.)
     pub(super) fn rehearse_scrub(&mut self) {
         self.rehearse_asked = false;
-        self.scrub_rehearsed = true;
+        // A scrub came first (the idle time waits up to 2 s): nothing to do.
+        if std::mem::replace(&mut self.scrub_rehearsed, true) {
+            return;
+        }
         let Some(tl) = &self.timeline else {
             return;
         };
