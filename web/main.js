@@ -270,7 +270,7 @@ window.labWatchBox = function watchBox(el, onChange) {
     // It speaks again only when its answer changes, and a box that left the
     // window hidden and came back still out of it would stay "in" for good:
     // observed afresh, it reports the box as it is now.
-    if (shown && height > 0) {
+    if (shown && height > 0 && watching) {
       inWindow = true;
       seen.unobserve(el);
       seen.observe(el);

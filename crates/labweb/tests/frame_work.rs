@@ -775,9 +775,9 @@ async fn a_frame_reads_the_canvas_size_only_after_the_canvas_was_resized() {
 /// back at once).
 fn watch_with_fake_observers() -> labweb::dom::BoxWatch {
     js_sys::Function::new_no_args(
-        "window.__observers = { real: [window.ResizeObserver, window.IntersectionObserver], calls: [] };
+        "window.__observers = { real: [window.ResizeObserver, window.IntersectionObserver], calls: [], observed: [] };
          const fake = (kind) => class { constructor(cb) { window.__observers.calls.push([kind, cb]); }
-           observe() {} disconnect() {} };
+           observe() { window.__observers.observed.push(kind); } unobserve() {} disconnect() {} };
          window.ResizeObserver = fake('resize');
          window.IntersectionObserver = fake('seen');",
     )
@@ -839,9 +839,26 @@ fn a_box_shown_again_is_in_the_window_until_told_otherwise() {
     // Hidden: no size, and out of the window.
     report_to_watches(Some((0.0, 0.0)), Some(false)).unwrap();
     assert_eq!(seen(), Some((0.0, 0.0, false)));
-    // Shown again: the size comes first.
+    // Shown again: the size comes first, and the other observer is asked
+    // afresh (it speaks only when its answer changes: a box hidden out of
+    // the window and shown again still out of it would get no report).
+    let observed = || {
+        js_sys::Function::new_no_args(
+            "return window.__observers.observed.filter((k) => k === 'seen').length",
+        )
+        .call0(&JsValue::NULL)
+        .unwrap()
+        .as_f64()
+        .unwrap()
+    };
+    let before = observed();
     report_to_watches(Some((120.0, 80.0)), None).unwrap();
     assert_eq!(seen(), Some((120.0, 80.0, true)));
+    assert_eq!(observed(), before + 1.0, "observed afresh when shown again");
+    // Its report then says where the box is.
+    report_to_watches(None, Some(false)).unwrap();
+    assert_eq!(seen(), Some((120.0, 80.0, false)));
+    report_to_watches(None, Some(true)).unwrap();
     // Scrolled out while it keeps its size.
     report_to_watches(None, Some(false)).unwrap();
     assert_eq!(seen(), Some((120.0, 80.0, false)));
