@@ -913,12 +913,7 @@ fn a_scrub_is_rehearsed_in_idle_time_and_changes_nothing_shown() {
         frame(ONE_STEP_MS);
     }
     assert!(!rehearsed(), "30 steps: too short to rehearse");
-    let mut frames = 0;
-    while js("return window.__idles.size").as_f64().unwrap() == 0.0 || !rehearsal_due() {
-        frame_alone(ONE_STEP_MS);
-        frames += 1;
-        assert!(frames < 200, "the rehearsal is asked for");
-    }
+    run_until_the_rehearsal_is_asked_for();
     let before = seen();
     idle();
     assert!(rehearsed(), "the idle time rehearsed a scrub");
@@ -945,12 +940,7 @@ fn a_scrub_is_rehearsed_in_idle_time_and_changes_nothing_shown() {
 fn a_scrub_before_the_idle_time_needs_no_rehearsal() {
     mount("#/pid/simulation");
     let canvas = element("canvas.sim-canvas");
-    let mut frames = 0;
-    while js("return window.__idles.size").as_f64().unwrap() == 0.0 || !rehearsal_due() {
-        frame_alone(ONE_STEP_MS);
-        frames += 1;
-        assert!(frames < 200, "the rehearsal is asked for");
-    }
+    run_until_the_rehearsal_is_asked_for();
     let drag = ScrubDrag::grab();
     drag.move_to(drag.lo + 0.25 * (drag.hi - drag.lo));
     drag.send("change");
@@ -961,9 +951,18 @@ fn a_scrub_before_the_idle_time_needs_no_rehearsal() {
     );
 }
 
-/// Whether the page has asked for the rehearsal of a scrub (its record is
-/// two snapshot intervals long).
-fn rehearsal_due() -> bool {
-    labweb::inspect_sim(|_, steps| steps >= 2 * labcore::timeline::Timeline::FIRST_INTERVAL)
-        .unwrap()
+/// Runs frames, with no idle time after them, until the page has asked
+/// for the rehearsal of a scrub (its record is two snapshot intervals long
+/// and an idle callback is queued).
+fn run_until_the_rehearsal_is_asked_for() {
+    let due = || {
+        labweb::inspect_sim(|_, steps| steps >= 2 * labcore::timeline::Timeline::FIRST_INTERVAL)
+            .unwrap()
+    };
+    let mut frames = 0;
+    while js("return window.__idles.size").as_f64().unwrap() == 0.0 || !due() {
+        frame_alone(ONE_STEP_MS);
+        frames += 1;
+        assert!(frames < 200, "the rehearsal is asked for");
+    }
 }
