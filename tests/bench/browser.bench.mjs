@@ -14,22 +14,26 @@ const rows = [];
 
 /**
  * Records one figure: name, value, budget (lower is better unless
- * `higherIsBetter`), unit, baseline text.
+ * `higherIsBetter`), unit, baseline text; `verdict` overrides the kept
+ * column (an A/B comparison's, see reportAB).
  */
-function report(name, value, budget, unit, baseline = "", { higherIsBetter = false } = {}) {
-  rows.push({ name, value, budget, unit, baseline, higherIsBetter });
+function report(name, value, budget, unit, baseline = "", { higherIsBetter = false, verdict } = {}) {
+  rows.push({ name, value, budget, unit, baseline, higherIsBetter, verdict });
 }
 
 after(() => {
   const pad = (s, n) => String(s).padEnd(n);
   console.log("\n== Browser benchmark (headless Chromium, software rendering)");
-  console.log(`${pad("figure", 58)}${pad("value", 12)}${pad("budget", 12)}${pad("kept", 6)}baseline (same run)`);
+  console.log(`${pad("figure", 66)}${pad("value", 12)}${pad("budget", 12)}${pad("kept", 6)}baseline (same run)`);
   for (const r of rows) {
     const within = r.higherIsBetter ? r.value >= r.budget : r.value <= r.budget;
-    const kept = Number.isFinite(r.value) && within ? "yes" : "NO";
+    const kept = r.verdict ?? (Number.isFinite(r.value) && within ? "yes" : "NO");
     const value = Number.isFinite(r.value) ? `${r.value.toFixed(2)} ${r.unit}` : "n/a";
     const budget = `${r.higherIsBetter ? "≥ " : ""}${r.budget} ${r.unit}`;
-    console.log(`${pad(r.name, 58)}${pad(value, 12)}${pad(budget, 12)}${pad(kept, 6)}${r.baseline}`);
+    console.log(`${pad(r.name, 66)}${pad(value, 12)}${pad(budget, 12)}${pad(kept, 6)}${r.baseline}`);
+  }
+  if (rows.some((r) => r.verdict === "n.s.")) {
+    console.log("n.s.: an A/B ratio above its budget whose 90 % bootstrap interval reaches ×1.00 (no difference shown by this run).");
   }
 });
 
@@ -330,6 +334,16 @@ const recordFrameWork = () => {
     const [t0, script] = pending.shift();
     window.__frames.push({ script, whole: performance.now() - t0 });
   };
+  // Resolves after `n` lab frames (or 3 × `n` animation frames: a page
+  // that stops asking for frames ends the wait).
+  window.__labFrames = (n) =>
+    new Promise((done) => {
+      const from = window.__frames.length;
+      let ticks = 0;
+      const tick = () => (window.__frames.length - from >= n || ++ticks > 3 * n ? done() : window.requestAnimationFrame(tick));
+      tick.__bench = true;
+      window.requestAnimationFrame(tick);
+    });
   window.requestAnimationFrame = (callback) =>
     request((t) => {
       const t0 = performance.now();
@@ -480,35 +494,37 @@ const AB_BLOCK_FRAMES = 30;
 const AB_RATIO_BUDGET = 1.1;
 
 /**
- * One block of `frames` lab frames with the page switched to A (`on`) or
- * B by the export `name`: each frame's script and whole time (ms), the
- * simulation steps the clock advanced, and whether the switch applied.
+ * Switches the page to A (`on`) or B by the export `name` and waits one
+ * lab frame, which settles the switch (a panel unhidden is laid out there).
+ * Returns whether the switch applied.
  */
-const abBlock = (page, name, on, frames) =>
+const abSwitch = (page, name, on) =>
   page.evaluate(
-    async ({ name, on, frames }) => {
+    async ({ name, on }) => {
       const applies = window.labweb[name](on);
+      await window.__labFrames(1);
+      return applies;
+    },
+    { name, on },
+  );
+
+/**
+ * The next `frames` lab frames: each frame's script and whole time (ms),
+ * and the simulation steps the clock advanced.
+ */
+const abFrames = (page, frames) =>
+  page.evaluate(
+    async (frames) => {
       const canvas = document.querySelector("article.exp:not([hidden]) canvas.sim-canvas");
-      const labFrames = (n) =>
-        new Promise((done) => {
-          const from = window.__frames.length;
-          let ticks = 0;
-          // A page that stops asking for frames ends the block (3 × n at most).
-          const tick = () => (window.__frames.length - from >= n || ++ticks > 3 * n ? done() : window.requestAnimationFrame(tick));
-          tick.__bench = true;
-          window.requestAnimationFrame(tick);
-        });
-      await labFrames(1);
       const from = window.__frames.length;
       const steps0 = Number(canvas.dataset.steps || 0);
-      await labFrames(frames);
+      await window.__labFrames(frames);
       return {
-        applies,
         frames: window.__frames.slice(from, from + frames),
         steps: Number(canvas.dataset.steps || 0) - steps0,
       };
     },
-    { name, on, frames },
+    frames,
   );
 
 /**
@@ -535,11 +551,12 @@ async function compareAB(page, name, { beforeBlock = async () => {}, drive } = {
   try {
     for (const [i, variant] of [...AB_ORDER].entries()) {
       await beforeBlock(i);
+      out.applies &&= await abSwitch(page, name, variant === "A");
+      // Over the counted frames only (the settling frame, which lays out
+      // what the switch showed or hid, is not counted), ms a frame.
       const before = await styleLayoutS();
-      const r = await abBlock(page, name, variant === "A", AB_BLOCK_FRAMES);
-      // Over the block and its settling frame, ms a frame.
-      const styleLayout = ((await styleLayoutS()) - before) * 1000 / (r.frames.length + 1);
-      out.applies &&= r.applies;
+      const r = await abFrames(page, AB_BLOCK_FRAMES);
+      const styleLayout = ((await styleLayoutS()) - before) * 1000 / Math.max(1, r.frames.length);
       out.blocks.push({ variant, frames: r.frames, steps: r.steps, styleLayout });
     }
   } finally {
@@ -552,21 +569,49 @@ async function compareAB(page, name, { beforeBlock = async () => {}, drive } = {
 }
 
 /**
+ * How far the p95 ratio of A to B could move by chance: a seeded bootstrap
+ * over blocks (frames within a block are alike, blocks are the samples).
+ * Each of 2,000 draws picks as many A blocks and as many B blocks as the run
+ * had, with replacement, and takes the ratio of their p95s. Returns the 5th
+ * and 95th percentiles of those ratios (a 90 % interval).
+ */
+function bootstrapRatio(blocksA, blocksB) {
+  let seed = 20261203;
+  const draw = (n) => {
+    seed = (seed * 1103515245 + 12345) % 2147483648;
+    return Math.floor((seed / 2147483648) * n);
+  };
+  const resampled = (blocks) => Array.from(blocks, () => blocks[draw(blocks.length)]).flat();
+  const ratios = [];
+  for (let i = 0; i < 2000; i++) ratios.push(p95(resampled(blocksA)) / p95(resampled(blocksB)));
+  ratios.sort((x, y) => x - y);
+  return [ratios[Math.floor(0.05 * ratios.length)], ratios[Math.floor(0.95 * ratios.length) - 1]];
+}
+
+/**
  * Reports A against B for one experiment (see compareAB): the ratio of
  * their whole-frame p95s over all their frames, with each one's p95 in ms.
- * The detail adds the means, the script-only p95s, the frames and steps
- * counted, the browser's style and layout per frame (mean), and the
- * median over the block pairs (AB or BA, side by side in AB_ORDER) of the
- * ratio of their p95s, which a load spike in one block of the shared machine
- * moves less.
+ *
+ * Kept: "yes" when the ratio is within AB_RATIO_BUDGET; "n.s." when it is
+ * not, but the 90 % bootstrap interval ([`bootstrapRatio`]) reaches ×1.00,
+ * so the run shows no difference between A and B; "NO" otherwise.
+ *
+ * The detail adds that interval; the same run's A/A and B/B ratios (the
+ * p95s of alternate blocks of one variant against each other: what the
+ * ratio reads when nothing differs); the median over the block pairs (AB or
+ * BA, side by side in AB_ORDER) of the ratio of their p95s, which a load
+ * spike in one block moves less; the means, the script-only p95s, the
+ * browser's style and layout per counted frame (mean), and the frames and
+ * steps counted.
  */
 function reportAB(name, ab, [withA, withoutB], load) {
-  const frames = (v) => ab.blocks.filter((b) => b.variant === v).flatMap((b) => b.frames);
-  const steps = (v) => ab.blocks.filter((b) => b.variant === v).reduce((n, b) => n + b.steps, 0);
+  const blocksOf = (v) => ab.blocks.filter((b) => b.variant === v);
+  const frames = (v) => blocksOf(v).flatMap((b) => b.frames);
+  const steps = (v) => blocksOf(v).reduce((n, b) => n + b.steps, 0);
   const whole = (fs) => fs.map((f) => f.whole);
   const mean = (xs) => xs.reduce((a, b) => a + b, 0) / xs.length;
   const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor((xs.length - 1) / 2)];
-  const styleLayout = (v) => mean(ab.blocks.filter((b) => b.variant === v).map((b) => b.styleLayout)).toFixed(2);
+  const styleLayout = (v) => mean(blocksOf(v).map((b) => b.styleLayout)).toFixed(2);
   const [A, B] = [frames("A"), frames("B")];
   const [a, b] = [p95(whole(A)), p95(whole(B))];
   const pairs = [];
@@ -574,12 +619,22 @@ function reportAB(name, ab, [withA, withoutB], load) {
     const [x, y] = ab.blocks.slice(i, i + 2).sort((m, n) => (m.variant < n.variant ? -1 : 1));
     pairs.push(p95(whole(x.frames)) / p95(whole(y.frames)));
   }
+  const wholeBlocks = (v) => blocksOf(v).map((block) => whole(block.frames));
+  const [lo, hi] = bootstrapRatio(wholeBlocks("A"), wholeBlocks("B"));
+  // Alternate blocks of one variant against each other.
+  const selfRatio = (v) => {
+    const halves = [0, 1].map((h) => wholeBlocks(v).filter((_, i) => i % 2 === h).flat());
+    return p95(halves[0]) / p95(halves[1]);
+  };
+  const verdict = a / b <= AB_RATIO_BUDGET ? "yes" : lo <= 1 ? "n.s." : "NO";
   report(name, a / b, AB_RATIO_BUDGET, "×",
-    `${withA} ${a.toFixed(2)} ms, ${withoutB} ${b.toFixed(2)} ms; pair median ×${median(pairs).toFixed(2)}; ` +
+    `${withA} ${a.toFixed(2)} ms, ${withoutB} ${b.toFixed(2)} ms; 90 % interval ×${lo.toFixed(2)}–${hi.toFixed(2)}; ` +
+    `A/A ×${selfRatio("A").toFixed(2)}, B/B ×${selfRatio("B").toFixed(2)}; pair median ×${median(pairs).toFixed(2)}; ` +
     `means ${mean(whole(A)).toFixed(2)}/${mean(whole(B)).toFixed(2)} ms, ` +
     `script p95 ${p95(A.map((f) => f.script)).toFixed(2)}/${p95(B.map((f) => f.script)).toFixed(2)} ms, ` +
     `style+layout ${styleLayout("A")}/${styleLayout("B")} ms; ` +
-    `${A.length}/${B.length} frames, ${steps("A")}/${steps("B")} steps; load ${load}`);
+    `${A.length}/${B.length} frames, ${steps("A")}/${steps("B")} steps; load ${load}`,
+    { verdict });
 }
 
 /** The machine's load average over the last minute (the machine is shared). */
