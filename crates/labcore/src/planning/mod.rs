@@ -10,10 +10,12 @@
 //! - [`world`]: a continuous 2-D field with circle and rectangle obstacles and
 //!   fixed-resolution collision checks.
 //! - [`spatial_grid`]: a point index with growing bins for nearest and radius queries.
+//! - [`drive_path`]: a polyline with its arc length, for a robot driving it.
 //! - [`rrt_star`]: RRT, RRT* and Informed RRT*, one iteration at a time
 //!   (LaValle 1998; Karaman & Frazzoli 2011; Gammell, Srinivasa & Barfoot 2014).
 
 pub mod astar;
+pub mod drive_path;
 pub mod grid;
 pub mod heuristic;
 pub mod maze;

@@ -38,6 +38,7 @@
 use crate::experiment::{check_param, ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
 use crate::units::{format_fixed, format_number};
 use crate::planning::astar::{Search, SearchConfig, StepOutcome, Strategy};
+use crate::planning::drive_path::DrivePath;
 use crate::planning::grid::{Cell, Connectivity, OccupancyGrid};
 use crate::planning::heuristic::Heuristic;
 use crate::planning::maze::recursive_backtracker;
@@ -262,8 +263,8 @@ pub struct AStarGrid {
     phase: Phase,
     /// Fixed steps the search has run.
     search_steps: usize,
-    /// The path as world points and its length, metres.
-    path: Vec<DVec2>,
+    /// The path as world points, with its arc length (metres).
+    path: DrivePath,
     path_cells: usize,
     path_cost: f64,
     /// Distance driven along `path`, metres.
@@ -334,7 +335,7 @@ impl Default for AStarGrid {
             search: None,
             phase: Phase::Idle,
             search_steps: 0,
-            path: Vec::new(),
+            path: DrivePath::default(),
             path_cells: 0,
             path_cost: 0.0,
             driven_m: 0.0,
@@ -673,7 +674,7 @@ impl AStarGrid {
         };
         match search.result() {
             Some(r) => {
-                self.path = r.path.iter().map(|c| self.cell_center(*c)).collect();
+                self.path = DrivePath::new(self.world_path(&r.path));
                 self.path_cells = r.path.len();
                 self.path_cost = r.cost;
                 self.driven_m = 0.0;
@@ -758,7 +759,7 @@ impl AStarGrid {
                 self.search = Some(search);
                 self.search_raster();
                 if let Some(r) = self.search.as_ref().and_then(Search::result) {
-                    self.path = self.world_path(&r.path);
+                    self.path = DrivePath::new(self.world_path(&r.path));
                     self.path_cells = r.path.len();
                     self.path_cost = r.cost;
                 }
@@ -868,19 +869,11 @@ impl AStarGrid {
         if !matches!(self.phase, Phase::Driving | Phase::Arrived) {
             return None;
         }
-        let mut left = self.driven_m;
-        for w in self.path.windows(2) {
-            let len = (w[1] - w[0]).length();
-            if left < len && len > 0.0 {
-                return Some(w[0] + (w[1] - w[0]) * (left / len));
-            }
-            left -= len;
-        }
-        self.path.last().copied()
+        self.path.at(self.driven_m)
     }
 
     fn path_length_m(&self) -> f64 {
-        self.path.windows(2).map(|w| (w[1] - w[0]).length()).sum()
+        self.path.length_m()
     }
 
     fn moving_handle(&mut self, cell: Cell) {

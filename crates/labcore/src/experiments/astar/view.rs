@@ -171,7 +171,7 @@ impl Presentation for AStarGrid {
         }
         if self.compare.is_empty() && self.path.len() >= 2 {
             out.push(Item::Polyline {
-                points: self.path.clone(),
+                points: self.path.points().to_vec(),
                 width_px: 3.0,
                 role: Role::Path,
                 dashed: false,

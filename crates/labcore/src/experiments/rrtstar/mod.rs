@@ -27,6 +27,7 @@
 
 use crate::experiment::{check_param, ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
 use crate::units::{format_metres, format_number};
+use crate::planning::drive_path::DrivePath;
 use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar};
 use crate::planning::world::{Obstacle, World};
 use crate::plot::{Plot, Series, SeriesRole};
@@ -333,7 +334,8 @@ pub struct RrtStarField {
     error: Option<RrtError>,
     /// Distance driven along the frozen path, metres.
     driven_m: Option<f64>,
-    drive_path: Vec<DVec2>,
+    /// The path frozen for driving, with its arc length.
+    drive_path: DrivePath,
     drag: Drag,
     /// Which handle arrow keys move (the one grabbed last).
     nudge: Drag,
@@ -388,7 +390,7 @@ impl Default for RrtStarField {
             growing: false,
             error: None,
             driven_m: None,
-            drive_path: Vec::new(),
+            drive_path: DrivePath::default(),
             drag: Drag::None,
             nudge: Drag::Start,
             notices: Notices::default(),
@@ -563,7 +565,7 @@ impl RrtStarField {
         match self.best_path() {
             Some(path) if path.len() >= 2 => {
                 self.growing = false;
-                self.drive_path = path;
+                self.drive_path = DrivePath::new(path);
                 self.driven_m = Some(0.0);
                 self.notices.clear();
             }
@@ -574,25 +576,11 @@ impl RrtStarField {
     }
 
     fn robot(&self) -> Option<DVec2> {
-        let mut left = self.driven_m?;
-        if left >= self.drive_length() {
-            return self.drive_path.last().copied();
-        }
-        for w in self.drive_path.windows(2) {
-            let len = (w[1] - w[0]).length();
-            if left < len && len > 0.0 {
-                return Some(w[0] + (w[1] - w[0]) * (left / len));
-            }
-            left -= len;
-        }
-        self.drive_path.last().copied()
+        self.drive_path.at(self.driven_m?)
     }
 
     fn drive_length(&self) -> f64 {
-        self.drive_path
-            .windows(2)
-            .map(|w| (w[1] - w[0]).length())
-            .sum()
+        self.drive_path.length_m()
     }
 
     fn driving(&self) -> bool {

@@ -134,7 +134,7 @@ impl Presentation for RrtStarField {
             }
         }
         let path = if self.driven_m.is_some() {
-            Some(self.drive_path.clone())
+            Some(self.drive_path.points().to_vec())
         } else {
             self.best_path()
         };
