@@ -167,13 +167,15 @@ impl Timeline {
                 .any(|s| s.pinned && s.step > 0 && s.step <= step)
     }
 
-    /// Steps replayed by the last [`Timeline::state_at`].
+    /// Steps replayed by the last [`Timeline::state_at`] or
+    /// [`Timeline::step_on_to`].
     #[must_use]
     pub fn last_replay(&self) -> u64 {
         self.last_replay
     }
 
-    /// The most steps any [`Timeline::state_at`] replayed.
+    /// The most steps any [`Timeline::state_at`] or [`Timeline::step_on_to`]
+    /// replayed.
     #[must_use]
     pub fn worst_replay(&self) -> u64 {
         self.worst_replay
@@ -272,6 +274,41 @@ impl Timeline {
             lab.end_replay();
         }
         (step, replay, lab)
+    }
+
+    /// A scrub forward from a past state: steps `exp`, which shows step
+    /// `from` of the record, on to `to` and returns `Some(to)` when no
+    /// snapshot lies between the two (so no input either): the steps are
+    /// then no more than [`Timeline::state_at`] would replay, and no copy
+    /// is made. It counts them as [`Timeline::last_replay`]. Otherwise
+    /// leaves `exp` as it is and returns `None`.
+    ///
+    /// A drag of the slider moves a few steps a frame: going forward it
+    /// then costs those steps, with no copy of a snapshot (5 MB for A* on a
+    /// 512 × 512 maze) and no replay from it.
+    pub fn step_on_to(
+        &mut self,
+        exp: &mut dyn Lab,
+        from: u64,
+        to: u64,
+        step_once: &mut dyn FnMut(&mut dyn Lab),
+    ) -> Option<u64> {
+        if from < self.first() || to <= from || to > self.end {
+            return None;
+        }
+        let i = self.snaps.partition_point(|s| s.step <= to).max(1) - 1;
+        let snap = &self.snaps[i];
+        // A snapshot after `from` is either an input's (the state changed
+        // there) or nearer `to`: the scrub rebuilds from it.
+        if snap.step > from {
+            return None;
+        }
+        for _ in from..to {
+            step_once(exp);
+        }
+        self.last_replay = to - from;
+        self.worst_replay = self.worst_replay.max(self.last_replay);
+        Some(to)
     }
 
     /// Moves `exp`, which shows step `from`, on to step `to` along the

@@ -147,6 +147,59 @@ fn scrub_exactness_the_state_at_step_k_is_the_live_runs_bit_for_bit() {
     }
 }
 
+/// A drag forward through the past steps the shown state on where no
+/// snapshot (so no input) lies between, and rebuilds it elsewhere: every
+/// state is the live run's, and no move replays an interval.
+#[test]
+fn scrub_forward_a_drag_steps_the_shown_state_on_exactly_within_the_bound() {
+    // Across all runs, both ways are taken.
+    let mut rebuilt_in_all = 0;
+    for id in evolving_ids() {
+        let mut stepped_on = 0;
+        for seed in 1..=3 {
+            let (seen, mut timeline) = live_run(id, seed, 360, 48 << 10);
+            let mut rng = Lcg64::new(seed * 104_729);
+            let (mut at, mut lab) = timeline.state_at(timeline.first(), &mut step_once);
+            let mut rebuilt = 0;
+            while at < timeline.end() {
+                let to = (at + rng.int(1, 40) as u64).min(timeline.end());
+                match timeline.step_on_to(lab.as_mut(), at, to, &mut step_once) {
+                    Some(reached) => {
+                        assert_eq!(reached, to);
+                        stepped_on += 1;
+                    }
+                    None => {
+                        (_, lab) = timeline.state_at(to, &mut step_once);
+                        rebuilt += 1;
+                    }
+                }
+                at = to;
+                assert_eq!(
+                    shown(lab.as_ref()),
+                    seen[at as usize],
+                    "{id} seed {seed}: step {at} differs from the live run's"
+                );
+                assert!(
+                    timeline.last_replay() < timeline.interval(),
+                    "{id}: {} steps replayed to {at}, interval {}",
+                    timeline.last_replay(),
+                    timeline.interval()
+                );
+            }
+            rebuilt_in_all += rebuilt;
+            // Backwards, or beyond the record, is never a step on.
+            assert!(timeline
+                .step_on_to(lab.as_mut(), at, at - 1, &mut step_once)
+                .is_none());
+            assert!(timeline
+                .step_on_to(lab.as_mut(), at, at + 1, &mut step_once)
+                .is_none());
+        }
+        assert!(stepped_on > 0, "{id}: no drag stepped the state on");
+    }
+    assert!(rebuilt_in_all > 0, "no drag crossed a snapshot");
+}
+
 #[test]
 fn scrub_replay_bound_any_step_replays_at_most_the_interval_less_one() {
     for id in evolving_ids() {

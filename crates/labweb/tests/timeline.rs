@@ -72,6 +72,47 @@ fn timeline_slider_shows_step_k_exactly_as_the_run_had_it_and_pauses() {
     assert_eq!(shown(), (end, snapshot(left_alone(entry, end).as_ref())));
 }
 
+/// The address of the mounted model: the same while the page steps it on,
+/// another once it is rebuilt from a snapshot.
+fn model_address() -> usize {
+    labweb::inspect_sim(|exp, _| std::ptr::from_ref(exp).cast::<u8>() as usize).unwrap()
+}
+
+/// A drag forward through the past steps the state shown on where no
+/// snapshot lies between (no copy, no replay from a snapshot), rebuilds it
+/// where one does, and shows every step exactly as the run had it.
+#[wasm_bindgen_test]
+fn a_drag_forward_through_the_past_steps_the_shown_state_on_exactly() {
+    mount("#/pid/simulation");
+    let entry = labcore::find("pid").unwrap();
+    for _ in 0..120 {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    let end = steps_shown();
+    // pid's snapshots are 32 steps apart: 33 is rebuilt from the one at 32.
+    scrub_to(33);
+    let model = model_address();
+    for k in 34..=40 {
+        scrub_to(k);
+        assert_eq!(shown(), (k, snapshot(left_alone(entry, k).as_ref())));
+        assert_eq!(model_address(), model, "step {k} was rebuilt");
+    }
+    // Across the snapshot at 64, and back: rebuilt.
+    scrub_to(70);
+    assert_eq!(shown(), (70, snapshot(left_alone(entry, 70).as_ref())));
+    assert_ne!(model_address(), model);
+    let model = model_address();
+    scrub_to(66);
+    assert_eq!(shown(), (66, snapshot(left_alone(entry, 66).as_ref())));
+    assert_ne!(model_address(), model);
+    // Stepped on to the record's end: the run's last state, and Play goes on
+    // from it as the run would have.
+    scrub_to(end - 1);
+    scrub_to(end);
+    assert_eq!(shown(), (end, snapshot(left_alone(entry, end).as_ref())));
+}
+
 /// Issue 26 §1, Step back: the button and `,` go back one model step (one
 /// filter cycle of the EKF); `.` goes forward along the record.
 #[wasm_bindgen_test]

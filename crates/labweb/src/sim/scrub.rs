@@ -512,17 +512,31 @@ impl SimState {
             return;
         };
         tl.commit(self.exp.as_ref());
-        let (at, lab) = tl.state_at(step, &mut step_once);
         let end = tl.end();
         // A scrub's code has run: no rehearsal is wanted.
         self.scrub_rehearsed = true;
-        let shown = std::mem::replace(&mut self.exp, lab);
-        // The run's last state is kept while the past is shown (its plots
-        // are drawn; an input there keeps it as the run left behind).
+        // A drag forward through the past steps the state shown on, when
+        // no snapshot lies between (the run's last state is kept aside).
+        let stepped_on = if self.record_end.is_some() {
+            tl.step_on_to(self.exp.as_mut(), self.clock.steps(), step, &mut step_once)
+        } else {
+            None
+        };
+        let at = if let Some(at) = stepped_on {
+            at
+        } else {
+            let (at, lab) = tl.state_at(step, &mut step_once);
+            let shown = std::mem::replace(&mut self.exp, lab);
+            // The run's last state is kept while the past is shown (its
+            // plots are drawn; an input there keeps it as the run left
+            // behind).
+            if self.record_end.is_none() {
+                self.record_end = Some(shown);
+            }
+            at
+        };
         if at == end {
             self.record_end = None;
-        } else if self.record_end.is_none() {
-            self.record_end = Some(shown);
         }
         if self.css_size.0 >= 1.0 {
             self.exp.viewport_px(self.css_size.0, self.css_size.1);
