@@ -34,6 +34,16 @@ fn steps_shown() -> u64 {
     shown().0
 }
 
+/// Runs the mounted simulation for `frames` frames of one step each and
+/// paints: the steps shown then (the record's end).
+fn run_for_frames(frames: usize) -> u64 {
+    for _ in 0..frames {
+        frame(ONE_STEP_MS);
+    }
+    labweb::paint_now();
+    steps_shown()
+}
+
 /// Issue 26 §1, the timeline: after a run, dragging the slider back shows
 /// the run at that step (status, readouts, plots up to it, the scene's
 /// description) exactly as the run had it, pauses, and the slider speaks
@@ -42,11 +52,7 @@ fn steps_shown() -> u64 {
 fn timeline_slider_shows_step_k_exactly_as_the_run_had_it_and_pauses() {
     mount("#/pid/simulation");
     let entry = labcore::find("pid").unwrap();
-    for _ in 0..120 {
-        frame(ONE_STEP_MS);
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = run_for_frames(120);
     assert!(end >= 100, "{end} steps");
     assert_eq!(attr(".tb-scrub", "max"), Some(end.to_string()));
     scrub_to(40);
@@ -85,11 +91,7 @@ fn model_address() -> usize {
 fn a_drag_forward_through_the_past_steps_the_shown_state_on_exactly() {
     mount("#/pid/simulation");
     let entry = labcore::find("pid").unwrap();
-    for _ in 0..120 {
-        frame(ONE_STEP_MS);
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = run_for_frames(120);
     // pid's snapshots are 32 steps apart: 33 is rebuilt from the one at 32.
     scrub_to(33);
     let model = model_address();
@@ -120,11 +122,7 @@ fn step_back_button_and_comma_key_go_back_one_model_step() {
     mount("#/ekf/simulation");
     let entry = labcore::find("ekf").unwrap();
     let cycle = u64::from(Clock::fixed_steps_in(entry_step(entry)));
-    for _ in 0..90 {
-        frame(ONE_STEP_MS);
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = run_for_frames(90);
     element("[data-time=back]").click();
     labweb::paint_now();
     assert_eq!(
@@ -330,11 +328,7 @@ fn plot_xs_of(exp: &dyn labcore::Lab) -> Vec<(&'static str, Option<f64>)> {
 fn plot_cursor_marks_the_moment_shown_on_every_plot_and_none_when_live() {
     mount("#/pid/simulation");
     let entry = labcore::find("pid").unwrap();
-    for _ in 0..120 {
-        frame(ONE_STEP_MS);
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = run_for_frames(120);
     let keys: Vec<&str> = entry_plot_keys(entry);
     assert!(keys.len() >= 2);
     for key in &keys {
@@ -360,11 +354,7 @@ fn plot_cursor_marks_the_moment_shown_on_every_plot_and_none_when_live() {
 #[wasm_bindgen_test]
 fn a_scrub_rewrites_text_in_place_and_hides_a_cursor_without_the_hidden_attribute() {
     mount("#/pid/simulation");
-    for _ in 0..120 {
-        frame(ONE_STEP_MS);
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = run_for_frames(120);
     let time = element(".timebar .tb-time");
     let readout = element("dl.readouts dd");
     scrub_to(40);
@@ -412,11 +402,7 @@ fn entry_plot_keys(entry: &labcore::Entry) -> Vec<&'static str> {
 fn clicking_a_plot_point_moves_the_timeline_there_and_pauses() {
     mount("#/pid/simulation");
     let entry = labcore::find("pid").unwrap();
-    for _ in 0..120 {
-        frame(ONE_STEP_MS);
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = run_for_frames(120);
     press_plot("response", 0.5);
     let (at, state) = shown();
     assert!(at > 0 && at < end, "{at} of {end}");
@@ -448,11 +434,7 @@ fn clicking_a_plot_point_moves_the_timeline_there_and_pauses() {
 fn a_focused_plots_arrow_keys_move_the_timeline_point_by_point() {
     mount("#/pid/simulation");
     let entry = labcore::find("pid").unwrap();
-    for _ in 0..60 {
-        frame(ONE_STEP_MS);
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = run_for_frames(60);
     let canvas = plot_canvas("response");
     assert_eq!(canvas.get_attribute("tabindex").as_deref(), Some("0"));
     let live = left_alone(entry, end);
@@ -492,11 +474,7 @@ fn slider_arrows_move_one_model_step_and_page_keys_one_second() {
     let entry = labcore::find("ekf").unwrap();
     let cycle = u64::from(Clock::fixed_steps_in(entry_step(entry)));
     assert!(cycle > 1, "an EKF cycle is several fixed steps");
-    for _ in 0..150 {
-        frame(ONE_STEP_MS);
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = run_for_frames(150);
     let slider = element(".tb-scrub");
     key_on(&slider, "ArrowLeft");
     assert_eq!(steps_shown(), end - cycle);
@@ -858,11 +836,7 @@ fn a_moving_drag_draws_the_tree_as_a_draft_and_a_resting_one_sharp() {
     let _ratio = ScreenRatio;
     mount("#/rrtstar/simulation");
     element("[data-action=grow]").click();
-    for _ in 0..60 {
-        frame(ONE_STEP_MS);
-    }
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = run_for_frames(60);
     assert!(end >= 40, "{end} steps");
     let slider: HtmlInputElement = element(".tb-scrub").dyn_into().unwrap();
     slider_event("pointerdown");
