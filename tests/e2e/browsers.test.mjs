@@ -408,7 +408,16 @@ function save(name, image) {
   return path;
 }
 
-const ACCENT_PAGES = ["cartpole", "ekf"];
+/**
+ * The tabs whose accents are measured: two Theory tabs, and cartpole's
+ * "The math" panel, whose symbols (θ̇ₖ, θ̇) come from labpage's
+ * math_panel, not the converter.
+ */
+const ACCENT_PAGES = [
+  ["cartpole", "theory"],
+  ["ekf", "theory"],
+  ["cartpole", "simulation"],
+];
 /** Most an accent's ink may float above its letter's, and be off its centre (em). */
 const GAP_MAX_EM = 0.45;
 const SHIFT_MAX_EM = 0.3;
@@ -489,18 +498,19 @@ for (const [name, launch, available] of [
       assert.deepEqual(await b.problems(), [], "the page reported problems");
     });
 
-    for (const id of ACCENT_PAGES) {
-      test(`${id}: the Theory tab shows its formulas, every accent drawn over its letter`, async () => {
-        const t = await openAndWait(b, `#/${id}/theory`, theoryState, id);
+    for (const [id, tab] of ACCENT_PAGES) {
+      const where = tab === "theory" ? "the Theory tab shows its formulas" : `the ${tab} tab's "The math" shows its formulas`;
+      test(`${id}: ${where}, every accent drawn over its letter`, async () => {
+        const t = await openAndWait(b, `#/${id}/${tab}`, theoryState, id);
         assert.ok(t.maths > 5 && t.sized === t.maths, `${id}: ${t.sized} of ${t.maths} formulas have a size`);
         assert.ok(t.accents.length > 0, `${id}: accents found`);
         const ink = await accentInk(b, id);
-        console.log(`# ${b.name} ${id} ${JSON.stringify(ink)}`);
+        console.log(`# ${b.name} ${id} ${tab} ${JSON.stringify(ink)}`);
         // Kept for the side-by-side picture, also when the check below fails.
-        accentPictures[id] ??= {};
-        accentPictures[id][b.name] = await accentCrops(b, id);
+        accentPictures[`${id}-${tab}`] ??= {};
+        accentPictures[`${id}-${tab}`][b.name] = await accentCrops(b, id);
         const astray = ink.filter(accentAstray);
-        assert.deepEqual(astray, [], `${id}: accents away from their letter`);
+        assert.deepEqual(astray, [], `${id} ${tab}: accents away from their letter`);
         assert.deepEqual(await b.problems(), [], `${id}: the page reported problems`);
       });
     }
@@ -511,17 +521,18 @@ for (const [name, launch, available] of [
 test("accents side by side in Chromium, Firefox and WebKit", { skip: ids.length ? false : "no dist" }, async () => {
   const b = await chromium();
   try {
-    for (const id of ACCENT_PAGES) {
-      await b.goto(`${server.base}index.html#/${id}/theory`);
+    for (const [id, tab] of ACCENT_PAGES) {
+      await b.goto(`${server.base}index.html#/${id}/${tab}`);
       await b.waitFor(theoryState, id);
       const ink = await accentInk(b, id);
-      console.log(`# ${b.name} ${id} ${JSON.stringify(ink)}`);
-      const shots = { chromium: await accentCrops(b, id), ...accentPictures[id] };
-      for (const [browser, image] of Object.entries(shots)) save(`browsers-accents-${id}-${browser}`, enlarged(image));
+      console.log(`# ${b.name} ${id} ${tab} ${JSON.stringify(ink)}`);
+      const name = `${id}-${tab}`;
+      const shots = { chromium: await accentCrops(b, id), ...accentPictures[name] };
+      for (const [browser, image] of Object.entries(shots)) save(`browsers-accents-${name}-${browser}`, enlarged(image));
       // Left to right: Chromium, Firefox, WebKit.
-      save(`browsers-accents-${id}`, enlarged(sideBySide(Object.values(shots), 24)));
+      save(`browsers-accents-${name}`, enlarged(sideBySide(Object.values(shots), 24)));
       const astray = ink.filter(accentAstray);
-      assert.deepEqual(astray, [], `${id}: accents away from their letter in Chromium`);
+      assert.deepEqual(astray, [], `${id} ${tab}: accents away from their letter in Chromium`);
     }
   } finally {
     await b.close();

@@ -97,6 +97,24 @@ pub fn symbol_mathml(symbol: &str) -> String {
     w.out
 }
 
+/// The over-script for a combining accent (U+0307 dot, U+0308 double dot,
+/// U+0302 hat, U+0304 or U+0305 bar) in the form the reading pages carry
+/// (labtex's `accents::portable`), the one Chromium, Firefox and WebKit all
+/// draw over its letter. As a combining character after its letter, a
+/// symbol's dot was not drawn at all: the panel's `<mi>θ̇</mi>` read θ in
+/// Chromium with DejaVu Serif (cartpole's kω θ̇ₖ term and its energy).
+fn accent_over(mark: char) -> Option<&'static str> {
+    match mark {
+        '\u{0307}' => Some("<mo stretchy=\"true\">\u{02D9}</mo>"),
+        '\u{0308}' => Some("<mo stretchy=\"true\">\u{00A8}</mo>"),
+        '\u{0302}' => Some("<mo stretchy=\"true\">^</mo>"),
+        '\u{0304}' | '\u{0305}' => {
+            Some("<mo stretchy=\"true\" lspace=\"0\" rspace=\"0\">\u{2212}</mo>")
+        }
+        _ => None,
+    }
+}
+
 /// What a [`Writer`] writes: MathML for the eye or text for the ear.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Target {
@@ -137,11 +155,26 @@ impl<'a> Writer<'a> {
         });
     }
 
-    /// A token: `<mi>`/`<mn>` in MathML, the bare text otherwise.
+    /// A token: `<mi>`/`<mn>` in MathML, the bare text otherwise. A letter
+    /// with a combining accent (`θ̇`: θ and U+0307) becomes the letter under
+    /// its accent ([`accent_over`]).
     fn token(&mut self, tag: &str, text: &str) {
         match self.to {
             Target::MathMl => {
-                let _ = write!(self.out, "<{tag}>{}</{tag}>", escape(text));
+                let mut chars = text.chars();
+                let accent = chars.next_back().and_then(accent_over);
+                match accent {
+                    Some(mo) if tag == "mi" && !chars.as_str().is_empty() => {
+                        let _ = write!(
+                            self.out,
+                            "<mover accent=\"true\"><mi>{}</mi>{mo}</mover>",
+                            escape(chars.as_str())
+                        );
+                    }
+                    _ => {
+                        let _ = write!(self.out, "<{tag}>{}</{tag}>", escape(text));
+                    }
+                }
             }
             Target::Text => self.out.push_str(text),
         }
@@ -473,6 +506,39 @@ mod tests {
         readout: "x",
         caption: "Tip x",
     };
+
+    /// The `<mover>` of the first accent in `markup`.
+    fn first_mover(markup: &str) -> &str {
+        let start = markup.find("<mover").expect("an accent");
+        let end = start + markup[start..].find("</mover>").expect("closed") + "</mover>".len();
+        &markup[start..end]
+    }
+
+    #[test]
+    fn a_symbol_with_a_combining_accent_is_its_letter_under_the_reading_pages_accent() {
+        // The same MathML the reading pages carry for the LaTeX, built by
+        // the converter and made portable (labtex).
+        for (symbol, latex) in [
+            ("θ̇", r"$\dot{\theta}$"),
+            ("θ̈", r"$\ddot{\theta}$"),
+            ("x̂", r"$\hat{x}$"),
+            ("μ̄", r"$\bar{\mu}$"),
+        ] {
+            let page = labtex::render(latex).unwrap();
+            let panel = symbol_mathml(symbol);
+            assert_eq!(panel, first_mover(&page), "{symbol} against {latex}");
+        }
+        // With a subscript, the accented letter is the base.
+        let subscripted = symbol_mathml("θ̇_k");
+        assert!(subscripted.starts_with("<msub><mover accent=\"true\"><mi>θ</mi>"));
+        assert!(subscripted.ends_with("</mover><mi>k</mi></msub>"));
+        // Precomposed letters, plain letters and the text twin stay as written.
+        assert_eq!(symbol_mathml("ẋ"), "<mi>ẋ</mi>");
+        assert_eq!(symbol_mathml("θ"), "<mi>θ</mi>");
+        let mut text = Writer::new(Target::Text, Form::Symbols, &[]);
+        text.symbol("θ̇_k");
+        assert_eq!(text.out, "θ̇k");
+    }
 
     fn quantities(t_deg: f64) -> Vec<Quantity> {
         vec![
