@@ -64,6 +64,11 @@ fn wasm_test(package: &'static str, browser: bool) -> Box<dyn Fn() -> Result<(),
         if browser && Path::new(CHROMEDRIVER).exists() {
             cmd.env("CHROMEDRIVER", CHROMEDRIVER);
         }
+        // The runner gives a whole test file 20 s by default; labweb's
+        // `runs` takes 8–12 s here, and once took over 20 on a loaded machine.
+        if std::env::var_os("WASM_BINDGEN_TEST_TIMEOUT").is_none() {
+            cmd.env("WASM_BINDGEN_TEST_TIMEOUT", "180");
+        }
         util::run(&mut cmd)
     })
 }
