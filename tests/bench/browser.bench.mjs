@@ -320,9 +320,10 @@ const TIMELINE_TAP = { ...START_TAP, dls: [0.75, 0.3] };
 /**
  * Times every animation-frame callback of the page (the lab's frame: step
  * and paint) into `window.__busy`. Each also goes into `window.__frames`
- * as `{ script, whole }`: `whole` runs from the callback's start to the
+ * as `{ script, whole, at }`: `whole` runs from the callback's start to the
  * first task after the frame (a message posted from the callback), so it
- * also holds the browser's style, layout and paint of that frame.
+ * also holds the browser's style, layout and paint of that frame; `at` is
+ * the frame's time stamp (the callback's argument).
  */
 const recordFrameWork = () => {
   window.__busy = [];
@@ -331,8 +332,8 @@ const recordFrameWork = () => {
   const after = new MessageChannel();
   const pending = [];
   after.port1.onmessage = () => {
-    const [t0, script] = pending.shift();
-    window.__frames.push({ script, whole: performance.now() - t0 });
+    const [t0, script, at] = pending.shift();
+    window.__frames.push({ script, whole: performance.now() - t0, at });
   };
   // Resolves after `n` lab frames (or 3 × `n` animation frames: a page
   // that stops asking for frames ends the wait).
@@ -351,7 +352,7 @@ const recordFrameWork = () => {
       if (callback.__bench) return;
       const script = performance.now() - t0;
       window.__busy.push(script);
-      pending.push([t0, script]);
+      pending.push([t0, script, t]);
       after.port2.postMessage(0);
     });
 };
@@ -480,8 +481,11 @@ for (const phone of [false, true]) {
 // (ABBA BAAB BAAB ABBA), so a drift of the shared machine's speed during the
 // count (linear, or bent up to twice) falls on both alike.
 
-/** The order of the A and B blocks of frames. */
-const AB_ORDER = "ABBABAABBAABABBA";
+/**
+ * The order of the A and B blocks of frames; `AB_ROUNDS=n` repeats it n
+ * times (more blocks, a narrower interval; 1 by default).
+ */
+const AB_ORDER = "ABBABAABBAABABBA".repeat(Math.max(1, Number.parseInt(process.env.AB_ROUNDS ?? "1", 10) || 1));
 
 /** Frames counted in each block, after one frame that settles the switch. */
 const AB_BLOCK_FRAMES = 30;
@@ -589,6 +593,12 @@ function bootstrapRatio(blocksA, blocksB) {
 }
 
 /**
+ * An interval between two frames longer than this (ms) is a late frame: at
+ * 60 Hz the display waited at least one refresh more for it.
+ */
+const LATE_FRAME_MS = 1.5 * (1000 / 60);
+
+/**
  * Reports A against B for one experiment (see compareAB): the ratio of
  * their whole-frame p95s over all their frames, with each one's p95 in ms.
  *
@@ -601,8 +611,9 @@ function bootstrapRatio(blocksA, blocksB) {
  * ratio reads when nothing differs); the median over the block pairs (AB or
  * BA, side by side in AB_ORDER) of the ratio of their p95s, which a load
  * spike in one block moves less; the means, the script-only p95s, the
- * browser's style and layout per counted frame (mean), and the frames and
- * steps counted.
+ * browser's style and layout per counted frame (mean), the late frames
+ * per 100 intervals (LATE_FRAME_MS: what a student would see as a stutter),
+ * and the frames and steps counted.
  */
 function reportAB(name, ab, [withA, withoutB], load) {
   const blocksOf = (v) => ab.blocks.filter((b) => b.variant === v);
@@ -626,13 +637,19 @@ function reportAB(name, ab, [withA, withoutB], load) {
     const halves = [0, 1].map((h) => wholeBlocks(v).filter((_, i) => i % 2 === h).flat());
     return p95(halves[0]) / p95(halves[1]);
   };
+  // Late frames: intervals between frames of one block longer than
+  // LATE_FRAME_MS (a frame the display waited for), per 100 intervals.
+  const late = (v) => {
+    const gaps = blocksOf(v).flatMap((block) => block.frames.slice(1).map((f, i) => f.at - block.frames[i].at));
+    return ((100 * gaps.filter((g) => g > LATE_FRAME_MS).length) / Math.max(1, gaps.length)).toFixed(1);
+  };
   const verdict = a / b <= AB_RATIO_BUDGET ? "yes" : lo <= 1 ? "n.s." : "NO";
   report(name, a / b, AB_RATIO_BUDGET, "×",
     `${withA} ${a.toFixed(2)} ms, ${withoutB} ${b.toFixed(2)} ms; 90 % interval ×${lo.toFixed(2)}–${hi.toFixed(2)}; ` +
     `A/A ×${selfRatio("A").toFixed(2)}, B/B ×${selfRatio("B").toFixed(2)}; pair median ×${median(pairs).toFixed(2)}; ` +
     `means ${mean(whole(A)).toFixed(2)}/${mean(whole(B)).toFixed(2)} ms, ` +
     `script p95 ${p95(A.map((f) => f.script)).toFixed(2)}/${p95(B.map((f) => f.script)).toFixed(2)} ms, ` +
-    `style+layout ${styleLayout("A")}/${styleLayout("B")} ms; ` +
+    `style+layout ${styleLayout("A")}/${styleLayout("B")} ms; late frames ${late("A")}/${late("B")} %; ` +
     `${A.length}/${B.length} frames, ${steps("A")}/${steps("B")} steps; load ${load}`,
     { verdict });
 }
