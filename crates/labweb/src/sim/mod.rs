@@ -282,24 +282,22 @@ struct SimState {
     /// "The math" panel's changing parts as last written, an entry per
     /// equation: the substituted form, the result and the text twin.
     shown_math: Vec<(String, String, String)>,
-    /// Equations a streaming run's text update left to write, each with the
-    /// key of the readout that is its result and its parts as of that
-    /// update: written one an idle time after the frames that follow
-    /// ([`SimState::write_math_when_idle`]), or where the browser cannot
-    /// tell, one a frame ([`SimState::write_next_equation`]), so no frame
-    /// lays out, or paints, the readouts and every formula together.
-    math_pending: Vec<(usize, &'static str, (String, String, String))>,
+    /// Equations a streaming run's text update left to write, with their
+    /// parts as of that update: written one an idle time after the frames
+    /// that follow ([`SimState::write_math_when_idle`]), or where the
+    /// browser cannot tell, one a frame ([`SimState::write_next_equation`]),
+    /// so no frame lays out, or paints, the readouts and every formula
+    /// together.
+    math_pending: Vec<(usize, (String, String, String))>,
     /// The idle-time call that writes [`SimState::math_pending`] and lays
     /// the page out then ([`SimState::write_math_when_idle`]) is asked for.
     math_idle_asked: bool,
     /// The height (CSS px) "The math" panel is held at while a run streams
     /// ([`SimState::write_math_when_idle`]); 0 when not held.
     math_held_px: i32,
-    /// The readouts a streaming run's text update left for the idle time,
-    /// as of that update (empty when none are left): each is written with
-    /// the equation whose result it is, the others with the first
-    /// ([`SimState::write_pending_readouts`]).
-    readouts_pending: Vec<labcore::Readout>,
+    /// A streaming run's text update left the readouts for the idle time,
+    /// with the panel's equations ([`SimState::write_math_when_idle`]).
+    readouts_in_idle: bool,
     /// The idle-time rehearsal of a scrub ([`SimState::rehearse_scrub`])
     /// is asked for.
     rehearse_asked: bool,
@@ -314,13 +312,6 @@ struct SimState {
     /// The browser's observers watching "The math" panel (its size, and
     /// whether it is in the window), so no frame reads its place.
     math_watch: Option<dom::BoxWatch>,
-    /// The same for each of the panel's equations, in order
-    /// ([`panel::watch_equations`]).
-    equation_watches: Vec<Option<dom::BoxWatch>>,
-    /// Whether each equation was in the window at the last
-    /// [`SimState::measure_math`] (true until measured): while a run
-    /// streams, one out of it is not written.
-    equations_on_screen: Vec<bool>,
     /// The text being written follows an input or the end of a motion
     /// (not a run's pace): every part is written, seen or not.
     text_at_once: bool,
@@ -916,14 +907,12 @@ impl SimView {
             math_pending: Vec::new(),
             math_idle_asked: false,
             math_held_px: 0,
-            readouts_pending: Vec::new(),
+            readouts_in_idle: false,
             rehearse_asked: false,
             scrub_rehearsed: false,
             shown_equations: equations,
             math_on_screen: true,
             math_watch: query(panel, ".live-math").and_then(|s| dom::watch_box(&s)),
-            equation_watches: panel::watch_equations(panel),
-            equations_on_screen: Vec::new(),
             text_at_once: true,
             text_by_input: true,
             live_key: None,
@@ -1168,7 +1157,6 @@ impl SimView {
         st.bench_math_closed = !open;
         st.shown_math.clear();
         st.math_pending.clear();
-        st.readouts_pending.clear();
         let Some(section) = query(&st.panel, ".live-math") else {
             return false;
         };

@@ -12,16 +12,6 @@ use wasm_bindgen::JsCast;
 use web_sys::{Element, Event, HtmlInputElement, HtmlSelectElement, PointerEvent};
 
 /// Wires the controls form and the buttons of the Simulation panel to `state`.
-/// The browser's observers on each equation of `panel`'s "The math", in
-/// order ([`dom::watch_box`]): a streaming run writes only those in the
-/// window.
-pub(super) fn watch_equations(panel: &Element) -> Vec<Option<dom::BoxWatch>> {
-    query_all(panel, ".live-math .equation")
-        .iter()
-        .map(dom::watch_box)
-        .collect()
-}
-
 pub(super) fn listen(
     state: &Rc<RefCell<SimState>>,
     panel: &Element,
@@ -505,13 +495,10 @@ impl SimState {
                 .collect();
         }
         // Written with the panel's equations, whose results they are, when
-        // the browser is idle: each result changes in the frame its readout
-        // does.
-        if self.sync_math(&readouts) {
-            self.readouts_pending = readouts;
-        } else {
-            self.readouts_pending.clear();
-            self.write_readouts(&readouts, &[]);
+        // the browser is idle: both change in the same frame.
+        self.readouts_in_idle = self.sync_math(&readouts);
+        if !self.readouts_in_idle {
+            self.write_readouts(&readouts);
         }
         self.sync_status();
         self.sync_hint();
@@ -528,15 +515,15 @@ impl SimState {
         self.sync_move_form();
     }
 
-    /// Writes the readouts whose text changed, but those keyed in `held`:
-    /// a write makes the browser lay the page out again.
-    fn write_readouts(&mut self, readouts: &[labcore::Readout], held: &[&str]) {
+    /// Writes the readouts whose text changed: a write makes the browser
+    /// lay the page out again.
+    fn write_readouts(&mut self, readouts: &[labcore::Readout]) {
         for ((r, shown), dd) in readouts
             .iter()
             .zip(self.shown_readouts.iter_mut())
             .zip(&self.readout_elements)
         {
-            if *shown != r.value && !held.contains(&r.key) {
+            if *shown != r.value {
                 if let Some(dd) = dd {
                     dom::set_text(dd, &r.value);
                 }
@@ -554,9 +541,9 @@ impl SimState {
     ///   written now, in the frame that shows it.
     /// - **The pace of a run or of a stream of input** (a drag, a held key,
     ///   a timeline scrub): left in [`SimState::math_pending`] for the
-    ///   browser's idle time after the frame, and written then, one
-    ///   equation an idle time, each with the readout that is its result,
-    ///   and laid out there ([`SimState::write_math_when_idle`]).
+    ///   browser's idle time after the frame, and written then, the readouts
+    ///   with the first equation and one equation an idle time, and laid out
+    ///   there ([`SimState::write_math_when_idle`]).
     ///   Written in a frame, each formula made the browser lay the whole
     ///   page out in it (0.6–1.3 ms unthrottled), four times a second per
     ///   equation (issue 27, cost).
@@ -600,8 +587,6 @@ impl SimState {
                 ));
                 // The observers watched the element just replaced.
                 self.math_watch = query(&self.panel, ".live-math").and_then(|s| dom::watch_box(&s));
-                self.equation_watches = watch_equations(&self.panel);
-                self.equations_on_screen.clear();
             }
             self.shown_equations = set;
             self.shown_math.clear();
@@ -613,15 +598,9 @@ impl SimState {
             (String::new(), String::new(), String::new()),
         );
         for (i, eq) in equations.iter().enumerate() {
-            if !self.text_at_once && !self.equations_on_screen.get(i).copied().unwrap_or(true) {
-                // Out of the window while the run streams (the panel's top
-                // in view below a phone's scene): brought up to date by the
-                // first update after it scrolls in, or when the run stops.
-                continue;
-            }
             let now = labpage::math_panel::live_parts(eq, &quantities, readouts);
             if self.shown_math[i] != now {
-                self.math_pending.push((i, eq.readout, now));
+                self.math_pending.push((i, now));
             }
         }
         // Written in this order, the first first.
@@ -646,16 +625,16 @@ impl SimState {
         false
     }
 
-    /// Writes the next equation [`SimState::sync_math`] left, with the
-    /// readout that is its result (and with the first, the readouts that
-    /// are no equation's), in the browser's idle time after a frame, and
-    /// has the page laid out there (a read of the panel's height), so the
-    /// next frame only paints the numbers that changed. While equations are
-    /// left it asks for the next idle time, after the next frame: each frame
-    /// then paints one equation's new numbers, not every equation's at once
+    /// Writes the readouts and the next equation [`SimState::sync_math`]
+    /// left, in the browser's idle time after a frame, and has the page laid
+    /// out there (a read of the panel's height), so the next frame only
+    /// paints the numbers that changed. While equations are left it asks
+    /// for the next idle time, after the following frame: each frame then
+    /// paints one equation's new numbers, not every equation's at once
     /// (issue 27, cost: with the panel in view on the phone stand-in, the
     /// frame after the write carried the whole panel's paint four times a
-    /// second, and the running p95 rose by a median 6 %, up to 12 %). At a
+    /// second, and the running p95 rose by a median 6 %, up to 12 %). An
+    /// equation's result may so follow its readout by a frame or two. At a
     /// pause or the end of a motion, all at once.
     ///
     /// While the run streams, the panel keeps the tallest height it had
@@ -667,13 +646,15 @@ impl SimState {
     /// for the equations alone).
     fn write_math_when_idle(&mut self) {
         self.math_idle_asked = false;
-        let mut wrote = self.write_next_equation();
-        if self.text_at_once {
-            while self.write_next_equation() {
-                wrote = true;
-            }
+        if std::mem::take(&mut self.readouts_in_idle) {
+            // No step ran since the frame that left them.
+            let readouts = self.exp.readouts();
+            self.write_readouts(&readouts);
         }
-        self.write_pending_readouts();
+        let mut wrote = self.write_next_equation();
+        while self.text_at_once && self.write_next_equation() {
+            wrote = true;
+        }
         if !self.math_pending.is_empty() {
             // Where it cannot be asked, the frames write the rest, one each.
             self.math_idle_asked = dom::when_idle(&self.panel, super::TEXT_INTERVAL_MS as u32);
@@ -713,26 +694,10 @@ impl SimState {
         }
     }
 
-    /// Writes the readouts a text update left for the idle time
-    /// ([`SimState::readouts_pending`]), but those that are the results of
-    /// equations still left: they wait for their equations.
-    fn write_pending_readouts(&mut self) {
-        if self.readouts_pending.is_empty() {
-            return;
-        }
-        let held: Vec<&str> = self.math_pending.iter().map(|(_, key, _)| *key).collect();
-        let readouts = std::mem::take(&mut self.readouts_pending);
-        self.write_readouts(&readouts, &held);
-        if !held.is_empty() {
-            self.readouts_pending = readouts;
-        }
-    }
-
     /// Writes the next equation [`SimState::sync_math`] left for a later
-    /// frame, and the readouts left with it ([`SimState::write_pending_readouts`]).
-    /// Returns whether there was one.
+    /// frame. Returns whether there was one.
     pub(super) fn write_next_equation(&mut self) -> bool {
-        let Some((i, _, parts)) = self.math_pending.pop() else {
+        let Some((i, parts)) = self.math_pending.pop() else {
             return false;
         };
         if let Some(block) = query(&self.panel, &format!("[data-equation=\"{i}\"]")) {
@@ -749,14 +714,12 @@ impl SimState {
         if let Some(shown) = self.shown_math.get_mut(i) {
             *shown = parts;
         }
-        self.write_pending_readouts();
         true
     }
 
-    /// Whether "The math" panel, and each of its equations, is in the
-    /// window now, as the browser's observers last told
-    /// ([`dom::watch_box`]); read, before the frame writes anything, only
-    /// where there are none.
+    /// Whether "The math" panel is in the window now, as the browser's
+    /// observers last told ([`dom::watch_box`]); read, before the frame
+    /// writes anything, only where there are none.
     pub(super) fn measure_math(&mut self) {
         let seen = match &self.math_watch {
             Some(watch) => watch.seen.get(),
@@ -765,21 +728,6 @@ impl SimState {
         };
         if let Some(seen) = seen {
             self.math_on_screen = seen.on_screen();
-        }
-        let blocks = query_all(&self.panel, ".live-math .equation");
-        self.equations_on_screen.resize(blocks.len(), true);
-        for ((block, watch), on_screen) in blocks
-            .iter()
-            .zip(self.equation_watches.iter())
-            .zip(self.equations_on_screen.iter_mut())
-        {
-            let seen = match watch {
-                Some(watch) => watch.seen.get(),
-                None => Some(dom::read_box(block)),
-            };
-            if let Some(seen) = seen {
-                *on_screen = seen.on_screen();
-            }
         }
     }
 
