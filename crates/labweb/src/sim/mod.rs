@@ -283,11 +283,11 @@ struct SimState {
     /// equation: the substituted form, the result and the text twin.
     shown_math: Vec<(String, String, String)>,
     /// Equations a streaming run's text update left to write, with their
-    /// parts as of that update: written one an idle time after the frames
-    /// that follow ([`SimState::write_math_when_idle`]), or where the
-    /// browser cannot tell, one a frame ([`SimState::write_next_equation`]),
-    /// so no frame lays out, or paints, the readouts and every formula
-    /// together.
+    /// parts as of that update: written together when the browser is idle
+    /// after the frame ([`SimState::math_idle`]), or where it cannot tell,
+    /// one a frame in the frames after it
+    /// ([`SimState::write_next_equation`]), so no frame lays out the
+    /// readouts and every formula together.
     math_pending: Vec<(usize, (String, String, String))>,
     /// The idle-time call that writes [`SimState::math_pending`] and lays
     /// the page out then ([`SimState::write_math_when_idle`]) is asked for.

@@ -541,9 +541,8 @@ impl SimState {
     ///   written now, in the frame that shows it.
     /// - **The pace of a run or of a stream of input** (a drag, a held key,
     ///   a timeline scrub): left in [`SimState::math_pending`] for the
-    ///   browser's idle time after the frame, and written then, the readouts
-    ///   with the first equation and one equation an idle time, and laid out
-    ///   there ([`SimState::write_math_when_idle`]).
+    ///   browser's idle time after the frame, and written then with the
+    ///   readouts and laid out there ([`SimState::write_math_when_idle`]).
     ///   Written in a frame, each formula made the browser lay the whole
     ///   page out in it (0.6–1.3 ms unthrottled), four times a second per
     ///   equation (issue 27, cost).
@@ -625,17 +624,10 @@ impl SimState {
         false
     }
 
-    /// Writes the readouts and the next equation [`SimState::sync_math`]
-    /// left, in the browser's idle time after a frame, and has the page laid
-    /// out there (a read of the panel's height), so the next frame only
-    /// paints the numbers that changed. While equations are left it asks
-    /// for the next idle time, after the following frame: each frame then
-    /// paints one equation's new numbers, not every equation's at once
-    /// (issue 27, cost: with the panel in view on the phone stand-in, the
-    /// frame after the write carried the whole panel's paint four times a
-    /// second, and the running p95 rose by a median 6 %, up to 12 %). An
-    /// equation's result may so follow its readout by a frame or two. At a
-    /// pause or the end of a motion, all at once.
+    /// Writes the readouts and every equation [`SimState::sync_math`] left,
+    /// in the browser's idle time after a frame, and has the page laid out there
+    /// (a read of the panel's height), so the next frame only paints the
+    /// numbers that changed.
     ///
     /// While the run streams, the panel keeps the tallest height it had
     /// ([`SimState::math_held_px`]): a substituted form that wraps onto one
@@ -651,13 +643,9 @@ impl SimState {
             let readouts = self.exp.readouts();
             self.write_readouts(&readouts);
         }
-        let mut wrote = self.write_next_equation();
-        while self.text_at_once && self.write_next_equation() {
+        let mut wrote = false;
+        while self.write_next_equation() {
             wrote = true;
-        }
-        if !self.math_pending.is_empty() {
-            // Where it cannot be asked, the frames write the rest, one each.
-            self.math_idle_asked = dom::when_idle(&self.panel, super::TEXT_INTERVAL_MS as u32);
         }
         if !wrote {
             return;
