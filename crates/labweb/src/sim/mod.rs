@@ -283,11 +283,11 @@ struct SimState {
     /// equation: the substituted form, the result and the text twin.
     shown_math: Vec<(String, String, String)>,
     /// Equations a streaming run's text update left to write, with their
-    /// parts as of that update: written together when the browser is idle
-    /// after the frame ([`SimState::math_idle`]), or where it cannot tell,
-    /// one a frame in the frames after it
-    /// ([`SimState::write_next_equation`]), so no frame lays out the
-    /// readouts and every formula together.
+    /// parts as of that update: written one an idle time after the frames
+    /// that follow ([`SimState::write_math_when_idle`]), or where the
+    /// browser cannot tell, one a frame ([`SimState::write_next_equation`]),
+    /// so no frame lays out, or paints, the readouts and every formula
+    /// together.
     math_pending: Vec<(usize, (String, String, String))>,
     /// The idle-time call that writes [`SimState::math_pending`] and lays
     /// the page out then ([`SimState::write_math_when_idle`]) is asked for.
@@ -316,9 +316,11 @@ struct SimState {
     /// (not a run's pace): every part is written, seen or not.
     text_at_once: bool,
     /// The text being written follows a single input (a click, a typed
-    /// value, a scrub), not the pace of a run or of a stream of input: the
-    /// page shows it in the same frame.
-    text_by_input: bool,
+    /// value, a scrub) or the end of a motion or of a stream of input, not
+    /// the pace of a run or of a stream: the page shows all of it, the
+    /// readouts and every equation, in the same frame, and any equations
+    /// still left to the idle time are written with it.
+    text_settled: bool,
     /// The key of the live quantity whose symbol is hovered or focused: its
     /// tagged parts of the scene are drawn as a halo.
     live_key: Option<String>,
@@ -609,7 +611,7 @@ impl SimState {
         if write_text {
             let at_once = input_paint || !self.exp.animating();
             self.text_at_once = at_once;
-            self.text_by_input = input_paint;
+            self.text_settled = input_paint || (at_once && !streaming);
             self.sync_dom();
             self.with_shown_plots(|view, plots, _| view.sync_text(plots, time_ms, at_once));
             self.text_ms = time_ms;
@@ -914,7 +916,7 @@ impl SimView {
             math_on_screen: true,
             math_watch: query(panel, ".live-math").and_then(|s| dom::watch_box(&s)),
             text_at_once: true,
-            text_by_input: true,
+            text_settled: true,
             live_key: None,
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,
@@ -1077,7 +1079,7 @@ impl SimView {
         // the next frame: until then they would show (and announce) the
         // constructor's state the page was mounted with.
         st.text_at_once = true;
-        st.text_by_input = true;
+        st.text_settled = true;
         st.sync_dom();
         notices
     }
@@ -1179,7 +1181,7 @@ impl SimView {
         st.scene_draft = false;
         st.paint();
         st.text_at_once = true;
-        st.text_by_input = true;
+        st.text_settled = true;
         st.sync_dom();
         let st = &mut *st;
         st.finish_branch();

@@ -537,12 +537,15 @@ impl SimState {
     /// writes them, now or in the browser's idle time. Returns whether it
     /// left them, and so the readouts, to the idle time.
     ///
-    /// - **A single input** (a click, a typed value, the end of a drag):
-    ///   written now, in the frame that shows it.
+    /// - **A single input or the end of a motion** (a click, a typed value,
+    ///   the end of a drag, a run that stops): written now, in the frame
+    ///   that shows it, with whatever an idle chain had still to write.
+    ///   The status a run ends with and its readouts change together.
     /// - **The pace of a run or of a stream of input** (a drag, a held key,
     ///   a timeline scrub): left in [`SimState::math_pending`] for the
-    ///   browser's idle time after the frame, and written then with the
-    ///   readouts and laid out there ([`SimState::write_math_when_idle`]).
+    ///   browser's idle time after the frame, and written then, the readouts
+    ///   with the first equation and one equation an idle time, and laid out
+    ///   there ([`SimState::write_math_when_idle`]).
     ///   Written in a frame, each formula made the browser lay the whole
     ///   page out in it (0.6–1.3 ms unthrottled), four times a second per
     ///   equation (issue 27, cost).
@@ -607,8 +610,10 @@ impl SimState {
         // A text update at the pace of a run or of a stream of input (a
         // drag, a held key, a timeline scrub) waits for the idle time; at
         // the latest by the next update. (A streaming run's panel out of the
-        // window is not written at all, above.)
-        if !self.text_by_input && !self.math_pending.is_empty() {
+        // window is not written at all, above.) A settled one (an input, the
+        // end of a motion) is written now, whatever an idle chain had left:
+        // the status a run ends with and its readouts change together.
+        if !self.text_settled && !self.math_pending.is_empty() {
             if !self.math_idle_asked {
                 // Its `lab-idle` event calls write_math_when_idle ([`listen`]).
                 self.math_idle_asked = dom::when_idle(&self.panel, super::TEXT_INTERVAL_MS as u32);
@@ -619,15 +624,26 @@ impl SimState {
         }
         if self.text_at_once {
             while self.write_next_equation() {}
+        }
+        if self.text_settled {
+            // Nothing moves now: the panel takes its own height again.
             self.release_math_height();
         }
         false
     }
 
-    /// Writes the readouts and every equation [`SimState::sync_math`] left,
-    /// in the browser's idle time after a frame, and has the page laid out there
-    /// (a read of the panel's height), so the next frame only paints the
-    /// numbers that changed.
+    /// Writes the readouts and the next equation [`SimState::sync_math`]
+    /// left, in the browser's idle time after a frame, and has the page laid
+    /// out there (a read of the panel's height), so the next frame only
+    /// paints the numbers that changed. While equations are left it asks
+    /// for the next idle time, after the following frame: each frame then
+    /// paints one equation's new numbers, not every equation's at once
+    /// (issue 27, cost: with the panel in view on the phone stand-in, the
+    /// frame after the write carried the whole panel's paint four times a
+    /// second, and the running p95 rose by a median 6 %, up to 12 %). An
+    /// equation's result may so follow its readout by a frame or two. At a
+    /// pause, an input or the end of a motion, [`SimState::sync_math`]
+    /// writes them all at once, in that frame, and lets the height go.
     ///
     /// While the run streams, the panel keeps the tallest height it had
     /// ([`SimState::math_held_px`]): a substituted form that wraps onto one
@@ -643,9 +659,10 @@ impl SimState {
             let readouts = self.exp.readouts();
             self.write_readouts(&readouts);
         }
-        let mut wrote = false;
-        while self.write_next_equation() {
-            wrote = true;
+        let wrote = self.write_next_equation();
+        if !self.math_pending.is_empty() {
+            // Where it cannot be asked, the frames write the rest, one each.
+            self.math_idle_asked = dom::when_idle(&self.panel, super::TEXT_INTERVAL_MS as u32);
         }
         if !wrote {
             return;
@@ -657,10 +674,7 @@ impl SimState {
             return;
         };
         let height_px = section.offset_height();
-        if self.text_at_once {
-            // The motion ended: nothing is to keep its place.
-            self.release_math_height();
-        } else if height_px > self.math_held_px {
+        if height_px > self.math_held_px {
             self.math_held_px = height_px;
             let _ = section
                 .style()
