@@ -15,8 +15,8 @@ use wasm_bindgen_test::*;
 
 mod page;
 use page::{
-    attr, element, frame, frame_alone, hash, idle, js, left_alone, mount, observers_report,
-    press_key_on_canvas, shown, snapshot, text, ONE_STEP_MS,
+    attr, element, frame, frame_alone, hash, idle, idle_asked, js, left_alone, mount,
+    observers_report, press_key_on_canvas, shown, snapshot, text, ONE_STEP_MS,
 };
 
 wasm_bindgen_test_configure!(run_in_browser);
@@ -555,7 +555,6 @@ fn a_streaming_run_writes_the_math_panel_one_equation_an_idle_time() {
         frame(ONE_STEP_MS);
     }
     let each_result_is_its_readout = |why: &str| each_result_is_its_readout("ekf", why);
-    let idle_asked = || js("return window.__idles.size > 0;").as_bool().unwrap();
     let (mut updates_in_idle, mut most_idle_times) = (0, 0);
     for _ in 0..120 {
         let (before_readouts, before_results) = (readouts(), results());
@@ -667,7 +666,6 @@ fn each_result_is_its_readout(id: &str, why: &str) {
 /// had not come).
 #[wasm_bindgen_test]
 fn a_pause_or_a_run_that_ends_writes_all_of_the_math_in_its_frame() {
-    let idle_asked = || js("return window.__idles.size > 0;").as_bool().unwrap();
     // ekf: several equations, an idle chain half done when the pause comes.
     let _in_view = mount_ekf_with_the_math_panel_in_view();
     let mut paused_mid_chain = false;
@@ -1106,7 +1104,7 @@ fn run_until_the_rehearsal_is_asked_for() {
             .unwrap()
     };
     let mut frames = 0;
-    while js("return window.__idles.size").as_f64().unwrap() == 0.0 || !due() {
+    while !idle_asked() || !due() {
         frame_alone(ONE_STEP_MS);
         frames += 1;
         assert!(frames < 200, "the rehearsal is asked for");

@@ -320,12 +320,11 @@ struct SimState {
     /// the pace of a run or of a stream: the page shows all of it, the
     /// readouts and every equation, in the same frame, and any equations
     /// still left to the idle time are written with it.
+    /// Left false by a text update at a run's or a stream's pace: when both
+    /// are over, the frame writes the text once more, settled, so what the
+    /// pace left unwritten (the panel out of the window) shows the state
+    /// it rests in.
     text_settled: bool,
-    /// The last text update was at a run's or a stream's pace, not
-    /// settled: when both are over, the frame writes the text once more
-    /// ([`SimState::text_settled`]), so what the pace left unwritten (the
-    /// panel out of the window) shows the state it rests in.
-    text_unsettled: bool,
     /// The key of the live quantity whose symbol is hovered or focused: its
     /// tagged parts of the scene are drawn as a halo.
     live_key: Option<String>,
@@ -610,7 +609,7 @@ impl SimState {
         // A stream's last text update, at its pace, left "The math" panel
         // out of the window unwritten: once the stream and any motion are
         // over, the text is written once more, settled.
-        let settle_due = self.text_unsettled && !streaming && !self.exp.animating();
+        let settle_due = !self.text_settled && !streaming && !self.exp.animating();
         let write_text = (self.text_stale && text_due) || settle_due;
         if streamed_input && !write_text {
             // The status badge follows a drag at once (it is written only
@@ -621,7 +620,6 @@ impl SimState {
             let at_once = input_paint || !self.exp.animating();
             self.text_at_once = at_once;
             self.text_settled = input_paint || (at_once && !streaming);
-            self.text_unsettled = !self.text_settled;
             self.sync_dom();
             self.with_shown_plots(|view, plots, _| view.sync_text(plots, time_ms, at_once));
             self.text_ms = time_ms;
@@ -927,7 +925,6 @@ impl SimView {
             math_watch: query(panel, ".live-math").and_then(|s| dom::watch_box(&s)),
             text_at_once: true,
             text_settled: true,
-            text_unsettled: false,
             live_key: None,
             shown_view: labcore::ViewBox::centered(0.0),
             hash_dirty: false,

@@ -74,6 +74,11 @@ pub fn idle() {
     js("window.__idle()");
 }
 
+/// Whether the page has asked for an idle callback that has not run yet.
+pub fn idle_asked() -> bool {
+    js("return window.__idles.size > 0;").as_bool().unwrap()
+}
+
 /// A frame gap that gives one fixed step per frame at 1× for hundreds of
 /// frames (the accumulator gains 0.033 ms a frame).
 pub const ONE_STEP_MS: f64 = 16.7;
