@@ -11,7 +11,7 @@
 //! and buttons beside it; [`status`] the status badge, notices and the
 //! screen-reader announcements.
 
-use crate::dom::{self, escape, query, Listener};
+use crate::dom::{self, escape, query, query_all, Listener};
 use crate::draw::{paint, paint_with_backdrop, Palette, Viewport};
 use crate::plot_view::{self, PlotView};
 use glam::DVec2;
@@ -73,6 +73,17 @@ pub(super) fn panel_equations(exp: &dyn Lab) -> Vec<labcore::live_math::Equation
         .and_then(|e| e.content().ok())
         .map_or(&[][..], |c| &c.math[..]);
     labcore::live_math::named(exp.equations(), names)
+}
+
+/// Watches each equation block of "The math" panel in `panel`, in the
+/// panel's order (that of [`panel_equations`]), with the browser's observers
+/// ([`dom::watch_box`]): a streaming run writes only the equations a
+/// student can see ([`SimState::sync_math`]).
+fn watch_equations(panel: &Element) -> Vec<Option<dom::BoxWatch>> {
+    query_all(panel, ".live-math [data-equation]")
+        .iter()
+        .map(dom::watch_box)
+        .collect()
 }
 
 /// The HTML of the Simulation tab for an experiment.
@@ -306,12 +317,13 @@ struct SimState {
     /// Which equations the panel was written for (the slice's address): a
     /// parameter may choose another set (pid's actuator limit).
     shown_equations: usize,
-    /// Whether "The math" panel was in the window at the last
-    /// [`SimState::measure_math`] (true until measured).
-    math_on_screen: bool,
-    /// The browser's observers watching "The math" panel (its size, and
-    /// whether it is in the window), so no frame reads its place.
-    math_watch: Option<dom::BoxWatch>,
+    /// Whether each equation of "The math" panel was in the window at the
+    /// last [`SimState::measure_math`] (each true until measured).
+    equations_on_screen: Vec<bool>,
+    /// The browser's observers watching each equation of "The math" panel
+    /// (its size, and whether it is in the window), so no frame reads its
+    /// place; `None` where there are none ([`watch_equations`]).
+    math_watch: Vec<Option<dom::BoxWatch>>,
     /// The text being written follows an input or the end of a motion
     /// (not a run's pace): every part is written, seen or not.
     text_at_once: bool,
@@ -869,6 +881,7 @@ impl SimView {
         let view = exp.view();
         let n_params = exp.params().len();
         let equations = exp.equations().as_ptr() as usize;
+        let math_watch = watch_equations(panel);
         let state = Rc::new(RefCell::new(SimState {
             exp,
             canvas: canvas.clone(),
@@ -921,8 +934,8 @@ impl SimView {
             rehearse_asked: false,
             scrub_rehearsed: false,
             shown_equations: equations,
-            math_on_screen: true,
-            math_watch: query(panel, ".live-math").and_then(|s| dom::watch_box(&s)),
+            equations_on_screen: vec![true; math_watch.len()],
+            math_watch,
             text_at_once: true,
             text_settled: true,
             live_key: None,

@@ -555,13 +555,14 @@ impl SimState {
     ///   (traced on the phone stand-in, ekf: the worst frame's layout fell
     ///   from 23–35 ms to 10–19 at 4×); at a pause or the end of a motion,
     ///   all at once.
-    /// - **A streaming run or stream of input with the panel out of the
-    ///   window** (on a phone, below the scene): nothing is written, every
-    ///   write there costing the page a style and layout pass for nothing
-    ///   (DLS moved by held keys on the phone stand-in, scene in view: the
-    ///   running p95 ×1.14 with the panel open). The next write after it
-    ///   scrolls in, or the one when the run or the stream settles, brings
-    ///   it up to date.
+    /// - **A streaming run or stream of input, for an equation out of the
+    ///   window** (on a phone, below the scene): it is not written, every
+    ///   write there costing the page a style, layout and paint pass for
+    ///   nothing (DLS moved by held keys on the phone stand-in, scene in
+    ///   view: the running p95 ×1.14 with the panel open; fk, whose second
+    ///   equation is below the window there, laid out and painted the math
+    ///   twice for once). The next write after it scrolls in, or the one
+    ///   when the run or the stream settles, brings it up to date.
     ///
     /// Where an equation keeps its shape only its numbers' text is
     /// rewritten ([`dom::rewrite_markup`]), and each equation is its text
@@ -572,7 +573,7 @@ impl SimState {
             return false;
         }
         self.math_pending.clear();
-        if !self.text_settled && !self.math_on_screen {
+        if !self.text_settled && !self.equations_on_screen.iter().any(|&seen| seen) {
             return false;
         }
         let set = self.exp.equations().as_ptr() as usize;
@@ -590,8 +591,9 @@ impl SimState {
                     &quantities,
                     readouts,
                 ));
-                // The observers watched the element just replaced.
-                self.math_watch = query(&self.panel, ".live-math").and_then(|s| dom::watch_box(&s));
+                // The observers watched the elements just replaced.
+                self.math_watch = super::watch_equations(&self.panel);
+                self.equations_on_screen = vec![true; self.math_watch.len()];
             }
             self.shown_equations = set;
             self.shown_math.clear();
@@ -603,6 +605,13 @@ impl SimState {
             (String::new(), String::new(), String::new()),
         );
         for (i, eq) in equations.iter().enumerate() {
+            // At a run's or a stream's pace, an equation out of the window
+            // waits (fk on a phone: the second, below the window, doubled
+            // the page's layout and paint of the math).
+            let seen = self.equations_on_screen.get(i).copied().unwrap_or(true);
+            if !self.text_settled && !seen {
+                continue;
+            }
             let now = labpage::math_panel::live_parts(eq, &quantities, readouts);
             if self.shown_math[i] != now {
                 self.math_pending.push((i, now));
@@ -722,17 +731,21 @@ impl SimState {
         true
     }
 
-    /// Whether "The math" panel is in the window now, as the browser's
-    /// observers last told ([`dom::watch_box`]); read, before the frame
-    /// writes anything, only where there are none.
+    /// Which equations of "The math" panel are in the window now, as the
+    /// browser's observers last told ([`dom::watch_box`]); read, before the
+    /// frame writes anything, only where there are none.
     pub(super) fn measure_math(&mut self) {
-        let seen = match &self.math_watch {
-            Some(watch) => watch.seen.get(),
-            // No observers (a page without main.js's helper): read it.
-            None => query(&self.panel, ".live-math").map(|s| dom::read_box(&s)),
-        };
-        if let Some(seen) = seen {
-            self.math_on_screen = seen.on_screen();
+        self.equations_on_screen.resize(self.math_watch.len(), true);
+        for (i, watch) in self.math_watch.iter().enumerate() {
+            let seen = match watch {
+                Some(watch) => watch.seen.get(),
+                // No observers (a page without main.js's helper): read it.
+                None => query(&self.panel, &format!(".live-math [data-equation=\"{i}\"]"))
+                    .map(|block| dom::read_box(&block)),
+            };
+            if let Some(seen) = seen {
+                self.equations_on_screen[i] = seen.on_screen();
+            }
         }
     }
 
