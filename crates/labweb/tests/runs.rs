@@ -391,24 +391,11 @@ async fn a_stream_of_keys_leaves_the_math_panel_out_of_the_window_unwritten_unti
     let results = || texts(".live-math .equation-result");
     let before = results();
     let x_readout = || text("[data-readout=x]");
-    let mut readouts_seen = vec![x_readout()];
-    for i in 0..60 {
-        if i % 3 == 0 {
-            press_key_on_canvas("ArrowRight");
-        }
-        frame(ONE_STEP_MS);
+    hold_arrow_keys("the readouts", x_readout, |i| {
         assert_eq!(results(), before, "frame {i} of the keys wrote the panel");
-        readouts_seen.push(x_readout());
-    }
-    readouts_seen.dedup();
-    assert!(
-        readouts_seen.len() >= 3,
-        "the readouts follow the keys: {readouts_seen:?}"
-    );
+    });
     // The keys stop: within the text's pace the panel is written.
-    for _ in 0..20 {
-        frame(ONE_STEP_MS);
-    }
+    let_the_text_settle();
     assert_ne!(results(), before, "settled: the panel is written");
     each_result_is_its_readout("fk", "settled after the keys");
 }
@@ -438,28 +425,19 @@ async fn a_stream_of_keys_writes_only_the_equations_in_the_window_until_it_settl
         ))
     };
     let second_before = result(1);
-    let mut first_seen = vec![result(0)];
-    for i in 0..60 {
-        if i % 3 == 0 {
-            press_key_on_canvas("ArrowRight");
-        }
-        frame(ONE_STEP_MS);
-        assert_eq!(
-            result(1),
-            second_before,
-            "frame {i} of the keys wrote the equation out of the window"
-        );
-        first_seen.push(result(0));
-    }
-    first_seen.dedup();
-    assert!(
-        first_seen.len() >= 3,
-        "the equation in the window follows the keys: {first_seen:?}"
+    hold_arrow_keys(
+        "the equation in the window",
+        || result(0),
+        |i| {
+            assert_eq!(
+                result(1),
+                second_before,
+                "frame {i} of the keys wrote the equation out of the window"
+            );
+        },
     );
     // The keys stop: within the text's pace both are written.
-    for _ in 0..20 {
-        frame(ONE_STEP_MS);
-    }
+    let_the_text_settle();
     assert_ne!(
         result(1),
         second_before,
@@ -678,6 +656,32 @@ fn a_streaming_run_writes_the_math_panel_one_equation_an_idle_time() {
     }
     js("window.requestIdleCallback = window.__savedIdle;");
     assert!(staggered >= 3, "{staggered} equations written one a frame");
+}
+
+/// Holds the right arrow key on the canvas for 60 frames (a press every
+/// third, as a key repeats), checking `each_frame` after every frame, and
+/// asserts that `follows` (what the student watches) took at least three
+/// values on the way: it follows the keys at the text's pace.
+fn hold_arrow_keys(what: &str, follows: impl Fn() -> String, mut each_frame: impl FnMut(usize)) {
+    let mut seen = vec![follows()];
+    for i in 0..60 {
+        if i % 3 == 0 {
+            press_key_on_canvas("ArrowRight");
+        }
+        frame(ONE_STEP_MS);
+        each_frame(i);
+        seen.push(follows());
+    }
+    seen.dedup();
+    assert!(seen.len() >= 3, "{what} follows the keys: {seen:?}");
+}
+
+/// Frames enough, with nothing pressed, for the text's pace to write the
+/// settled update (20 frames of 16.7 ms: more than TEXT_INTERVAL_MS).
+fn let_the_text_settle() {
+    for _ in 0..20 {
+        frame(ONE_STEP_MS);
+    }
 }
 
 /// Asserts that every equation of "The math" panel of experiment `id`

@@ -542,13 +542,16 @@ impl SimState {
     ///   that shows it, with whatever an idle chain had still to write.
     ///   The status a run ends with and its readouts change together.
     /// - **The pace of a run or of a stream of input** (a drag, a held key,
-    ///   a timeline scrub): left in [`SimState::math_pending`] for the
-    ///   browser's idle time after the frame, and written then, the readouts
-    ///   with the first equation and one equation an idle time, and laid out
-    ///   there ([`SimState::write_math_when_idle`]).
+    ///   a timeline scrub): left to the browser's idle time after the
+    ///   frame, and worked out and written then, the readouts with the
+    ///   first equation and one equation an idle time
+    ///   ([`SimState::math_pending`]), and laid out there
+    ///   ([`SimState::write_math_when_idle`]).
     ///   Written in a frame, each formula made the browser lay the whole
     ///   page out in it (0.6–1.3 ms unthrottled), four times a second per
-    ///   equation (issue 27, cost).
+    ///   equation (issue 27, cost); worked out there, the numbers raised
+    ///   the frames' script p95 (ekf on the phone stand-in: 5.1 ms open
+    ///   against 3.7 ms closed, at 4×).
     /// - **Where the browser has no idle callbacks** (WebKit): the frames
     ///   after it write them one each ([`SimState::write_next_equation`]),
     ///   so no frame pays for the readouts and every formula together
@@ -577,6 +580,22 @@ impl SimState {
             return false;
         }
         let set = self.exp.equations().as_ptr() as usize;
+        // A text update at the pace of a run or of a stream of input (a
+        // drag, a held key, a timeline scrub) is worked out and written in
+        // the idle time, at the latest by the next update (an equation out
+        // of the window is left, [`SimState::collect_math`]). A settled one
+        // (an input, the end of a motion) is written now, whatever an idle
+        // chain had left: the status a run ends with and its readouts
+        // change together.
+        if !self.text_settled && set == self.shown_equations {
+            if !self.math_idle_asked {
+                // Its `lab-idle` event calls write_math_when_idle ([`listen`]).
+                self.math_idle_asked = dom::when_idle(&self.panel, super::TEXT_INTERVAL_MS as u32);
+            }
+            if self.math_idle_asked {
+                return true;
+            }
+        }
         let equations = super::panel_equations(self.exp.as_ref());
         if equations.is_empty() {
             return false;
@@ -600,40 +619,7 @@ impl SimState {
             // The new panel holds no height.
             self.math_held_px = 0;
         }
-        self.shown_math.resize(
-            equations.len(),
-            (String::new(), String::new(), String::new()),
-        );
-        for (i, eq) in equations.iter().enumerate() {
-            // At a run's or a stream's pace, an equation out of the window
-            // waits (fk on a phone: the second, below the window, doubled
-            // the page's layout and paint of the math).
-            let seen = self.equations_on_screen.get(i).copied().unwrap_or(true);
-            if !self.text_settled && !seen {
-                continue;
-            }
-            let now = labpage::math_panel::live_parts(eq, &quantities, readouts);
-            if self.shown_math[i] != now {
-                self.math_pending.push((i, now));
-            }
-        }
-        // Written in this order, the first first.
-        self.math_pending.reverse();
-        // A text update at the pace of a run or of a stream of input (a
-        // drag, a held key, a timeline scrub) waits for the idle time; at
-        // the latest by the next update. (A streaming run's panel out of the
-        // window is not written at all, above.) A settled one (an input, the
-        // end of a motion) is written now, whatever an idle chain had left:
-        // the status a run ends with and its readouts change together.
-        if !self.text_settled && !self.math_pending.is_empty() {
-            if !self.math_idle_asked {
-                // Its `lab-idle` event calls write_math_when_idle ([`listen`]).
-                self.math_idle_asked = dom::when_idle(&self.panel, super::TEXT_INTERVAL_MS as u32);
-            }
-            if self.math_idle_asked {
-                return true;
-            }
-        }
+        self.collect_math(&equations, &quantities, readouts);
         if self.text_at_once {
             while self.write_next_equation() {}
         }
@@ -642,6 +628,34 @@ impl SimState {
             self.release_math_height();
         }
         false
+    }
+
+    /// Lists in [`SimState::math_pending`] the equations whose parts differ
+    /// from those shown, with their new parts, the first last (written by
+    /// popping). At a run's or a stream's pace an equation out of the
+    /// window waits (fk on a phone: the second, below the window, doubled
+    /// the page's layout and paint of the math).
+    fn collect_math(
+        &mut self,
+        equations: &[labcore::live_math::Equation],
+        quantities: &[labcore::live_math::Quantity],
+        readouts: &[labcore::Readout],
+    ) {
+        self.shown_math.resize(
+            equations.len(),
+            (String::new(), String::new(), String::new()),
+        );
+        for (i, eq) in equations.iter().enumerate() {
+            let seen = self.equations_on_screen.get(i).copied().unwrap_or(true);
+            if !self.text_settled && !seen {
+                continue;
+            }
+            let now = labpage::math_panel::live_parts(eq, quantities, readouts);
+            if self.shown_math[i] != now {
+                self.math_pending.push((i, now));
+            }
+        }
+        self.math_pending.reverse();
     }
 
     /// Writes the readouts and the next equation [`SimState::sync_math`]
@@ -667,9 +681,16 @@ impl SimState {
     fn write_math_when_idle(&mut self) {
         self.math_idle_asked = false;
         if std::mem::take(&mut self.readouts_in_idle) {
-            // No step ran since the frame that left them.
+            // The readouts and every equation's numbers of one state: the
+            // text update's, or a later one where a frame came first. Worked
+            // out here, not in the frame (ekf, panel in view on the phone
+            // stand-in: the frames' script p95 read 5.1 ms open against
+            // 3.7 ms closed, at 4×).
             let readouts = self.exp.readouts();
             self.write_readouts(&readouts);
+            let equations = super::panel_equations(self.exp.as_ref());
+            let quantities = self.exp.quantities();
+            self.collect_math(&equations, &quantities, &readouts);
         }
         let wrote = self.write_next_equation();
         if !self.math_pending.is_empty() {
