@@ -12,6 +12,11 @@
 
 use wasm_bindgen::prelude::*;
 
+/// Talc, as in the experiments' modules (labweb's `ALLOCATOR`).
+#[cfg(all(target_family = "wasm", not(target_feature = "atomics")))]
+#[global_allocator]
+static ALLOCATOR: talc::wasm::WasmDynamicTalc = talc::wasm::new_wasm_dynamic_allocator();
+
 /// The report file (one HTML document) for the bytes of a sheet; an error
 /// message when they cannot be read (a damaged or foreign buffer).
 #[wasm_bindgen]
