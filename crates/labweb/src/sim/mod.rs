@@ -1172,13 +1172,17 @@ impl SimView {
 
     /// The browser benchmark's A/B switch for "The math" panel (issue 27,
     /// Cost): closed (`false`), the panel is hidden and not written, as the
-    /// page was before it; open again, it is written anew at the next
-    /// text update. Returns whether the experiment has the panel.
+    /// page was before it; open again, it is written at the next text
+    /// update where its numbers changed while it was closed, as a running
+    /// panel is (its record of what it shows, [`SimState::shown_math`], is
+    /// kept: it was not written while closed). Writing every equation anew
+    /// at each switch would time, in every open block, a rewrite of the
+    /// whole panel that a running panel does not do. Returns whether the
+    /// experiment has the panel.
     #[cfg(feature = "bench-exports")]
     pub fn bench_math_panel(&self, open: bool) -> bool {
         let mut st = self.state.borrow_mut();
         st.bench_math_closed = !open;
-        st.shown_math.clear();
         st.math_pending.clear();
         let Some(section) = query(&st.panel, ".live-math") else {
             return false;
