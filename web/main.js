@@ -7,6 +7,10 @@
 // experiment of another module starts that module. Everything else lives in
 // Rust.
 
+// did-not-start.js, which runs after this file, looks for it: the page
+// says so when a browser did not run this module (a server that sends `.js`
+// with another type than JavaScript).
+window.labStarted = true;
 const app = document.getElementById("app");
 const nav = document.getElementById("lab-nav");
 const PAGES = new Map([...document.querySelectorAll("meta[name=lab-page]")].map((m) => [m.content, m.dataset.href]));
