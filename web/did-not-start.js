@@ -17,11 +17,11 @@
     for (const el of document.querySelectorAll(".loading")) el.remove();
   };
   const name = module.getAttribute("src").split("?")[0];
-  say(`The lab could not start: this browser did not run its script ${name}. Reload the page, or use a current version of Firefox, Chrome, Edge or Safari.`);
+  say(`The lab could not start: this browser did not run ${name}. Reload, or use a current Firefox, Chrome, Edge or Safari.`);
   fetch(module.src).then((r) => {
     const type = r.headers.get("Content-Type") || "no type";
     if (r.ok && !/^\s*(text|application)\/(x-)?(javascript|ecmascript)\s*(;|$)/i.test(type)) {
-      say(`The lab could not start: the server sent its script ${name} as “${type}”, and browsers run the lab's scripts only when they come as JavaScript (text/javascript). Please tell the site's administrator: the lab's README lists the types a server must send (“File types”).`);
+      say(`The lab could not start: the server sent ${name} as “${type}”, and browsers run scripts only when sent as JavaScript (text/javascript). Please tell the site's administrator (the lab's README, “File types”).`);
     }
   }, () => {});
 })();

@@ -60,7 +60,7 @@ test("scripts served with a wrong type (.js as application/octet-stream): the pa
       await fatal.waitFor({ state: "visible" });
       await page.waitForFunction(() => /octet-stream/.test(document.querySelector("#fatal").textContent));
       const text = await fatal.innerText();
-      assert.match(text, new RegExp(`The lab could not start: the server sent its script ${script.replace(".", "\\.")} as “application/octet-stream”`));
+      assert.match(text, new RegExp(`The lab could not start: the server sent ${script.replace(".", "\\.")} as “application/octet-stream”`));
       assert.match(text, /text\/javascript/);
       assert.match(text, /“File types”/);
       assert.equal(await page.locator(".loading").count(), 0, `${address}: no “Loading…” left`);
