@@ -7,6 +7,8 @@
 // matches. Nothing is sent anywhere; every text from the file is shown as
 // text.
 
+// did-not-start.js, which runs after this file, looks for it (see there).
+window.labStarted = true;
 const result = document.getElementById("check-result");
 const input = document.getElementById("check-file");
 const drop = document.querySelector(".check-drop");
@@ -101,7 +103,7 @@ async function check(text, fileName) {
   }
   if (same(printed, graded) && same(quiz.score, graded)) {
     return show("good", [["strong", `✓ The printed score, ${scoreText(printed)}, matches the answers in the file.`], about, seed,
-      ["p", "This shows the score was not edited on its own. It does not show the answers are the ones the student gave; the LMS score is the authority."]]);
+      ["p", "This shows the score was not edited on its own. It does not show who made the report (a classmate's report with the name changed passes) nor that the answers are the student's own (answers and score edited together pass); the LMS score is the authority."]]);
   }
   return show("bad", [["strong", `✗ The printed score, ${scoreText(printed)}, does not match: the answers in the file score ${scoreText(graded)}.`], about, seed,
     ["p", "The score was edited after the report was made."]]);

@@ -7,6 +7,10 @@
 // experiment of another module starts that module. Everything else lives in
 // Rust.
 
+// did-not-start.js, which runs after this file, looks for it: the page
+// says so when a browser did not run this module (a server that sends `.js`
+// with another type than JavaScript).
+window.labStarted = true;
 const app = document.getElementById("app");
 const nav = document.getElementById("lab-nav");
 const PAGES = new Map([...document.querySelectorAll("meta[name=lab-page]")].map((m) => [m.content, m.dataset.href]));
@@ -35,6 +39,8 @@ const lms = framed
   ? import(`./scorm.js${new URL(import.meta.url).search}`).catch(() => null)
   : Promise.resolve(null);
 let switching = Promise.resolve();
+// The site's version this page was loaded with (the `?v=` stamp of main.js).
+const siteVersion = new URL(import.meta.url).searchParams.get("v");
 
 const fatal = (message) => {
   const box = document.getElementById("fatal");
@@ -44,6 +50,27 @@ const fatal = (message) => {
     wait.textContent = "The simulation engine could not start; the reading tabs still work.";
   }
   for (const bar of document.querySelectorAll(".wasm-progress")) bar.remove();
+};
+
+// Whether the server holds another version of the lab than this page's: a
+// redeploy since the page loaded, whose new files replaced the content-hashed
+// ones this page names. Then a missing file is no fault of the lab's: the
+// page says the lab was updated and offers a reload.
+const redeployed = async () => {
+  if (!siteVersion) return false;
+  try {
+    const r = await fetch(new URL("index.html", import.meta.url), { cache: "no-store" });
+    return r.ok && !(await r.text()).includes(`main.js?v=${siteVersion}`);
+  } catch {
+    return false;
+  }
+};
+const updated = () => {
+  const box = document.getElementById("stale");
+  box.hidden = false;
+  box.querySelector("button").onclick = () => location.reload();
+  for (const bar of document.querySelectorAll(".wasm-progress")) bar.remove();
+  for (const wait of document.querySelectorAll(".wasm-wait p")) wait.textContent = "The lab was updated: reload the page to start this simulation.";
 };
 
 const progress = (fraction) => {
@@ -107,6 +134,7 @@ function switchTo(mod) {
     } catch (error) {
       active = null;
       glues.delete(mod.key);
+      if (await redeployed()) return updated();
       fatal(`The simulation engine failed to load (${error.message ?? error}). If you opened the file directly, serve the folder over HTTP instead.`);
       return;
     }
@@ -300,8 +328,10 @@ window.labWhenIdle = (el, timeoutMs) =>
 // labWhenIdle: end
 const showStatic = window.labShowArticle;
 
-const pageFailed = (error) =>
+const pageFailed = async (error) => {
+  if (await redeployed()) return updated();
   fatal(`This page could not be loaded (${error.message ?? error}). Check the connection and reload.`);
+};
 
 async function showPage() {
   nav?.querySelector("details")?.removeAttribute("open");
@@ -449,7 +479,6 @@ document.addEventListener("toggle", (e) => {
 // Offline after one visit: once the page has loaded (never competing with
 // its first download), the service worker caches the whole site. A visit
 // after a new deployment says so quietly.
-const siteVersion = new URL(import.meta.url).searchParams.get("v");
 try {
   const seen = localStorage.getItem("lab-version");
   if (siteVersion && seen && seen !== siteVersion) {

@@ -7,7 +7,8 @@
 //   whole version of the site or nothing).
 // - Pages (navigations) go to the network first, so an online visit always
 //   gets the newest index.html and with it the newest file names; offline,
-//   the cached index.html answers.
+//   the cached copy of the page asked for answers (check.html, index.html
+//   with its launch query), else index.html (the folder's address).
 // - Everything else comes from the caches first: names are versioned
 //   (`?v=` or a content hash in the name), so a cached answer is never stale.
 // - Activate: keeps this version and the one before it (a page still open on
@@ -52,7 +53,11 @@ self.addEventListener("fetch", (event) => {
     event.respondWith(
       fetch(request).catch(async () => {
         const cache = await caches.open(CACHE);
-        return (await cache.match(new URL("index.html", self.registration.scope).href)) ?? Response.error();
+        return (
+          (await cache.match(request, { ignoreSearch: true })) ??
+          (await cache.match(new URL("index.html", self.registration.scope).href)) ??
+          Response.error()
+        );
       }),
     );
     return;

@@ -4,9 +4,79 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { open, useLab, withPage } from "./helpers.mjs";
+import { existsSync, readFileSync, statSync } from "node:fs";
+import { createServer } from "node:http";
+import { extname, join, resolve, sep } from "node:path";
+import { BASE_PATH, DIST, open, screenshot, useLab, withPage } from "./helpers.mjs";
 
 const lab = useLab();
+
+/**
+ * A host with a minimal type map, as lighttpd's tutorial has it: dist/ under
+ * BASE_PATH, every file as it is, no header but the type, and `.js` as
+ * application/octet-stream. Returns its base URL and a stop function.
+ */
+async function serveJsAsOctetStream() {
+  const types = {
+    ".html": "text/html",
+    ".css": "text/css",
+    ".svg": "image/svg+xml",
+    ".wasm": "application/wasm",
+    ".json": "application/json",
+    ".png": "image/png",
+  };
+  const server = createServer((req, res) => {
+    const path = decodeURIComponent(new URL(req.url, "http://host").pathname);
+    const file = resolve(DIST, path.slice(BASE_PATH.length) || "index.html");
+    if (!path.startsWith(BASE_PATH) || !file.startsWith(DIST + sep) || !existsSync(file) || !statSync(file).isFile()) {
+      res.writeHead(404).end();
+      return;
+    }
+    res.writeHead(200, { "Content-Type": types[extname(file)] ?? "application/octet-stream" });
+    res.end(readFileSync(file));
+  });
+  await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
+  return {
+    base: `http://127.0.0.1:${server.address().port}${BASE_PATH}`,
+    stop: () => new Promise((ok) => server.close(ok)),
+  };
+}
+
+test("scripts served with a wrong type (.js as application/octet-stream): the page says the lab could not start and names the type, not “Loading…” forever; the policy holds", async () => {
+  // Not withPage: the refused module script is the point of this test.
+  const host = await serveJsAsOctetStream();
+  const context = await lab.browser.newContext({ serviceWorkers: "block" });
+  try {
+    await context.addInitScript(() => {
+      window.__cspViolations = [];
+      document.addEventListener("securitypolicyviolation", (e) => window.__cspViolations.push(e.effectiveDirective));
+    });
+    const page = await context.newPage();
+    const uncaught = [];
+    page.on("pageerror", (e) => uncaught.push(e.message));
+    for (const [address, script] of [["index.html#/fk/aim", "main.js"], ["check.html", "check.js"]]) {
+      await page.goto(host.base + address);
+      const fatal = page.locator("#fatal");
+      await fatal.waitFor({ state: "visible" });
+      await page.waitForFunction(() => /octet-stream/.test(document.querySelector("#fatal").textContent));
+      const text = await fatal.innerText();
+      assert.match(text, new RegExp(`The lab could not start: the server sent ${script.replace(".", "\\.")} as “application/octet-stream”`));
+      assert.match(text, /text\/javascript/);
+      assert.match(text, /“File types”/);
+      assert.equal(await page.locator(".loading").count(), 0, `${address}: no “Loading…” left`);
+      assert.equal(await page.evaluate(() => window.labStarted), undefined, `${address}: the module did not run`);
+      assert.deepEqual(await page.evaluate(() => window.__cspViolations), [], `${address}: no policy violation`);
+      await page.setViewportSize({ width: 1280, height: 800 });
+      await screenshot(page, `wrong-type-${script}`);
+      await page.setViewportSize({ width: 390, height: 844 });
+      await screenshot(page, `wrong-type-${script}-phone`);
+    }
+    assert.deepEqual(uncaught, []);
+  } finally {
+    await context.close();
+    await host.stop();
+  }
+});
 
 test("without a 2D canvas context the reading tabs still work and the simulation shows .sim-error", () =>
   withPage(

@@ -65,16 +65,20 @@ process.on("exit", () => {
  * lists the paths requested (from the server's log, written before each
  * answer). `probe: true` serves a copy of dist/ whose `index.html` loads
  * tests/e2e/error-probe.js (at PROBE_PATH) first in its <head>, for a
- * browser whose driver reports no console errors.
+ * browser whose driver reports no console errors. `copy: true` serves a
+ * copy of dist/ that the test may change (`server.dir`), as a host's
+ * folder that a redeploy changes under an open page.
  */
-export async function startServer({ compress = true, probe = false } = {}) {
+export async function startServer({ compress = true, probe = false, copy = false } = {}) {
   if (!existsSync(join(DIST, "index.html"))) {
     throw new Error("dist/index.html is missing: run `cargo xtask dist` first");
   }
   let dir = DIST;
-  if (probe) {
-    dir = mkdtempSync(join(tmpdir(), "lab-probe-"));
+  if (probe || copy) {
+    dir = mkdtempSync(join(tmpdir(), "lab-copy-"));
     cpSync(DIST, dir, { recursive: true });
+  }
+  if (probe) {
     const index = join(dir, "index.html");
     const probed = readFileSync(index, "utf8").replace("<head>", `<head>\n<script src="${PROBE_PATH}"></script>`);
     writeFileSync(index, probed);
@@ -116,6 +120,7 @@ export async function startServer({ compress = true, probe = false } = {}) {
   return {
     origin,
     hits,
+    dir,
     base: origin + BASE_PATH,
     close: async () => {
       running.delete(child);
@@ -169,7 +174,10 @@ export function useLab() {
  * clock (Playwright's clock, stopped from the start: see `runFor` and `runUntil`),
  * serviceWorkers ("block" by default: a test that routes or counts requests
  * must see them all; the offline tests pass "allow"), bypassCSP (to inject a
- * test's own script, e.g. axe-core, with addScriptTag).
+ * test's own script, e.g. axe-core, with addScriptTag), expectHttpError
+ * (`(url) => boolean`: an HTTP error the test expects for that URL, e.g. a
+ * file a redeploy removed, fails nothing, nor the console's line about it;
+ * the test asserts that it happened).
  */
 /** Contexts whose pages run on a stopped clock (`withPage`'s `clock`). */
 const stoppedClocks = new WeakSet();
@@ -241,8 +249,10 @@ export async function withPage(lab, options, fn) {
   );
   // Every page of the context (including ones a test opens later) is watched.
   context.on("page", (page) => {
+    const expected = (url) => Boolean(url && options.expectHttpError?.(url));
     page.on("console", (msg) => {
       if (msg.type() === "error" && !options.allowConsoleErrors) {
+        if (/^Failed to load resource/.test(msg.text()) && expected(msg.location().url)) return;
         problems.push(`console error: ${msg.text()}`);
       }
     });
@@ -256,7 +266,7 @@ export async function withPage(lab, options, fn) {
       problems.push(`request failed: ${req.url()} (${error})`);
     });
     page.on("response", (res) => {
-      if (res.status() >= 400) problems.push(`HTTP ${res.status()} for ${res.url()}`);
+      if (res.status() >= 400 && !expected(res.url())) problems.push(`HTTP ${res.status()} for ${res.url()}`);
     });
   });
   const page = await context.newPage();

@@ -72,6 +72,45 @@ test("offline after one visit: every experiment's Simulation tab opens, draws, s
     await context.setOffline(false);
   }));
 
+/**
+ * A lab report as the lab writes one, reduced to what "Check a report" reads:
+ * fk's 12 questions drawn from seed 123, none answered, 0 / 12.
+ */
+const UNANSWERED_FK_REPORT = `<!doctype html><html lang="en"><head><meta charset="utf-8"><title>fk report</title></head><body>
+<h1>Robot arm forward kinematics</h1>
+<section class="quiz"><p class="score">Score: 0 / 12 (0%)</p></section>
+<script type="application/json" id="lab-report-data">${JSON.stringify({
+  id: "fk",
+  quiz: { seed: "123", answers: Array(12).fill(null), score: [0, 12] },
+})}</script>
+</body></html>`;
+
+test("check.html offline: after one visit to the lab, the Check a report page opens with its styles and grades a report with the network off", () =>
+  withPage(lab, { serviceWorkers: "allow" }, async (page, context) => {
+    await open(lab, page, "#/");
+    await workerReady(page);
+    // Never opened online: neither the page nor its files are in the
+    // browser's HTTP cache, only in the worker's.
+    await context.setOffline(true);
+    await page.goto(`${lab.server.base}check.html`);
+    assert.equal(await page.locator("h1").innerText(), "Check a lab report", "the check page, not the lab's home page");
+    const styled = await page.evaluate(() => ({
+      drop: getComputedStyle(document.querySelector(".check-drop")).borderTopStyle,
+      sheets: [...document.styleSheets].map((s) => new URL(s.href).pathname.split("/").pop()),
+    }));
+    assert.equal(styled.drop, "dashed", "check.css applies");
+    assert.deepEqual(styled.sheets.sort(), ["check.css", "style.css"], "both style sheets load");
+    await page.setInputFiles("#check-file", {
+      name: "fk-report.html",
+      mimeType: "text/html",
+      buffer: Buffer.from(UNANSWERED_FK_REPORT),
+    });
+    await page.waitForFunction(() => ["good", "bad"].includes(document.getElementById("check-result").dataset.verdict));
+    const result = await page.locator("#check-result").innerText();
+    assert.match(result, /✓ The printed score, 0 \/ 12, matches the answers in the file/, "fk's module was loaded and graded");
+    await context.setOffline(false);
+  }));
+
 test("the site is installable: a manifest with icons, under the sub-path", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/");

@@ -374,6 +374,18 @@ test("answer key: key=always shows them before submission; the Instructor panel 
     );
   }));
 
+/** check.html's verdict on the report `text` (the page is open): good or bad, and its text. */
+async function checkVerdict(page, text, name) {
+  await page.evaluate(() => document.getElementById("check-result").replaceChildren());
+  await page.setInputFiles("#check-file", { name, mimeType: "text/html", buffer: Buffer.from(text) });
+  await page.waitForFunction(() => ["good", "bad"].includes(document.getElementById("check-result").dataset.verdict)
+    && !/Checking/.test(document.getElementById("check-result").textContent));
+  return page.evaluate(() => {
+    const r = document.getElementById("check-result");
+    return { verdict: r.dataset.verdict, text: r.textContent };
+  });
+}
+
 test("check a report: the check page passes an untampered report and catches an edited score", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/pid/simulation");
@@ -383,16 +395,7 @@ test("check a report: the check page passes an untampered report and catches an 
     const requests = [];
     page.on("request", (r) => requests.push(new URL(r.url()).pathname));
     await page.goto(`${lab.server.base}check.html`);
-    const verdict = async (text, name) => {
-      await page.evaluate(() => document.getElementById("check-result").replaceChildren());
-      await page.setInputFiles("#check-file", { name, mimeType: "text/html", buffer: Buffer.from(text) });
-      await page.waitForFunction(() => ["good", "bad"].includes(document.getElementById("check-result").dataset.verdict)
-        && !/Checking/.test(document.getElementById("check-result").textContent));
-      return page.evaluate(() => {
-        const r = document.getElementById("check-result");
-        return { verdict: r.dataset.verdict, text: r.textContent };
-      });
-    };
+    const verdict = (text, name) => checkVerdict(page, text, name);
     const good = await verdict(html, "pid-report.html");
     assert.equal(good.verdict, "good", good.text);
     assert.match(good.text, new RegExp(`✓ The printed score, ${quiz.right} / ${quiz.total}, matches`));
@@ -447,4 +450,41 @@ test("the report's module is downloaded only when a report is made, once; a fail
     const second = await downloadReport(page, "fk");
     assert.match(second, /lab-report-data/);
     assert.equal(fetched.filter((n) => n.endsWith(".wasm")).length, 1, `and not again: ${fetched}`);
+  }));
+
+test("what a report check proves: a classmate's report with the name changed passes, so do answers and score edited together from a printed key; README and the check page say so", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/fk/simulation?quiz=123&key=submitted");
+    const fields = page.locator(`${ART} details.report-fields`);
+    await fields.locator("summary").click();
+    await fields.locator("[data-report-field=name]").fill("Ada Lovelace");
+    await fields.locator("[data-report-field=name]").blur();
+    const quiz = await submitQuiz(page, "fk");
+    const html = await downloadReport(page, "fk");
+    assert.ok((html.match(/<td class="expected">/g) ?? []).length > 0, "the report printed its answer key");
+    await page.goto(`${lab.server.base}check.html`);
+    // A classmate's report, the name changed: it passes, under the new name.
+    const copied = html.replaceAll("Ada Lovelace", "Bob Classmate");
+    assert.notEqual(copied, html);
+    const classmate = await checkVerdict(page, copied, "fk-report.html");
+    assert.equal(classmate.verdict, "good", classmate.text);
+    assert.match(classmate.text, /Bob Classmate/);
+    // Answers and score edited together (here: every answer blanked, 0 points): it passes.
+    const edited = html
+      .replace(/"answers":\[[^\]]*\]/, `"answers":[${Array(quiz.total).fill("null").join(",")}]`)
+      .replace(/"score":\[\d+,/, '"score":[0,')
+      .replace(/Score: \d+ \/ (\d+) \(\d+%\)/, "Score: 0 / $1 (0%)");
+    assert.notEqual(edited, html);
+    const together = await checkVerdict(page, edited, "fk-report.html");
+    assert.equal(together.verdict, "good", together.text);
+    assert.match(together.text, /a classmate's report with the name changed passes/);
+    // Said plainly, next to what it catches.
+    const readme = await readFile(new URL("../../README.md", import.meta.url), "utf8");
+    const section = readme.match(/\*\*Checking a report\.\*\*([^]*?)\n## /)?.[1] ?? "";
+    assert.match(section, /What it catches: a score edited on its own/);
+    assert.match(section, /A\s+classmate's report with the name changed passes\./);
+    assert.match(section, /A report that printed its answer key/);
+    const intro = await page.locator("main.check-page").innerText();
+    assert.match(intro, /a classmate's report with the name changed passes/);
+    assert.match(intro, /a report that printed its answer key/);
   }));

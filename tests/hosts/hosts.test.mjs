@@ -1,11 +1,14 @@
-// The README's server recipes, run on the real servers (issue 24 §1): Debian
-// 12's nginx (with libnginx-mod-http-brotli-static) and Apache 2.4 with
-// Debian's default modules. Each recipe is taken out of README.md itself
-// (the fenced block after its `<!-- recipe: … -->` marker), put into a
-// configuration built from the package's own stock one (nginx.conf,
-// apache2.conf: only the listening port, the site, the pid and log files are
-// ours), and serves a copy of dist/ under /labs/robotics/ on 127.0.0.1 and a
-// free port. Then, behind each server:
+// The README's server recipes, run on the real servers (issue 24 §1, issue
+// 51 §5): Debian 12's nginx (with libnginx-mod-http-brotli-static), Apache
+// 2.4 with Debian's default modules (once with the README's virtual host and
+// once with its .htaccess alone in a shared-hosting folder), Caddy 2.6 and
+// lighttpd 1.4. Each recipe is taken out of README.md itself (the fenced
+// block after its `<!-- recipe: … -->` marker), put into a configuration
+// built from the package's own stock one where it has one (nginx.conf,
+// apache2.conf, lighttpd.conf: only the listening port, the site, the pid
+// and log files are ours; Caddy's stock Caddyfile is one site and nothing
+// else), and serves a copy of dist/ under /labs/robotics/ on 127.0.0.1 and
+// a free port. Then, behind each server:
 //   - every file of dist/ has its type, and a br client, a gzip-only client
 //     and an identity client each get a body that decodes to the file;
 //   - compressible files carry `Vary: Accept-Encoding`, and the cache headers
@@ -17,10 +20,12 @@
 // not touched. The headers seen and the console errors per experiment are
 // printed as a table and written to target/hosts/report.md.
 //
-// Run: `cargo xtask test` (its step "README's server recipes on nginx and Apache"), or
+// Run: `cargo xtask test` (its step "README's server recipes"), or
 // `node --test tests/hosts/` after `cargo xtask dist`, with the Debian
-// packages nginx, libnginx-mod-http-brotli-static and apache2 installed
-// (the suite installs them with apt-get when it runs as root).
+// packages nginx, libnginx-mod-http-brotli-static, apache2, caddy and
+// lighttpd installed (the suite installs them with apt-get when it runs as
+// root). Neither Caddy nor lighttpd needs systemd: each runs in the
+// foreground on its own configuration and is stopped by its PID.
 
 import { after, before, describe, test } from "node:test";
 import assert from "node:assert/strict";
@@ -58,9 +63,11 @@ const README = join(ROOT, "README.md");
 /** The sub-path and the folder the README's recipes name. */
 const SUB_PATH = "/labs/robotics/";
 const RECIPE_FOLDER = "/srv/robotics";
-const PACKAGES = ["nginx", "libnginx-mod-http-brotli-static", "apache2"];
+const PACKAGES = ["nginx", "libnginx-mod-http-brotli-static", "apache2", "caddy", "lighttpd"];
 const NGINX = "/usr/sbin/nginx";
 const APACHE = "/usr/sbin/apache2";
+const CADDY = "/usr/bin/caddy";
+const LIGHTTPD = "/usr/sbin/lighttpd";
 const BROTLI_MODULE = "/usr/share/nginx/modules/ngx_http_brotli_static_module.so";
 
 /** The three clients: what each sends, and the coding it should get for a file with siblings. */
@@ -116,7 +123,7 @@ function recipe(readme, name, lang) {
 
 /** Installs the packages with apt-get when missing and we are root; otherwise says what to run. */
 function ensurePackages() {
-  const missing = [NGINX, APACHE, BROTLI_MODULE].filter((p) => !existsSync(p));
+  const missing = [NGINX, APACHE, BROTLI_MODULE, CADDY, LIGHTTPD].filter((p) => !existsSync(p));
   if (missing.length === 0) return;
   const command = `apt-get update && apt-get install -y ${PACKAGES.join(" ")}`;
   assert.equal(process.getuid(), 0, `missing ${missing.join(", ")}: run (as root) ${command}`);
@@ -231,19 +238,27 @@ async function startNginx(dir, labFolder, readme) {
  * Apache: Debian's own /etc/apache2/apache2.conf (mods-enabled, conf-enabled,
  * the `<Directory />` defaults) run with `-d /etc/apache2 -f ours`, our own
  * pid, lock and log directories and, instead of ports.conf and
- * sites-enabled, one port and one virtual host holding the README's server
- * recipe; mod_rewrite and mod_headers loaded as `a2enmod rewrite headers`
- * would (without enabling them on the system); the README's .htaccess in the
- * lab's folder.
+ * sites-enabled, one port and one virtual host; mod_rewrite and mod_headers
+ * loaded as `a2enmod rewrite headers` would (without enabling them on the
+ * system); the README's .htaccess in the lab's folder.
+ *
+ * The virtual host holds the README's server recipe (an Alias of
+ * /labs/robotics to `labFolder`), or, with `sharedRoot`, nothing of the
+ * lab's: a shared host's web space, `sharedRoot` as the DocumentRoot with
+ * `AllowOverride All`, and the lab copied to `labs/robotics/` in it
+ * (`labFolder` must be that folder), where the .htaccess alone serves it.
  */
-async function startApache(dir, labFolder, readme) {
+async function startApache(dir, labFolder, readme, { sharedRoot = null } = {}) {
   const port = await freePort();
-  const site = recipe(readme, "apache", "apache").replaceAll(RECIPE_FOLDER, labFolder);
   writeFileSync(join(labFolder, ".htaccess"), recipe(readme, "apache .htaccess", "apache"));
-  const conf = join(dir, "apache");
-  const docroot = join(dir, "apache-docroot");
+  const conf = join(dir, sharedRoot ? "apache-shared" : "apache");
+  const docroot = sharedRoot ?? join(dir, "apache-docroot");
+  if (sharedRoot) assert.equal(labFolder, join(sharedRoot, SUB_PATH), "the lab is in the web space's labs/robotics/");
   mkdirSync(conf, { recursive: true });
   mkdirSync(docroot, { recursive: true });
+  const site = sharedRoot
+    ? [`<Directory ${docroot}>`, `    AllowOverride All`, `    Require all granted`, `</Directory>`].join("\n")
+    : recipe(readme, "apache", "apache").replaceAll(RECIPE_FOLDER, labFolder);
   let text = readFileSync("/etc/apache2/apache2.conf", "utf8");
   const replace = (pattern, by) => {
     assert.match(text, pattern, `/etc/apache2/apache2.conf has ${pattern}`);
@@ -291,7 +306,100 @@ async function startApache(dir, labFolder, readme) {
     origin + SUB_PATH,
     [join(conf, "error.log")],
   );
-  return { name: "Apache", origin, base: origin + SUB_PATH, ...server, log: join(conf, "error.log") };
+  const name = sharedRoot ? "Apache .htaccess alone" : "Apache";
+  return { name, origin, base: origin + SUB_PATH, ...server, log: join(conf, "error.log") };
+}
+
+/**
+ * Caddy: Debian's package ships one site and no global options, so the
+ * configuration is ours: no admin endpoint, no automatic HTTPS, and one
+ * site on `port` holding the README's recipe. Caddy's data and config
+ * folders go to `dir`, not the user's home.
+ */
+async function startCaddy(dir, labFolder, readme) {
+  const port = await freePort();
+  const conf = join(dir, "caddy");
+  mkdirSync(conf, { recursive: true });
+  const site = recipe(readme, "caddy", "caddy").replaceAll(RECIPE_FOLDER, labFolder);
+  const indented = site.split("\n").map((l) => (l ? `\t${l}` : l)).join("\n");
+  writeFileSync(
+    join(conf, "Caddyfile"),
+    `{\n\tadmin off\n\tauto_https off\n}\nhttp://127.0.0.1:${port} {\n${indented}\n}\n`,
+  );
+  const env = { ...process.env, HOME: conf, XDG_DATA_HOME: conf, XDG_CONFIG_HOME: conf };
+  const origin = `http://127.0.0.1:${port}`;
+  const server = await startProcess(
+    "caddy",
+    CADDY,
+    ["run", "--config", join(conf, "Caddyfile"), "--adapter", "caddyfile"],
+    env,
+    origin + SUB_PATH,
+    [],
+  );
+  return { name: "Caddy", origin, base: origin + SUB_PATH, ...server };
+}
+
+/**
+ * The type map of lighttpd's own tutorial (TutorialConfiguration), put where
+ * Debian's lighttpd.conf builds its map from /etc/mime.types: the map an
+ * admin who followed the tutorial has, under which `.js` and `.css` go out
+ * as application/octet-stream unless the recipe says otherwise.
+ */
+const LIGHTTPD_TUTORIAL_TYPES = `mimetype.assign = (
+  ".html" => "text/html",
+  ".txt" => "text/plain",
+  ".jpg" => "image/jpeg",
+  ".png" => "image/png"
+)`;
+
+/**
+ * lighttpd: Debian's own /etc/lighttpd/lighttpd.conf (its modules,
+ * index-file names, conf-enabled/) with our port, pid, log and upload
+ * folder, the tutorial's type map in place of Debian's, Debian's
+ * 20-deflate.conf enabled (its cache in `dir`), and the README's recipe at
+ * the end, run in the foreground (`-D`).
+ */
+async function startLighttpd(dir, labFolder, readme) {
+  const port = await freePort();
+  const conf = join(dir, "lighttpd");
+  const docroot = join(dir, "lighttpd-docroot");
+  for (const d of [conf, docroot, join(conf, "compress"), join(conf, "uploads")]) mkdirSync(d, { recursive: true });
+  let text = readFileSync("/etc/lighttpd/lighttpd.conf", "utf8");
+  const replace = (pattern, by) => {
+    assert.match(text, pattern, `/etc/lighttpd/lighttpd.conf has ${pattern}`);
+    text = text.replace(pattern, by);
+  };
+  replace(/^server\.document-root\s*=.*$/m, `server.document-root = "${docroot}"`);
+  replace(/^server\.upload-dirs\s*=.*$/m, `server.upload-dirs = ( "${conf}/uploads" )`);
+  replace(/^server\.errorlog\s*=.*$/m, `server.errorlog = "${conf}/error.log"`);
+  replace(/^server\.pid-file\s*=.*$/m, `server.pid-file = "${conf}/lighttpd.pid"`);
+  // As root, Debian's www-data; otherwise lighttpd keeps the user it runs as.
+  if (process.getuid() !== 0) {
+    replace(/^server\.username\s*=.*\n/m, "");
+    replace(/^server\.groupname\s*=.*\n/m, "");
+  }
+  replace(/^server\.port\s*=.*$/m, `server.port = ${port}\nserver.bind = "127.0.0.1"`);
+  replace(/^include_shell "\/usr\/share\/lighttpd\/use-ipv6\.pl.*\n/m, "");
+  replace(/^include_shell "\/usr\/share\/lighttpd\/create-mime\.conf\.pl"$/m, LIGHTTPD_TUTORIAL_TYPES);
+  const deflate = readFileSync("/etc/lighttpd/conf-available/20-deflate.conf", "utf8").replace(
+    /^deflate\.cache-dir\s*=.*$/m,
+    `deflate.cache-dir = "${conf}/compress/"`,
+  );
+  assert.match(deflate, /mod_deflate/, "Debian's 20-deflate.conf loads mod_deflate");
+  const site = recipe(readme, "lighttpd", "lighttpd").replaceAll(RECIPE_FOLDER, labFolder);
+  writeFileSync(join(conf, "lighttpd.conf"), `${text}\n${deflate}\n${site}\n`);
+  // lighttpd opens its log and writes its cache as the user it runs as.
+  if (process.getuid() === 0) spawnSync("chown", ["-R", "www-data:www-data", conf]);
+  const origin = `http://127.0.0.1:${port}`;
+  const server = await startProcess(
+    "lighttpd",
+    LIGHTTPD,
+    ["-D", "-f", join(conf, "lighttpd.conf")],
+    process.env,
+    origin + SUB_PATH,
+    [join(conf, "error.log")],
+  );
+  return { name: "lighttpd", origin, base: origin + SUB_PATH, ...server, log: join(conf, "error.log") };
 }
 
 /** Every file of dist/ except the precompressed siblings, relative, with `/`. */
@@ -360,11 +468,23 @@ before(async () => {
   const folder = join(work, "robotics");
   cpSync(DIST, folder, { recursive: true });
   spawnSync("chmod", ["-R", "a+rX", folder]);
-  // Each server gets its own copy (Apache's .htaccess stays out of nginx's).
-  const nginxFolder = join(work, "robotics-nginx");
-  cpSync(folder, nginxFolder, { recursive: true });
+  // Each server gets its own copy (Apache's .htaccess stays out of the others').
+  const copy = (name) => {
+    const to = join(work, name);
+    cpSync(folder, to, { recursive: true });
+    return to;
+  };
+  const sharedRoot = join(work, "shared-web-space");
+  const sharedFolder = join(sharedRoot, SUB_PATH);
+  mkdirSync(dirname(sharedFolder), { recursive: true });
+  cpSync(folder, sharedFolder, { recursive: true });
+  spawnSync("chmod", ["-R", "a+rX", sharedRoot]);
+  const [nginxFolder, caddyFolder, lighttpdFolder] = ["nginx", "caddy", "lighttpd"].map((s) => copy(`robotics-${s}`));
   servers.nginx = await startNginx(work, nginxFolder, readme);
   servers.apache = await startApache(work, folder, readme);
+  servers.apacheShared = await startApache(work, sharedFolder, readme, { sharedRoot });
+  servers.caddy = await startCaddy(work, caddyFolder, readme);
+  servers.lighttpd = await startLighttpd(work, lighttpdFolder, readme);
   browser = await launchBrowser();
 });
 
@@ -431,8 +551,32 @@ test("README marks its nginx and Apache recipes so that this suite can take them
   assert.match(recipe(readme, "apache .htaccess", "apache"), /RewriteEngine On/);
 });
 
-for (const key of ["nginx", "apache"]) {
-  describe(`${key === "nginx" ? "nginx" : "Apache"} serving dist/ with the README's recipe`, () => {
+test("hosts beyond nginx and Apache: README has a Caddy and a lighttpd recipe, and says which types a server must send", () => {
+  assert.match(recipe(readme, "caddy", "caddy"), /precompressed br gzip/);
+  assert.match(recipe(readme, "lighttpd", "lighttpd"), /mimetype\.assign/);
+  const types = readme.match(/### File types\n([^]*?)\n### /)?.[1];
+  assert.ok(types, "README has a section \"File types\"");
+  for (const ext of Object.keys(MEDIA_TYPES).filter((e) => e !== ".mjs")) {
+    assert.match(types, new RegExp(`\`\\${ext}\``), `"File types" names ${ext}`);
+  }
+  for (const ext of [".html", ".js", ".css"]) {
+    const row = types.split("\n").find((l) => l.startsWith(`| \`${ext}\``));
+    assert.match(row ?? "", /\*\*must\*\*/, `${ext} is a type a server must send`);
+  }
+  assert.match(types.split("\n").find((l) => l.startsWith("| `.wasm`")) ?? "", /nice to have/, ".wasm is only nice to have");
+});
+
+/** The servers of the suite, by key: the names the tests carry. */
+const SERVER_TITLES = {
+  nginx: "nginx serving dist/ with the README's recipe",
+  apache: "Apache serving dist/ with the README's recipe",
+  apacheShared: "Apache shared hosting: the README's .htaccess alone in a folder with AllowOverride All",
+  caddy: "Caddy 2.6 serving dist/ with the README's recipe",
+  lighttpd: "lighttpd 1.4 serving dist/ with the README's recipe (the tutorial's type map)",
+};
+
+for (const key of Object.keys(SERVER_TITLES)) {
+  describe(SERVER_TITLES[key], () => {
     const lab = {
       get server() {
         return servers[key];

@@ -43,8 +43,8 @@ pub fn dist() -> Result<PathBuf, String> {
     } else {
         println!("warning: web/ does not exist; dist/ holds only pkg/");
     }
-    step("minify main.js, style.css and instructor.js");
-    for file in ["main.js", "style.css", INSTRUCTOR_JS] {
+    step("minify main.js, did-not-start.js, style.css and instructor.js");
+    for file in ["main.js", DID_NOT_START_JS, "style.css", INSTRUCTOR_JS] {
         if dist.join(file).is_file() {
             crate::minify::minify_in_place(&root, &dist.join(file))?;
         }
@@ -352,15 +352,14 @@ fn check_relative_urls(dist: &Path) -> Result<(), String> {
     }
 }
 
-/// Appends `?v=<hash of the whole site>` to every reference in
-/// `dist/index.html` that names a file of dist/ (the stylesheet, `main.js`,
-/// the icon), so a redeployed site is not served stale. The wasm modules,
-/// their glue and the reading pages carry their own content hash in their
-/// names (see [`crate::modules`]).
+/// Appends `?v=<hash of the whole site>` to every reference in the pages
+/// a browser opens by their address ([`crate::pages::STAMPED_PAGES`]: `dist/index.html`,
+/// `dist/check.html`) that names a file of dist/ (the stylesheets, `main.js`,
+/// `check.js`, the icon), so a redeployed site is not served stale, and the
+/// service worker caches each file under the address these pages ask for.
+/// The wasm modules, their glue and the reading pages carry their own
+/// content hash in their names (see [`crate::modules`]).
 fn stamp_version(dist: &Path) -> Result<String, String> {
-    let index = dist.join("index.html");
-    let html =
-        fs::read_to_string(&index).map_err(|e| format!("cannot read {}: {e}", index.display()))?;
     let files: Vec<String> = files_below(dist)?
         .iter()
         .map(|p| slash_path(p))
@@ -374,7 +373,25 @@ fn stamp_version(dist: &Path) -> Result<String, String> {
         hash_input.extend_from_slice(&util::fnv1a(&bytes).to_le_bytes());
     }
     let version = format!("{:08x}", util::fnv1a(&hash_input) as u32);
+    for page in crate::pages::STAMPED_PAGES {
+        let path = dist.join(page);
+        if page == "index.html" || path.is_file() {
+            stamp_page(&path, &files, &version)?;
+        }
+    }
+    println!("dist/index.html, dist/check.html: references stamped with ?v={version}");
+    Ok(version)
+}
 
+/// The classic script that says so when a page's module script did not
+/// run (web/did-not-start.js).
+pub const DID_NOT_START_JS: &str = "did-not-start.js";
+
+/// Writes `?v=<version>` after every reference of the page at `page` to one
+/// of `files` (paths relative to dist/).
+fn stamp_page(page: &Path, files: &[String], version: &str) -> Result<(), String> {
+    let html =
+        fs::read_to_string(page).map_err(|e| format!("cannot read {}: {e}", page.display()))?;
     let mut out = String::with_capacity(html.len() + 256);
     let mut last = 0;
     for r in html_urls(&html) {
@@ -390,15 +407,12 @@ fn stamp_version(dist: &Path) -> Result<String, String> {
         out.push_str(&html[last..r.start]);
         out.push_str(path);
         out.push_str("?v=");
-        out.push_str(&version);
+        out.push_str(version);
         out.push_str(fragment);
         last = r.end;
     }
     out.push_str(&html[last..]);
-
-    fs::write(&index, out).map_err(|e| format!("cannot write {}: {e}", index.display()))?;
-    println!("dist/index.html: references stamped with ?v={version}");
-    Ok(version)
+    fs::write(page, out).map_err(|e| format!("cannot write {}: {e}", page.display()))
 }
 
 #[cfg(test)]

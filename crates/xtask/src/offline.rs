@@ -7,14 +7,23 @@ use std::fs;
 use std::path::Path;
 
 /// The files the worker caches, by the URL the site asks for them:
-/// `name?v=<version>` where `index.html` references the file with the
-/// version stamp (the stylesheet, `main.js`, the manifest, the icon), the
-/// plain name otherwise (content-hashed modules and pages, icons, maps).
-/// Leaves out the worker itself and the `.gz`/`.br` siblings (the browser
-/// asks for the file; a host picks the encoding).
+/// `name?v=<version>` where a page opened by its address (`index.html`,
+/// `check.html`: [`crate::pages::STAMPED_PAGES`]) references the file with
+/// the version stamp (the stylesheets, `main.js`, `check.js`, the manifest,
+/// the icon), the plain name otherwise (content-hashed modules and pages,
+/// icons, maps, the pages themselves). Leaves out the
+/// worker itself and the `.gz`/`.br` siblings (the browser asks for the
+/// file; a host picks the encoding).
 pub fn cached_urls(dist: &Path, version: &str) -> Result<Vec<String>, String> {
-    let index = fs::read_to_string(dist.join("index.html"))
-        .map_err(|e| format!("cannot read dist/index.html: {e}"))?;
+    let mut pages = String::new();
+    for page in crate::pages::STAMPED_PAGES {
+        let path = dist.join(page);
+        if page == "index.html" || path.is_file() {
+            pages.push_str(
+                &fs::read_to_string(&path).map_err(|e| format!("cannot read dist/{page}: {e}"))?,
+            );
+        }
+    }
     let mut urls = Vec::new();
     for rel in files_below(dist)? {
         let name = slash_path(&rel);
@@ -22,7 +31,7 @@ pub fn cached_urls(dist: &Path, version: &str) -> Result<Vec<String>, String> {
             continue;
         }
         let stamped = format!("{name}?v={version}");
-        if index.contains(&format!("\"{stamped}\"")) {
+        if pages.contains(&format!("\"{stamped}\"")) {
             urls.push(stamped);
         } else {
             urls.push(name);
@@ -104,6 +113,44 @@ mod tests {
             assert!(sw.contains(u), "{u} in {sw}");
         }
         assert!(!sw.contains(".gz\"") && !sw.contains(".br\"") && !sw.contains("\"sw.js\""));
+        let _ = fs::remove_dir_all(&dir);
+    }
+
+    /// Issue 51 §5: "Check a report" offline lost its styles (check.html
+    /// asks for `style.css?v=…`, cached only as the address index.html asks
+    /// for, or not at all): the files check.html references stamped are
+    /// cached under those addresses, and check.html itself is cached.
+    #[test]
+    fn check_html_offline_its_stamped_files_and_the_page_are_cached() {
+        let dir = std::env::temp_dir().join(format!("lab-sw-check-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        fs::write(
+            dir.join("index.html"),
+            "<link href=\"style.css?v=abc12345\"><script src=\"main.js?v=abc12345\"></script>",
+        )
+        .unwrap();
+        fs::write(
+            dir.join("check.html"),
+            "<link href=\"style.css?v=abc12345\"><link href=\"check.css?v=abc12345\">\
+             <script src=\"check.js?v=abc12345\"></script>",
+        )
+        .unwrap();
+        for f in ["style.css", "main.js", "check.css", "check.js"] {
+            fs::write(dir.join(f), "x").unwrap();
+        }
+        let urls = cached_urls(&dir, "abc12345").unwrap();
+        assert_eq!(
+            urls,
+            [
+                "check.css?v=abc12345",
+                "check.html",
+                "check.js?v=abc12345",
+                "index.html",
+                "main.js?v=abc12345",
+                "style.css?v=abc12345",
+            ]
+        );
         let _ = fs::remove_dir_all(&dir);
     }
 }

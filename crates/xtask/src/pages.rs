@@ -14,6 +14,11 @@ const LOADING: &str = "<p class=\"loading\">Loading…</p>";
 const MODULES_SLOT: &str = "<!--MODULES-->";
 const CSP_SLOT: &str = "<!--CSP-->";
 
+/// The pages a browser opens by their address, the shell and "Check a
+/// report": their references carry the site's `?v=` stamp, and the service
+/// worker caches the files under those addresses.
+pub const STAMPED_PAGES: [&str; 2] = ["index.html", "check.html"];
+
 /// The site's Content-Security-Policy: nothing inline (no `<script>` body, no
 /// `on…=` handler, no `style="…"` attribute), nothing from another origin;
 /// `'wasm-unsafe-eval'` lets the page compile its own wasm module, and

@@ -12,17 +12,25 @@ const CHROMIUM: &str = "/usr/bin/chromium";
 const CHROMEDRIVER: &str = "/usr/bin/chromedriver";
 const INSTALL_HINT: &str =
     "install the Debian packages chromium and chromium-driver (sudo apt-get install chromium chromium-driver)";
-/// The Debian packages of the real servers `tests/hosts/` runs README's recipes on.
 /// `node --test` flags for the browser suites: a test fails after 10 min
 /// (the longest, axe over every tab, takes about 1 min), and a test file
 /// exits once its tests are done, whatever child process is left running.
 const NODE_TEST_WATCHDOG: [&str; 2] = ["--test-timeout=600000", "--test-force-exit"];
-const SERVER_PACKAGES: [&str; 3] = ["nginx", "libnginx-mod-http-brotli-static", "apache2"];
+/// The Debian packages of the real servers `tests/hosts/` runs README's recipes on.
+const SERVER_PACKAGES: [&str; 5] = [
+    "nginx",
+    "libnginx-mod-http-brotli-static",
+    "apache2",
+    "caddy",
+    "lighttpd",
+];
 /// What those packages install that the suite uses.
-const SERVER_FILES: [&str; 3] = [
+const SERVER_FILES: [&str; 5] = [
     "/usr/sbin/nginx",
     "/usr/share/nginx/modules/ngx_http_brotli_static_module.so",
     "/usr/sbin/apache2",
+    "/usr/bin/caddy",
+    "/usr/sbin/lighttpd",
 ];
 
 pub struct Options {
@@ -184,21 +192,21 @@ pub fn test(opts: Options) -> Result<(), String> {
         }),
     ));
 
-    // README's nginx and Apache recipes on the real servers. Without the
+    // README's server recipes on the real servers. Without the
     // packages and without root to install them, the suite is skipped (said
     // loudly), not failed: the rest of the tests still mean something.
     let servers_present = Rc::new(Cell::new(false));
     let present = Rc::clone(&servers_present);
     let servers_ran = Rc::clone(&servers_present);
     steps.push((
-        "nginx and Apache present",
+        "nginx, Apache, Caddy and lighttpd present",
         Box::new(move || {
             present.set(ensure_servers()?);
             Ok(())
         }),
     ));
     steps.push((
-        "README's server recipes on nginx and Apache (node --test tests/hosts/)",
+        "README's server recipes on nginx, Apache, Caddy and lighttpd (node --test tests/hosts/)",
         Box::new(move || {
             if !servers_present.get() {
                 println!("SKIPPED: {}", servers_hint());
@@ -356,7 +364,7 @@ fn servers_hint() -> String {
     )
 }
 
-/// Installs Debian's nginx, its Brotli static module and Apache when missing
+/// Installs Debian's nginx, its Brotli static module, Apache, Caddy and lighttpd when missing
 /// (as root). `Ok(false)` when they are missing and this is not root: the
 /// caller skips the suite and says why.
 pub fn ensure_servers() -> Result<bool, String> {
