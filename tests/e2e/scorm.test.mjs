@@ -779,6 +779,18 @@ test("attempts in an instructor's link: attempts=1&score=last outside an LMS ref
 
 // ------------------------------- issue 51: one attempt per person per LMS record
 
+/** Runs `body` with the test LMS's server and a browser, closing both after. */
+async function withLms(body) {
+  const lms = await startLms();
+  const browser = await launchBrowser();
+  try {
+    await body(lms, browser);
+  } finally {
+    await browser.close();
+    await lms.close();
+  }
+}
+
 /** Leaves the SCO as an LMS does (the frame is emptied) and waits for LMSFinish. */
 async function leave(page) {
   await page.evaluate(() => {
@@ -810,10 +822,8 @@ function watch(page, problems) {
   page.on("pageerror", (e) => problems.push(`uncaught exception: ${e.message}`));
 }
 
-test("LMS attempt, second tab: a tab opened from the SCO's brand link shows neither the LMS attempt's seed nor its answers, and reports nothing", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("LMS attempt, second tab: a tab opened from the SCO's brand link shows neither the LMS attempt's seed nor its answers, and reports nothing", () =>
+  withLms(async (lms, browser) => {
     const { context, page, frame, problems } = await launch(browser, lms, `?sco=pid&launch-query=${encodeURIComponent("attempts=1")}`);
     await openQuiz(frame);
     await answerPid(frame);
@@ -844,16 +854,10 @@ test("LMS attempt, second tab: a tab opened from the SCO's brand link shows neit
     );
     assert.deepEqual(problems, []);
     await context.close();
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
-test("LMS attempt, two learners in one browser profile: B starts fresh and never sees A's seed, answers, score or report fields", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("LMS attempt, two learners in one browser profile: B starts fresh and never sees A's seed, answers, score or report fields", () =>
+  withLms(async (lms, browser) => {
     const context = await profile(browser);
     const a = await launch(browser, lms, "?sco=pid&student=s-A", null, context);
     await openQuiz(a.frame);
@@ -892,16 +896,10 @@ test("LMS attempt, two learners in one browser profile: B starts fresh and never
     assert.deepEqual(await back.evaluateAll((inputs) => inputs.map((i) => i.value)), ["Ada Student-A", "G1"]);
     assert.deepEqual(again.problems, []);
     await context.close();
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
-test("LMS attempt, a new LMS attempt with an empty cmi starts a fresh attempt with a new seed", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("LMS attempt, a new LMS attempt with an empty cmi starts a fresh attempt with a new seed", () =>
+  withLms(async (lms, browser) => {
     const context = await profile(browser);
     const first = await launch(browser, lms, "?sco=pid", null, context);
     await openQuiz(first.frame);
@@ -919,16 +917,10 @@ test("LMS attempt, a new LMS attempt with an empty cmi starts a fresh attempt wi
     assert.ok(await second.frame.locator("form.quiz button[type=submit]").isEnabled());
     assert.deepEqual([...first.problems, ...second.problems], []);
     await context.close();
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
-test("Inside a SCO the package decides: quiz= and key= in the link never replace the LMS's seed or show its key", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("Inside a SCO the package decides: quiz= and key= in the link never replace the LMS's seed or show its key", () =>
+  withLms(async (lms, browser) => {
     const { context, page, frame, problems } = await launch(browser, lms, "?sco=pid");
     await openQuiz(frame);
     await answerPid(frame);
@@ -959,11 +951,7 @@ test("Inside a SCO the package decides: quiz= and key= in the link never replace
     assert.equal((await quizShown(frame)).seed, seed);
     assert.deepEqual(problems, []);
     await context.close();
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
 test("answer key, one rule: with a class quiz seed the Self-assessment tab shows no expected answers after submitting, as the report; key=submitted shows them in both", () =>
   withPage(lab, {}, async (page) => {
@@ -982,10 +970,8 @@ test("answer key, one rule: with a class quiz seed the Self-assessment tab shows
     assert.ok(shown.some((t) => t.includes("Expected")), shown.join(" | "));
   }));
 
-test("SCORM launch query mangled by the LMS (?sco=pid?scorm_launch=1&…): the SCO opens pid, keeps its rules and reports its score", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("SCORM launch query mangled by the LMS (?sco=pid?scorm_launch=1&…): the SCO opens pid, keeps its rules and reports its score", () =>
+  withLms(async (lms, browser) => {
     const query = `?sco=pid&launch-query=${encodeURIComponent("attempts=1")}&lms-query=${encodeURIComponent("scorm_launch=1&lms_attempt=7")}`;
     const { context, page, frame, problems } = await launch(browser, lms, query);
     assert.match(await page.evaluate(() => window.lmsLaunched), /\?sco=pid&attempts=1\?scorm_launch=1/);
@@ -997,16 +983,10 @@ test("SCORM launch query mangled by the LMS (?sco=pid?scorm_launch=1&…): the S
     assert.equal(await frame.locator("#lms-notice").count(), 0, "connected: nothing to say");
     assert.deepEqual(problems, []);
     await context.close();
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
-test("SCORM launch query lost (index.html alone): the page says it is not connected and tells the LMS in cmi.comments", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("SCORM launch query lost (index.html alone): the page says it is not connected and tells the LMS in cmi.comments", () =>
+  withLms(async (lms, browser) => {
     // The home page starts no module: wait for the page's line about the LMS.
     const { context, page, frame, problems } = await launch(browser, lms, "?sco=pid&bare=1", null, null, () => document.getElementById("lms-notice"));
     assert.equal(await page.evaluate(() => window.lmsLaunched), "index.html");
@@ -1019,16 +999,10 @@ test("SCORM launch query lost (index.html alone): the page says it is not connec
     await page.screenshot({ path: join(ROOT, "target", "e2e-shots", "scorm-not-connected.png") }).catch(() => {});
     assert.deepEqual(problems, []);
     await context.close();
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
-test("SCORM lesson_mode review: the kept attempt is shown read-only, with no New attempt and no new score", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("SCORM lesson_mode review: the kept attempt is shown read-only, with no New attempt and no new score", () =>
+  withLms(async (lms, browser) => {
     const first = await launch(browser, lms, "?sco=pid");
     await openQuiz(first.frame);
     await answerPid(first.frame);
@@ -1051,16 +1025,10 @@ test("SCORM lesson_mode review: the kept attempt is shown read-only, with no New
     }
     assert.deepEqual(review.problems, []);
     await review.context.close();
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
-test("SCORM lesson_mode browse and credit no-credit: the quiz is graded on the page and no score is written", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("SCORM lesson_mode browse and credit no-credit: the quiz is graded on the page and no score is written", () =>
+  withLms(async (lms, browser) => {
     for (const [query, notice] of [
       ["?sco=pid&mode=browse", /^Browse mode: your LMS records no score/],
       ["?sco=pid&credit=no-credit", /^No credit: your LMS records no score/],
@@ -1076,16 +1044,10 @@ test("SCORM lesson_mode browse and credit no-credit: the quiz is graded on the p
       assert.deepEqual(problems, []);
       await context.close();
     }
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
-test("SCORM suspend_data counted in the same units: 2,100 × 𝑥 pasted into an answer are capped and the attempt is still kept", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("SCORM suspend_data counted in the same units: 2,100 × 𝑥 pasted into an answer are capped and the attempt is still kept", () =>
+  withLms(async (lms, browser) => {
     const { context, page, frame, problems } = await launch(browser, lms, `?sco=pid&launch-query=${encodeURIComponent("attempts=1")}`);
     await openQuiz(frame);
     const field = frame.locator('form.quiz .quiz-q[data-index="6"] input');
@@ -1108,16 +1070,10 @@ test("SCORM suspend_data counted in the same units: 2,100 × 𝑥 pasted into an
     assert.equal(await frame.locator("#lms-notice").count(), 0);
     assert.deepEqual(problems, []);
     await context.close();
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
-test("SCORM final LMSCommit on pagehide succeeds in the runtime", async () => {
-  const lms = await startLms();
-  const browser = await launchBrowser();
-  try {
+test("SCORM final LMSCommit on pagehide succeeds in the runtime", () =>
+  withLms(async (lms, browser) => {
     const { context, page, frame, problems } = await launch(browser, lms, "?sco=pid");
     await openQuiz(frame);
     await answerPid(frame);
@@ -1138,11 +1094,7 @@ test("SCORM final LMSCommit on pagehide succeeds in the runtime", async () => {
     assert.equal(JSON.parse(last.cmi.suspend_data).id, "pid");
     assert.deepEqual(problems, []);
     await context.close();
-  } finally {
-    await browser.close();
-    await lms.close();
-  }
-});
+  }));
 
 // --------------------------------------------------- README's package figures
 

@@ -238,7 +238,7 @@ fn ascii(text: &str) -> String {
             out.push(c);
         } else {
             for unit in c.encode_utf16(&mut [0; 2]) {
-                let _ = write!(out, "\\u{unit:04x}");
+                let _ = write!(out, "\\u{:04x}", u32::from(*unit));
             }
         }
     }
