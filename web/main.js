@@ -384,8 +384,11 @@ async function showPage() {
 }
 
 // A SCORM launch names its experiment in the query (`index.html?sco=pid`),
-// which LMSs keep where some drop the `#`: without a hash, open it.
-const sco = new URLSearchParams(location.search).get("sco");
+// which LMSs keep where some drop the `#`: without a hash, open it. An LMS
+// that appends its own query with a second `?` (`?sco=pid?scorm_launch=1`)
+// is read as if it had used `&` (as scorm.js's scoOf reads it).
+const scoQuery = new URLSearchParams(location.search.slice(1).replaceAll("?", "&"));
+const sco = /^[\w-]*/.exec(scoQuery.get("sco") ?? "")[0];
 if (sco && moduleOf(sco) && /^#?\/?$/.test(location.hash)) history.replaceState(null, "", `#/${sco}/aim`);
 window.addEventListener("hashchange", showPage);
 showPage();

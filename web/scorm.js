@@ -22,7 +22,10 @@
 //                            graded), at most 4,096 characters, so a
 //                            relaunch resumes it
 //   cmi.core.session_time    on leaving (CMITimespan HHHH:MM:SS.SS)
-// then LMSCommit, and LMSFinish when the page goes away.
+//   cmi.comments             only when the launch names no SCO
+// with an LMSCommit after each change, and LMSFinish (which commits the
+// session time) when the page goes away. A review launch writes nothing;
+// browse and no-credit write no score (cmi.core.lesson_mode, credit).
 // Reference: ADL, SCORM Version 1.2 Run-Time Environment (2001), §3.3 (API,
 // FindAPI) and §3.4 (data model).
 
@@ -100,13 +103,42 @@ export function launchedExperiment(hash) {
 }
 
 /**
- * The experiment a SCO was launched for: its launch query's `sco`
- * (`index.html?sco=pid`), else (a package from before the query) the hash it
- * was launched with; null when neither names one.
+ * The experiment a SCO was launched for: the leading id of its launch
+ * query's `sco` (`index.html?sco=pid`; an LMS that appends its own query
+ * with a second `?`, `?sco=pid?scorm_launch=1&…`, is read as if it had used
+ * `&`), else (a package from before the query) the hash it was launched
+ * with; null when neither names one. labcore::lms::launch reads it the same
+ * way for the wasm.
  */
 export function scoOf(location) {
-  const sco = new URLSearchParams(location.search || "").get("sco");
-  return sco && /^[A-Za-z0-9_-]+$/.test(sco) ? sco : launchedExperiment(location.hash);
+  const query = (location.search || "").replace(/^\?/, "").replaceAll("?", "&");
+  const sco = /^[A-Za-z0-9_-]+/.exec(new URLSearchParams(query).get("sco") || "");
+  return sco ? sco[0] : launchedExperiment(location.hash);
+}
+
+/** What the page says for an LMS launch mode and credit (empty: nothing). */
+export function modeNotice(mode, credit) {
+  if (mode === "review") {
+    return "Review: this is the attempt your LMS kept, shown read-only. Nothing you do here is recorded.";
+  }
+  if (mode === "browse") return "Browse mode: your LMS records no score for this visit.";
+  if (credit === "no-credit") return "No credit: your LMS records no score for this launch.";
+  return "";
+}
+
+/** The page's line about the LMS (created on first use; several messages join). */
+function say(win, text) {
+  const doc = win.document;
+  if (!doc?.body || !text) return;
+  let box = doc.getElementById("lms-notice");
+  if (!box) {
+    box = doc.createElement("div");
+    box.id = "lms-notice";
+    box.className = "notice";
+    box.setAttribute("role", "alert");
+    doc.body.insertBefore(box, doc.getElementById("app"));
+  }
+  if (!box.textContent.includes(text)) box.textContent = `${box.textContent} ${text}`.trim();
 }
 
 /** A number as a SCORM 1.2 CMIDecimal (`-12.5`, at most 6 decimals), or null. */
@@ -146,6 +178,9 @@ export function cmiTime(date) {
   return `${two(date.getHours())}:${two(date.getMinutes())}:${two(date.getSeconds())}`;
 }
 
+/** Local-storage keys an older lab wrote an attempt under (readable by any tab). */
+const LEAKED = /^labquiz:/;
+
 /**
  * Runs a SCORM session against `api` for the page `win`. Returns the
  * session's state (for tests), or null when LMSInitialize refuses.
@@ -160,33 +195,75 @@ export function startSession(win, api, now = () => Date.now()) {
   };
   if (call("LMSInitialize", "") !== "true") return null;
   const started = now();
+  const get = (element) => call("LMSGetValue", element);
+  const mode = get("cmi.core.lesson_mode");
+  const credit = get("cmi.core.credit");
   const state = {
     experiment: scoOf(win.location),
-    suspendData: call("LMSGetValue", "cmi.suspend_data"),
-    mastery: masteryOf(call("LMSGetValue", "cmi.student_data.mastery_score")),
+    suspendData: get("cmi.suspend_data"),
+    mastery: masteryOf(get("cmi.student_data.mastery_score")),
     finished: false,
     // The next free cmi.interactions index (the journal grows per grading).
-    interactions: Math.max(0, Number(call("LMSGetValue", "cmi.interactions._count")) || 0),
+    interactions: Math.max(0, Number(get("cmi.interactions._count")) || 0),
+    // review: nothing is written; browse and no-credit: no score.
+    review: mode === "review",
+    scored: mode !== "review" && mode !== "browse" && credit !== "no-credit",
+    refused: [],
   };
-  const status = call("LMSGetValue", "cmi.core.lesson_status");
-  if (status === "" || status === "not attempted") {
-    call("LMSSetValue", "cmi.core.lesson_status", "incomplete");
+  // A value the LMS refuses is said on the page (with the LMS's reason),
+  // never dropped in silence.
+  const set = (element, value) => {
+    if (call("LMSSetValue", element, value) === "false") {
+      const code = call("LMSGetLastError");
+      const why = call("LMSGetErrorString", code);
+      state.refused.push(element);
+      say(win, `Your LMS did not save ${element} (error ${code}${why ? `: ${why}` : ""}); tell your instructor.`);
+    }
+  };
+  const status = get("cmi.core.lesson_status");
+  if (!state.review && mode !== "browse" && (status === "" || status === "not attempted")) {
+    set("cmi.core.lesson_status", "incomplete");
   }
   call("LMSCommit", "");
+  // An attempt a lab before issue 51 kept in local storage, where another
+  // tab or another learner would find it, is removed.
+  try {
+    for (const key of Object.keys(win.localStorage ?? {})) {
+      if (LEAKED.test(key)) win.localStorage.removeItem(key);
+    }
+  } catch {
+    // storage off
+  }
+  say(win, modeNotice(mode, credit));
+  if (state.experiment === null) {
+    // The launch's query was lost: nothing can be reported; say so here and
+    // to the LMS rather than drop a score in silence.
+    say(win, "This page is not connected to your LMS: scores will not be recorded. Reopen the activity from your course.");
+    set("cmi.comments", "The lab was launched without its ?sco= query (the LMS dropped it): no score can be recorded.");
+    call("LMSCommit", "");
+  }
 
   // A SCO reports only the experiment it was launched for (an instructor
   // placed that one); others opened inside it behave as outside an LMS. A
   // launch that names none reports nothing rather than a wrong score.
   const ours = (id) => state.experiment !== null && id === state.experiment;
   const keep = (text) => {
-    if (typeof text !== "string" || text.length > SUSPEND_DATA_MAX) return;
+    if (state.review || mode === "browse" || typeof text !== "string") return;
+    if (text.length > SUSPEND_DATA_MAX) {
+      say(win, "Your attempt is too long for your LMS and was not saved.");
+      return;
+    }
     state.suspendData = text;
-    call("LMSSetValue", "cmi.suspend_data", text);
+    set("cmi.suspend_data", text);
   };
 
   win.labLms = Object.freeze({
     /** The attempt the LMS keeps for `id` (read by the wasm), or null. */
     suspendData: (id) => (ours(id) && state.suspendData ? state.suspendData : null),
+    /** A review launch: the wasm shows the kept attempt read-only. */
+    review: state.review,
+    /** The LMS's learner (cmi.core.student_id): the report's fields are kept per learner. */
+    learner: get("cmi.core.student_id"),
   });
   win.addEventListener("lab-quiz-progress", (e) => {
     if (!state.finished && ours(e.detail?.id)) keep(e.detail.suspendData);
@@ -194,30 +271,35 @@ export function startSession(win, api, now = () => Date.now()) {
   win.addEventListener("lab-quiz-submitted", (e) => {
     const d = e.detail ?? {};
     if (state.finished || !ours(d.id) || !Number.isFinite(d.percent)) return;
-    // The instructor's rule (best, last or first attempt) made `counted`.
-    const counted = Number.isFinite(d.counted) ? d.counted : d.percent;
-    call("LMSSetValue", "cmi.core.score.min", "0");
-    call("LMSSetValue", "cmi.core.score.max", "100");
-    call("LMSSetValue", "cmi.core.score.raw", String(counted));
-    call("LMSSetValue", "cmi.core.lesson_status", lessonStatus(counted, state.mastery));
-    const time = cmiTime(new Date(now()));
-    for (const [i, row] of (Array.isArray(d.questions) ? d.questions : []).entries()) {
-      if (!Array.isArray(row)) continue;
-      const n = state.interactions++;
-      for (const [key, value] of interaction(d.id, i, row, time)) {
-        call("LMSSetValue", `cmi.interactions.${n}.${key}`, value);
+    if (state.scored) {
+      // The instructor's rule (best, last or first attempt) made `counted`.
+      const counted = Number.isFinite(d.counted) ? d.counted : d.percent;
+      set("cmi.core.score.min", "0");
+      set("cmi.core.score.max", "100");
+      set("cmi.core.score.raw", String(counted));
+      set("cmi.core.lesson_status", lessonStatus(counted, state.mastery));
+      const time = cmiTime(new Date(now()));
+      for (const [i, row] of (Array.isArray(d.questions) ? d.questions : []).entries()) {
+        if (!Array.isArray(row)) continue;
+        const n = state.interactions++;
+        for (const [key, value] of interaction(d.id, i, row, time)) {
+          set(`cmi.interactions.${n}.${key}`, value);
+        }
       }
     }
     keep(d.suspendData);
     call("LMSCommit", "");
   });
+  // Leaving: no LMSCommit here. A runtime that posts a commit with a
+  // synchronous request (scorm-again with an LMS server does) fails while
+  // the page goes away, as browsers refuse such requests then; LMSFinish
+  // commits the last values itself, with a beacon.
   win.addEventListener("pagehide", () => {
     if (state.finished) return;
     state.finished = true;
     call("LMSSetValue", "cmi.core.session_time", sessionTime(now() - started));
     // "suspend": the LMS keeps suspend_data for the next launch.
     call("LMSSetValue", "cmi.core.exit", "suspend");
-    call("LMSCommit", "");
     call("LMSFinish", "");
   });
   return state;

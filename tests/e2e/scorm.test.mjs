@@ -96,6 +96,9 @@ test("scorm.js: a SCO is named by its launch query, which survives a dropped fra
   assert.equal(scoOf({ search: "?lms=1&sco=ik&attempts=2", hash: "" }), "ik", "among the LMS's own parameters");
   assert.equal(scoOf({ search: "", hash: "#/astar/aim" }), "astar", "an older package launched with its fragment");
   assert.equal(scoOf({ search: "?sco=%3Cx%3E", hash: "" }), null);
+  // Issue 51 §3: an LMS that appends its own query after a second `?`.
+  assert.equal(scoOf({ search: "?sco=pid?scorm_launch=1&x=2", hash: "" }), "pid");
+  assert.equal(scoOf({ search: "?sco=pid%3Fscorm_launch%3D1", hash: "" }), "pid");
   assert.equal(scoOf({ search: "", hash: "" }), null);
 });
 
@@ -219,13 +222,51 @@ test("scorm.js: a submission reports the counted score and journals each questio
   assert.equal(value("cmi.interactions.4.student_response"), undefined);
   const ids = log.filter(([k]) => k.startsWith("cmi.interactions.")).map(([k]) => k);
   assert.equal(ids[0], "cmi.interactions.3.id", "id first");
-  // A launch that names no experiment reports nothing at all.
+  // A launch that names no experiment reports no score at all, only why (issue 51 §3).
   const lost = Object.assign(new EventTarget(), { location: { search: "", hash: "" } });
   const quiet = [];
   startSession(lost, { ...api, LMSSetValue: (k, v) => quiet.push([k, v]) }, () => 0);
   lost.dispatchEvent(Object.assign(new Event("lab-quiz-submitted"), { detail: { id: "fk", percent: 17, suspendData: '{"id":"fk"}' } }));
-  assert.deepEqual(quiet, []);
+  assert.deepEqual(quiet.map(([k]) => k), ["cmi.comments"]);
   assert.equal(lost.labLms.suspendData("fk"), null);
+});
+
+test("scorm.js: a value the LMS refuses is said on the page with the LMS's reason", async () => {
+  const { startSession } = await scormModule();
+  // A minimal page: a body and the app, as index.html has them.
+  const made = [];
+  const body = { insertBefore: (el) => made.push(el) };
+  const document = {
+    body,
+    getElementById: (id) => made.find((el) => el.id === id) ?? null,
+    createElement: () => ({ textContent: "", setAttribute(k, v) { this[k] = v; } }),
+  };
+  const win = Object.assign(new EventTarget(), { location: { search: "?sco=pid", hash: "" }, document });
+  const api = {
+    LMSInitialize: () => "true",
+    LMSGetValue: () => "",
+    LMSSetValue: (k) => (k === "cmi.suspend_data" ? "false" : "true"),
+    LMSGetLastError: () => "405",
+    LMSGetErrorString: (code) => (code === "405" ? "Incorrect Data Type" : ""),
+    LMSCommit: () => "true",
+    LMSFinish: () => "true",
+  };
+  const state = startSession(win, api, () => 0);
+  assert.equal(made.length, 0, "nothing to say yet");
+  win.dispatchEvent(Object.assign(new Event("lab-quiz-progress"), { detail: { id: "pid", suspendData: '{"id":"pid"}' } }));
+  assert.deepEqual(state.refused, ["cmi.suspend_data"]);
+  assert.equal(made.length, 1);
+  assert.equal(made[0].role, "alert");
+  assert.equal(made[0].textContent, "Your LMS did not save cmi.suspend_data (error 405: Incorrect Data Type); tell your instructor.");
+});
+
+test("scorm.js: what the page says for review, browse and no-credit launches", async () => {
+  const { modeNotice } = await scormModule();
+  assert.match(modeNotice("review", "credit"), /^Review: .*read-only/);
+  assert.match(modeNotice("browse", "credit"), /^Browse mode: your LMS records no score/);
+  assert.match(modeNotice("normal", "no-credit"), /^No credit: your LMS records no score/);
+  assert.equal(modeNotice("normal", "credit"), "");
+  assert.equal(modeNotice("", ""), "", "an LMS that says nothing: a normal launch");
 });
 
 // ------------------------------------------------------------- outside an LMS
@@ -269,8 +310,31 @@ async function startLms() {
     ["/lms/scorm-again/", join(ROOT, "node_modules", "scorm-again", "dist")],
     ["/lms/", join(ROOT, "tests", "e2e", "scorm")],
   ];
+  // The runtime's commits (LMSCommit and LMSFinish post the cmi here).
+  const commits = [];
+  const waiting = [];
+  /** The first commit posted (already or later) whose body holds `text`. */
+  const commitWith = (text) =>
+    new Promise((ok) => {
+      const seen = commits.find((b) => b.includes(text));
+      if (seen) ok(seen);
+      else waiting.push({ text, ok });
+    });
   const server = createServer(async (req, res) => {
     const path = decodeURIComponent(new URL(req.url, "http://x").pathname);
+    if (req.method === "POST" && path === "/lms/commit") {
+      let body = "";
+      for await (const chunk of req) body += chunk;
+      commits.push(body);
+      for (const w of [...waiting]) {
+        if (body.includes(w.text)) {
+          waiting.splice(waiting.indexOf(w), 1);
+          w.ok(body);
+        }
+      }
+      res.writeHead(200, { "Content-Type": "application/json" }).end('{"result":true,"errorCode":0}');
+      return;
+    }
     const mount = mounts.find(([prefix]) => path.startsWith(prefix));
     let file = mount && resolve(mount[1], "." + sep + path.slice(mount[0].length));
     if (!mount || (file !== mount[1] && !file.startsWith(mount[1] + sep))) {
@@ -288,13 +352,24 @@ async function startLms() {
   });
   await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
   const port = server.address().port;
-  return { port, url: `http://127.0.0.1:${port}/lms/`, close: () => new Promise((ok) => server.close(ok)) };
+  return { port, commits, commitWith, url: `http://127.0.0.1:${port}/lms/`, close: () => new Promise((ok) => server.close(ok)) };
 }
 
-/** Opens the test LMS (`query` e.g. `?sco=pid`), optionally with an earlier session's cmi; returns the page and the SCO's frame. */
-async function launch(browser, lms, query = "", savedCmi = null) {
+/** A browser profile (context) for the test LMS. */
+async function profile(browser) {
   const context = await browser.newContext({ viewport: { width: 1280, height: 860 } });
   context.setDefaultTimeout(15_000);
+  return context;
+}
+
+/**
+ * Opens the test LMS (`query` e.g. `?sco=pid`), optionally with an earlier
+ * session's cmi, in a new profile or in `shared` (one browser profile, as a
+ * lab PC has); returns the page and the SCO's frame once `ready` holds in it
+ * (by default: the page's module has started).
+ */
+async function launch(browser, lms, query = "", savedCmi = null, shared = null, ready = () => document.body?.dataset.ready === "1") {
+  const context = shared ?? (await profile(browser));
   const problems = [];
   if (savedCmi) await context.addInitScript(`window.SAVED_CMI = ${JSON.stringify(savedCmi)};`);
   const page = await context.newPage();
@@ -304,7 +379,7 @@ async function launch(browser, lms, query = "", savedCmi = null) {
   await page.goto(lms.url + "index.html" + query);
   await page.waitForFunction(() => document.getElementById("lms-status").textContent.startsWith("launched"));
   const frame = await (await page.$("#sco")).contentFrame();
-  await frame.waitForFunction(() => document.body?.dataset.ready === "1");
+  await frame.waitForFunction(ready);
   return { context, page, frame, problems };
 }
 
@@ -700,6 +775,325 @@ test("attempts in an instructor's link: attempts=1&score=last outside an LMS ref
     await page.locator("form.quiz .quiz-q").first().waitFor();
     assert.equal(await submitPid(page, 1), 8);
     assert.match(await page.locator("form.quiz .quiz-score").innerText(), /1 of 1 attempts graded\. The last score counts: 8%\. No attempts left\./);
+  }));
+
+// ------------------------------- issue 51: one attempt per person per LMS record
+
+/** Runs `body` with the test LMS's server and a browser, closing both after. */
+async function withLms(body) {
+  const lms = await startLms();
+  const browser = await launchBrowser();
+  try {
+    await body(lms, browser);
+  } finally {
+    await browser.close();
+    await lms.close();
+  }
+}
+
+/** Leaves the SCO as an LMS does (the frame is emptied) and waits for LMSFinish. */
+async function leave(page) {
+  await page.evaluate(() => {
+    document.getElementById("sco").src = "about:blank";
+  });
+  await page.waitForFunction(() => window.lmsLog.some((e) => e[0] === "LMSFinish"));
+}
+
+/** The quiz as shown: its seed, the answers in it, whether it is graded. */
+const quizShown = (target) =>
+  target.locator("article.exp:not([hidden]) form.quiz").evaluate((form) => ({
+    seed: form.querySelector(".quiz-seed")?.textContent,
+    checked: form.querySelectorAll("input[type=radio]:checked").length,
+    typed: [...form.querySelectorAll("input[type=text]")].map((i) => i.value).filter(Boolean),
+    graded: !form.querySelector(".quiz-score").hidden,
+  }));
+
+/** pid's quiz with question 1 ticked and question 7 answered right (not submitted). */
+async function answerPid(frame) {
+  const content = JSON.parse(await readFile(join(ROOT, "assets", "pid.json"), "utf8"));
+  const form = frame.locator("form.quiz");
+  await form.locator('.quiz-q[data-index="0"] input[type=radio]').first().check();
+  await form.locator('.quiz-q[data-index="6"] input').fill(String(content.quiz[6].answer));
+}
+
+/** Watches a page opened outside the test's own helpers for console errors. */
+function watch(page, problems) {
+  page.on("console", (m) => m.type() === "error" && problems.push(`console error: ${m.text()}`));
+  page.on("pageerror", (e) => problems.push(`uncaught exception: ${e.message}`));
+}
+
+test("LMS attempt, second tab: a tab opened from the SCO's brand link shows neither the LMS attempt's seed nor its answers, and reports nothing", () =>
+  withLms(async (lms, browser) => {
+    const { context, page, frame, problems } = await launch(browser, lms, `?sco=pid&launch-query=${encodeURIComponent("attempts=1")}`);
+    await openQuiz(frame);
+    await answerPid(frame);
+    const inLms = await quizShown(frame);
+    assert.equal(inLms.checked, 1);
+    // A middle-click on the lab's own brand link: a new tab, not connected to any LMS.
+    const [tab] = await Promise.all([context.waitForEvent("page"), frame.locator("a.brand").click({ button: "middle" })]);
+    watch(tab, problems);
+    await tab.waitForFunction(() => document.body?.dataset.ready === "1");
+    assert.equal(await tab.evaluate(() => typeof window.labLms), "undefined", "the tab is not connected to the LMS");
+    await tab.evaluate(() => {
+      location.hash = "#/pid/quiz";
+    });
+    await tab.locator('article.exp[data-experiment="pid"]:not([hidden]) form.quiz .quiz-q').first().waitFor();
+    const outside = await quizShown(tab);
+    assert.notEqual(outside.seed, inLms.seed, "not the LMS attempt's seed");
+    assert.deepEqual([outside.checked, outside.typed, outside.graded], [0, [], false], "none of its answers");
+    // Graded there, it reaches nothing, and the LMS attempt is untouched.
+    await submit(tab.locator("article.exp:not([hidden])"));
+    assert.deepEqual(sets(await lmsLog(page), "cmi.core.score.raw"), []);
+    const kept = JSON.parse((await cmiOf(page)).suspend_data);
+    assert.equal(String(kept.seed), inLms.seed);
+    assert.equal(kept.submitted, false);
+    assert.deepEqual(
+      await frame.evaluate(() => Object.keys(localStorage).filter((k) => k.startsWith("labquiz:"))),
+      [],
+      "nothing of the attempt in local storage",
+    );
+    assert.deepEqual(problems, []);
+    await context.close();
+  }));
+
+test("LMS attempt, two learners in one browser profile: B starts fresh and never sees A's seed, answers, score or report fields", () =>
+  withLms(async (lms, browser) => {
+    const context = await profile(browser);
+    const a = await launch(browser, lms, "?sco=pid&student=s-A", null, context);
+    await openQuiz(a.frame);
+    await answerPid(a.frame);
+    await submit(a.frame);
+    const seenByA = await quizShown(a.frame);
+    await a.frame.locator("article.exp:not([hidden]) [role=tab][data-tab=simulation]").click();
+    const fields = a.frame.locator("article.exp:not([hidden]) details.report-fields");
+    await fields.locator("summary").click();
+    await fields.locator("[data-report-field=name]").fill("Ada Student-A");
+    await fields.locator("[data-report-field=group]").fill("G1");
+    await fields.locator("[data-report-field=group]").press("Tab");
+    await leave(a.page);
+    assert.deepEqual(a.problems, []);
+    await a.page.close();
+
+    // Student B, another LMS user with an empty record, on the same PC.
+    const b = await launch(browser, lms, "?sco=pid&student=s-B", null, context);
+    await openQuiz(b.frame);
+    const seenByB = await quizShown(b.frame);
+    assert.notEqual(seenByB.seed, seenByA.seed, "a new seed");
+    assert.deepEqual([seenByB.checked, seenByB.typed, seenByB.graded], [0, [], false], "none of A's answers, no score");
+    await submit(b.frame);
+    assert.deepEqual(sets(await lmsLog(b.page), "cmi.core.score.raw"), ["0"], "B's own blank attempt, not A's score");
+    await b.frame.locator("article.exp:not([hidden]) [role=tab][data-tab=simulation]").click();
+    const names = b.frame.locator("article.exp:not([hidden]) details.report-fields input");
+    assert.deepEqual(await names.evaluateAll((inputs) => inputs.map((i) => i.value)), ["", ""], "not A's name or group");
+    assert.deepEqual(b.problems, []);
+    await leave(b.page);
+    await b.page.close();
+
+    // A again, another day, same PC: A's own fields are back (kept under A's id).
+    const again = await launch(browser, lms, "?sco=pid&student=s-A", null, context);
+    await again.frame.locator("article.exp:not([hidden]) [role=tab][data-tab=simulation]").click();
+    const back = again.frame.locator("article.exp:not([hidden]) details.report-fields input");
+    assert.deepEqual(await back.evaluateAll((inputs) => inputs.map((i) => i.value)), ["Ada Student-A", "G1"]);
+    assert.deepEqual(again.problems, []);
+    await context.close();
+  }));
+
+test("LMS attempt, a new LMS attempt with an empty cmi starts a fresh attempt with a new seed", () =>
+  withLms(async (lms, browser) => {
+    const context = await profile(browser);
+    const first = await launch(browser, lms, "?sco=pid", null, context);
+    await openQuiz(first.frame);
+    await answerPid(first.frame);
+    await submit(first.frame);
+    const before = await quizShown(first.frame);
+    await leave(first.page);
+    await first.page.close();
+    // The LMS starts a new attempt: its record is empty, the browser is the same.
+    const second = await launch(browser, lms, "?sco=pid", null, context);
+    await openQuiz(second.frame);
+    const after = await quizShown(second.frame);
+    assert.notEqual(after.seed, before.seed);
+    assert.deepEqual([after.checked, after.typed, after.graded], [0, [], false]);
+    assert.ok(await second.frame.locator("form.quiz button[type=submit]").isEnabled());
+    assert.deepEqual([...first.problems, ...second.problems], []);
+    await context.close();
+  }));
+
+test("Inside a SCO the package decides: quiz= and key= in the link never replace the LMS's seed or show its key", () =>
+  withLms(async (lms, browser) => {
+    const { context, page, frame, problems } = await launch(browser, lms, "?sco=pid");
+    await openQuiz(frame);
+    await answerPid(frame);
+    const { seed } = await quizShown(frame);
+    const route = (hash) =>
+      frame.evaluate(
+        (h) =>
+          new Promise((ok) => {
+            addEventListener("hashchange", () => requestAnimationFrame(() => ok()), { once: true });
+            location.hash = h;
+          }),
+        hash,
+      );
+    await route("#/pid/quiz?quiz=123&key=always");
+    const shown = await quizShown(frame);
+    assert.equal(shown.seed, seed, "the LMS's seed stays");
+    assert.equal(shown.checked, 1, "with its answers");
+    assert.equal(String(JSON.parse((await cmiOf(page)).suspend_data).seed), seed);
+    // key=always in the Simulation tab's link: a report made before submitting lists no answers.
+    await route("#/pid/simulation?key=always&quiz=123");
+    const [download] = await Promise.all([
+      page.waitForEvent("download"),
+      frame.locator("article.exp:not([hidden]) button[data-export=report]").click(),
+    ]);
+    const html = await readFile(await download.path(), "utf8");
+    assert.equal((html.match(/<td class="expected">/g) ?? []).length, 0, "no expected answers in the report");
+    await route("#/pid/quiz");
+    assert.equal((await quizShown(frame)).seed, seed);
+    assert.deepEqual(problems, []);
+    await context.close();
+  }));
+
+test("answer key, one rule: with a class quiz seed the Self-assessment tab shows no expected answers after submitting, as the report; key=submitted shows them in both", () =>
+  withPage(lab, {}, async (page) => {
+    await open(lab, page, "#/pid/simulation?quiz=4242");
+    await page.locator("article.exp:not([hidden]) [role=tab][data-tab=quiz]").click();
+    await page.locator("form.quiz .quiz-q").first().waitFor();
+    await submit(page);
+    const lines = await page.locator("form.quiz .quiz-feedback").allInnerTexts();
+    assert.ok(lines.length > 0 && lines.every((t) => !t.includes("Expected")), lines.join(" | "));
+    assert.equal(await page.locator("form.quiz .quiz-explanation:not([hidden])").count(), 0);
+    await open(lab, page, "#/fk/simulation?quiz=4242&key=submitted");
+    await page.locator("article.exp:not([hidden]) [role=tab][data-tab=quiz]").click();
+    await page.locator("form.quiz .quiz-q").first().waitFor();
+    await submit(page.locator("article.exp:not([hidden])"));
+    const shown = await page.locator("article.exp:not([hidden]) form.quiz .quiz-feedback").allInnerTexts();
+    assert.ok(shown.some((t) => t.includes("Expected")), shown.join(" | "));
+  }));
+
+test("SCORM launch query mangled by the LMS (?sco=pid?scorm_launch=1&…): the SCO opens pid, keeps its rules and reports its score", () =>
+  withLms(async (lms, browser) => {
+    const query = `?sco=pid&launch-query=${encodeURIComponent("attempts=1")}&lms-query=${encodeURIComponent("scorm_launch=1&lms_attempt=7")}`;
+    const { context, page, frame, problems } = await launch(browser, lms, query);
+    assert.match(await page.evaluate(() => window.lmsLaunched), /\?sco=pid&attempts=1\?scorm_launch=1/);
+    await frame.locator('article.exp[data-experiment="pid"]:not([hidden])').waitFor();
+    await openQuiz(frame);
+    assert.equal(await submitPid(frame, 1), 8);
+    assert.match(await frame.locator("form.quiz .quiz-score").innerText(), /1 of 1 attempts graded/);
+    assert.deepEqual(sets(await lmsLog(page), "cmi.core.score.raw"), ["8"]);
+    assert.equal(await frame.locator("#lms-notice").count(), 0, "connected: nothing to say");
+    assert.deepEqual(problems, []);
+    await context.close();
+  }));
+
+test("SCORM launch query lost (index.html alone): the page says it is not connected and tells the LMS in cmi.comments", () =>
+  withLms(async (lms, browser) => {
+    // The home page starts no module: wait for the page's line about the LMS.
+    const { context, page, frame, problems } = await launch(browser, lms, "?sco=pid&bare=1", null, null, () => document.getElementById("lms-notice"));
+    assert.equal(await page.evaluate(() => window.lmsLaunched), "index.html");
+    const notice = frame.locator("#lms-notice");
+    await notice.waitFor();
+    assert.match(await notice.innerText(), /not connected to your LMS: scores will not be recorded/);
+    assert.equal(await notice.getAttribute("role"), "alert");
+    const [comment] = sets(await lmsLog(page), "cmi.comments");
+    assert.match(comment, /launched without its \?sco= query/);
+    await page.screenshot({ path: join(ROOT, "target", "e2e-shots", "scorm-not-connected.png") }).catch(() => {});
+    assert.deepEqual(problems, []);
+    await context.close();
+  }));
+
+test("SCORM lesson_mode review: the kept attempt is shown read-only, with no New attempt and no new score", () =>
+  withLms(async (lms, browser) => {
+    const first = await launch(browser, lms, "?sco=pid");
+    await openQuiz(first.frame);
+    await answerPid(first.frame);
+    const before = await quizShown(first.frame);
+    await leave(first.page);
+    const saved = await cmiOf(first.page);
+    await first.context.close();
+
+    const review = await launch(browser, lms, "?sco=pid&mode=review", saved);
+    await openQuiz(review.frame);
+    const shown = await quizShown(review.frame);
+    assert.deepEqual([shown.seed, shown.checked, shown.typed.length], [before.seed, 1, 1], "the kept attempt");
+    const form = review.frame.locator("form.quiz");
+    assert.equal(await form.locator("input:not([disabled]), button:not([disabled])").count(), 0, "read-only: no answer, Submit or New attempt");
+    assert.match(await review.frame.locator("#lms-notice").innerText(), /^Review: /);
+    await leave(review.page);
+    const log = await lmsLog(review.page);
+    for (const element of ["cmi.core.score.raw", "cmi.core.lesson_status", "cmi.suspend_data"]) {
+      assert.deepEqual(sets(log, element), [], `${element} is not written in review`);
+    }
+    assert.deepEqual(review.problems, []);
+    await review.context.close();
+  }));
+
+test("SCORM lesson_mode browse and credit no-credit: the quiz is graded on the page and no score is written", () =>
+  withLms(async (lms, browser) => {
+    for (const [query, notice] of [
+      ["?sco=pid&mode=browse", /^Browse mode: your LMS records no score/],
+      ["?sco=pid&credit=no-credit", /^No credit: your LMS records no score/],
+    ]) {
+      const { context, page, frame, problems } = await launch(browser, lms, query);
+      await openQuiz(frame);
+      assert.equal(await submitPid(frame, 1), 8);
+      const log = await lmsLog(page);
+      assert.deepEqual(sets(log, "cmi.core.score.raw"), [], query);
+      assert.ok(!sets(log, "cmi.core.lesson_status").some((s) => s === "passed" || s === "failed"), query);
+      assert.equal(log.filter((e) => e[1]?.startsWith?.("cmi.interactions.")).length, 0, query);
+      assert.match(await frame.locator("#lms-notice").innerText(), notice);
+      assert.deepEqual(problems, []);
+      await context.close();
+    }
+  }));
+
+test("SCORM suspend_data counted in the same units: 2,100 × 𝑥 pasted into an answer are capped and the attempt is still kept", () =>
+  withLms(async (lms, browser) => {
+    const { context, page, frame, problems } = await launch(browser, lms, `?sco=pid&launch-query=${encodeURIComponent("attempts=1")}`);
+    await openQuiz(frame);
+    const field = frame.locator('form.quiz .quiz-q[data-index="6"] input');
+    assert.equal(await field.getAttribute("maxlength"), "40", "the page caps a typed answer");
+    // Pasted past the cap (a script can set any value): the attempt is still kept.
+    await field.evaluate((input) => {
+      input.value = "𝑥".repeat(2100);
+      input.dispatchEvent(new Event("input", { bubbles: true }));
+    });
+    await frame.locator('form.quiz .quiz-q[data-index="0"] input[type=radio]').first().check();
+    const calls = await page.evaluate(() => window.lmsCalls.filter((c) => c[0] === "LMSSetValue" && c[1] === "cmi.suspend_data"));
+    assert.ok(calls.length >= 2);
+    for (const [, , value, result] of calls) {
+      assert.equal(result, "true", "the LMS took every suspend_data");
+      assert.ok(/^[\x20-\x7e]*$/.test(value) && value.length <= 4096, "ASCII, within 4,096 units");
+    }
+    const kept = JSON.parse((await cmiOf(page)).suspend_data);
+    assert.equal(kept.answers[6].Text, "𝑥".repeat(20), "the answer, cut to 40 UTF-16 units");
+    assert.equal(kept.answers[0].Choice !== null, true, "the latest answer is kept");
+    assert.equal(await frame.locator("#lms-notice").count(), 0);
+    assert.deepEqual(problems, []);
+    await context.close();
+  }));
+
+test("SCORM final LMSCommit on pagehide succeeds in the runtime", () =>
+  withLms(async (lms, browser) => {
+    const { context, page, frame, problems } = await launch(browser, lms, "?sco=pid");
+    await openQuiz(frame);
+    await answerPid(frame);
+    await leave(page);
+    // The runtime posts commits to the LMS server with a synchronous request,
+    // which a browser refuses while a page goes away: an LMSCommit in
+    // pagehide returned "false". The last data goes with LMSFinish (a beacon).
+    const calls = await page.evaluate(() => window.lmsCalls.map((c) => [...c]));
+    const commits = calls.filter((c) => c[0] === "LMSCommit");
+    assert.ok(commits.length >= 1);
+    assert.deepEqual(commits.filter((c) => c.at(-1) !== "true"), [], "every LMSCommit succeeds");
+    const [time] = sets(await lmsLog(page), "cmi.core.session_time");
+    assert.deepEqual(calls.at(-1), ["LMSFinish", "", "true"]);
+    // The last commit the server gets carries the session time and the exit.
+    const last = JSON.parse(await lms.commitWith(time));
+    assert.equal(last.cmi.core.session_time, time);
+    assert.equal(last.cmi.core.exit, "suspend");
+    assert.equal(JSON.parse(last.cmi.suspend_data).id, "pid");
+    assert.deepEqual(problems, []);
+    await context.close();
   }));
 
 // --------------------------------------------------- README's package figures

@@ -8,6 +8,15 @@
 //! first, then leaves trailing answers out, and the seed and the submitted
 //! flag are always kept (a relaunch rebuilds the same questions).
 //!
+//! "Characters" are counted differently by Rust (Unicode scalar values),
+//! JavaScript and LMS runtimes (UTF-16 units) and some LMS databases
+//! (bytes). The text is therefore plain ASCII: every other character is
+//! written as a JSON `\uXXXX` escape, so all of them count the same length.
+//! The quiz caps a typed answer at [`ANSWER_MAX_UNITS`] UTF-16 units (the
+//! page's `maxlength`), so a whole attempt always fits.
+//!
+//! [`launch`] reads a SCO's launch query (`index.html?sco=pid&attempts=2`),
+//! also when an LMS mangled it.
 //! It also keeps the [`Tally`] of graded attempts, so an instructor's
 //! attempts limit and score rule ([`QuizRules`]) hold across launches.
 
@@ -15,14 +24,50 @@ use crate::json::Json;
 use crate::quiz::{
     answers_from_json, answers_json, seed_from_json, seed_json, Response, SavedAttempt,
 };
-use crate::route::QuizRules;
+use crate::route::{Instructor, QuizRules};
+use std::fmt::Write as _;
 
 /// The most characters `cmi.suspend_data` holds in SCORM 1.2.
 pub const SUSPEND_DATA_MAX_CHARS: usize = 4096;
 
-/// A typed answer longer than this is cut when the whole would not fit
-/// (numbers with units are far shorter).
-const SHORT_TEXT_CHARS: usize = 40;
+/// The longest typed answer, in UTF-16 code units (what an HTML
+/// `maxlength` counts; the quiz's inputs carry it): a unit takes at most 6
+/// characters once escaped, so 12 answers of it fit `suspend_data` with
+/// room to spare. A longer text (an old attempt) is cut to it when the
+/// whole would not fit.
+pub const ANSWER_MAX_UNITS: usize = 40;
+
+/// What a SCO's launch query says: the experiment the SCO is for and the
+/// instructor's settings the package put there.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Launch {
+    /// The experiment (`pid`): the leading id of `sco=`.
+    pub sco: String,
+    /// The package's grading rules and answer-key choice (`attempts=`,
+    /// `score=`, `key=`); a fragment's never replace them.
+    pub instructor: Instructor,
+}
+
+/// Reads a launch query (`?sco=pid&attempts=2`, the `?` optional). An LMS
+/// that appends its own query with a second `?`
+/// (`?sco=pid?scorm_launch=1&…`) is read as if it had used `&`, and `sco=`
+/// names its leading id (letters, digits, `-`, `_`). `None` when no SCO is
+/// named (the query was dropped).
+#[must_use]
+pub fn launch(search: &str) -> Option<Launch> {
+    let query = search.strip_prefix('?').unwrap_or(search).replace('?', "&");
+    let sco: String = query
+        .split('&')
+        .find_map(|pair| pair.strip_prefix("sco="))?
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '-' || *c == '_')
+        .collect();
+    if sco.is_empty() {
+        return None;
+    }
+    let instructor = crate::route::parse(&format!("#/x?{query}"), &["x"]).instructor;
+    Some(Launch { sco, instructor })
+}
 
 /// One experiment's quiz attempt as kept by the LMS.
 #[derive(Clone, Debug, PartialEq)]
@@ -93,12 +138,13 @@ impl Suspended {
         }
     }
 
-    /// JSON of at most [`SUSPEND_DATA_MAX_CHARS`] characters. When the full
-    /// form is longer, typed answers are cut to 40 characters, then answers
-    /// are left out from the end until it fits.
+    /// ASCII JSON of at most [`SUSPEND_DATA_MAX_CHARS`] characters (so as
+    /// many bytes and UTF-16 units). When the full form is longer, typed
+    /// answers are cut to [`ANSWER_MAX_UNITS`], then answers are left out
+    /// from the end until it fits.
     #[must_use]
     pub fn encode(&self) -> String {
-        let fits = |s: &String| s.chars().count() <= SUSPEND_DATA_MAX_CHARS;
+        let fits = |s: &String| s.len() <= SUSPEND_DATA_MAX_CHARS;
         let text = json(self);
         if fits(&text) {
             return text;
@@ -106,11 +152,18 @@ impl Suspended {
         let mut short = self.clone();
         for a in &mut short.answers {
             if let Response::Text(t) = a {
-                *t = t.chars().take(SHORT_TEXT_CHARS).collect();
+                let mut units = 0;
+                *t = t
+                    .chars()
+                    .take_while(|c| {
+                        units += c.len_utf16();
+                        units <= ANSWER_MAX_UNITS
+                    })
+                    .collect();
             }
         }
-        // Each answer is at most ~6 characters per char of its text (JSON
-        // escapes), so this loop ends well before the answers run out.
+        // Each answer is at most 6 characters per UTF-16 unit of its text
+        // (JSON escapes), so this loop ends well before the answers run out.
         loop {
             let text = json(&short);
             if fits(&text) || short.answers.is_empty() {
@@ -161,7 +214,7 @@ impl Suspended {
 }
 
 /// `{"id":"pid","seed":42,"answers":[…],"submitted":true}`, then
-/// `"graded":2,"counted":17` once an attempt was graded.
+/// `"graded":2,"counted":17` once an attempt was graded; ASCII only.
 fn json(s: &Suspended) -> String {
     let mut fields = vec![
         ("id".into(), Json::String(s.id.clone())),
@@ -173,7 +226,23 @@ fn json(s: &Suspended) -> String {
         fields.push(("graded".into(), Json::Number(f64::from(s.tally.graded))));
         fields.push(("counted".into(), Json::Number(c as f64)));
     }
-    Json::Object(fields).to_text()
+    ascii(&Json::Object(fields).to_text())
+}
+
+/// JSON text with every non-ASCII character as `\uXXXX` (UTF-16 units, a
+/// surrogate pair for those beyond the BMP); they occur only in strings.
+fn ascii(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_ascii() {
+            out.push(c);
+        } else {
+            for unit in c.encode_utf16(&mut [0; 2]) {
+                let _ = write!(out, "\\u{:04x}", u32::from(*unit));
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -297,13 +366,70 @@ mod tests {
         assert_eq!(t.counted, Some(8));
     }
 
+    /// Issue 51 §3: 2,100 × "𝑥" in one answer are 2,100 Unicode scalars
+    /// but 4,200 UTF-16 units, which the LMS's side counted and refused.
+    /// The text is ASCII, so both sides count the same units, it fits, and
+    /// the answer comes back (cut to the page's `maxlength`).
+    #[test]
+    fn suspend_data_counts_the_same_units_on_both_sides() {
+        let mut s = sample();
+        s.answers[1] = Response::Text("𝑥".repeat(2100));
+        let text = s.encode();
+        assert!(text.is_ascii(), "{}", &text[..80]);
+        assert!(text.encode_utf16().count() <= SUSPEND_DATA_MAX_CHARS);
+        let back = Suspended::decode(&text).unwrap();
+        assert_eq!(back.answers.len(), 3, "no answer is left out");
+        assert_eq!(back.answers[1], Response::Text("𝑥".repeat(20)));
+        // Twelve answers at the page's cap, each of the characters that
+        // escape longest, fit whole: nothing is cut or left out.
+        for worst in ["𝑥", "é", "\"", "\u{1}"] {
+            let units = worst.encode_utf16().count();
+            let full = Suspended {
+                id: "workspace".into(),
+                seed: u64::MAX,
+                answers: vec![Response::Text(worst.repeat(ANSWER_MAX_UNITS / units)); 12],
+                submitted: true,
+                tally: Tally {
+                    graded: u32::MAX,
+                    counted: Some(100),
+                },
+            };
+            let text = full.encode();
+            assert!(text.len() <= SUSPEND_DATA_MAX_CHARS, "{worst:?}");
+            assert_eq!(Suspended::decode(&text), Some(full), "{worst:?}");
+        }
+    }
+
+    /// Issue 51 §3: a launch query an LMS dropped or mangled.
+    #[test]
+    fn launch_query_lost_or_mangled_reads_the_leading_sco_id() {
+        let pid = |q| launch(q).map(|l| l.sco);
+        assert_eq!(pid("?sco=pid"), Some("pid".into()));
+        assert_eq!(pid("sco=pid"), Some("pid".into()));
+        assert_eq!(pid("?sco=pid?scorm_launch=1&x=2"), Some("pid".into()));
+        assert_eq!(pid("?lms=1&sco=ik&attempts=2"), Some("ik".into()));
+        assert_eq!(pid("?sco=pid%3Fx"), Some("pid".into()));
+        assert_eq!(pid(""), None, "the query was dropped");
+        assert_eq!(pid("?scorm_launch=1"), None);
+        assert_eq!(pid("?sco=%3Cx%3E"), None);
+        // The package's rules survive the LMS's `?`.
+        let l = launch("?sco=pid&attempts=1&key=never?scorm_launch=1&y=2").unwrap();
+        assert_eq!(l.instructor.quiz.attempts, Some(1));
+        assert_eq!(
+            l.instructor.answer_key,
+            Some(crate::route::AnswerKey::Never)
+        );
+        let l = launch("?sco=pid?scorm_launch=1&attempts=2").unwrap();
+        assert_eq!(l.instructor.quiz.attempts, Some(2));
+    }
+
     /// Property: whatever the answers (many, long, full of characters JSON
     /// escapes), the text fits SCORM's 4,096 characters, decodes, keeps the
     /// id, seed and submitted flag, and keeps a prefix of the answers; when
     /// the full form fits it is kept exactly.
     #[test]
     fn encoded_text_always_fits_suspend_data() {
-        let alphabet: Vec<char> = "0123456789.,- mé\"\\\n\u{1}π<>&".chars().collect();
+        let alphabet: Vec<char> = "0123456789.,- mé\"\\\n\u{1}π<>&𝑥".chars().collect();
         let mut rng = Lcg64::new(2024);
         let mut cut = 0;
         for case in 0..300 {
@@ -334,7 +460,7 @@ mod tests {
             };
             let text = s.encode();
             assert!(
-                text.chars().count() <= SUSPEND_DATA_MAX_CHARS,
+                text.is_ascii() && text.len() <= SUSPEND_DATA_MAX_CHARS,
                 "case {case}"
             );
             let back = Suspended::decode(&text).expect("decodes");
@@ -343,7 +469,7 @@ mod tests {
                 (&s.id, s.seed, s.submitted, s.tally)
             );
             assert!(back.answers.len() <= s.answers.len());
-            if json(&s).chars().count() <= SUSPEND_DATA_MAX_CHARS {
+            if json(&s).len() <= SUSPEND_DATA_MAX_CHARS {
                 assert_eq!(back, s, "case {case}: a text that fits is kept whole");
             } else {
                 cut += 1;
@@ -351,7 +477,7 @@ mod tests {
                     match (b, a) {
                         (Response::Text(b), Response::Text(a)) => {
                             assert!(a.starts_with(b.as_str()));
-                            assert!(b.chars().count() <= SHORT_TEXT_CHARS);
+                            assert!(b.encode_utf16().count() <= ANSWER_MAX_UNITS);
                         }
                         _ => assert_eq!(b, a),
                     }

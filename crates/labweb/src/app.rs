@@ -157,8 +157,9 @@ impl App {
                         page.set_quiz_seed(quiz_seed);
                     }
                     // An instructor's link fixes the attempt (`?quiz=123`): the
-                    // whole class gets the same numbers.
-                    if let Some(seed) = quiz_seed {
+                    // whole class gets the same numbers. Not inside a SCO: the
+                    // attempt the LMS keeps is never replaced by a link's.
+                    if let Some(seed) = quiz_seed.filter(|_| !crate::lms::in_sco()) {
                         let mut p = page.inner.borrow_mut();
                         if p.attempt.as_ref().map(|a| a.seed) != Some(seed) {
                             p.new_attempt(seed);
@@ -448,6 +449,7 @@ impl ExperimentPage {
                 move |e: Event| {
                     e.prevent_default();
                     let p = &mut *page.borrow_mut();
+                    p.grading.hide_key = p.key_hidden();
                     if let (Some(form), Some(attempt)) = (query(&p.root, "form.quiz"), &p.attempt) {
                         // Asks for confirmation first when questions are unanswered.
                         let quiz = p.content.map_or(&[][..], |c| &c.quiz);
@@ -626,6 +628,13 @@ impl PageInner {
         }
     }
 
+    /// Whether the answer key in force for this page is `never` (one rule
+    /// for the Self-assessment tab and the lab report).
+    fn key_hidden(&self) -> bool {
+        let hash = self.sim.as_ref().map(|s| s.hash(Tab::Simulation));
+        crate::lms::answer_key(&hash.unwrap_or_default()) == route::AnswerKey::Never
+    }
+
     fn new_attempt(&mut self, seed: u64) {
         let Some(form) = query(&self.root, "form.quiz") else {
             return;
@@ -640,8 +649,15 @@ impl PageInner {
                 // again by `restore`), so the LMS does not keep it as graded.
                 let _ = form.remove_attribute(crate::lms::SUBMITTED_ATTR);
                 // Answers typed before a reload come back (same seed only).
+                self.grading.hide_key = self.key_hidden();
                 if let Some(saved) = quiz_view::load_saved(self.id) {
                     quiz_view::restore(&form, &attempt, &saved, &mut self.grading);
+                }
+                // An LMS's review launch shows the kept attempt read-only.
+                if crate::lms::review() {
+                    for control in query_all(&form, "input, button") {
+                        let _ = control.set_attribute("disabled", "");
+                    }
                 }
                 quiz_view::store(self.id, &form, &attempt, self.grading.tally);
                 self.attempt = Some(attempt);

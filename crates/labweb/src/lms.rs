@@ -16,7 +16,9 @@
 //!   [`labcore::lms::Suspended`] text), or `null`.
 //!
 //! Outside an LMS nobody listens and `window.labLms` does not exist, so the
-//! quiz behaves exactly as before (its attempt lives in local storage).
+//! quiz behaves as on the open site (its attempt lives in local storage),
+//! except in a page launched as a SCO ([`in_sco`]): there nothing of an
+//! attempt is stored in the browser.
 //!
 //! A package's launch (`index.html?sco=pid&attempts=2&score=first`) also
 //! fixes the quiz's grading rules for the whole session: [`launch_rules`].
@@ -24,7 +26,7 @@
 use labcore::content::Question;
 use labcore::lms::{Suspended, Tally};
 use labcore::quiz::{grade, Prepared, PreparedKind, Response, SavedAttempt};
-use labcore::route::QuizRules;
+use labcore::route::{AnswerKey, QuizRules};
 use labcore::units::read_answer;
 use wasm_bindgen::{JsCast, JsValue};
 use web_sys::{CustomEvent, CustomEventInit, Element};
@@ -41,36 +43,85 @@ pub fn experiment_of(form: &Element) -> Option<String> {
         .get_attribute("data-experiment")
 }
 
-/// The grading rules of a SCORM launch (`index.html?sco=pid&attempts=2`,
-/// see `cargo xtask dist --scorm`): the package's, which no link opened
-/// inside the SCO changes. `None` for a page not launched as a SCO.
+/// What a SCORM launch's query says (`index.html?sco=pid&attempts=2`, see
+/// `cargo xtask dist --scorm`, read by [`labcore::lms::launch`]): the
+/// package's rules, which no link opened inside the SCO changes. `None`
+/// for a page not launched as a SCO.
+#[must_use]
+pub fn launch() -> Option<labcore::lms::Launch> {
+    labcore::lms::launch(&web_sys::window()?.location().search().ok()?)
+}
+
+/// The grading rules of a SCORM launch; `None` outside a SCO.
 #[must_use]
 pub fn launch_rules() -> Option<QuizRules> {
-    let search = web_sys::window()?.location().search().ok()?;
-    let query = search.strip_prefix('?')?;
-    query
-        .split('&')
-        .any(|pair| pair.starts_with("sco="))
-        .then(|| {
-            labcore::route::parse(&format!("#/x?{query}"), &["x"])
-                .instructor
-                .quiz
-        })
+    launch().map(|l| l.instructor.quiz)
+}
+
+/// `window.labLms`, which `scorm.js` sets only inside an LMS.
+fn bridge() -> Option<JsValue> {
+    let window = web_sys::window()?;
+    let lms = js_sys::Reflect::get(&window, &JsValue::from_str("labLms")).ok()?;
+    lms.is_object().then_some(lms)
+}
+
+/// `window.labLms[name]`, or undefined.
+fn field(name: &str) -> JsValue {
+    bridge()
+        .and_then(|lms| js_sys::Reflect::get(&lms, &JsValue::from_str(name)).ok())
+        .unwrap_or(JsValue::UNDEFINED)
+}
+
+/// True inside a SCO: the page was launched as one (its query names it)
+/// or talks to an LMS. There the LMS record is the only place an attempt
+/// lives (nothing of it in local storage, where another tab, user or LMS
+/// attempt could read it), and the package, not the link, sets the quiz's
+/// seed and answer key.
+#[must_use]
+pub fn in_sco() -> bool {
+    bridge().is_some() || launch().is_some()
+}
+
+/// True when the LMS launched the SCO for review (`cmi.core.lesson_mode`
+/// review): the kept attempt is shown read-only.
+#[must_use]
+pub fn review() -> bool {
+    field("review").is_truthy()
+}
+
+/// Where the report's typed fields of experiment `id` are kept in local
+/// storage: `labreport:<id>` on the open site; inside an LMS under the
+/// LMS's learner (`labreport:<student_id>:<id>`), and nowhere when the
+/// LMS names none.
+#[must_use]
+pub fn report_storage_key(id: &str) -> Option<String> {
+    if bridge().is_none() {
+        return (!in_sco()).then(|| format!("labreport:{id}"));
+    }
+    let learner = field("learner").as_string().filter(|s| !s.is_empty())?;
+    Some(format!("labreport:{learner}:{id}"))
+}
+
+/// Whether answers are shown, for a page whose instructor's link is
+/// `hash` (its Simulation tab's, with the class seed): inside a SCO the
+/// package's `key=` (and no class seed) decides, on the open site the
+/// link's; one rule for the Self-assessment tab and the lab report.
+#[must_use]
+pub fn answer_key(hash: &str) -> AnswerKey {
+    if let Some(l) = launch() {
+        return AnswerKey::in_force(l.instructor.answer_key, None);
+    }
+    let ids: Vec<&str> = labcore::registry().iter().map(|e| e.id).collect();
+    let parsed = labcore::route::parse(hash, &ids);
+    AnswerKey::in_force(parsed.instructor.answer_key, parsed.quiz_seed)
 }
 
 /// The attempt an LMS kept for `id`, when the page runs inside one and the
 /// LMS has one for this experiment.
 #[must_use]
 pub fn suspended(id: &str) -> Option<Suspended> {
-    let window = web_sys::window()?;
-    let lms = js_sys::Reflect::get(&window, &JsValue::from_str("labLms")).ok()?;
-    if !lms.is_object() {
-        return None;
-    }
-    let ask = js_sys::Reflect::get(&lms, &JsValue::from_str("suspendData"))
-        .ok()?
-        .dyn_into::<js_sys::Function>()
-        .ok()?;
+    let lms = bridge()?;
+    let ask = field("suspendData").dyn_into::<js_sys::Function>().ok()?;
     let text = ask.call1(&lms, &JsValue::from_str(id)).ok()?.as_string()?;
     Suspended::decode(&text).filter(|s| s.id == id)
 }

@@ -27,6 +27,10 @@ pub struct Attempt {
 pub struct Grading {
     pub rules: QuizRules,
     pub tally: Tally,
+    /// The answer key in force is `never` ([`crate::lms::answer_key`]):
+    /// a graded attempt marks each answer but shows no expected answer or
+    /// explanation, as the lab report does.
+    pub hide_key: bool,
 }
 
 impl Grading {
@@ -38,6 +42,7 @@ impl Grading {
         Grading {
             rules: crate::lms::launch_rules().unwrap_or(link_rules),
             tally: crate::lms::suspended(id).map_or_else(Tally::default, |s| s.tally),
+            hide_key: false,
         }
     }
 }
@@ -93,7 +98,7 @@ pub fn render(attempt: &Attempt) -> String {
                 );
                 html.push_str(&format!(
                     "<label class=\"quiz-prompt\" for=\"quiz-a{i}\"><span class=\"quiz-num\">{}.</span> {}{badge}</label>\
-                     <div class=\"quiz-numeric\"><input type=\"text\" id=\"quiz-a{i}\" name=\"q{i}\" inputmode=\"decimal\" \
+                     <div class=\"quiz-numeric\"><input type=\"text\" id=\"quiz-a{i}\" name=\"q{i}\" inputmode=\"decimal\" maxlength=\"40\" \
                      autocomplete=\"off\" spellcheck=\"false\" aria-describedby=\"quiz-tol{i}\">{unit_html}\
                      <span class=\"quiz-tol\" id=\"quiz-tol{i}\">{}</span></div>",
                     i + 1,
@@ -263,26 +268,29 @@ pub fn submit(form: &Element, attempt: &Attempt, grading: &mut Grading, quiz: &[
 }
 
 /// The line shown after grading: `✗ Not quite: read as 8000 m. Expected 8 m.`
-fn feedback(verdict: &labcore::quiz::Grade) -> String {
+/// (without the expected answer when `hide_key`).
+fn feedback(verdict: &labcore::quiz::Grade, hide_key: bool) -> String {
     let read = verdict
         .read_as
         .as_ref()
         .map_or(String::new(), |r| format!(" (read as {r})"));
+    let expected = if hide_key {
+        String::new()
+    } else {
+        format!(" Expected {}.", verdict.expected)
+    };
     if verdict.correct {
         format!("✓ Correct{read}.")
     } else if verdict.blank {
-        format!("✗ No answer given. Expected {}.", verdict.expected)
+        format!("✗ No answer given.{expected}")
     } else if verdict.unreadable {
         let why = verdict
             .problem
             .as_deref()
             .unwrap_or("that is not a number in this question's unit");
-        format!(
-            "✗ Could not read the answer: {why}. Expected {}.",
-            verdict.expected
-        )
+        format!("✗ Could not read the answer: {why}.{expected}")
     } else {
-        format!("✗ Not quite{read}. Expected {}.", verdict.expected)
+        format!("✗ Not quite{read}.{expected}")
     }
 }
 
@@ -313,10 +321,10 @@ pub fn grade_form(form: &Element, attempt: &Attempt, grading: &mut Grading, reco
             .class_list()
             .add_1(if verdict.correct { "right" } else { "wrong" });
         if let Some(fb) = query(&item, ".quiz-feedback") {
-            fb.set_text_content(Some(&feedback(&verdict)));
+            fb.set_text_content(Some(&feedback(&verdict, grading.hide_key)));
             crate::dom::set_hidden(&fb, false);
         }
-        if let Some(ex) = query(&item, ".quiz-explanation") {
+        if let Some(ex) = query(&item, ".quiz-explanation").filter(|_| !grading.hide_key) {
             // Content files are ours (trusted inline HTML/MathML).
             ex.set_inner_html(&q.explanation);
             crate::dom::set_hidden(&ex, false);
@@ -355,11 +363,11 @@ fn storage_key(experiment_id: &str) -> String {
     format!("labquiz:{experiment_id}")
 }
 
-/// The attempt saved for this experiment: the LMS's inside one (see
-/// [`crate::lms`]), else the one [`store`] kept, if any (and readable).
+/// The attempt saved for this experiment: inside a SCO only the LMS's
+/// (see [`crate::lms`]), else the one [`store`] kept, if any (and readable).
 pub fn load_saved(experiment_id: &str) -> Option<SavedAttempt> {
-    if let Some(kept) = crate::lms::suspended(experiment_id) {
-        return Some(kept.attempt());
+    if crate::lms::in_sco() {
+        return crate::lms::suspended(experiment_id).map(|kept| kept.attempt());
     }
     let storage = web_sys::window()?.local_storage().ok()??;
     let text = storage.get_item(&storage_key(experiment_id)).ok()??;
@@ -367,11 +375,12 @@ pub fn load_saved(experiment_id: &str) -> Option<SavedAttempt> {
 }
 
 /// Keeps the attempt's seed and answers so a reload restores them
-/// (silently does nothing when storage is unavailable, e.g. private mode),
-/// and tells an LMS, if there is one (`lab-quiz-progress`, with the
-/// attempts graded so far).
+/// (silently does nothing when storage is unavailable, e.g. private mode;
+/// never inside a SCO, where the LMS keeps it), and tells an LMS, if there
+/// is one (`lab-quiz-progress`, with the attempts graded so far).
 pub fn store(experiment_id: &str, form: &Element, attempt: &Attempt, tally: Tally) {
-    if let Some(Ok(Some(storage))) = web_sys::window().map(|w| w.local_storage()) {
+    let storage = web_sys::window().filter(|_| !crate::lms::in_sco());
+    if let Some(Ok(Some(storage))) = storage.map(|w| w.local_storage()) {
         let _ = storage.set_item(&storage_key(experiment_id), &saved(form, attempt).encode());
     }
     crate::lms::progress(form, saved(form, attempt), tally);

@@ -13,7 +13,9 @@
 //! visits never run.
 //!
 //! The typed fields are kept in local storage per experiment
-//! (`labreport:<id>`), so they survive a reload and fill the next report.
+//! (`labreport:<id>`; inside an LMS per learner, see
+//! [`crate::lms::report_storage_key`]), so they survive a reload and fill
+//! the next report.
 //! [`report_quiz_score`] serves the site's "Check a report" page.
 
 use crate::dom::{self, escape, query, query_all};
@@ -35,10 +37,6 @@ const FIELDS: [&str; 3] = ["name", "group", "observations"];
 /// Separates the stored fields (a character no one types).
 const SEPARATOR: char = '\u{1f}';
 
-fn storage_key(id: &str) -> String {
-    format!("labreport:{id}")
-}
-
 /// The fields kept for experiment `id`, joined by [`SEPARATOR`] in
 /// [`FIELDS`] order (empty when none or no storage).
 fn stored(id: &str) -> String {
@@ -46,7 +44,8 @@ fn stored(id: &str) -> String {
         .local_storage()
         .ok()
         .flatten()
-        .and_then(|s| s.get_item(&storage_key(id)).ok().flatten())
+        .zip(crate::lms::report_storage_key(id))
+        .and_then(|(s, key)| s.get_item(&key).ok().flatten())
         .unwrap_or_default()
 }
 
@@ -90,8 +89,11 @@ fn typed(panel: &Element) -> String {
 /// returns them as [`typed`] does.
 pub fn remember(panel: &Element, id: &str) -> String {
     let text = typed(panel);
-    if let Some(storage) = dom::window().local_storage().ok().flatten() {
-        let _ = storage.set_item(&storage_key(id), &text);
+    if let (Some(storage), Some(key)) = (
+        dom::window().local_storage().ok().flatten(),
+        crate::lms::report_storage_key(id),
+    ) {
+        let _ = storage.set_item(&key, &text);
     }
     text
 }
@@ -131,7 +133,7 @@ pub fn download(panel: &Element, exp: &dyn Lab, hash: &str, marked: &[(f64, Box<
     let date = now_text();
     let ids: Vec<&str> = labcore::registry().iter().map(|e| e.id).collect();
     let parsed = route::parse(hash, &ids);
-    let answer_key = AnswerKey::in_force(parsed.instructor.answer_key, parsed.quiz_seed);
+    let answer_key = crate::lms::answer_key(hash);
     let quiz = attempt_on_page(panel, entry, content, answer_key == AnswerKey::Always);
     let fields = remember(panel, exp.id());
     let mut fields = fields.split(SEPARATOR);

@@ -13,6 +13,16 @@
 //! the same `index.html`; the files are listed once, in a shared `asset`
 //! resource that each SCO depends on.
 //!
+//! **No `parameters` attribute.** SCORM 1.2 lets an `<item>` carry
+//! `parameters` that the LMS joins to the resource's href. The package puts
+//! the query in the href instead: every LMS launches an href as written,
+//! while LMSs join `parameters` each their own way (some ignore it, some
+//! add it after a second `?`). What a mangled or lost launch query does is
+//! handled at run time: `labcore::lms::launch` and `web/scorm.js` read the
+//! leading id of `sco=` and treat a later `?` as `&`, and a launch inside
+//! an LMS that names no SCO says on the page, and in `cmi.comments`, that
+//! no score will be recorded.
+//!
 //! **Grading rules.** `--attempts N|unlimited` and `--score best|last|first`
 //! go into every launch URL (`index.html?sco=pid&attempts=2&score=last`),
 //! with the meaning of an instructor link's keys (`labcore::route`); the
