@@ -253,16 +253,6 @@ fn at_in_the_link_reopens_the_moment_shown_exactly() {
     mount(&link);
     // Equal but for the plots' redraw counters (`revision`), which count
     // the link's parameter writes too: they are the page's, not the run's.
-    let without_revisions = |(steps, text): (u64, String)| {
-        let text: Vec<String> = text
-            .split("revision: ")
-            .map(|part| {
-                part.trim_start_matches(|c: char| c.is_ascii_digit())
-                    .to_owned()
-            })
-            .collect();
-        (steps, text.join("revision: _"))
-    };
     assert_eq!(
         without_revisions(shown()),
         without_revisions(there),

@@ -1072,6 +1072,8 @@ impl SimView {
         });
         st.timeline_input();
         let mut notices = route::apply_params(st.exp.as_mut(), &own);
+        // Settled now: a run it starts again starts before the link's marks.
+        st.finish_branch();
         let mut at_s = None;
         // A link is a whole state: its marks, or none.
         let mut link_marks = labcore::marks::Marks::default();
