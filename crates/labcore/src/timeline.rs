@@ -503,14 +503,10 @@ impl KeptRun {
     /// with, under `label`.
     #[must_use]
     pub fn of(abandoned: &dyn Lab, label: String) -> Self {
-        let series = abandoned
-            .plots()
-            .iter()
-            .map(|p| p.series.iter().find(|s| !s.comparison).cloned())
-            .collect();
+        let mut run = Self::plots_of(abandoned, label);
         let mut scene = Scene::default();
         abandoned.scene(&mut scene);
-        let trails = scene
+        run.trails = scene
             .items
             .iter()
             .filter_map(|item| match item {
@@ -524,10 +520,23 @@ impl KeptRun {
                 _ => None,
             })
             .collect();
+        run
+    }
+
+    /// [`KeptRun::of`] without the trails (no scene is built): the plots'
+    /// main series alone, cheap enough to take before every input in case
+    /// it starts the run again.
+    #[must_use]
+    pub fn plots_of(run: &dyn Lab, label: String) -> Self {
+        let series = run
+            .plots()
+            .iter()
+            .map(|p| p.series.iter().find(|s| !s.comparison).cloned())
+            .collect();
         Self {
             label,
             series,
-            trails,
+            trails: Vec::new(),
         }
     }
 

@@ -74,8 +74,9 @@ pub(super) struct PendingBranch {
     before: Vec<Option<f64>>,
     /// The main plot's progress before it ([`plot_x`]).
     x_before: Option<f64>,
-    /// The run it may leave behind, unnamed: the old future from the past,
-    /// the run so far from its end (one that lasted [`KEEP_MIN_STEPS`]).
+    /// The run it may leave behind, unnamed: the old future from the past
+    /// (with its trails), the run so far from its end (one that lasted
+    /// [`KEEP_MIN_STEPS`]; its plots only, taken before every such input).
     left: Option<KeptRun>,
     /// It came while the past was shown.
     from_past: bool,
@@ -301,7 +302,7 @@ impl SimState {
             let left = match self.record_end.take() {
                 Some(end) => Some(KeptRun::of(end.as_ref(), String::new())),
                 None if steps >= KEEP_MIN_STEPS && !self.exp.plots().is_empty() => {
-                    Some(KeptRun::of(self.exp.as_ref(), String::new()))
+                    Some(KeptRun::plots_of(self.exp.as_ref(), String::new()))
                 }
                 None => None,
             };
