@@ -1182,14 +1182,8 @@ fn run_to_end_on_a_run_with_no_end_says_what_it_did() {
 /// step the run's own.
 #[wasm_bindgen_test]
 fn play_from_the_past_stops_replaying_at_the_records_end_and_goes_on_live() {
-    mount("#/pid/simulation");
     let entry = labcore::find("pid").unwrap();
-    while steps_shown() < 96 {
-        frame(ONE_STEP_MS);
-    }
-    element(".tb-play").click();
-    labweb::paint_now();
-    let end = steps_shown();
+    let end = paused_after("#/pid/simulation", 96);
     scrub_to(end - 2);
     element(".tb-play").click();
     let k = run_for_frames(60);
@@ -1211,29 +1205,33 @@ fn play_from_the_past_stops_replaying_at_the_records_end_and_goes_on_live() {
 /// run again: its link reopens what the page shows.
 #[wasm_bindgen_test]
 fn a_paused_runs_link_after_an_input_names_only_a_moment_it_reopens() {
-    mount("#/cartpole/simulation");
-    while steps_shown() < 100 {
-        frame(ONE_STEP_MS);
-    }
-    element(".tb-play").click();
-    labweb::paint_now();
-    set_range("kth", 60.0);
-    frame(300.0);
-    frame(300.0);
-    let link = hash();
+    paused_after("#/cartpole/simulation", 100);
+    let link = link_after(|| set_range("kth", 60.0));
     assert!(link.contains("kth=60") && !link.contains("at="), "{link}");
-    mount("#/pid/simulation");
-    while steps_shown() < 100 {
-        frame(ONE_STEP_MS);
-    }
-    element(".tb-play").click();
-    labweb::paint_now();
-    set_range("kp", 60.0);
-    frame(300.0);
-    frame(300.0);
+    paused_after("#/pid/simulation", 100);
+    let link = link_after(|| set_range("kp", 60.0));
     let there = without_revisions(shown());
-    let link = hash();
     assert!(link.contains("kp=60") && link.contains("run=0"), "{link}");
     mount(&link);
     assert_eq!(without_revisions(shown()), there, "{link}");
+}
+
+/// Mounts `link`, runs it to step `steps` and pauses there; the steps shown.
+fn paused_after(link: &str, steps: u64) -> u64 {
+    mount(link);
+    while steps_shown() < steps {
+        frame(ONE_STEP_MS);
+    }
+    element(".tb-play").click();
+    labweb::paint_now();
+    steps_shown()
+}
+
+/// Does `input` on a paused page and returns the link written after it (the
+/// link waits for its pace: frames while paused take no step).
+fn link_after(input: impl FnOnce()) -> String {
+    input();
+    frame(300.0);
+    frame(300.0);
+    hash()
 }
