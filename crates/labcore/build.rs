@@ -28,6 +28,10 @@
 //! compiled in as its error, which `Entry::content` returns.
 
 use serde_json::{Map, Value};
+
+#[path = "src/step_numbers.rs"]
+#[allow(dead_code)]
+mod step_numbers;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -292,7 +296,8 @@ fn content(value: &Value, reading: bool) -> Result<String, String> {
     let summary = f.string("summary")?;
     let aim = f.strings("aim")?;
     let theory = list(f.array("theory")?, block)?;
-    let procedure = f.strings("procedure")?;
+    let file = value.get("id").and_then(Value::as_str).unwrap_or("?");
+    let procedure = procedure(f.array("procedure")?, file)?;
     let quiz = list(f.array("quiz")?, question)?;
     let references = list(f.array("references")?, reference)?;
     let math = f.strings("math")?;
@@ -315,6 +320,57 @@ fn content(value: &Value, reading: bool) -> Result<String, String> {
          procedure: {procedure},\n        quiz: {quiz},\n        references: {references},\n        \
          math: {math},\n    }})"
     ))
+}
+
+/// The steps' prose, as a `Vec<String>` expression. A step is an object:
+/// its `text` (the prose the page shows), its `play` (the machine part the
+/// Procedure runner plays, `crates/labcore/tests/procedures/`) and,
+/// optionally, `given` (numbers of the theory the prose writes). Only the
+/// text is compiled in; a number of the text that is none of the step's
+/// values stops the build ([`step_numbers`]).
+fn procedure(items: &[Value], id: &str) -> Result<String, String> {
+    let mut parts = Vec::new();
+    for (i, item) in items.iter().enumerate() {
+        let place = format!("assets/{id}.json: procedure step {}", i + 1);
+        let mut f = Fields::of(item, place.clone())?;
+        let text = match f.required("text")? {
+            Value::String(s) => s.clone(),
+            _ => return Err(f.wrong("text", "a string")),
+        };
+        let play = f.array("play")?;
+        let given = match f.optional("given") {
+            None => &[][..],
+            Some(Value::Array(items)) => items.as_slice(),
+            Some(_) => return Err(f.wrong("given", "an array of numbers")),
+        };
+        f.done()?;
+        let mut values = Vec::new();
+        for v in play.iter().chain(given) {
+            step_values(v, &mut values);
+        }
+        if let Some(n) = step_numbers::stray_number(&text, &values) {
+            // Like a formula that does not convert, this stops the build:
+            // the prose and the machine part must say the same numbers.
+            eprintln!(
+                "error: {place}: the prose writes {n}, which is none of the step's values (its play, or `given`)"
+            );
+            std::process::exit(1);
+        }
+        parts.push(format!("{text:?}"));
+    }
+    Ok(format!("strings(&[{}])", parts.join(", ")))
+}
+
+/// Every number of a step's machine part: its JSON numbers and the numbers
+/// written in its strings (an option's label "20 × 15", a status text).
+fn step_values(value: &Value, out: &mut Vec<f64>) {
+    match value {
+        Value::Number(n) => out.extend(n.as_f64()),
+        Value::String(s) => out.extend(step_numbers::numbers_in(s).into_iter().map(|(_, n)| n)),
+        Value::Array(items) => items.iter().for_each(|v| step_values(v, out)),
+        Value::Object(map) => map.values().for_each(|v| step_values(v, out)),
+        Value::Null | Value::Bool(_) => {}
+    }
 }
 
 /// `vec![…]` of each item read by `read` (given the item and its index).

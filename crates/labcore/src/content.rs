@@ -399,6 +399,45 @@ pub const MIN_REFERENCES: usize = 3;
 /// How many equations "The math" panel shows (the content's `math` list).
 pub const MATH_EQUATIONS: std::ops::RangeInclusive<usize> = 1..=4;
 
+/// The prose of each Procedure step (`{"text", "play", "given"}`), as
+/// `build.rs` reads it: a number of the prose that is none of the step's
+/// values is an error ([`crate::step_numbers`]).
+#[cfg(feature = "reading")]
+fn procedure_texts(steps: &[Json]) -> Result<Vec<String>, String> {
+    fn values(v: &Json, out: &mut Vec<f64>) {
+        match v {
+            Json::Number(n) => out.push(*n),
+            Json::String(s) => out.extend(
+                crate::step_numbers::numbers_in(s)
+                    .into_iter()
+                    .map(|(_, n)| n),
+            ),
+            Json::Array(items) => items.iter().for_each(|i| values(i, out)),
+            Json::Object(fields) => fields.iter().for_each(|(_, i)| values(i, out)),
+            Json::Null | Json::Bool(_) => {}
+        }
+    }
+    let mut texts = Vec::with_capacity(steps.len());
+    for (i, step) in steps.iter().enumerate() {
+        let place = format!("procedure step {}", i + 1);
+        let mut f = Fields::of(step, place.clone())?;
+        let text = f.string("text")?;
+        let mut found = Vec::new();
+        values(&Json::Array(f.array("play")?.to_vec()), &mut found);
+        if let Some(given) = f.optional("given") {
+            values(given, &mut found);
+        }
+        f.done()?;
+        if let Some(n) = crate::step_numbers::stray_number(&text, &found) {
+            return Err(format!(
+                "{place}: the prose writes {n}, which is none of the step's values (its play, or `given`)"
+            ));
+        }
+        texts.push(text);
+    }
+    Ok(texts)
+}
+
 impl Content {
     /// Reads the fields of a content file's JSON (no field missing, none
     /// unknown, each of its type); [`Content::validate`] then checks the rest.
@@ -419,7 +458,7 @@ impl Content {
                 .enumerate()
                 .map(|(i, b)| Block::from_json(b, i))
                 .collect::<Result<_, _>>()?,
-            procedure: f.strings("procedure")?,
+            procedure: procedure_texts(f.array("procedure")?)?,
             quiz: f
                 .array("quiz")?
                 .iter()
@@ -940,6 +979,40 @@ mod tests {
         }
     }
 
+    /// Issue 52: the numbers of a Procedure step are one. A number its
+    /// prose writes that is none of its machine part's values (nor
+    /// `given`) is refused, naming the step and the number.
+    #[test]
+    fn a_prose_number_that_is_none_of_the_steps_values_is_refused() {
+        let entry = crate::find("pid").expect("pid");
+        let good: serde_json::Value = serde_json::from_str(entry.content_json).unwrap();
+        assert!(entry.parse_content_text(&good.to_string()).is_ok());
+        let mut v = good.clone();
+        let text = v["procedure"][5]["text"]
+            .as_str()
+            .unwrap()
+            .replace("18.16", "18.61");
+        v["procedure"][5]["text"] = text.into();
+        let err = entry
+            .parse_content_text(&v.to_string())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("procedure step 6") && err.contains("18.61"),
+            "{err}"
+        );
+        let mut v = good;
+        v["procedure"][0]["play"] = serde_json::json!([]);
+        let err = entry
+            .parse_content_text(&v.to_string())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("procedure step 1") && err.contains("12"),
+            "{err}"
+        );
+    }
+
     #[test]
     fn unbalanced_inline_markup_is_refused_naming_the_field() {
         let entry = crate::find("fk").expect("fk");
@@ -953,7 +1026,7 @@ mod tests {
             ),
             (
                 "procedure",
-                |v| v["procedure"][0] = "Drag the tip </strong>".into(),
+                |v| v["procedure"][0]["text"] = "Drag the tip </strong>".into(),
                 "procedure step 1",
             ),
             (

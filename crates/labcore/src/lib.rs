@@ -76,6 +76,8 @@ pub mod quiz;
 pub mod rng;
 pub mod route;
 pub mod scene;
+#[cfg(feature = "reading")]
+pub mod step_numbers;
 pub mod table;
 // Tests only: native builds, and the wasm test builds, which have the whole
 // content (`reading`, a default feature). The shipped wasm modules are built

@@ -1,7 +1,7 @@
 //! The experiments' test kit: what every experiment's tests do to a lab, in
 //! one place: step it at the page's fixed step, run it until a status
 //! matches, read a readout (as text and as a number), apply a link, press an
-//! action, click, and replay the Procedure up to a step.
+//! action, click, and replay a run's steps.
 //!
 //! For tests only (the unit tests of `experiments/*` and the integration
 //! tests in `tests/`), so it is compiled natively only: no wasm module
@@ -246,23 +246,6 @@ pub fn after_step<E: Default>(procedure: &[fn(&mut E)], k: usize) -> E {
         step(&mut e);
     }
     e
-}
-
-/// The text of Procedure step `k` (from 1) of experiment `id`.
-///
-/// # Panics
-/// When the content does not parse or has no step `k`.
-#[must_use]
-pub fn procedure_step(id: &str, k: usize) -> String {
-    let content = crate::find(id)
-        .unwrap_or_else(|| panic!("no experiment {id}"))
-        .content()
-        .unwrap_or_else(|err| panic!("{id} content: {err:?}"));
-    content
-        .procedure
-        .get(k - 1)
-        .unwrap_or_else(|| panic!("{id} has no Procedure step {k}"))
-        .clone()
 }
 
 /// Issue 15: the correct option of a choice question is the strictly

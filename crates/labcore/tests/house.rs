@@ -91,17 +91,16 @@ fn one_home_for_numbers_every_number_formatter_and_reader_lives_in_units() {
 
 /// Step 7, "a test kit": every experiment's tests use `labcore::testkit`
 /// and none writes its own copy of the kit's helpers (step, read a
-/// readout, click, draw the scene, read a Procedure step, …).
+/// readout, click, draw the scene, …).
 #[test]
 fn a_test_kit_every_experiments_tests_use_it_and_copy_none_of_its_helpers() {
-    const COPIES: [&str; 10] = [
+    const COPIES: [&str; 9] = [
         "fn run(",
         "fn run_for(",
         "fn readout(",
         "fn click(",
         "fn scene_of(",
         "fn scene_of_field(",
-        "fn procedure_step(",
         "fn notice(",
         "fn set(",
         "readout_value(",

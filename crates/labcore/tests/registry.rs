@@ -989,45 +989,6 @@ fn an_ended_run_has_nothing_left_to_show() {
     assert!(checked > 50, "only {checked} ended runs were checked");
 }
 
-/// A Procedure step is a promise: every numbered step of every experiment has
-/// a test named `<id>_step_<k>_…` in that experiment's sources (the step
-/// tests perform the step on the state the earlier steps left and assert
-/// what the text says the student will see).
-#[test]
-fn every_procedure_step_has_a_test_named_after_it() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/experiments");
-    for entry in registry() {
-        let steps = entry.content().expect("content parses").procedure.len();
-        // The experiment's file, or every file of its folder.
-        let mut sources = String::new();
-        let file = dir.join(format!("{}.rs", entry.id));
-        if file.is_file() {
-            sources.push_str(&std::fs::read_to_string(&file).unwrap());
-        }
-        let folder = dir.join(entry.id);
-        if folder.is_dir() {
-            for f in std::fs::read_dir(&folder).unwrap() {
-                sources.push_str(&std::fs::read_to_string(f.unwrap().path()).unwrap());
-            }
-        }
-        assert!(!sources.is_empty(), "{}: no sources found", entry.id);
-        for k in 1..=steps {
-            let name = format!("fn {}_step_{k}_", entry.id);
-            assert!(
-                sources.contains(&name),
-                "experiment {}: Procedure step {k} has no test `{}_step_{k}_…`",
-                entry.id,
-                entry.id
-            );
-        }
-        assert!(
-            !sources.contains(&format!("fn {}_step_{}_", entry.id, steps + 1)),
-            "{}: a step test names a step the Procedure does not have",
-            entry.id
-        );
-    }
-}
-
 /// Issue 14's A* sequences join the permalink property: the goal set to
 /// (5, 5) and the start dragged onto the default goal's cell (28, 11); the
 /// ends (31, 23) and (30, 22) and then the smallest size; a two-cell linked

@@ -24,7 +24,7 @@
 //!
 //! This file is the model (parameters, state, step, input, actions, link
 //! state); `view.rs` draws it and words its readouts and status, `quiz.rs`
-//! holds the generated questions and `tests.rs` one test per Procedure step.
+//! holds the generated questions and `tests.rs` its tests.
 
 use crate::experiment::{
     check_param, with_coordinate, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec,

@@ -523,7 +523,7 @@ fn quiz_generators_match_closed_forms() {
     assert!(quiz_generator("nope").is_none());
 }
 
-// ---- The Procedure, step by step (assets/ekf.json) ----
+// ---- The run, a filter step at a time, as the tests below take it ----
 
 /// One filter step of frames (three frames of 1/60 s make 0.05 s).
 fn filter_step(e: &mut EkfExperiment) {
@@ -1046,54 +1046,13 @@ fn step_8(e: &mut EkfExperiment) {
     }
 }
 
-/// The state after Procedure steps 1..=k: each step's action (with its
-/// checks) replayed on the state the previous steps left, so the test of
-/// step k starts from `after_step(k - 1)`.
+/// The state after the set-ups 1..=k, each replayed on the state the
+/// previous ones left.
 fn after_step(k: usize) -> EkfExperiment {
     let procedure = [
         step_1, step_2, step_3, step_4, step_5, step_6, step_7, step_8,
     ];
     testkit::after_step(&procedure, k)
-}
-
-#[test]
-fn ekf_step_1_the_scene_shows_truth_estimate_dead_reckoning_landmarks_and_sensor() {
-    step_1(&mut after_step(0));
-}
-
-#[test]
-fn ekf_step_2_the_ellipse_grows_across_the_track_on_the_left_and_snaps_back() {
-    step_2(&mut after_step(1));
-}
-
-#[test]
-fn ekf_step_3_single_steps_show_predict_rises_and_reading_drops() {
-    step_3(&mut after_step(2));
-}
-
-#[test]
-fn ekf_step_4_errors_stay_inside_3_sigma_and_nees_inside_its_band() {
-    step_4(&mut after_step(3));
-}
-
-#[test]
-fn ekf_step_5_noise_and_sensor_settings_change_growth_corrections_and_readings() {
-    step_5(&mut after_step(4));
-}
-
-#[test]
-fn ekf_step_6_the_check_counts_runs_gives_a_verdict_and_its_band_narrows_with_n() {
-    step_6(&mut after_step(5));
-}
-
-#[test]
-fn ekf_step_7_slam_builds_the_map_whose_shape_beats_its_placement() {
-    step_7(&mut after_step(6));
-}
-
-#[test]
-fn ekf_step_8_a_seed_replays_its_run_exactly_through_the_link() {
-    step_8(&mut after_step(7));
 }
 
 // ---- Content: claims of the theory, quiz generators, option lengths ----
@@ -1197,92 +1156,4 @@ fn ekf_position_uncertainty_shows_the_rise_of_every_predict_step() {
     assert_eq!(view::trace_text(0.004_587_03), "0.004587 m²");
     assert_eq!(view::trace_text(1.5), "1.500 m²");
     assert_eq!(view::trace_text(2.0e-5), "2.0 × 10⁻⁵ m²");
-}
-
-/// Step 9 (issue 26, the timeline): in a fresh localisation run with seed
-/// 1, the moment before the lone bottom-left landmark is first seen after
-/// the blind stretch (t = 22.25 s) and the step after it (t = 22.30 s):
-/// the uncertainty readout and the 3σ ellipse before and after, going
-/// back and forth along the record.
-#[test]
-fn ekf_step_9_the_timeline_shows_the_uncertainty_just_before_and_after_a_sighting() {
-    use crate::timeline::Timeline;
-    use crate::Lab;
-    let text = testkit::procedure_step("ekf", 9);
-    for said in [
-        "<em>Mode</em> back to localisation",
-        "<em>Seed</em> to 1",
-        "<em>Reset</em>",
-        "t = 22.25 s",
-        "0.07448 m²",
-        "t = 22.30 s",
-        "0.01034 m²",
-        "seven times smaller",
-        "<em>Mark</em>",
-    ] {
-        assert!(text.contains(said), "step 9 says {said:?}: {text}");
-    }
-    let mut e = after_step(8);
-    e.set_param("mode", 0.0).unwrap();
-    e.set_param("seed", 1.0).unwrap();
-    e.reset();
-    // The run, recorded as the shell records it, past t = 23 s.
-    let mut timeline = Timeline::new(&e as &dyn Lab, 0);
-    for _ in 0..(25 * 60) {
-        e.step(DT);
-        timeline.stepped(&e as &dyn Lab);
-    }
-    let step_once = &mut |lab: &mut dyn Lab| lab.step(DT);
-    let steps_at = |t_s: f64| (t_s * 60.0).round() as u64;
-    let ellipse_axes = |lab: &dyn Lab| -> f64 {
-        scene_of(lab)
-            .items
-            .iter()
-            .find_map(|i| match i {
-                Item::Ellipse {
-                    semi_axis_a,
-                    semi_axis_b,
-                    role: Role::Estimate,
-                    ..
-                } => Some(semi_axis_a.length() * semi_axis_b.length()),
-                _ => None,
-            })
-            .unwrap()
-    };
-    // Drag the timeline to t = 22.25 s: just before the sighting.
-    let (_, before) = timeline.state_at(steps_at(22.25), step_once);
-    assert_eq!(readout(before.as_ref(), "trace"), "0.07448 m²");
-    // One Step (a filter step, three frames): the reading that sees the
-    // lone landmark at the bottom left.
-    let (_, after) = timeline.state_at(steps_at(22.25) + 3, step_once);
-    assert_eq!(format!("{:.2}", (steps_at(22.25) + 3) as f64 / 60.0), "22.30");
-    assert_eq!(readout(after.as_ref(), "trace"), "0.01034 m²");
-    let ratio = testkit::readout_number(before.as_ref(), "trace")
-        / testkit::readout_number(after.as_ref(), "trace");
-    assert!((6.5..7.5).contains(&ratio), "about seven times smaller: {ratio}");
-    // The ellipse shrinks with it (its area, π·a·b).
-    assert!(ellipse_axes(after.as_ref()) < ellipse_axes(before.as_ref()) / 2.0);
-    // It is the bottom-left landmark, seen after a blind stretch.
-    let bottom_left = LANDMARKS
-        .iter()
-        .position(|m| m.x < 0.0 && m.y < 0.0)
-        .unwrap();
-    let mut seen = e.clone();
-    seen.restart();
-    let mut last_sighting = 0;
-    for frame in 1..=steps_at(22.25) + 3 {
-        seen.step(DT);
-        if seen.live.reading_step == Some(seen.live.steps) && !seen.live.observations.is_empty() {
-            if frame == steps_at(22.25) + 3 {
-                let ids: Vec<usize> = seen.live.observations.iter().map(|o| o.id).collect();
-                assert_eq!(ids, [bottom_left]);
-                assert!(frame - last_sighting > 5 * 60, "after a blind stretch");
-            } else {
-                last_sighting = frame;
-            }
-        }
-    }
-    // Back and Step again: the same two moments, exactly.
-    let (_, again) = timeline.state_at(steps_at(22.25), step_once);
-    assert_eq!(again.readouts(), before.readouts());
 }

@@ -48,8 +48,8 @@
 //! pinned series is named after its slot and gains, `A: Kp 25, Kd 5`.
 //!
 //! **Layout.** This file holds the model; `view.rs` the scene, readouts and
-//! status; `quiz.rs` the generated questions; `tests.rs` the tests, one per
-//! Procedure step among them.
+//! status; `quiz.rs` the generated questions; `tests.rs` the tests (the
+//! Procedure is played by `tests/procedures/`).
 
 use crate::control::pid::{
     closed_loop_poles, MassDragPlant, Pid, PidConfig, PidGains, PidLoop, SecondOrder,
