@@ -3,6 +3,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
+import { readFile } from "node:fs/promises";
 import { DESKTOP, PHONE, open, readouts, runFor, runUntilReadout, screenshot, until, useLab, waitReady, withPage, workerReady } from "./helpers.mjs";
 
 const lab = useLab();
@@ -323,3 +324,49 @@ test("the instructor panel's code is downloaded only when the panel is opened, o
     await context.setOffline(false);
   });
 });
+
+// Issue 51 §4: hidden means hidden.
+
+const INSTRUCTOR_PID =
+  "#/pid/simulation?kp=5&m=2.5&lock=kp&hide=m,noise,tf&note=Estimate+the+hidden+mass&quiz=4242";
+const shown = (id) => `article.exp[data-experiment="${id}"]:not([hidden])`;
+
+const paramOf = (page, key) => page.$eval(`input[type=range][data-param="${key}"]`, (el) => [el.value, el.disabled]);
+
+test("hidden means hidden: with hide=m the math panel, the report and the address bar never show m = 2.5, and the link keeps it exactly", () =>
+  withPage(lab, { clock: true }, async (page, context) => {
+    await open(lab, page, INSTRUCTOR_PID);
+    const math = await page.textContent(`${shown("pid")} .live-math`);
+    assert.match(math, /hidden/);
+    assert.doesNotMatch(math, /(?<![\d.])2\.50?(?!\d)/, math);
+    const hash = await page.evaluate(() => location.hash);
+    assert.doesNotMatch(hash, /[?&]m=/, hash);
+    assert.match(hash, /[?&]hv=[A-Za-z0-9_-]+(&|$)/, hash);
+    // The report: the parameter's row says hidden, the link shows no m=2.5.
+    const [download] = await Promise.all([
+      page.waitForEvent("download"),
+      page.locator(`${shown("pid")} button[data-export=report]`).click(),
+    ]);
+    const html = await readFile(await download.path(), "utf8");
+    const row = html.match(/<tr data-param="m">.*?<\/tr>/)?.[0] ?? "";
+    assert.match(row, /<td class="num">hidden<\/td>/, row);
+    assert.doesNotMatch(html, /[?&;]m=2\.5/);
+    // The link opened afresh gives m = 2.5 exactly, still hidden.
+    const second = await context.newPage();
+    await open(lab, second, hash);
+    assert.deepEqual(await paramOf(second, "m"), ["2.5", false]);
+    assert.equal(await second.locator('[data-ctl="m"]').isVisible(), false);
+    // The Instructor panel's link veils what it hides, and unveils what it stops hiding.
+    await page.click(`${shown("pid")} details.instructor-panel > summary`);
+    await page.check('input[data-hide="kd"]');
+    await page.uncheck('input[data-hide="m"]');
+    const link = await page.inputValue(".instructor-link");
+    const q = new URLSearchParams(link.split("?")[1]);
+    assert.equal(q.get("m"), "2.5", link);
+    assert.equal(q.get("kd"), null, link);
+    assert.equal(q.get("hide"), "kd,noise,tf", link);
+    await open(lab, second, link.slice(link.indexOf("#")));
+    assert.deepEqual(await paramOf(second, "kd"), ["6", false]);
+    assert.equal(await second.locator('[data-ctl="kd"]').isVisible(), false);
+    assert.equal(await second.locator('[data-ctl="m"]').isVisible(), true);
+  }));

@@ -79,6 +79,8 @@ impl App {
         let parsed = route::parse(&hash, &ids);
         let quiz_seed = parsed.quiz_seed;
         let instructor = parsed.instructor;
+        // A hidden value typed plainly (`m=2.5&hide=m`) leaves the address bar.
+        let hides = !instructor.hidden.is_empty();
         let quiz_rules = instructor.quiz;
         let mut notices = parsed.notices;
         close_nav_menu();
@@ -167,9 +169,12 @@ impl App {
                     let tab_changed = page.inner.borrow().tab != tab;
                     page.select(tab, !same || tab_changed);
                     // Keep the link complete: after a clamp, and when a link
-                    // without parameters lands on the simulation.
+                    // without parameters lands on the simulation; veiled.
                     let bare = params.is_empty() && quiz_seed.is_none();
-                    if !notices.is_empty() || (bare && matches!(tab, Tab::Simulation | Tab::Quiz)) {
+                    if hides
+                        || !notices.is_empty()
+                        || (bare && matches!(tab, Tab::Simulation | Tab::Quiz))
+                    {
                         page.write_hash();
                     }
                 }

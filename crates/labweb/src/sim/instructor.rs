@@ -159,6 +159,16 @@ impl SimState {
         }
     }
 
+    /// The experiment's live quantities, those the instructor hid marked
+    /// so ("The math" says "hidden").
+    pub(super) fn quantities(&self) -> Vec<labcore::live_math::Quantity> {
+        let mut out = self.exp.quantities();
+        for q in &mut out {
+            q.hidden = self.instructor.is_hidden(q.key);
+        }
+        out
+    }
+
     /// The link's instructor pairs: the locks, hidden controls and note
     /// ([`route::Instructor::query`]), then the quiz seed.
     pub(super) fn instructor_query(&self) -> Vec<String> {
