@@ -86,6 +86,53 @@ pub struct Route {
     pub instructor: Instructor,
 }
 
+impl Route {
+    /// Whether the link sets an instructor's settings: a lock, a hidden
+    /// control, a note, an answer-key choice, a grading rule or a quiz seed.
+    /// Not the Self-assessment tab's own link, which carries the grading
+    /// rules in force and the student's seed (a lock, a hide, a note or an
+    /// answer key there still count).
+    #[must_use]
+    pub fn carries_instructor(&self) -> bool {
+        match &self.page {
+            Page::Experiment { tab: Tab::Quiz, .. } => !self.instructor.holds_only_quiz_rules(),
+            Page::Experiment { .. } => !self.instructor.is_empty() || self.quiz_seed.is_some(),
+            Page::Home => false,
+        }
+    }
+
+    /// Gives a link that sets no instructor's settings those of the
+    /// instructor's link for the same experiment opened earlier in the
+    /// visit (`kept`), so they hold until another instructor's link or
+    /// until the student leaves them. In a page `fresh`ly mounted (back
+    /// from another experiment, a reload), a link without parameters (the
+    /// menu's `#/pid/aim`, a tab) opens the kept link's state; a link with
+    /// parameters (a preset) keeps its own state under the kept settings.
+    /// In a page that shows the experiment already, a link without
+    /// parameters (a tab switch) changes nothing. Returns the kept link's
+    /// quiz seed (the class's, for the page's link and the report) when its
+    /// settings were taken; the route's own seed, a Self-assessment's
+    /// attempt, stays when it has one.
+    pub fn keep_instructor(&mut self, kept: &str, fresh: bool) -> Option<Option<u64>> {
+        if self.carries_instructor() {
+            return None;
+        }
+        let Page::Experiment { id, params, .. } = &mut self.page else {
+            return None;
+        };
+        if params.is_empty() && !fresh {
+            return None;
+        }
+        let from = parse(kept, &[id.as_str()]);
+        if let (true, Page::Experiment { params: state, .. }) = (params.is_empty(), from.page) {
+            *params = state;
+        }
+        self.instructor = from.instructor;
+        self.quiz_seed = self.quiz_seed.or(from.quiz_seed);
+        Some(from.quiz_seed)
+    }
+}
+
 /// The query key that fixes the quiz attempt's seed (`#/ik/quiz?quiz=123`).
 pub const QUIZ_KEY: &str = "quiz";
 
@@ -1152,6 +1199,53 @@ mod tests {
             ["The link's hidden settings are damaged; they keep their defaults."]
         );
         assert_eq!((back.param("t1"), back.param("l1")), (Some(3.0), Some(1.0)));
+    }
+
+    /// Issue 51 §4: an instructor's link holds for the whole visit.
+    #[test]
+    fn an_instructors_link_holds_for_the_visit_until_another() {
+        let kept = "#/ik/simulation?l1=1.2&l2=0.5&lock=l1,l2&note=Hi&quiz=7";
+        let pairs = |r: &Route| match &r.page {
+            Page::Experiment { params, .. } => params.clone(),
+            Page::Home => Vec::new(),
+        };
+        let owned = |v: &[(&str, &str)]| -> Vec<(String, String)> {
+            v.iter().map(|(k, v)| ((*k).into(), (*v).into())).collect()
+        };
+        // The menu's link, in a page mounted afresh: the kept state and settings.
+        let mut r = parse("#/ik/aim", IDS);
+        assert!(!r.carries_instructor());
+        assert_eq!(r.keep_instructor(kept, true), Some(Some(7)));
+        assert_eq!(pairs(&r), owned(&[("l1", "1.2"), ("l2", "0.5")]));
+        assert_eq!(r.instructor.locked, ["l1", "l2"]);
+        assert_eq!(
+            (r.instructor.note.as_deref(), r.quiz_seed),
+            (Some("Hi"), Some(7))
+        );
+        // A tab of the page that shows it: nothing to do.
+        let mut r = parse("#/ik/theory", IDS);
+        assert_eq!(r.keep_instructor(kept, false), None);
+        assert!(pairs(&r).is_empty() && r.instructor.is_empty());
+        // A preset: its own state, under the instructor's settings.
+        let mut r = parse("#/ik/simulation?l1=0.3&tx=0.4", IDS);
+        assert_eq!(r.keep_instructor(kept, false), Some(Some(7)));
+        assert_eq!(pairs(&r), owned(&[("l1", "0.3"), ("tx", "0.4")]));
+        assert_eq!(r.instructor.locked, ["l1", "l2"]);
+        // Another instructor's link is its own (the page keeps it instead).
+        for link in [
+            "#/ik/simulation?hide=l2",
+            "#/ik/aim?quiz=5",
+            "#/ik/quiz?note=x",
+        ] {
+            let mut r = parse(link, IDS);
+            assert!(r.carries_instructor(), "{link}");
+            assert_eq!(r.keep_instructor(kept, true), None);
+        }
+        // The Self-assessment tab's own link keeps its attempt's seed.
+        let mut r = parse("#/ik/quiz?attempts=2&quiz=99", IDS);
+        assert!(!r.carries_instructor());
+        assert_eq!(r.keep_instructor(kept, true), Some(Some(7)));
+        assert_eq!(r.quiz_seed, Some(99));
     }
 
     #[test]
