@@ -35,6 +35,24 @@ const QUIZ_KEY = "quiz";
 const RULE_KEYS = ["attempts", "score"];
 const INSTRUCTOR_KEYS = [LOCK_KEY, HIDE_KEY, NOTE_KEY, ANSWER_KEY_KEY, QUIZ_KEY, ...RULE_KEYS];
 const U64_MAX = 18446744073709551615n;
+/** The hidden parameters' values, veiled (labcore's `route::VEILED_KEY`). */
+const VEILED_KEY = "hv";
+
+/** labcore's `route::veil`: each UTF-8 byte XOR-ed with a mask that changes
+ * along the text, as two hex digits. Out of sight, not secret. */
+const mask = (i) => (i * 29 + 0x5a) & 255;
+const veil = (text) =>
+  Array.from(new TextEncoder().encode(text), (b, i) => (b ^ mask(i)).toString(16).toUpperCase().padStart(2, "0")).join("");
+/** labcore's `route::unveil`; null for a blob `veil` cannot have written. */
+function unveil(blob) {
+  if (!/^(?:[0-9a-fA-F]{2})*$/.test(blob)) return null;
+  try {
+    const bytes = Uint8Array.from(blob.match(/../g) ?? [], (h, i) => parseInt(h, 16) ^ mask(i));
+    return new TextDecoder("utf-8", { fatal: true }).decode(bytes);
+  } catch {
+    return null;
+  }
+}
 
 const escapeHtml = (s) =>
   s.replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
@@ -122,13 +140,26 @@ function fill(panel) {
 function instructorLink(panel, hash) {
   const at = hash.indexOf("?");
   const path = at < 0 ? hash : hash.slice(0, at);
-  const pairs = at < 0 ? [] : hash.slice(at + 1).split("&").filter(Boolean);
   const keyOf = (pair) => decodeKey(pair.split("=", 1)[0]);
-  const out = pairs.filter((p) => !INSTRUCTOR_KEYS.includes(keyOf(p)));
-  const checked = (attr) =>
-    [...panel.querySelectorAll(`input[data-${attr}]`)].filter((b) => b.checked).map((b) => encode(b.dataset[attr]));
+  // The page's hidden values come out of their veil, in their place.
+  const pairs = (at < 0 ? [] : hash.slice(at + 1).split("&").filter(Boolean)).flatMap((p) => {
+    const text = keyOf(p) === VEILED_KEY ? unveil(p.slice(p.indexOf("=") + 1)) : null;
+    return text === null ? [p] : text.split("&");
+  });
+  let out = pairs.filter((p) => !INSTRUCTOR_KEYS.includes(keyOf(p)));
+  const boxes = (attr) => [...panel.querySelectorAll(`input[data-${attr}]`)].filter((b) => b.checked).map((b) => b.dataset[attr]);
+  const checked = (attr) => boxes(attr).map(encode);
   const locked = checked(LOCK_KEY);
   const hidden = checked(HIDE_KEY);
+  // The values the panel hides go veiled, together where the first stood
+  // (labcore's `route::veil_hidden`).
+  const isHidden = (p) => boxes(HIDE_KEY).includes(keyOf(p));
+  const first = out.findIndex(isHidden);
+  if (first >= 0) {
+    const veiled = `${VEILED_KEY}=${veil(out.filter(isHidden).join("&"))}`;
+    out = out.filter((p) => !isHidden(p));
+    out.splice(first, 0, veiled);
+  }
   if (locked.length) out.push(`${LOCK_KEY}=${locked.join(",")}`);
   if (hidden.length) out.push(`${HIDE_KEY}=${hidden.join(",")}`);
   const note = cleanNote(panel.querySelector(".instructor-note-input").value);

@@ -3,6 +3,7 @@
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
+import { readFile } from "node:fs/promises";
 import { DESKTOP, PHONE, open, readouts, runFor, runUntilReadout, screenshot, until, useLab, waitReady, withPage, workerReady } from "./helpers.mjs";
 
 const lab = useLab();
@@ -323,3 +324,122 @@ test("the instructor panel's code is downloaded only when the panel is opened, o
     await context.setOffline(false);
   });
 });
+
+// Issue 51 §4: an instructor's link holds for the whole visit, and hidden
+// means hidden.
+
+const INSTRUCTOR_PID =
+  "#/pid/simulation?kp=5&m=2.5&lock=kp&hide=m,noise,tf&note=Estimate+the+hidden+mass&quiz=4242";
+const shown = (id) => `article.exp[data-experiment="${id}"]:not([hidden])`;
+
+/** Experiments menu → `id`, as a student clicks it; waits for its simulation. */
+async function viaMenu(page, id) {
+  await page.click("#lab-nav summary");
+  await page.click(`#lab-nav a[data-experiment="${id}"]`);
+  await until(page, (a) => Boolean(document.querySelector(`${a} canvas.sim-canvas`)), shown(id));
+  await page.clock.runFor(17);
+}
+
+/** The tab `tab` of experiment `id`, clicked. */
+async function clickTab(page, id, tab) {
+  await page.click(`${shown(id)} [role=tab][data-tab="${tab}"]`);
+  await until(page, (t) => location.hash.startsWith(t), `#/${id}/${tab}`);
+  await page.clock.runFor(17);
+}
+
+const paramOf = (page, key) => page.$eval(`input[type=range][data-param="${key}"]`, (el) => [el.value, el.disabled]);
+
+test("an instructor's link holds for the whole visit: pid → cartpole → pid and ik → fk → ik through the Experiments menu", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, INSTRUCTOR_PID);
+    await viaMenu(page, "cartpole");
+    await viaMenu(page, "pid");
+    await clickTab(page, "pid", "simulation");
+    assert.deepEqual(await paramOf(page, "kp"), ["5", true], "Kp still 5 and locked");
+    assert.deepEqual(await paramOf(page, "m"), ["2.5", false], "m still 2.5");
+    for (const key of ["m", "noise", "tf"]) {
+      assert.equal(await page.locator(`${shown("pid")} [data-ctl="${key}"]`).isVisible(), false, `${key} still hidden`);
+    }
+    assert.equal(await page.textContent(`${shown("pid")} .instructor-note-text`), "Estimate the hidden mass");
+    await until(page, () => /[?&]quiz=4242(&|$)/.test(location.hash) && /[?&]lock=kp(&|$)/.test(location.hash));
+    // A reload of a link without parameters keeps them too (the visit's tab).
+    await page.evaluate(() => { location.hash = "#/pid/theory"; });
+    await page.reload();
+    await waitReady(page);
+    await clickTab(page, "pid", "simulation");
+    assert.deepEqual(await paramOf(page, "kp"), ["5", true], "after a reload");
+
+    // Inside one module: ik → fk → ik.
+    await open(lab, page, "#/ik/simulation?l1=1.1&l2=0.4&lock=l1,l2");
+    await viaMenu(page, "fk");
+    await viaMenu(page, "ik");
+    await clickTab(page, "ik", "simulation");
+    assert.deepEqual(await paramOf(page, "l1"), ["1.1", true]);
+    assert.deepEqual(await paramOf(page, "l2"), ["0.4", true]);
+    // pid's settings are pid's: still there after ik's.
+    await viaMenu(page, "pid");
+    await clickTab(page, "pid", "simulation");
+    assert.deepEqual(await paramOf(page, "kp"), ["5", true]);
+  }));
+
+test("hidden means hidden: with hide=m the math panel, the report and the address bar never show m = 2.5, and the link keeps it exactly", () =>
+  withPage(lab, { clock: true }, async (page, context) => {
+    await open(lab, page, INSTRUCTOR_PID);
+    const math = await page.textContent(`${shown("pid")} .live-math`);
+    assert.match(math, /hidden/);
+    assert.doesNotMatch(math, /(?<![\d.])2\.50?(?!\d)/, math);
+    const hash = await page.evaluate(() => location.hash);
+    assert.doesNotMatch(hash, /[?&]m=/, hash);
+    assert.match(hash, /[?&]hv=[A-Za-z0-9_-]+(&|$)/, hash);
+    // The report: the parameter's row says hidden, the link shows no m=2.5.
+    const [download] = await Promise.all([
+      page.waitForEvent("download"),
+      page.locator(`${shown("pid")} button[data-export=report]`).click(),
+    ]);
+    const html = await readFile(await download.path(), "utf8");
+    const row = html.match(/<tr data-param="m">.*?<\/tr>/)?.[0] ?? "";
+    assert.match(row, /<td class="num">hidden<\/td>/, row);
+    assert.doesNotMatch(html, /[?&;]m=2\.5/);
+    // The link opened afresh gives m = 2.5 exactly, still hidden.
+    const second = await context.newPage();
+    await open(lab, second, hash);
+    assert.deepEqual(await paramOf(second, "m"), ["2.5", false]);
+    assert.equal(await second.locator('[data-ctl="m"]').isVisible(), false);
+    // The Instructor panel's link veils what it hides, and unveils what it stops hiding.
+    await page.click(`${shown("pid")} details.instructor-panel > summary`);
+    await page.check('input[data-hide="kd"]');
+    await page.uncheck('input[data-hide="m"]');
+    const link = await page.inputValue(".instructor-link");
+    const q = new URLSearchParams(link.split("?")[1]);
+    assert.equal(q.get("m"), "2.5", link);
+    assert.equal(q.get("kd"), null, link);
+    assert.equal(q.get("hide"), "kd,noise,tf", link);
+    await open(lab, second, link.slice(link.indexOf("#")));
+    assert.deepEqual(await paramOf(second, "kd"), ["6", false]);
+    assert.equal(await second.locator('[data-ctl="kd"]').isVisible(), false);
+    assert.equal(await second.locator('[data-ctl="m"]').isVisible(), true);
+  }));
+
+test("Leave the instructor's settings: keyboard reachable, restores the defaults, and they stay left", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, INSTRUCTOR_PID);
+    await page.focus(`${shown("pid")} [role=tab][data-tab="simulation"]`);
+    for (let i = 0; i < 10; i++) {
+      if (await page.evaluate(() => document.activeElement?.matches("[data-instructor-leave]"))) break;
+      await page.keyboard.press("Tab");
+    }
+    assert.equal(await page.evaluate(() => document.activeElement?.textContent), "Leave the instructor's settings");
+    await page.keyboard.press("Enter");
+    await until(page, () => !location.hash.includes("lock=") && !document.querySelector('[data-param="kp"]').disabled);
+    await page.clock.runFor(17);
+    assert.equal(await page.evaluate(() => document.activeElement?.dataset.tab), "simulation", "the focus stays on the page");
+    assert.deepEqual(await paramOf(page, "kp"), ["12", false]);
+    assert.deepEqual(await paramOf(page, "m"), ["1", false]);
+    assert.equal(await page.locator(`${shown("pid")} [data-ctl="m"]`).isVisible(), true);
+    assert.equal(await page.locator(`${shown("pid")} aside.instructor-note`).isVisible(), false);
+    assert.doesNotMatch(await page.evaluate(() => location.hash), /quiz=|hv=|note=/);
+    await viaMenu(page, "cartpole");
+    await viaMenu(page, "pid");
+    await clickTab(page, "pid", "simulation");
+    assert.deepEqual(await paramOf(page, "kp"), ["12", false], "left for the visit");
+  }));

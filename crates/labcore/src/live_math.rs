@@ -29,6 +29,9 @@ pub struct Quantity {
     pub decimals: usize,
     /// Unit shown after the number (`m`, `°`, `N/m`), or empty.
     pub unit: &'static str,
+    /// Hidden by an instructor's link (`hide=m`): shown as "hidden", never
+    /// as its number.
+    pub hidden: bool,
 }
 
 impl Quantity {
@@ -46,14 +49,17 @@ impl Quantity {
             value,
             decimals,
             unit,
+            hidden: false,
         }
     }
 
     /// The number as shown (`0.80`), without its unit; `--` when there is
-    /// none (no goal yet, no obstacle).
+    /// none (no goal yet, no obstacle); `hidden` when [`Quantity::hidden`].
     #[must_use]
     pub fn number_text(&self) -> String {
-        if self.value.is_finite() {
+        if self.hidden {
+            "hidden".into()
+        } else if self.value.is_finite() {
             format_fixed(self.value, self.decimals)
         } else {
             "--".into()

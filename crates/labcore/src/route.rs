@@ -86,6 +86,53 @@ pub struct Route {
     pub instructor: Instructor,
 }
 
+impl Route {
+    /// Whether the link sets an instructor's settings: a lock, a hidden
+    /// control, a note, an answer-key choice, a grading rule or a quiz seed.
+    /// Not the Self-assessment tab's own link, which carries the grading
+    /// rules in force and the student's seed (a lock, a hide, a note or an
+    /// answer key there still count).
+    #[must_use]
+    pub fn carries_instructor(&self) -> bool {
+        match &self.page {
+            Page::Experiment { tab: Tab::Quiz, .. } => !self.instructor.holds_only_quiz_rules(),
+            Page::Experiment { .. } => !self.instructor.is_empty() || self.quiz_seed.is_some(),
+            Page::Home => false,
+        }
+    }
+
+    /// Gives a link that sets no instructor's settings those of the
+    /// instructor's link for the same experiment opened earlier in the
+    /// visit (`kept`), so they hold until another instructor's link or
+    /// until the student leaves them. In a page `fresh`ly mounted (back
+    /// from another experiment, a reload), a link without parameters (the
+    /// menu's `#/pid/aim`, a tab) opens the kept link's state; a link with
+    /// parameters (a preset) keeps its own state under the kept settings.
+    /// In a page that shows the experiment already, a link without
+    /// parameters (a tab switch) changes nothing. Returns the kept link's
+    /// quiz seed (the class's, for the page's link and the report) when its
+    /// settings were taken; the route's own seed, a Self-assessment's
+    /// attempt, stays when it has one.
+    pub fn keep_instructor(&mut self, kept: &str, fresh: bool) -> Option<Option<u64>> {
+        if self.carries_instructor() {
+            return None;
+        }
+        let Page::Experiment { id, params, .. } = &mut self.page else {
+            return None;
+        };
+        if params.is_empty() && !fresh {
+            return None;
+        }
+        let from = parse(kept, &[id.as_str()]);
+        if let (true, Page::Experiment { params: state, .. }) = (params.is_empty(), from.page) {
+            *params = state;
+        }
+        self.instructor = from.instructor;
+        self.quiz_seed = self.quiz_seed.or(from.quiz_seed);
+        Some(from.quiz_seed)
+    }
+}
+
 /// The query key that fixes the quiz attempt's seed (`#/ik/quiz?quiz=123`).
 pub const QUIZ_KEY: &str = "quiz";
 
@@ -192,6 +239,16 @@ pub fn parse(hash: &str, known_ids: &[&str]) -> Route {
                     ));
                 }
             }
+            Some((k, v)) if decode(k) == VEILED_KEY => match unveil(&decode(v)) {
+                Some(text) => {
+                    for (k, v) in text.split('&').filter_map(|p| p.split_once('=')) {
+                        params.push((decode(k), decode(v)));
+                    }
+                }
+                None => notices.push(
+                    "The link's hidden settings are damaged; they keep their defaults.".into(),
+                ),
+            },
             Some((k, v)) if !k.is_empty() => params.push((decode(k), decode(v))),
             _ => notices.push(format!(
                 "Ignored “{}” in the link.",
@@ -325,21 +382,37 @@ pub fn open_in_tab(
 /// value and then its [`Experiment::extra_state`].
 #[must_use]
 pub fn format(experiment: &dyn Experiment, tab: Tab) -> String {
-    let mut query: Vec<String> = experiment
-        .params()
-        .iter()
-        .filter_map(|s| {
-            experiment
-                .param(s.key)
-                .map(|v| format!("{}={}", s.key, link_number(v)))
-        })
-        .collect();
-    query.extend(
-        experiment
-            .extra_state()
-            .into_iter()
-            .map(|(k, v)| format!("{}={}", encode(k), encode(&v))),
-    );
+    format_veiled(experiment, tab, &[])
+}
+
+/// [`format`] with the values of the `hidden` parameters veiled together
+/// ([`veil`]) in one `hv=…` where the first of them stands, so the address
+/// bar and a report's link do not show them; [`parse`] puts them back in
+/// that place.
+#[must_use]
+pub fn format_veiled(experiment: &dyn Experiment, tab: Tab, hidden: &[String]) -> String {
+    let (mut query, mut veiled) = (Vec::new(), Vec::new());
+    for s in experiment.params() {
+        let Some(v) = experiment.param(s.key) else {
+            continue;
+        };
+        let pair = format!("{}={}", s.key, link_number(v));
+        if hidden.iter().any(|k| k == s.key) {
+            if veiled.is_empty() {
+                // The veil's place, written once every hidden pair is known.
+                query.push(String::new());
+            }
+            veiled.push(pair);
+        } else {
+            query.push(pair);
+        }
+    }
+    if let Some(slot) = query.iter_mut().find(|p| p.is_empty()) {
+        *slot = format!("{VEILED_KEY}={}", veil(&veiled.join("&")));
+    }
+    for (k, v) in experiment.extra_state() {
+        query.push(format!("{}={}", encode(k), encode(&v)));
+    }
     if query.is_empty() {
         format!("#/{}/{}", experiment.id(), tab.slug())
     } else {
@@ -693,7 +766,40 @@ pub fn format_instructor(
 ) -> String {
     let mut pairs = instructor.query();
     pairs.extend(quiz_seed.map(|s| format!("{QUIZ_KEY}={s}")));
-    with_query(format(experiment, tab), &pairs)
+    with_query(format_veiled(experiment, tab, &instructor.hidden), &pairs)
+}
+
+/// The query key of the hidden parameters' values, veiled (`hv=…`, see [`veil`]).
+pub const VEILED_KEY: &str = "hv";
+
+/// The mask of byte `i` of a veiled text.
+fn mask(i: usize) -> u8 {
+    (i as u8).wrapping_mul(29).wrapping_add(0x5A)
+}
+
+/// Veils `text` (a hidden parameter's `key=value` pairs) so a student does
+/// not read it at a glance in the address bar: each byte XOR-ed with a mask
+/// that changes along the text, written as two hex digits (`m=2.5` →
+/// `374AA69FFB`). Anyone may undo it with [`unveil`]: it keeps a value out
+/// of sight, not secret. `web/instructor.js` writes the same.
+#[must_use]
+pub fn veil(text: &str) -> String {
+    let mut out = String::new();
+    for (i, b) in text.bytes().enumerate() {
+        out.push_str(&format!("{:02X}", b ^ mask(i)));
+    }
+    out
+}
+
+/// The text [`veil`] veiled; `None` for a blob it cannot have written.
+#[must_use]
+pub fn unveil(blob: &str) -> Option<String> {
+    let mut bytes = Vec::new();
+    for (i, h) in blob.as_bytes().chunks(2).enumerate() {
+        let [hi, lo] = *h else { return None };
+        bytes.push((hex_digit(hi)? << 4 | hex_digit(lo)?) ^ mask(i));
+    }
+    Some(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 /// Runs `op` (a pointer input, an action, a reset, a loaded file, a run of
@@ -1046,6 +1152,100 @@ mod tests {
         for rule in ScoreRule::ALL {
             assert_eq!(ScoreRule::from_slug(rule.slug()), Some(rule));
         }
+    }
+
+    /// Issue 51 §4, hidden means hidden: a hidden value leaves the link's
+    /// plain pairs for one veiled `hv=…` in its place, and comes back
+    /// exactly.
+    #[test]
+    fn hidden_means_hidden_in_the_link_and_the_value_round_trips_exactly() {
+        use crate::experiments::fk::ForwardKinematics;
+        let mut exp = ForwardKinematics::default();
+        exp.set_param("l1", 0.723_456_789).unwrap();
+        let r = parse("#/fk/simulation?hide=l1,t2", IDS);
+        let link = format_instructor(&exp, Tab::Simulation, &r.instructor, Some(4));
+        assert!(link.starts_with("#/fk/simulation?t1=35&hv="), "{link}");
+        assert!(!link.contains("l1=") && !link.contains("t2=") && !link.contains("723"));
+        assert!(link.ends_with("&l2=0.7&hide=l1,t2&quiz=4"), "{link}");
+        let (back, instructor, notices) = restore_instructor(&link, ForwardKinematics::default());
+        assert!(notices.is_empty(), "{notices:?}");
+        assert_eq!(back.param("l1"), Some(0.723_456_789));
+        assert_eq!(instructor, r.instructor);
+        assert_eq!(
+            format_instructor(&back, Tab::Simulation, &instructor, Some(4)),
+            link
+        );
+        // The pairs keep their place: the veil stands where the first was.
+        let Page::Experiment { params, .. } = parse(&link, IDS).page else {
+            panic!("{link}");
+        };
+        let keys: Vec<&str> = params.iter().map(|(k, _)| k.as_str()).collect();
+        assert_eq!(keys, ["t1", "t2", "l1", "l2"]);
+        // Any text comes back; the blob is plain URL text.
+        assert_eq!(veil("m=2.5"), "374AA69FFB");
+        let mut rng = crate::Lcg64::new(51);
+        for n in 0..300 {
+            let text: String = (0..n % 40)
+                .map(|_| char::from_u32(rng.int(32, 0x3000) as u32).unwrap_or('x'))
+                .collect();
+            let blob = veil(&text);
+            assert!(blob.bytes().all(|b| hex_digit(b).is_some()), "{blob}");
+            assert_eq!(unveil(&blob).as_deref(), Some(text.as_str()));
+        }
+        // A damaged veil: a notice, and the values keep their defaults.
+        let (back, notices) = restore("#/fk/simulation?hv=3G&t1=3", ForwardKinematics::default());
+        assert_eq!(
+            notices,
+            ["The link's hidden settings are damaged; they keep their defaults."]
+        );
+        assert_eq!((back.param("t1"), back.param("l1")), (Some(3.0), Some(1.0)));
+    }
+
+    /// Issue 51 §4: an instructor's link holds for the whole visit.
+    #[test]
+    fn an_instructors_link_holds_for_the_visit_until_another() {
+        let kept = "#/ik/simulation?l1=1.2&l2=0.5&lock=l1,l2&note=Hi&quiz=7";
+        let pairs = |r: &Route| match &r.page {
+            Page::Experiment { params, .. } => params.clone(),
+            Page::Home => Vec::new(),
+        };
+        let owned = |v: &[(&str, &str)]| -> Vec<(String, String)> {
+            v.iter().map(|(k, v)| ((*k).into(), (*v).into())).collect()
+        };
+        // The menu's link, in a page mounted afresh: the kept state and settings.
+        let mut r = parse("#/ik/aim", IDS);
+        assert!(!r.carries_instructor());
+        assert_eq!(r.keep_instructor(kept, true), Some(Some(7)));
+        assert_eq!(pairs(&r), owned(&[("l1", "1.2"), ("l2", "0.5")]));
+        assert_eq!(r.instructor.locked, ["l1", "l2"]);
+        assert_eq!(
+            (r.instructor.note.as_deref(), r.quiz_seed),
+            (Some("Hi"), Some(7))
+        );
+        // A tab of the page that shows it: nothing to do.
+        let mut r = parse("#/ik/theory", IDS);
+        assert_eq!(r.keep_instructor(kept, false), None);
+        assert!(pairs(&r).is_empty() && r.instructor.is_empty());
+        // A preset: its own state, under the instructor's settings.
+        let mut r = parse("#/ik/simulation?l1=0.3&tx=0.4", IDS);
+        assert_eq!(r.keep_instructor(kept, false), Some(Some(7)));
+        assert_eq!(pairs(&r), owned(&[("l1", "0.3"), ("tx", "0.4")]));
+        assert_eq!(r.instructor.locked, ["l1", "l2"]);
+        // Another instructor's link is its own (the page keeps it instead).
+        for link in [
+            "#/ik/simulation?hide=l2",
+            "#/ik/aim?quiz=5",
+            "#/ik/quiz?note=x",
+        ] {
+            let mut r = parse(link, IDS);
+            assert!(r.carries_instructor(), "{link}");
+            assert_eq!(r.keep_instructor(kept, true), None);
+        }
+        // The Self-assessment tab's own link keeps its attempt's seed.
+        let mut r = parse("#/ik/quiz?attempts=2&quiz=99", IDS);
+        assert!(!r.carries_instructor());
+        assert_eq!(r.keep_instructor(kept, true), Some(Some(7)));
+        assert_eq!(r.quiz_seed, Some(99));
     }
 
     #[test]

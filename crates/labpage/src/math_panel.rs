@@ -195,7 +195,11 @@ impl<'a> Writer<'a> {
         let bracket = (negative || !q.value.is_finite()) && outer > 0;
         // The degree sign inside the number: as a trailing `<mo>` Chromium
         // may leave it out at the end of a `<math>`.
-        let degrees = if q.unit == "°" { "°" } else { "" };
+        let degrees = if q.unit == "°" && !q.hidden {
+            "°"
+        } else {
+            ""
+        };
         if self.to == Target::MathMl {
             // Sign-stable: one `<mn>` holds the number with its sign and
             // brackets, so a value that changes sign (or goes missing) is
@@ -586,6 +590,23 @@ mod tests {
         ));
         assert!(html.contains("= 0.819 m"));
         assert!(html.contains("x = L1 cos θ1 = 1.00·cos 35° = 0.819 m"));
+    }
+
+    /// Issue 51 §4: a quantity hidden by an instructor's link (`hide=t`)
+    /// reads "hidden" in the substituted form and its text twin, never its
+    /// number (nor the number's degree sign).
+    #[test]
+    fn hidden_means_hidden_in_the_math_panel() {
+        let mut q = quantities(35.0);
+        q[1].hidden = true;
+        let readouts = [Readout::new("x", "Tip X", "0.819 m")];
+        let (numbers, _, text) = live_parts(&EQ, &q, &readouts);
+        assert_eq!(text, "x = L1 cos θ1 = 1.00·cos hidden = 0.819 m");
+        assert!(
+            numbers.contains("<mn>hidden</mn>") && !numbers.contains("35"),
+            "{numbers}"
+        );
+        assert!(!panel_html(&[EQ], &q, &readouts).contains("35"));
     }
 
     #[test]

@@ -76,9 +76,29 @@ impl App {
         // Every experiment of the lab is a page, also those whose code is in
         // another module: `main.js` hands those over to their module.
         let ids: Vec<&str> = labcore::catalogue::CATALOGUE.iter().map(|p| p.id).collect();
-        let parsed = route::parse(&hash, &ids);
+        let mut parsed = route::parse(&hash, &ids);
+        // Bare: no parameters and no seed (the menu's `#/pid/aim`, a tab).
+        let bare = matches!(&parsed.page, Page::Experiment { params, .. } if params.is_empty())
+            && parsed.quiz_seed.is_none();
+        let mut class_seed = parsed.quiz_seed;
+        // An instructor's link holds for the visit: kept for its experiment
+        // until another one or "Leave the instructor's settings", and given
+        // to the links that set none (see `route::Route::keep_instructor`).
+        if let Page::Experiment { id, .. } = &parsed.page {
+            let fresh = !matches!(&self.page, Some(Mounted::Experiment(p)) if p.id == *id);
+            let key = instructor_key(id);
+            if parsed.carries_instructor() {
+                if let Some(s) = session() {
+                    let _ = s.set_item(&key, &hash);
+                }
+            } else if let Some(kept) = session().and_then(|s| s.get_item(&key).ok().flatten()) {
+                class_seed = parsed.keep_instructor(&kept, fresh).unwrap_or(class_seed);
+            }
+        }
         let quiz_seed = parsed.quiz_seed;
         let instructor = parsed.instructor;
+        // A hidden value typed plainly (`m=2.5&hide=m`) leaves the address bar.
+        let hides = !instructor.hidden.is_empty();
         let quiz_rules = instructor.quiz;
         let mut notices = parsed.notices;
         close_nav_menu();
@@ -151,10 +171,10 @@ impl App {
                     if quiz_tab_link {
                         page.set_quiz_rules(quiz_rules);
                     } else if new_state || (params.is_empty() && !instructor.is_empty()) {
-                        notices.extend(page.set_instructor(instructor, quiz_seed));
+                        notices.extend(page.set_instructor(instructor, class_seed));
                         page.set_quiz_rules(quiz_rules);
-                    } else if params.is_empty() && quiz_seed.is_some() && tab != Tab::Quiz {
-                        page.set_quiz_seed(quiz_seed);
+                    } else if params.is_empty() && class_seed.is_some() && tab != Tab::Quiz {
+                        page.set_quiz_seed(class_seed);
                     }
                     // An instructor's link fixes the attempt (`?quiz=123`): the
                     // whole class gets the same numbers. Not inside a SCO: the
@@ -168,9 +188,11 @@ impl App {
                     let tab_changed = page.inner.borrow().tab != tab;
                     page.select(tab, !same || tab_changed);
                     // Keep the link complete: after a clamp, and when a link
-                    // without parameters lands on the simulation.
-                    let bare = params.is_empty() && quiz_seed.is_none();
-                    if !notices.is_empty() || (bare && matches!(tab, Tab::Simulation | Tab::Quiz)) {
+                    // without parameters lands on the simulation; veiled.
+                    if hides
+                        || !notices.is_empty()
+                        || (bare && matches!(tab, Tab::Simulation | Tab::Quiz))
+                    {
                         page.write_hash();
                     }
                 }
@@ -202,6 +224,17 @@ impl App {
             }
         }
     }
+}
+
+/// The tab's session storage: an instructor's link is kept there for the
+/// visit (the tab's life, reloads included; not another tab or browser).
+fn session() -> Option<web_sys::Storage> {
+    dom::window().session_storage().ok().flatten()
+}
+
+/// Where the instructor's link of experiment `id` is kept.
+fn instructor_key(id: &str) -> String {
+    format!("labinstructor:{id}")
 }
 
 fn replace_hash(hash: &str) {
@@ -432,13 +465,33 @@ impl ExperimentPage {
         // goes), so Back returns to this state, not one up to 250 ms old.
         let page = inner.clone();
         listeners.push(Listener::new(root.as_ref(), "click", move |e: Event| {
-            let is_link = e
-                .target()
-                .and_then(|t| t.dyn_into::<Element>().ok())
-                .and_then(|el| el.closest("a[href^=\"#\"]").ok().flatten())
-                .is_some();
-            if is_link {
+            let Some(el) = e.target().and_then(|t| t.dyn_into::<Element>().ok()) else {
+                return;
+            };
+            if el.closest("a[href^=\"#\"]").ok().flatten().is_some() {
                 page.borrow().flush_link();
+            }
+            // "Leave the instructor's settings": forgotten for the visit,
+            // and the experiment opens at its defaults (a link of its own,
+            // so Back returns to the instructor's).
+            if el
+                .closest("[data-instructor-leave]")
+                .ok()
+                .flatten()
+                .is_some()
+            {
+                let p = page.borrow();
+                if let Some(s) = session() {
+                    let _ = s.remove_item(&instructor_key(p.id));
+                }
+                // The focus goes to the Simulation tab (the button is hidden).
+                if let Some(tab) = query(&p.root, "[role=tab][data-tab=simulation]") {
+                    let _ = tab.unchecked_ref::<HtmlElement>().focus();
+                }
+                let hash = route::format((p.entry.make)().as_ref(), Tab::Simulation);
+                // Routed at once (the page is not borrowed meanwhile).
+                drop(p);
+                let _ = dom::window().location().set_hash(&hash);
             }
         }));
         if let Some(quiz_panel) = query(&root, "[data-panel=quiz]") {

@@ -175,6 +175,13 @@ pub fn download(panel: &Element, exp: &dyn Lab, hash: &str, marked: &[(f64, Box<
     if sheet.aim.is_empty() {
         sheet.aim = aim_on_page(panel);
     }
+    // Hidden means hidden: an instructor's `hide=m` prints no value.
+    for row in &mut sheet.params {
+        if parsed.instructor.hidden.contains(&row.key) {
+            row.value = "hidden".into();
+            row.unit.clear();
+        }
+    }
     make_file(
         &report::wire::encode(&sheet),
         report::file_name(exp.id()),

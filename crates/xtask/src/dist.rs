@@ -451,6 +451,7 @@ mod tests {
             format!("const NOTE_KEY = \"{}\";", route::NOTE_KEY),
             format!("const ANSWER_KEY_KEY = \"{}\";", route::ANSWER_KEY_KEY),
             format!("const QUIZ_KEY = \"{}\";", route::QUIZ_KEY),
+            format!("const VEILED_KEY = \"{}\";", route::VEILED_KEY),
             format!(
                 "const RULE_KEYS = [\"{}\", \"{}\"];",
                 route::ATTEMPTS_KEY,

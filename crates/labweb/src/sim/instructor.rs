@@ -22,10 +22,12 @@ const LOCK_ICON: &str = "<svg class=\"lock-icon\" viewBox=\"0 0 16 16\" width=\"
 <path d=\"M4.5 7V5a3.5 3.5 0 0 1 7 0v2\" fill=\"none\" stroke=\"currentColor\" stroke-width=\"1.8\"/>\
 <rect x=\"2.5\" y=\"7\" width=\"11\" height=\"8\" rx=\"1.5\" fill=\"currentColor\"/></svg>";
 
-/// The note above the simulation (hidden until a link brings one).
+/// The note above the simulation and the way out of the instructor's
+/// settings (hidden until a link brings some).
 pub(super) fn note_html() -> String {
     "<aside class=\"instructor-note\" aria-labelledby=\"instructor-note-title\" hidden>\
-     <h3 id=\"instructor-note-title\">Instructor's note</h3><p class=\"instructor-note-text\"></p></aside>"
+     <h3 id=\"instructor-note-title\">Instructor's note</h3><p class=\"instructor-note-text\"></p>\
+     <button type=\"button\" class=\"mini\" data-instructor-leave>Leave the instructor's settings</button></aside>"
         .into()
 }
 
@@ -86,9 +88,17 @@ impl SimState {
         if let Some(aside) = query(panel, ".instructor-note") {
             if let Some(p) = query(&aside, ".instructor-note-text") {
                 // Text, never HTML.
-                p.set_text_content(self.instructor.note.as_deref());
+                p.set_text_content(Some(
+                    self.instructor
+                        .note
+                        .as_deref()
+                        .unwrap_or("Your instructor set this simulation up."),
+                ));
             }
-            dom::set_hidden(&aside, self.instructor.note.is_none());
+            dom::set_hidden(
+                &aside,
+                self.instructor.is_empty() && self.quiz_seed.is_none(),
+            );
         }
         for spec in self.exp.params() {
             let locked = self.instructor.is_locked(spec.key);
@@ -157,6 +167,16 @@ impl SimState {
         if let Some(details) = query(panel, ".instructor-panel") {
             let _ = details.set_attribute("data-instructor", &self.instructor_query().join("&"));
         }
+    }
+
+    /// The experiment's live quantities, those the instructor hid marked
+    /// so ("The math" says "hidden").
+    pub(super) fn quantities(&self) -> Vec<labcore::live_math::Quantity> {
+        let mut out = self.exp.quantities();
+        for q in &mut out {
+            q.hidden = self.instructor.is_hidden(q.key);
+        }
+        out
     }
 
     /// The link's instructor pairs: the locks, hidden controls and note

@@ -53,7 +53,7 @@ impl SimState {
         let key = symbol.get_attribute("data-live").filter(|_| on);
         let quantity = key
             .as_deref()
-            .and_then(|k| self.exp.quantities().into_iter().find(|q| q.key == k));
+            .and_then(|k| self.quantities().into_iter().find(|q| q.key == k));
         let _ = match &key {
             Some(k) => self.canvas.set_attribute("data-live", k),
             None => self.canvas.remove_attribute("data-live"),
@@ -64,16 +64,16 @@ impl SimState {
             tip.set_attribute("hidden", "").ok();
             return;
         };
-        let space = if q.unit == "°" || q.unit.is_empty() {
+        let unit = if q.hidden { "" } else { q.unit };
+        let space = if unit == "°" || unit.is_empty() {
             ""
         } else {
             " "
         };
         tip.set_text_content(Some(&format!(
-            "{} = {}{space}{}",
+            "{} = {}{space}{unit}",
             q.symbol.replace('_', ""),
             q.number_text(),
-            q.unit
         )));
         let _ = tip.remove_attribute("hidden");
         // In "The math" the numbers already stand under the symbol: the tip

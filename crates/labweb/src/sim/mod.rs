@@ -718,10 +718,12 @@ impl SimState {
         route::with_query(self.state_link(), &self.instructor_query())
     }
 
-    /// The link of the current state: the experiment's parameters, then the
-    /// shell's own (`run=0` when paused, `speed` when not 1×).
+    /// The link of the current state: the experiment's parameters (the
+    /// hidden ones veiled: [`route::format_veiled`]), then the shell's own
+    /// (`run=0` when paused, `speed` when not 1×).
     fn state_link(&self) -> String {
-        let mut hash = route::format(self.exp.as_ref(), Tab::Simulation);
+        let mut hash =
+            route::format_veiled(self.exp.as_ref(), Tab::Simulation, &self.instructor.hidden);
         let mut extra = Vec::new();
         if self.exp.animated() && !self.clock.running() && !self.ended_hold {
             extra.push("run=0".to_owned());
@@ -1137,6 +1139,11 @@ impl SimView {
         st.quiz_seed = quiz_seed;
         st.show_instructor();
         st.shown_values.iter_mut().for_each(|v| *v = None);
+        // "The math" says "hidden" (or the number again) at once.
+        st.shown_math.clear();
+        st.text_at_once = true;
+        st.text_settled = true;
+        st.sync_dom();
         st.needs_paint = true;
         notices
     }

@@ -605,7 +605,7 @@ impl SimState {
         if equations.is_empty() {
             return false;
         }
-        let quantities = self.exp.quantities();
+        let quantities = self.quantities();
         if set != self.shown_equations {
             // Another set of equations (a parameter chose it): write the
             // panel anew, symbols included.
@@ -712,7 +712,7 @@ impl SimState {
             let readouts = self.exp.readouts();
             self.write_readouts(&readouts);
             let equations = super::panel_equations(self.exp.as_ref());
-            let quantities = self.exp.quantities();
+            let quantities = self.quantities();
             self.collect_math(&equations, &quantities, &readouts);
         }
         let wrote = self.write_next_equation();
