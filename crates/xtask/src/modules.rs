@@ -57,8 +57,17 @@ pub const WASM_TARGET: &str = "wasm32-unknown-unknown";
 /// before trading bytes back for speed. The time runs beside the next
 /// module's cargo build. Re-measure with `XTASK_WASM_OPT=-O3 cargo xtask
 /// dist && cargo xtask size`.
-pub const WASM_OPT_LEVEL: &str = "--duplicate-function-elimination --merge-similar-functions \
-     --code-folding --flatten --rereloop -Oz --converge";
+///
+/// `--generate-global-effects` first (what each function may touch, so
+/// calls to pure ones can be moved or dropped) and a round of GUFA (whole-
+/// program flow analysis: values a location can only ever hold become
+/// constants) after `-Oz`, then `-Oz` again: both sound, no assumption
+/// about the program. Measured on the astar module: 232,672 -> 231,752 B
+/// gzip (-920 B, about as much on every module); wasm-opt takes about 50 s
+/// a module instead of 30 here.
+pub const WASM_OPT_LEVEL: &str = "--generate-global-effects --duplicate-function-elimination \
+     --merge-similar-functions --code-folding --flatten --rereloop -Oz --gufa-optimizing -Oz \
+     --converge";
 
 /// Features of the Rust 1.95 `wasm32-unknown-unknown` output: exactly those
 /// LLVM's default "generic" CPU enables (and lists in the module's
