@@ -17,11 +17,11 @@
     for (const el of document.querySelectorAll(".loading")) el.remove();
   };
   const name = module.getAttribute("src").split("?")[0];
-  say(`The lab could not start: this browser did not run ${name}. Reload, or use a current Firefox, Chrome, Edge or Safari.`);
+  say(`The lab could not start: this browser did not run ${name}. Reload, or use a current browser.`);
   fetch(module.src).then((r) => {
     const type = r.headers.get("Content-Type") || "no type";
-    if (r.ok && !/^\s*(text|application)\/(x-)?(javascript|ecmascript)\s*(;|$)/i.test(type)) {
-      say(`The lab could not start: the server sent ${name} as “${type}”, and browsers run scripts only when sent as JavaScript (text/javascript). Please tell the site's administrator (the lab's README, “File types”).`);
+    if (r.ok && !/javascript|ecmascript/i.test(type)) {
+      say(`The lab could not start: the server sent ${name} as “${type}”, not as JavaScript. Tell the site's administrator (README, “File types”).`);
     }
   }, () => {});
 })();
