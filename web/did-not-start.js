@@ -11,17 +11,15 @@
   const module = document.querySelector("script[type=module][src]");
   const box = document.getElementById("fatal");
   if (window.labStarted || !module || !box) return;
+  const name = module.getAttribute("src").split("?")[0];
   const say = (text) => {
-    box.querySelector(".fatal-text").textContent = text;
+    box.querySelector(".fatal-text").textContent = `The lab could not start: ${text}`;
     box.hidden = false;
     for (const el of document.querySelectorAll(".loading")) el.remove();
   };
-  const name = module.getAttribute("src").split("?")[0];
-  say(`The lab could not start: this browser did not run ${name}. Reload, or use a current browser.`);
+  say(`${name} did not run.`);
   fetch(module.src).then((r) => {
-    const type = r.headers.get("Content-Type") || "no type";
-    if (r.ok && !/javascript|ecmascript/i.test(type)) {
-      say(`The lab could not start: the server sent ${name} as “${type}”, not as JavaScript. Tell the site's administrator (README, “File types”).`);
-    }
+    const type = r.headers.get("Content-Type");
+    if (r.ok && !/javascript/i.test(type)) say(`the server sent ${name} as “${type}”, not text/javascript (README, “File types”).`);
   }, () => {});
 })();
