@@ -2,7 +2,8 @@
 // first visit with an empty cache, summed raw (as a host that does not
 // compress sends it) and gzip -9 (as `cargo xtask dist`'s .gz siblings are).
 // Bytes, not milliseconds: the figures are the same on a busy machine.
-// The table is also written to target/page-weights.json (README quotes it).
+// The table is also written to target/page-weights.json (docs/development.md
+// names it).
 
 import { after, test } from "node:test";
 import assert from "node:assert/strict";
@@ -12,7 +13,7 @@ import { gzipSync } from "node:zlib";
 import { BASE_PATH, DIST, experimentIds, open, useLab } from "./helpers.mjs";
 
 /** Budgets of issue 16, in bytes, with 1 KB = 1,024 bytes as `cargo xtask
- * size` and the README count (the table prints both units). */
+ * size` counts (the table prints both units). */
 const KB = 1024;
 const EXPERIMENT_RAW = 700 * KB;
 const EXPERIMENT_GZIP = 250 * KB;
