@@ -55,10 +55,11 @@ for (const [name, viewport, phone] of [
       // Step on from there: one step, along the old run.
       await page.locator("button[data-time=step]").click();
       await runUntil(page, (n) => Number(document.querySelector("canvas.sim-canvas").dataset.steps) === n, k + 1);
-      // Branch: Kp 60 from this moment keeps the old run, named.
+      // Kp 60 from this moment replays the step from x = 0 (issue 53 §3):
+      // the old run is kept, named as the restart it is.
       await page.locator("input[type=range][data-param=kp]").fill("60");
       await settle(page);
-      const kept = `before Kp 12 N/m → 60 N/m at t = ${((k + 1) / 60).toFixed(2)} s`;
+      const kept = "before Kp 12 N/m → 60 N/m restarted the run";
       const legend = page.locator("figure[data-plot=response] .legend-item[data-series]", { hasText: kept });
       assert.equal(await legend.count(), 1, kept);
       assert.equal(await legend.isVisible(), true);
@@ -110,8 +111,9 @@ test("timeline: cartpole step 8, branched before the fall, the pole is caught an
     });
     assert.equal(await kept.count(), 1);
     assert.equal(await kept.isVisible(), true);
-    // Ten seconds on: caught, never leaning further than 31.3°.
-    await page.locator("button[data-time=play]").click();
+    // The change plays, as the text says (issue 53 §3): ten seconds on,
+    // caught, never leaning further than 31.3°.
+    assert.equal(await page.locator("button[data-time=play]").getAttribute("aria-pressed"), "true");
     let peak = 0;
     for (let k = 0; k < 20; k++) {
       const shown = await steps(page);

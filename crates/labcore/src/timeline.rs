@@ -157,10 +157,12 @@ impl Timeline {
 
     /// Whether the state at `step` is the run's start stepped `step` times,
     /// with no input on the way (so a link of the start and the time
-    /// reproduces it).
+    /// reproduces it). An input not yet committed ([`Timeline::input_at`])
+    /// counts: it changed the state at the run's end.
     #[must_use]
     pub fn unbroken_to(&self, step: u64) -> bool {
         self.first() == 0
+            && !(self.dirty && self.end > 0 && step >= self.end)
             && !self
                 .snaps
                 .iter()
@@ -501,14 +503,10 @@ impl KeptRun {
     /// with, under `label`.
     #[must_use]
     pub fn of(abandoned: &dyn Lab, label: String) -> Self {
-        let series = abandoned
-            .plots()
-            .iter()
-            .map(|p| p.series.iter().find(|s| !s.comparison).cloned())
-            .collect();
+        let mut run = Self::plots_of(abandoned, label);
         let mut scene = Scene::default();
         abandoned.scene(&mut scene);
-        let trails = scene
+        run.trails = scene
             .items
             .iter()
             .filter_map(|item| match item {
@@ -522,10 +520,23 @@ impl KeptRun {
                 _ => None,
             })
             .collect();
+        run
+    }
+
+    /// [`KeptRun::of`] without the trails (no scene is built): the plots'
+    /// main series alone, cheap enough to take before every input in case
+    /// it starts the run again.
+    #[must_use]
+    pub fn plots_of(run: &dyn Lab, label: String) -> Self {
+        let series = run
+            .plots()
+            .iter()
+            .map(|p| p.series.iter().find(|s| !s.comparison).cloned())
+            .collect();
         Self {
             label,
             series,
-            trails,
+            trails: Vec::new(),
         }
     }
 
@@ -603,6 +614,15 @@ pub fn value_text(spec: &ParamSpec, value: f64) -> String {
     }
 }
 
+/// Whether an input started the run again: the main plot's progress
+/// ([`plot_x`]) went back, or its samples went, where it had some before.
+/// The plots, the status and the time count from a run's start, so the
+/// page's clock and timeline start again there too.
+#[must_use]
+pub fn restarted(before: Option<f64>, after: Option<f64>) -> bool {
+    before.is_some_and(|b| after.is_none_or(|a| a < b))
+}
+
 /// The name of the run a branch leaves behind: what changed and when,
 /// `before Kp 20 → 60 at t = 2.10 s`. The first parameter whose value
 /// differs between `before` and `after` (values in the order of `specs`)
@@ -616,17 +636,47 @@ pub fn branch_label(
     cause: Option<&str>,
     t_s: f64,
 ) -> String {
+    format!(
+        "before {} at t = {} s",
+        change_text(specs, before, after, cause),
+        format_fixed(t_s, 2)
+    )
+}
+
+/// The name of a run that a change started again from its start (see
+/// [`restarted`]): `before Kd 2 → 10 restarted the run`, named as
+/// [`branch_label`] names a change. The runs share no moment after their
+/// start, so no time is named.
+#[must_use]
+pub fn restart_label(
+    specs: &[ParamSpec],
+    before: &[Option<f64>],
+    after: &[Option<f64>],
+    cause: Option<&str>,
+) -> String {
+    format!(
+        "before {} restarted the run",
+        change_text(specs, before, after, cause)
+    )
+}
+
+/// What changed, as a branch's name says it (see [`branch_label`]).
+fn change_text(
+    specs: &[ParamSpec],
+    before: &[Option<f64>],
+    after: &[Option<f64>],
+    cause: Option<&str>,
+) -> String {
     let changed = specs
         .iter()
         .zip(before.iter().zip(after))
         .find(|(_, (b, a))| b != a);
-    let what = match changed {
+    match changed {
         Some((spec, (b, a))) => {
             let text =
                 |v: &Option<f64>| v.map_or_else(|| "unset".to_owned(), |v| value_text(spec, v));
             format!("{} {} → {}", spec.label, text(b), text(a))
         }
         None => cause.unwrap_or("the change").to_owned(),
-    };
-    format!("before {what} at t = {} s", format_fixed(t_s, 2))
+    }
 }

@@ -333,6 +333,69 @@ fn link_moment_unbroken_only_while_no_input_came_on_the_way() {
     assert!(!timeline.unbroken_to(60));
 }
 
+/// Issue 53 §8, "A paused run's link after an input": pid, 100 steps,
+/// paused, Kp typed: until the next commit the record still looked
+/// unbroken to step 100, so the page wrote `at=1.67` for a state the link
+/// does not reproduce. An input on its way breaks the run at its step.
+#[test]
+fn a_paused_runs_link_after_an_input_names_no_moment_before_the_commit() {
+    let mut exp = labcore::testkit::open("pid");
+    let mut timeline = Timeline::new(exp.as_ref(), 0);
+    for _ in 0..100 {
+        exp.step(Clock::DT_S);
+        timeline.stepped(exp.as_ref());
+    }
+    assert!(timeline.unbroken_to(100));
+    timeline.input_at(100);
+    exp.set_param("kp", 60.0).unwrap();
+    assert!(!timeline.unbroken_to(100), "the input is on its way");
+    assert!(timeline.unbroken_to(99));
+    timeline.commit(exp.as_ref());
+    assert!(!timeline.unbroken_to(100));
+    // An input at the start is the start (a link's own parameters).
+    let mut fresh = Timeline::new(exp.as_ref(), 0);
+    fresh.input_at(0);
+    assert!(fresh.unbroken_to(0));
+}
+
+/// Issue 53 §1 and §3: a change that starts the run again (the main
+/// plot's progress goes back) is told from one that goes on from the
+/// moment, and the run it leaves is named as the restart it is.
+#[test]
+fn a_restart_is_told_from_a_branch_and_named_as_a_restart() {
+    use labcore::timeline::{plot_x, restart_label, restarted};
+    assert!(restarted(Some(0.5), Some(0.0)));
+    assert!(restarted(Some(3.0), None));
+    assert!(!restarted(Some(0.5), Some(0.5)));
+    assert!(!restarted(None, None));
+    assert!(!restarted(None, Some(0.0)));
+    let main_x = |lab: &dyn Lab| lab.plots().first().and_then(plot_x);
+    // pid: every parameter replays the step from x = 0.
+    let mut pid = labcore::testkit::open("pid");
+    labcore::testkit::run_for(&mut *pid, 0.5);
+    let (x, before) = (main_x(pid.as_ref()), params(pid.as_ref()));
+    pid.set_param("kd", 10.0).unwrap();
+    assert!(restarted(x, main_x(pid.as_ref())));
+    assert_eq!(
+        restart_label(pid.params(), &before, &params(pid.as_ref()), None),
+        "before Kd 6 N·s/m → 10 N·s/m restarted the run"
+    );
+    // cartpole: a gain acts on the running pole, from that moment.
+    let mut pole = labcore::testkit::open("cartpole");
+    labcore::testkit::run_for(&mut *pole, 0.5);
+    let x = main_x(pole.as_ref());
+    pole.set_param("kth", 60.0).unwrap();
+    assert!(!restarted(x, main_x(pole.as_ref())));
+    pole.action("nudge").unwrap();
+    assert!(!restarted(x, main_x(pole.as_ref())));
+    pole.set_param("th0", 10.0).unwrap();
+    assert!(restarted(x, main_x(pole.as_ref())));
+}
+
+fn params(lab: &dyn Lab) -> Vec<Option<f64>> {
+    lab.params().iter().map(|s| lab.param(s.key)).collect()
+}
+
 /// Issue 26 §1, plots lead to the scene: a point of any plot of a run
 /// (its x, a time or an iteration) names the step whose plot reached
 /// nearest it, found on one snapshot's copy with at most an interval of

@@ -153,11 +153,13 @@ fn marks_in_the_link_come_back_exactly_and_a_malformed_value_says_so() {
     assert!(shown().0 >= 9, "the run goes on");
 }
 
-/// Marks belong to the run: Reset clears them; an input in the past starts
-/// a new run there and drops the marks after it, keeping those before.
+/// Marks belong to the run: Reset clears them; an input in the past that
+/// goes on from there (cartpole's gain) starts a new run there and drops
+/// the marks after it, keeping those before; one that starts the run again
+/// (pid's gain replays the step: issue 53 §1) leaves none.
 #[wasm_bindgen_test]
 fn reset_clears_the_marks_and_a_new_run_from_the_past_drops_the_later_ones() {
-    mount("#/pid/simulation");
+    mount("#/cartpole/simulation");
     for _ in 0..100 {
         frame(ONE_STEP_MS);
     }
@@ -169,16 +171,34 @@ fn reset_clears_the_marks_and_a_new_run_from_the_past_drops_the_later_ones() {
     assert_eq!(listed(), ["20", "50", "80"]);
     // A new gain at step 50: the run from there is another one.
     scrub_to(50);
-    let kp: HtmlInputElement = element("#p-kp").dyn_into().unwrap();
-    kp.set_value("30");
-    let init = web_sys::EventInit::new();
-    init.set_bubbles(true);
-    kp.dispatch_event(&web_sys::Event::new_with_event_init_dict("input", &init).unwrap())
-        .unwrap();
+    set_param("kth", "30");
     labweb::paint_now();
     assert_eq!(listed(), ["20", "50"]);
     element("[data-time=reset]").click();
     labweb::paint_now();
     assert!(listed().is_empty());
+    assert_eq!(drawn_marks("angle"), "");
+    // pid: a gain replays the step, a new run at t = 0, with no marks.
+    mount("#/pid/simulation");
+    for _ in 0..100 {
+        frame(ONE_STEP_MS);
+    }
+    scrub_to(20);
+    press_key_on_canvas("m");
+    scrub_to(50);
+    set_param("kp", "30");
+    labweb::paint_now();
+    assert!(listed().is_empty());
     assert_eq!(drawn_marks("response"), "");
+}
+
+/// Sets parameter `key`'s control to `value` as typing does.
+fn set_param(key: &str, value: &str) {
+    let input: HtmlInputElement = element(&format!("#p-{key}")).dyn_into().unwrap();
+    input.set_value(value);
+    let init = web_sys::EventInit::new();
+    init.set_bubbles(true);
+    input
+        .dispatch_event(&web_sys::Event::new_with_event_init_dict("input", &init).unwrap())
+        .unwrap();
 }

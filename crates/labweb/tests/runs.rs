@@ -131,6 +131,11 @@ fn ekf_paused_the_badge_still_reads_running_no_more_it_says_paused() {
         mount(&format!("#/{}/simulation", entry.id));
         frame(ONE_STEP_MS);
         assert_ne!(attr(".sim-status", "data-clock").as_deref(), Some("paused"));
+        if attr(".sim-status", "data-clock").as_deref() == Some("held") {
+            // Nothing moves yet: the button offers Play (issue 53 §3).
+            assert_eq!(text(".tb-play .tb-label"), "Play", "{}", entry.id);
+            continue;
+        }
         element(".tb-play").click();
         frame(ONE_STEP_MS);
         let phase = attr(".sim-status", "data-phase");
@@ -207,8 +212,10 @@ fn cartpole_at_balanced_the_time_bar_shows_t_held_not_a_frozen_clock() {
     frame(250.0);
     labweb::paint_now();
     assert_eq!(text(".tb-time"), held);
-    // Paused, it is paused, not held.
-    element(".tb-play").click();
+    // Held, the play button offers Play (issue 53 §3); a Step pauses it,
+    // and paused it is paused, not held.
+    assert_eq!(text(".tb-play .tb-label"), "Play");
+    element("[data-time=step]").click();
     labweb::paint_now();
     assert_eq!(attr(".timebar", "data-clock").as_deref(), Some("paused"));
     assert!(!text(".tb-time").contains("held"));

@@ -253,16 +253,6 @@ fn at_in_the_link_reopens_the_moment_shown_exactly() {
     mount(&link);
     // Equal but for the plots' redraw counters (`revision`), which count
     // the link's parameter writes too: they are the page's, not the run's.
-    let without_revisions = |(steps, text): (u64, String)| {
-        let text: Vec<String> = text
-            .split("revision: ")
-            .map(|part| {
-                part.trim_start_matches(|c: char| c.is_ascii_digit())
-                    .to_owned()
-            })
-            .collect();
-        (steps, text.join("revision: _"))
-    };
     assert_eq!(
         without_revisions(shown()),
         without_revisions(there),
@@ -505,7 +495,8 @@ fn slider_page_keys_move_a_tenth_of_an_iteration_run() {
 
 /// Issue 26 §2: a parameter changed while the timeline shows the past
 /// starts a new run there; the old future stays on the plots as a kept
-/// run named after the change and the moment.
+/// run named after the change (pid's replays the step from its start: a
+/// restart, issue 53 §3).
 #[wasm_bindgen_test]
 fn branching_in_the_past_keeps_the_abandoned_run_named_after_the_change() {
     mount("#/pid/simulation");
@@ -527,7 +518,7 @@ fn branching_in_the_past_keeps_the_abandoned_run_named_after_the_change() {
         .unwrap();
     frame(ONE_STEP_MS);
     labweb::paint_now();
-    let name = "before Kp 12 N/m → 60 N/m at t = 2.10 s";
+    let name = "before Kp 12 N/m → 60 N/m restarted the run";
     let legend: Vec<(String, bool)> = page::document()
         .query_selector_all("figure[data-plot=response] .legend-item[data-series]")
         .unwrap()
@@ -966,4 +957,281 @@ fn a_scrub_rewrites_the_astar_table_in_place() {
         element(".tables table").is_same_node(Some(&table)),
         "the table kept its element"
     );
+}
+
+// ---- Issue 53 §1, §3 and §8: one run on the slider, one clock, changes
+// that mean what they say, and the record's end.
+
+/// Sets the range control of parameter `key` to `value` as a drag does.
+fn set_range(key: &str, value: f64) {
+    let slider: HtmlInputElement = element(&format!("input[type=range][data-param={key}]"))
+        .dyn_into()
+        .unwrap();
+    slider.set_value(&value.to_string());
+    let init = web_sys::EventInit::new();
+    init.set_bubbles(true);
+    slider
+        .dispatch_event(&web_sys::Event::new_with_event_init_dict("input", &init).unwrap())
+        .unwrap();
+}
+
+/// A page's state without the plots' redraw counters (`revision`), which
+/// count the page's own writes too (a link's parameters, a restart).
+fn without_revisions((steps, text): (u64, String)) -> (u64, String) {
+    let text: Vec<String> = text
+        .split("revision: ")
+        .map(|part| {
+            part.trim_start_matches(|c: char| c.is_ascii_digit())
+                .to_owned()
+        })
+        .collect();
+    (steps, text.join("revision: _"))
+}
+
+/// The legend names of plot `key` that are shown.
+fn legend_names(key: &str) -> Vec<String> {
+    let items = page::document()
+        .query_selector_all(&format!(
+            "figure[data-plot={key}] .legend-item[data-series]:not([hidden])"
+        ))
+        .unwrap();
+    (0..items.length())
+        .map(|i| items.item(i).unwrap().text_content().unwrap_or_default())
+        .collect()
+}
+
+/// pid built fresh with `pairs` set, then left alone for `steps` steps.
+fn pid_with(pairs: &[(&str, f64)], steps: u64) -> (u64, String) {
+    let mut exp = labcore::testkit::open("pid");
+    for (k, v) in pairs {
+        exp.set_param(k, *v).unwrap();
+    }
+    for _ in 0..steps {
+        exp.step(Clock::DT_S);
+    }
+    without_revisions((steps, snapshot(exp.as_ref())))
+}
+
+/// Issue 53 §1, "the slider is the current run": after a run, a change that
+/// replays pid's step starts a new run, and the slider spans that run from
+/// its start (not the whole visit), with the time bar counting from it as
+/// its plots do; the run before stays on the plots, named as the restart.
+#[wasm_bindgen_test]
+fn the_slider_is_the_current_run_and_the_earlier_run_stays_on_the_plots() {
+    mount("#/pid/simulation");
+    assert!(run_for_frames(120) >= 100);
+    set_range("kp", 60.0);
+    frame(ONE_STEP_MS);
+    let k = run_for_frames(60);
+    assert!(
+        k <= 61,
+        "{k} steps: the clock counts from the new run's start"
+    );
+    assert_eq!(attr(".tb-scrub", "min").as_deref(), Some("0"));
+    assert_eq!(attr(".tb-scrub", "max"), Some(k.to_string()));
+    assert_eq!(
+        text(".tb-time"),
+        format!("t = {:.2} s", k as f64 * Clock::DT_S)
+    );
+    assert_eq!(without_revisions(shown()), pid_with(&[("kp", 60.0)], k));
+    // Its start is on the slider: the new run at t = 0.
+    scrub_to(0);
+    assert_eq!(without_revisions(shown()), pid_with(&[("kp", 60.0)], 0));
+    let names = legend_names("response");
+    assert!(
+        names
+            .iter()
+            .any(|n| n == "before Kp 12 N/m → 60 N/m restarted the run"),
+        "{names:?}"
+    );
+}
+
+/// Issue 53 §1, "one clock": the time bar, a mark and the link count the
+/// run's own time, so a link of any run (not only the first) carries the
+/// moment and the marks, and reopening it shows that moment.
+#[wasm_bindgen_test]
+fn one_clock_every_runs_link_carries_its_moment_and_marks_and_reopens_them() {
+    mount("#/pid/simulation?kp=40&kd=2");
+    run_for_frames(100);
+    set_range("kp", 25.0);
+    frame(ONE_STEP_MS);
+    run_for_frames(50);
+    element(".tb-play").click();
+    labweb::paint_now();
+    let n = steps_shown();
+    element("[data-time=mark]").click();
+    labweb::paint_now();
+    scrub_to(30);
+    let there = without_revisions(shown());
+    assert_eq!(there, pid_with(&[("kp", 25.0), ("kd", 2.0)], 30));
+    frame(300.0);
+    frame(300.0);
+    let link = hash();
+    assert!(link.contains("at=0.50"), "{link}");
+    let marks = format!("marks={:.2}", n as f64 * Clock::DT_S);
+    assert!(link.contains(&marks), "{link}");
+    mount(&link);
+    assert_eq!(without_revisions(shown()), there, "{link}");
+    frame(300.0);
+    frame(300.0);
+    assert!(hash().contains(&marks), "{}", hash());
+}
+
+/// Issue 53 §3, "a change in the past means what its label says": pid's
+/// change at t = 0.50 s replays the step from x = 0, so the run it leaves
+/// is named as the restart it is, not as a branch at 0.50 s.
+#[wasm_bindgen_test]
+fn a_change_in_the_past_that_restarts_the_run_is_named_as_the_restart() {
+    mount("#/pid/simulation");
+    run_for_frames(100);
+    scrub_to(30);
+    set_range("kd", 10.0);
+    frame(ONE_STEP_MS);
+    labweb::paint_now();
+    let names = legend_names("response");
+    assert!(
+        names
+            .iter()
+            .any(|n| n == "before Kd 6 N·s/m → 10 N·s/m restarted the run"),
+        "{names:?}"
+    );
+    assert!(
+        !names.iter().any(|n| n.contains("at t = 0.50 s")),
+        "{names:?}"
+    );
+}
+
+/// Issue 53 §3, "a change plays": after Run to end or a scrub (the
+/// timeline paused the run, not the student) a change plays, as on the
+/// live page and as pid's text says ("each change replays the step"); a
+/// run the student paused stays paused.
+#[wasm_bindgen_test]
+fn after_run_to_end_or_a_scrub_a_change_plays_and_a_students_pause_holds() {
+    mount("#/pid/simulation");
+    element("[data-time=end]").click();
+    let mut frames = 0;
+    while labweb::inspect_sim(|exp, _| exp.status().phase != Phase::Ended).unwrap() {
+        frame(ONE_STEP_MS);
+        frames += 1;
+        assert!(frames < 100, "the run ends");
+    }
+    let playing = || attr(".tb-play", "aria-pressed").as_deref() == Some("true");
+    set_range("kp", 60.0);
+    run_for_frames(10);
+    assert!(playing() && steps_shown() >= 8, "{}", steps_shown());
+    scrub_to(3);
+    assert!(!playing());
+    set_range("kd", 10.0);
+    run_for_frames(10);
+    assert!(playing() && steps_shown() >= 8, "{}", steps_shown());
+    // The student's own pause holds.
+    element(".tb-play").click();
+    set_range("kp", 30.0);
+    run_for_frames(10);
+    assert!(!playing());
+    assert_eq!(steps_shown(), 0);
+}
+
+/// Issue 53 §3: before anything moves (A* waits for Plan & drive) the time
+/// bar reads held, and the play button offers Play, not Pause; pressing it
+/// keeps the clock ready; once the search moves it offers Pause.
+#[wasm_bindgen_test]
+fn before_anything_moves_the_play_button_offers_play_where_the_bar_reads_held() {
+    mount("#/astar/simulation");
+    frame(ONE_STEP_MS);
+    labweb::paint_now();
+    assert_eq!(text(".tb-time"), "t = 0.00 s · held");
+    assert_eq!(text(".tb-play .tb-label"), "Play");
+    assert_eq!(attr(".tb-play", "aria-pressed").as_deref(), Some("false"));
+    element(".tb-play").click();
+    frame(ONE_STEP_MS);
+    labweb::paint_now();
+    assert_eq!(attr(".timebar", "data-clock").as_deref(), Some("held"));
+    element("[data-action=plan]").click();
+    frame(ONE_STEP_MS);
+    frame(ONE_STEP_MS);
+    labweb::paint_now();
+    assert!(steps_shown() > 0);
+    assert_eq!(text(".tb-play .tb-label"), "Pause");
+}
+
+/// Issue 53 §3: Run to end on a run with no end (the EKF drives on for
+/// ever) stops after ten minutes and says so, and its button says it will.
+#[wasm_bindgen_test]
+fn run_to_end_on_a_run_with_no_end_says_what_it_did() {
+    mount("#/ekf/simulation");
+    let title = attr("[data-time=end]", "title").unwrap_or_default();
+    assert!(title.contains("no end"), "{title}");
+    element("[data-time=end]").click();
+    let mut frames = 0;
+    while attr(".sim-message", "hidden").is_some() {
+        frame(ONE_STEP_MS);
+        frames += 1;
+        assert!(frames < 5000, "Run to end stops");
+    }
+    assert_eq!(
+        text(".sim-message"),
+        "Run to end: this run has no end, so it went 10 minutes on, to t = 600.00 s."
+    );
+    assert_eq!(steps_shown(), 36_000);
+}
+
+/// Issue 53 §8, "Play from the past overruns the record's end": pid played
+/// to step 96, the slider to 94, Play 60 frames: the frame that reaches the
+/// record's end replays up to it and the run goes on live from there, every
+/// step the run's own.
+#[wasm_bindgen_test]
+fn play_from_the_past_stops_replaying_at_the_records_end_and_goes_on_live() {
+    let entry = labcore::find("pid").unwrap();
+    let end = paused_after("#/pid/simulation", 96);
+    scrub_to(end - 2);
+    element(".tb-play").click();
+    let k = run_for_frames(60);
+    element(".tb-play").click();
+    labweb::paint_now();
+    assert!(k > end + 50, "{k}");
+    assert_eq!(attr(".tb-scrub", "max"), Some(k.to_string()));
+    assert_eq!(shown(), (k, snapshot(left_alone(entry, k).as_ref())));
+    scrub_to(end + 20);
+    assert_eq!(
+        shown(),
+        (end + 20, snapshot(left_alone(entry, end + 20).as_ref()))
+    );
+}
+
+/// Issue 53 §8, "a paused run's link after an input": cartpole paused at
+/// step 100, kθ typed: until the input was committed the page wrote
+/// `at=1.67`, a moment the link does not reopen. pid's change starts the
+/// run again: its link reopens what the page shows.
+#[wasm_bindgen_test]
+fn a_paused_runs_link_after_an_input_names_only_a_moment_it_reopens() {
+    paused_after("#/cartpole/simulation", 100);
+    let link = link_after(|| set_range("kth", 60.0));
+    assert!(link.contains("kth=60") && !link.contains("at="), "{link}");
+    paused_after("#/pid/simulation", 100);
+    let link = link_after(|| set_range("kp", 60.0));
+    let there = without_revisions(shown());
+    assert!(link.contains("kp=60") && link.contains("run=0"), "{link}");
+    mount(&link);
+    assert_eq!(without_revisions(shown()), there, "{link}");
+}
+
+/// Mounts `link`, runs it to step `steps` and pauses there; the steps shown.
+fn paused_after(link: &str, steps: u64) -> u64 {
+    mount(link);
+    while steps_shown() < steps {
+        frame(ONE_STEP_MS);
+    }
+    element(".tb-play").click();
+    labweb::paint_now();
+    steps_shown()
+}
+
+/// Does `input` on a paused page and returns the link written after it (the
+/// link waits for its pace: frames while paused take no step).
+fn link_after(input: impl FnOnce()) -> String {
+    input();
+    frame(300.0);
+    frame(300.0);
+    hash()
 }

@@ -34,8 +34,23 @@ pub struct Page {
     held: Option<DVec2>,
     /// The step of the student's last input: where the run shown began.
     last_input: u64,
-    /// The runs a change in the past left behind, kept on the plots.
+    /// The runs a change in the past or a restart left behind, kept on the
+    /// plots.
     kept: Vec<KeptRun>,
+    /// The timeline paused the run (a scrub, Run to end), not the student:
+    /// the next change that branches or restarts plays, as the page's
+    /// (`labweb/src/sim/scrub.rs`, `finish_branch`).
+    timeline_paused: bool,
+}
+
+/// A run ended by a restart is kept for comparison when it lasted at least
+/// this many steps (half a second), as on the page (`KEEP_MIN_STEPS`).
+const KEEP_MIN_STEPS: u64 = 30;
+
+/// The main plot's progress ([`timeline::plot_x`]): where it goes back, an
+/// input started the run again.
+fn main_x(exp: &dyn Lab) -> Option<f64> {
+    exp.plots().first().and_then(timeline::plot_x)
 }
 
 impl Page {
@@ -51,6 +66,7 @@ impl Page {
             held: None,
             last_input: 0,
             kept: Vec::new(),
+            timeline_paused: false,
         }
     }
 
@@ -78,13 +94,24 @@ impl Page {
         let values = |exp: &dyn Lab| -> Vec<Option<f64>> {
             exp.params().iter().map(|s| exp.param(s.key)).collect()
         };
-        let branch = (self.at < self.timeline.end()).then(|| {
+        let from_past = self.at < self.timeline.end();
+        let before = values(self.exp.as_ref());
+        let (t_s, x_before) = (self.time_s(), main_x(self.exp.as_ref()));
+        // What the run leaves if the change branches or restarts it: the
+        // old future from the past, else the run so far (its plots) once
+        // it lasted half a second.
+        let left = if from_past {
             let end = self.timeline.end();
             let abandoned = self
                 .timeline
                 .peek_at(end, &mut |lab: &mut dyn Lab| lab.step(Clock::DT_S));
-            (abandoned, values(self.exp.as_ref()), self.time_s())
-        });
+            Some(KeptRun::of(abandoned.as_ref(), String::new()))
+        } else if self.at - self.timeline.first() >= KEEP_MIN_STEPS && !self.exp.plots().is_empty()
+        {
+            Some(KeptRun::plots_of(self.exp.as_ref(), String::new()))
+        } else {
+            None
+        };
         self.timeline.input_at(self.at);
         self.last_input = self.at;
         if let Some(p) = self.held.take() {
@@ -92,15 +119,24 @@ impl Page {
         }
         let done = change(self.exp.as_mut());
         self.timeline.commit(self.exp.as_ref());
-        if let Some((abandoned, before, t_s)) = branch {
-            let label = timeline::branch_label(
-                self.exp.params(),
-                &before,
-                &values(self.exp.as_ref()),
-                cause,
-                t_s,
-            );
-            timeline::keep(&mut self.kept, KeptRun::of(abandoned.as_ref(), label));
+        let restarted = timeline::restarted(x_before, main_x(self.exp.as_ref()));
+        if let Some(mut left) = left.filter(|_| restarted || from_past) {
+            let (specs, after) = (self.exp.params(), values(self.exp.as_ref()));
+            left.label = if restarted {
+                timeline::restart_label(specs, &before, &after, cause)
+            } else {
+                timeline::branch_label(specs, &before, &after, cause, t_s)
+            };
+            timeline::keep(&mut self.kept, left);
+        }
+        if restarted {
+            // A new run: the clock and the timeline count from its start.
+            self.timeline = Timeline::new(self.exp.as_ref(), 0);
+            self.at = 0;
+            self.last_input = 0;
+        }
+        if (restarted || from_past) && std::mem::take(&mut self.timeline_paused) {
+            self.playing = true;
         }
         done
     }
@@ -200,15 +236,22 @@ impl Page {
     /// A button of the time bar, by its label.
     pub fn time_bar(&mut self, label: &str) -> Result<bool, String> {
         match label {
-            "Pause" => self.playing = false,
+            "Pause" => {
+                self.playing = false;
+                self.timeline_paused = false;
+            }
             // Play on an ended run is Replay: the run starts again.
             "Play" if self.exp.status().phase == Phase::Ended && self.at >= self.timeline.end() => {
                 self.time_bar("Reset")?;
                 self.playing = true;
             }
-            "Play" => self.playing = true,
+            "Play" => {
+                self.playing = true;
+                self.timeline_paused = false;
+            }
             "Step" => {
                 self.playing = false;
+                self.timeline_paused = false;
                 for _ in 0..Clock::fixed_steps_in(self.exp.natural_step_s()) {
                     if self.at < self.timeline.end() {
                         self.seek(self.at + 1);
@@ -219,11 +262,13 @@ impl Page {
             }
             "Back" => {
                 self.playing = false;
+                self.timeline_paused = false;
                 let n = u64::from(Clock::fixed_steps_in(self.exp.natural_step_s()));
                 self.seek(self.at.saturating_sub(n));
             }
             "Run to end" => {
                 self.playing = false;
+                self.timeline_paused = true;
                 if self.at < self.timeline.end() {
                     self.seek(self.timeline.end());
                 }
@@ -258,6 +303,7 @@ impl Page {
             ));
         }
         self.playing = false;
+        self.timeline_paused = true;
         self.seek(to);
         Ok(())
     }
@@ -284,6 +330,7 @@ impl Page {
         }
         let (step, _) = best.ok_or("the value shows no number on the timeline")?;
         self.playing = false;
+        self.timeline_paused = true;
         self.seek(step);
         Ok(())
     }
@@ -292,6 +339,7 @@ impl Page {
     /// shows `text`.
     pub fn scrub_back_until(&mut self, text: &str) -> Result<(), String> {
         self.playing = false;
+        self.timeline_paused = true;
         while !self.exp.status().text.contains(text) {
             if self.at <= self.timeline.first() {
                 return Err(format!(

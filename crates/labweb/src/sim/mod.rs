@@ -363,6 +363,9 @@ struct SimState {
     timeline: Option<labcore::timeline::Timeline>,
     /// Run to end is finishing the run; the step it started from.
     run_to_end: Option<u64>,
+    /// The timeline paused the run (a scrub, Run to end), not the student:
+    /// the next change plays ([`SimState::finish_branch`]).
+    timeline_paused: bool,
     /// The timeline slider and what it shows: (first, last, shown) step.
     scrub_slider: Option<Element>,
     shown_scrub: (u64, u64, u64),
@@ -537,6 +540,9 @@ impl SimState {
         // by a held key started and stopped 20 times a second).
         let streaming = time_ms - self.last_stream_ms < TEXT_INTERVAL_MS;
         let was_animating = self.exp.animating();
+        // Asked before the clock counts this frame's steps: the frame that
+        // reaches the record's end replays up to it, not on from the past.
+        let in_past = self.in_past();
         // An idle experiment's clock does not tick (t counts motion only).
         let steps = if was_animating || !self.exp.animated() {
             self.clock.advance(elapsed_s)
@@ -545,7 +551,7 @@ impl SimState {
         };
         let steps = if self.run_to_end.is_some() {
             self.run_to_end_frame(start) as u32
-        } else if steps > 0 && self.in_past() {
+        } else if steps > 0 && in_past {
             // Play from the past replays the record up to its end.
             let from = self.clock.steps() - u64::from(steps);
             self.forward_in_past(from, u64::from(steps)) as u32
@@ -783,6 +789,8 @@ impl SimState {
     }
 
     fn write_hash(&mut self) {
+        // An input on its way is settled: a restart is a new run at t = 0.
+        self.finish_branch();
         self.hash_dirty = false;
         let hash = self.link();
         if let Ok(history) = dom::window().history() {
@@ -954,6 +962,7 @@ impl SimView {
             shown_move: a11y::ShownMove::default(),
             timeline: None,
             run_to_end: None,
+            timeline_paused: false,
             scrub_slider: query(panel, ".tb-scrub"),
             shown_scrub: (0, 0, u64::MAX),
             shown_valuetext: (0, 0, u64::MAX),
@@ -1065,6 +1074,8 @@ impl SimView {
         });
         st.timeline_input();
         let mut notices = route::apply_params(st.exp.as_mut(), &own);
+        // Settled now: a run it starts again starts before the link's marks.
+        st.finish_branch();
         let mut at_s = None;
         // A link is a whole state: its marks, or none.
         let mut link_marks = labcore::marks::Marks::default();

@@ -47,7 +47,7 @@ pub(super) const REHEARSAL_TIMEOUT_MS: u32 = 2000;
 /// Step back and Run to end (beside Step).
 pub(super) const BUTTONS_HTML: &str = "<button type=\"button\" data-time=\"back\" aria-keyshortcuts=\",\" title=\"One step back (key ,)\">\
      <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M14 2v12l-8-6zM2 2h3v12H2z\"/></svg> <span class=\"tb-text\">Back</span></button>\
-     <button type=\"button\" data-time=\"end\" aria-keyshortcuts=\"End\" title=\"Finish the run at once (key End)\">\
+     <button type=\"button\" data-time=\"end\" aria-keyshortcuts=\"End\" title=\"Finish the run at once; a run with no end goes 10 minutes on (key End)\">\
      <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M1 2v12l6-6zM7 2v12l6-6zM13 2h2v12h-2z\"/></svg> <span class=\"tb-text\">Run to end</span></button>";
 
 /// The timeline slider, on its own row of the time bar: from the oldest
@@ -63,16 +63,34 @@ fn step_once(exp: &mut dyn Lab) {
     exp.step(Clock::DT_S);
 }
 
-/// A branch taken in the past, named once its input has been applied.
+/// An input on its way: what the run was before it, settled once the
+/// input has been applied ([`SimState::finish_branch`]): a change that
+/// started the run again begins a new run (its own clock and timeline),
+/// one made in the past a branch.
 pub(super) struct PendingBranch {
-    /// The moment it branched from, seconds.
+    /// The moment it came at, seconds.
     t_s: f64,
     /// The parameters before the input.
     before: Vec<Option<f64>>,
-    /// The old run's last state.
-    abandoned: Box<dyn Lab>,
+    /// The main plot's progress before it ([`plot_x`]).
+    x_before: Option<f64>,
+    /// The run it may leave behind, unnamed: the old future from the past
+    /// (with its trails), the run so far from its end (one that lasted
+    /// [`KEEP_MIN_STEPS`]; its plots only, taken before every such input).
+    left: Option<KeptRun>,
+    /// It came while the past was shown.
+    from_past: bool,
     /// What the input was, when the page knows (an action's label).
     cause: Option<&'static str>,
+}
+
+/// A run ended by a restart is kept for comparison when it lasted at least
+/// this many steps (half a second): the runs a dragged slider starts one a
+/// frame are not.
+const KEEP_MIN_STEPS: u64 = 30;
+
+fn main_x(exp: &dyn Lab) -> Option<f64> {
+    exp.plots().first().and_then(plot_x)
 }
 
 fn param_values(exp: &dyn Lab) -> Vec<Option<f64>> {
@@ -258,9 +276,11 @@ impl SimState {
             .is_some_and(|t| self.clock.steps() < t.end())
     }
 
-    /// A new record from the state now (mount, Reset, a file loaded).
+    /// A new record from the state now (mount, Reset, a file loaded, a
+    /// new run): the clock's steps are the run's own from here.
     pub(super) fn restart_timeline(&mut self) {
         self.record_end = None;
+        self.pending_branch = None;
         if self.exp.animated() {
             self.timeline = Some(Timeline::new(self.exp.as_ref(), self.clock.steps()));
         }
@@ -269,17 +289,29 @@ impl SimState {
     }
 
     /// An input is about to change the model at the step shown: the record
-    /// keeps the state it leaves (from the past: a new run from there).
+    /// keeps the state it leaves (from the past: a new run from there), and
+    /// what the run was is noted for [`SimState::finish_branch`].
     pub(super) fn timeline_input(&mut self) {
         let cause = self.branch_cause.take();
-        if let Some(abandoned) = self.record_end.take() {
-            // From the past: the old future is kept, named once the input
-            // is applied ([`SimState::finish_branch`]).
+        if self.record_end.is_some() {
             self.finish_branch();
+        }
+        if self.pending_branch.is_none() {
+            let steps = self.timeline.as_ref().map_or(0, |t| t.end() - t.first());
+            let from_past = self.record_end.is_some();
+            let left = match self.record_end.take() {
+                Some(end) => Some(KeptRun::of(end.as_ref(), String::new())),
+                None if steps >= KEEP_MIN_STEPS && !self.exp.plots().is_empty() => {
+                    Some(KeptRun::plots_of(self.exp.as_ref(), String::new()))
+                }
+                None => None,
+            };
             self.pending_branch = Some(PendingBranch {
                 t_s: self.clock.time_s(),
                 before: param_values(self.exp.as_ref()),
-                abandoned,
+                x_before: main_x(self.exp.as_ref()),
+                left,
+                from_past,
                 cause,
             });
         }
@@ -289,26 +321,40 @@ impl SimState {
         self.marks_new_run_from(self.clock.steps());
     }
 
-    /// Names and keeps the run a branch left behind, once its input has
-    /// been applied: what changed (the first parameter that did, else the
-    /// action) and when.
+    /// Settles an input once it has been applied. One that started the run
+    /// again (the main plot went back: [`timeline::restarted`]) begins a
+    /// new run: the clock and the timeline count from its start, as its
+    /// plots, status and marks do, and the run it ended is kept for
+    /// comparison, named as the restart it is. One made in the past keeps
+    /// the old future, named after the change and its moment. Either plays
+    /// on where the timeline had paused the run (a scrub, Run to end).
     pub(super) fn finish_branch(&mut self) {
         let Some(branch) = self.pending_branch.take() else {
             return;
         };
-        let label = timeline::branch_label(
-            self.exp.params(),
-            &branch.before,
-            &param_values(self.exp.as_ref()),
-            branch.cause,
-            branch.t_s,
-        );
-        timeline::keep(
-            &mut self.kept,
-            KeptRun::of(branch.abandoned.as_ref(), label),
-        );
-        self.kept_serial += 1;
-        self.plots_force = true;
+        let restarted = timeline::restarted(branch.x_before, main_x(self.exp.as_ref()));
+        if let Some(mut left) = branch.left.filter(|_| restarted || branch.from_past) {
+            let (specs, after) = (self.exp.params(), param_values(self.exp.as_ref()));
+            left.label = if restarted {
+                timeline::restart_label(specs, &branch.before, &after, branch.cause)
+            } else {
+                timeline::branch_label(specs, &branch.before, &after, branch.cause, branch.t_s)
+            };
+            timeline::keep(&mut self.kept, left);
+            self.kept_serial += 1;
+            self.plots_force = true;
+        }
+        if restarted {
+            self.clock.reset();
+            self.restart_timeline();
+            self.plots_force = true;
+            self.jumped = true;
+            self.hash_dirty = true;
+        }
+        if (restarted || branch.from_past) && std::mem::take(&mut self.timeline_paused) {
+            self.clock.set_running(true);
+            self.last_time_ms = None;
+        }
         self.needs_paint = true;
     }
 
@@ -442,7 +488,9 @@ impl SimState {
     }
 
     /// Before the live run steps: the record takes the state an input left.
+    /// An input on its way is settled first ([`SimState::finish_branch`]).
     pub(super) fn timeline_commit(&mut self) {
+        self.finish_branch();
         if let Some(tl) = &mut self.timeline {
             tl.commit(self.exp.as_ref());
         }
@@ -508,10 +556,10 @@ impl SimState {
     /// Goes to step `step` of the run (clamped to the record) and pauses
     /// there: the scene, readouts, status, tables and plots as they were.
     pub(super) fn seek(&mut self, step: u64) {
+        self.timeline_commit();
         let Some(tl) = self.timeline.as_mut() else {
             return;
         };
-        tl.commit(self.exp.as_ref());
         let end = tl.end();
         // A scrub's code has run: no rehearsal is wanted.
         self.scrub_rehearsed = true;
@@ -542,6 +590,7 @@ impl SimState {
             self.exp.viewport_px(self.css_size.0, self.css_size.1);
         }
         self.clock.set_running(false);
+        self.timeline_paused = true;
         self.clock.seek(at);
         self.ended_hold = false;
         self.run_to_end = None;
@@ -595,11 +644,13 @@ impl SimState {
         if self.timeline.is_none() {
             return;
         }
+        self.timeline_commit();
         if self.in_past() {
             let end = self.timeline.as_ref().map_or(0, Timeline::end);
             self.seek(end);
         }
         self.clock.set_running(false);
+        self.timeline_paused = true;
         self.ended_hold = false;
         self.run_to_end = Some(self.clock.steps());
         self.needs_paint = true;
@@ -621,6 +672,13 @@ impl SimState {
             self.plots_force = true;
             self.hash_dirty = true;
             self.announce();
+            if self.exp.animating() && self.exp.status().phase != Phase::Ended {
+                // Stopped by the limit, not by an end: say so.
+                self.show_message(Some(&format!(
+                    "Run to end: this run has no end, so it went 10 minutes on, to t = {:.2} s.",
+                    self.clock.time_s()
+                )));
+            }
         }
         taken
     }

@@ -106,8 +106,10 @@ fn speed_label(v: f64) -> &'static str {
         "1"
     }
 }
-/// What the play button offers: (label, icon, aria-pressed). A run that has
-/// ended offers Replay (reset, then play), never Pause.
+/// What the play button offers: (label, icon, aria-pressed), for `running`
+/// (the clock plays and something moves: not held) and `ended`. A run that
+/// has ended offers Replay (reset, then play), never Pause; one that waits
+/// for something to move offers Play, as its time bar says it is held.
 pub(super) fn play_button(running: bool, ended: bool) -> (&'static str, &'static str, bool) {
     if ended {
         ("Replay", ICON_REPLAY, false)
@@ -159,11 +161,23 @@ impl SimState {
             self.phase = self.exp.status().phase;
             self.ended_hold = false;
             self.set_running(true);
+        } else if self.clock_state() == ClockState::Held {
+            // Play is on already: time starts when something moves.
+            self.say("Nothing moves yet: time starts when something does.");
         } else {
             let running = !self.clock.running();
             self.ended_hold = false;
             self.set_running(running);
         }
+    }
+
+    fn clock_state(&self) -> ClockState {
+        ClockState::of(
+            self.exp.animated(),
+            self.clock.running(),
+            self.phase == Phase::Ended,
+            self.exp.animating(),
+        )
     }
 
     /// One model step from a pause (the Step button and the `.` key): the
@@ -173,6 +187,7 @@ impl SimState {
         let was_animating = self.exp.animating();
         let steps = Clock::fixed_steps_in(self.exp.natural_step_s());
         self.run_to_end = None;
+        self.timeline_paused = false;
         if self.in_past() {
             // Along the record, as it went.
             self.clock.set_running(false);
@@ -202,6 +217,7 @@ impl SimState {
     }
 
     pub(super) fn set_running(&mut self, running: bool) {
+        self.timeline_paused = false;
         self.clock.set_running(running);
         self.last_time_ms = None;
         self.hash_dirty = true;
@@ -228,8 +244,9 @@ impl SimState {
     /// Brings the time bar up to date: its buttons at once, the time's text
     /// only with `text` (a frame that writes the page's text).
     pub(super) fn sync_timebar(&mut self, text: bool) {
+        let clock = self.clock_state();
         let now = (
-            self.clock.running(),
+            self.clock.running() && clock != ClockState::Held,
             self.clock.speed(),
             self.clock.steps(),
             self.phase == Phase::Ended,
@@ -237,12 +254,6 @@ impl SimState {
         if now != self.shown_time {
             self.sync_time_controls(now);
         }
-        let clock = ClockState::of(
-            self.exp.animated(),
-            self.clock.running(),
-            now.3,
-            self.exp.animating(),
-        );
         if Some(clock) != self.shown_clock {
             // The badge says "paused" (CSS adds it), the time bar "held".
             for el in [".sim-status", ".timebar"] {
