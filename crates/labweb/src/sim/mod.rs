@@ -300,6 +300,12 @@ struct SimState {
     /// so no frame lays out, or paints, the readouts and every formula
     /// together.
     math_pending: Vec<(usize, (String, String, String))>,
+    /// The simulation step (`Clock::steps`) whose numbers
+    /// [`SimState::math_pending`] holds, when that collection weighed every
+    /// equation (none left out of the window): once the last of them is
+    /// written, the panel's `data-step` names it, so the panel's numbers
+    /// are known to be that step's, like the readouts' `data-step`.
+    math_step: Option<u64>,
     /// The idle-time call that writes [`SimState::math_pending`] and lays
     /// the page out then ([`SimState::write_math_when_idle`]) is asked for.
     math_idle_asked: bool,
@@ -938,6 +944,7 @@ impl SimView {
             shown_tables: Vec::new(),
             shown_math: Vec::new(),
             math_pending: Vec::new(),
+            math_step: None,
             math_idle_asked: false,
             math_held_px: 0,
             readouts_in_idle: false,

@@ -518,6 +518,11 @@ impl SimState {
     /// Writes the readouts whose text changed: a write makes the browser
     /// lay the page out again.
     fn write_readouts(&mut self, readouts: &[labcore::Readout]) {
+        // The step they are of (what "The math" panel's `data-step` is
+        // compared with: the two show one step where the two agree).
+        if let Some(list) = query(&self.panel, "dl.readouts") {
+            let _ = list.set_attribute("data-step", &self.clock.steps().to_string());
+        }
         for ((r, shown), dd) in readouts
             .iter()
             .zip(self.shown_readouts.iter_mut())
@@ -645,9 +650,11 @@ impl SimState {
             equations.len(),
             (String::new(), String::new(), String::new()),
         );
+        self.math_step = Some(self.clock.steps());
         for (i, eq) in equations.iter().enumerate() {
             let seen = self.equations_on_screen.get(i).copied().unwrap_or(true);
             if !self.text_settled && !seen {
+                self.math_step = None;
                 continue;
             }
             let now = labpage::math_panel::live_parts(eq, quantities, readouts);
@@ -656,6 +663,22 @@ impl SimState {
             }
         }
         self.math_pending.reverse();
+        self.name_math_step();
+    }
+
+    /// Once every equation shows the numbers of [`SimState::math_step`],
+    /// the panel says which step that is (`data-step`, as the readouts
+    /// do): while a chain of idle writes goes on, its equations show two
+    /// steps, and the panel keeps naming the last step it showed whole.
+    fn name_math_step(&mut self) {
+        if !self.math_pending.is_empty() {
+            return;
+        }
+        if let (Some(step), Some(section)) =
+            (self.math_step.take(), query(&self.panel, ".live-math"))
+        {
+            let _ = section.set_attribute("data-step", &step.to_string());
+        }
     }
 
     /// Writes the readouts and the next equation [`SimState::sync_math`]
@@ -749,6 +772,7 @@ impl SimState {
         if let Some(shown) = self.shown_math.get_mut(i) {
             *shown = parts;
         }
+        self.name_math_step();
         true
     }
 
