@@ -521,7 +521,7 @@ impl SimState {
         // The step they are of (what "The math" panel's `data-step` is
         // compared with: the two show one step where the two agree).
         if let Some(list) = query(&self.panel, "dl.readouts") {
-            let _ = list.set_attribute("data-step", &self.clock.steps().to_string());
+            name_step(&list, self.clock.steps());
         }
         for ((r, shown), dd) in readouts
             .iter()
@@ -677,7 +677,7 @@ impl SimState {
         if let (Some(step), Some(section)) =
             (self.math_step.take(), query(&self.panel, ".live-math"))
         {
-            let _ = section.set_attribute("data-step", &step.to_string());
+            name_step(&section, step);
         }
     }
 
@@ -824,6 +824,15 @@ impl SimState {
         }
         self.needs_paint = true;
         self.hash_dirty = true;
+    }
+}
+
+/// Writes `step` as `el`'s `data-step`, only where it names another step:
+/// a repaint of what has not changed writes nothing to the page.
+fn name_step(el: &Element, step: u64) {
+    let text = step.to_string();
+    if el.get_attribute("data-step").as_deref() != Some(text.as_str()) {
+        let _ = el.set_attribute("data-step", &text);
     }
 }
 
