@@ -298,6 +298,9 @@ fn content(value: &Value, reading: bool) -> Result<String, String> {
     let theory = list(f.array("theory")?, block)?;
     let file = value.get("id").and_then(Value::as_str).unwrap_or("?");
     let procedure = procedure(f.array("procedure")?, file)?;
+    if let Some(claims) = f.optional("claims") {
+        check_claims(claims, file)?;
+    }
     let quiz = list(f.array("quiz")?, question)?;
     let references = list(f.array("references")?, reference)?;
     let math = f.strings("math")?;
@@ -359,6 +362,47 @@ fn procedure(items: &[Value], id: &str) -> Result<String, String> {
         parts.push(format!("{text:?}"));
     }
     Ok(format!("strings(&[{}])", parts.join(", ")))
+}
+
+/// The claims of the reading beyond the Procedure (`claims`: a sentence of
+/// the theory, a caption, a hint or a status that says what this lab shows,
+/// each `{quote, play, given}`): test-only like a step's `play`, so nothing
+/// of them is compiled in. A number the quoted sentence writes that is none
+/// of the claim's values stops the build, as a step's does; that the quote
+/// is the text's own, word for word, the Procedure runner checks.
+fn check_claims(value: &Value, id: &str) -> Result<(), String> {
+    let Value::Array(items) = value else {
+        return Err(format!("assets/{id}.json: `claims` should be an array"));
+    };
+    for (i, item) in items.iter().enumerate() {
+        let place = format!("assets/{id}.json: claim {}", i + 1);
+        let mut f = Fields::of(item, place.clone())?;
+        let quote = match f.required("quote")? {
+            Value::String(s) => s.clone(),
+            _ => return Err(f.wrong("quote", "a string")),
+        };
+        let play = f.array("play")?;
+        if play.is_empty() {
+            return Err(f.wrong("play", "a non-empty array"));
+        }
+        let given = match f.optional("given") {
+            None => &[][..],
+            Some(Value::Array(items)) => items.as_slice(),
+            Some(_) => return Err(f.wrong("given", "an array of numbers")),
+        };
+        f.done()?;
+        let mut values = Vec::new();
+        for v in play.iter().chain(given) {
+            step_values(v, &mut values);
+        }
+        if let Some(n) = step_numbers::stray_number(&quote, &values) {
+            eprintln!(
+                "error: {place}: the quoted sentence writes {n}, which is none of the claim's values (its play, or `given`)"
+            );
+            std::process::exit(1);
+        }
+    }
+    Ok(())
 }
 
 /// Every number of a step's machine part: its JSON numbers and the numbers

@@ -399,43 +399,75 @@ pub const MIN_REFERENCES: usize = 3;
 /// How many equations "The math" panel shows (the content's `math` list).
 pub const MATH_EQUATIONS: std::ops::RangeInclusive<usize> = 1..=4;
 
+/// Every number of a machine part (`play`, `given`): its JSON numbers and
+/// the numbers written in its strings.
+#[cfg(feature = "reading")]
+fn machine_values(v: &Json, out: &mut Vec<f64>) {
+    match v {
+        Json::Number(n) => out.push(*n),
+        Json::String(s) => out.extend(
+            crate::step_numbers::numbers_in(s)
+                .into_iter()
+                .map(|(_, n)| n),
+        ),
+        Json::Array(items) => items.iter().for_each(|i| machine_values(i, out)),
+        Json::Object(fields) => fields.iter().for_each(|(_, i)| machine_values(i, out)),
+        Json::Null | Json::Bool(_) => {}
+    }
+}
+
+/// The prose (`prose_key`) of an object with a machine part (`play`,
+/// optionally `given`), as `build.rs` reads it: a number of the prose that
+/// is none of its values is an error ([`crate::step_numbers`]).
+#[cfg(feature = "reading")]
+fn checked_prose(item: &Json, place: &str, prose_key: &'static str) -> Result<String, String> {
+    let mut f = Fields::of(item, place)?;
+    let text = f.string(prose_key)?;
+    let mut found = Vec::new();
+    machine_values(&Json::Array(f.array("play")?.to_vec()), &mut found);
+    if let Some(given) = f.optional("given") {
+        machine_values(given, &mut found);
+    }
+    f.done()?;
+    if let Some(n) = crate::step_numbers::stray_number(&text, &found) {
+        let (prose, whose) = if prose_key == "quote" {
+            ("quoted sentence", "claim")
+        } else {
+            ("prose", "step")
+        };
+        return Err(format!(
+            "{place}: the {prose} writes {n}, which is none of the {whose}'s values (its play, or `given`)"
+        ));
+    }
+    Ok(text)
+}
+
 /// The prose of each Procedure step (`{"text", "play", "given"}`), as
 /// `build.rs` reads it: a number of the prose that is none of the step's
 /// values is an error ([`crate::step_numbers`]).
 #[cfg(feature = "reading")]
 fn procedure_texts(steps: &[Json]) -> Result<Vec<String>, String> {
-    fn values(v: &Json, out: &mut Vec<f64>) {
-        match v {
-            Json::Number(n) => out.push(*n),
-            Json::String(s) => out.extend(
-                crate::step_numbers::numbers_in(s)
-                    .into_iter()
-                    .map(|(_, n)| n),
-            ),
-            Json::Array(items) => items.iter().for_each(|i| values(i, out)),
-            Json::Object(fields) => fields.iter().for_each(|(_, i)| values(i, out)),
-            Json::Null | Json::Bool(_) => {}
-        }
+    steps
+        .iter()
+        .enumerate()
+        .map(|(i, step)| checked_prose(step, &format!("procedure step {}", i + 1), "text"))
+        .collect()
+}
+
+/// The claims beyond the Procedure (`{"quote", "play", "given"}`), checked
+/// as `build.rs` checks them and then dropped: they are the runner's only.
+#[cfg(feature = "reading")]
+fn check_claims(claims: Option<&Json>) -> Result<(), String> {
+    let Some(claims) = claims else {
+        return Ok(());
+    };
+    let Json::Array(items) = claims else {
+        return Err("content: field `claims` should be an array".into());
+    };
+    for (i, claim) in items.iter().enumerate() {
+        checked_prose(claim, &format!("claim {}", i + 1), "quote")?;
     }
-    let mut texts = Vec::with_capacity(steps.len());
-    for (i, step) in steps.iter().enumerate() {
-        let place = format!("procedure step {}", i + 1);
-        let mut f = Fields::of(step, place.clone())?;
-        let text = f.string("text")?;
-        let mut found = Vec::new();
-        values(&Json::Array(f.array("play")?.to_vec()), &mut found);
-        if let Some(given) = f.optional("given") {
-            values(given, &mut found);
-        }
-        f.done()?;
-        if let Some(n) = crate::step_numbers::stray_number(&text, &found) {
-            return Err(format!(
-                "{place}: the prose writes {n}, which is none of the step's values (its play, or `given`)"
-            ));
-        }
-        texts.push(text);
-    }
-    Ok(texts)
+    Ok(())
 }
 
 impl Content {
@@ -473,6 +505,8 @@ impl Content {
                 .collect::<Result<_, _>>()?,
             math: f.strings("math")?,
         };
+        // Test-only, like a step's `play`: checked, never kept.
+        check_claims(f.optional("claims"))?;
         f.done()?;
         Ok(content)
     }
@@ -1072,6 +1106,11 @@ mod tests {
                 assert!(!shown.contains(" style="), "{} {field}: {shown}", entry.id);
                 written += shown.matches("<math").count();
             }
+            // The claims beyond the Procedure quote formulas but are not
+            // compiled in (`build.rs`): they are not counted.
+            let mut file: serde_json::Value = serde_json::from_str(text).unwrap();
+            file.as_object_mut().unwrap().remove("claims");
+            let text = file.to_string();
             let dollars = text.matches('$').count() - 2 * text.matches("$$").count();
             assert_eq!(dollars % 2, 0, "{}", entry.id);
             assert_eq!(

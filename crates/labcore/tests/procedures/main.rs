@@ -9,6 +9,15 @@
 //! A mutation test proves the claims bite: altered by 20 %, or "larger"
 //! swapped for "smaller", a claim must fail.
 //!
+//! A sentence of the reading beyond the Procedure that says what this lab
+//! shows (theory, aim, a caption of "The math", a hint, a status) is a claim
+//! too: the content file's `claims`, each `{quote, play, given}`, where
+//! `quote` is that sentence word for word and `play` its machine part,
+//! played from a freshly opened page. A failure names the experiment, the
+//! quoted sentence, the claim and what the page showed; a quote that is no
+//! longer the text's own fails too. The mutation test samples these claims
+//! as well.
+//!
 //! The browser runner (`tests/e2e/procedures.test.mjs`) plays the same data
 //! on the built site.
 
@@ -22,6 +31,91 @@ use serde_json::Value;
 fn procedure(entry: &labcore::Entry) -> Vec<Value> {
     let file: Value = serde_json::from_str(entry.content_json).expect("content is JSON");
     file["procedure"].as_array().expect("a procedure").clone()
+}
+
+/// The `claims` array of experiment `id`'s content file (none when absent).
+fn claims(entry: &labcore::Entry) -> Vec<Value> {
+    let file: Value = serde_json::from_str(entry.content_json).expect("content is JSON");
+    file["claims"].as_array().cloned().unwrap_or_default()
+}
+
+/// A claim as a one-step Procedure: its quote is the step's prose.
+fn as_step(claim: &Value) -> Vec<Value> {
+    vec![serde_json::json!({"text": claim["quote"], "play": claim["play"]})]
+}
+
+/// The texts a claim may quote: the content file's summary, aim and theory
+/// as written (LaTeX and all), and what the page shows in words: the
+/// captions of "The math", the hints, the status, the notice and the tables'
+/// captions.
+fn quotable(entry: &labcore::Entry, page: &dyn labcore::experiment::Lab) -> Vec<String> {
+    let file: Value = serde_json::from_str(entry.content_json).expect("content is JSON");
+    let mut out = vec![file["summary"].as_str().unwrap_or_default().to_owned()];
+    for v in file["aim"].as_array().into_iter().flatten() {
+        out.extend(v.as_str().map(str::to_owned));
+    }
+    for block in file["theory"].as_array().into_iter().flatten() {
+        out.extend(
+            block
+                .as_object()
+                .into_iter()
+                .flat_map(|o| o.values())
+                .filter_map(Value::as_str)
+                .map(str::to_owned),
+        );
+    }
+    out.extend(page.equations().iter().map(|e| e.caption.to_owned()));
+    out.push(page.hint().to_owned());
+    out.push(page.touch_hint().to_owned());
+    out.push(page.status().text);
+    out.push(labcore::testkit::notice_text(page));
+    out.extend(page.tables().into_iter().map(|t| t.caption));
+    out
+}
+
+/// Plays each claim of experiment `entry` from a fresh page: the failures,
+/// one per claim that does not hold or whose quote is not in the text it
+/// quotes (on the fresh page or on the page the claim's play left).
+fn check_claims(entry: &labcore::Entry) -> Vec<String> {
+    let fresh = page::Page::open(entry.id);
+    let before = quotable(entry, fresh.exp.as_ref());
+    claims(entry)
+        .iter()
+        .enumerate()
+        .filter_map(|(k, claim)| {
+            let quote = claim["quote"].as_str().unwrap_or_default();
+            let head = format!("{} claim {}: “{quote}”", entry.id, k + 1);
+            match play::play_to(entry.id, &as_step(claim), None) {
+                Err(f) => Some(format!(
+                    "{head}\n    claim: {}\n    the page showed: {}",
+                    f.item, f.shown
+                )),
+                Ok(page) => {
+                    let after = quotable(entry, page.exp.as_ref());
+                    let found = before.iter().chain(&after).any(|t| t.contains(quote));
+                    (!found).then(|| {
+                        format!(
+                            "{head}\n    is not written in the summary, aim, theory, a caption of the math, a hint, the status, the notice or a table's caption"
+                        )
+                    })
+                }
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn every_claim_beyond_the_procedure_holds() {
+    let failures: Vec<String> = std::thread::scope(|scope| {
+        let runs: Vec<_> = labcore::registry()
+            .iter()
+            .map(|entry| scope.spawn(move || check_claims(entry)))
+            .collect();
+        runs.into_iter()
+            .flat_map(|run| run.join().expect("the runner does not panic"))
+            .collect()
+    });
+    assert!(failures.is_empty(), "\n{}", failures.join("\n\n"));
 }
 
 #[test]
@@ -159,13 +253,46 @@ fn scale_first_number(text: &str, factor: f64) -> Option<String> {
     None
 }
 
-/// How many mutants the sample takes from each experiment.
+/// How many mutants the sample takes from each experiment's Procedure, and
+/// from its claims beyond the Procedure.
 const PER_EXPERIMENT: usize = 4;
+const PER_EXPERIMENT_CLAIMS: usize = 2;
+
+/// Every mutant of each claim beyond the Procedure of `entry`: the claim as
+/// a one-step Procedure, its place ("claim 2") and the mutant.
+fn claim_mutants(entry: &labcore::Entry, rng: &mut Lcg64) -> Vec<(Vec<Value>, String, Mutant)> {
+    let mut out = Vec::new();
+    for (k, claim) in claims(entry).iter().enumerate() {
+        let steps = as_step(claim);
+        let items = claim["play"].as_array().map_or(&[][..], Vec::as_slice);
+        for m in mutants_of(0, items, rng) {
+            out.push((steps.clone(), format!("claim {}", k + 1), m));
+        }
+    }
+    out
+}
+
+/// Whether the runner fails a mutant at its own step: `None` if so, else
+/// why not.
+fn killed(id: &str, steps: &[Value], place: &str, m: &Mutant) -> Option<String> {
+    let mut steps = steps.to_vec();
+    steps[m.step]["play"][m.item] = m.mutated.clone();
+    match play::play(id, &steps, Some(m.step + 1)) {
+        Err(f) if f.step == m.step + 1 => None,
+        Err(f) => Some(format!("{id} {place}: {} failed elsewhere: {f}", m.what)),
+        Ok(()) => Some(format!(
+            "{id} {place}, item {}: {} survives",
+            m.item + 1,
+            m.what
+        )),
+    }
+}
 
 #[test]
 fn a_mutated_claim_makes_the_runner_fail() {
     let mut rng = Lcg64::new(52);
-    let mut sample: Vec<(&'static str, Vec<Value>, Mutant)> = Vec::new();
+    // (experiment, its steps or a claim as one, where, the mutant)
+    let mut sample: Vec<(&'static str, Vec<Value>, String, Mutant)> = Vec::new();
     for entry in labcore::registry() {
         let steps = procedure(entry);
         let mut all: Vec<Mutant> = steps
@@ -182,32 +309,21 @@ fn a_mutated_claim_makes_the_runner_fail() {
         assert!(!all.is_empty(), "{}: no claim to mutate", entry.id);
         for _ in 0..PER_EXPERIMENT.min(all.len()) {
             let pick = rng.int(0, all.len() as i64 - 1) as usize;
-            sample.push((entry.id, steps.clone(), all.swap_remove(pick)));
+            let m = all.swap_remove(pick);
+            let place = format!("step {}", m.step + 1);
+            sample.push((entry.id, steps.clone(), place, m));
+        }
+        let mut beyond = claim_mutants(entry, &mut rng);
+        for _ in 0..PER_EXPERIMENT_CLAIMS.min(beyond.len()) {
+            let pick = rng.int(0, beyond.len() as i64 - 1) as usize;
+            let (steps, place, m) = beyond.swap_remove(pick);
+            sample.push((entry.id, steps, place, m));
         }
     }
     let survivors: Vec<String> = std::thread::scope(|scope| {
         let runs: Vec<_> = sample
             .iter()
-            .map(|(id, steps, m)| {
-                scope.spawn(move || {
-                    let mut steps = steps.clone();
-                    steps[m.step]["play"][m.item] = m.mutated.clone();
-                    match play::play(id, &steps, Some(m.step + 1)) {
-                        Err(f) if f.step == m.step + 1 => None,
-                        Err(f) => Some(format!(
-                            "{id} step {}: {} failed elsewhere: {f}",
-                            m.step + 1,
-                            m.what
-                        )),
-                        Ok(()) => Some(format!(
-                            "{id} step {}, item {}: {} survives",
-                            m.step + 1,
-                            m.item + 1,
-                            m.what
-                        )),
-                    }
-                })
-            })
+            .map(|(id, steps, place, m)| scope.spawn(move || killed(id, steps, place, m)))
             .collect();
         runs.into_iter()
             .filter_map(|r| r.join().expect("the runner does not panic"))
@@ -236,13 +352,13 @@ fn every_claim_of_every_step_is_killed_by_its_mutants() {
                 &mut rng,
             ) {
                 total += 1;
-                let mut steps = steps.clone();
-                steps[m.step]["play"][m.item] = m.mutated.clone();
-                if !matches!(play::play(entry.id, &steps, Some(m.step + 1)), Err(f) if f.step == m.step + 1)
-                {
-                    survivors.push(format!("{} step {}: {}", entry.id, m.step + 1, m.what));
-                }
+                let place = format!("step {}", m.step + 1);
+                survivors.extend(killed(entry.id, &steps, &place, &m));
             }
+        }
+        for (steps, place, m) in claim_mutants(entry, &mut rng) {
+            total += 1;
+            survivors.extend(killed(entry.id, &steps, &place, &m));
         }
     }
     println!("mutants killed: {} of {total}", total - survivors.len());

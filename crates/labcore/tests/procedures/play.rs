@@ -82,6 +82,11 @@ pub struct Student {
 /// `procedure` array) in order on a freshly opened page, through step
 /// `last` (from 1) or all of them; the first step that does not hold.
 pub fn play(id: &str, steps: &[Value], last: Option<usize>) -> Result<(), Failure> {
+    play_to(id, steps, last).map(|_| ())
+}
+
+/// As [`play`], and the page as the steps left it.
+pub fn play_to(id: &str, steps: &[Value], last: Option<usize>) -> Result<Page, Failure> {
     let mut student = Student {
         page: Page::open(id),
         notes: HashMap::new(),
@@ -111,7 +116,7 @@ pub fn play(id: &str, steps: &[Value], last: Option<usize>) -> Result<(), Failur
             done.map_err(|shown| fail(item.to_string(), shown))?;
         }
     }
-    Ok(())
+    Ok(student.page)
 }
 
 impl Student {
