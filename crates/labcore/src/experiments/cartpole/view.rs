@@ -63,7 +63,7 @@ const ENERGY: Equation = Equation {
         ),
     ),
     readout: "energy",
-    caption: "The energy now: the cart's and the pole's motion plus the pole's height; with control off and no friction it stays put.",
+    caption: "The energy now: the cart's and the pole's motion plus the pole's height; with control off and no friction the equations conserve it, so any drift is the integrator's.",
 };
 /// With the controller acting, and with no force (control off, or no step yet).
 const EQUATIONS: [&[Equation]; 2] = [
