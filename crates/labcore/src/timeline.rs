@@ -169,6 +169,25 @@ impl Timeline {
                 .any(|s| s.pinned && s.step > 0 && s.step <= step)
     }
 
+    /// The state whose parameters and set-up a link that names moments of
+    /// the run up to `step` (`at=`, `marks=`) carries: the run's start, as
+    /// the moments are it stepped on; `None` when no link of the start
+    /// reproduces them ([`Timeline::unbroken_to`]). A run moves some
+    /// parameters (ik's joint angles): the state shown has the moment's.
+    /// `live` is the state shown: the start itself while an input at the
+    /// start is not yet committed.
+    #[must_use]
+    pub fn link_start<'a>(&'a self, live: &'a dyn Lab, step: u64) -> Option<&'a dyn Lab> {
+        if !self.unbroken_to(step) {
+            return None;
+        }
+        Some(if self.dirty && self.end == 0 {
+            live
+        } else {
+            &*self.snaps[0].lab
+        })
+    }
+
     /// Steps replayed by the last [`Timeline::state_at`] or
     /// [`Timeline::step_on_to`].
     #[must_use]

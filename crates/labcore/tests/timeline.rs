@@ -555,3 +555,65 @@ fn a_kept_run_draws_its_trail_as_a_dashed_ghost() {
         }
     }
 }
+
+/// The link the Simulation tab writes for a paused run at `step`
+/// (`labweb/src/sim/mod.rs`, `state_link`): where the record says a link
+/// of the start reproduces the moment, the start's parameters and set-up
+/// and `at=`; else the state's.
+fn paused_link(live: &dyn Lab, timeline: &Timeline, step: u64) -> String {
+    let start = timeline.link_start(live, step).filter(|_| step > 0);
+    let mut link = labcore::route::format(start.unwrap_or(live), labcore::route::Tab::Simulation);
+    if start.is_some() {
+        link.push(if link.contains('?') { '&' } else { '?' });
+        link.push_str(&format!("run=0&at={:.2}", step as f64 * Clock::DT_S));
+    }
+    link
+}
+
+/// Opens `link` as a fresh page does: its parameters and set-up are the
+/// start, stepped on to its `at=`.
+fn open_paused_link(id: &str, link: &str) -> Box<dyn Lab> {
+    let mut exp = labcore::testkit::open(id);
+    // `run` and `at` are the shell's (labweb's `apply_params`).
+    let notices = labcore::testkit::apply_link(exp.as_mut(), link);
+    assert!(
+        notices
+            .iter()
+            .all(|n| n.contains("“run”") || n.contains("“at”")),
+        "{link}: {notices:?}"
+    );
+    let at = link
+        .split(['?', '&'])
+        .find_map(|p| p.strip_prefix("at="))
+        .map_or(0.0, |t| t.parse::<f64>().unwrap());
+    for _ in 0..(at / Clock::DT_S).round() as u64 {
+        exp.step(Clock::DT_S);
+    }
+    exp
+}
+
+/// Issue 53 §8, ik: the joint angles are parameters the run moves. Drag
+/// the target at step 0, 13 steps, pause: the `at=` link carried the
+/// moment's angles with the start's time, so it reopened another pose
+/// (x 0.309 m for 0.550 m). A link reopens exactly the state shown.
+#[test]
+fn an_at_link_carries_the_starts_parameters_where_the_run_moves_them() {
+    let mut exp = labcore::testkit::open("ik");
+    let mut timeline = Timeline::new(exp.as_ref(), 0);
+    timeline.input_at(0);
+    assert!(exp.move_handle("target", DVec2::new(0.55, 0.9)));
+    timeline.commit(exp.as_ref());
+    for _ in 0..13 {
+        exp.step(Clock::DT_S);
+        timeline.stepped(exp.as_ref());
+    }
+    let link = paused_link(exp.as_ref(), &timeline, 13);
+    assert!(link.contains("at=0.22"), "{link}");
+    let reopened = open_paused_link("ik", &link);
+    assert_eq!(
+        exp.readouts(),
+        reopened.readouts(),
+        "{link} reopens another pose"
+    );
+    assert_eq!(shown(exp.as_ref()), shown(reopened.as_ref()), "{link}");
+}

@@ -722,9 +722,8 @@ impl SimState {
     /// hidden ones veiled: [`route::format_veiled`]), then the shell's own
     /// (`run=0` when paused, `speed` when not 1×).
     fn state_link(&self) -> String {
-        let mut hash =
-            route::format_veiled(self.exp.as_ref(), Tab::Simulation, &self.instructor.hidden);
         let mut extra = Vec::new();
+        let mut moment = false;
         if self.exp.animated() && !self.clock.running() && !self.ended_hold {
             extra.push("run=0".to_owned());
             // The moment shown, when the link's state and the steps since
@@ -732,12 +731,23 @@ impl SimState {
             let steps = self.clock.steps();
             if steps > 0 && self.timeline.as_ref().is_some_and(|t| t.unbroken_to(steps)) {
                 extra.push(format!("at={:.2}", self.clock.time_s()));
+                moment = true;
             }
         }
         if self.clock.speed() != 1.0 {
             extra.push(format!("speed={}", self.clock.speed()));
         }
-        extra.extend(self.marks_link());
+        let marks = self.marks_link();
+        moment |= marks.is_some();
+        extra.extend(marks);
+        // A link naming moments carries the start they are stepped on from
+        // (the run moves some parameters: ik's angles).
+        let shown = self.exp.as_ref();
+        let state = (self.timeline.as_ref())
+            .filter(|_| moment)
+            .and_then(|t| t.link_start(shown, 0))
+            .unwrap_or(shown);
+        let mut hash = route::format_veiled(state, Tab::Simulation, &self.instructor.hidden);
         if !extra.is_empty() {
             hash.push(if hash.contains('?') { '&' } else { '?' });
             hash.push_str(&extra.join("&"));
