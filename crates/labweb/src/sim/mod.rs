@@ -389,8 +389,8 @@ struct SimState {
     kept_serial: u64,
     /// A branch whose name waits for the input to be applied.
     pending_branch: Option<scrub::PendingBranch>,
-    /// What the next input is, when the page knows (an action's label).
-    branch_cause: Option<&'static str>,
+    /// What the next input is, when the page knows (an action).
+    branch_cause: Option<&'static labcore::ActionSpec>,
     /// The browser benchmark closed "The math" panel: hidden and not
     /// written, as the page was before it ([`SimView::bench_math_panel`]).
     #[cfg(feature = "bench-exports")]
@@ -740,6 +740,12 @@ impl SimState {
         let marks = self.marks_link();
         moment |= marks.is_some();
         extra.extend(marks);
+        // …and the actions pressed at the start.
+        if let Some(tl) = self.timeline.as_ref().filter(|_| moment) {
+            if !tl.start_actions().is_empty() {
+                extra.push(format!("do={}", tl.start_actions().join(",")));
+            }
+        }
         // A link naming moments carries the start they are stepped on from
         // (the run moves some parameters: ik's angles).
         let shown = self.exp.as_ref();
@@ -1087,7 +1093,7 @@ impl SimView {
     pub fn apply_params(&self, params: &[(String, String)]) -> Vec<String> {
         let mut st = self.state.borrow_mut();
         let (shell, own): (Vec<_>, Vec<_>) = params.iter().cloned().partition(|(k, _)| {
-            k == "run" || k == "speed" || k == "at" || k == labcore::marks::MARKS_KEY
+            ["run", "speed", "at", "do", labcore::marks::MARKS_KEY].contains(&k.as_str())
         });
         st.timeline_input();
         let mut notices = route::apply_params(st.exp.as_mut(), &own);
@@ -1102,6 +1108,21 @@ impl SimView {
                     match labcore::marks::Marks::parse(&raw) {
                         Ok(marks) => link_marks = marks,
                         Err(message) => notices.push(message),
+                    }
+                }
+                ("do", _) => {
+                    // The actions pressed at the link's start, after its
+                    // parameters.
+                    for key in raw.split(',') {
+                        let Some(action) = st.exp.actions().iter().find(|a| a.key == key) else {
+                            notices.push(format!("No button “{key}”; ignored."));
+                            continue;
+                        };
+                        st.branch_cause = Some(action);
+                        let mut done = Ok(());
+                        st.guarded(|exp| done = exp.action(key));
+                        st.finish_branch();
+                        notices.extend(done.err().map(|e| e.to_string()));
                     }
                 }
                 ("run", Ok(v)) if v == 0.0 || v == 1.0 => st.clock.set_running(v == 1.0),
