@@ -551,3 +551,23 @@ fn live_math_ekf_innovation_of_the_last_observation_by_hand() {
         "{nu_b} {text}"
     );
 }
+
+/// Issue 53 §8: pid with Ki = 0, c = 0, Kd = 0 and a tiny Kp (1.146e-256,
+/// typed, in range): the panel wrote Kp as "0.0", and ζ = (0.0 + 0.0) /
+/// (2·√(1.0·0.0)) evaluates to NaN from the numbers shown while it
+/// printed 0.000. A number that is not zero is never written as zero, so
+/// the printed result follows from the numbers shown.
+#[test]
+fn live_math_a_tiny_gain_is_not_written_as_zero() {
+    let e = lab(
+        "pid",
+        &[("ki", 0.0), ("c", 0.0), ("kd", 0.0), ("kp", 1.146e-256)],
+    );
+    let kp = e.quantities().into_iter().find(|q| q.key == "kp").unwrap();
+    assert_eq!(kp.number_text(), "1.1 × 10⁻²⁵⁶");
+    assert_eq!(kp.shown_value(), 1.1e-256);
+    let (zeta, text) = equation(e.as_ref(), "zeta");
+    assert_eq!(text, "0.000");
+    assert_eq!(zeta, 0.0, "ζ from the numbers shown");
+    check_equations(e.as_ref(), "with a tiny Kp");
+}
