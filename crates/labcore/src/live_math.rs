@@ -55,21 +55,42 @@ impl Quantity {
 
     /// The number as shown (`0.80`), without its unit; `--` when there is
     /// none (no goal yet, no obstacle); `hidden` when [`Quantity::hidden`].
+    /// A number that is not zero is never written as zero: where its
+    /// decimals show none of it, it is written in the magnitude form
+    /// (`1.1 × 10⁻²⁵⁶`), so what the equation computes from it follows
+    /// from the numbers shown.
     #[must_use]
     pub fn number_text(&self) -> String {
         if self.hidden {
             "hidden".into()
         } else if self.value.is_finite() {
-            format_fixed(self.value, self.decimals)
+            let fixed = format_fixed(self.value, self.decimals);
+            if self.value != 0.0 && fixed.bytes().all(|b| matches!(b, b'0' | b'.')) {
+                crate::units::format_magnitude(self.value)
+            } else {
+                fixed
+            }
         } else {
             "--".into()
         }
     }
 
-    /// The value the shown number stands for (the rounding the student reads).
+    /// The value the shown number stands for (the rounding the student
+    /// reads), the magnitude form's too.
     #[must_use]
     pub fn shown_value(&self) -> f64 {
-        crate::units::parse_number(&self.number_text()).unwrap_or(f64::NAN)
+        let text = self.number_text();
+        let Some((mantissa, power)) = text.split_once(" × 10") else {
+            return crate::units::parse_number(&text).unwrap_or(f64::NAN);
+        };
+        let exponent: String = power
+            .chars()
+            .map(|c| match "⁰¹²³⁴⁵⁶⁷⁸⁹".chars().position(|d| d == c) {
+                Some(digit) => char::from(b'0' + digit as u8),
+                None => '-',
+            })
+            .collect();
+        format!("{mantissa}e{exponent}").parse().unwrap_or(f64::NAN)
     }
 }
 

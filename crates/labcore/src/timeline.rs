@@ -79,6 +79,15 @@ pub struct Timeline {
     budget_bytes: usize,
     last_replay: u64,
     worst_replay: u64,
+    /// The actions pressed at the start (step 0), in order, after its
+    /// parameters: a link of the start carries them (`do=`).
+    start_actions: Vec<&'static str>,
+    /// An input at the start that may not be an action (until
+    /// [`Timeline::acted`] says it was).
+    start_pending: bool,
+    /// Another input followed an action at the start: no link reproduces
+    /// that order (a link's parameters come before its actions).
+    start_unlinked: bool,
 }
 
 impl Timeline {
@@ -121,6 +130,9 @@ impl Timeline {
             budget_bytes,
             last_replay: 0,
             worst_replay: 0,
+            start_actions: Vec::new(),
+            start_pending: false,
+            start_unlinked: false,
         }
     }
 
@@ -162,11 +174,32 @@ impl Timeline {
     #[must_use]
     pub fn unbroken_to(&self, step: u64) -> bool {
         self.first() == 0
+            && !self.start_unlinked
+            && (!self.start_pending || self.start_actions.is_empty())
             && !(self.dirty && self.end > 0 && step >= self.end)
             && !self
                 .snaps
                 .iter()
                 .any(|s| s.pinned && s.step > 0 && s.step <= step)
+    }
+
+    /// The state whose parameters and set-up a link that names moments of
+    /// the run up to `step` (`at=`, `marks=`) carries: the run's start, as
+    /// the moments are it stepped on; `None` when no link of the start
+    /// reproduces them ([`Timeline::unbroken_to`]). A run moves some
+    /// parameters (ik's joint angles): the state shown has the moment's.
+    /// `live` is the state shown: the start itself while an input at the
+    /// start is not yet committed.
+    #[must_use]
+    pub fn link_start<'a>(&'a self, live: &'a dyn Lab, step: u64) -> Option<&'a dyn Lab> {
+        if !self.unbroken_to(step) {
+            return None;
+        }
+        Some(if self.dirty && self.end == 0 {
+            live
+        } else {
+            &*self.snaps[0].lab
+        })
     }
 
     /// Steps replayed by the last [`Timeline::state_at`] or
@@ -188,7 +221,9 @@ impl Timeline {
     /// (the run now ends at `step`), and the state the input leaves is
     /// snapshot by the next [`Timeline::commit`].
     pub fn input_at(&mut self, step: u64) {
+        self.settle_start();
         let step = step.max(self.first()).min(self.end);
+        self.start_pending = step == 0;
         while self.snaps.len() > 1 && self.snaps[self.snaps.len() - 1].step > step {
             self.pop();
         }
@@ -196,10 +231,37 @@ impl Timeline {
         self.dirty = true;
     }
 
+    /// The input just given ([`Timeline::input_at`]) was the action `key`
+    /// (or the run started again with it): at the start, a link of the
+    /// start carries it ([`Timeline::start_actions`]).
+    pub fn acted(&mut self, key: &'static str) {
+        if self.first() == 0 && self.end == 0 {
+            self.start_pending = false;
+            self.start_actions.push(key);
+        }
+    }
+
+    /// The actions pressed at the start, in order (see
+    /// [`Timeline::acted`]): a link of the start presses them after setting
+    /// its parameters.
+    #[must_use]
+    pub fn start_actions(&self) -> &[&'static str] {
+        &self.start_actions
+    }
+
+    /// An input at the start that was no action, after one, breaks the
+    /// link of the start.
+    fn settle_start(&mut self) {
+        if std::mem::take(&mut self.start_pending) && !self.start_actions.is_empty() {
+            self.start_unlinked = true;
+        }
+    }
+
     /// Takes the snapshot an input asked for ([`Timeline::input_at`]), if
     /// any, of `exp` as the input left it. Call it before the next step and
     /// before going to another step.
     pub fn commit(&mut self, exp: &dyn Lab) {
+        self.settle_start();
         if !self.dirty {
             return;
         }

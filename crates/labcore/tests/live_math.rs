@@ -551,3 +551,47 @@ fn live_math_ekf_innovation_of_the_last_observation_by_hand() {
         "{nu_b} {text}"
     );
 }
+
+/// Issue 53 §8: pid with Ki = 0, c = 0, Kd = 0 and a tiny Kp (1.146e-256,
+/// typed, in range): the panel wrote Kp as "0.0", and ζ = (0.0 + 0.0) /
+/// (2·√(1.0·0.0)) evaluates to NaN from the numbers shown while it
+/// printed 0.000. A number that is not zero is never written as zero, so
+/// the printed result follows from the numbers shown.
+#[test]
+fn live_math_a_tiny_gain_is_not_written_as_zero() {
+    let e = lab(
+        "pid",
+        &[("ki", 0.0), ("c", 0.0), ("kd", 0.0), ("kp", 1.146e-256)],
+    );
+    let kp = e.quantities().into_iter().find(|q| q.key == "kp").unwrap();
+    assert_eq!(kp.number_text(), "1.1 × 10⁻²⁵⁶");
+    assert_eq!(kp.shown_value(), 1.1e-256);
+    let (zeta, text) = equation(e.as_ref(), "zeta");
+    assert_eq!(text, "0.000");
+    assert_eq!(zeta, 0.0, "ζ from the numbers shown");
+    check_equations(e.as_ref(), "with a tiny Kp");
+}
+
+/// Issue 53 §8: potential, the goal moved onto the robot (two arrow-key
+/// nudges, +0.16 and −0.16, did it): the pull has no direction there and
+/// the readout says |F_att| = 0.000, while the equation read kₐ = 1.00.
+#[test]
+fn live_math_potential_pull_with_the_goal_on_the_robot() {
+    let mut e = lab("potential", &[]);
+    labcore::testkit::click(e.as_mut(), labcore::glam::DVec2::new(6.0, 3.0));
+    let start = e
+        .handles()
+        .into_iter()
+        .find(|h| h.id == "start")
+        .unwrap()
+        .at;
+    assert!(e.move_handle("goal", start));
+    let (pull, text) = equation(e.as_ref(), "f_att");
+    assert_eq!(text, "0.000");
+    assert_eq!(pull, 0.0, "F_att from the numbers shown");
+    check_equations(e.as_ref(), "with the goal on the robot");
+    // Off the robot, the pull is kₐ again.
+    let mut e = lab("potential", &[]);
+    labcore::testkit::click(e.as_mut(), labcore::glam::DVec2::new(6.0, 3.0));
+    assert_eq!(equation(e.as_ref(), "f_att"), (1.0, "1.000".to_owned()));
+}

@@ -555,3 +555,155 @@ fn a_kept_run_draws_its_trail_as_a_dashed_ghost() {
         }
     }
 }
+
+/// The link the Simulation tab writes for a paused run at `step`
+/// (`labweb/src/sim/mod.rs`, `state_link`): where the record says a link
+/// of the start reproduces the moment, the start's parameters and set-up
+/// and `at=`; else the state's.
+fn paused_link(live: &dyn Lab, timeline: &Timeline, step: u64) -> String {
+    let start = timeline.link_start(live, step).filter(|_| step > 0);
+    let mut link = labcore::route::format(start.unwrap_or(live), labcore::route::Tab::Simulation);
+    if start.is_some() {
+        link.push(if link.contains('?') { '&' } else { '?' });
+        link.push_str(&format!("run=0&at={:.2}", step as f64 * Clock::DT_S));
+        if !timeline.start_actions().is_empty() {
+            link.push_str(&format!("&do={}", timeline.start_actions().join(",")));
+        }
+    }
+    link
+}
+
+/// [`shown`] but for the plots' redraw counters (`Plot::revision`): a
+/// link's parameters, set one by one, count more redraws than the run did.
+fn shown_again(exp: &dyn Lab) -> u64 {
+    let plots: Vec<_> = exp
+        .plots()
+        .iter()
+        .cloned()
+        .map(|mut p| {
+            p.revision = 0;
+            p
+        })
+        .collect();
+    let text = format!(
+        "{:?}|{:?}|{:?}|{:?}|{:?}|{:?}",
+        scene_of(exp),
+        exp.readouts(),
+        exp.status(),
+        exp.tables(),
+        plots,
+        exp.handles(),
+    );
+    let mut h = DefaultHasher::new();
+    text.hash(&mut h);
+    h.finish()
+}
+
+/// Opens `link` as a fresh page does: its parameters and set-up, then its
+/// actions (`do=`), are the start, stepped on to its `at=`.
+fn open_paused_link(id: &str, link: &str) -> Box<dyn Lab> {
+    let mut exp = labcore::testkit::open(id);
+    // `run`, `at` and `do` are the shell's (labweb's `apply_params`).
+    let notices = labcore::testkit::apply_link(exp.as_mut(), link);
+    assert!(
+        notices
+            .iter()
+            .all(|n| ["“run”", "“at”", "“do”"].iter().any(|k| n.contains(k))),
+        "{link}: {notices:?}"
+    );
+    let actions = link.split(['?', '&']).find_map(|p| p.strip_prefix("do="));
+    for key in actions.into_iter().flat_map(|a| a.split(',')) {
+        exp.action(key).unwrap();
+    }
+    let at = link
+        .split(['?', '&'])
+        .find_map(|p| p.strip_prefix("at="))
+        .map_or(0.0, |t| t.parse::<f64>().unwrap());
+    for _ in 0..(at / Clock::DT_S).round() as u64 {
+        exp.step(Clock::DT_S);
+    }
+    exp
+}
+
+/// Issue 53 §8, ik: the joint angles are parameters the run moves. Drag
+/// the target at step 0, 13 steps, pause: the `at=` link carried the
+/// moment's angles with the start's time, so it reopened another pose
+/// (x 0.309 m for 0.550 m). A link reopens exactly the state shown.
+#[test]
+fn an_at_link_carries_the_starts_parameters_where_the_run_moves_them() {
+    let mut exp = labcore::testkit::open("ik");
+    let mut timeline = Timeline::new(exp.as_ref(), 0);
+    timeline.input_at(0);
+    assert!(exp.move_handle("target", DVec2::new(0.55, 0.9)));
+    timeline.commit(exp.as_ref());
+    for _ in 0..13 {
+        exp.step(Clock::DT_S);
+        timeline.stepped(exp.as_ref());
+    }
+    let link = paused_link(exp.as_ref(), &timeline, 13);
+    assert!(link.contains("at=0.22"), "{link}");
+    let reopened = open_paused_link("ik", &link);
+    assert_eq!(
+        exp.readouts(),
+        reopened.readouts(),
+        "{link} reopens another pose"
+    );
+    assert_eq!(
+        shown_again(exp.as_ref()),
+        shown_again(reopened.as_ref()),
+        "{link}"
+    );
+}
+
+/// Issue 53 §8: an action at step 0 is part of the start (workspace Sweep,
+/// astar Plan and Compare, pid Pin, …), but no link carried it: 30 steps
+/// on, the `at=` link reopened "ready to sweep", "ready: press Plan &
+/// drive", one pin fewer. Every action of every evolving experiment,
+/// pressed at the start, round-trips through the paused run's link.
+#[test]
+fn an_action_at_the_start_is_carried_by_the_link_of_a_moment() {
+    let mut carried = std::collections::BTreeSet::new();
+    for id in evolving_ids() {
+        for action in labcore::testkit::open(id).actions() {
+            let mut exp = labcore::testkit::open(id);
+            let mut timeline = Timeline::new(exp.as_ref(), 0);
+            timeline.input_at(0);
+            exp.action(action.key).unwrap();
+            timeline.acted(action.key);
+            timeline.commit(exp.as_ref());
+            for _ in 0..30 {
+                exp.step(Clock::DT_S);
+                timeline.stepped(exp.as_ref());
+            }
+            let link = paused_link(exp.as_ref(), &timeline, 30);
+            if !link.contains("at=") {
+                continue;
+            }
+            let reopened = open_paused_link(id, &link);
+            carried.insert(id);
+            assert_eq!(
+                shown_again(exp.as_ref()),
+                shown_again(reopened.as_ref()),
+                "{id}, {} at the start: {link} reopens {:?} for {:?}",
+                action.key,
+                reopened.status(),
+                exp.status()
+            );
+        }
+    }
+    assert!(carried.len() >= 7, "{carried:?}");
+    // A parameter set after an action at the start: a link sets its
+    // parameters first, so no link of the start reproduces it.
+    let mut pid = labcore::testkit::open("pid");
+    let mut timeline = Timeline::new(pid.as_ref(), 0);
+    timeline.input_at(0);
+    pid.action("pin").unwrap();
+    timeline.acted("pin");
+    timeline.input_at(0);
+    pid.set_param("kp", 60.0).unwrap();
+    assert!(!timeline.unbroken_to(0));
+    timeline.commit(pid.as_ref());
+    pid.step(Clock::DT_S);
+    timeline.stepped(pid.as_ref());
+    assert!(!timeline.unbroken_to(1));
+}

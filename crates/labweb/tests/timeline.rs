@@ -265,6 +265,39 @@ fn at_in_the_link_reopens_the_moment_shown_exactly() {
     assert_eq!(attr(".tb-scrub", "max"), Some("41".into()));
 }
 
+/// Issue 53 §8: an action at step 0 is part of the run's start, and the
+/// link of a moment carries it (`do=`): workspace, Sweep, 30 steps, paused,
+/// reopened "ready to sweep" before.
+#[wasm_bindgen_test]
+fn an_action_at_the_start_travels_in_the_link_of_a_moment() {
+    mount("#/workspace/simulation");
+    element("[data-action=sweep]").click();
+    for _ in 0..30 {
+        frame(ONE_STEP_MS);
+    }
+    element("[data-time=play]").click();
+    labweb::paint_now();
+    let there = shown();
+    frame(300.0);
+    frame(300.0);
+    let link = hash();
+    assert!(link.contains("do=sweep"), "{link}");
+    assert!(
+        link.contains(&format!("at={:.2}", there.0 as f64 * Clock::DT_S)),
+        "{link}"
+    );
+    mount(&link);
+    assert_eq!(
+        without_revisions(shown()),
+        without_revisions(there),
+        "{link}"
+    );
+    // Its own link again.
+    frame(300.0);
+    frame(300.0);
+    assert_eq!(hash(), link);
+}
+
 // ---- Issue 26 §1 (the rest) and §2: plot cursor, plot points, slider
 // keys, branches.
 

@@ -389,8 +389,8 @@ struct SimState {
     kept_serial: u64,
     /// A branch whose name waits for the input to be applied.
     pending_branch: Option<scrub::PendingBranch>,
-    /// What the next input is, when the page knows (an action's label).
-    branch_cause: Option<&'static str>,
+    /// What the next input is, when the page knows (an action).
+    branch_cause: Option<&'static labcore::ActionSpec>,
     /// The browser benchmark closed "The math" panel: hidden and not
     /// written, as the page was before it ([`SimView::bench_math_panel`]).
     #[cfg(feature = "bench-exports")]
@@ -722,9 +722,8 @@ impl SimState {
     /// hidden ones veiled: [`route::format_veiled`]), then the shell's own
     /// (`run=0` when paused, `speed` when not 1×).
     fn state_link(&self) -> String {
-        let mut hash =
-            route::format_veiled(self.exp.as_ref(), Tab::Simulation, &self.instructor.hidden);
         let mut extra = Vec::new();
+        let mut moment = false;
         if self.exp.animated() && !self.clock.running() && !self.ended_hold {
             extra.push("run=0".to_owned());
             // The moment shown, when the link's state and the steps since
@@ -732,12 +731,29 @@ impl SimState {
             let steps = self.clock.steps();
             if steps > 0 && self.timeline.as_ref().is_some_and(|t| t.unbroken_to(steps)) {
                 extra.push(format!("at={:.2}", self.clock.time_s()));
+                moment = true;
             }
         }
         if self.clock.speed() != 1.0 {
             extra.push(format!("speed={}", self.clock.speed()));
         }
-        extra.extend(self.marks_link());
+        let marks = self.marks_link();
+        moment |= marks.is_some();
+        extra.extend(marks);
+        // …and the actions pressed at the start.
+        if let Some(tl) = self.timeline.as_ref().filter(|_| moment) {
+            if !tl.start_actions().is_empty() {
+                extra.push(format!("do={}", tl.start_actions().join(",")));
+            }
+        }
+        // A link naming moments carries the start they are stepped on from
+        // (the run moves some parameters: ik's angles).
+        let shown = self.exp.as_ref();
+        let state = (self.timeline.as_ref())
+            .filter(|_| moment)
+            .and_then(|t| t.link_start(shown, 0))
+            .unwrap_or(shown);
+        let mut hash = route::format_veiled(state, Tab::Simulation, &self.instructor.hidden);
         if !extra.is_empty() {
             hash.push(if hash.contains('?') { '&' } else { '?' });
             hash.push_str(&extra.join("&"));
@@ -1077,7 +1093,7 @@ impl SimView {
     pub fn apply_params(&self, params: &[(String, String)]) -> Vec<String> {
         let mut st = self.state.borrow_mut();
         let (shell, own): (Vec<_>, Vec<_>) = params.iter().cloned().partition(|(k, _)| {
-            k == "run" || k == "speed" || k == "at" || k == labcore::marks::MARKS_KEY
+            ["run", "speed", "at", "do", labcore::marks::MARKS_KEY].contains(&k.as_str())
         });
         st.timeline_input();
         let mut notices = route::apply_params(st.exp.as_mut(), &own);
@@ -1092,6 +1108,21 @@ impl SimView {
                     match labcore::marks::Marks::parse(&raw) {
                         Ok(marks) => link_marks = marks,
                         Err(message) => notices.push(message),
+                    }
+                }
+                ("do", _) => {
+                    // The actions pressed at the link's start, after its
+                    // parameters.
+                    for key in raw.split(',') {
+                        let Some(action) = st.exp.actions().iter().find(|a| a.key == key) else {
+                            notices.push(format!("No button “{key}”; ignored."));
+                            continue;
+                        };
+                        st.branch_cause = Some(action);
+                        let mut done = Ok(());
+                        st.guarded(|exp| done = exp.action(key));
+                        st.finish_branch();
+                        notices.extend(done.err().map(|e| e.to_string()));
                     }
                 }
                 ("run", Ok(v)) if v == 0.0 || v == 1.0 => st.clock.set_running(v == 1.0),

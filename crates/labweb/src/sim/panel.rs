@@ -155,12 +155,7 @@ pub(super) fn listen(
             let attr = |name: &str| button.get_attribute(name);
             let mut st = s.borrow_mut();
             if let Some(key) = attr("data-action") {
-                st.branch_cause = st
-                    .exp
-                    .actions()
-                    .iter()
-                    .find(|a| a.key == key)
-                    .map(|a| a.label);
+                st.branch_cause = st.exp.actions().iter().find(|a| a.key == key);
                 let mut done = Ok(());
                 st.guarded(|exp| done = exp.action(&key));
                 if let Err(err) = done {

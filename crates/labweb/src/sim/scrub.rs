@@ -80,8 +80,8 @@ pub(super) struct PendingBranch {
     left: Option<KeptRun>,
     /// It came while the past was shown.
     from_past: bool,
-    /// What the input was, when the page knows (an action's label).
-    cause: Option<&'static str>,
+    /// What the input was, when the page knows (an action).
+    cause: Option<&'static labcore::ActionSpec>,
 }
 
 /// A run ended by a restart is kept for comparison when it lasted at least
@@ -317,6 +317,9 @@ impl SimState {
         }
         if let Some(tl) = &mut self.timeline {
             tl.input_at(self.clock.steps());
+            if let Some(action) = cause {
+                tl.acted(action.key);
+            }
         }
         self.marks_new_run_from(self.clock.steps());
     }
@@ -333,12 +336,13 @@ impl SimState {
             return;
         };
         let restarted = timeline::restarted(branch.x_before, main_x(self.exp.as_ref()));
+        let cause = branch.cause.map(|a| a.label);
         if let Some(mut left) = branch.left.filter(|_| restarted || branch.from_past) {
             let (specs, after) = (self.exp.params(), param_values(self.exp.as_ref()));
             left.label = if restarted {
-                timeline::restart_label(specs, &branch.before, &after, branch.cause)
+                timeline::restart_label(specs, &branch.before, &after, cause)
             } else {
-                timeline::branch_label(specs, &branch.before, &after, branch.cause, branch.t_s)
+                timeline::branch_label(specs, &branch.before, &after, cause, branch.t_s)
             };
             timeline::keep(&mut self.kept, left);
             self.kept_serial += 1;
@@ -347,6 +351,10 @@ impl SimState {
         if restarted {
             self.clock.reset();
             self.restart_timeline();
+            // An action that started the run again is part of its start.
+            if let (Some(tl), Some(action)) = (&mut self.timeline, branch.cause) {
+                tl.acted(action.key);
+            }
             self.plots_force = true;
             self.jumped = true;
             self.hash_dirty = true;
@@ -688,8 +696,13 @@ impl SimState {
     /// [`RUN_TO_END_MAX_STEPS`], fewer if it ends first) and paused.
     pub(super) fn open_at(&mut self, t_s: f64) {
         let steps = ((t_s / Clock::DT_S).round() as u64).min(RUN_TO_END_MAX_STEPS);
+        let actions = self.timeline.as_ref().map(|t| t.start_actions().to_vec());
         self.clock.reset();
         self.restart_timeline();
+        // The link's actions (`do=`) are part of its start.
+        if let Some(tl) = &mut self.timeline {
+            actions.into_iter().flatten().for_each(|a| tl.acted(a));
+        }
         self.step_recorded(steps, false, 0.0, f64::INFINITY);
         self.clock.set_running(false);
         self.phase = self.exp.status().phase;

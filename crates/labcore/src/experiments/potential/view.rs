@@ -7,8 +7,8 @@ use crate::mobile::potential_field::{Attraction, Repulsion};
 
 /// The field's laws at the robot (Khatib 1986; the lab's conic pull and
 /// linear push): the goal distance, the pull, the nearest clearance and its push.
-const fn laws(push: Equation) -> [Equation; 4] {
-    [GOAL_DISTANCE, PULL, CLEARANCE, push]
+const fn laws(pull: Equation, push: Equation) -> [Equation; 4] {
+    [GOAL_DISTANCE, pull, CLEARANCE, push]
 }
 const GOAL_DISTANCE: Equation = Equation {
         key: "goal_distance",
@@ -27,6 +27,14 @@ const PULL: Equation = Equation {
         readout: "att",
         caption: "The conic pull: the same strength kₐ at any distance, pointing at the goal.",
     };
+/// With the goal on the robot the pull has no direction: there is none.
+const PULL_AT_GOAL: Equation = Equation {
+    key: "f_att",
+    symbol: "F_att",
+    expr: Expr::Num(0.0, "0"),
+    readout: "att",
+    caption: "With the goal on the robot the pull has no direction to point in: there is none.",
+};
 const CLEARANCE: Equation = Equation {
         key: "clearance",
         symbol: "d",
@@ -40,9 +48,8 @@ const CLEARANCE: Equation = Equation {
         readout: "near_clearance",
         caption: "The clearance to the nearest obstacle: the distance to its centre less its radius.",
     };
-/// Outside the nearest obstacle, and inside it (where its surface's push holds).
-const EQUATIONS: [&[Equation]; 2] = [
-    &laws(Equation {
+/// The push outside the nearest obstacle.
+const PUSH: Equation = Equation {
         key: "f_rep",
         symbol: "F_rep",
         expr: Expr::Div(
@@ -54,14 +61,22 @@ const EQUATIONS: [&[Equation]; 2] = [
         ),
         readout: "rep_near",
         caption: "The nearest obstacle's push: kᵣ at its surface, fading to nothing at the influence distance d₀.",
-    }),
-    &laws(Equation {
+    };
+/// The push inside it (where its surface's push holds).
+const PUSH_INSIDE: Equation = Equation {
         key: "f_rep",
         symbol: "F_rep",
         expr: Expr::Var("kr"),
         readout: "rep_near",
         caption: "Inside the nearest obstacle (d < 0) its push is the surface's, kᵣ.",
-    }),
+    };
+/// Outside the nearest obstacle, and inside it; then the same with the
+/// goal on the robot.
+const EQUATIONS: [&[Equation]; 4] = [
+    &laws(PULL, PUSH),
+    &laws(PULL, PUSH_INSIDE),
+    &laws(PULL_AT_GOAL, PUSH),
+    &laws(PULL_AT_GOAL, PUSH_INSIDE),
 ];
 
 impl PotentialFieldLab {
@@ -496,7 +511,12 @@ impl Presentation for PotentialFieldLab {
 
     fn equations(&self) -> &'static [Equation] {
         let p = self.robot_m();
-        EQUATIONS[usize::from(self.nearest_obstacle().is_some_and(|o| o.clearance_m(p) < 0.0))]
+        let inside = self.nearest_obstacle().is_some_and(|o| o.clearance_m(p) < 0.0);
+        // The goal on the robot: no direction to pull in (the readout's 0).
+        let at_goal = self
+            .goal
+            .is_some_and(|g| (g - p).normalize_or_zero() == DVec2::ZERO);
+        EQUATIONS[usize::from(inside) + 2 * usize::from(at_goal)]
     }
 
     fn status(&self) -> Status {
