@@ -1182,3 +1182,31 @@ fn a_search_step_marks_the_raster_and_the_next_read_fills_it_from_the_search() {
         assert_eq!(read[(h - 1 - y) * w + x], s, "cell ({x}, {y})");
     }
 }
+
+/// The notices come in link order whichever kind of setting each is about:
+/// the extra state (applied first) and the numeric parameters interleave.
+#[test]
+fn notices_of_a_link_come_in_link_order() {
+    let mut b = AStarGrid::default();
+    let notices = apply_params(
+        &mut b,
+        &[
+            ("sx".into(), "oops".into()),
+            ("nosuch".into(), "1".into()),
+            ("sy".into(), "none".into()),
+            ("walls".into(), "32x24.zz!".into()),
+            ("gx".into(), "x".into()),
+        ],
+    );
+    let begins = [
+        "Start column: “oops”",
+        "Unknown setting “nosuch”",
+        "Start row: “none”",
+        "walls:",
+        "Goal column: “x”",
+    ];
+    assert_eq!(notices.len(), begins.len(), "{notices:?}");
+    for (notice, begin) in notices.iter().zip(begins) {
+        assert!(notice.starts_with(begin), "{notices:?}");
+    }
+}
