@@ -985,6 +985,7 @@ impl SimView {
         state.borrow_mut().restart_timeline();
         let mut listeners = Vec::new();
         canvas_input::listen(&state, &canvas, &mut listeners);
+        canvas_input::listen_time_keys(&state, &mut listeners);
         panel::listen(&state, panel, &mut listeners);
         a11y::listen(&state, panel, &mut listeners);
         scrub::listen(&state, panel, &mut listeners);

@@ -1,0 +1,102 @@
+// Issue 53 §4, keys, buttons and help where the student is: the time keys
+// work anywhere in the Simulation tab (not in a text field), a click that
+// focuses the canvas does not act on the scene, `?` lists every key, the
+// phone's time bar has words and a stable row, the slider is named and a
+// mark goes back to its moment, Shift+Tab never hides a control under the
+// header, and cartpole's Nudge pole sits by its Control switch. Every
+// moment is reached on a stopped page clock.
+
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { DESKTOP, open, runFor, runUntil, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+
+const lab = useLab();
+const PHONE_TALL = { width: 390, height: 844 };
+const ART = "article.exp:not([hidden])";
+const CANVAS = `${ART} canvas.sim-canvas`;
+const steps = (page) => page.$eval(CANVAS, (c) => Number(c.dataset.steps));
+
+test("the time keys work after the slider and after Back, not in a text field; End after Plan & drive runs to the end", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, "#/pid/simulation?run=0");
+    await page.locator(`${ART} button[data-time=step]`).click();
+    await page.locator(`${ART} button[data-time=step]`).click();
+    await settle(page);
+    const two = await steps(page);
+    assert.ok(two > 0);
+    // Focus on the Back button: `,` steps back, `.` steps on.
+    await page.locator(`${ART} button[data-time=back]`).click();
+    await settle(page);
+    const one = await steps(page);
+    assert.ok(one < two, "Back stepped back");
+    await page.keyboard.press(",");
+    await settle(page);
+    assert.ok((await steps(page)) < one, "`,` after Back steps back");
+    await page.keyboard.press(".");
+    await settle(page);
+    assert.equal(await steps(page), one, "`.` after Back steps on");
+    // Focus on the timeline slider: `.` and M are the tab's; its arrows are its own.
+    await page.focus(`${ART} .tb-scrub`);
+    await page.keyboard.press(".");
+    await settle(page);
+    assert.equal(await steps(page), two, "`.` on the slider steps on");
+    await page.keyboard.press("m");
+    await settle(page);
+    assert.equal(await page.locator(`${ART} .tb-mark`).count(), 1, "M on the slider marks");
+    await page.keyboard.press("ArrowLeft");
+    await settle(page);
+    assert.equal(await steps(page), one, "the slider's own arrow");
+    // In a text field the keys are typing.
+    const box = `${ART} .sim-controls input[type=text]`;
+    await page.focus(box);
+    await page.keyboard.press(".");
+    await page.keyboard.press("End");
+    await settle(page);
+    assert.equal(await steps(page), one, "`.` and End in a text field are typing");
+    assert.notEqual(await page.$eval(`${ART} .timebar`, (b) => b.dataset.clock), "ended");
+
+    // astar: End right after Plan & drive (focus on that button).
+    await open(lab, page, "#/astar/simulation");
+    await page.locator(`${ART} button[data-action=plan]`).click();
+    await settle(page);
+    const y = await page.evaluate(() => scrollY);
+    await page.keyboard.press("End");
+    await runUntil(page, () => document.querySelector("article.exp:not([hidden]) .timebar").dataset.clock === "ended", undefined, {
+      what: "the run's end",
+    });
+    assert.equal(await page.evaluate(() => scrollY), y, "End did not scroll the page");
+  }));
+
+test("a mouse click that focuses the canvas paints no wall; a click on the focused canvas does, and a tap at once", async () => {
+  const spot = async (page) => {
+    const box = await page.locator(CANVAS).boundingBox();
+    // Column 10, row 4 of the default 40 × 24 maze area: no handle there.
+    return { x: box.x + box.width * 0.27, y: box.y + box.height * 0.2 };
+  };
+  const hash = (page) => page.evaluate(() => location.hash);
+  await withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, "#/astar/simulation");
+    await page.locator(`${ART} button[data-time=step]`).focus();
+    const before = await hash(page);
+    const { x, y } = await spot(page);
+    await page.mouse.click(x, y);
+    // The link is written at most every 250 ms: a second's worth of frames.
+    await runFor(page, 1000);
+    assert.ok(await page.evaluate(() => document.activeElement?.classList.contains("sim-canvas")), "the canvas has focus");
+    assert.equal(await hash(page), before, "the focusing click changed nothing");
+    await page.mouse.click(x, y);
+    await runUntil(page, (h) => location.hash !== h, before, { maxMs: 2000, what: "the next click to paint" });
+    // The canvas's own keys still work: D describes.
+    await page.keyboard.press("d");
+    await settle(page);
+    assert.ok((await page.locator(`${ART} .sim-description`).textContent()).length > 10);
+  });
+  await withPage(lab, { viewport: PHONE_TALL, hasTouch: true, isMobile: true, clock: true }, async (page) => {
+    await open(lab, page, "#/astar/simulation");
+    await page.locator(CANVAS).scrollIntoViewIfNeeded();
+    const before = await hash(page);
+    const { x, y } = await spot(page);
+    await page.touchscreen.tap(x, y);
+    await runUntil(page, (h) => location.hash !== h, before, { maxMs: 2000, what: "a first tap to paint" });
+  });
+});
