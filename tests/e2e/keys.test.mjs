@@ -100,3 +100,18 @@ test("a mouse click that focuses the canvas paints no wall; a click on the focus
     await runUntil(page, (h) => location.hash !== h, before, { maxMs: 2000, what: "a first tap to paint" });
   });
 });
+
+test("? lists every key: the time keys, the slider's and the plots', the canvas's", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, "#/pid/simulation");
+    await page.locator(`${ART} button[data-time=step]`).focus();
+    await page.keyboard.press("?");
+    const dialog = page.locator("dialog#kbd-help[open]");
+    await dialog.waitFor();
+    const keys = await dialog.locator("kbd").allTextContents();
+    for (const k of ["Space", ".", ",", "End", "M", "←", "→", "Page Up", "Page Down", "Home", "[", "]", "Escape", "D", "?"]) {
+      assert.ok(keys.includes(k), `the help lists ${k}: ${keys.join(" ")}`);
+    }
+    assert.match(await dialog.textContent(), /not in a text field/);
+    await screenshot(page, "keys-help-desktop");
+  }));
