@@ -115,3 +115,56 @@ test("? lists every key: the time keys, the slider's and the plots', the canvas'
     assert.match(await dialog.textContent(), /not in a text field/);
     await screenshot(page, "keys-help-desktop");
   }));
+
+test("a phone's time bar: words, 44 px, a row that Pause turning into Play does not move", () =>
+  withPage(lab, { viewport: PHONE_TALL, hasTouch: true, isMobile: true, clock: true }, async (page) => {
+    await open(lab, page, "#/pid/simulation");
+    const bar = page.locator(`${ART} .timebar`);
+    await bar.scrollIntoViewIfNeeded();
+    const boxes = () =>
+      page.$$eval(`${ART} .timebar [data-time]:not([data-time=speed]):not([data-time=scrub])`, (els) =>
+        els.map((b) => {
+          const r = b.getBoundingClientRect();
+          return { what: b.dataset.time, text: b.innerText.trim(), x: r.x, y: r.y, w: r.width, h: r.height };
+        }),
+      );
+    const first = await boxes();
+    const words = { play: "Pause", step: "Step", back: "Back", end: "Run to end", mark: "Mark", reset: "Reset" };
+    for (const b of first) {
+      assert.equal(b.text, words[b.what], `${b.what} says ${words[b.what]}`);
+      assert.ok(b.h >= 44 && b.w >= 44, `${b.what}: ${b.w} × ${b.h} px`);
+      assert.ok(b.x >= 0 && b.x + b.w <= PHONE_TALL.width, `${b.what} on the screen`);
+    }
+    await screenshot(page, "keys-timebar-phone");
+    await page.locator(`${ART} .tb-play`).tap();
+    await settle(page);
+    assert.equal(await page.locator(`${ART} .tb-play .tb-label`).textContent(), "Play");
+    const second = await boxes();
+    for (const [i, b] of second.entries()) {
+      const a = first[i];
+      assert.deepEqual([b.x, b.y, b.w, b.h], [a.x, a.y, a.w, a.h], `${b.what} stayed put`);
+    }
+    await page.keyboard.press("?");
+    await page.locator("dialog#kbd-help[open]").waitFor();
+    await screenshot(page, "keys-help-phone");
+  }));
+
+test("the slider is named Timeline with a tooltip; a mark's time goes back to its moment", () =>
+  withPage(lab, { clock: true }, async (page) => {
+    await open(lab, page, "#/pid/simulation?run=0");
+    const slider = page.locator(`${ART} .tb-scrub`);
+    const named = await slider.evaluate((s) => ({ label: s.labels[0]?.innerText.trim(), title: s.title }));
+    assert.equal(named.label, "Timeline");
+    assert.ok(named.title.length > 10, "a tooltip");
+    for (let i = 0; i < 3; i++) await page.locator(`${ART} button[data-time=step]`).click();
+    await settle(page);
+    const marked = await steps(page);
+    await page.locator(`${ART} button[data-time=mark]`).click();
+    for (let i = 0; i < 3; i++) await page.locator(`${ART} button[data-time=step]`).click();
+    await settle(page);
+    assert.ok((await steps(page)) > marked);
+    await page.locator(`${ART} .tb-mark button[data-goto]`).click();
+    await settle(page);
+    assert.equal(await steps(page), marked, "the mark's time shows its moment");
+    await screenshot(page, "keys-timebar-desktop");
+  }));

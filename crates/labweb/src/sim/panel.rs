@@ -180,6 +180,10 @@ pub(super) fn listen(
                 }
             } else if let Some(step) = attr("data-unmark").and_then(|s| s.parse().ok()) {
                 st.remove_mark(step);
+            } else if let Some(step) = attr("data-goto").and_then(|s| s.parse().ok()) {
+                // A mark's time: the timeline goes to that moment.
+                st.student_acted();
+                st.seek(step);
             } else if button.has_attribute("data-touch-mode") {
                 st.touch_draws = !st.touch_draws;
                 let on = st.touch_draws;
