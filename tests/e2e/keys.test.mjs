@@ -168,3 +168,28 @@ test("the slider is named Timeline with a tooltip; a mark's time goes back to it
     assert.equal(await steps(page), marked, "the mark's time shows its moment");
     await screenshot(page, "keys-timebar-desktop");
   }));
+
+test("Shift+Tab never leaves the focused control under the sticky header", () =>
+  withPage(lab, { viewport: DESKTOP }, async (page) => {
+    await open(lab, page, "#/pid/simulation");
+    await page.evaluate(() => scrollTo(0, document.documentElement.scrollHeight));
+    // From the page's last control, back up through the tab.
+    await page.evaluate(() => {
+      const all = [...document.querySelectorAll("article.exp:not([hidden]) [data-panel=simulation] button, article.exp:not([hidden]) [data-panel=simulation] input")];
+      all.filter((e) => e.offsetParent).at(-1).focus();
+    });
+    const hidden = [];
+    for (let i = 0; i < 60; i++) {
+      await page.keyboard.press("Shift+Tab");
+      const where = await page.evaluate(() => {
+        const el = document.activeElement;
+        const top = document.querySelector(".top");
+        if (!el || top.contains(el) || !el.closest("[data-panel=simulation]")) return null;
+        const r = el.getBoundingClientRect();
+        return { el: el.outerHTML.slice(0, 60), top: r.top, header: top.getBoundingClientRect().bottom };
+      });
+      if (!where) break;
+      if (where.top < where.header - 1) hidden.push(where);
+    }
+    assert.deepEqual(hidden, [], "controls under the header");
+  }));
