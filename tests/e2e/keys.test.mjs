@@ -193,3 +193,16 @@ test("Shift+Tab never leaves the focused control under the sticky header", () =>
     }
     assert.deepEqual(hidden, [], "controls under the header");
   }));
+
+test("cartpole on a phone: Nudge pole and the Control switch sit together", () =>
+  withPage(lab, { viewport: PHONE_TALL, hasTouch: true, isMobile: true, clock: true }, async (page) => {
+    await open(lab, page, "#/cartpole/simulation");
+    const nudge = await page.locator(`${ART} button[data-action=nudge]`).boundingBox();
+    const ctl = await page.locator(`${ART} [data-ctl=ctl]`).boundingBox();
+    const apart = Math.abs(ctl.y - nudge.y);
+    // One thumb's reach, on one screen (it was 2,241 px).
+    assert.ok(apart < 300, `the Control switch is ${apart} px from Nudge pole`);
+    // And it still switches the control.
+    await page.locator(`${ART} [data-ctl=ctl] input[value="0"]`).check();
+    await runUntil(page, () => location.hash.includes("ctl=0"), undefined, { maxMs: 2000, what: "the link to say ctl=0" });
+  }));
