@@ -77,8 +77,8 @@ function controlSelectors(page) {
   return page.evaluate((sim) => {
     const shown = (el) => el.getClientRects().length > 0;
     const out = [];
-    for (const row of document.querySelectorAll(`${sim} .sim-controls [data-ctl]`)) {
-      if (shown(row)) out.push({ sel: `${sim} .sim-controls [data-ctl="${row.dataset.ctl}"]`, kind: "param" });
+    for (const row of document.querySelectorAll(`${sim} :is(.sim-controls, .sim-actions) [data-ctl]`)) {
+      if (shown(row)) out.push({ sel: `${sim} [data-ctl="${row.dataset.ctl}"]`, kind: "param" });
     }
     const move = document.querySelector(`${sim} .sim-move`);
     if (move && shown(move)) {
@@ -212,7 +212,7 @@ function namedControls(step, params, actions) {
       (prefix && prefix.length >= 4 && lower.includes(prefix.toLowerCase())) ||
       (symbol.length >= 2 && hasWord(step, symbol))
     ) {
-      out.push({ sel: `${SIM} .sim-controls [data-ctl="${key}"]`, name: label });
+      out.push({ sel: `${SIM} [data-ctl="${key}"]`, name: label });
     }
   }
   for (const { key, label } of actions) {
@@ -237,7 +237,7 @@ for (const viewport of LAPTOPS) {
               key: f.dataset.plot,
               title: f.querySelector(".plot-title").textContent,
             })),
-            params: [...document.querySelectorAll(`${art} [data-panel=simulation] .sim-controls [data-ctl]`)].map((row) => ({
+            params: [...document.querySelectorAll(`${art} [data-panel=simulation] :is(.sim-controls, .sim-actions) [data-ctl]`)].map((row) => ({
               key: row.dataset.ctl,
               label: row.querySelector("label, legend").textContent.trim(),
             })),

@@ -189,6 +189,19 @@ impl ParamSpec {
         }
     }
 
+    /// The group of the controls that sit with the experiment's action
+    /// buttons rather than among the others ([`ParamSpec::with_actions`]).
+    pub const WITH_ACTIONS: &'static str = "with the actions";
+
+    /// The same parameter shown beside the action buttons: a control that a
+    /// Procedure step uses together with an action (cartpole's Control,
+    /// switched on within a third of a second of Nudge pole) sits with it,
+    /// at every width.
+    #[must_use]
+    pub const fn with_actions(self) -> Self {
+        self.in_group(Self::WITH_ACTIONS)
+    }
+
     /// Checks a proposed value: NaN and infinities are rejected; integer
     /// parameters (toggles, choices, numbers and [`ParamSpec::whole_numbers`]
     /// sliders) are rounded to the nearest whole number; values outside

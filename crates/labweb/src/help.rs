@@ -45,13 +45,24 @@ const CANVAS_KEYS: &[(&str, &str)] = &[
     ("D", "Describe the scene (read out by a screen reader)"),
 ];
 
-/// Keys of the time controls (animated experiments).
+/// Keys of the time controls (animated experiments), anywhere in the
+/// Simulation tab but in a text field.
 const TIME_KEYS: &[(&str, &str)] = &[
     ("Space", "Play or pause (Replay once the run has ended)"),
     (".", "One step while paused"),
     (",", "One step back (the timeline)"),
     ("End", "Run to the end at once"),
     ("M", "Mark the moment shown (again: remove the mark)"),
+];
+
+/// Keys of the timeline slider and of the plots (focused).
+const TIMELINE_KEYS: &[(&str, &str)] = &[
+    (
+        "← / →",
+        "Slider: one step back or on; plot: the previous or next point",
+    ),
+    ("Page Up / Page Down", "Slider: one second back or on"),
+    ("Home / End", "The run's start or end"),
 ];
 
 fn rows(keys: &[(&str, &str)]) -> String {
@@ -85,12 +96,11 @@ pub fn help_html(exp: Option<&dyn Lab>) -> String {
     let mut html = String::from("<h2 id=\"kbd-help-title\">Keyboard shortcuts</h2>");
     html.push_str(&section("Everywhere", SHELL_KEYS));
     if let Some(exp) = exp {
-        let mut canvas: Vec<(&str, &str)> = Vec::new();
         if exp.animated() {
-            canvas.extend_from_slice(TIME_KEYS);
+            html.push_str(&section("Simulation tab (not in a text field)", TIME_KEYS));
+            html.push_str(&section("Timeline slider and plots", TIMELINE_KEYS));
         }
-        canvas.extend_from_slice(CANVAS_KEYS);
-        html.push_str(&section("Simulation canvas", &canvas));
+        html.push_str(&section("Simulation canvas", CANVAS_KEYS));
         html.push_str(&format!(
             "<p class=\"kbd-hint\"><strong>This experiment:</strong> {}</p>",
             escape(exp.hint())
@@ -212,6 +222,7 @@ mod tests {
         let html = help_html(Some(pid.as_ref()));
         assert!(html.contains("<kbd>Space</kbd>"), "pid is animated");
         assert!(html.contains("<kbd>[</kbd> / <kbd>]</kbd>"));
+        assert!(html.contains("<kbd>Page Up</kbd>"), "the slider's keys");
         assert!(html.contains(&escape(pid.hint())));
         let fk = (labcore::find("fk").unwrap().make)();
         assert!(!help_html(Some(fk.as_ref())).contains("<kbd>Space</kbd>"));

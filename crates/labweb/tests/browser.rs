@@ -394,10 +394,17 @@ fn an_ended_run_stops_the_clock_and_offers_replay_which_starts_it_again() {
     assert_eq!(text_of(".tb-label"), "Pause");
 }
 
+/// A mouse press on the focused canvas (one on an unfocused canvas only
+/// focuses it).
 fn press_canvas() {
     let canvas = document()
         .query_selector("canvas.sim-canvas")
         .unwrap()
+        .unwrap();
+    canvas
+        .dyn_ref::<web_sys::HtmlElement>()
+        .unwrap()
+        .focus()
         .unwrap();
     let init = web_sys::PointerEventInit::new();
     init.set_is_primary(true);

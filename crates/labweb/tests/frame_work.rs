@@ -506,6 +506,16 @@ fn pointer(kind: &str, x: f64, y: f64) {
     init.set_client_x(x as i32);
     init.set_client_y(y as i32);
     init.set_buttons(u16::from(kind != "pointerup"));
+    if kind == "pointerdown" {
+        // The canvas has focus: a mouse press that focuses it only does that.
+        document()
+            .query_selector("#lab-under-test .sim-canvas")
+            .unwrap()
+            .and_then(|c| c.dyn_into::<web_sys::HtmlElement>().ok())
+            .unwrap()
+            .focus()
+            .unwrap();
+    }
     let event = web_sys::PointerEvent::new_with_event_init_dict(kind, &init).unwrap();
     dispatch_on_canvas(&event);
 }

@@ -2,7 +2,7 @@
 //! turned into plain [`Input`]s in world coordinates.
 
 use super::{read_file, SimState};
-use crate::dom::Listener;
+use crate::dom::{self, Listener};
 use glam::DVec2;
 use labcore::Input;
 use std::cell::RefCell;
@@ -14,6 +14,9 @@ use web_sys::{Event, HtmlCanvasElement, KeyboardEvent, PointerEvent};
 const TOUCH_GRAB_PX: f64 = 28.0;
 /// A touch that moves this far (CSS pixels) without the browser scrolling becomes a drag.
 const TOUCH_SLOP_PX: f64 = 10.0;
+/// How close (CSS pixels) the mouse press that focuses the canvas must be
+/// to a handle to grab it at once.
+const MOUSE_GRAB_PX: f64 = 10.0;
 
 /// Wires the canvas's pointer, touch, keyboard and drop listeners to `state`.
 pub(super) fn listen(
@@ -37,6 +40,18 @@ pub(super) fn listen(
             let mut st = s.borrow_mut();
             st.student_acted();
             let w = st.to_world(e);
+            // A mouse press that gives an unfocused canvas focus only
+            // focuses it (for its keys), unless it grabs a handle: it never
+            // paints a wall or nudges the pole. A finger (or pen) acts at
+            // once: it has no keys to aim.
+            if e.pointer_type() == "mouse"
+                && dom::document().active_element().as_ref() != Some(st.canvas.as_ref())
+                && !st
+                    .exp
+                    .handle_at(w, MOUSE_GRAB_PX / st.viewport.scale_px_per_m)
+            {
+                return;
+            }
             let captured = st.exp.captures_touch() && st.touch_draws;
             if e.pointer_type() == "touch" && !captured {
                 let tolerance_m = TOUCH_GRAB_PX / st.viewport.scale_px_per_m;
@@ -159,54 +174,11 @@ pub(super) fn listen(
         let Some(e) = e.dyn_ref::<KeyboardEvent>() else {
             return;
         };
-        // Handles chosen with [ ], moved with the arrows; D describes.
+        // Handles chosen with [ ], moved with the arrows; D describes (the
+        // time keys are the whole tab's: [`listen_time_keys`]).
         if s.borrow_mut().a11y_key(e) {
             e.prevent_default();
             return;
-        }
-        match e.key().as_str() {
-            " " | "Spacebar" => {
-                // Play/pause without scrolling the page.
-                e.prevent_default();
-                let mut st = s.borrow_mut();
-                if st.exp.animated() {
-                    st.student_acted();
-                    st.play_pressed();
-                }
-                return;
-            }
-            "." => {
-                e.prevent_default();
-                let mut st = s.borrow_mut();
-                if st.exp.animated() {
-                    st.student_acted();
-                    st.single_step();
-                }
-                return;
-            }
-            "m" | "M" if !e.ctrl_key() && !e.meta_key() && !e.alt_key() => {
-                e.prevent_default();
-                let mut st = s.borrow_mut();
-                if st.exp.animated() {
-                    st.student_acted();
-                    st.toggle_mark();
-                }
-                return;
-            }
-            "," | "End" => {
-                e.prevent_default();
-                let mut st = s.borrow_mut();
-                if st.exp.animated() {
-                    st.student_acted();
-                    if e.key() == "," {
-                        st.step_back();
-                    } else {
-                        st.start_run_to_end();
-                    }
-                }
-                return;
-            }
-            _ => {}
         }
         let dir = match e.key().as_str() {
             "ArrowLeft" => DVec2::NEG_X,
@@ -231,6 +203,61 @@ pub(super) fn listen(
         st.text_paced = true;
     }));
 }
+/// The time keys (Space, `.`, `,`, `End`, `M`) anywhere in the Simulation
+/// tab (focus in it, or on nothing while it shows), but not in a text
+/// field or a select, not Space on a control that Space presses, and not
+/// a key a control took already (the timeline slider's `End`, a plot's).
+pub(super) fn listen_time_keys(state: &Rc<RefCell<SimState>>, listeners: &mut Vec<Listener>) {
+    let s = state.clone();
+    let doc = dom::document();
+    listeners.push(Listener::new(doc.as_ref(), "keydown", move |e: Event| {
+        let Some(k) = e.dyn_ref::<KeyboardEvent>() else {
+            return;
+        };
+        if e.default_prevented() || k.ctrl_key() || k.meta_key() || k.alt_key() {
+            return;
+        }
+        let key = k.key();
+        let Some(el) = e
+            .target()
+            .and_then(|t| t.dyn_into::<web_sys::Element>().ok())
+        else {
+            return;
+        };
+        let tag = el.tag_name().to_ascii_lowercase();
+        let mut st = s.borrow_mut();
+        let here = if tag == "body" {
+            // Focus on nothing (WebKit after a click on a button): the tab shows.
+            st.canvas.offset_parent().is_some()
+        } else {
+            st.panel.contains(Some(el.as_ref()))
+        };
+        let field = match tag.as_str() {
+            "textarea" | "select" => true,
+            "input" => !matches!(
+                el.get_attribute("type").as_deref(),
+                Some("range" | "radio" | "checkbox")
+            ),
+            _ => el.has_attribute("contenteditable"),
+        };
+        let presses = matches!(tag.as_str(), "button" | "summary" | "input" | "a");
+        if !here || field || !st.exp.animated() {
+            return;
+        }
+        let act: fn(&mut SimState) = match key.as_str() {
+            " " if !presses => SimState::play_pressed,
+            "." => SimState::single_step,
+            "," => SimState::step_back,
+            "End" if tag != "input" => SimState::start_run_to_end,
+            "m" | "M" => SimState::toggle_mark,
+            _ => return,
+        };
+        e.prevent_default();
+        st.student_acted();
+        act(&mut st);
+    }));
+}
+
 /// The modifier keys of a pointer event (⌘ counts as Ctrl on a Mac).
 fn modifiers(e: &PointerEvent) -> labcore::Modifiers {
     labcore::Modifiers {

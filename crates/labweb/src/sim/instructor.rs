@@ -102,8 +102,7 @@ impl SimState {
         }
         for spec in self.exp.params() {
             let locked = self.instructor.is_locked(spec.key);
-            let Some(wrapper) = query(panel, &format!(".sim-controls [data-ctl=\"{}\"]", spec.key))
-            else {
+            let Some(wrapper) = query(panel, &format!(".sim [data-ctl=\"{}\"]", spec.key)) else {
                 continue;
             };
             dom::set_hidden(&wrapper, self.instructor.is_hidden(spec.key));

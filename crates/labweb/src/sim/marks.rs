@@ -18,7 +18,7 @@ use web_sys::Element;
 /// The button, in the time bar after Run to end; the marks' list follows
 /// the time (empty and hidden without marks).
 pub(super) const BUTTON_HTML: &str = "<button type=\"button\" data-time=\"mark\" aria-pressed=\"false\" aria-keyshortcuts=\"M\" title=\"Mark this moment for the plots and the lab report (key M)\">\
-     <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M2 3h12l-6 10z\"/></svg> <span class=\"tb-text\">Mark</span></button>";
+     <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M3 1h10v14l-5-4-5 4z\"/></svg> <span class=\"tb-text\">Mark</span></button>";
 
 /// The list of marks (each with its remove button), after the time.
 pub(super) const LIST_HTML: &str =
@@ -189,7 +189,8 @@ impl SimState {
     }
 }
 
-/// The marks' list: per mark its time and a remove button.
+/// The marks' list: per mark its time (a button that shows that moment)
+/// and a remove button.
 fn write_list(list: &Element, marks: &Marks) {
     let html: String = marks
         .steps()
@@ -197,7 +198,7 @@ fn write_list(list: &Element, marks: &Marks) {
         .map(|&s| {
             let t = escape(&marks::time_text(s));
             format!(
-                "<span class=\"tb-mark\" data-mark=\"{s}\">▼ {t} s<button type=\"button\" class=\"tb-unmark\" \
+                "<span class=\"tb-mark\" data-mark=\"{s}\"><button type=\"button\" data-goto=\"{s}\" title=\"Show this moment\">▼ {t} s</button><button type=\"button\" class=\"tb-unmark\" \
                  data-unmark=\"{s}\" aria-label=\"Remove the mark at t = {t} s\" title=\"Remove this mark\">×</button></span>"
             )
         })

@@ -17,7 +17,7 @@ use crate::plot_view::{self, PlotView};
 use glam::DVec2;
 use labcore::clock::Clock;
 use labcore::route::{self, Tab};
-use labcore::{Lab, Phase, Scene};
+use labcore::{Lab, ParamSpec, Phase, Scene};
 use std::cell::{Cell, RefCell};
 use std::rc::{Rc, Weak};
 use wasm_bindgen::prelude::*;
@@ -109,6 +109,10 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
                 escape(a.label)
             )
         })
+        .chain([panel::group_html(
+            exp.params(),
+            Some(ParamSpec::WITH_ACTIONS),
+        )])
         .collect();
     let readouts = readouts_html(&exp.readouts());
     let math =
@@ -1009,6 +1013,7 @@ impl SimView {
         state.borrow_mut().restart_timeline();
         let mut listeners = Vec::new();
         canvas_input::listen(&state, &canvas, &mut listeners);
+        canvas_input::listen_time_keys(&state, &mut listeners);
         panel::listen(&state, panel, &mut listeners);
         a11y::listen(&state, panel, &mut listeners);
         scrub::listen(&state, panel, &mut listeners);

@@ -30,7 +30,9 @@ pub(super) fn listen(
             }
         }
     }));
-    if let Some(form) = query(panel, ".sim-controls") {
+    // The controls, and those that sit with the actions
+    // ([`ParamSpec::with_actions`]).
+    for form in dom::query_all(panel, ".sim-controls, .sim-actions") {
         // Enter in a number box applies it (on change) and never submits the
         // form (which would reload the page); a listener, not an inline
         // `onsubmit`, which the Content-Security-Policy forbids.
@@ -175,6 +177,10 @@ pub(super) fn listen(
                 }
             } else if let Some(step) = attr("data-unmark").and_then(|s| s.parse().ok()) {
                 st.remove_mark(step);
+            } else if let Some(step) = attr("data-goto").and_then(|s| s.parse().ok()) {
+                // A mark's time: the timeline goes to that moment.
+                st.student_acted();
+                st.seek(step);
             } else if button.has_attribute("data-touch-mode") {
                 st.touch_draws = !st.touch_draws;
                 let on = st.touch_draws;
@@ -302,23 +308,19 @@ fn decimals(step: f64) -> usize {
 /// The controls: ungrouped ones first, then each [`ParamSpec::group`] under a
 /// collapsed heading (in the order the groups first appear).
 pub(super) fn controls_html(specs: &[ParamSpec]) -> String {
-    let mut html: String = specs
-        .iter()
-        .filter(|s| s.group.is_none())
-        .map(control_html)
-        .collect();
+    let mut html = group_html(specs, None);
     let mut groups: Vec<&str> = Vec::new();
-    for g in specs.iter().filter_map(|s| s.group) {
+    for g in specs
+        .iter()
+        .filter_map(|s| s.group)
+        .filter(|g| *g != ParamSpec::WITH_ACTIONS)
+    {
         if !groups.contains(&g) {
             groups.push(g);
         }
     }
     for g in groups {
-        let body: String = specs
-            .iter()
-            .filter(|s| s.group == Some(g))
-            .map(control_html)
-            .collect();
+        let body = group_html(specs, Some(g));
         // What the heading counts (points, not fields) comes with the
         // values, at the first sync and on every change.
         html.push_str(&format!(
@@ -328,6 +330,16 @@ pub(super) fn controls_html(specs: &[ParamSpec]) -> String {
         ));
     }
     html
+}
+
+/// The controls of group `g` (`None`: the main ones; [`ParamSpec::WITH_ACTIONS`]:
+/// those beside the action buttons).
+pub(super) fn group_html(specs: &[ParamSpec], g: Option<&str>) -> String {
+    specs
+        .iter()
+        .filter(|s| s.group == g)
+        .map(control_html)
+        .collect()
 }
 
 fn control_html(spec: &ParamSpec) -> String {

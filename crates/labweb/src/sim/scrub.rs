@@ -50,13 +50,13 @@ pub(super) const BUTTONS_HTML: &str = "<button type=\"button\" data-time=\"back\
      <button type=\"button\" data-time=\"end\" aria-keyshortcuts=\"End\" title=\"Finish the run at once; a run with no end goes 10 minutes on (key End)\">\
      <svg viewBox=\"0 0 16 16\" width=\"14\" height=\"14\" aria-hidden=\"true\"><path fill=\"currentColor\" d=\"M1 2v12l6-6zM7 2v12l6-6zM13 2h2v12h-2z\"/></svg> <span class=\"tb-text\">Run to end</span></button>";
 
-/// The timeline slider, on its own row of the time bar: from the oldest
+/// The timeline slider, named on its own row of the time bar: from the oldest
 /// step kept to the run's last step, in fixed steps. Its keys are its own
 /// ([`SimState::scrub_key`]): an arrow moves one model step, Page Up and
 /// Page Down one second (a tenth of the run where the plots count
 /// iterations), Home and End to its ends.
-pub(super) const SLIDER_HTML: &str = "<input type=\"range\" class=\"tb-scrub\" data-time=\"scrub\" min=\"0\" max=\"0\" value=\"0\" step=\"1\" \
-     aria-label=\"Timeline\" aria-valuetext=\"t = 0.00 s\">";
+pub(super) const SLIDER_HTML: &str = "<label class=\"tb-tl\">Timeline <input type=\"range\" class=\"tb-scrub\" data-time=\"scrub\" min=\"0\" max=\"0\" value=\"0\" step=\"1\" \
+     aria-valuetext=\"t = 0.00 s\" title=\"Drag to show any moment of this run\"></label>";
 
 /// One fixed step of a replay.
 fn step_once(exp: &mut dyn Lab) {

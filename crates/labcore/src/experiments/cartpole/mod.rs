@@ -69,7 +69,7 @@ const PARAMS: &[ParamSpec] = &[
     ParamSpec::slider("kx", "kx", "N/m", -50.0, 150.0, 0.1, 3.0),
     ParamSpec::slider("kv", "kv", "N·s/m", -50.0, 150.0, 0.1, 6.0),
     ParamSpec::slider("th0", "Start angle θ₀", "°", -60.0, 60.0, 0.1, 6.0),
-    ParamSpec::toggle("ctl", "Control", "off", "on", true),
+    ParamSpec::toggle("ctl", "Control", "off", "on", true).with_actions(),
     ParamSpec::choice("integ", "Integrator", INTEGRATORS, 0),
     ParamSpec::choice("fall", "Fallen when", CRITERIA, 0),
     ParamSpec::slider("flim", "Force limit", "N", 1.0, 100.0, 1.0, 30.0),
