@@ -327,6 +327,7 @@ class Student {
     if (this.touch) return this.finger("touchStart", p, mods);
     const { mouse, keyboard } = this.page;
     await mouse.move(p.x, p.y);
+    this.mouseAt = p;
     if (mods.shift) await keyboard.down("Shift");
     if (mods.ctrl) await keyboard.down("Control");
     await mouse.down();
@@ -336,13 +337,17 @@ class Student {
     p = px(p);
     if (this.touch) return this.finger("touchMove", p);
     await this.page.mouse.move(p.x, p.y);
+    this.mouseAt = p;
   }
 
   async pointerUp(p, mods = {}) {
     p = px(p);
     if (this.touch) return this.finger("touchEnd", null, mods);
     const { mouse, keyboard } = this.page;
-    await mouse.move(p.x, p.y);
+    // A click is a press and a release where it pressed: no move between
+    // (a move with the button down is a drag, to the page as to the model).
+    if (this.mouseAt?.x !== p.x || this.mouseAt?.y !== p.y) await mouse.move(p.x, p.y);
+    this.mouseAt = p;
     await mouse.up();
     if (mods.ctrl) await keyboard.up("Control");
     if (mods.shift) await keyboard.up("Shift");
@@ -354,6 +359,15 @@ class Student {
     this.held = null;
     await this.pointerUp(p);
     await settle(this.page);
+  }
+
+  /**
+   * After a stream of input (a drag, held keys) the page writes its text
+   * at its pace, once the stream has been still for TEXT_INTERVAL_MS (250
+   * ms, labweb's sim/mod.rs): the student reads it then.
+   */
+  async streamRead() {
+    await runFor(this.page, 250 + 2 * FRAME_MS);
   }
 
   /** Where the handle labelled `label` is, in world coordinates: as the Move form shows it. */
@@ -409,7 +423,7 @@ class Student {
     }
     if (o.hold) this.held = end;
     else await this.pointerUp(end);
-    await settle(this.page);
+    await this.streamRead();
   }
 
   async key(o) {
@@ -417,8 +431,8 @@ class Student {
     await this.page.locator(`${ART} canvas.sim-canvas`).focus();
     for (let k = 0; k < (o.times ?? 1); k++) {
       await this.page.keyboard.press(o.shift ? `Shift+${o.key}` : o.key);
-      await settle(this.page);
     }
+    await this.streamRead();
   }
 
   /** The Move form: the point chosen by its label, x and y typed, Move. */
@@ -445,7 +459,10 @@ class Student {
     const clock = await page.locator(`${ART} .timebar`).getAttribute("data-clock");
     if (clock !== "paused") await this.press("Pause");
     await this.slider().fill(String(n));
-    await settle(page);
+    // The page writes its text once the slider has rested (scrub.rs's
+    // SCRUB_REST_MS, 150 ms): read it then, as a student does. Paused,
+    // page time moves nothing else.
+    await runFor(page, 150 + 2 * FRAME_MS);
   }
 
   async scrub(t) {
@@ -488,6 +505,9 @@ class Student {
   /** The page opened anew from its own link, as a classmate would open it. */
   async reopen() {
     await this.release();
+    // The address bar follows the page every HASH_INTERVAL_MS (250 ms,
+    // labweb's sim/mod.rs): the link is copied once it has caught up.
+    await runFor(this.page, 250 + 2 * FRAME_MS);
     const hash = await this.page.evaluate(() => location.hash);
     await this.page.goto("about:blank");
     await open(this.lab, this.page, hash);
