@@ -20,6 +20,6 @@
   say(`${name} did not run.`);
   fetch(module.src).then((r) => {
     const type = r.headers.get("Content-Type");
-    if (r.ok && !/javascript/i.test(type)) say(`the server sent ${name} as “${type}”, not text/javascript (README, “File types”).`);
+    if (r.ok && !/javascript/i.test(type)) say(`the server sent ${name} as “${type}”, not text/javascript (docs/hosting.md, “File types”).`);
   }, () => {});
 })();

@@ -2,8 +2,8 @@
 // window opened by another (how an LMS launches a SCO); even there, without
 // an `API` object it does nothing at all.
 //
-// Inside an LMS (the lab uploaded as dist-scorm.zip, see README "LMS (SCORM
-// 1.2)"), it finds the LMS's `API` object in a parent frame or the opener,
+// Inside an LMS (the lab uploaded as dist-scorm.zip, see docs/lms.md), it
+// finds the LMS's `API` object in a parent frame or the opener,
 // calls LMSInitialize, and reports what the quiz of the experiment this SCO
 // was launched for does (crates/labweb/src/lms.rs sends the events). The SCO
 // is named by the launch's query (`index.html?sco=pid`), which an LMS keeps
@@ -13,7 +13,7 @@
 //                            on a submission (mastery: the LMS's
 //                            cmi.student_data.mastery_score, else 70 %)
 //   cmi.core.score.raw/min/max  the percentage that counts (best, last or
-//                            first graded attempt, see README), 0 and 100
+//                            first graded attempt, see docs/lms.md), 0 and 100
 //   cmi.interactions.n.*     each question of each graded attempt: id
 //                            (`pid-q3`), type (choice or numeric),
 //                            student_response, result (correct or wrong),

@@ -62,7 +62,7 @@ test("scripts served with a wrong type (.js as application/octet-stream): the pa
       const text = await fatal.innerText();
       assert.match(text, new RegExp(`The lab could not start: the server sent ${script.replace(".", "\\.")} as “application/octet-stream”`));
       assert.match(text, /text\/javascript/);
-      assert.match(text, /“File types”/);
+      assert.match(text, /docs\/hosting\.md, “File types”/);
       assert.equal(await page.locator(".loading").count(), 0, `${address}: no “Loading…” left`);
       assert.equal(await page.evaluate(() => window.labStarted), undefined, `${address}: the module did not run`);
       assert.deepEqual(await page.evaluate(() => window.__cspViolations), [], `${address}: no policy violation`);

@@ -67,7 +67,9 @@ process.on("exit", () => {
  * tests/e2e/error-probe.js (at PROBE_PATH) first in its <head>, for a
  * browser whose driver reports no console errors. `copy: true` serves a
  * copy of dist/ that the test may change (`server.dir`), as a host's
- * folder that a redeploy changes under an open page.
+ * folder that a redeploy changes under an open page. `server.notModified`
+ * lists the paths answered 304 (the browser's copy was current: no body),
+ * as `hits` does, in order.
  */
 export async function startServer({ compress = true, probe = false, copy = false } = {}) {
   if (!existsSync(join(DIST, "index.html"))) {
@@ -93,17 +95,23 @@ export async function startServer({ compress = true, probe = false, copy = false
   const child = spawn(xtaskBinary(), args, { cwd: ROOT, stdio: ["ignore", "pipe", "pipe"] });
   running.add(child);
   const hits = [];
+  const notModified = [];
   const said = [];
   // Every request is logged as `GET /path?query`: the log must be read (a
   // full pipe would stop the server), and it says what was requested.
+  const pathOf = (target) => {
+    try {
+      return decodeURIComponent(new URL(target, "http://x").pathname);
+    } catch {
+      return target;
+    }
+  };
   createInterface({ input: child.stderr }).on("line", (line) => {
+    const unchanged = line.match(/^not modified (\S+)$/);
+    if (unchanged) return notModified.push(pathOf(unchanged[1]));
     const m = line.match(/^[A-Z]+ (\S+)$/);
     if (!m) return said.push(line);
-    try {
-      hits.push(decodeURIComponent(new URL(m[1], "http://x").pathname));
-    } catch {
-      hits.push(m[1]);
-    }
+    hits.push(pathOf(m[1]));
   });
   const origin = await new Promise((ok, fail) => {
     const lines = createInterface({ input: child.stdout });
@@ -120,6 +128,7 @@ export async function startServer({ compress = true, probe = false, copy = false
   return {
     origin,
     hits,
+    notModified,
     dir,
     base: origin + BASE_PATH,
     close: async () => {

@@ -452,7 +452,7 @@ test("the report's module is downloaded only when a report is made, once; a fail
     assert.equal(fetched.filter((n) => n.endsWith(".wasm")).length, 1, `and not again: ${fetched}`);
   }));
 
-test("what a report check proves: a classmate's report with the name changed passes, so do answers and score edited together from a printed key; README and the check page say so", () =>
+test("what a report check proves: a classmate's report with the name changed passes, so do answers and score edited together from a printed key; docs/instructors.md and the check page say so", () =>
   withPage(lab, {}, async (page) => {
     await open(lab, page, "#/fk/simulation?quiz=123&key=submitted");
     const fields = page.locator(`${ART} details.report-fields`);
@@ -479,8 +479,8 @@ test("what a report check proves: a classmate's report with the name changed pas
     assert.equal(together.verdict, "good", together.text);
     assert.match(together.text, /a classmate's report with the name changed passes/);
     // Said plainly, next to what it catches.
-    const readme = await readFile(new URL("../../README.md", import.meta.url), "utf8");
-    const section = readme.match(/\*\*Checking a report\.\*\*([^]*?)\n## /)?.[1] ?? "";
+    const doc = await readFile(new URL("../../docs/instructors.md", import.meta.url), "utf8");
+    const section = doc.match(/\*\*Checking a report\.\*\*([^]*?)(?:\n## |$)/)?.[1] ?? "";
     assert.match(section, /What it catches: a score edited on its own/);
     assert.match(section, /A\s+classmate's report with the name changed passes\./);
     assert.match(section, /A report that printed its answer key/);

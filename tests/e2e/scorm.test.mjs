@@ -3,7 +3,7 @@
 // (tests/e2e/scorm/), with the SCO launched in an iframe from the package's
 // imsmanifest.xml, its `#` fragment dropped as some LMSs do. Also:
 // web/scorm.js's pure parts in Node, the plain site (dist/) outside an LMS,
-// where nothing changes, and README's package size against the built zip.
+// where nothing changes, and docs/lms.md's package size against the built zip.
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -1096,22 +1096,22 @@ test("SCORM final LMSCommit on pagehide succeeds in the runtime", () =>
     await context.close();
   }));
 
-// --------------------------------------------------- README's package figures
+// ------------------------------------------------ docs/lms.md's package figures
 
-/** Bytes in a README size like `1.80 MiB` or `537 KiB`. */
+/** Bytes in a docs/lms.md size like `1.80 MiB` or `537 KiB`. */
 const readmeBytes = (n, unit) => Number(n) * (unit === "MiB" ? 1024 * 1024 : 1024);
 
-test("README's SCORM package size is the built zip's, within 5 %", async () => {
-  const readme = await readFile(join(ROOT, "README.md"), "utf8");
-  const m = readme.match(/upload \(([\d.]+) (KiB|MiB); ([\d.]+) (KiB|MiB) unzipped/);
-  assert.ok(m, "README states the zip's size and the unzipped size");
+test("docs/lms.md's SCORM package size is the built zip's, within 5 %", async () => {
+  const doc = await readFile(join(ROOT, "docs", "lms.md"), "utf8");
+  const m = doc.match(/upload \(([\d.]+) (KiB|MiB); ([\d.]+) (KiB|MiB) unzipped/);
+  assert.ok(m, "docs/lms.md states the zip's size and the unzipped size");
   const zip = (await stat(join(ROOT, "dist-scorm.zip"))).size;
   let unzipped = 0;
   for (const entry of await readdir(PACKAGE, { recursive: true, withFileTypes: true })) {
     if (entry.isFile()) unzipped += (await stat(join(entry.parentPath ?? entry.path, entry.name))).size;
   }
   const near = (stated, actual, what) =>
-    assert.ok(Math.abs(stated - actual) <= 0.05 * actual, `README says ${what} is ${(stated / 1048576).toFixed(2)} MiB; the build has ${(actual / 1048576).toFixed(2)} MiB`);
+    assert.ok(Math.abs(stated - actual) <= 0.05 * actual, `docs/lms.md says ${what} is ${(stated / 1048576).toFixed(2)} MiB; the build has ${(actual / 1048576).toFixed(2)} MiB`);
   near(readmeBytes(m[1], m[2]), zip, "dist-scorm.zip");
   near(readmeBytes(m[3], m[4]), unzipped, "dist-scorm/");
 });

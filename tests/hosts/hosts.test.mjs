@@ -1,8 +1,8 @@
-// The README's server recipes, run on the real servers (issue 24 §1, issue
+// The server recipes of docs/hosting.md, run on the real servers (issue 24 §1, issue
 // 51 §5): Debian 12's nginx (with libnginx-mod-http-brotli-static), Apache
-// 2.4 with Debian's default modules (once with the README's virtual host and
+// 2.4 with Debian's default modules (once with docs/hosting.md's virtual host and
 // once with its .htaccess alone in a shared-hosting folder), Caddy 2.6 and
-// lighttpd 1.4. Each recipe is taken out of README.md itself (the fenced
+// lighttpd 1.4. Each recipe is taken out of docs/hosting.md itself (the fenced
 // block after its `<!-- recipe: … -->` marker), put into a configuration
 // built from the package's own stock one where it has one (nginx.conf,
 // apache2.conf, lighttpd.conf: only the listening port, the site, the pid
@@ -13,14 +13,14 @@
 //     and an identity client each get a body that decodes to the file;
 //   - compressible files carry `Vary: Accept-Encoding`, and the cache headers
 //     are those `cargo xtask serve` sends;
-//   - /labs/robotics (no slash) redirects to the folder, as README says;
+//   - /labs/robotics (no slash) redirects to the folder, as docs/hosting.md says;
 //   - every experiment's Simulation tab draws with no console error;
 //   - the lab works offline after one visit.
 // The servers are stopped afterwards; the system's own sites and services are
 // not touched. The headers seen and the console errors per experiment are
 // printed as a table and written to target/hosts/report.md.
 //
-// Run: `cargo xtask test` (its step "README's server recipes"), or
+// Run: `cargo xtask test` (its step "docs/hosting.md's server recipes"), or
 // `node --test tests/hosts/` after `cargo xtask dist`, with the Debian
 // packages nginx, libnginx-mod-http-brotli-static, apache2, caddy and
 // lighttpd installed (the suite installs them with apt-get when it runs as
@@ -59,8 +59,8 @@ import {
 } from "../e2e/helpers.mjs";
 
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), "..", "..");
-const README = join(ROOT, "README.md");
-/** The sub-path and the folder the README's recipes name. */
+const HOSTING = join(ROOT, "docs", "hosting.md");
+/** The sub-path and the folder docs/hosting.md's recipes name. */
 const SUB_PATH = "/labs/robotics/";
 const RECIPE_FOLDER = "/srv/robotics";
 const PACKAGES = ["nginx", "libnginx-mod-http-brotli-static", "apache2", "caddy", "lighttpd"];
@@ -102,18 +102,18 @@ const hasSiblings = (file) => existsSync(join(DIST, file + ".gz")) || existsSync
 
 const IMMUTABLE = "public, max-age=31536000, immutable";
 
-// ---------------------------------------------------------------- README
+// ---------------------------------------------------------------- docs/hosting.md
 
 /**
- * The fenced block that follows `<!-- recipe: NAME -->` in README.md. Fails
+ * The fenced block that follows `<!-- recipe: NAME -->` in docs/hosting.md. Fails
  * when the marker is missing or not followed by a fenced block of `lang`.
  */
-function recipe(readme, name, lang) {
+function recipe(text, name, lang) {
   const marker = `<!-- recipe: ${name} -->`;
-  const at = readme.indexOf(marker);
-  assert.ok(at >= 0, `README.md has the marker ${marker}`);
-  assert.equal(readme.indexOf(marker, at + 1), -1, `README.md has ${marker} once`);
-  const m = readme.slice(at + marker.length).match(/^\s*```(\w+)\n([\s\S]*?)\n```/);
+  const at = text.indexOf(marker);
+  assert.ok(at >= 0, `docs/hosting.md has the marker ${marker}`);
+  assert.equal(text.indexOf(marker, at + 1), -1, `docs/hosting.md has ${marker} once`);
+  const m = text.slice(at + marker.length).match(/^\s*```(\w+)\n([\s\S]*?)\n```/);
   assert.ok(m, `${marker} is followed by a fenced block`);
   assert.equal(m[1], lang, `${marker}: the block is \`\`\`${lang}`);
   return m[2];
@@ -193,11 +193,11 @@ async function startProcess(name, command, args, env, url, logs) {
 /**
  * nginx: Debian's own /etc/nginx/nginx.conf (modules-enabled, mime.types,
  * `gzip on`, …) with our pid, logs, temp paths and, instead of
- * sites-enabled, one server block on `port` holding the README's recipe.
+ * sites-enabled, one server block on `port` holding docs/hosting.md's recipe.
  */
-async function startNginx(dir, labFolder, readme) {
+async function startNginx(dir, labFolder, hosting) {
   const port = await freePort();
-  const site = recipe(readme, "nginx", "nginx").replaceAll(RECIPE_FOLDER, labFolder);
+  const site = recipe(hosting, "nginx", "nginx").replaceAll(RECIPE_FOLDER, labFolder);
   const conf = join(dir, "nginx");
   mkdirSync(conf, { recursive: true });
   writeFileSync(join(conf, "lab-site.conf"), site);
@@ -240,17 +240,17 @@ async function startNginx(dir, labFolder, readme) {
  * pid, lock and log directories and, instead of ports.conf and
  * sites-enabled, one port and one virtual host; mod_rewrite and mod_headers
  * loaded as `a2enmod rewrite headers` would (without enabling them on the
- * system); the README's .htaccess in the lab's folder.
+ * system); docs/hosting.md's .htaccess in the lab's folder.
  *
- * The virtual host holds the README's server recipe (an Alias of
+ * The virtual host holds docs/hosting.md's server recipe (an Alias of
  * /labs/robotics to `labFolder`), or, with `sharedRoot`, nothing of the
  * lab's: a shared host's web space, `sharedRoot` as the DocumentRoot with
  * `AllowOverride All`, and the lab copied to `labs/robotics/` in it
  * (`labFolder` must be that folder), where the .htaccess alone serves it.
  */
-async function startApache(dir, labFolder, readme, { sharedRoot = null } = {}) {
+async function startApache(dir, labFolder, hosting, { sharedRoot = null } = {}) {
   const port = await freePort();
-  writeFileSync(join(labFolder, ".htaccess"), recipe(readme, "apache .htaccess", "apache"));
+  writeFileSync(join(labFolder, ".htaccess"), recipe(hosting, "apache .htaccess", "apache"));
   const conf = join(dir, sharedRoot ? "apache-shared" : "apache");
   const docroot = sharedRoot ?? join(dir, "apache-docroot");
   if (sharedRoot) assert.equal(labFolder, join(sharedRoot, SUB_PATH), "the lab is in the web space's labs/robotics/");
@@ -258,7 +258,7 @@ async function startApache(dir, labFolder, readme, { sharedRoot = null } = {}) {
   mkdirSync(docroot, { recursive: true });
   const site = sharedRoot
     ? [`<Directory ${docroot}>`, `    AllowOverride All`, `    Require all granted`, `</Directory>`].join("\n")
-    : recipe(readme, "apache", "apache").replaceAll(RECIPE_FOLDER, labFolder);
+    : recipe(hosting, "apache", "apache").replaceAll(RECIPE_FOLDER, labFolder);
   let text = readFileSync("/etc/apache2/apache2.conf", "utf8");
   const replace = (pattern, by) => {
     assert.match(text, pattern, `/etc/apache2/apache2.conf has ${pattern}`);
@@ -313,14 +313,14 @@ async function startApache(dir, labFolder, readme, { sharedRoot = null } = {}) {
 /**
  * Caddy: Debian's package ships one site and no global options, so the
  * configuration is ours: no admin endpoint, no automatic HTTPS, and one
- * site on `port` holding the README's recipe. Caddy's data and config
+ * site on `port` holding docs/hosting.md's recipe. Caddy's data and config
  * folders go to `dir`, not the user's home.
  */
-async function startCaddy(dir, labFolder, readme) {
+async function startCaddy(dir, labFolder, hosting) {
   const port = await freePort();
   const conf = join(dir, "caddy");
   mkdirSync(conf, { recursive: true });
-  const site = recipe(readme, "caddy", "caddy").replaceAll(RECIPE_FOLDER, labFolder);
+  const site = recipe(hosting, "caddy", "caddy").replaceAll(RECIPE_FOLDER, labFolder);
   const indented = site.split("\n").map((l) => (l ? `\t${l}` : l)).join("\n");
   writeFileSync(
     join(conf, "Caddyfile"),
@@ -356,10 +356,10 @@ const LIGHTTPD_TUTORIAL_TYPES = `mimetype.assign = (
  * lighttpd: Debian's own /etc/lighttpd/lighttpd.conf (its modules,
  * index-file names, conf-enabled/) with our port, pid, log and upload
  * folder, the tutorial's type map in place of Debian's, Debian's
- * 20-deflate.conf enabled (its cache in `dir`), and the README's recipe at
+ * 20-deflate.conf enabled (its cache in `dir`), and docs/hosting.md's recipe at
  * the end, run in the foreground (`-D`).
  */
-async function startLighttpd(dir, labFolder, readme) {
+async function startLighttpd(dir, labFolder, hosting) {
   const port = await freePort();
   const conf = join(dir, "lighttpd");
   const docroot = join(dir, "lighttpd-docroot");
@@ -386,7 +386,7 @@ async function startLighttpd(dir, labFolder, readme) {
     `deflate.cache-dir = "${conf}/compress/"`,
   );
   assert.match(deflate, /mod_deflate/, "Debian's 20-deflate.conf loads mod_deflate");
-  const site = recipe(readme, "lighttpd", "lighttpd").replaceAll(RECIPE_FOLDER, labFolder);
+  const site = recipe(hosting, "lighttpd", "lighttpd").replaceAll(RECIPE_FOLDER, labFolder);
   writeFileSync(join(conf, "lighttpd.conf"), `${text}\n${deflate}\n${site}\n`);
   // lighttpd opens its log and writes its cache as the user it runs as.
   if (process.getuid() === 0) spawnSync("chown", ["-R", "www-data:www-data", conf]);
@@ -448,7 +448,7 @@ async function simulationDraws(page, id) {
 
 // ---------------------------------------------------------------- the suite
 
-const readme = readFileSync(README, "utf8");
+const hosting = readFileSync(HOSTING, "utf8");
 const files = existsSync(DIST) ? distFiles().sort() : [];
 /** Rows of the headers table: server, client, kind, file, and the four headers. */
 const headerRows = [];
@@ -480,11 +480,11 @@ before(async () => {
   cpSync(folder, sharedFolder, { recursive: true });
   spawnSync("chmod", ["-R", "a+rX", sharedRoot]);
   const [nginxFolder, caddyFolder, lighttpdFolder] = ["nginx", "caddy", "lighttpd"].map((s) => copy(`robotics-${s}`));
-  servers.nginx = await startNginx(work, nginxFolder, readme);
-  servers.apache = await startApache(work, folder, readme);
-  servers.apacheShared = await startApache(work, sharedFolder, readme, { sharedRoot });
-  servers.caddy = await startCaddy(work, caddyFolder, readme);
-  servers.lighttpd = await startLighttpd(work, lighttpdFolder, readme);
+  servers.nginx = await startNginx(work, nginxFolder, hosting);
+  servers.apache = await startApache(work, folder, hosting);
+  servers.apacheShared = await startApache(work, sharedFolder, hosting, { sharedRoot });
+  servers.caddy = await startCaddy(work, caddyFolder, hosting);
+  servers.lighttpd = await startLighttpd(work, lighttpdFolder, hosting);
   browser = await launchBrowser();
 });
 
@@ -545,17 +545,17 @@ function renderReport() {
   return lines.join("\n");
 }
 
-test("README marks its nginx and Apache recipes so that this suite can take them out", () => {
-  assert.match(recipe(readme, "nginx", "nginx"), /brotli_static on;/);
-  assert.match(recipe(readme, "apache", "apache"), /AllowOverride/);
-  assert.match(recipe(readme, "apache .htaccess", "apache"), /RewriteEngine On/);
+test("docs/hosting.md marks its nginx and Apache recipes so that this suite can take them out", () => {
+  assert.match(recipe(hosting, "nginx", "nginx"), /brotli_static on;/);
+  assert.match(recipe(hosting, "apache", "apache"), /AllowOverride/);
+  assert.match(recipe(hosting, "apache .htaccess", "apache"), /RewriteEngine On/);
 });
 
-test("hosts beyond nginx and Apache: README has a Caddy and a lighttpd recipe, and says which types a server must send", () => {
-  assert.match(recipe(readme, "caddy", "caddy"), /precompressed br gzip/);
-  assert.match(recipe(readme, "lighttpd", "lighttpd"), /mimetype\.assign/);
-  const types = readme.match(/### File types\n([^]*?)\n### /)?.[1];
-  assert.ok(types, "README has a section \"File types\"");
+test("hosts beyond nginx and Apache: docs/hosting.md has a Caddy and a lighttpd recipe, and says which types a server must send", () => {
+  assert.match(recipe(hosting, "caddy", "caddy"), /precompressed br gzip/);
+  assert.match(recipe(hosting, "lighttpd", "lighttpd"), /mimetype\.assign/);
+  const types = hosting.match(/^## File types\n([^]*?)\n## /m)?.[1];
+  assert.ok(types, "docs/hosting.md has a section \"File types\"");
   for (const ext of Object.keys(MEDIA_TYPES).filter((e) => e !== ".mjs")) {
     assert.match(types, new RegExp(`\`\\${ext}\``), `"File types" names ${ext}`);
   }
@@ -568,11 +568,11 @@ test("hosts beyond nginx and Apache: README has a Caddy and a lighttpd recipe, a
 
 /** The servers of the suite, by key: the names the tests carry. */
 const SERVER_TITLES = {
-  nginx: "nginx serving dist/ with the README's recipe",
-  apache: "Apache serving dist/ with the README's recipe",
-  apacheShared: "Apache shared hosting: the README's .htaccess alone in a folder with AllowOverride All",
-  caddy: "Caddy 2.6 serving dist/ with the README's recipe",
-  lighttpd: "lighttpd 1.4 serving dist/ with the README's recipe (the tutorial's type map)",
+  nginx: "nginx serving dist/ with docs/hosting.md's recipe",
+  apache: "Apache serving dist/ with docs/hosting.md's recipe",
+  apacheShared: "Apache shared hosting: docs/hosting.md's .htaccess alone in a folder with AllowOverride All",
+  caddy: "Caddy 2.6 serving dist/ with docs/hosting.md's recipe",
+  lighttpd: "lighttpd 1.4 serving dist/ with docs/hosting.md's recipe (the tutorial's type map)",
 };
 
 for (const key of Object.keys(SERVER_TITLES)) {
@@ -675,13 +675,13 @@ for (const key of Object.keys(SERVER_TITLES)) {
       assert.equal(folder.headers["cache-control"], "no-cache", "the folder URL: Cache-Control");
     });
 
-    test("/labs/robotics without its slash redirects (301) to /labs/robotics/, as README says", async () => {
+    test("/labs/robotics without its slash redirects (301) to /labs/robotics/, as docs/hosting.md says", async () => {
       const server = servers[key];
       const bare = server.origin + SUB_PATH.slice(0, -1);
       const res = await get(bare);
       assert.equal(res.status, 301, `${bare}: status`);
       assert.equal(new URL(res.headers.location, bare).href, server.base, "Location is the folder");
-      assert.match(readme, /`\/labs\/robotics` \(no slash\)[^]*?301/, "README says what a host does with the URL without its slash");
+      assert.match(hosting, /`\/labs\/robotics` \(no slash\)[^]*?301/, "docs/hosting.md says what a host does with the URL without its slash");
       await withPage(lab, {}, async (page) => {
         await page.goto(bare);
         await page.waitForSelector("[data-page=home]:not([hidden]) a.card");

@@ -135,6 +135,7 @@ fn handle(stream: TcpStream, root: &Path, base: &str, compress: bool) -> std::io
         let mut keep_alive = version == Some("HTTP/1.1");
         let mut body_len = 0u64;
         let mut encodings = Encodings::default();
+        let mut if_none_match = None;
         loop {
             let mut h = String::new();
             if reader.read_line(&mut h)? == 0 {
@@ -150,6 +151,7 @@ fn handle(stream: TcpStream, root: &Path, base: &str, compress: bool) -> std::io
                     "connection" if value == "close" => keep_alive = false,
                     "connection" if value == "keep-alive" => keep_alive = true,
                     "content-length" => body_len = value.parse().unwrap_or(0),
+                    "if-none-match" => if_none_match = Some(value),
                     "accept-encoding" if compress => {
                         encodings = Encodings {
                             gzip: accepts(&value, "gzip"),
@@ -181,7 +183,19 @@ fn handle(stream: TcpStream, root: &Path, base: &str, compress: bool) -> std::io
             )?;
         } else {
             match resolve(root, base, target) {
-                Resolved::File(path) => send_file(&mut out, &path, head, keep_alive, encodings)?,
+                Resolved::File(path) => {
+                    let request = Request {
+                        head,
+                        keep_alive,
+                        accepted: encodings,
+                        if_none_match: if_none_match.as_deref(),
+                    };
+                    if send_file(&mut out, &path, request)? == Sent::NotModified {
+                        // Said after the answer: the tests that weigh a
+                        // page count what was downloaded, not revalidated.
+                        eprintln!("not modified {target}");
+                    }
+                }
                 Resolved::Redirect(to) => {
                     let msg = format!("moved to {to}\n");
                     write!(
@@ -345,13 +359,63 @@ fn cache_control(path: &Path) -> &'static str {
     }
 }
 
-fn send_file(
-    out: &mut TcpStream,
-    path: &Path,
+/// What a file request asked for, beyond its path.
+struct Request<'a> {
     head: bool,
     keep_alive: bool,
     accepted: Encodings,
-) -> std::io::Result<()> {
+    /// The `If-None-Match` header (lower-cased): the entity tags the
+    /// browser holds for this path.
+    if_none_match: Option<&'a str>,
+}
+
+/// The entity tag of a file as sent with `coding` (`""`, `"gzip"`, `"br"`):
+/// its length and modification time, as nginx and Apache derive theirs, so a
+/// redeployed file has a new tag. Lower-case hex (request headers are read
+/// lower-cased).
+fn entity_tag(path: &Path, coding: &str) -> Option<String> {
+    let meta = std::fs::metadata(path).ok()?;
+    let modified = meta
+        .modified()
+        .ok()?
+        .duration_since(std::time::UNIX_EPOCH)
+        .ok()?;
+    let suffix = if coding.is_empty() {
+        String::new()
+    } else {
+        format!("-{coding}")
+    };
+    Some(format!(
+        "\"{:x}-{:x}{suffix}\"",
+        modified.as_nanos(),
+        meta.len()
+    ))
+}
+
+/// Whether an `If-None-Match` value names `tag` (or is `*`).
+fn names_tag(if_none_match: &str, tag: &str) -> bool {
+    if_none_match
+        .split(',')
+        .map(|t| t.trim().trim_start_matches("w/"))
+        .any(|t| t == tag || t == "*")
+}
+
+/// How a file request was answered.
+#[derive(Debug, PartialEq)]
+enum Sent {
+    /// With its bytes (200) or a 404.
+    Body,
+    /// 304: the browser's copy is current.
+    NotModified,
+}
+
+fn send_file(out: &mut TcpStream, path: &Path, request: Request) -> std::io::Result<Sent> {
+    let Request {
+        head,
+        keep_alive,
+        accepted,
+        if_none_match,
+    } = request;
     let sibling = |ext: &str| {
         let mut name = path.as_os_str().to_owned();
         name.push(ext);
@@ -375,7 +439,8 @@ fn send_file(
             let body = match std::fs::read(path) {
                 Ok(b) => b,
                 Err(_) => {
-                    return respond_text(out, 404, "Not Found", "not found\n", head, keep_alive)
+                    respond_text(out, 404, "Not Found", "not found\n", head, keep_alive)?;
+                    return Ok(Sent::Body);
                 }
             };
             if accepted.gzip && compressible {
@@ -388,9 +453,31 @@ fn send_file(
             }
         }
     };
+    // A file the browser already holds (it revalidates: `no-cache`) is
+    // answered 304 with no body, as nginx and Apache answer: a page that
+    // uses one file twice (the icon) downloads it once.
+    let coding = match encoding {
+        "" => "",
+        e if e.contains("br") => "br",
+        _ => "gzip",
+    };
+    let tag = entity_tag(path, coding);
+    if let (Some(tag), Some(held)) = (&tag, if_none_match) {
+        if names_tag(held, tag) {
+            write!(
+                out,
+                "HTTP/1.1 304 Not Modified\r\nETag: {tag}\r\nVary: Accept-Encoding\r\n\
+                 Cache-Control: {}\r\nConnection: {}\r\n\r\n",
+                cache_control(path),
+                if keep_alive { "keep-alive" } else { "close" }
+            )?;
+            return Ok(Sent::NotModified);
+        }
+    }
+    let etag = tag.map(|t| format!("ETag: {t}\r\n")).unwrap_or_default();
     write!(
         out,
-        "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {}\r\n{encoding}Vary: Accept-Encoding\r\n\
+        "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {}\r\n{encoding}{etag}Vary: Accept-Encoding\r\n\
          Cache-Control: {}\r\nX-Content-Type-Options: nosniff\r\n\
          Content-Security-Policy: {}\r\nConnection: {}\r\n\r\n",
         mime(path),
@@ -402,7 +489,7 @@ fn send_file(
     if !head {
         out.write_all(&body)?;
     }
-    Ok(())
+    Ok(Sent::Body)
 }
 
 fn respond_text(
@@ -583,5 +670,66 @@ mod tests {
         assert_eq!(csp, [crate::pages::CONTENT_SECURITY_POLICY], "{head}");
         assert!(csp[0].contains("script-src 'self' 'wasm-unsafe-eval'"));
         assert_eq!(body, "<!doctype html><title>x</title>");
+    }
+
+    /// Sends `request` (its lines, CRLF-joined) to a server on `root` and
+    /// returns the answer's head and body.
+    fn exchange(root: &Path, request: &str) -> (String, String) {
+        let root = root.to_path_buf();
+        let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+        let addr = listener.local_addr().unwrap();
+        let server = std::thread::spawn(move || {
+            let (stream, _) = listener.accept().unwrap();
+            handle(stream, &root, "/", true).unwrap();
+        });
+        let mut client = TcpStream::connect(addr).unwrap();
+        client.write_all(request.as_bytes()).unwrap();
+        let mut response = String::new();
+        client.read_to_string(&mut response).unwrap();
+        server.join().unwrap();
+        let (head, body) = response.split_once("\r\n\r\n").expect("headers end");
+        (head.to_owned(), body.to_owned())
+    }
+
+    #[test]
+    fn a_file_the_browser_holds_is_answered_not_modified_until_it_changes() {
+        let tmp = std::env::temp_dir().join(format!("xtask-serve-etag-{}", std::process::id()));
+        std::fs::create_dir_all(&tmp).unwrap();
+        std::fs::write(tmp.join("favicon.svg"), "<svg/>").unwrap();
+        let root = tmp.canonicalize().unwrap();
+        let get = |extra: &str| {
+            exchange(
+                &root,
+                &format!(
+                    "GET /favicon.svg HTTP/1.1\r\nHost: x\r\n{extra}Connection: close\r\n\r\n"
+                ),
+            )
+        };
+        let (head, body) = get("");
+        assert!(head.starts_with("HTTP/1.1 200 OK\r\n"), "{head}");
+        assert_eq!(body, "<svg/>");
+        let tag = head
+            .lines()
+            .find_map(|l| l.strip_prefix("ETag: "))
+            .expect("an ETag")
+            .to_owned();
+        assert!(tag.starts_with('"') && tag.ends_with('"'), "{tag}");
+
+        let (head, body) = get(&format!("If-None-Match: {tag}\r\n"));
+        assert!(head.starts_with("HTTP/1.1 304 Not Modified\r\n"), "{head}");
+        assert!(head.contains("Cache-Control: no-cache"), "{head}");
+        assert_eq!(body, "", "a 304 has no body");
+        let (head, _) = get(&format!("If-None-Match: W/{tag}, \"other\"\r\n"));
+        assert!(
+            head.starts_with("HTTP/1.1 304"),
+            "a weak or listed tag: {head}"
+        );
+
+        // A redeployed file (other length) has another tag: sent in full.
+        std::fs::write(tmp.join("favicon.svg"), "<svg></svg>").unwrap();
+        let (head, body) = get(&format!("If-None-Match: {tag}\r\n"));
+        std::fs::remove_dir_all(&tmp).unwrap();
+        assert!(head.starts_with("HTTP/1.1 200 OK\r\n"), "{head}");
+        assert_eq!(body, "<svg></svg>");
     }
 }

@@ -16,7 +16,7 @@ const INSTALL_HINT: &str =
 /// (the longest, axe over every tab, takes about 1 min), and a test file
 /// exits once its tests are done, whatever child process is left running.
 const NODE_TEST_WATCHDOG: [&str; 2] = ["--test-timeout=600000", "--test-force-exit"];
-/// The Debian packages of the real servers `tests/hosts/` runs README's recipes on.
+/// The Debian packages of the real servers `tests/hosts/` runs docs/hosting.md's recipes on.
 const SERVER_PACKAGES: [&str; 5] = [
     "nginx",
     "libnginx-mod-http-brotli-static",
@@ -192,7 +192,7 @@ pub fn test(opts: Options) -> Result<(), String> {
         }),
     ));
 
-    // README's server recipes on the real servers. Without the
+    // The server recipes of docs/hosting.md on the real servers. Without the
     // packages and without root to install them, the suite is skipped (said
     // loudly), not failed: the rest of the tests still mean something.
     let servers_present = Rc::new(Cell::new(false));
@@ -206,7 +206,7 @@ pub fn test(opts: Options) -> Result<(), String> {
         }),
     ));
     steps.push((
-        "README's server recipes on nginx, Apache, Caddy and lighttpd (node --test tests/hosts/)",
+        "the server recipes of docs/hosting.md on nginx, Apache, Caddy and lighttpd (node --test tests/hosts/)",
         Box::new(move || {
             if !servers_present.get() {
                 println!("SKIPPED: {}", servers_hint());
@@ -250,7 +250,7 @@ pub fn test(opts: Options) -> Result<(), String> {
     println!("all {total} steps passed");
     if !servers_ran.get() {
         println!(
-            "but README's server recipes were not tested: {}",
+            "but the server recipes of docs/hosting.md were not tested: {}",
             servers_hint()
         );
     }

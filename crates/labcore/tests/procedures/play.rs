@@ -1,7 +1,7 @@
 //! The machine part of a Procedure step, played on a [`Page`]: each item of
 //! a step's `play` is one thing the student does or one thing the text says
-//! they will see, in the words the page shows (README, "Adding an
-//! experiment", lists the vocabulary).
+//! they will see, in the words the page shows (docs/authoring.md,
+//! "Procedure steps", lists the vocabulary).
 
 use super::page::{Page, Value as Control};
 use glam::DVec2;
