@@ -49,16 +49,24 @@ const verbOf = (item) => VERBS.find((v) => v in item);
  * Keyed by experiment, the scene role and the property (`of`).
  */
 const UNREAD = {
-  "fk Bound max_radius": "the dashed reach circles are drawn, their radii written nowhere on the page",
-  "fk Bound min_radius": "the dashed reach circles are drawn, their radii written nowhere on the page",
-  "fk Bound count": "the dashed reach circles are drawn, their number written nowhere on the page",
-  "ik Bound max_radius": "the dashed reach circles are drawn, their radii written nowhere on the page",
-  "ik Bound min_radius": "the dashed reach circles are drawn, their radii written nowhere on the page",
-  "ik Ghost count": "the other elbow's ghost arm is drawn, not named in text",
-  "ekf Estimate count": "the estimate's dart and ellipse are drawn; the text names its error, not the items",
-  "ekf Estimate max_semi_axis": "the ellipses' sizes are drawn, written nowhere on the page",
-  "potential Warning cells": "the basin map's cells are painted, not counted in text",
-  "potential Obstacle cells": "the basin map's cells are painted, not counted in text",
+  "fk Bound max_radius":
+    "step 4 has the student watch the outer dashed circle, radius L₁ + L₂: drawn to the scale bar, its radius written nowhere (no readout, not in Describe)",
+  "fk Bound min_radius":
+    "step 4: the inner dashed circle, radius |L₁ − L₂|, drawn to scale; its radius written nowhere",
+  "fk Bound count":
+    "step 4: with equal links the inner circle shrinks to a point and only the outer one is drawn; no text counts the circles",
+  "ik Bound max_radius": "step 1: the outer circle of the workspace annulus, drawn to scale; its radius written nowhere",
+  "ik Bound min_radius": "step 1: the inner circle of the annulus, drawn to scale; its radius written nowhere",
+  "ik Ghost count":
+    "steps 4 and 6: the branch left behind is drawn as a faint ghost arm (none on the circle, where both branches are one); no text or Describe names it",
+  "ekf Estimate count":
+    "step 1: the pink dart and its 3σ ellipse are drawn; the readouts give the estimate's error, Describe its offset, neither counts the drawn items",
+  "ekf Estimate max_semi_axis":
+    "step 7: the map's landmark ellipses shrink when the loop closes; their sizes are drawn, written nowhere (the readouts give the robot's uncertainty, not the map's)",
+  "potential Warning cells":
+    "step 7: the basin map's orange-red (trapped) cells are painted; the text gives only the share of starts that reach the goal",
+  "potential Obstacle cells":
+    "step 7: the basin map's grey (collided) cells are painted; the text gives only the share of starts that reach the goal",
 };
 const unreadKey = (id, o) => `${id} ${o.scene} ${o.of}`;
 
@@ -287,8 +295,9 @@ class Student {
     } else {
       assert.ok(label in times, `no button labelled “${label}”`);
       const clock = await page.locator(`${ART} .timebar`).getAttribute("data-clock");
-      // Pause and Play are one button: press it only when it offers the other.
-      if ((label === "Pause" && clock === "paused") || (label === "Play" && clock !== "paused")) return;
+      // Pause and Play are one button: press it only when it offers the
+      // other (an ended run offers Replay, never Pause: nothing to pause).
+      if ((label === "Pause" && ["paused", "ended"].includes(clock)) || (label === "Play" && !["paused", "ended"].includes(clock))) return;
       if (label === "Reset") this.lastInput = 0;
       await page.locator(`${ART} button[data-time=${times[label]}]`).click();
     }
@@ -453,11 +462,9 @@ class Student {
     return this.page.locator(`${ART} .tb-scrub`);
   }
 
-  /** The slider put at step `n` (as a pointer drags its thumb there), the page paused on it. */
+  /** The slider put at step `n` (as a pointer drags its thumb there): a scrub pauses the page. */
   async scrubToStep(n) {
     const { page } = this;
-    const clock = await page.locator(`${ART} .timebar`).getAttribute("data-clock");
-    if (clock !== "paused") await this.press("Pause");
     await this.slider().fill(String(n));
     // The page writes its text once the slider has rested (scrub.rs's
     // SCRUB_REST_MS, 150 ms): read it then, as a student does. Paused,
@@ -487,19 +494,58 @@ class Student {
     }
   }
 
+  /**
+   * The slider left where the readout `label` is largest along the run
+   * shown, as a student finds it: where a plot draws the same quantity (a
+   * series of that name), its peak read off the plot, the slider dragged
+   * there and then moved a step either way while the readout grows (Back
+   * and Step); else every step of the run looked at in turn.
+   */
   async scrubToLargest(label) {
     const slider = this.slider();
     const first = Math.max(this.lastInput, Number(await slider.getAttribute("min")));
     const end = Number(await slider.getAttribute("max"));
-    let best = null;
-    for (let step = first; step <= end; step++) {
+    const valueAt = async (step) => {
       await this.scrubToStep(step);
       const text = await shown(this.page, label);
-      const v = text === null ? null : shownNumber(text);
+      return text === null ? null : shownNumber(text);
+    };
+    const peak = await this.plotPeak(label);
+    if (peak !== null) {
+      let at = Math.min(end, Math.max(first, Math.round(peak / DT_S)));
+      let v = await valueAt(at);
+      assert.ok(v !== null, `${label} shows no number at the plot's peak`);
+      for (const dir of [-1, 1]) {
+        for (;;) {
+          const next = at + dir;
+          if (next < first || next > end) break;
+          const w = await valueAt(next);
+          // Ties go to the earlier moment, as the scan below takes the first.
+          if (w === null || w < v || (w === v && dir > 0)) break;
+          [at, v] = [next, w];
+        }
+      }
+      await this.scrubToStep(at);
+      return;
+    }
+    let best = null;
+    for (let step = first; step <= end; step++) {
+      const v = await valueAt(step);
       if (v !== null && (best === null || v > best[1])) best = [step, v];
     }
     assert.ok(best, "the value shows no number on the timeline");
     await this.scrubToStep(best[0]);
+  }
+
+  /** The time (x) of the largest sample of a plotted series named as readout `label` (case aside), or null. */
+  async plotPeak(label) {
+    const titles = (await this.page.locator(`${ART} figure.plot .plot-title`).allTextContents()).map((t) => t.trim());
+    for (const title of titles) {
+      const { series } = await this.plotCsv(title);
+      const s = series.find((c) => c.label.toLowerCase() === label.toLowerCase());
+      if (s && s.y.length) return s.x[s.y.reduce((b, v, i) => (v > s.y[b] ? i : b), 0)];
+    }
+    return null;
   }
 
   /** The page opened anew from its own link, as a classmate would open it. */
@@ -670,6 +716,12 @@ class Student {
 
   async item(o) {
     const { page } = this;
+    // On a touch screen, the way the step gives for a finger (`touch`: an
+    // item or a list) where the mouse's way needs Shift or Ctrl.
+    if (this.touch && o.touch) {
+      for (const t of [o.touch].flat()) await this.item(t);
+      return;
+    }
     const verb = verbOf(o);
     switch (verb) {
       case "set":
