@@ -9,8 +9,8 @@
 //! A mutation test proves the claims bite: altered by 20 %, or "larger"
 //! swapped for "smaller", a claim must fail.
 //!
-//! The browser runner (`tests/e2e/procedures.test.mjs`) plays the same data
-//! on the built site.
+//! The browser runner (`tests/e2e/procedures.mjs`, in three test files)
+//! plays the same data on the built site.
 
 mod page;
 mod play;
