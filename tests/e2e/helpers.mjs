@@ -456,6 +456,25 @@ export async function runUntilReadout(page, key, op, bound, { abs = false, maxMs
   return (await readouts(page))[key];
 }
 
+/**
+ * Page coordinates of world point (x, y) on the visible experiment's
+ * simulation canvas, as the page maps them (labweb's viewport: the view in
+ * `data-view` fitted uniformly and centred, y up). Scrolls the canvas into
+ * view first, as a student would before pointing at it.
+ */
+export async function worldToPage(page, x, y) {
+  const canvas = page.locator("article.exp:not([hidden]) canvas.sim-canvas");
+  await canvas.scrollIntoViewIfNeeded();
+  const box = await canvas.boundingBox();
+  const [minX, minY, maxX, maxY] = (await canvas.getAttribute("data-view")).split(",").map(Number);
+  const scale = Math.min(box.width / (maxX - minX), box.height / (maxY - minY));
+  return {
+    x: box.x + box.width / 2 + (x - (minX + maxX) / 2) * scale,
+    y: box.y + box.height / 2 - (y - (minY + maxY) / 2) * scale,
+    scale,
+  };
+}
+
 /** A free TCP port on 127.0.0.1. */
 export function freePort() {
   return new Promise((ok, fail) => {

@@ -18,8 +18,8 @@
 //! longer the text's own fails too. The mutation test samples these claims
 //! as well.
 //!
-//! The browser runner (`tests/e2e/procedures.test.mjs`) plays the same data
-//! on the built site.
+//! The browser runner (`tests/e2e/procedures.mjs`, in three test files)
+//! plays the same data on the built site.
 
 mod page;
 mod play;

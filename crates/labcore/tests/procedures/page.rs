@@ -534,8 +534,16 @@ impl Page {
                     (if v > 0.5 { on } else { off }).to_owned()
                 }
                 (ParamKind::Choice(options), Some(v)) => options[v as usize].to_owned(),
-                // As the control's number box writes it: the step's digits.
-                (_, Some(v)) => timeline::value_text(spec, v),
+                // As the control's number box writes it (labweb's
+                // `set_control_value`): a digit more than the step's, at
+                // most 3 (an LQR gain of 49.5104 shows 49.51 on a 0.1 step).
+                (_, Some(v)) => {
+                    let step_digits = (0..4)
+                        .find(|&d| (spec.step * 10f64.powi(d)).fract().abs() < 1e-9)
+                        .unwrap_or(4) as usize;
+                    let number = labcore::units::format_number(v, (step_digits + 1).min(3));
+                    format!("{number} {}", spec.unit).trim_end().to_owned()
+                }
             });
         }
         let labels: Vec<&str> = readouts.iter().map(|r| r.label).collect();
