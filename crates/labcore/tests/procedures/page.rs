@@ -510,11 +510,23 @@ impl Page {
         if !notices.is_empty() {
             return Err(format!("{link} gave the notices {notices:?}"));
         }
+        // A paused page's link names its moment (`run=0&at=`, the run's own
+        // time): it reopens there, paused, as the page does; a playing
+        // page's link opens the run from its start, playing.
+        let (moment, playing) = (self.at, self.playing);
         self.exp = fresh;
         self.timeline = Timeline::new(self.exp.as_ref(), 0);
         self.at = 0;
         self.last_input = 0;
+        self.kept.clear();
+        self.timeline_paused = false;
         self.playing = true;
+        if !playing {
+            for _ in 0..moment {
+                self.step_live();
+            }
+            self.playing = false;
+        }
         Ok(())
     }
 
