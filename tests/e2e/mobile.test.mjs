@@ -5,24 +5,11 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { readFile } from "node:fs/promises";
-import { DESKTOP, open, readouts, runFor, runUntil, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+import { DESKTOP, open, readouts, runFor, runUntil, screenshot, settle, useLab, withPage, worldToPage } from "./helpers.mjs";
 
 const lab = useLab();
 const SIM = 'article.exp:not([hidden]) [data-panel="simulation"]';
 const PHONE_TALL = { width: 390, height: 844 };
-
-/** Page coordinates of world point (x, y) on the simulation canvas (uniform fit, y up). */
-async function worldToPage(page, x, y) {
-  const canvas = page.locator(`${SIM} canvas.sim-canvas`);
-  await canvas.scrollIntoViewIfNeeded();
-  const box = await canvas.boundingBox();
-  const [minX, minY, maxX, maxY] = (await canvas.getAttribute("data-view")).split(",").map(Number);
-  const scale = Math.min(box.width / (maxX - minX), box.height / (maxY - minY));
-  return {
-    x: box.x + box.width / 2 + (x - (minX + maxX) / 2) * scale,
-    y: box.y + box.height / 2 - (y - (minY + maxY) / 2) * scale,
-  };
-}
 
 async function clickWorld(page, x, y) {
   const p = await worldToPage(page, x, y);

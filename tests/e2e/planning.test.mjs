@@ -8,24 +8,12 @@ import assert from "node:assert/strict";
 import { readFile } from "node:fs/promises";
 import { dirname, join, resolve } from "node:path";
 import { fileURLToPath } from "node:url";
-import { DESKTOP, open, readNumber, readouts, runUntil, screenshot, settle, useLab, withPage } from "./helpers.mjs";
+import { DESKTOP, open, readNumber, readouts, runUntil, screenshot, settle, useLab, withPage, worldToPage } from "./helpers.mjs";
 
 const lab = useLab();
 const ART = "article.exp:not([hidden])";
 const PHONE_390 = { width: 390, height: 844 };
 const ARENA = join(resolve(dirname(fileURLToPath(import.meta.url)), "..", ".."), "assets", "maps", "arena.map");
-
-/** Page coordinates of world point (x, y) on the simulation canvas (uniform fit, y up). */
-async function worldToPage(page, x, y) {
-  const canvas = page.locator(`${ART} canvas.sim-canvas`);
-  const box = await canvas.boundingBox();
-  const [minX, minY, maxX, maxY] = (await canvas.getAttribute("data-view")).split(",").map(Number);
-  const scale = Math.min(box.width / (maxX - minX), box.height / (maxY - minY));
-  return {
-    x: box.x + box.width / 2 + (x - (minX + maxX) / 2) * scale,
-    y: box.y + box.height / 2 - (y - (minY + maxY) / 2) * scale,
-  };
-}
 
 /** Page point of the centre of grid cell (col, row) of an A* grid `rows` high (row 0 at the top). */
 function cellToPage(page, col, row, rows) {

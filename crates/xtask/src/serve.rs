@@ -646,22 +646,13 @@ mod tests {
         std::fs::create_dir_all(&tmp).unwrap();
         std::fs::write(tmp.join("index.html"), "<!doctype html><title>x</title>").unwrap();
         let root = tmp.canonicalize().unwrap();
-        let listener = TcpListener::bind("127.0.0.1:0").unwrap();
-        let addr = listener.local_addr().unwrap();
-        let server = std::thread::spawn(move || {
-            let (stream, _) = listener.accept().unwrap();
-            handle(stream, &root, "/sub/", true).unwrap();
-        });
-        let mut client = TcpStream::connect(addr).unwrap();
-        client
-            .write_all(b"GET /sub/ HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
-            .unwrap();
-        let mut response = String::new();
-        client.read_to_string(&mut response).unwrap();
-        server.join().unwrap();
+        let (head, body) = exchange(
+            &root,
+            "/sub/",
+            "GET /sub/ HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n",
+        );
         std::fs::remove_dir_all(&tmp).unwrap();
 
-        let (head, body) = response.split_once("\r\n\r\n").expect("headers end");
         assert!(head.starts_with("HTTP/1.1 200 OK\r\n"), "{head}");
         let csp: Vec<&str> = head
             .lines()
@@ -672,15 +663,15 @@ mod tests {
         assert_eq!(body, "<!doctype html><title>x</title>");
     }
 
-    /// Sends `request` (its lines, CRLF-joined) to a server on `root` and
-    /// returns the answer's head and body.
-    fn exchange(root: &Path, request: &str) -> (String, String) {
+    /// Sends `request` (its lines, CRLF-joined) to a server on `root` under
+    /// `base` and returns the answer's head and body.
+    fn exchange(root: &Path, base: &'static str, request: &str) -> (String, String) {
         let root = root.to_path_buf();
         let listener = TcpListener::bind("127.0.0.1:0").unwrap();
         let addr = listener.local_addr().unwrap();
         let server = std::thread::spawn(move || {
             let (stream, _) = listener.accept().unwrap();
-            handle(stream, &root, "/", true).unwrap();
+            handle(stream, &root, base, true).unwrap();
         });
         let mut client = TcpStream::connect(addr).unwrap();
         client.write_all(request.as_bytes()).unwrap();
@@ -700,6 +691,7 @@ mod tests {
         let get = |extra: &str| {
             exchange(
                 &root,
+                "/",
                 &format!(
                     "GET /favicon.svg HTTP/1.1\r\nHost: x\r\n{extra}Connection: close\r\n\r\n"
                 ),

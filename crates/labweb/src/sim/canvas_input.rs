@@ -14,9 +14,6 @@ use web_sys::{Event, HtmlCanvasElement, KeyboardEvent, PointerEvent};
 const TOUCH_GRAB_PX: f64 = 28.0;
 /// A touch that moves this far (CSS pixels) without the browser scrolling becomes a drag.
 const TOUCH_SLOP_PX: f64 = 10.0;
-/// How close (CSS pixels) the mouse press that focuses the canvas must be
-/// to a handle to grab it at once.
-const MOUSE_GRAB_PX: f64 = 10.0;
 
 /// Wires the canvas's pointer, touch, keyboard and drop listeners to `state`.
 pub(super) fn listen(
@@ -40,18 +37,6 @@ pub(super) fn listen(
             let mut st = s.borrow_mut();
             st.student_acted();
             let w = st.to_world(e);
-            // A mouse press that gives an unfocused canvas focus only
-            // focuses it (for its keys), unless it grabs a handle: it never
-            // paints a wall or nudges the pole. A finger (or pen) acts at
-            // once: it has no keys to aim.
-            if e.pointer_type() == "mouse"
-                && dom::document().active_element().as_ref() != Some(st.canvas.as_ref())
-                && !st
-                    .exp
-                    .handle_at(w, MOUSE_GRAB_PX / st.viewport.scale_px_per_m)
-            {
-                return;
-            }
             let captured = st.exp.captures_touch() && st.touch_draws;
             if e.pointer_type() == "touch" && !captured {
                 let tolerance_m = TOUCH_GRAB_PX / st.viewport.scale_px_per_m;
