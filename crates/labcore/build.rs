@@ -340,17 +340,7 @@ fn procedure(items: &[Value], id: &str) -> Result<String, String> {
             Value::String(s) => s.clone(),
             _ => return Err(f.wrong("text", "a string")),
         };
-        let play = f.array("play")?;
-        let given = match f.optional("given") {
-            None => &[][..],
-            Some(Value::Array(items)) => items.as_slice(),
-            Some(_) => return Err(f.wrong("given", "an array of numbers")),
-        };
-        f.done()?;
-        let mut values = Vec::new();
-        for v in play.iter().chain(given) {
-            step_values(v, &mut values);
-        }
+        let (_, values) = play_and_given_values(f)?;
         if let Some(n) = step_numbers::stray_number(&text, &values) {
             // Like a formula that does not convert, this stops the build:
             // the prose and the machine part must say the same numbers.
@@ -381,19 +371,9 @@ fn check_claims(value: &Value, id: &str) -> Result<(), String> {
             Value::String(s) => s.clone(),
             _ => return Err(f.wrong("quote", "a string")),
         };
-        let play = f.array("play")?;
-        if play.is_empty() {
-            return Err(f.wrong("play", "a non-empty array"));
-        }
-        let given = match f.optional("given") {
-            None => &[][..],
-            Some(Value::Array(items)) => items.as_slice(),
-            Some(_) => return Err(f.wrong("given", "an array of numbers")),
-        };
-        f.done()?;
-        let mut values = Vec::new();
-        for v in play.iter().chain(given) {
-            step_values(v, &mut values);
+        let (play_items, values) = play_and_given_values(f)?;
+        if play_items == 0 {
+            return Err(format!("{place}: field `play` should be a non-empty array"));
         }
         if let Some(n) = step_numbers::stray_number(&quote, &values) {
             eprintln!(
@@ -403,6 +383,24 @@ fn check_claims(value: &Value, id: &str) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// Reads a step's or a claim's `play` and optional `given` (the last of
+/// its fields) and returns how many items `play` has and every number of
+/// both ([`step_values`]): the values its prose may write.
+fn play_and_given_values(mut f: Fields) -> Result<(usize, Vec<f64>), String> {
+    let play = f.array("play")?;
+    let given = match f.optional("given") {
+        None => &[][..],
+        Some(Value::Array(items)) => items.as_slice(),
+        Some(_) => return Err(f.wrong("given", "an array of numbers")),
+    };
+    f.done()?;
+    let mut values = Vec::new();
+    for v in play.iter().chain(given) {
+        step_values(v, &mut values);
+    }
+    Ok((play.len(), values))
 }
 
 /// Every number of a step's machine part: its JSON numbers and the numbers
