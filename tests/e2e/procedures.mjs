@@ -10,10 +10,10 @@
 // offers (or, for a kept run the CSV leaves out, from its text summary), a
 // table's rows as shown, the scene from what the page says of it.
 //
-// Every verb of the native runner is played here. The few claims about the
-// scene that the page does not put into words are listed in UNREAD below,
-// each with its reason, and the test fails if a listed claim is not met in
-// the Procedure (or one not listed cannot be read).
+// Every verb of the native runner is played here. A claim about the scene
+// is read where the page puts it into words, Describe (the button under the
+// canvas, also a screen reader's): its `words` say where, `#` for the
+// number.
 
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -39,34 +39,32 @@ const CLAIMS = ["is", "between", "above", "below", "larger_than", "smaller_than"
 const verbOf = (item) => VERBS.find((v) => v in item);
 
 /**
- * Claims about the scene that the page does not put into words: the
- * canvas draws them, but no text, label or attribute says the number (a
- * circle's radius, a ghost arm, an ellipse's size, the cells of a raster in
- * one colour). Each is listed with why; the runner skips exactly these,
- * says so in the test's name, and fails if one is not met (a stale entry).
- * Keyed by experiment, the scene role and the property (`of`).
+ * The number Describe's `text` writes where a scene claim's `words` have
+ * `#` (the words around it as written; "no" or "No" reads 0), at the first
+ * place they fit: the native runner's `described_number`.
  */
-const UNREAD = {
-  "fk Bound max_radius":
-    "step 4 has the student watch the outer dashed circle, radius L₁ + L₂: drawn to the scale bar, its radius written nowhere (no readout, not in Describe)",
-  "fk Bound min_radius":
-    "step 4: the inner dashed circle, radius |L₁ − L₂|, drawn to scale; its radius written nowhere",
-  "fk Bound count":
-    "step 4: with equal links the inner circle shrinks to a point and only the outer one is drawn; no text counts the circles",
-  "ik Bound max_radius": "step 1: the outer circle of the workspace annulus, drawn to scale; its radius written nowhere",
-  "ik Bound min_radius": "step 1: the inner circle of the annulus, drawn to scale; its radius written nowhere",
-  "ik Ghost count":
-    "steps 4 and 6: the branch left behind is drawn as a faint ghost arm (none on the circle, where both branches are one); no text or Describe names it",
-  "ekf Estimate count":
-    "step 1: the pink dart and its 3σ ellipse are drawn; the readouts give the estimate's error, Describe its offset, neither counts the drawn items",
-  "ekf Estimate max_semi_axis":
-    "step 7: the map's landmark ellipses shrink when the loop closes; their sizes are drawn, written nowhere (the readouts give the robot's uncertainty, not the map's)",
-  "potential Warning cells":
-    "step 7: the basin map's orange-red (trapped) cells are painted; the text gives only the share of starts that reach the goal",
-  "potential Obstacle cells":
-    "step 7: the basin map's grey (collided) cells are painted; the text gives only the share of starts that reach the goal",
-};
-const unreadKey = (id, o) => `${id} ${o.scene} ${o.of}`;
+export function describedNumber(text, words) {
+  const at = words.indexOf("#");
+  if (at < 0) return null;
+  const [before, after] = [words.slice(0, at), words.slice(at + 1)];
+  const t = text.replace(/\u2212/g, "-");
+  for (let i = 0; i <= t.length; i++) {
+    if (!t.startsWith(before, i)) continue;
+    // A number starts here, not inside another one.
+    if (before === "" && i > 0 && /[\d.,-]/.test(t[i - 1])) continue;
+    const rest = t.slice(i + before.length);
+    let n = null;
+    let len = 0;
+    if (rest.startsWith("no") || rest.startsWith("No")) [n, len] = [0, 2];
+    else {
+      const m = rest.match(/^-?[\d.,]*/)[0].replace(/[.,]+$/, "");
+      const v = Number(m.replace(/,/g, ""));
+      if (m !== "" && m !== "-" && Number.isFinite(v)) [n, len] = [v, m.length];
+    }
+    if (n !== null && rest.slice(len).startsWith(after)) return n;
+  }
+  return null;
+}
 
 /** The steps of experiment `id`'s Procedure. */
 function procedure(id) {
@@ -193,8 +191,6 @@ class Student {
     this.lastInput = 0;
     /** A pointer still pressed at the end of a drag (`hold`), released at the next input. */
     this.held = null;
-    /** Scene claims skipped because the page does not say them (UNREAD's keys). */
-    this.unread = [];
     // On a touch screen the page words a status for a finger ("click"
     // becomes "tap", labcore's `for_touch`): so does the claim.
     this.words = (text) => (touch ? text.replaceAll("click", "tap") : text);
@@ -698,27 +694,24 @@ class Student {
     assert.ok(line.includes(o.says), `row ${o.row} of “${o.table}”: ${line} (its rows: ${rows.join("; ")})`);
   }
 
-  /** What Describe (the button under the canvas) says of the scene. */
+  /**
+   * What Describe (the button under the canvas) says of the scene. The page
+   * writes it at the press: no page time passes, as natively (a running
+   * experiment is read at the moment the step reads it).
+   */
   async describe() {
     const { page } = this;
     await page.locator(`${ART} [data-a11y=describe]`).click();
-    await settle(page);
     return (await page.locator(`${ART} .sim-description`).textContent()).trim();
   }
 
+  /** A claim about the scene, read where Describe puts it into words (`words`, `#` for the number). */
   async scene(o) {
-    const key = unreadKey(this.id, o);
-    if (key in UNREAD) {
-      this.unread.push(key);
-      return;
-    }
-    if (o.of === "count" && o.scene === "Obstacle") {
-      const text = await this.describe();
-      const m = text.match(/(\d+) obstacles?\b/);
-      assert.ok(m, `Describe: “${text}” counts no obstacles`);
-      return this.notedOrCompared(o, Number(m[1]), `Describe: “${text}”`);
-    }
-    throw new Error(`the page does not say the ${o.of} of its ${o.scene} items (add it to UNREAD with the reason, or read it)`);
+    assert.ok(typeof o.words === "string" && o.words.includes("#"), `the scene claim ${JSON.stringify(o)} gives no words to read it by`);
+    const text = await this.describe();
+    const n = describedNumber(text, o.words);
+    assert.ok(n !== null, `Describe does not say “${o.words}”: “${text}”`);
+    return this.notedOrCompared(o, n, `${o.words} = ${n} in Describe: “${text}”`);
   }
 
   async item(o) {
@@ -887,24 +880,29 @@ export function playPart(k, n) {
       const all = Array.from({ length: n }, (_, j) => partOf(j, n)).flat();
       assert.deepEqual([...all].sort(), [...builtExperimentIds()].sort());
     });
-    test("UNREAD lists only scene claims that a Procedure makes", () => {
-      const made = new Set(
-        builtExperimentIds().flatMap((id) => procedure(id).flatMap((s) => s.play.filter((o) => "scene" in o).map((o) => unreadKey(id, o)))),
-      );
-      for (const key of Object.keys(UNREAD)) assert.ok(made.has(key), `UNREAD: no Procedure claims “${key}”`);
+    test("a scene claim's number is read where its words put it in Describe (as natively)", () => {
+      const text =
+        "Tip at (0.76, 1.27) m. 2 dashed circles bound the reach: outer radius 1.700 m, inner radius 0.300 m. No ghost arm: the branches merge. Basin map: 1,050 starts reach the goal, \u22123 trapped.";
+      assert.equal(describedNumber(text, "# dashed circle"), 2);
+      assert.equal(describedNumber(text, "outer radius # m"), 1.7);
+      assert.equal(describedNumber(text, "inner radius # m"), 0.3);
+      assert.equal(describedNumber(text, "# ghost arm"), 0);
+      assert.equal(describedNumber(text, "# starts reach"), 1050);
+      assert.equal(describedNumber(text, "# trapped"), -3);
+      assert.equal(describedNumber(text, "#) m"), 1.27);
+      assert.equal(describedNumber(text, "# collided"), null);
+      assert.equal(describedNumber(text, "no number here"), null);
     });
   }
 }
 
 function playProcedure(lab, id) {
   const steps = procedure(id);
-  const unread = steps.flatMap((s) => s.play.filter((o) => "scene" in o && unreadKey(id, o) in UNREAD));
-  const note = unread.length ? `, ${unread.length} scene claims unread (UNREAD)` : "";
   for (const [name, options] of [
     ["1280×800", { viewport: DESKTOP }],
     ["phone, touch", { viewport: PHONE, hasTouch: true, isMobile: true }],
   ]) {
-    test(`${id}: the Procedure played as a student at ${name}, all ${steps.length} steps${note}`, () =>
+    test(`${id}: the Procedure played as a student at ${name}, all ${steps.length} steps`, () =>
       withPage(lab, { ...options, clock: true, initScript: WATCH }, async (page) => {
         await open(lab, page, `#/${id}/simulation`);
         const student = new Student(lab, page, Boolean(options.hasTouch), id);
@@ -928,7 +926,6 @@ function playProcedure(lab, id) {
           }
         }
         assert.deepEqual(failures, [], `\n${failures.join("\n\n")}`);
-        assert.equal(student.unread.length, unread.length);
       }));
   }
 }

@@ -221,9 +221,20 @@ fn fk_describes_the_angles_and_the_tip() {
             e.set_param(k, v).unwrap();
         }
     });
+    // The dashed circles: L₁ + L₂ = 1.7 m and |L₁ − L₂| = 0.3 m.
     assert_eq!(
         text,
-        "Two-link arm with θ₁ 90.0° and θ₂ 0.0°: tip at (0.00, 1.70) m, 100.0% of the reach used; in reach."
+        "Two-link arm with θ₁ 90.0° and θ₂ 0.0°: tip at (0.00, 1.70) m, 100.0% of the reach used; in reach. \
+         2 dashed circles bound the reach: outer radius 1.700 m, inner radius 0.300 m."
+    );
+    // Equal links, 1.2 m each: one circle of 2.4 m, and no hole.
+    let equal = describe("fk", |e| {
+        e.set_param("l1", 1.2).unwrap();
+        e.set_param("l2", 1.2).unwrap();
+    });
+    assert!(
+        equal.ends_with("1 dashed circle bounds the reach: outer radius 2.400 m, no hole."),
+        "{equal}"
     );
 }
 
@@ -245,8 +256,24 @@ fn ik_describes_the_target_and_the_arm_once_it_arrived() {
         "{text}"
     );
     assert!(
-        text.ends_with("Arm at θ₁ 0.0°, θ₂ 0.0°, tip at (1.70, 0.00) m."),
+        text.ends_with(
+            "Arm at θ₁ 0.0°, θ₂ 0.0°, tip at (1.70, 0.00) m. No ghost arm: the branches merge. \
+             2 dashed circles bound the reach: outer radius 1.700 m, inner radius 0.300 m."
+        ),
         "{text}"
+    );
+    // Theory's worked example, target (1.2, 0.8) m: elbow up (the default)
+    // is (59.80°, −65.08°), and the ghost is the elbow-down branch, (7.58°, 65.08°).
+    let worked = describe("ik", |e| {
+        e.set_param("tx", 1.2).unwrap();
+        e.set_param("ty", 0.8).unwrap();
+        for _ in 0..600 {
+            e.step(1.0 / 60.0);
+        }
+    });
+    assert!(
+        worked.contains("1 ghost arm shows the other branch, θ₁ 7.6°, θ₂ 65.1°."),
+        "{worked}"
     );
 }
 
@@ -299,6 +326,24 @@ fn potential_describes_robot_goal_and_obstacles() {
     assert!(idle.contains("no goal yet"), "{idle}");
     let text = describe("potential", |e| e.preview());
     assert!(text.contains("2 obstacles; reached the goal in"), "{text}");
+    // No obstacles: from every one of the 40 × 30 cells of 0.2 m the conic
+    // pull alone leads to the goal.
+    let open = describe("potential", |e| {
+        e.set_param("nobs", 0.0).unwrap();
+        e.set_param("gx", 7.2).unwrap();
+        e.set_param("gy", 3.0).unwrap();
+        e.action("basin").unwrap();
+        for _ in 0..60 * 10 {
+            e.step(1.0 / 60.0);
+        }
+    });
+    assert!(open.contains("no obstacles; reached the goal in"), "{open}");
+    assert!(
+        open.ends_with(
+            "Basin map: 1200 starts reach the goal (green), 0 trapped (orange-red), 0 collided (grey)."
+        ),
+        "{open}"
+    );
 }
 
 #[test]
@@ -364,6 +409,13 @@ fn ekf_describes_the_robot_and_the_estimate_error() {
     });
     assert!(text.starts_with("Robot at ("), "{text}");
     assert!(text.contains("landmarks 6 (known map)"), "{text}");
+    // At the start the filter's σ is 0.05 m in x and in y: its 3σ ellipse
+    // is a circle of 0.15 m.
+    let start = describe("ekf", |_| {});
+    assert!(
+        start.contains("its 3σ ellipse has semi-axes 0.150 m and 0.150 m; landmarks 6"),
+        "{start}"
+    );
 }
 
 /// Words a phone has no use for: keys, clicks, modifiers.

@@ -105,6 +105,26 @@ impl Annulus {
         }
     }
 
+    /// The dashed circles a scene draws for it, in words (Describe): how
+    /// many, and their radii; `centre` where it is not the base
+    /// ("2 dashed circles bound the reach: outer radius 1.700 m, inner
+    /// radius 0.300 m").
+    #[must_use]
+    pub fn words(&self, centre: Option<DVec2>) -> String {
+        let at = centre.map_or(String::new(), |c| {
+            format!(", centred on {}", crate::units::format_point(c))
+        });
+        let outer = crate::units::format_metres(self.outer_m);
+        if self.inner_m > 1e-9 {
+            format!(
+                "2 dashed circles bound the reach{at}: outer radius {outer}, inner radius {}",
+                crate::units::format_metres(self.inner_m)
+            )
+        } else {
+            format!("1 dashed circle bounds the reach{at}: outer radius {outer}, no hole")
+        }
+    }
+
     /// True when `p` lies in the closed annulus (with `eps_m` slack).
     #[must_use]
     pub fn contains(&self, p: DVec2, eps_m: f64) -> bool {

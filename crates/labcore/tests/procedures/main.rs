@@ -133,6 +133,43 @@ fn every_procedure_holds_played_as_a_student() {
     assert!(failures.is_empty(), "\n{}", failures.join("\n\n"));
 }
 
+/// The browser runner reads the scene as a student does, from what
+/// Describe says of it: so every claim of a Procedure about the scene says
+/// where Describe puts it into words (`words`, with `#` for the number), and
+/// the native runner checks the claim on those words as well as on the
+/// scene as drawn. No step uses a plot property the page never shows
+/// (`play::BROWSER_UNREAD`: those are for claims beyond the Procedure).
+#[test]
+fn every_scene_claim_of_a_procedure_says_its_words() {
+    let unsaid: Vec<String> = labcore::registry()
+        .iter()
+        .flat_map(|entry| {
+            procedure(entry)
+                .into_iter()
+                .enumerate()
+                .flat_map(move |(k, step)| {
+                    let items = step["play"].as_array().cloned().unwrap_or_default();
+                    items
+                        .into_iter()
+                        .filter(|o| {
+                            let unsaid = o.get("scene").is_some()
+                                && !o["words"].as_str().is_some_and(|w| w.contains('#'));
+                            let unread = o["of"]
+                                .as_str()
+                                .is_some_and(|of| play::BROWSER_UNREAD.contains(&of));
+                            unsaid || unread
+                        })
+                        .map(move |o| format!("{} step {}: {o}", entry.id, k + 1))
+                })
+        })
+        .collect();
+    assert!(
+        unsaid.is_empty(),
+        "scene claims without `words` (Describe's words, # for the number), or of what the page never shows:\n{}",
+        unsaid.join("\n")
+    );
+}
+
 /// One way to falsify a claim: the item `item` of step `step` (both from
 /// 0) replaced by `mutated`.
 #[derive(Clone, Debug)]
@@ -162,7 +199,9 @@ fn mutants_of(step: usize, items: &[Value], rng: &mut Lcg64) -> Vec<Mutant> {
     let mut out = Vec::new();
     for (i, item) in items.iter().enumerate() {
         let Some(o) = item.as_object() else { continue };
-        let is_claim = ["see", "plot", "time"].iter().any(|k| o.contains_key(*k));
+        let is_claim = ["see", "plot", "time", "scene"]
+            .iter()
+            .any(|k| o.contains_key(*k));
         if !is_claim {
             continue;
         }

@@ -58,6 +58,13 @@ pub const VERBS: [&str; 21] = [
     "scene",
 ];
 
+/// Plot properties (`of`) the native runner reads from the model and the
+/// page never puts into its CSV: the time a plot's bands shade. A claim
+/// beyond the Procedure may use them (only the native runner plays those);
+/// a Procedure step may not, since the browser runner could not read them.
+/// (A scene property is read in the browser from Describe's `words`.)
+pub const BROWSER_UNREAD: [&str; 1] = ["x_banded"];
+
 /// The keys of a claim about a number ([`Student::compare`]).
 const CLAIMS: [&str; 9] = [
     "is",
@@ -76,6 +83,9 @@ const CLAIMS: [&str; 9] = [
 pub struct Student {
     pub page: Page,
     notes: HashMap<String, (f64, String)>,
+    /// The scene's numbers as drawn, noted beside the words that say them
+    /// (a `scene` item with `words`: the claim holds on both).
+    drawn: HashMap<String, (f64, String)>,
 }
 
 /// Plays experiment `id`'s Procedure `steps` (the content file's
@@ -90,6 +100,7 @@ pub fn play_to(id: &str, steps: &[Value], last: Option<usize>) -> Result<Page, F
     let mut student = Student {
         page: Page::open(id),
         notes: HashMap::new(),
+        drawn: HashMap::new(),
     };
     let last = last.unwrap_or(steps.len());
     // `LAB_PLAY_TRACE=<id>`: what the page shows after each item, for
@@ -148,6 +159,9 @@ impl Student {
             })
             .collect();
         roles.dedup();
+        if item.get("words").is_some() {
+            roles.push(format!("\n    Describe: {}", exp.describe()));
+        }
         for t in exp.tables() {
             for row in &t.rows {
                 roles.push(format!("\n    table row: {}", row.join(" | ")));
@@ -313,8 +327,23 @@ impl Student {
                 self.noted_or_compared(o, n, said)
             }
             "scene" => {
-                let (n, said) = self.scene_value(o)?;
-                self.noted_or_compared(o, n, said)
+                let (drawn, said) = self.scene_value(o)?;
+                let Some(words) = o.get("words") else {
+                    return self.noted_or_compared(o, drawn, said);
+                };
+                // What Describe says of it, as a student reads it: the claim
+                // holds on those words, and on the scene as drawn.
+                let words = words.as_str().ok_or("`words` is a text")?;
+                let text = self.page.exp.describe();
+                let n = described_number(&text, words)
+                    .ok_or_else(|| format!("Describe does not say “{words}”: “{text}”"))?;
+                if CLAIMS.iter().any(|k| o.contains_key(*k)) {
+                    compare(&self.drawn, self, o, drawn, &said, 0.0)?;
+                }
+                if let Some(name) = o.get("as").and_then(Value::as_str) {
+                    self.drawn.insert(name.to_owned(), (drawn, said));
+                }
+                self.noted_or_compared(o, n, format!("{words} = {n} in Describe: “{text}”"))
             }
             "table" => {
                 let caption = text(o, "table")?;
@@ -386,6 +415,14 @@ impl Student {
                 y.iter().position(|v| *v > level).map(|i| x[i])
             }
             "swing_growth" => swing_growth(y, number(o, "level")?),
+            // The time (x) the plot's bands across x shade, in all.
+            "x_banded" => Some(
+                plot.bands
+                    .iter()
+                    .filter(|b| b.axis == labcore::plot::Axis::X)
+                    .map(|b| b.hi - b.lo)
+                    .sum(),
+            ),
             // The share of samples, in %, inside the plot's shaded band.
             "share_in_band" => {
                 let band = plot
@@ -487,7 +524,10 @@ impl Student {
     /// A property of the scene's items of one role (its name in the style
     /// table, as `Debug` writes it): `of` is `count`, `cells` (of a raster,
     /// painted in the role's colour), `max_radius` or `min_radius` (of its
-    /// circles, metres), `max_semi_axis` (of its ellipses, metres).
+    /// circles, metres), `max_semi_axis` or `min_semi_axis` (the longest
+    /// and the shortest semi-axis of its ellipses, metres), `width_px` (its
+    /// widest stroke, CSS pixels), `shade_at` a point `at` (its heat map's
+    /// shade there, 0 to 1).
     fn scene_value(&self, o: &Map<String, Value>) -> Result<(f64, String), String> {
         use labcore::scene::Item;
         let role = text(o, "scene")?;
@@ -542,6 +582,59 @@ impl Student {
                     _ => None,
                 })
                 .reduce(f64::max),
+            "min_semi_axis" => items
+                .iter()
+                .filter_map(|i| match i {
+                    Item::Ellipse {
+                        semi_axis_a,
+                        semi_axis_b,
+                        ..
+                    } => Some(semi_axis_a.length().min(semi_axis_b.length())),
+                    _ => None,
+                })
+                .reduce(f64::min),
+            // The widest stroke among its lines and arrows, CSS pixels.
+            "width_px" => items
+                .iter()
+                .filter_map(|i| match i {
+                    Item::Line { width_px, .. }
+                    | Item::Polyline { width_px, .. }
+                    | Item::Arrow { width_px, .. }
+                    | Item::Arrows { width_px, .. }
+                    | Item::Segments { width_px, .. } => Some(*width_px),
+                    _ => None,
+                })
+                .reduce(f64::max),
+            // The shade of its heat map at the point `at` (0 to 1: the
+            // strength of the colour; 0 outside the map).
+            "shade_at" => {
+                let p = point(o.get("at").ok_or("`shade_at` needs a point `at`")?)?;
+                items
+                    .iter()
+                    .filter_map(|i| match i {
+                        Item::Heatmap {
+                            min,
+                            cell_m,
+                            cols,
+                            rows,
+                            values,
+                            ..
+                        } => {
+                            let cell = ((p - *min) / *cell_m).floor();
+                            let inside = cell.x >= 0.0
+                                && cell.y >= 0.0
+                                && (cell.x as usize) < *cols
+                                && (cell.y as usize) < *rows;
+                            Some(if inside {
+                                f64::from(values[cell.y as usize * cols + cell.x as usize])
+                            } else {
+                                0.0
+                            })
+                        }
+                        _ => None,
+                    })
+                    .reduce(f64::max)
+            }
             other => return Err(format!("no scene property “{other}”")),
         }
         .ok_or_else(|| format!("the scene has no {of} of role {role}"))?;
@@ -563,10 +656,26 @@ impl Student {
         said: &str,
         precision: f64,
     ) -> Result<(), String> {
+        compare(&self.notes, self, o, n, said, precision)
+    }
+}
+
+/// [`Student::compare`] against the values in `notes` (a noted name), or
+/// the readouts `student`'s page shows.
+fn compare(
+    notes: &HashMap<String, (f64, String)>,
+    student: &Student,
+    o: &Map<String, Value>,
+    n: f64,
+    said: &str,
+    precision: f64,
+) -> Result<(), String> {
+    let reference = |r: &Value| student.reference(notes, r);
+    {
         let within = o.get("within").and_then(Value::as_f64).unwrap_or(precision) + 1e-9;
         let fail = |why: String| Err(format!("{said}{why}"));
         if let Some(r) = o.get("times") {
-            let (base, base_said) = self.reference(r)?;
+            let (base, base_said) = reference(r)?;
             let ratio = n / base;
             let k = number(o, "is")?;
             return if (ratio - k).abs() <= within {
@@ -601,7 +710,7 @@ impl Student {
             ("smaller_than", false),
         ] {
             if let Some(r) = o.get(key) {
-                let (base, base_said) = self.reference(r)?;
+                let (base, base_said) = reference(r)?;
                 let holds = if wants_larger { n > base } else { n < base };
                 return if holds {
                     Ok(())
@@ -611,7 +720,7 @@ impl Student {
             }
         }
         if let Some(r) = o.get("about") {
-            let (base, base_said) = self.reference(r)?;
+            let (base, base_said) = reference(r)?;
             return if (n - base).abs() <= within {
                 Ok(())
             } else {
@@ -619,7 +728,7 @@ impl Student {
             };
         }
         if let Some(r) = o.get("opposite_sign_to") {
-            let (base, base_said) = self.reference(r)?;
+            let (base, base_said) = reference(r)?;
             return if n * base < 0.0 {
                 Ok(())
             } else {
@@ -628,14 +737,20 @@ impl Student {
         }
         Err("no claim: give is, between, above, below, larger_than, smaller_than, about, times or opposite_sign_to".into())
     }
+}
 
+impl Student {
     /// What a comparison is against: a number, a value noted earlier (by
-    /// its name) or another readout (by its label).
-    fn reference(&self, r: &Value) -> Result<(f64, String), String> {
+    /// its name, in `notes`) or another readout (by its label).
+    fn reference(
+        &self,
+        notes: &HashMap<String, (f64, String)>,
+        r: &Value,
+    ) -> Result<(f64, String), String> {
         match r {
             Value::Number(n) => Ok((n.as_f64().unwrap_or(f64::NAN), format!("against {n}"))),
             Value::String(name) => {
-                if let Some((n, said)) = self.notes.get(name) {
+                if let Some((n, said)) = notes.get(name) {
                     return Ok((*n, format!("noted as {name}: {said}")));
                 }
                 let shown = self.page.readout(name)?;
@@ -737,5 +852,67 @@ fn point(v: &Value) -> Result<DVec2, String> {
             y.as_f64().ok_or("a point is [x, y]")?,
         )),
         _ => Err(format!("a point is [x, y], not {v}")),
+    }
+}
+
+/// The number Describe's `text` writes where `words` has `#` (the words
+/// around it as written; "no" or "No" reads 0): `described_number("2 dashed circles
+/// bound", "# dashed circle")` is 2. The first place the words fit.
+fn described_number(text: &str, words: &str) -> Option<f64> {
+    let (before, after) = words.split_once('#')?;
+    let text = text.replace('\u{2212}', "-");
+    let places = text
+        .char_indices()
+        .map(|(i, _)| i)
+        .filter(|i| text[*i..].starts_with(before));
+    for at in places {
+        let rest = &text[at + before.len()..];
+        // A number starts here, not inside another one.
+        let inside = before.is_empty()
+            && text[..at]
+                .chars()
+                .next_back()
+                .is_some_and(|c| c.is_ascii_digit() || c == '.' || c == ',' || c == '-');
+        if inside {
+            continue;
+        }
+        let (n, len) = if rest.starts_with("no") || rest.starts_with("No") {
+            (Some(0.0), 2)
+        } else {
+            let len = rest
+                .char_indices()
+                .take_while(|(i, c)| {
+                    c.is_ascii_digit() || (*i == 0 && *c == '-') || *c == '.' || *c == ','
+                })
+                .count();
+            let written = rest[..len].trim_end_matches(['.', ',']);
+            (written.replace(',', "").parse().ok(), written.len())
+        };
+        if let Some(n) = n {
+            if rest[len..].starts_with(after) {
+                return Some(n);
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::described_number;
+
+    #[test]
+    fn described_numbers_are_read_where_the_words_put_them() {
+        let text = "Tip at (0.76, 1.27) m. 2 dashed circles bound the reach: outer radius 1.700 m, inner radius 0.300 m. No ghost arm: the branches merge. Basin map: 1,050 starts reach the goal, −3 trapped.";
+        assert_eq!(described_number(text, "# dashed circle"), Some(2.0));
+        assert_eq!(described_number(text, "outer radius # m"), Some(1.7));
+        assert_eq!(described_number(text, "inner radius # m"), Some(0.3));
+        assert_eq!(described_number(text, "# ghost arm"), Some(0.0));
+        assert_eq!(described_number(text, "# starts reach"), Some(1050.0));
+        assert_eq!(described_number(text, "# trapped"), Some(-3.0));
+        // A whole number, not a number's tail ("27" of 1.27); words not there.
+        assert_eq!(described_number(text, "#) m"), Some(1.27));
+        assert_eq!(described_number(text, "# collided"), None);
+        assert_eq!(described_number(text, "no number here"), None);
     }
 }

@@ -379,13 +379,30 @@ impl Presentation for EkfExperiment {
         self.notices.current()
     }
 
-    /// "Robot at (…) m heading 12.0°; the estimate is 0.057 m and -0.8° off,
-    /// 6 landmarks (known map); EKF localisation, known map."
+    /// "Robot at (…) m heading 12.0°; the estimate is 0.057 m and -0.8° off
+    /// (dead reckoning alone: 0.210 m), its 3σ ellipse has semi-axes 0.093 m
+    /// and 0.041 m; landmarks 6 (known map); EKF localisation, known map."
+    /// In SLAM, after the landmarks: the widest 3σ semi-axis of the map's
+    /// ellipses.
     fn describe(&self) -> String {
-        let truth = self.live.truth;
+        let run = &self.live;
+        let truth = run.truth;
         let value = |key| crate::experiment::readout_value(self, key).unwrap_or_default();
+        let (a, b, _) = covariance_ellipse(position_block(run.pose_cov()), 3.0);
+        let map = match &run.filter {
+            Filter::Slam(slam) => slam
+                .landmark_ids()
+                .iter()
+                .filter_map(|&id| slam.landmark(id))
+                .map(|(_, cov)| covariance_ellipse(cov, 3.0).0)
+                .reduce(f64::max)
+                .map_or(String::new(), |w| {
+                    format!(", the widest map ellipse has a semi-axis of {}", crate::units::format_metres(w))
+                }),
+            Filter::Localisation(_) => String::new(),
+        };
         format!(
-            "Robot at {} heading {}; the estimate is {} and {} off (dead reckoning alone: {}); landmarks {}; {}.",
+            "Robot at {} heading {}; the estimate is {} and {} off (dead reckoning alone: {}), its 3σ ellipse has semi-axes {} and {}; landmarks {}{map}; {}.",
             crate::units::format_point(truth.truncate()),
             crate::units::format_degrees(
                 crate::kinematics::two_link_ik::wrap_pi(truth.z).to_degrees()
@@ -393,6 +410,8 @@ impl Presentation for EkfExperiment {
             value("error"),
             value("heading_error"),
             value("dr_error"),
+            crate::units::format_metres(a),
+            crate::units::format_metres(b),
             value("landmarks"),
             self.status().text
         )

@@ -116,16 +116,19 @@ impl Presentation for ForwardKinematics {
         }
     }
 
-    /// "Tip at (0.76, 1.27) m, θ₁ 35.0°, θ₂ 40.0°, 87.1% of the reach used; in reach."
+    /// "Two-link arm with θ₁ 35.0° and θ₂ 60.0°: tip at (0.76, 1.27) m, 87.1%
+    /// of the reach used; in reach. 2 dashed circles bound the reach: outer
+    /// radius 1.700 m, inner radius 0.300 m."
     fn describe(&self) -> String {
-        let reach = Annulus::of_chain(&self.lengths()).reach_used(self.tip());
+        let annulus = Annulus::of_chain(&self.lengths());
         format!(
-            "Two-link arm with θ₁ {} and θ₂ {}: tip at {}, {}% of the reach used; {}.",
+            "Two-link arm with θ₁ {} and θ₂ {}: tip at {}, {}% of the reach used; {}. {}.",
             format_degrees(self.theta1_deg),
             format_degrees(self.theta2_deg),
             format_point(self.tip()),
-            format_fixed(100.0 * reach, 1),
-            self.status().text
+            format_fixed(100.0 * annulus.reach_used(self.tip()), 1),
+            self.status().text,
+            annulus.words(None)
         )
     }
 

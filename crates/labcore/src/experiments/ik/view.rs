@@ -202,10 +202,25 @@ impl Presentation for InverseKinematics {
             format_degrees(self.theta2_deg),
             format_point(self.tip())
         );
+        // The other branch, drawn as a ghost arm where the two differ.
+        let ghost = match self.solved {
+            Some(Solved::Reachable(sol)) if sol.singularity == Singularity::Regular => {
+                let g = sol.branch(self.elbow.other());
+                format!(
+                    " 1 ghost arm shows the other branch, θ₁ {}, θ₂ {}.",
+                    format_degrees(g.theta1_rad.to_degrees()),
+                    format_degrees(g.theta2_rad.to_degrees())
+                )
+            }
+            Some(Solved::Reachable(_)) => " No ghost arm: the branches merge.".to_owned(),
+            _ => String::new(),
+        };
+        let (centre, annulus) = self.reach();
+        let reach = annulus.words((centre != DVec2::ZERO).then_some(centre));
         match self.target {
-            None => format!("No target yet: {}. {arm}.", self.status().text),
+            None => format!("No target yet: {}. {arm}. {reach}.", self.status().text),
             Some(t) => format!(
-                "Target at {}: {}. {arm}{}.",
+                "Target at {}: {}. {arm}{}.{ghost} {reach}.",
                 format_point(t),
                 self.status().text,
                 if self.animating() { ", moving" } else { "" }

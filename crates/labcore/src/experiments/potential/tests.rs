@@ -266,9 +266,15 @@ fn basin_map_progresses_completes_and_agrees_with_runs() {
     );
     let share = map.reach_share();
     assert!(share > 0.3 && share < 1.0, "{share}");
+    // The share, then the two failures a student sees most, counted.
     assert_eq!(
         readout(&e, "reach"),
-        format!("{}%", format_fixed(100.0 * share, 1))
+        format!(
+            "{}%; {} trapped, {} collided",
+            format_fixed(100.0 * share, 1),
+            c.trapped,
+            c.collided
+        )
     );
     let mut rng = Lcg64::new(12);
     for _ in 0..25 {

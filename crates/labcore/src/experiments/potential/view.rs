@@ -405,10 +405,12 @@ impl Presentation for PotentialFieldLab {
             Some(map) if self.goal.is_some() => {
                 let share = format!("{}%", format_fixed(100.0 * map.reach_share(), 1));
                 if map.is_complete() {
-                    share
+                    // The colours the student sees most, counted.
+                    let c = map.counts();
+                    format!("{share}; {} trapped, {} collided", c.trapped, c.collided)
                 } else {
                     format!(
-                        "{share} so far ({} of {} starts)",
+                        "{share} so far ({} of {} cells)",
                         map.cells.len() - map.counts().pending,
                         map.cells.len()
                     )
@@ -534,6 +536,7 @@ impl Presentation for PotentialFieldLab {
     }
 
     /// "Robot at (…) m, goal at (…) m, 2 obstacles; reached the goal in 8.7 s."
+    /// With a basin map, its cells by colour, counted.
     fn describe(&self) -> String {
         use crate::units::format_point;
         let robot = self.run.map_or(self.start, |r| r.pose.position());
@@ -542,19 +545,46 @@ impl Presentation for PotentialFieldLab {
             1 => "1 obstacle".to_owned(),
             n => format!("{n} obstacles"),
         };
-        match self.goal {
-            None => format!(
+        match (self.goal, &self.basin) {
+            (None, _) => format!(
                 "Robot at the start {}, {obstacles}, no goal yet; {}.",
                 format_point(robot),
                 self.status().text
             ),
-            Some(g) => format!(
-                "Robot at {}, goal at {} ({} away), {obstacles}; {}.",
-                format_point(robot),
-                format_point(g),
-                format_metres((g - robot).length()),
-                self.status().text
-            ),
+            (Some(g), basin) => {
+                // The basin map's cells by colour, counted.
+                let map = basin.as_ref().map_or(String::new(), |map| {
+                    let c = map.counts();
+                    let so_far = if map.is_complete() {
+                        String::new()
+                    } else {
+                        format!(" so far ({} of {} cells)", map.cells.len() - c.pending, map.cells.len())
+                    };
+                    // The rarer two only when there are any.
+                    let rare = |n: usize, what: &str| {
+                        if n > 0 {
+                            format!(", {n} {what}")
+                        } else {
+                            String::new()
+                        }
+                    };
+                    format!(
+                        " Basin map{so_far}: {} starts reach the goal (green), {} trapped (orange-red), {} collided (grey){}{}.",
+                        c.reaches_goal,
+                        c.trapped,
+                        c.collided,
+                        rare(c.left_field, "pushed off the field (light blue)"),
+                        rare(c.timed_out, "timed out (pink)")
+                    )
+                });
+                format!(
+                    "Robot at {}, goal at {} ({} away), {obstacles}; {}.{map}",
+                    format_point(robot),
+                    format_point(g),
+                    format_metres((g - robot).length()),
+                    self.status().text
+                )
+            }
         }
     }
 
