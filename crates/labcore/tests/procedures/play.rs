@@ -205,6 +205,21 @@ impl Student {
         match *verb {
             "set" => {
                 let to = match &o["to"] {
+                    // `clamped`: a number typed beyond the control's range,
+                    // which the page takes as the nearest end (and says so).
+                    Value::Number(n) if o.get("clamped").is_some_and(|c| c == true) => {
+                        let label = text(o, "set")?;
+                        let params = self.page.exp.params();
+                        let spec = params
+                            .iter()
+                            .find(|s| s.label == label)
+                            .ok_or_else(|| format!("no control labelled “{label}”"))?;
+                        let n = n.as_f64().unwrap_or(f64::NAN);
+                        if (spec.min..=spec.max).contains(&n) {
+                            return Err(format!("“{label}” takes {n}: nothing to clamp"));
+                        }
+                        Control::Number(n.clamp(spec.min, spec.max))
+                    }
                     Value::Number(n) => Control::Number(n.as_f64().unwrap_or(f64::NAN)),
                     Value::String(s) => Control::Text(s.clone()),
                     other => return Err(format!("`to` is a number or a label, not {other}")),

@@ -155,7 +155,7 @@ impl Presentation for DampedLeastSquares {
             Run::Settled => Status::ended("closest reachable pose", Tone::Warning),
             Run::NoProgress { oscillating: true } => Status::ended(
                 format!(
-                    "not converging: oscillating near a singularity (no progress in {NO_PROGRESS_ITERATIONS} iterations)"
+                    "not converging: the error rises and falls (no progress in {NO_PROGRESS_ITERATIONS} iterations)"
                 ),
                 Tone::Bad,
             ),
