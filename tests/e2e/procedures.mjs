@@ -701,7 +701,10 @@ class Student {
    */
   async describe() {
     const { page } = this;
-    await page.locator(`${ART} [data-a11y=describe]`).click();
+    // A finger's tap on a phone: a mouse click would turn the page's words
+    // to the mouse's ("click a target" for "tap a target").
+    const button = page.locator(`${ART} [data-a11y=describe]`);
+    await (this.touch ? button.tap() : button.click());
     return (await page.locator(`${ART} .sim-description`).textContent()).trim();
   }
 
