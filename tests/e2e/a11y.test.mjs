@@ -171,7 +171,8 @@ test("Describe: the button and D announce the scene; the end of a run does too",
       (sel) => document.querySelector(sel)?.textContent.startsWith("Target at (1.10, 0.90) m: in reach. Arm at"),
       LIVE,
     );
-    assert.match(await live(page), /tip at \(1\.10, 0\.90\) m\.$/);
+    // Arrived: the tip on the target, the other branch's ghost and the reach circles.
+    assert.match(await live(page), /tip at \(1\.10, 0\.90\) m\. 1 ghost arm shows the other branch, .* inner radius 0\.300 m\.$/);
   }));
 
 test("? opens the keyboard help; Escape closes it and focus goes back; not while typing", () =>
