@@ -776,7 +776,10 @@ impl AStarGrid {
                 path: result.map_or_else(Vec::new, |r| self.world_path(&r.path)),
             });
         }
+        // The cells show the planner being compared now: what is drawn is a
+        // function of the state, not of when it was last drawn (issue 53 §8).
         self.search = Some(search);
+        self.search_raster();
     }
 
     /// The optimum of the comparison: Dijkstra's cost.

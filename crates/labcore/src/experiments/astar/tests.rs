@@ -1210,3 +1210,78 @@ fn notices_of_a_link_come_in_link_order() {
         assert!(notice.starts_with(begin), "{notices:?}");
     }
 }
+
+/// Issue 53 §8's reproducer: 256 × 192, the heuristic clamped, Compare, one
+/// step. The picture of the cells is a function of the state: a copy that
+/// was drawn after Compare (the live page) and one that was not (a replay,
+/// a reload) show the same cells after the step.
+#[test]
+fn the_cells_after_compare_do_not_depend_on_when_they_were_last_drawn() {
+    let mut drawn = AStarGrid::default();
+    drawn.set_param("size", 4.1).unwrap();
+    drawn.set_param("h", 99.0).unwrap();
+    drawn.action("maze").unwrap();
+    drawn.action("compare").unwrap();
+    let mut replayed = drawn.clone();
+    let _ = drawn.raster();
+    drawn.step(DT);
+    replayed.step(DT);
+    assert_eq!(drawn.phase, Phase::Comparing, "a step does not end the comparison");
+    assert!(*drawn.raster() == *replayed.raster(), "the cells differ");
+}
+
+/// The raster is read lazily, so it must be a pure function of the state:
+/// over random visits (sizes, heuristics, plans, comparisons, walls painted
+/// and erased, ends moved, steps), a copy read after every input and step
+/// shows the same cells as one never read (through a copy of it).
+#[test]
+fn the_raster_is_a_function_of_the_state_whenever_it_is_read() {
+    let mut rng = crate::Lcg64::new(53);
+    for visit in 0..60 {
+        let mut every = AStarGrid::default();
+        // Every visit starts on one of three sizes, half of them a maze
+        // (a comparison on 256 × 192 takes several steps).
+        every.set_param("size", [0.0, 1.0, 4.1][visit % 3]).unwrap();
+        if visit % 2 == 0 {
+            every.action("maze").unwrap();
+        }
+        let mut end_only = every.clone();
+        let mut log = Vec::new();
+        for _ in 0..30 {
+            let op = rng.int(0, 12);
+            let a = rng.int(0, 45) as f64;
+            let b = rng.int(0, 30) as f64;
+            log.push((op, a, b));
+            for lab in [&mut every, &mut end_only] {
+                match op {
+                    0 => drop(lab.set_param("size", [0.0, 1.0, 4.1][a as usize % 3])),
+                    1 => drop(lab.set_param("h", a / 10.0)),
+                    10 => drop(lab.set_param("conn", b / 10.0)),
+                    11 => drop(lab.set_param("w", a / 9.0)),
+                    12 => drop(lab.set_param("gx", b)),
+                    2 => drop(lab.action("plan")),
+                    3 => drop(lab.action("compare")),
+                    4 => drop(lab.action("maze")),
+                    5 => drop(lab.action("clear")),
+                    6 | 7 => {
+                        let p = lab.cell_center(Cell::new(a as usize % 20, b as usize % 15));
+                        lab.input(Input::PointerDown(p));
+                        lab.input(Input::PointerUp(p));
+                    }
+                    8 => drop(lab.set_param("sx", a % 20.0)),
+                    _ => {
+                        for _ in 0..(a as usize) {
+                            lab.step(DT);
+                        }
+                    }
+                }
+            }
+            // A copy reads what `end_only` would show now, leaving it unread.
+            let probe = end_only.clone();
+            assert!(
+                *every.raster() == *probe.raster(),
+                "visit {visit}: the cells differ after {log:?}"
+            );
+        }
+    }
+}
