@@ -736,6 +736,15 @@ pub trait Experiment {
     fn step_weight(&self) -> u64 {
         1
     }
+    /// Which kind of work a step does now, where kinds cost very
+    /// differently (A*: 1 while a search expands cells, 0 while the robot
+    /// drives or nothing moves): the timeline keeps a snapshot wherever it
+    /// changes ([`crate::timeline::Timeline::stepped`]), so a jump past a
+    /// finished search never replays it, however far apart its periodic
+    /// snapshots of a big state are. Default: 0, one kind.
+    fn work_phase(&self) -> u8 {
+        0
+    }
     /// The timeline is about to replay steps of this copy and read it only
     /// after [`Experiment::end_replay`] ([`crate::timeline::Timeline::state_at`]):
     /// a step may put off what it derives from the state alone (pid's step

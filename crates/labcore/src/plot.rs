@@ -561,14 +561,35 @@ pub fn decimate_min_max(
     out
 }
 
-/// The bytes a plot's samples take: the default of
-/// [`crate::Experiment::state_bytes`], what a timeline snapshot of them costs.
+/// The heap bytes plots hold (their series, samples, labels, lines, bands
+/// and markers; not the `Plot`s themselves, which their owner counts): the
+/// default of [`crate::Experiment::state_bytes`], what a timeline snapshot
+/// of them costs.
 #[must_use]
 pub fn plots_bytes(plots: &[Plot]) -> usize {
+    use std::mem::size_of;
     plots
         .iter()
-        .flat_map(|p| &p.series)
-        .map(|s| (s.x.capacity() + s.y.capacity()) * std::mem::size_of::<f64>())
+        .map(|p| {
+            let series: usize = p
+                .series
+                .iter()
+                .map(|s| (s.x.capacity() + s.y.capacity()) * size_of::<f64>() + s.label.capacity())
+                .sum();
+            let labels: usize = p
+                .ref_lines
+                .iter()
+                .map(|r| r.label.capacity())
+                .sum::<usize>()
+                + p.bands.iter().map(|b| b.label.capacity()).sum::<usize>()
+                + p.markers.iter().map(|m| m.label.capacity()).sum::<usize>();
+            series
+                + labels
+                + p.series.capacity() * size_of::<Series>()
+                + p.ref_lines.capacity() * size_of::<RefLine>()
+                + p.bands.capacity() * size_of::<Band>()
+                + p.markers.capacity() * size_of::<Marker>()
+        })
         .sum()
 }
 

@@ -88,6 +88,8 @@ pub struct Timeline {
     /// Another input followed an action at the start: no link reproduces
     /// that order (a link's parameters come before its actions).
     start_unlinked: bool,
+    /// The live state's [`crate::Experiment::work_phase`].
+    work_phase: u8,
 }
 
 impl Timeline {
@@ -133,6 +135,7 @@ impl Timeline {
             start_actions: Vec::new(),
             start_pending: false,
             start_unlinked: false,
+            work_phase: exp.work_phase(),
         }
     }
 
@@ -266,6 +269,7 @@ impl Timeline {
             return;
         }
         self.dirty = false;
+        self.work_phase = exp.work_phase();
         // The snapshots are in step order: one at this step is the last.
         if self.snaps.len() > 1 && self.snaps[self.snaps.len() - 1].step == self.end {
             self.pop();
@@ -280,11 +284,17 @@ impl Timeline {
 
     /// The live run took one step (after [`Timeline::commit`]): `exp` is
     /// the state at the new end. Snapshots it every [`Timeline::interval`]
-    /// steps; otherwise it costs nothing.
+    /// steps, and keeps one where its [`crate::Experiment::work_phase`]
+    /// changed (a search ended), so that a jump past that step never
+    /// replays the work before it; otherwise it costs nothing.
     pub fn stepped(&mut self, exp: &dyn Lab) {
         debug_assert!(!self.dirty, "Timeline::stepped before Timeline::commit");
         self.end += 1;
-        if self.end.is_multiple_of(self.interval) {
+        let phase = exp.work_phase();
+        if phase != self.work_phase {
+            self.work_phase = phase;
+            self.push(Snapshot::of(exp, self.end, true));
+        } else if self.end.is_multiple_of(self.interval) {
             self.push(Snapshot::of(exp, self.end, false));
         }
     }

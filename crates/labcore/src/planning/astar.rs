@@ -306,6 +306,20 @@ pub struct Search {
 }
 
 impl Search {
+    /// The heap the search holds, bytes: its padded grid, its nodes, the
+    /// open list and the path found (capacities: what a copy of it costs).
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.blocked.capacity()
+            + self.nodes.capacity() * size_of::<Node>()
+            + self.heap.capacity() * size_of::<HeapEntry>()
+            + self
+                .result
+                .as_ref()
+                .map_or(0, |r| r.path.capacity() * size_of::<Cell>())
+    }
+
     /// A search from `start` to `goal` on `grid`, with the start on the open list
     /// and nothing expanded yet.
     ///

@@ -24,6 +24,13 @@ pub struct DrivePath {
 }
 
 impl DrivePath {
+    /// The heap it holds, bytes (capacities: what a copy of it costs).
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        self.points.capacity() * std::mem::size_of::<DVec2>()
+            + self.arc_m.capacity() * std::mem::size_of::<f64>()
+    }
+
     /// The path through `points`, in order.
     #[must_use]
     pub fn new(points: Vec<DVec2>) -> Self {

@@ -142,6 +142,12 @@ fn check_size(width: usize, height: usize) -> Result<usize, GridError> {
 }
 
 impl OccupancyGrid {
+    /// The heap it holds, bytes (capacities: what a copy of it costs).
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        self.cells.capacity()
+    }
+
     /// An all-free grid.
     ///
     /// # Example

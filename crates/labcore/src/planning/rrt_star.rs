@@ -240,6 +240,28 @@ fn edge_len(child: DVec2, parent: DVec2) -> f64 {
 }
 
 impl RrtStar {
+    /// The heap the tree holds, bytes: its nodes' parents, costs and
+    /// children, their index, the world, the history and the scratch
+    /// (capacities: what a copy of it costs).
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let u32s = self.parent.capacity()
+            + self.first_child.capacity()
+            + self.next_sibling.capacity()
+            + self.last_rewired.capacity()
+            + self.batch_rewired.capacity()
+            + self.goal_nodes.capacity()
+            + self.near.capacity()
+            + self.stack.capacity();
+        u32s * size_of::<u32>()
+            + self.cost.capacity() * size_of::<f64>()
+            + self.history.capacity() * size_of::<CostSample>()
+            + self.candidates.capacity() * size_of::<Candidate>()
+            + self.index.heap_bytes()
+            + self.world.heap_bytes()
+    }
+
     /// A tree holding only the start.
     ///
     /// # Errors

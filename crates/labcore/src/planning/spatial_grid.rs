@@ -99,6 +99,15 @@ impl Entry {
 }
 
 impl SpatialGrid {
+    /// The heap it holds, bytes (capacities: what a copy of it costs).
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.runs.capacity() * size_of::<Run>()
+            + self.store.capacity() * size_of::<Entry>()
+            + self.points.capacity() * size_of::<DVec2>()
+    }
+
     /// An empty index over `[min, max]`; a degenerate or non-finite box is
     /// replaced by the unit square around `min` (or the origin).
     #[must_use]

@@ -121,6 +121,14 @@ pub struct World {
 }
 
 impl World {
+    /// The heap it holds, bytes (capacities: what a copy of it costs).
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.obstacles.capacity() * size_of::<Obstacle>()
+            + (self.bin_start.capacity() + self.bin_items.capacity()) * size_of::<u32>()
+    }
+
     /// A world `[min.x, max.x] × [min.y, max.y]` with `obstacles`.
     ///
     /// # Errors

@@ -196,6 +196,13 @@ impl LayerPlan<'_> {
 }
 
 impl SegmentLayer {
+    /// The heap a copy of it holds, bytes: its segments (a copy starts with
+    /// an empty journal, [`SegmentLayer::detached`]).
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        std::mem::size_of::<LayerData>() + self.data.segments.len() * std::mem::size_of::<Segment>()
+    }
+
     /// An empty layer with a fresh identity.
     #[must_use]
     pub fn new() -> Self {

@@ -1451,12 +1451,24 @@ impl Experiment for AStarGrid {
     }
 
     /// The grid's per-cell arrays (walls, the generated grid, the raster
-    /// and its scratch, the search's costs, parents and lists): about 24
-    /// bytes a cell, with the plot.
+    /// and its scratch, the search's nodes and open list), the paths, with
+    /// the plot: about 23 bytes a cell while a search is kept.
     fn state_bytes(&self) -> usize {
-        let cells = self.grid.width() * self.grid.height();
-        let search = if self.search.is_some() { 16 } else { 0 };
-        cells * (8 + search) + crate::plot::plots_bytes(&self.plots)
+        use std::mem::size_of;
+        let compare: usize = self
+            .compare
+            .iter()
+            .map(|r| r.name.capacity() + r.path.capacity() * size_of::<DVec2>())
+            .sum();
+        self.grid.heap_bytes()
+            + self.base_grid.as_ref().map_or(0, OccupancyGrid::heap_bytes)
+            + self.raster.borrow().capacity()
+            + self.scratch.borrow().capacity()
+            + self.search.as_ref().map_or(0, Search::heap_bytes)
+            + self.path.heap_bytes()
+            + self.compare.capacity() * size_of::<CompareRow>()
+            + compare
+            + crate::plot::plots_bytes(&self.plots)
     }
 
     fn animating(&self) -> bool {
@@ -1464,6 +1476,12 @@ impl Experiment for AStarGrid {
             self.phase,
             Phase::Searching | Phase::Comparing | Phase::Driving
         )
+    }
+
+    /// 1 while a search (or a comparison) expands cells: a step of it can
+    /// be thousands of expansions, a step of the drive a few additions.
+    fn work_phase(&self) -> u8 {
+        u8::from(matches!(self.phase, Phase::Searching | Phase::Comparing))
     }
 }
 

@@ -901,6 +901,24 @@ impl Experiment for EkfExperiment {
     fn animating(&self) -> bool {
         true
     }
+
+    /// The plots, the three trails (most of a long run), the landmarks and
+    /// the sightings, and a consistency check's per-step sums.
+    fn state_bytes(&self) -> usize {
+        use std::mem::size_of;
+        let trails: usize = self.trails.iter().map(VecDeque::capacity).sum();
+        let check = self.check.as_ref().map_or(0, |c| {
+            (c.current_nees.capacity() + c.sums.capacity()) * size_of::<f64>()
+                + c.landmarks.capacity() * size_of::<DVec2>()
+                + c.current.as_ref().map_or(0, |r| {
+                    size_of::<Run>() + r.observations.capacity() * size_of::<Observation>()
+                })
+        });
+        crate::plot::plots_bytes(&self.plots)
+            + (trails + self.landmarks.capacity()) * size_of::<DVec2>()
+            + self.live.observations.capacity() * size_of::<Observation>()
+            + check
+    }
 }
 
 mod quiz;

@@ -835,6 +835,17 @@ impl Experiment for PotentialFieldLab {
             self.run.is_some_and(|r| !r.status.is_final()) && !self.goal_inside_obstacle();
         running || self.basin_computing()
     }
+
+    /// The plots, the obstacles, the trail driven and the basin map's cells.
+    fn state_bytes(&self) -> usize {
+        use std::mem::size_of;
+        crate::plot::plots_bytes(&self.plots)
+            + self.field.obstacles.capacity() * size_of::<CircleObstacle>()
+            + self.trail.capacity() * size_of::<DVec2>()
+            + self.basin.as_ref().map_or(0, |b| {
+                b.cells.capacity() * size_of::<crate::mobile::potential_field::BasinClass>()
+            })
+    }
 }
 
 pub use quiz::quiz_generator;

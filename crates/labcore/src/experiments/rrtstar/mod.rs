@@ -928,11 +928,19 @@ impl Experiment for RrtStarField {
         Ok(())
     }
 
-    /// Each tree's nodes (position, parent, cost, children) and the edge
-    /// layer the page draws, with the plot.
+    /// Each run's tree (nodes, their index, the world) and the edge layer
+    /// the page draws, the obstacles, the path driven, with the plot.
     fn state_bytes(&self) -> usize {
-        let nodes: usize = self.runs.iter().map(|r| r.tree.len()).sum();
-        nodes * 72 + crate::plot::plots_bytes(&self.plots)
+        use std::mem::size_of;
+        let runs: usize = self
+            .runs
+            .iter()
+            .map(|r| r.tree.heap_bytes() + r.edges.heap_bytes())
+            .sum();
+        runs + self.runs.capacity() * size_of::<Run>()
+            + self.obstacles.capacity() * size_of::<Obstacle>()
+            + self.drive_path.heap_bytes()
+            + crate::plot::plots_bytes(&self.plots)
     }
 
     /// A step grows a batch of iterations.
