@@ -20,6 +20,7 @@ import assert from "node:assert/strict";
 import { readFileSync } from "node:fs";
 import { dirname, join, resolve } from "node:path";
 import { fileURLToPath } from "node:url";
+import { alongTheTimeline } from "./visit.mjs";
 import { DESKTOP, PHONE, builtExperimentIds, open, runFor, runUntil, settle, useLab, withPage, worldToPage } from "./helpers.mjs";
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), "..", "..");
 const ART = "article.exp:not([hidden])";
@@ -905,7 +906,7 @@ function playProcedure(lab, id) {
     ["1280×800", { viewport: DESKTOP }],
     ["phone, touch", { viewport: PHONE, hasTouch: true, isMobile: true }],
   ]) {
-    test(`${id}: the Procedure played as a student at ${name}, all ${steps.length} steps`, () =>
+    test(`${id}: the Procedure played as a student at ${name}, all ${steps.length} steps, then along the timeline`, () =>
       withPage(lab, { ...options, clock: true, initScript: WATCH }, async (page) => {
         await open(lab, page, `#/${id}/simulation`);
         const student = new Student(lab, page, Boolean(options.hasTouch), id);
@@ -929,6 +930,9 @@ function playProcedure(lab, id) {
           }
         }
         assert.deepEqual(failures, [], `\n${failures.join("\n\n")}`);
+        // Issue 53: the timeline along the whole visit, at its end.
+        await student.release();
+        await alongTheTimeline(lab, page, id);
       }));
   }
 }
