@@ -810,7 +810,8 @@ class Student {
 
 /**
  * In the page, before it loads: after every animation frame, while a
- * watch is on, the watched readouts' shown numbers and the time bar's t.
+ * watch is on, the watched readouts' shown numbers and the time of the
+ * step they are of.
  */
 function WATCH() {
   const number = (text) => {
@@ -827,7 +828,12 @@ function WATCH() {
       const ro = [...document.querySelectorAll(`${art} .readout`)].find((r) => r.querySelector("dt")?.textContent.trim() === label);
       return ro ? number(ro.querySelector("dd").textContent) : null;
     });
-    const t = number(document.querySelector(`${art} .tb-time`).textContent.replace(/^t = /, ""));
+    // The time of the step the readouts shown are of (their data-step):
+    // while "The math" is in view a running page writes them at idle time,
+    // a frame or more after the time bar, and a busy machine puts that off
+    // further. Paired with the bar's time, a value would be dated late.
+    const step = document.querySelector(`${art} dl.readouts`)?.dataset.step;
+    const t = step !== undefined ? Number(step) / 60 : number(document.querySelector(`${art} .tb-time`).textContent.replace(/^t = /, ""));
     return { t, values };
   };
   window.__procedureWatch = {
