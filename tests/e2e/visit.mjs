@@ -118,22 +118,28 @@ export async function alongTheTimeline(lab, page, id) {
     assert.equal(again.value, middle.value, `${id}: ${middle.hash} reopens step ${again.value}, not ${middle.value}`);
     assert.deepEqual(again.readouts, middle.readouts, `${id}: ${middle.hash} reopens other readouts`);
   }
-  // The keys from the slider and from the buttons: , and . step, M marks.
+  // The keys from the slider and from the buttons: , and . step (one of
+  // the experiment's steps, as Step's title says: the EKF's is 0.05 s),
+  // M marks.
+  const title = await page.locator(`${ART} [data-time=step]`).getAttribute("title");
+  const stepS = /One step: ([\d.]+) s/.exec(title);
+  assert.ok(stepS, `${id}: Step's title says its step (${title})`);
+  const k = Math.round(Number(stepS[1]) / DT_S);
   const at = (await shown(page)).value;
-  const to = Math.max(1, Math.min(at, (await shown(page)).max - 1));
+  const to = Math.max(k, Math.min(at, (await shown(page)).max - k));
   await scrubTo(page, to);
   const slider = page.locator(`${ART} .tb-scrub`);
   await slider.focus();
   await page.keyboard.press(",");
   await runFor(page, 250 + 3 * FRAME_MS);
-  assert.equal((await shown(page)).value, to - 1, `${id}: “,” with the slider focused steps back`);
+  assert.equal((await shown(page)).value, to - k, `${id}: “,” with the slider focused steps back`);
   await page.keyboard.press(".");
   await runFor(page, 250 + 3 * FRAME_MS);
   assert.equal((await shown(page)).value, to, `${id}: “.” with the slider focused steps on`);
   await page.locator(`${ART} [data-time=back]`).focus();
   await page.keyboard.press(",");
   await runFor(page, 250 + 3 * FRAME_MS);
-  assert.equal((await shown(page)).value, to - 1, `${id}: “,” with Back focused steps back`);
+  assert.equal((await shown(page)).value, to - k, `${id}: “,” with Back focused steps back`);
   const marks = () => page.locator(`${ART} .tb-mark`).count();
   const had = await marks();
   await page.locator(`${ART} [data-time=mark]`).focus();
