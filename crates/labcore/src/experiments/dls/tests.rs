@@ -366,3 +366,25 @@ fn generators_draw_inside_the_sliders_ranges() {
     }
 }
 
+
+/// Issue 53 §7: a target one iteration away said "converged in 1
+/// iterations". A target 10 µm from the tip is reached by one damped
+/// step (the residual of one step is about λ²/(σ² + λ²) of 10 µm, far
+/// under the 1 µm tolerance).
+#[test]
+fn one_iteration_is_said_in_the_singular() {
+    let mut d = DampedLeastSquares::default();
+    d.set_param("rate", 60.0).unwrap();
+    let target = d.tip() + DVec2::new(1e-5, 0.0);
+    d.input(Input::PointerDown(target));
+    run_while_animating(&mut d, RUN_MAX_S);
+    assert_eq!((d.run, d.iterations), (Run::Converged, 1));
+    assert_eq!(d.status().text, "converged in 1 iteration");
+    assert!(d.describe().contains("; error "), "{}", d.describe());
+    assert!(d.describe().ends_with(", 1 iteration."), "{}", d.describe());
+    // More than one is still plural.
+    d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
+    run_while_animating(&mut d, RUN_MAX_S);
+    assert!(d.iterations > 1);
+    assert_eq!(d.status().text, format!("converged in {} iterations", d.iterations));
+}

@@ -149,7 +149,7 @@ impl Presentation for DampedLeastSquares {
             Run::Idle => Status::new("click a target", Tone::Neutral),
             Run::Iterating => Status::new("iterating…", Tone::Neutral),
             Run::Converged => Status::ended(
-                format!("converged in {} iterations", self.iterations),
+                format!("converged in {}", iterations_text(self.iterations)),
                 Tone::Good,
             ),
             Run::Settled => Status::ended("closest reachable pose", Tone::Warning),
@@ -181,11 +181,11 @@ impl Presentation for DampedLeastSquares {
         match self.target {
             None => format!("{arm}. No target yet; {}.", self.status().text),
             Some(t) => format!(
-                "{arm}, target at {}: {}; error {}, {} iterations.",
+                "{arm}, target at {}: {}; error {}, {}.",
                 format_point(t),
                 self.status().text,
                 value("error"),
-                value("iterations")
+                iterations_text(self.iterations)
             ),
         }
     }
@@ -204,4 +204,10 @@ impl Presentation for DampedLeastSquares {
             self.iterate();
         }
     }
+}
+
+/// "1 iteration", "17 iterations": a count as the status and the
+/// description say it.
+fn iterations_text(n: usize) -> String {
+    format!("{n} iteration{}", if n == 1 { "" } else { "s" })
 }
