@@ -414,6 +414,22 @@ impl PidControl {
         self.info.ok()
     }
 
+    /// The peak so far (metres) and its time (seconds): that of the
+    /// recorded samples `info` measured, or the cart's position now when it
+    /// is further in the step's direction. The record keeps a sample every
+    /// [`RECORD_PERIOD_S`] and a frame ends between samples, so while the
+    /// cart rises its position is past the last sample: "Peak" never reads
+    /// less than the "Position x" beside it.
+    pub(crate) fn peak_so_far(&self, info: &StepInfo) -> (f64, f64) {
+        let x = self.run.state.x_m;
+        // The step starts at 0: its direction is the sign of y∞.
+        if x.is_finite() && (x - info.peak) * info.steady_state_value.signum() > 0.0 {
+            (x, self.time_s())
+        } else {
+            (info.peak, info.peak_time_s)
+        }
+    }
+
     /// The final value if the step to it is large enough to measure
     /// ([`MIN_STEP_M`]), or why not.
     fn measurable_final_value(&self) -> Result<f64, NoMetrics> {

@@ -955,3 +955,46 @@ fn a_replayed_state_has_the_live_runs_metrics_and_markers_before_and_after_the_r
         assert_eq!(&lab.readouts(), readouts, "step {k}: readouts");
     }
 }
+
+/// Issue 53 §7: while the cart rises, "Peak" read less than "Position x"
+/// beside it ("x 0.869 m, Peak 0.866 m"): the peak was that of the samples
+/// recorded every 10 ms, and a frame of 1/60 s ends between samples. The
+/// peak is the largest position so far, the one shown now included.
+#[test]
+fn the_peak_is_never_below_the_position_shown_beside_it() {
+    let mut e = underdamped();
+    let mut largest_shown_m = f64::NEG_INFINITY;
+    let mut passed_a_sample = 0;
+    for frame in 0..120 {
+        e.step(1.0 / 60.0);
+        let x = testkit::readout_number(&e, "x");
+        let peak = readout(&e, "peak");
+        if peak == "--" {
+            continue;
+        }
+        largest_shown_m = largest_shown_m.max(x);
+        let peak_m = testkit::leading_number(&peak).unwrap();
+        assert!(
+            peak_m >= largest_shown_m,
+            "frame {frame}: x {x} m shown so far, Peak {peak}"
+        );
+        // The frames that ended past the last recorded sample while rising:
+        // there the peak is the position now, at the time now.
+        let last_sample_m = *e.plots()[0].series[0].y.last().unwrap();
+        if e.run.state.x_m > last_sample_m && e.run.state.v_m_s > 0.0 && frame < 30 {
+            passed_a_sample += 1;
+            assert_eq!(
+                peak,
+                format!("{} at {} s", format_metres(e.run.state.x_m), format_fixed(e.time_s(), 2))
+            );
+        }
+    }
+    assert!(passed_a_sample > 5, "{passed_a_sample} frames ended between samples");
+    // At the end the peak is the recorded one, as the plot's marker says.
+    run_to_end(&mut e);
+    let info = e.metrics().unwrap();
+    assert_eq!(
+        readout(&e, "peak"),
+        format!("{} at {} s", format_metres(info.peak), format_fixed(info.peak_time_s, 2))
+    );
+}

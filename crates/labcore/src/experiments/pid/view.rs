@@ -375,11 +375,8 @@ impl Presentation for PidControl {
                 "peak",
                 "Peak",
                 info.or(self.setpoint_info).map_or("--".into(), |i| {
-                    format!(
-                        "{} at {} s",
-                        format_metres(i.peak),
-                        format_fixed(i.peak_time_s, 2)
-                    )
+                    let (peak_m, at_s) = self.peak_so_far(&i);
+                    format!("{} at {} s", format_metres(peak_m), format_fixed(at_s, 2))
                 }),
             ),
             Readout::new(
