@@ -622,7 +622,7 @@ class Student {
       // the CSV (the model's own plots): its summary's latest and range.
       const at = summary.indexOf(`${o.series}: `);
       assert.ok(at >= 0, `“${title}” has the series ${series.map((c) => c.label).join(", ")} (summary: ${summary})`);
-      const m = summary.slice(at + o.series.length + 2).match(/^\d+ samples, latest (.+?), range (.+?) to (.+?)\.(\s|$)/);
+      const m = summary.slice(at + o.series.length + 2).match(/^\d+ samples?, latest (.+?), range (.+?) to (.+?)\.(\s|$)/);
       assert.ok(m, `the summary of “${o.series}”: ${summary}`);
       const [latest, lo, hi] = [m[1], m[2], m[3]].map(shownNumber);
       value = { max: hi, min: lo, max_abs: Math.max(Math.abs(lo), Math.abs(hi)), final: latest }[o.of];

@@ -290,7 +290,9 @@ impl Plot {
     }
 
     /// A short text description for screen readers: what is plotted and the
-    /// latest, smallest and largest value of each series.
+    /// latest, smallest and largest value of each series. An empty slot for
+    /// a run kept for comparison (a pin not made yet, or cleared) is left
+    /// out, as the legend leaves it out: it is no run.
     #[must_use]
     pub fn summary(&self) -> String {
         let mut parts = vec![format!(
@@ -299,16 +301,21 @@ impl Plot {
             self.y_label,
             self.x_label.to_ascii_lowercase()
         )];
-        for s in &self.series {
+        for s in self
+            .series
+            .iter()
+            .filter(|s| !(s.comparison && s.is_empty()))
+        {
             let Some((lo, hi)) = fold_range(s.y.iter().copied()) else {
                 parts.push(format!("{}: no data yet.", s.label));
                 continue;
             };
             let last = s.y.last().copied().unwrap_or(0.0);
             parts.push(format!(
-                "{}: {} samples, latest {}, range {} to {}.",
+                "{}: {} sample{}, latest {}, range {} to {}.",
                 s.label,
                 s.len(),
+                if s.len() == 1 { "" } else { "s" },
                 with_unit(last, s.unit),
                 with_unit(lo, s.unit),
                 with_unit(hi, s.unit)
@@ -774,5 +781,27 @@ mod tests {
             "{s}"
         );
         assert!(s.contains("Peak at iteration = 1."), "{s}");
+    }
+
+    /// Issue 53 §7: after pid's Clear pins the summary still named the four
+    /// pin slots ("pinned run A: no data yet. …"), which the legend hides.
+    #[test]
+    fn summary_leaves_out_empty_comparison_slots_and_names_kept_runs() {
+        let mut p = demo();
+        p.series
+            .push(Series::new("pinned run A", "m", SeriesRole::Secondary).for_comparison());
+        let mut kept = Series::new("A: Kp 12", "m", SeriesRole::Tertiary).for_comparison();
+        kept.push(0.0, 2.0);
+        p.series.push(kept);
+        p.series
+            .push(Series::new("live, empty", "m", SeriesRole::Quaternary));
+        let s = p.summary();
+        assert!(!s.contains("pinned run A"), "{s}");
+        assert!(
+            s.contains("A: Kp 12: 1 sample, latest 2 m, range 2 m to 2 m."),
+            "{s}"
+        );
+        // The run's own series says it has no data yet.
+        assert!(s.contains("live, empty: no data yet."), "{s}");
     }
 }

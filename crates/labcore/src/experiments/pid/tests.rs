@@ -998,3 +998,22 @@ fn the_peak_is_never_below_the_position_shown_beside_it() {
         format!("{} at {} s", format_metres(info.peak), format_fixed(info.peak_time_s, 2))
     );
 }
+
+/// Issue 53 §7: after Clear pins the step response's text summary (what a
+/// screen reader reads for the plot) still listed the pin slots, and the
+/// page's empty slots for kept runs, which the legend hides.
+#[test]
+fn after_clear_pins_the_summary_names_no_pinned_run() {
+    let mut e = underdamped();
+    for _ in 0..30 {
+        e.step(1.0 / 60.0);
+    }
+    e.action("pin").unwrap();
+    let shown = |e: &PidControl| crate::timeline::with_kept(e.plots(), &[], 0)[0].summary();
+    assert!(shown(&e).contains("A: Kp 25, Kd 5: "), "{}", shown(&e));
+    e.action("clear_pins").unwrap();
+    let summary = shown(&e);
+    assert!(!summary.contains("pinned run") && !summary.contains("A: "), "{summary}");
+    assert!(!summary.contains("kept run"), "{summary}");
+    assert!(summary.contains("position x: "), "{summary}");
+}
