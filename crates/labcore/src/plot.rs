@@ -436,16 +436,64 @@ fn fold_range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
 }
 
 /// "Nice" tick values covering `[lo, hi]`: steps of 1, 2 or 5 × 10ᵏ with at
-/// most `max_ticks` ticks (Heckbert, "Nice numbers for graph labels",
-/// *Graphics Gems*, 1990). A degenerate range is widened around its value.
+/// most `max_ticks` ticks, as many as fit (Heckbert, "Nice numbers for graph
+/// labels", *Graphics Gems*, 1990). A degenerate range is widened around its
+/// value. It may hold a single tick, or none: [`axis_ticks`] widens the
+/// range of an axis so that it holds two.
 ///
 /// ```
 /// assert_eq!(labcore::plot::nice_ticks(0.0, 1.0, 6), vec![0.0, 0.2, 0.4, 0.6, 0.8, 1.0]);
 /// ```
 #[must_use]
 pub fn nice_ticks(lo: f64, hi: f64, max_ticks: usize) -> Vec<f64> {
+    nice_steps(lo, hi, max_ticks).map_or_else(Vec::new, |(lo, hi, step)| ticks_of(lo, hi, step))
+}
+
+/// An axis over at least `[lo, hi]` and its ticks, at least two of them:
+/// those of [`nice_ticks`] where the range holds two; else those of the
+/// next smaller step where they are at most one more than `max_ticks`;
+/// else the range is widened to the multiples of the step just outside it
+/// (less than a step each way), which puts two or three ticks on it.
+/// Returns the axis' ends and its ticks; nothing for a range that is not
+/// finite or `max_ticks < 2`.
+///
+/// ```
+/// // ±0.03 with room for two ticks: 0.05 apart only 0 is inside, and
+/// // 0.02 apart there are three.
+/// let (lo, hi, ticks) = labcore::plot::axis_ticks(-0.03, 0.03, 2).unwrap();
+/// assert_eq!((lo, hi, ticks), (-0.03, 0.03, vec![-0.02, 0.0, 0.02]));
+/// ```
+#[must_use]
+pub fn axis_ticks(lo: f64, hi: f64, max_ticks: usize) -> Option<(f64, f64, Vec<f64>)> {
+    let (lo, hi, step) = nice_steps(lo, hi, max_ticks)?;
+    let ticks = ticks_of(lo, hi, step);
+    if ticks.len() >= 2 {
+        return Some((lo, hi, ticks));
+    }
+    // The ladder's step below: 5 → 2, 2 → 1, 1 → 0.5.
+    let leading = step / 10f64.powi(crate::math::log10(step).floor() as i32);
+    let smaller = if (leading - 5.0).abs() < 0.5 {
+        step / 2.5
+    } else {
+        step / 2.0
+    };
+    if ticks_in(lo, hi, smaller) <= (max_ticks + 1) as f64 {
+        return Some((lo, hi, ticks_of(lo, hi, smaller)));
+    }
+    let (a, b) = (
+        snap(step, (lo / step).floor() * step).min(lo),
+        snap(step, (hi / step).ceil() * step).max(hi),
+    );
+    Some((a, b, ticks_of(a, b, step)))
+}
+
+/// The range `[lo, hi]` (a degenerate one widened) and the tick step of
+/// [`nice_ticks`]: the smallest of 1, 2 or 5 × 10ᵏ that puts at most
+/// `max_ticks` ticks in the range, so as many as fit. `None` for a range
+/// that is not finite or `max_ticks < 2`.
+fn nice_steps(lo: f64, hi: f64, max_ticks: usize) -> Option<(f64, f64, f64)> {
     if !(lo.is_finite() && hi.is_finite()) || max_ticks < 2 {
-        return Vec::new();
+        return None;
     }
     let (lo, hi) = if hi - lo > 1e-300 * lo.abs().max(1.0) {
         (lo, hi)
@@ -455,24 +503,44 @@ pub fn nice_ticks(lo: f64, hi: f64, max_ticks: usize) -> Vec<f64> {
     };
     let raw = (hi - lo) / (max_ticks - 1) as f64;
     let mag = 10f64.powi(crate::math::log10(raw).floor() as i32);
-    // Tolerate float noise at the ends: 0.35 / 0.05 is 6.999….
-    let first_of = |s: f64| (lo / s - 1e-9).ceil();
-    let last_of = |s: f64| (hi / s + 1e-9).floor();
-    let step = [1.0, 2.0, 5.0, 10.0]
+    // From a decade below: 0.93 to 1.93 with two ticks is 1.0 and 1.5,
+    // where steps from 1 up put only 1.0 in it.
+    let step = [0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0]
         .iter()
         .map(|m| m * mag)
-        .find(|s| ((last_of(*s) - first_of(*s)) as usize) < max_ticks)
+        .find(|s| ticks_in(lo, hi, *s) <= max_ticks as f64)
         .unwrap_or(10.0 * mag);
-    let first = first_of(step) as i64;
-    let last = last_of(step) as i64;
+    Some((lo, hi, step))
+}
+
+/// Tolerate float noise at the ends: 0.35 / 0.05 is 6.999….
+fn first_multiple(lo: f64, step: f64) -> f64 {
+    (lo / step - 1e-9).ceil()
+}
+
+fn last_multiple(hi: f64, step: f64) -> f64 {
+    (hi / step + 1e-9).floor()
+}
+
+/// How many multiples of `step` lie in `[lo, hi]`.
+fn ticks_in(lo: f64, hi: f64, step: f64) -> f64 {
+    last_multiple(hi, step) - first_multiple(lo, step) + 1.0
+}
+
+/// A multiple of `step` with its float noise snapped to the step's decimals
+/// (0.30000000000000004 → 0.3).
+fn snap(step: f64, v: f64) -> f64 {
+    let decimals = (-crate::math::log10(step).floor()).max(0.0) as i32;
+    let scale = 10f64.powi(decimals);
+    (v * scale).round() / scale
+}
+
+/// The multiples of `step` in `[lo, hi]`.
+fn ticks_of(lo: f64, hi: f64, step: f64) -> Vec<f64> {
+    let first = first_multiple(lo, step) as i64;
+    let last = last_multiple(hi, step) as i64;
     (first..=last)
-        .map(|k| {
-            let v = k as f64 * step;
-            // Snap float noise (0.30000000000000004 → 0.3) to the step's decimals.
-            let decimals = (-crate::math::log10(step).floor()).max(0.0) as i32;
-            let scale = 10f64.powi(decimals);
-            (v * scale).round() / scale
-        })
+        .map(|k| snap(step, k as f64 * step))
         .collect()
 }
 
@@ -715,6 +783,65 @@ mod tests {
         // A flat series still gets ticks around its value.
         assert!(!nice_ticks(2.0, 2.0, 5).is_empty());
         assert!(nice_ticks(f64::NAN, 1.0, 5).is_empty());
+    }
+
+    /// Issue 53 §7: y axes with a single tick label (ekf's position errors,
+    /// cart-pole's force). Room for two ticks over 0.93…1.93 put only 1.0
+    /// on it (steps of 1, 2, 5); over ±0.03, only 0.
+    #[test]
+    fn every_axis_has_two_ticks_by_hand() {
+        assert_eq!(nice_ticks(0.93, 1.93, 2), vec![1.0, 1.5]);
+        assert_eq!(
+            axis_ticks(0.93, 1.93, 2),
+            Some((0.93, 1.93, vec![1.0, 1.5]))
+        );
+        // ±0.03 with room for two: 0.05 apart only 0 is inside; 0.02 apart,
+        // three, one more than the room, and the axis stays as it is.
+        assert_eq!(nice_ticks(-0.03, 0.03, 2), vec![0.0]);
+        assert_eq!(
+            axis_ticks(-0.03, 0.03, 2),
+            Some((-0.03, 0.03, vec![-0.02, 0.0, 0.02]))
+        );
+        // 1.9…6.1 with room for two: 5 apart only 5; 2 apart, 2, 4 and 6.
+        assert_eq!(nice_ticks(1.9, 6.1, 2), vec![5.0]);
+        assert_eq!(
+            axis_ticks(1.9, 6.1, 2),
+            Some((1.9, 6.1, vec![2.0, 4.0, 6.0]))
+        );
+        // 1.9…8.1 with room for two: 2 apart would be four; the axis widens
+        // to 0…10, 5 apart.
+        assert_eq!(nice_ticks(1.9, 8.1, 2), vec![5.0]);
+        assert_eq!(
+            axis_ticks(1.9, 8.1, 2),
+            Some((0.0, 10.0, vec![0.0, 5.0, 10.0]))
+        );
+        assert_eq!(axis_ticks(f64::NAN, 1.0, 5), None);
+        assert_eq!(axis_ticks(0.0, 1.0, 1), None);
+    }
+
+    #[test]
+    fn axis_ticks_are_two_or_more_and_at_most_one_over_the_room() {
+        let mut rng = crate::Lcg64::new(11);
+        for _ in 0..4000 {
+            let a = rng.range(-1e6, 1e6) * 10f64.powi(rng.int(-8, 3) as i32);
+            let b = a + rng.range(1e-9, 1e3) * 10f64.powi(rng.int(-3, 3) as i32);
+            let n = rng.int(2, 12) as usize;
+            let (lo, hi, t) = axis_ticks(a, b, n).unwrap();
+            assert!(t.len() >= 2 && t.len() <= n + 1, "{a} {b} {n}: {t:?}");
+            assert!(lo <= a && hi >= b, "{a} {b} → {lo} {hi}");
+            let step = t[1] - t[0];
+            // Widened by less than a step each way, to ticks at its ends.
+            assert!(
+                a - lo < step * (1.0 + 1e-9) && hi - b < step * (1.0 + 1e-9),
+                "{a} {b} → {lo} {hi} {t:?}"
+            );
+            let eps = (hi - lo) * 1e-9;
+            assert!(
+                t.iter().all(|v| *v >= lo - eps && *v <= hi + eps),
+                "{lo} {hi} {t:?}"
+            );
+            assert!(t.windows(2).all(|w| w[1] > w[0]));
+        }
     }
 
     #[test]

@@ -7,7 +7,7 @@ use crate::dom::{self, escape, query, query_all};
 use crate::draw::Palette;
 use crate::viewport::clip_segment;
 use labcore::math;
-use labcore::plot::{column_spans, dash_is_on, log_ticks, nice_ticks, Axis, Plot, SeriesRole};
+use labcore::plot::{axis_ticks, column_spans, dash_is_on, log_ticks, Axis, Plot, SeriesRole};
 use labcore::scene::style::{BAND_OPACITY, PLOT_BAND, REF_LINE_DASH_PX};
 use labcore::units::{format_number, power_of_ten};
 use labcore::Role;
@@ -1264,22 +1264,29 @@ pub(crate) fn paint_plot_layout(
         (x_range.0 - 1.0, x_range.1 + 1.0)
     };
     // The y ticks first: their widest label sets the left margin, so no
-    // label reaches into the band of the y-axis title.
+    // label reaches into the band of the y-axis title. Each axis has two
+    // labelled ticks at least (`axis_ticks` widens it where its range
+    // holds fewer).
     let ph = (h - mt - mb).max(10.0);
     let max_y_ticks = ((ph / 34.0) as usize).clamp(2, 8);
     let y_ticks = if log {
         log_ticks(y0, y1, max_y_ticks)
     } else {
-        nice_ticks(y0, y1, max_y_ticks)
+        axis_ticks(y0, y1, max_y_ticks).map_or_else(Vec::new, |(a, b, ticks)| {
+            (y0, y1) = (a, b);
+            ticks
+        })
     };
     let y_labels = tick_labels(&y_ticks, log);
     let widest_y = y_labels.iter().map(|t| measure(ctx, t)).fold(0.0, f64::max);
     let ml = left_margin(widest_y);
+    let pw = (w - ml - mr).max(10.0);
+    let (x0, x1, x_ticks, x_labels) = x_axis(ctx, (x0, x1), pw);
     let frame = Frame {
         x: (x0, x1),
         y: (y0, y1),
         log,
-        rect: (ml, mt, (w - ml - mr).max(10.0), ph),
+        rect: (ml, mt, pw, ph),
     };
     let paint = PlotPaint {
         ctx,
@@ -1290,7 +1297,12 @@ pub(crate) fn paint_plot_layout(
         dpr,
     };
     paint.bands();
-    paint.axes(&mut layout, (&y_ticks, &y_labels), h);
+    paint.axes(
+        &mut layout,
+        (&x_ticks, &x_labels),
+        (&y_ticks, &y_labels),
+        (w, h),
+    );
     // Clip the data to the plot rectangle.
     let (l, t, pw, ph) = frame.rect;
     ctx.save();
@@ -1363,39 +1375,36 @@ impl PlotPaint<'_> {
 
     /// Grid lines, tick labels, the frame and the axis titles; writes where
     /// the labels and titles went into `layout`.
-    fn axes(&self, layout: &mut Layout, (y_ticks, y_labels): (&[f64], &[String]), h: f64) {
+    fn axes(
+        &self,
+        layout: &mut Layout,
+        (x_ticks, x_labels): (&[f64], &[String]),
+        (y_ticks, y_labels): (&[f64], &[String]),
+        (w, h): (f64, f64),
+    ) {
         let (ctx, frame) = (self.ctx, &self.frame);
         let (l, t, pw, ph) = frame.rect;
-        let (x0, x1) = frame.x;
         ctx.set_line_width(1.0);
         set_dash(ctx, &[]);
         ctx.set_stroke_style_str(self.palette.colour(Role::Grid));
         ctx.set_fill_style_str(&self.text);
-        // As many x ticks as fit side by side with a gap between their labels.
-        let mut max_x_ticks = ((pw / 70.0) as usize).clamp(2, 10);
-        let (x_ticks, x_labels) = loop {
-            let ticks = nice_ticks(x0, x1, max_x_ticks);
-            let labels = tick_labels(&ticks, false);
-            let widest = labels.iter().map(|t| measure(ctx, t)).fold(0.0, f64::max);
-            if max_x_ticks <= 2 || (widest + 12.0) * labels.len() as f64 <= pw {
-                break (ticks, labels);
-            }
-            max_x_ticks -= 1;
-        };
         ctx.set_text_align("center");
         ctx.set_text_baseline("top");
-        for (x, label) in x_ticks.iter().zip(&x_labels) {
+        for (x, label) in x_ticks.iter().zip(x_labels) {
             let px = frame.px_x(*x);
             ctx.begin_path();
             ctx.move_to(px, t);
             ctx.line_to(px, t + ph);
             ctx.stroke();
-            let _ = ctx.fill_text(label, px, t + ph + 4.0);
             let lw = measure(ctx, label);
+            // A label under the last tick would stand past the canvas' edge
+            // (RRT*'s "4000" showed as "400"): it moves in, off its tick.
+            let centre = label_centre(px, lw, w);
+            let _ = ctx.fill_text(label, centre, t + ph + 4.0);
             layout.x_ticks.push((
                 label.clone(),
                 Rect {
-                    x: px - lw / 2.0,
+                    x: centre - lw / 2.0,
                     y: t + ph + 4.0,
                     w: lw,
                     h: TICK_H,
@@ -1720,6 +1729,36 @@ pub fn left_margin(widest_px: f64) -> f64 {
     (Y_TITLE_BAND + 4.0 + widest_px + 6.0).max(MARGIN.0)
 }
 
+/// Where a tick label `width_px` wide is centred for a tick at `px` on a
+/// canvas `canvas_px` wide: under the tick, or moved in just enough to
+/// stand wholly on the canvas.
+#[must_use]
+pub fn label_centre(px: f64, width_px: f64, canvas_px: f64) -> f64 {
+    let half = width_px / 2.0;
+    px.min(canvas_px - half - 1.0).max(half + 1.0)
+}
+
+/// The x axis over at least `(x0, x1)` and its ticks with their labels: as
+/// many as fit side by side with a gap between their labels on a plot
+/// `pw` pixels wide, and two at least (`axis_ticks`, which may widen the
+/// axis).
+fn x_axis(
+    ctx: &CanvasRenderingContext2d,
+    (x0, x1): (f64, f64),
+    pw: f64,
+) -> (f64, f64, Vec<f64>, Vec<String>) {
+    let mut max_x_ticks = ((pw / 70.0) as usize).clamp(2, 10);
+    loop {
+        let (a, b, ticks) = axis_ticks(x0, x1, max_x_ticks).unwrap_or((x0, x1, Vec::new()));
+        let labels = tick_labels(&ticks, false);
+        let widest = labels.iter().map(|t| measure(ctx, t)).fold(0.0, f64::max);
+        if max_x_ticks <= 2 || (widest + 12.0) * labels.len() as f64 <= pw {
+            return (a, b, ticks, labels);
+        }
+        max_x_ticks -= 1;
+    }
+}
+
 /// Draws a cursor at the sample nearest `x` and fills the tooltip.
 fn show_nearest(drawn: &Drawn, plot: &Plot, palette: &Palette, x: f64) {
     let frame = drawn.frame;
@@ -1863,6 +1902,18 @@ pub fn download_blob(file_name: &str, blob: &web_sys::Blob) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use labcore::plot::nice_ticks;
+
+    /// Issue 53 §7: RRT*'s last x tick, "4000", under the plot's right edge,
+    /// stood half past the canvas and showed as "400". A label stays whole
+    /// on the canvas, under its tick where it fits.
+    #[test]
+    fn a_tick_label_at_an_edge_moves_in_to_stay_whole() {
+        // A 30 px label under a tick 8 px from the right edge of 300 px.
+        assert_eq!(label_centre(292.0, 30.0, 300.0), 284.0);
+        assert_eq!(label_centre(3.0, 30.0, 300.0), 16.0);
+        assert_eq!(label_centre(150.0, 30.0, 300.0), 150.0);
+    }
 
     #[test]
     fn csv_rows_split_with_quotes() {
