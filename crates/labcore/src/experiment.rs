@@ -616,6 +616,12 @@ pub trait Experiment {
     fn action(&mut self, key: &str) -> Result<(), ParamError> {
         Err(ParamError::UnknownAction { key: key.into() })
     }
+    /// Whether the button of action `key` is shown now: one that has
+    /// nothing to act on is hidden (potential's "Hide basin map" while no
+    /// basin map is shown). Default: every button is shown.
+    fn action_shown(&self, _key: &str) -> bool {
+        true
+    }
     /// A pointer or keyboard input in world coordinates.
     fn input(&mut self, input: Input);
     /// An input with the modifier keys held at the time (the page always

@@ -403,6 +403,11 @@ impl Page {
     pub fn press(&mut self, label: &str) -> Result<(), String> {
         if let Some(action) = self.exp.actions().iter().find(|a| a.label == label) {
             let key = action.key;
+            if !self.exp.action_shown(key) {
+                return Err(format!(
+                    "the button “{label}” is hidden now: it has nothing to act on"
+                ));
+            }
             return self.input_because(Some(label), |exp| {
                 exp.action(key).map_err(|e| e.to_string())
             });

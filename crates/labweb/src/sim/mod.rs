@@ -104,8 +104,13 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
         .iter()
         .map(|a| {
             format!(
-                "<button type=\"button\" data-action=\"{}\">{}</button>",
+                "<button type=\"button\" data-action=\"{}\"{}>{}</button>",
                 a.key,
+                if exp.action_shown(a.key) {
+                    ""
+                } else {
+                    " hidden"
+                },
                 escape(a.label)
             )
         })
@@ -294,6 +299,9 @@ struct SimState {
     touch_input: bool,
     shown_hint: Option<(&'static str, bool)>,
     shown_tables: Vec<labcore::Table>,
+    /// Which action buttons are shown, a bit each in the order of
+    /// `actions()`, as last written (`None` until the first write).
+    shown_actions: Option<u32>,
     /// "The math" panel's changing parts as last written, an entry per
     /// equation: the substituted form, the result and the text twin.
     shown_math: Vec<(String, String, String)>,
@@ -970,6 +978,7 @@ impl SimView {
             touch_input: coarse_pointer(),
             shown_hint: None,
             shown_tables: Vec::new(),
+            shown_actions: None,
             shown_math: Vec::new(),
             math_pending: Vec::new(),
             math_step: None,

@@ -509,6 +509,7 @@ impl SimState {
         }
         self.sync_status();
         self.sync_hint();
+        self.sync_actions();
         let tables = self.exp.tables();
         if tables != self.shown_tables {
             // Rewritten in place (`dom::rewrite_markup`): A*'s table of the
@@ -520,6 +521,42 @@ impl SimState {
             self.shown_tables = tables;
         }
         self.sync_move_form();
+    }
+
+    /// Shows the action buttons that have something to act on and hides
+    /// the others ([`labcore::Experiment::action_shown`]). A button hidden
+    /// while it has the focus (pressed from the keyboard) hands the focus
+    /// to the first button shown beside it.
+    fn sync_actions(&mut self) {
+        // A bit per button, in the order of `actions()` (a handful).
+        let mut shown = 0u32;
+        for (i, a) in self.exp.actions().iter().enumerate().take(32) {
+            if self.exp.action_shown(a.key) {
+                shown |= 1 << i;
+            }
+        }
+        if self.shown_actions == Some(shown) {
+            return;
+        }
+        let active = dom::document().active_element();
+        let (mut first, mut lost_focus) = (None, false);
+        for (i, button) in query_all(&self.panel, "button[data-action]")
+            .into_iter()
+            .enumerate()
+        {
+            let show = i < 32 && shown >> i & 1 == 1;
+            lost_focus |= !show && active.as_ref() == Some(&button);
+            dom::set_hidden(&button, !show);
+            if show && first.is_none() {
+                first = Some(button);
+            }
+        }
+        if let Some(b) = first.filter(|_| lost_focus) {
+            if let Some(b) = b.dyn_ref::<web_sys::HtmlElement>() {
+                let _ = b.focus();
+            }
+        }
+        self.shown_actions = Some(shown);
     }
 
     /// Writes the readouts whose text changed: a write makes the browser

@@ -567,6 +567,11 @@ impl Experiment for PotentialFieldLab {
         ACTIONS
     }
 
+    /// "Hide basin map" is there while a basin map is.
+    fn action_shown(&self, key: &str) -> bool {
+        key != "clear" || self.basin.is_some()
+    }
+
     fn action(&mut self, key: &str) -> Result<(), ParamError> {
         // A refused action changes nothing: check the key before anything else.
         if !ACTIONS.iter().any(|a| a.key == key) {

@@ -766,3 +766,22 @@ fn equal_backdrop_keys_mean_equal_backdrop_items() {
     }
     assert!(distinct > 20, "{distinct} distinct backdrops visited");
 }
+
+/// Issue 53 §7: a "Hide basin map" button stood beside a field with no
+/// basin map. It is shown while a map is, from the button or from a link.
+#[test]
+fn hide_basin_map_is_shown_only_with_a_basin_map() {
+    let mut e = trap();
+    assert!(e.action_shown("basin") && e.action_shown("add") && e.action_shown("remove"));
+    assert!(!e.action_shown("clear"), "no map yet");
+    e.action("basin").unwrap();
+    assert!(e.action_shown("clear"), "the map is computing");
+    run_while_animating(&mut e, 30.0);
+    assert!(e.action_shown("clear"), "the map is done");
+    let link = format(&e, Tab::Simulation);
+    assert!(link.contains("map=1"), "{link}");
+    let (fresh, _) = restore(&link, PotentialFieldLab::default());
+    assert!(fresh.action_shown("clear"), "{link}");
+    e.action("clear").unwrap();
+    assert!(e.basin().is_none() && !e.action_shown("clear"));
+}
