@@ -134,6 +134,26 @@ pub fn time_text(step: u64) -> String {
     format!("{:.2}", step as f64 * Clock::DT_S)
 }
 
+/// What the page says when a link's time (`at=`, `written_s` as the link
+/// wrote it, `raw`) is not the time of the step it opened, `step`: the run
+/// moves in steps of 1/60 s, so most hundredths of a second are no step's
+/// time (`at=0.66` opens step 40, t = 0.67 s). `None` when the time bar
+/// reads the time written (every link the page writes: [`time_text`]).
+/// A time past the run's end opens its end, and says so the same way.
+#[must_use]
+pub fn link_time_notice(raw: &str, written_s: f64, step: u64) -> Option<String> {
+    // The hundredths the bar reads: step k is at 5k/3 hundredths, a whole
+    // number of them or a third or two thirds past one, never half-way.
+    let same = (step as f64 * Clock::DT_S * 100.0).round() == (written_s * 100.0).round();
+    (!same).then(|| {
+        let shown = time_text(step);
+        let raw: String = raw.trim().chars().take(12).collect();
+        format!(
+            "The link's t = {raw} s is no step of the run (one every 1/60 s, up to its end): it opened at t = {shown} s, the nearest."
+        )
+    })
+}
+
 /// A mark's points on each plot: the plot's key, then a point per series
 /// (in the plot's units).
 pub type PlotPoints = Vec<(&'static str, Vec<(f64, f64)>)>;
@@ -160,6 +180,30 @@ pub fn plot_points(plots: &[Plot]) -> PlotPoints {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 53 §7: `at=0.66` opened at 0.67 s and said nothing. A time
+    /// the bar can read opens as written; another says where it opened.
+    #[test]
+    fn link_times_between_steps_say_where_they_opened() {
+        assert_eq!(link_time_notice("0.65", 0.65, 39), None);
+        assert_eq!(link_time_notice("0.67", 0.67, 40), None);
+        assert_eq!(link_time_notice("0.6667", 0.6667, 40), None);
+        assert_eq!(
+            link_time_notice("0.66", 0.66, 40).as_deref(),
+            Some("The link's t = 0.66 s is no step of the run (one every 1/60 s, up to its end): it opened at t = 0.67 s, the nearest.")
+        );
+        assert_eq!(
+            link_time_notice("5", 5.0, 192).as_deref(),
+            Some("The link's t = 5 s is no step of the run (one every 1/60 s, up to its end): it opened at t = 3.20 s, the nearest.")
+        );
+        // Every step's own text reads back as itself and says nothing.
+        for step in 0..3600 {
+            let text = time_text(step);
+            let t: f64 = text.parse().unwrap();
+            assert_eq!((t / Clock::DT_S).round() as u64, step);
+            assert_eq!(link_time_notice(&text, t, step), None, "{text}");
+        }
+    }
 
     #[test]
     fn marks_round_trip_exactly_through_their_link_value() {

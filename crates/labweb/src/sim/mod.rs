@@ -1149,7 +1149,7 @@ impl SimView {
                 }
                 ("run", Ok(v)) if v == 0.0 || v == 1.0 => st.clock.set_running(v == 1.0),
                 ("at", Ok(v)) if st.timeline.is_some() && v.is_finite() && v >= 0.0 => {
-                    at_s = Some(v);
+                    at_s = Some((v, raw));
                 }
                 ("speed", Ok(v)) if v.is_finite() && v > 0.0 => {
                     let applied = st.clock.set_speed(v);
@@ -1163,8 +1163,10 @@ impl SimView {
                 )),
             }
         }
-        if let Some(t_s) = at_s {
+        if let Some((t_s, raw)) = at_s {
             st.open_at(t_s);
+            let step = st.clock.steps();
+            notices.extend(labcore::marks::link_time_notice(&raw, t_s, step));
         }
         st.set_marks(link_marks);
         st.needs_paint = true;
