@@ -79,6 +79,30 @@ function theoryState(id) {
   return { maths: maths.length, sized, accents };
 }
 
+/**
+ * The words of pid's switches (the on/off choices and their names) that the
+ * page lays out across two lines or more, as Firefox did with
+ * "mea-sure-ment", with the page's width; null until the tab is drawn.
+ */
+function switchWords() {
+  const art = document.querySelector('article.exp[data-experiment="pid"]:not([hidden])');
+  if (document.body?.dataset.ready !== "1" || !art?.querySelector(".ctl-toggle .seg")) return null;
+  const split = [];
+  for (const el of art.querySelectorAll(".ctl-toggle legend, .ctl-toggle .seg span")) {
+    const walker = document.createTreeWalker(el, NodeFilter.SHOW_TEXT);
+    for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+      for (const m of node.textContent.matchAll(/\S+/g)) {
+        const range = document.createRange();
+        range.setStart(node, m.index);
+        range.setEnd(node, m.index + m[0].length);
+        const lines = new Set([...range.getClientRects()].filter((r) => r.width > 0).map((r) => Math.round(r.top)));
+        if (lines.size > 1) split.push(m[0]);
+      }
+    }
+  }
+  return { width: document.documentElement.clientWidth, split };
+}
+
 // ---------------------------------------------------------------------------
 // One small interface over the two drivers.
 
@@ -129,6 +153,7 @@ async function firefox() {
     },
     problems: async () => problems.splice(0),
     screenshot: async () => decodePng(Buffer.from(await page.screenshot())),
+    resize: (width, height) => page.setViewport({ width, height }),
     close: () => browser.close(),
   };
 }
@@ -152,6 +177,7 @@ async function webkit() {
       return found ?? ["the error probe is missing from the page"];
     },
     screenshot: async () => decodePng(await session.screenshot()),
+    resize: (width, height) => session.setWindowSize(width, height),
     close: () => session.close(),
   };
 }
@@ -467,6 +493,20 @@ for (const [name, launch, available] of [
         await b.evaluate(() => document.querySelector("input[type=text][data-param=kp]").value),
         "40",
       );
+      assert.deepEqual(await b.problems(), [], "the page reported problems");
+    });
+
+    test("pid: the switches keep their words whole at every width (issue 53 §7: Firefox hyphenated “mea-sure-ment”)", async () => {
+      try {
+        for (const width of [1280, 1024, 800, 600, 390, 360, 320]) {
+          await b.resize(width, 800);
+          const seen = await openAndWait(b, "#/pid/simulation", switchWords, "pid");
+          console.log(`# ${b.name} ${width}: ${JSON.stringify(seen)}`);
+          assert.deepEqual(seen.split, [], `words split at ${seen.width} px`);
+        }
+      } finally {
+        await b.resize(DESKTOP.width, DESKTOP.height);
+      }
       assert.deepEqual(await b.problems(), [], "the page reported problems");
     });
 
