@@ -89,7 +89,9 @@ function controlSelectors(page) {
       }
       out.push({ sel: `${sim} .sim-move button[type=submit]`, kind: "move" });
     }
-    for (const b of document.querySelectorAll(`${sim} .sim-actions button[data-action]`)) {
+    // A hidden button ("Hide basin map" without a map) is no control a
+    // student can use.
+    for (const b of document.querySelectorAll(`${sim} .sim-actions button[data-action]:not([hidden])`)) {
       out.push({ sel: `${sim} .sim-actions button[data-action="${b.dataset.action}"]`, kind: "action" });
     }
     return out;
@@ -241,7 +243,7 @@ for (const viewport of LAPTOPS) {
               key: row.dataset.ctl,
               label: row.querySelector("label, legend").textContent.trim(),
             })),
-            actions: [...document.querySelectorAll(`${art} [data-panel=simulation] .sim-actions button[data-action]`)].map((b) => ({
+            actions: [...document.querySelectorAll(`${art} [data-panel=simulation] .sim-actions button[data-action]:not([hidden])`)].map((b) => ({
               key: b.dataset.action,
               label: b.textContent.trim(),
             })),
