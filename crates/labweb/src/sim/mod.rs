@@ -1289,7 +1289,9 @@ impl SimView {
         st.sync_timebar(true);
         st.sync_marks();
         if st.plots_force {
-            st.plots.draw(st.exp.plots(), &st.palette, true);
+            // The plots as shown (the run's end's in the past, with the
+            // kept runs), as above: not the moment's own, cut at it.
+            st.with_shown_plots(|view, plots, palette| view.draw(plots, palette, true));
             st.plots_force = false;
         }
     }

@@ -206,7 +206,7 @@ pub(super) fn listen(
                 st.paint();
                 export_png(&st.canvas, &format!("{}.png", st.file_stem()));
             } else if let Some(key) = attr("data-plot-csv") {
-                if let Some(plot) = st.exp.plots().iter().find(|p| p.key == key) {
+                if let Some(plot) = st.run_plots().iter().find(|p| p.key == key) {
                     let name = format!("{}-{}.csv", st.file_stem(), plot.key);
                     plot_view::download(&name, "text/csv", &plot.to_csv());
                 }
@@ -215,7 +215,7 @@ pub(super) fn listen(
                 st.plots_force = true;
             } else if let Some(key) = attr("data-plot-table") {
                 let st = &*st;
-                st.plots.toggle_table(&key, st.exp.plots());
+                st.plots.toggle_table(&key, st.run_plots());
             }
         }));
         let s = state.clone();
