@@ -200,7 +200,14 @@ pub(super) fn listen(
                 }
             } else if attr("data-export").as_deref() == Some("report") {
                 let marked = st.marked_states();
-                crate::report_view::download(&st.panel, st.exp.as_ref(), &st.link(), &marked);
+                // Scrubbed back, the report is the whole run (the record's
+                // end) with the moment shown on it, as the page draws it.
+                let st = &*st;
+                let (end, shown) = match st.record_end.as_deref() {
+                    Some(end) => (end, Some((st.clock.time_s(), &*st.exp))),
+                    None => (&*st.exp, None),
+                };
+                crate::report_view::download(&st.panel, end, &st.link(), &marked, shown);
             } else if attr("data-export").as_deref() == Some("png") {
                 st.scene_draft = false;
                 st.paint();
