@@ -1155,7 +1155,7 @@ impl SimView {
             }
         }
         if let Some(t_s) = at_s {
-            st.open_at(t_s);
+            st.open_at(t_s, link_marks.steps().last().copied());
         }
         st.set_marks(link_marks);
         st.needs_paint = true;

@@ -711,9 +711,14 @@ impl SimState {
 
     /// Opens the run at `t_s` seconds (a link's `at=`): the link's state is
     /// its start; the run is stepped there (at most
-    /// [`RUN_TO_END_MAX_STEPS`], fewer if it ends first) and paused.
-    pub(super) fn open_at(&mut self, t_s: f64) {
-        let steps = ((t_s / Clock::DT_S).round() as u64).min(RUN_TO_END_MAX_STEPS);
+    /// [`RUN_TO_END_MAX_STEPS`], fewer if it ends first) and paused. A
+    /// link's marks after that moment (`last_mark`, a step) are part of the
+    /// run it names: the run is stepped on to the last of them and shown at
+    /// the moment, the marks on its plots (issue 53 §2: a report's link
+    /// reopens the moment and the marks).
+    pub(super) fn open_at(&mut self, t_s: f64, last_mark: Option<u64>) {
+        let at = ((t_s / Clock::DT_S).round() as u64).min(RUN_TO_END_MAX_STEPS);
+        let steps = at.max(last_mark.unwrap_or(0)).min(RUN_TO_END_MAX_STEPS);
         let actions = self.timeline.as_ref().map(|t| t.start_actions().to_vec());
         self.clock.reset();
         self.restart_timeline();
@@ -722,6 +727,11 @@ impl SimState {
             actions.into_iter().flatten().for_each(|a| tl.acted(a));
         }
         self.step_recorded(steps, false, 0.0, f64::INFINITY);
+        if at < self.clock.steps() {
+            self.seek(at);
+            // Paused by the link (`run=0`), as at its end, not by a scrub.
+            self.timeline_paused = false;
+        }
         self.clock.set_running(false);
         self.phase = self.exp.status().phase;
         self.plots_force = true;
