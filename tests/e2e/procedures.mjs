@@ -595,8 +595,8 @@ class Student {
     }
   }
 
-  /** The series of plot `title`, from the CSV the page offers (the plot as the model has it now). */
-  async plotCsv(title) {
+  /** The figure of plot `title` (its title exactly). */
+  async figure(title) {
     const { page } = this;
     const figure = page.locator(`${ART} figure.plot`).filter({ has: page.locator(".plot-title", { hasText: title }) });
     const titles = await page.locator(`${ART} figure.plot .plot-title`).allTextContents();
@@ -605,7 +605,13 @@ class Student {
       if ((await figure.nth(i).locator(".plot-title").textContent()).trim() === title) exact.push(figure.nth(i));
     }
     assert.ok(exact.length === 1, `no plot “${title}” (the plots: ${titles.join(", ")})`);
-    const fig = exact[0];
+    return exact[0];
+  }
+
+  /** The series of plot `title`, from the CSV the page offers (the plot as drawn: the whole run). */
+  async plotCsv(title) {
+    const { page } = this;
+    const fig = await this.figure(title);
     const [download] = await Promise.all([page.waitForEvent("download"), fig.locator("button[data-plot-csv]").click()]);
     const text = readFileSync(await download.path(), "utf8");
     const summary = (await fig.locator(".plot-summary").textContent()) ?? "";
@@ -613,6 +619,12 @@ class Student {
   }
 
   async plot(o) {
+    if (o.of === "cursor") {
+      // The moment the slider went back to, as the plot's cursor marks it.
+      const x = await (await this.figure(o.plot)).locator("canvas").first().getAttribute("data-cursor");
+      assert.ok(x !== null, `“${o.plot}” shows no cursor: the page shows the run's end`);
+      return this.notedOrCompared(o, Number(x), `the cursor of “${o.plot}” at ${x}`);
+    }
     const { series, summary } = await this.plotCsv(o.plot);
     const title = o.plot;
     let s = o.series === undefined ? series[0] : series.find((c) => c.label === o.series);

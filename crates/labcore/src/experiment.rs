@@ -760,6 +760,13 @@ pub trait Experiment {
     /// The replay is over: derive what its steps put off, so the state is
     /// bit for bit the one the live run had at that step. Default: nothing.
     fn end_replay(&mut self) {}
+    /// Takes the runs that `end` (another state of the same experiment:
+    /// the run's last, [`Lab::as_any`]) keeps only to compare with (PID's
+    /// pinned runs) in place of its own. The page shows a past moment of a
+    /// run with the comparisons its end has, as it draws the end's plots
+    /// (issue 53 §2: pinned runs stay while the timeline goes back). A
+    /// comparison never changes how the run steps. Default: none kept.
+    fn take_comparisons(&mut self, _end: &dyn std::any::Any) {}
 }
 
 /// What is shown of an experiment (its `view.rs`): the view box, the display
@@ -840,11 +847,18 @@ pub trait Lab: Presentation {
     /// as a snapshot ([`crate::timeline::Timeline`]). Stepping the copy and
     /// the original alike gives the same states, bit for bit.
     fn snapshot(&self) -> Box<dyn Lab>;
+    /// The state as [`std::any::Any`], for
+    /// [`Experiment::take_comparisons`].
+    fn as_any(&self) -> &dyn std::any::Any;
 }
 
 impl<T: Presentation + Clone + 'static> Lab for T {
     fn snapshot(&self) -> Box<dyn Lab> {
         Box::new(self.clone())
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
     }
 }
 

@@ -305,6 +305,38 @@ fn scrub_input_in_the_past_starts_a_new_run_from_that_state() {
     assert_eq!(again.param("kp"), Some(60.0));
 }
 
+/// Issue 53 §2, "pinned runs stay": PID pinned at step 100, the moment at
+/// step 40 shown with the end's comparisons (as the page shows it) has the
+/// pin, and stepped on to step 100 it is the run's end, pin and all: a
+/// comparison never changes how the run steps.
+#[test]
+fn a_past_moment_with_its_ends_pins_steps_on_to_the_end_exactly() {
+    let mut exp = labcore::testkit::open("pid");
+    let mut timeline = Timeline::new(exp.as_ref(), 0);
+    for _ in 0..100 {
+        exp.step(Clock::DT_S);
+        timeline.stepped(exp.as_ref());
+    }
+    timeline.input_at(100);
+    exp.action("pin").unwrap();
+    timeline.commit(exp.as_ref());
+    let pin = |lab: &dyn Lab| labcore::experiment::readout_value(lab, "pinA");
+    let pinned = pin(exp.as_ref()).unwrap();
+    assert!(pinned.contains("so far (pinned at 1.67 s)"), "{pinned}");
+    let (_, mut past) = timeline.state_at(40, &mut step_once);
+    assert_eq!(pin(past.as_ref()), None, "the record has no pin before it");
+    past.take_comparisons(exp.as_any());
+    assert_eq!(pin(past.as_ref()), Some(pinned));
+    for _ in 40..100 {
+        past.step(Clock::DT_S);
+    }
+    assert_eq!(shown(past.as_ref()), shown(exp.as_ref()));
+    // Another experiment's state is no source of pins.
+    let before = shown(past.as_ref());
+    past.take_comparisons(labcore::testkit::open("cartpole").as_any());
+    assert_eq!(shown(past.as_ref()), before);
+}
+
 /// Issue 26 §2, the link's moment: a state is the start stepped on only
 /// while no input came on the way; after one, a link of the start and a
 /// time would not reproduce it.

@@ -120,8 +120,15 @@ pub struct Report<'a> {
     /// link's `key=`, see [`AnswerKey::in_force`]).
     pub answer_key: AnswerKey,
     /// The moments the student marked in the run, in time order: a section
-    /// each, with the scene and the readouts of that moment.
+    /// each, with the scene and the readouts of that moment, and a triangle
+    /// on every plot.
     pub marks: &'a [MarkedMoment<'a>],
+    /// The moment on screen when the report was made, where the page showed
+    /// a past moment of the run: `experiment` is then the run's end (the
+    /// whole run, as the page's plots draw it), and the moment has a
+    /// section and a line on every plot (issue 53 §2). `None` at the run's
+    /// end.
+    pub shown: Option<MarkedMoment<'a>>,
 }
 
 /// A marked moment of the run (issue 26 §3): its time and the state the
@@ -174,10 +181,13 @@ pub struct Sheet {
     pub quiz: Option<QuizSheet>,
     /// The marked moments, in time order ([`MarkedMoment`]).
     pub marks: Vec<Moment>,
+    /// The moment on screen, where it was not the run's end
+    /// ([`Report::shown`]).
+    pub shown: Option<Moment>,
 }
 
 /// A [`MarkedMoment`] as the report prints it: the time, and the status,
-/// scene and readouts the run had then.
+/// scene and readouts the run had then, and where it is on each plot.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Moment {
     /// Simulated time of the mark, seconds.
@@ -186,6 +196,9 @@ pub struct Moment {
     pub scene: Scene,
     pub view: ViewBox,
     pub readouts: Vec<Readout>,
+    /// Per plot (by key), the points of its run's series then: their last
+    /// samples ([`labcore::marks::plot_points`], as the page marks them).
+    pub points: labcore::marks::PlotPoints,
 }
 
 impl Moment {
@@ -198,7 +211,21 @@ impl Moment {
             scene,
             view: m.state.view(),
             readouts: m.state.readouts(),
+            points: labcore::marks::plot_points(m.state.plots()),
         }
+    }
+
+    /// Its points on the plot `key`.
+    fn on(&self, key: &str) -> &[(f64, f64)] {
+        self.points
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map_or(&[], |(_, p)| p)
+    }
+
+    /// `t = 0.67 s`.
+    fn when(&self) -> String {
+        format!("t = {:.2} s", self.t_s)
     }
 }
 
@@ -293,6 +320,7 @@ impl Sheet {
                 submitted: q.submitted,
             }),
             marks: r.marks.iter().map(Moment::of).collect(),
+            shown: r.shown.as_ref().map(Moment::of),
         }
     }
 }
@@ -393,8 +421,24 @@ pub fn render_sheet(r: &Sheet) -> String {
 
     parameters_section(&mut h, r);
     results_section(&mut h, r);
-    marks_section(&mut h, &r.marks);
-    plots_section(&mut h, &r.plots);
+    // The moment on screen has its own section, unless a mark is its.
+    let shown_marked = r.shown.as_ref().and_then(|m| {
+        r.marks
+            .iter()
+            .position(|k| format!("{:.2}", k.t_s) == format!("{:.2}", m.t_s))
+    });
+    if let (Some(m), None) = (&r.shown, shown_marked) {
+        h.push_str("<section class=\"marks\"><h2>The moment on screen</h2>");
+        moment_section(
+            &mut h,
+            m,
+            "moment",
+            &format!("On screen when the report was made: {}", m.when()),
+        );
+        h.push_str("</section>");
+    }
+    marks_section(&mut h, &r.marks, shown_marked);
+    plots_section(&mut h, r);
     quiz_section(
         &mut h,
         r.quiz.as_ref().map(QuizSheet::result).as_ref(),
@@ -570,7 +614,14 @@ fn results_section(h: &mut String, r: &Sheet) {
         "<section class=\"results\"><h2>Results</h2><p class=\"status {tone}\"><strong>Status:</strong> {}</p>",
         escape(&status.text)
     );
-    scene_figure(h, &r.scene, r.view, "when the report was made");
+    // A report made at a past moment shows the whole run: its end here,
+    // the moment in a section of its own and as a line on the plots.
+    let when = if r.shown.is_some() {
+        "at the run's end"
+    } else {
+        "when the report was made"
+    };
+    scene_figure(h, &r.scene, r.view, when);
     readouts_table(h, &r.readouts, "Readouts");
     for t in &r.tables {
         live_table(h, t);
@@ -616,26 +667,39 @@ fn readouts_table(h: &mut String, readouts: &[Readout], caption: &str) {
     h.push_str("</tbody></table>");
 }
 
-/// A section per marked moment: its status, scene and readouts.
-fn marks_section(h: &mut String, marks: &[Moment]) {
+/// A section per marked moment: its status, scene and readouts. The mark
+/// `shown` (an index) was on screen when the report was made.
+fn marks_section(h: &mut String, marks: &[Moment], shown: Option<usize>) {
     if marks.is_empty() {
         return;
     }
     h.push_str("<section class=\"marks\"><h2>Marked moments</h2>");
     for (i, m) in marks.iter().enumerate() {
-        let t = format!("t = {:.2} s", m.t_s);
-        let _ = write!(
-            h,
-            "<section class=\"mark\" data-mark-t=\"{:.2}\"><h3>Mark {}: {t}</h3>\
-             <p class=\"status\"><strong>Status:</strong> {}</p>",
-            m.t_s,
-            i + 1,
-            escape(&m.status.text)
-        );
-        scene_figure(h, &m.scene, m.view, &format!("at {t}"));
-        readouts_table(h, &m.readouts, &format!("Readouts at {t}"));
-        h.push_str("</section>");
+        let on_screen = if shown == Some(i) {
+            ", on screen when the report was made"
+        } else {
+            ""
+        };
+        let title = format!("Mark {}: {}{on_screen}", i + 1, m.when());
+        moment_section(h, m, "mark", &title);
     }
+    h.push_str("</section>");
+}
+
+/// One moment's section (`class`: `mark`, or `moment` for the one on
+/// screen): its title, status, scene and readouts.
+fn moment_section(h: &mut String, m: &Moment, class: &str, title: &str) {
+    let t = m.when();
+    let _ = write!(
+        h,
+        "<section class=\"{class}\" data-{class}-t=\"{:.2}\"><h3>{}</h3>\
+         <p class=\"status\"><strong>Status:</strong> {}</p>",
+        m.t_s,
+        escape(title),
+        escape(&m.status.text)
+    );
+    scene_figure(h, &m.scene, m.view, &format!("at {t}"));
+    readouts_table(h, &m.readouts, &format!("Readouts at {t}"));
     h.push_str("</section>");
 }
 
@@ -673,23 +737,64 @@ fn live_table(h: &mut String, t: &Table) {
     }
 }
 
-fn plots_section(h: &mut String, plots: &[Plot]) {
-    if plots.is_empty() {
+/// Where the report's moments are on one plot: the moment on screen (a
+/// line at its x) and the marks (a triangle at each point).
+struct Moments<'a> {
+    shown: Option<(f64, &'a Moment)>,
+    marks: Vec<(f64, f64)>,
+}
+
+impl<'a> Moments<'a> {
+    fn on(plot: &Plot, r: &'a Sheet) -> Self {
+        let shown = r.shown.as_ref().and_then(|m| {
+            let x = m.on(plot.key).iter().map(|p| p.0).reduce(f64::max)?;
+            Some((x, m))
+        });
+        let marks = r
+            .marks
+            .iter()
+            .flat_map(|m| m.on(plot.key))
+            .copied()
+            .collect();
+        Self { shown, marks }
+    }
+
+    /// What the figure's caption says of them.
+    fn caption(&self) -> String {
+        let mut out = String::new();
+        if let Some((_, m)) = self.shown {
+            let _ = write!(
+                out,
+                " The vertical line marks the moment on screen when the report was made, {}.",
+                m.when()
+            );
+        }
+        if !self.marks.is_empty() {
+            out.push_str(" A triangle marks each marked moment.");
+        }
+        out
+    }
+}
+
+fn plots_section(h: &mut String, r: &Sheet) {
+    if r.plots.is_empty() {
         return;
     }
     h.push_str("<section class=\"plots\"><h2>Plots</h2>");
-    for (i, full) in plots.iter().enumerate() {
+    for (i, full) in r.plots.iter().enumerate() {
         // Series with no samples yet (an unused pin slot) are left out.
         let mut plot = full.clone();
         plot.series.retain(|s| !s.is_empty());
         let plot = &plot;
+        let moments = Moments::on(plot, r);
         let _ = write!(
             h,
-            "<figure class=\"plot\" data-plot=\"{}\">{}<figcaption><strong>Figure {}.</strong> {}</figcaption></figure>",
+            "<figure class=\"plot\" data-plot=\"{}\">{}<figcaption><strong>Figure {}.</strong> {}{}</figcaption></figure>",
             escape(plot.key),
-            plot_svg(plot, i),
+            plot_svg(plot, i, &moments),
             i + 1,
-            escape(&plot.summary())
+            escape(&plot.summary()),
+            escape(&moments.caption())
         );
         data_table(h, plot, i + 1);
     }
@@ -795,9 +900,9 @@ impl PlotMap {
 
 /// The plot as an SVG figure: axes with nice ticks (linear or log), bands,
 /// reference lines, every series decimated to [`DRAW_BUCKETS`] min–max
-/// buckets, markers and a legend. `index` makes the clip path's id unique in
-/// the document.
-fn plot_svg(plot: &Plot, index: usize) -> String {
+/// buckets, markers, the report's moments and a legend. `index` makes the
+/// clip path's id unique in the document.
+fn plot_svg(plot: &Plot, index: usize, moments: &Moments<'_>) -> String {
     let mut s = String::new();
     // Legend first: its rows set the drawing's top.
     let legend = legend_entries(plot);
@@ -833,6 +938,11 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
         );
         return s;
     };
+    // A rolling window reaches back to the moment on screen, so its line
+    // is drawn on the run's curves as the page draws it.
+    let x0 = moments
+        .shown
+        .map_or(x0, |(x, _)| if x.is_finite() { x0.min(x) } else { x0 });
     let (x0, x1) = widen(x0, x1);
     let log = plot.log_y;
     let (mut y0, mut y1) = plot.y_range((x0, x1)).unwrap_or((0.0, 1.0));
@@ -881,6 +991,7 @@ fn plot_svg(plot: &Plot, index: usize) -> String {
     }
     s.push_str("</g>");
     markers_svg(&mut s, plot, &map);
+    moments_svg(&mut s, moments, &map);
     let _ = write!(
         s,
         "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#8c97a3\"/></svg>",
@@ -1128,6 +1239,41 @@ fn markers_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
             n((my - 7.0).max(top + 10.0)),
             if anchor_end { "end" } else { "start" },
             escape(&m.label)
+        );
+    }
+}
+
+/// The report's moments on a plot, as the page draws them: the moment on
+/// screen as a vertical line in the text colour with a small triangle at
+/// its top (the page's cursor), each mark as a downward triangle at its
+/// point with a white outline.
+fn moments_svg(s: &mut String, moments: &Moments<'_>, map: &PlotMap) {
+    let text = ink(Role::Text);
+    let inside = |x: f64| x.is_finite() && x >= map.x.0 && x <= map.x.1;
+    if let Some((x, m)) = moments.shown.filter(|(x, _)| inside(*x)) {
+        let px = map.px(x);
+        let _ = write!(
+            s,
+            "<g class=\"cursor\" data-x=\"{x}\"><title>{}</title><line x1=\"{p}\" y1=\"{t}\" x2=\"{p}\" y2=\"{b}\" stroke=\"{text}\" stroke-width=\"1.5\"/>\
+             <path d=\"M{} {t}h10l-5 7z\" fill=\"{text}\"/></g>",
+            escape(&m.when()),
+            n(px - 5.0),
+            p = n(px),
+            t = n(map.top),
+            b = n(map.bottom),
+        );
+    }
+    for &(x, y) in &moments.marks {
+        if !inside(x) || !y.is_finite() || (map.log && y <= 0.0) {
+            continue;
+        }
+        let (px, py) = (map.px(x), map.py(y));
+        let _ = write!(
+            s,
+            "<path class=\"mark\" d=\"M{} {}h12l-6 10z\" fill=\"{text}\" stroke=\"{}\" stroke-width=\"1.5\"/>",
+            n(px - 6.0),
+            n(py - 10.0),
+            CANVAS.light
         );
     }
 }

@@ -118,8 +118,16 @@ fn aim_on_page(panel: &Element) -> Vec<String> {
 /// it as a download. `panel` is the Simulation panel (its article holds the
 /// quiz); `hash` is the link of the state shown (`#/pid/simulation?…`, with
 /// the instructor's keys); `marked` the run's marked moments, each with
-/// the state at it (time in seconds, state), a section each.
-pub fn download(panel: &Element, exp: &dyn Lab, hash: &str, marked: &[(f64, Box<dyn Lab>)]) {
+/// the state at it (time in seconds, state), a section each. Where the page
+/// shows a past moment of the run, `exp` is the run's end (the report shows
+/// the whole run) and `shown` the moment (time in seconds, state).
+pub fn download(
+    panel: &Element,
+    exp: &dyn Lab,
+    hash: &str,
+    marked: &[(f64, Box<dyn Lab>)],
+    shown: Option<(f64, &dyn Lab)>,
+) {
     let Some(entry) = labcore::find(exp.id()) else {
         return;
     };
@@ -153,6 +161,7 @@ pub fn download(panel: &Element, exp: &dyn Lab, hash: &str, marked: &[(f64, Box<
     let mut sheet = Sheet::of(&Report {
         experiment: exp,
         marks: &marks,
+        shown: shown.map(|(t_s, state)| MarkedMoment { t_s, state }),
         content,
         link: &link,
         date: &date,

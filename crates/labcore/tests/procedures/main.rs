@@ -403,3 +403,56 @@ fn every_claim_of_every_step_is_killed_by_its_mutants() {
     println!("mutants killed: {} of {total}", total - survivors.len());
     assert!(survivors.is_empty(), "\n{}", survivors.join("\n"));
 }
+
+/// Issue 53 §2, "what is shown is one run": the page model, as the page,
+/// shows one run at one moment. PID's default step run to rest (27.27 s),
+/// its response pinned there, then the slider back to t = 0.67 s (step
+/// 40): the readouts say that moment (x = 0.697 m, no settling time yet),
+/// the pinned run stays (its readout as at the end: overshoot 7.8 %,
+/// settling 10.20 s, values read off the page at the end), and the plots
+/// show the whole run with the cursor at the moment, where the curve is
+/// the moment's own last sample (0.66 s, the control period's).
+#[test]
+fn scrubbed_back_the_page_shows_one_run_at_one_moment() {
+    let mut page = page::Page::open("pid");
+    page.wait_for_rest().unwrap();
+    let end_s = page.time_s();
+    assert_eq!(format!("{end_s:.2}"), "27.27");
+    page.press("Pin run").unwrap();
+    let pinned = page.readout("Pinned run A").unwrap();
+    assert_eq!(
+        pinned,
+        "Kp 12 · Ki 2 · Kd 6, overshoot 7.8%, rise 0.82 s, settling 10.20 s"
+    );
+    page.scrub_to(0.67).unwrap();
+    assert_eq!(page.readout("Position x").unwrap(), "0.697 m");
+    assert_eq!(page.readout("Settling time (±2 %)").unwrap(), "--");
+    assert_eq!(
+        page.readout("Pinned run A").unwrap(),
+        pinned,
+        "the pin stays"
+    );
+    let plots = page.plots();
+    let response = &plots[0];
+    let own = response.series.iter().find(|s| !s.comparison).unwrap();
+    // The whole run: its last sample is the run's end (every 0.01 s).
+    assert!(
+        (own.x.last().unwrap() - end_s).abs() < 0.01,
+        "{:?}",
+        own.x.last()
+    );
+    assert!(response
+        .series
+        .iter()
+        .any(|s| s.label == "A: Kp 12, Ki 2, Kd 6" && s.len() == own.len()));
+    let cursor = page.cursor("Step response").unwrap();
+    assert_eq!(format!("{cursor:.2}"), "0.66");
+    // Under the cursor, the curve is this run's at the moment shown.
+    let k = own.nearest(cursor).unwrap();
+    let moment = page.exp.plots()[0].series[0].y.last().copied().unwrap();
+    assert_eq!(own.y[k], moment);
+    assert_eq!(format!("{moment:.4}"), "0.6917");
+    // Back at the end, no cursor: the page shows the run's end.
+    page.scrub_to(end_s).unwrap();
+    assert_eq!(page.cursor("Step response"), None);
+}

@@ -41,6 +41,10 @@ pub struct Page {
     /// the next change that branches or restarts plays, as the page's
     /// (`labweb/src/sim/scrub.rs`, `finish_branch`).
     timeline_paused: bool,
+    /// The run's last state while the page shows a past moment of it, as
+    /// the page keeps it (`record_end`): its plots are the ones drawn, its
+    /// pinned runs the ones shown.
+    record_end: Option<Box<dyn Lab>>,
 }
 
 /// A run ended by a restart is kept for comparison when it lasted at least
@@ -67,6 +71,7 @@ impl Page {
             last_input: 0,
             kept: Vec::new(),
             timeline_paused: false,
+            record_end: None,
         }
     }
 
@@ -100,11 +105,7 @@ impl Page {
         // What the run leaves if the change branches or restarts it: the
         // old future from the past, else the run so far (its plots) once
         // it lasted half a second.
-        let left = if from_past {
-            let end = self.timeline.end();
-            let abandoned = self
-                .timeline
-                .peek_at(end, &mut |lab: &mut dyn Lab| lab.step(Clock::DT_S));
+        let left = if let Some(abandoned) = self.record_end.take() {
             Some(KeptRun::of(abandoned.as_ref(), String::new()))
         } else if self.at - self.timeline.first() >= KEEP_MIN_STEPS && !self.exp.plots().is_empty()
         {
@@ -141,10 +142,21 @@ impl Page {
         done
     }
 
-    /// The plots as the page draws them: the experiment's, with the runs
+    /// The plots as the page draws them: the run's, whole (its last
+    /// state's, while the slider shows a past moment of it), with the runs
     /// kept by changes in the past.
     pub fn plots(&self) -> Vec<Plot> {
-        timeline::with_kept(self.exp.plots(), &self.kept, 0)
+        let run = self.record_end.as_deref().unwrap_or(&*self.exp);
+        timeline::with_kept(run.plots(), &self.kept, 0)
+    }
+
+    /// Where the cursor of the plot titled `title` is (plot x): the moment
+    /// shown while the slider is in the past; `None` when the page shows
+    /// the run's end.
+    pub fn cursor(&self, title: &str) -> Option<f64> {
+        self.record_end.as_ref()?;
+        let plot = self.exp.plots().iter().find(|p| p.title == title)?;
+        timeline::plot_x(plot)
     }
 
     /// One frame of the playing clock: the run steps, unless it has ended
@@ -168,12 +180,23 @@ impl Page {
         self.at += 1;
     }
 
-    /// Goes to step `to` of the record (the slider, Back).
+    /// Goes to step `to` of the record (the slider, Back): in the past the
+    /// run's last state is kept aside, and the moment shown has its pinned
+    /// runs, as on the page.
     fn seek(&mut self, to: u64) {
         let (at, lab) = self
             .timeline
             .state_at(to, &mut |lab: &mut dyn Lab| lab.step(Clock::DT_S));
-        self.exp = lab;
+        let shown = std::mem::replace(&mut self.exp, lab);
+        if self.record_end.is_none() {
+            self.record_end = Some(shown);
+        }
+        if at == self.timeline.end() {
+            self.record_end = None;
+        }
+        if let Some(end) = &self.record_end {
+            self.exp.take_comparisons(end.as_any());
+        }
         self.at = at;
     }
 
@@ -280,6 +303,8 @@ impl Page {
                 }
             }
             "Reset" => {
+                // The moment shown starts again (with the pins it shows).
+                self.record_end = None;
                 self.exp.reset();
                 self.timeline = Timeline::new(self.exp.as_ref(), 0);
                 self.at = 0;
@@ -525,6 +550,7 @@ impl Page {
         self.last_input = 0;
         self.kept.clear();
         self.timeline_paused = false;
+        self.record_end = None;
         self.playing = true;
         if !playing {
             for _ in 0..moment {

@@ -389,7 +389,8 @@ impl Student {
 
     /// A property of a plot's series: `of` is `max`, `min`, `final`,
     /// `max_abs`, `mean`, `x_at_max` (where the maximum is), `x_end` (the last
-    /// sample's x), `first_x_above` (where y first exceeds `level`) or
+    /// sample's x), `cursor` (the x of the moment the slider shows),
+    /// `first_x_above` (where y first exceeds `level`) or
     /// `swing_growth` (how much wider each swing about `level` is than the
     /// one before, a ratio), `share_in_band` (the % of samples inside the
     /// plot's band) or `share_within` (the % no farther from 0 than the
@@ -424,6 +425,10 @@ impl Student {
             "final" => y.last().copied(),
             "mean" => (!y.is_empty()).then(|| y.iter().sum::<f64>() / y.len() as f64),
             "x_end" => x.last().copied(),
+            // The moment shown on the plot, while the slider is in the past.
+            "cursor" => Some(self.page.cursor(title).ok_or_else(|| {
+                format!("“{title}” shows no cursor: the page shows the run's end")
+            })?),
             "x_at_max" => at_max().map(|i| x[i]),
             "first_x_above" => {
                 let level = number(o, "level")?;

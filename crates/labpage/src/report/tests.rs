@@ -49,6 +49,7 @@ fn a_damaged_report_sheet_is_an_error_not_a_panic() {
         student: Student::default(),
         answer_key: AnswerKey::Never,
         marks: &[],
+        shown: None,
     }));
     for cut in 0..bytes.len() {
         assert!(
@@ -284,6 +285,7 @@ fn every_experiment_reports_every_parameter_and_plot_self_contained() {
             student: Student::default(),
             answer_key: AnswerKey::Submitted,
             marks: &[],
+            shown: None,
         });
         let id = entry.id;
         balanced(&html).unwrap_or_else(|e| panic!("{id}: {e}"));
@@ -379,6 +381,12 @@ fn every_experiment_reports_every_parameter_and_plot_self_contained() {
 struct Hostile {
     plots: Vec<Plot>,
 }
+
+/// A plot with no moment on it (no report moment shown, no mark).
+const NO_MOMENTS: Moments<'static> = Moments {
+    shown: None,
+    marks: Vec::new(),
+};
 
 const EVIL: &str = "<script>alert(1)</script><img src=x onerror=alert(2)>\"'&";
 
@@ -506,6 +514,7 @@ fn hostile_text_everywhere_is_escaped() {
         },
         answer_key: AnswerKey::Submitted,
         marks: &[],
+        shown: None,
     });
     let lower = html.to_lowercase();
     // The one script element is the data record (JSON, never run).
@@ -563,7 +572,7 @@ fn long_series_are_decimated_in_table_and_figure() {
     assert!(h.contains("30 evenly spaced rows of 20000 samples"), "{h}");
     // First and last samples: t = 0 and t = 199.99.
     assert!(h.contains("<tr><td>0</td>") && h.contains("<tr><td>199.99</td>"));
-    let svg = plot_svg(&p, 0);
+    let svg = plot_svg(&p, 0, &NO_MOMENTS);
     let vertices = svg.matches('L').count() + 1;
     assert!(vertices <= DRAW_BUCKETS * 4, "{vertices}");
     assert!(svg.len() < 40_000, "{}", svg.len());
@@ -582,7 +591,7 @@ fn plot_points_land_where_the_axes_say() {
     );
     p.series[0].push(0.0, 0.0);
     p.series[0].push(10.0, 10.0);
-    let svg = plot_svg(&p, 0);
+    let svg = plot_svg(&p, 0, &NO_MOMENTS);
     // One legend row: top = 14 + 8 + 12 = 34; bottom = 34 + 280 − 42 − 12 = 260.
     // y ∈ [−0.5, 10.5]: y = 0 → 260 − 0.5/11 · 226 = 249.73; y = 10 → 44.27.
     // x from 64 to 640 − 24 = 616.
@@ -609,6 +618,7 @@ fn an_empty_plot_and_an_unsubmitted_quiz_say_so() {
         student: Student::default(),
         answer_key: AnswerKey::Submitted,
         marks: &[],
+        shown: None,
     });
     assert!(html.contains("No data yet: run the simulation first."));
     assert!(html.contains("No samples yet."));
@@ -626,7 +636,7 @@ fn log_axis_ticks_read_as_powers_of_ten() {
     assert_eq!(power_label(1000.0), "1000");
     let mut p = hostile_plot();
     p.log_y = true;
-    let svg = plot_svg(&p, 3);
+    let svg = plot_svg(&p, 3, &NO_MOMENTS);
     well_formed_svg(&svg).unwrap();
     assert!(svg.contains("id=\"plot3-clip\""));
 }
@@ -851,6 +861,7 @@ fn rrtstar_report_draws_the_whole_tree_after_the_longest_run() {
         student: Student::default(),
         answer_key: AnswerKey::Submitted,
         marks: &[],
+        shown: None,
     });
     let scene = svgs(&html)[0];
     // The tree is the one path in the Visited colour.
@@ -902,6 +913,7 @@ fn quiz_report(
         student,
         answer_key: key,
         marks: &[],
+        shown: None,
     });
     (html, right, total)
 }
@@ -1085,7 +1097,7 @@ fn the_report_scene_draws_the_grid_in_the_canvas_grid_colour() {
 fn the_report_plot_draws_reference_lines_and_bands_as_the_canvas_plot_does() {
     // The report's plots had drifted from the canvas's: reference lines
     // dashed 5 5 (canvas 6 4), bands at opacity 0.18 (canvas 0.22).
-    let svg = plot_svg(&hostile_plot(), 0);
+    let svg = plot_svg(&hostile_plot(), 0, &NO_MOMENTS);
     assert!(
         svg.contains("stroke=\"#5f6a75\" stroke-width=\"1.2\" stroke-dasharray=\"6 4\""),
         "{svg}"
@@ -1158,6 +1170,7 @@ fn report_mark_section_shows_the_live_runs_state_at_the_marked_step() {
             student: Student::default(),
             answer_key: AnswerKey::Submitted,
             marks: &marks,
+            shown: None,
         });
         let id = entry.id;
         balanced(&html).unwrap_or_else(|e| panic!("{id}: {e}"));
@@ -1185,4 +1198,130 @@ fn report_mark_section_shows_the_live_runs_state_at_the_marked_step() {
         checked += 1;
     }
     assert!(checked >= 9, "only {checked} experiments with a timeline");
+}
+
+/// PID's Procedure step 9 as the page leaves it: Kp = 25, Ki = 0, Kd = 2,
+/// c = 1, run to its end, the timeline back at step 40 (t = 0.67 s, the
+/// peak). Returns the run's end and the state at the moment.
+fn pid_scrubbed_to_the_peak() -> (Box<dyn Lab>, Box<dyn Lab>) {
+    use labcore::timeline::Timeline;
+    let mut exp = (crate::find("pid").unwrap().make)();
+    for (k, v) in [("kp", 25.0), ("ki", 0.0), ("kd", 2.0), ("c", 1.0)] {
+        exp.set_param(k, v).unwrap();
+    }
+    let mut timeline = Timeline::new(exp.as_ref(), 0);
+    while exp.status().phase != crate::experiment::Phase::Ended {
+        exp.step(Clock::DT_S);
+        timeline.stepped(exp.as_ref());
+    }
+    let (at, moment) = timeline.state_at(40, &mut |e: &mut dyn Lab| e.step(Clock::DT_S));
+    assert_eq!(at, 40);
+    (exp, moment)
+}
+
+/// The report of `end` with the moment `moment` (step 40) on screen and
+/// marked or not.
+fn report_of_a_moment(end: &dyn Lab, moment: &dyn Lab, marked: bool) -> String {
+    let m = MarkedMoment {
+        t_s: 40.0 * Clock::DT_S,
+        state: moment,
+    };
+    let marks = [m];
+    render(&Report {
+        experiment: end,
+        content: content_of("pid"),
+        link: "#/pid/simulation?kp=25&ki=0&kd=2&run=0&at=0.67&marks=0.67",
+        date: "2026-12-07 10:00",
+        quiz: None,
+        note: None,
+        student: Student::default(),
+        answer_key: AnswerKey::Submitted,
+        marks: if marked { &marks } else { &[] },
+        shown: Some(m),
+    })
+}
+
+/// Issue 53 §2: a report made while the page shows a past moment shows the
+/// whole run (its readouts and plots to the end: settling time 2.25 s, the
+/// response's 668 samples to 6.67 s), the moment on screen as a line on
+/// every plot at its plot x (0.66 s, the control period's last sample) and
+/// in a section of its own (Position x 1.374 m, the peak the Procedure
+/// names), and a triangle at the mark on every plot: one on the response
+/// (its one run series), four on the effort (u, P, I, D).
+#[test]
+fn a_report_made_at_a_past_moment_shows_the_whole_run_with_the_moment_and_the_marks() {
+    let (end, moment) = pid_scrubbed_to_the_peak();
+    let html = report_of_a_moment(end.as_ref(), moment.as_ref(), true);
+    balanced(&html).unwrap();
+    let readout = |html: &str, key: &str| {
+        let at = html
+            .find(&format!("<tr data-readout=\"{key}\">"))
+            .unwrap_or_else(|| panic!("no readout {key}"));
+        let cell = &html[at..];
+        let cell = &cell[cell.find("<td class=\"num\">").unwrap() + 16..];
+        cell[..cell.find('<').unwrap()].to_owned()
+    };
+    let results = &html[html.find("<section class=\"results\">").unwrap()..];
+    let results = &results[..results.find("</section>").unwrap()];
+    assert_eq!(readout(results, "settling"), "2.25 s");
+    assert!(results.contains("The simulation at the run&#39;s end."));
+    let response = &html[html
+        .find("<figure class=\"plot\" data-plot=\"response\">")
+        .unwrap()..];
+    let response = &response[..response.find("</figure>").unwrap()];
+    assert!(
+        response.contains("position x: 668 samples"),
+        "the whole run"
+    );
+    let cursor = &response[response.find("<g class=\"cursor\" data-x=\"").unwrap() + 26..];
+    let x: f64 = cursor[..cursor.find('"').unwrap()].parse().unwrap();
+    assert_eq!(format!("{x:.2}"), "0.66");
+    assert!(cursor.contains("<title>t = 0.67 s</title>"));
+    assert_eq!(response.matches("<path class=\"mark\"").count(), 1);
+    assert!(response.contains(
+        "The vertical line marks the moment on screen when the report was made, t = 0.67 s. A triangle marks each marked moment."
+    ));
+    let effort = &html[html
+        .find("<figure class=\"plot\" data-plot=\"effort\">")
+        .unwrap()..];
+    let effort = &effort[..effort.find("</figure>").unwrap()];
+    assert_eq!(effort.matches("<path class=\"mark\"").count(), 4);
+    assert!(effort.contains("<g class=\"cursor\""));
+    // The moment is the mark's section, said to be the one on screen.
+    let section = mark_section(&html, "0.67");
+    assert!(section.contains("<h3>Mark 1: t = 0.67 s, on screen when the report was made</h3>"));
+    assert_eq!(readout(section, "x"), "1.374 m");
+    assert!(!html.contains("class=\"moment\""));
+    // Not marked: a section of its own, and no triangle.
+    let html = report_of_a_moment(end.as_ref(), moment.as_ref(), false);
+    balanced(&html).unwrap();
+    let start = html
+        .find("<section class=\"moment\" data-moment-t=\"0.67\">")
+        .unwrap();
+    let section = &html[start..start + html[start..].find("</section>").unwrap()];
+    assert!(section.contains("<h3>On screen when the report was made: t = 0.67 s</h3>"));
+    assert_eq!(readout(section, "x"), "1.374 m");
+    assert!(!html.contains("<path class=\"mark\""));
+    assert!(!html.contains("Marked moments"));
+    // A rolling window (the last second of the run) reaches back to the
+    // moment: its line is drawn.
+    let mut sheet = Sheet::of(&Report {
+        experiment: end.as_ref(),
+        content: content_of("pid"),
+        link: "#/pid/simulation",
+        date: "2026-12-07 10:00",
+        quiz: None,
+        note: None,
+        student: Student::default(),
+        answer_key: AnswerKey::Submitted,
+        marks: &[],
+        shown: Some(MarkedMoment {
+            t_s: 40.0 * Clock::DT_S,
+            state: moment.as_ref(),
+        }),
+    });
+    sheet.plots[0].window = crate::plot::XWindow::Rolling(1.0);
+    let html = render_sheet(&sheet);
+    let response = &html[html.find("data-plot=\"response\"").unwrap()..];
+    assert!(response[..response.find("</figure>").unwrap()].contains("<g class=\"cursor\""));
 }

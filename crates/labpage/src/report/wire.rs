@@ -366,13 +366,15 @@ record!(Sheet {
     plots,
     quiz,
     marks,
+    shown,
 });
 record!(Moment {
     t_s,
     status,
     scene,
     view,
-    readouts
+    readouts,
+    points
 });
 
 impl Wire for XWindow {

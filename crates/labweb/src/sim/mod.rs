@@ -1164,7 +1164,7 @@ impl SimView {
             }
         }
         if let Some((t_s, raw)) = at_s {
-            st.open_at(t_s);
+            st.open_at(t_s, link_marks.steps().last().copied());
             let step = st.clock.steps();
             notices.extend(labcore::marks::link_time_notice(&raw, t_s, step));
         }
@@ -1300,7 +1300,9 @@ impl SimView {
         st.sync_timebar(true);
         st.sync_marks();
         if st.plots_force {
-            st.plots.draw(st.exp.plots(), &st.palette, true);
+            // The plots as shown (the run's end's in the past, with the
+            // kept runs), as above: not the moment's own, cut at it.
+            st.with_shown_plots(|view, plots, palette| view.draw(plots, palette, true));
             st.plots_force = false;
         }
     }

@@ -200,13 +200,20 @@ pub(super) fn listen(
                 }
             } else if attr("data-export").as_deref() == Some("report") {
                 let marked = st.marked_states();
-                crate::report_view::download(&st.panel, st.exp.as_ref(), &st.link(), &marked);
+                // Scrubbed back, the report is the whole run (the record's
+                // end) with the moment shown on it, as the page draws it.
+                let st = &*st;
+                let (end, shown) = match st.record_end.as_deref() {
+                    Some(end) => (end, Some((st.clock.time_s(), &*st.exp))),
+                    None => (&*st.exp, None),
+                };
+                crate::report_view::download(&st.panel, end, &st.link(), &marked, shown);
             } else if attr("data-export").as_deref() == Some("png") {
                 st.scene_draft = false;
                 st.paint();
                 export_png(&st.canvas, &format!("{}.png", st.file_stem()));
             } else if let Some(key) = attr("data-plot-csv") {
-                if let Some(plot) = st.exp.plots().iter().find(|p| p.key == key) {
+                if let Some(plot) = st.run_plots().iter().find(|p| p.key == key) {
                     let name = format!("{}-{}.csv", st.file_stem(), plot.key);
                     plot_view::download(&name, "text/csv", &plot.to_csv());
                 }
@@ -215,7 +222,7 @@ pub(super) fn listen(
                 st.plots_force = true;
             } else if let Some(key) = attr("data-plot-table") {
                 let st = &*st;
-                st.plots.toggle_table(&key, st.exp.plots());
+                st.plots.toggle_table(&key, st.run_plots());
             }
         }));
         let s = state.clone();

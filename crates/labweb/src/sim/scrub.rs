@@ -276,6 +276,13 @@ impl SimState {
             .is_some_and(|t| self.clock.steps() < t.end())
     }
 
+    /// The plots of the run shown, whole: the record's end's while the
+    /// scene shows a past moment of it (the plots drawn, their CSV and
+    /// their tables: one run, its moment a cursor on them).
+    pub(super) fn run_plots(&self) -> &[Plot] {
+        self.record_end.as_deref().unwrap_or(&*self.exp).plots()
+    }
+
     /// A new record from the state now (mount, Reset, a file loaded, a
     /// new run): the clock's steps are the run's own from here.
     pub(super) fn restart_timeline(&mut self) {
@@ -594,6 +601,7 @@ impl SimState {
         if at == end {
             self.record_end = None;
         }
+        self.keep_end_comparisons();
         if self.css_size.0 >= 1.0 {
             self.exp.viewport_px(self.css_size.0, self.css_size.1);
         }
@@ -605,6 +613,15 @@ impl SimState {
         self.phase = self.exp.status().phase;
         self.last_time_ms = None;
         self.after_jump();
+    }
+
+    /// The past moment shown keeps the runs the record's end compares
+    /// with (PID's pins), as the plots drawn are the end's: a run pinned
+    /// after the moment stays in the readouts too (issue 53 §2).
+    fn keep_end_comparisons(&mut self) {
+        if let Some(end) = &self.record_end {
+            self.exp.take_comparisons(end.as_any());
+        }
     }
 
     /// What a jump in time redraws: the scene, the plots' cursors (a plot
@@ -639,6 +656,7 @@ impl SimState {
         if at == tl.end() {
             self.record_end = None;
         }
+        self.keep_end_comparisons();
         self.clock.seek(at);
         // The plots' cursors follow the replay.
         self.plots_stale = true;
@@ -693,9 +711,14 @@ impl SimState {
 
     /// Opens the run at `t_s` seconds (a link's `at=`): the link's state is
     /// its start; the run is stepped there (at most
-    /// [`RUN_TO_END_MAX_STEPS`], fewer if it ends first) and paused.
-    pub(super) fn open_at(&mut self, t_s: f64) {
-        let steps = ((t_s / Clock::DT_S).round() as u64).min(RUN_TO_END_MAX_STEPS);
+    /// [`RUN_TO_END_MAX_STEPS`], fewer if it ends first) and paused. A
+    /// link's marks after that moment (`last_mark`, a step) are part of the
+    /// run it names: the run is stepped on to the last of them and shown at
+    /// the moment, the marks on its plots (issue 53 §2: a report's link
+    /// reopens the moment and the marks).
+    pub(super) fn open_at(&mut self, t_s: f64, last_mark: Option<u64>) {
+        let at = ((t_s / Clock::DT_S).round() as u64).min(RUN_TO_END_MAX_STEPS);
+        let steps = at.max(last_mark.unwrap_or(0)).min(RUN_TO_END_MAX_STEPS);
         let actions = self.timeline.as_ref().map(|t| t.start_actions().to_vec());
         self.clock.reset();
         self.restart_timeline();
@@ -704,6 +727,11 @@ impl SimState {
             actions.into_iter().flatten().for_each(|a| tl.acted(a));
         }
         self.step_recorded(steps, false, 0.0, f64::INFINITY);
+        if at < self.clock.steps() {
+            self.seek(at);
+            // Paused by the link (`run=0`), as at its end, not by a scrub.
+            self.timeline_paused = false;
+        }
         self.clock.set_running(false);
         self.phase = self.exp.status().phase;
         self.plots_force = true;

@@ -900,6 +900,29 @@ impl Experiment for PidControl {
         }
     }
 
+    /// The pinned runs of `end` (their slots, numbers and curves) in place
+    /// of these: a past moment of the run shows the pins its end has.
+    fn take_comparisons(&mut self, end: &dyn std::any::Any) {
+        // Pins are only ever added (each numbered) or all cleared: the same
+        // count made and kept is the same pins (a replay frame asks again,
+        // and copies nothing).
+        let Some(end) = end
+            .downcast_ref::<Self>()
+            .filter(|e| (e.pins_made, e.pins.len()) != (self.pins_made, self.pins.len()))
+        else {
+            return;
+        };
+        // A copy of the end (the clone a snapshot takes) hands over its pins.
+        let mut end = end.clone();
+        std::mem::swap(&mut self.pins, &mut end.pins);
+        self.pins_made = end.pins_made;
+        let theirs = end.plots[0].series.iter_mut().skip(1);
+        for (mine, theirs) in self.plots[0].series.iter_mut().skip(1).zip(theirs) {
+            std::mem::swap(mine, theirs);
+        }
+        self.plots[0].touch();
+    }
+
     fn animated(&self) -> bool {
         true
     }
