@@ -133,11 +133,14 @@ test("potential: a goal behind two close obstacles is trapped in bounded time; t
     await runUntil(page, () => /so far/.test(document.querySelector("[data-readout=reach]").textContent));
     // The shown map is part of the link.
     await runUntil(page, () => /[?&]map=1(&|$)/.test(location.hash));
-    await runUntil(page, () => /^\d+\.\d%$/.test(document.querySelector("[data-readout=reach]").textContent), null, {
+    // Finished, the readout counts the colours the student sees most.
+    const finished = /^(\d+\.\d)%; (\d+) trapped, (\d+) collided$/;
+    await runUntil(page, (re) => new RegExp(re).test(document.querySelector("[data-readout=reach]").textContent), finished.source, {
       timeout: 20_000,
     });
-    const share = number((await readouts(page)).reach);
+    const [, share, trapped] = (await readouts(page)).reach.match(finished).map(Number);
     assert.ok(share > 20 && share < 100, `share of starts reaching the goal: ${share}%`);
+    assert.ok(trapped > 0, "a goal behind two close obstacles traps some starts on the map too");
     await screenshot(page, "potential-basin");
     // The page's own frame timer (step + paint) is printed for the record;
     // its budget lives in `cargo xtask bench --browser`, never in a test.
