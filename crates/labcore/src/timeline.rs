@@ -11,7 +11,10 @@
 //!   action, a drag, a file, a link) changed the state, taken once the input
 //!   is done ([`Timeline::input_at`], [`Timeline::commit`]): the state after
 //!   the input is the log of that input, whatever its kind, with no replay
-//!   of the input itself (a pointer's modifiers, a file's text) to go wrong.
+//!   of the input itself (a pointer's modifiers, a file's text) to go wrong;
+//! - a snapshot kept as a pinned one where the run's work phase changes (A*'s
+//!   search ends), which is no input: the run goes on as its start stepped
+//!   on, and a link of a later moment still names it.
 //!
 //! Between two snapshots the run only stepped, so the state at step `n` is
 //! the latest snapshot at or before `n`, stepped `n − s` times: at most
@@ -39,8 +42,13 @@ use glam::DVec2;
 struct Snapshot {
     step: u64,
     lab: Box<dyn Lab>,
-    /// Taken after an input (or at the start): never thinned out.
+    /// Taken after an input (or at the start), or where the work phase
+    /// changed: never thinned out.
     pinned: bool,
+    /// Taken after an input (or at the start): from here on the state is
+    /// no longer the run's start stepped on (a link of the start and a
+    /// time does not reach it). A work phase's snapshot is none.
+    input: bool,
     /// Its estimated size, bytes.
     bytes: usize,
 }
@@ -53,6 +61,7 @@ impl Snapshot {
             step,
             lab,
             pinned,
+            input: pinned,
             bytes,
         }
     }
@@ -183,7 +192,7 @@ impl Timeline {
             && !self
                 .snaps
                 .iter()
-                .any(|s| s.pinned && s.step > 0 && s.step <= step)
+                .any(|s| s.input && s.step > 0 && s.step <= step)
     }
 
     /// The state whose parameters and set-up a link that names moments of
@@ -293,7 +302,11 @@ impl Timeline {
         let phase = exp.work_phase();
         if phase != self.work_phase {
             self.work_phase = phase;
-            self.push(Snapshot::of(exp, self.end, true));
+            // Kept, but no input: the run goes on as its start stepped on,
+            // and a link of a moment after it still names the moment.
+            let mut snap = Snapshot::of(exp, self.end, true);
+            snap.input = false;
+            self.push(snap);
         } else if self.end.is_multiple_of(self.interval) {
             self.push(Snapshot::of(exp, self.end, false));
         }
@@ -403,7 +416,7 @@ impl Timeline {
         let input_between = self
             .snaps
             .iter()
-            .any(|s| s.pinned && s.step > from && s.step <= to);
+            .any(|s| s.input && s.step > from && s.step <= to);
         if input_between {
             let (at, lab) = self.state_at(to, step_once);
             *exp = lab;

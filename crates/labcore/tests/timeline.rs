@@ -337,6 +337,45 @@ fn a_past_moment_with_its_ends_pins_steps_on_to_the_end_exactly() {
     assert_eq!(shown(past.as_ref()), before);
 }
 
+/// Issue 53 §2, "its link reopens both": the snapshot A* keeps where its
+/// search ends (its work phase) is no input, so a moment of the drive that
+/// follows is still the run's start (Plan pressed there) stepped on, and a
+/// link names it; the report of astar scrubbed into the drive lost `at=`.
+#[test]
+fn a_work_phase_snapshot_leaves_the_link_of_a_later_moment() {
+    let mut exp = labcore::testkit::open("astar");
+    let mut timeline = Timeline::new(exp.as_ref(), 0);
+    timeline.input_at(0);
+    exp.action("plan").unwrap();
+    timeline.acted("plan");
+    timeline.commit(exp.as_ref());
+    let mut searched = None;
+    for step in 1..=2000 {
+        exp.step(Clock::DT_S);
+        timeline.stepped(exp.as_ref());
+        if searched.is_none() && exp.work_phase() == 0 {
+            searched = Some(step);
+        }
+        if searched.is_some_and(|s| step > s + 30) {
+            break;
+        }
+    }
+    let searched = searched.expect("the search ends");
+    assert!(
+        timeline.unbroken_to(searched + 30),
+        "searched at {searched}"
+    );
+    assert_eq!(timeline.start_actions(), ["plan"]);
+    // The moment there, stepped on from the start, is the state recorded.
+    let (_, there) = timeline.state_at(searched + 10, &mut step_once);
+    let mut again = labcore::testkit::open("astar");
+    again.action("plan").unwrap();
+    for _ in 0..searched + 10 {
+        again.step(Clock::DT_S);
+    }
+    assert_eq!(shown(there.as_ref()), shown(again.as_ref()));
+}
+
 /// Issue 26 §2, the link's moment: a state is the start stepped on only
 /// while no input came on the way; after one, a link of the start and a
 /// time would not reproduce it.
