@@ -366,3 +366,28 @@ fn generators_draw_inside_the_sliders_ranges() {
     }
 }
 
+
+/// Issue 53 §7: a target a hair from the tip is reached in one iteration,
+/// and the status and the description say "1 iteration", not
+/// "1 iterations".
+#[test]
+fn one_iteration_is_counted_in_the_singular() {
+    let mut d = DampedLeastSquares::default();
+    d.set_param("rate", 60.0).unwrap();
+    let near = d.tip() + DVec2::new(2e-5, 0.0);
+    d.input(Input::PointerDown(near));
+    run_while_animating(&mut d, RUN_MAX_S);
+    assert_eq!((d.run, d.iterations), (Run::Converged, 1));
+    assert_eq!(d.status().text, "converged in 1 iteration");
+    let described = d.describe();
+    assert!(
+        described.contains("converged in 1 iteration;") && described.ends_with(", 1 iteration."),
+        "{described}"
+    );
+    // And the plural where there are more.
+    let mut d = DampedLeastSquares::default();
+    d.set_param("rate", 60.0).unwrap();
+    d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
+    run_while_animating(&mut d, RUN_MAX_S);
+    assert_eq!(d.status().text, format!("converged in {} iterations", d.iterations));
+}

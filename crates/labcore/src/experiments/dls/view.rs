@@ -39,6 +39,11 @@ const EQUATIONS: &[Equation] = &[
     },
 ];
 
+/// "1 iteration", "4 iterations".
+fn iterations(n: usize) -> String {
+    format!("{n} iteration{}", if n == 1 { "" } else { "s" })
+}
+
 impl Presentation for DampedLeastSquares {
     fn view(&self) -> ViewBox {
         ViewBox::centered(VIEW_HALF_M)
@@ -149,7 +154,7 @@ impl Presentation for DampedLeastSquares {
             Run::Idle => Status::new("click a target", Tone::Neutral),
             Run::Iterating => Status::new("iterating…", Tone::Neutral),
             Run::Converged => Status::ended(
-                format!("converged in {} iterations", self.iterations),
+                format!("converged in {}", iterations(self.iterations)),
                 Tone::Good,
             ),
             Run::Settled => Status::ended("closest reachable pose", Tone::Warning),
@@ -181,11 +186,11 @@ impl Presentation for DampedLeastSquares {
         match self.target {
             None => format!("{arm}. No target yet; {}.", self.status().text),
             Some(t) => format!(
-                "{arm}, target at {}: {}; error {}, {} iterations.",
+                "{arm}, target at {}: {}; error {}, {}.",
                 format_point(t),
                 self.status().text,
                 value("error"),
-                value("iterations")
+                iterations(self.iterations)
             ),
         }
     }
