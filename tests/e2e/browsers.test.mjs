@@ -290,12 +290,19 @@ async function accentInkOfFormula(b, id, k) {
       const k = devicePixelRatio;
       return [...math.querySelectorAll("mover")].map((m) => {
         const r = m.getBoundingClientRect();
+        const b = m.firstElementChild.getBoundingClientRect();
         const em = Number.parseFloat(getComputedStyle(m).fontSize);
-        // Room above for an accent drawn too high, and to each side.
+        // Room above for an accent drawn too high; each part looked for in
+        // its own column (and a little beside it, for an italic's
+        // overhang), not in a neighbour's: in "ẋθ̇" the θ's top counted as
+        // the x's, and the x's dot as the θ's. An accent drawn off to the
+        // side is then missing, and astray.
         return {
           text: m.textContent,
           em: em * k,
-          rect: { x: (r.x - 0.4 * em) * k, y: (r.y - 1.2 * em) * k, width: (r.width + 0.8 * em) * k, height: (r.height + 1.2 * em) * k },
+          size: em,
+          rect: { x: (r.x - 0.1 * em) * k, y: (r.y - 1.2 * em) * k, width: (r.width + 0.2 * em) * k, height: (r.height + 1.2 * em) * k },
+          letter: { x: (b.x - 0.1 * em) * k, y: (b.y - 0.2 * em) * k, width: (b.width + 0.2 * em) * k, height: (b.height + 0.4 * em) * k },
         };
       });
     },
@@ -330,7 +337,7 @@ async function accentInkOfFormula(b, id, k) {
   const accents = await b.screenshot();
   await hide("");
   for (const m of movers) {
-    const base = inkBox(bases, blank, m.rect);
+    const base = inkBox(bases, blank, m.letter);
     const accent = inkBox(accents, blank, m.rect);
     if (!base || !accent) {
       out.push({ text: m.text, missing: !base ? "letter" : "accent" });
@@ -340,6 +347,8 @@ async function accentInkOfFormula(b, id, k) {
     out.push({
       text: m.text,
       gap: round((base.top - accent.bottom) / m.em),
+      // In CSS pixels: Firefox set every accent about 5 px up, at any size.
+      gapPx: Math.round((base.top - accent.bottom) / (m.em / m.size)),
       shift: round(((accent.left + accent.right) / 2 - (base.left + base.right) / 2) / m.em),
     });
   }
@@ -420,11 +429,18 @@ const ACCENT_PAGES = [
 ];
 /** Most an accent's ink may float above its letter's, and be off its centre (em). */
 const GAP_MAX_EM = 0.45;
+/**
+ * Most an accent's ink may float above its letter's, in CSS pixels: 1 in
+ * Chromium, 2 in WebKit; Firefox's 5 (0.3 em of "The math") made θ̇ read as
+ * θ under a floating dot (issue 53 §6).
+ */
+const GAP_MAX_PX = 3;
 const SHIFT_MAX_EM = 0.3;
 /** How many times one formula's accents are measured before a wrong measurement stands. */
 const ACCENT_ATTEMPTS = 3;
 /** Whether an accent measured by `accentInk` is missing, or away from its letter. */
-const accentAstray = (a) => a.missing || a.gap > GAP_MAX_EM || a.gap < 0 || Math.abs(a.shift) > SHIFT_MAX_EM;
+const accentAstray = (a) =>
+  a.missing || a.gap > GAP_MAX_EM || a.gapPx > GAP_MAX_PX || a.gap < 0 || Math.abs(a.shift) > SHIFT_MAX_EM;
 /** Crops of each accent page per browser, for the side-by-side picture. */
 const accentPictures = {};
 
