@@ -79,6 +79,64 @@ function theoryState(id) {
   return { maths: maths.length, sized, accents };
 }
 
+/**
+ * How "The math" panel of the visible Simulation tab sets its brackets and
+ * function names (issue 53 §6), null until it is there: each pair of
+ * brackets that stand side by side in one row, with its height and the
+ * height of what it holds (px), and for each `cos`/`sin` after a factor
+ * the space before it (em).
+ */
+function mathTypesetting() {
+  const panel = document.querySelector("article.exp:not([hidden]) .live-math");
+  if (document.body?.dataset.ready !== "1" || !panel?.querySelector("math")) return null;
+  const box = (e) => e.getBoundingClientRect();
+  const brackets = [];
+  for (const row of new Set([...panel.querySelectorAll("mo")].map((m) => m.parentElement))) {
+    const open = [];
+    for (const el of row.children) {
+      const t = el.localName === "mo" ? el.textContent.trim() : "";
+      if (t === "(") open.push(el);
+      if (t !== ")" || !open.length) continue;
+      const from = open.pop();
+      const held = [];
+      for (let e = from.nextElementSibling; e && e !== el; e = e.nextElementSibling) held.push(box(e));
+      if (!held.length) continue;
+      brackets.push({
+        text: row.textContent.replace(/\u2062/g, " ").slice(0, 48),
+        bracket: Math.max(box(from).height, box(el).height),
+        content: Math.max(...held.map((b) => b.bottom)) - Math.min(...held.map((b) => b.top)),
+      });
+    }
+  }
+  const spaces = [];
+  for (const name of panel.querySelectorAll("mi")) {
+    if (!["cos", "sin"].includes(name.textContent)) continue;
+    let before = name.previousElementSibling;
+    while (before && (before.localName === "mspace" || (before.localName === "mo" && before.textContent === "\u2062"))) {
+      before = before.previousElementSibling;
+    }
+    // After an operator (a cross, a bracket) the operator's own space counts.
+    if (!before || before.localName === "mo") continue;
+    const em = Number.parseFloat(getComputedStyle(name).fontSize);
+    spaces.push({ after: before.textContent, em: (box(name).left - box(before).right) / em });
+  }
+  return { brackets, spaces };
+}
+
+/** Brackets taller than this many times what they hold (plus a pixel) stand out. */
+const BRACKET_MAX_RATIO = 1.4;
+/** The least space before a function's name after a factor, em (TeX's thin space is 0.167 em). */
+const FUNCTION_SPACE_MIN_EM = 0.12;
+
+/** Checks `mathTypesetting()`'s findings, naming what is wrong. */
+function assertTypesetting(name, t) {
+  assert.ok(t.brackets.length >= 1 && t.spaces.length >= 2, `${name}: brackets and functions found: ${JSON.stringify(t)}`);
+  const tall = t.brackets.filter((b) => b.bracket > BRACKET_MAX_RATIO * b.content + 1);
+  assert.deepEqual(tall, [], `${name}: brackets taller than what they hold`);
+  const tight = t.spaces.filter((s) => s.em < FUNCTION_SPACE_MIN_EM);
+  assert.deepEqual(tight, [], `${name}: no space before cos`);
+}
+
 // ---------------------------------------------------------------------------
 // One small interface over the two drivers.
 
@@ -514,6 +572,13 @@ for (const [name, launch, available] of [
       assert.deepEqual(await b.problems(), [], "the page reported problems");
     });
 
+    test('cartpole: "The math" sets brackets to what they hold and a thin space before cos (issue 53 §6)', async () => {
+      const t = await openAndWait(b, "#/cartpole/simulation", mathTypesetting);
+      console.log(`# ${b.name} typesetting ${JSON.stringify(t)}`);
+      assertTypesetting(b.name, t);
+      assert.deepEqual(await b.problems(), [], "the page reported problems");
+    });
+
     for (const [id, tab] of ACCENT_PAGES) {
       const where = tab === "theory" ? "the Theory tab shows its formulas" : `the ${tab} tab's "The math" shows its formulas`;
       test(`${id}: ${where}, every accent drawn over its letter`, async () => {
@@ -532,6 +597,18 @@ for (const [name, launch, available] of [
     }
   });
 }
+
+test('Chromium: cartpole\'s "The math" sets brackets to what they hold and a thin space before cos (issue 53 §6)', { skip: ids.length ? false : "no dist" }, async () => {
+  const b = await chromium();
+  try {
+    await b.goto(`${server.base}index.html#/cartpole/simulation`);
+    const t = await b.waitFor(mathTypesetting);
+    console.log(`# ${b.name} typesetting ${JSON.stringify(t)}`);
+    assertTypesetting(b.name, t);
+  } finally {
+    await b.close();
+  }
+});
 
 // Chromium (the other test files' browser) for the accents' side-by-side picture.
 test("accents side by side in Chromium, Firefox and WebKit", { skip: ids.length ? false : "no dist" }, async () => {

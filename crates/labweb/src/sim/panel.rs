@@ -770,7 +770,7 @@ impl SimState {
                 dom::rewrite_markup(&numbers, &parts.0);
             }
             if let Some(result) = query(&block, ".equation-result") {
-                dom::rewrite_markup(&result, &format!("= {}", parts.1));
+                dom::rewrite_markup(&result, &parts.1);
             }
             if let Some(text) = query(&block, ".equation-text") {
                 dom::rewrite_markup(&text, &parts.2);
