@@ -49,10 +49,10 @@ test("live math: fk's panel writes x and y with the student's numbers, and they 
     assert.match(x, /= 1\.00 m × cos 60\.0° \+ 0\.80 m × cos \(60\.0° \+ 60\.0°\) = 0\.100 m$/);
     // MathML is drawn; assistive technology reads the text twin instead.
     // x and y alike: the symbols a <math> a term (2); the numbers a <math> a
-    // factor of each term and one more for the bracketed sum's second term
-    // ("1.00 m", "× cos 35.0°", "+0.80 m", "× cos(35.0°", "+60.0°)": 5), so that a
-    // line can break between them.
-    assert.equal(await page.locator(".live-math .equation-forms math").count(), 14, "x and y: 2 + 5 <math> each");
+    // factor of each term ("1.00 m", "× cos 35.0°", "+0.80 m",
+    // "× cos(35.0° + 60.0°)": 4, a sum of two numbers in brackets kept
+    // whole), so that a line can break between them.
+    assert.equal(await page.locator(".live-math .equation-forms math").count(), 12, "x and y: 2 + 4 <math> each");
     // The numbers and results are hidden from it; the symbols stay reachable
     // (each quantity's symbol takes the keyboard's focus, issue 27 §3).
     assert.equal(await page.locator(".live-math .equation-forms > [aria-hidden=true]").count(), 4);
