@@ -187,6 +187,31 @@ test("controls: number boxes line up in one column, grouped controls sit under c
     }
   }));
 
+// Issue 53 §7: pid's Ki unit, N/(m·s), ran past its card.
+test("controls: every unit stands inside its control's row, at 1280 px and on a phone", async () => {
+  for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 }]) {
+    await withPage(lab, { viewport }, async (page) => {
+      for (const id of builtExperimentIds()) {
+        await open(lab, page, `#/${id}/simulation`);
+        await page.$$eval(`${ART} details.ctl-group`, (ds) => ds.forEach((d) => { d.open = true; }));
+        const past = await page.$$eval(`${ART} .sim-controls .ctl`, (rows) =>
+          rows.flatMap((row) => {
+            const unit = row.querySelector(".unit");
+            if (!unit || !unit.textContent.trim() || unit.getBoundingClientRect().width === 0) return [];
+            // The text's own extent: the unit's box may be narrower than its text.
+            const text = document.createRange();
+            text.selectNodeContents(unit);
+            const r = text.getBoundingClientRect();
+            const card = row.getBoundingClientRect();
+            return r.right > card.right + 0.5 ? [`${row.dataset.ctl} ${unit.textContent}: ${Math.round(r.right - card.right)} px past`] : [];
+          }),
+        );
+        assert.deepEqual(past, [], `${id} at ${viewport.width} px`);
+      }
+    });
+  }
+});
+
 test("astar on a phone: open-list numbers never wrap mid-number", () =>
   withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true, clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");

@@ -154,7 +154,7 @@ test("live links: pid's gains and error in the Theory formula show the run's val
     const tip = page.locator("article.exp:not([hidden]) .live-tip");
     const kp = await page.$eval("#p-kp", (i) => Number(i.value));
     await page.locator(`${THEORY} .formula [data-live=kp]`).first().focus();
-    assert.equal((await tip.textContent()).trim(), `Kp = ${kp.toFixed(1)}`);
+    assert.equal((await tip.textContent()).trim(), `Kp = ${kp.toFixed(1)} N/m`);
     await page.locator(`${THEORY} .formula [data-live=e]`).first().focus();
     assert.match((await tip.textContent()).trim(), /^e = -?\d+\.\d{4} m$/);
   }));
@@ -234,7 +234,7 @@ for (const [viewport, name] of [
       await symbol.hover();
       const tip = page.locator("article.exp:not([hidden]) .live-tip");
       await tip.waitFor();
-      assert.match((await tip.textContent()).trim(), /^Pxx = \d\.\d+ m²$/);
+      assert.match((await tip.textContent()).trim(), /^σx² = \d\.\d+ m²$/);
       await screenshot(page, `livelinks-ekf-theory-pxx-${name}`);
     }));
 }

@@ -13,10 +13,11 @@ function equationTexts(page) {
   return page.$$eval(".live-math .equation-text", (els) => els.map((e) => e.textContent.trim()));
 }
 
-/** Evaluates "a·cos b° + c·cos d°"-style substituted text, as the panel writes it. */
+/** Evaluates "a m × cos b° + c m × cos d°"-style substituted text, as the panel writes it. */
 function evaluate(substituted) {
   const js = substituted
-    .replace(/·/g, "*")
+    .replace(/ m(?=[ )]|$)/g, "")
+    .replace(/×/g, "*")
     .replace(/−/g, "-")
     .replace(/cos /g, "Math.cos")
     .replace(/sin /g, "Math.sin")
@@ -29,8 +30,9 @@ test("live math: fk's panel writes x and y with the student's numbers, and they 
     await open(lab, page, "#/fk/simulation?t1=35&t2=60&l1=1&l2=0.8");
     await assert.doesNotReject(page.locator(".live-math h3", { hasText: "The math" }).waitFor());
     let [x, y] = await equationTexts(page);
-    assert.equal(x, "x = L1 cos θ1 + L2 cos (θ1 + θ2) = 1.00·cos 35.0° + 0.80·cos (35.0° + 60.0°) = 0.749 m");
-    assert.match(y, /^y = L1 sin θ1 \+ L2 sin \(θ1 \+ θ2\) = 1\.00·sin 35\.0° \+ 0\.80·sin \(35\.0° \+ 60\.0°\) = /);
+    // Every number with its unit (issue 53 §6).
+    assert.equal(x, "x = L1 cos θ1 + L2 cos (θ1 + θ2) = 1.00 m × cos 35.0° + 0.80 m × cos (35.0° + 60.0°) = 0.749 m");
+    assert.match(y, /^y = L1 sin θ1 \+ L2 sin \(θ1 \+ θ2\) = 1\.00 m × sin 35\.0° \+ 0\.80 m × sin \(35\.0° \+ 60\.0°\) = /);
     // A slider moved: the numbers and the result follow, and still agree.
     await page.locator("#p-t1").fill("60");
     await runFor(page, 400);
@@ -44,13 +46,13 @@ test("live math: fk's panel writes x and y with the student's numbers, and they 
         `${key}: ${substituted} evaluates to the readout ${r[key]}`,
       );
     }
-    assert.match(x, /= 1\.00·cos 60\.0° \+ 0\.80·cos \(60\.0° \+ 60\.0°\) = 0\.100 m$/);
+    assert.match(x, /= 1\.00 m × cos 60\.0° \+ 0\.80 m × cos \(60\.0° \+ 60\.0°\) = 0\.100 m$/);
     // MathML is drawn; assistive technology reads the text twin instead.
     // x and y alike: the symbols a <math> a term (2); the numbers a <math> a
-    // factor of each term and one more for the bracketed sum's second term
-    // ("1.00", "·cos 35.0°", "+0.80", "·cos(35.0°", "+60.0°)": 5), so that a
-    // line can break between them.
-    assert.equal(await page.locator(".live-math .equation-forms math").count(), 14, "x and y: 2 + 5 <math> each");
+    // factor of each term ("1.00 m", "× cos 35.0°", "+0.80 m",
+    // "× cos(35.0° + 60.0°)": 4, a sum of two numbers in brackets kept
+    // whole), so that a line can break between them.
+    assert.equal(await page.locator(".live-math .equation-forms math").count(), 12, "x and y: 2 + 4 <math> each");
     // The numbers and results are hidden from it; the symbols stay reachable
     // (each quantity's symbol takes the keyboard's focus, issue 27 §3).
     assert.equal(await page.locator(".live-math .equation-forms > [aria-hidden=true]").count(), 4);
@@ -69,7 +71,7 @@ test("live math: on a phone the panel sits right after the readouts", () =>
     await screenshot(page, "livemath-fk-390");
   }));
 
-/** The panel's results, `= 0.749 m` each. */
+/** The panel's results, `= 0.749 m` each, or nothing where an equation says in words why it has no numbers. */
 function equationResults(page) {
   return page.$$eval(".live-math .equation-result", (els) => els.map((e) => e.textContent.trim()));
 }
@@ -129,13 +131,26 @@ test("live math: every experiment's panel shows results equal to its readouts, a
       );
       const r = await readouts(page);
       for (const result of await equationResults(page)) {
+        if (result === "") continue;
         assert.ok(
           Object.values(r).some((value) => `= ${value}` === result),
           `${link}: the panel's ${result} is one of the readouts`,
         );
       }
       // At least one equation has a number to show once the run has gone on.
-      assert.ok((await equationResults(page)).some((t) => t !== "= --"), `${link}: a result`);
+      assert.ok((await equationResults(page)).some((t) => t !== ""), `${link}: a result`);
+      // No number is followed by dashes: where there are no numbers, words say why (issue 53 §6).
+      const words = await page.$$eval(".live-math .equation", (els) =>
+        els.map((e) => ({ key: e.dataset.key, result: e.querySelector(".equation-result").textContent.trim(), why: e.querySelector(".equation-absent")?.textContent.trim() ?? "" })),
+      );
+      for (const w of words) {
+        assert.ok(w.result !== "" || w.why.length > 10, `${link}: ${w.key} has neither numbers nor words`);
+      }
+      assert.ok(!texts.some((t) => t.includes("--")), `${link}: dashes in ${JSON.stringify(texts)}`);
+      if (link === "#/pid/simulation") {
+        // Ki = 2: ωn and ζ hold for Ki = 0 only, and say so.
+        assert.deepEqual(words.slice(1).map((w) => w.why.startsWith("Only with Ki = 0")), [true, true]);
+      }
       // Each equation holds its own layout: its screen-reader twin (placed
       // absolutely) is laid out in it, not from the page's root, and it
       // spans the panel's width (its contained inline size is the panel's).
@@ -153,13 +168,13 @@ test("live math: every experiment's panel shows results equal to its readouts, a
       }
       if (link.includes("sat=1")) {
         // The limit chose the other law: symbols and numbers both clamp.
-        assert.match(texts[0], /^u = clamp\(Kp e \+ Ki ∫e − Kd ẏ, ±umax\) = clamp\(/);
+        assert.match(texts[0], /^u = clamp\(Kp e \+ Ki ∫e dt − Kd x\u0307, ±umax\) = clamp\(/);
         assert.match(await page.locator(".live-math .equation-caption").first().textContent(), /actuator limit/);
       }
       if (link.includes("ki=0")) {
         // ωn = √(Kp/m) = √(25.0 / 1.0) = 5.000 rad/s, ζ = (c + Kd)/(2√(m Kp)) = 0.600.
-        assert.equal(texts[1], "ωn = √((Kp) / (m)) = √((25.0) / (1.0)) = 5.000 rad/s");
-        assert.equal(texts[2], "ζ = (c + Kd) / (2 √(m Kp)) = (1.0 + 5.0) / (2·√(1.0·25.0)) = 0.600");
+        assert.equal(texts[1], "ωn = √((Kp) / (m)) = √((25.0 N/m) / (1.0 kg)) = 5.000 rad/s");
+        assert.equal(texts[2], "ζ = (c + Kd) / (2 √(m Kp)) = (1.0 N·s/m + 5.0 N·s/m) / (2 × √(1.0 kg × 25.0 N/m)) = 0.600");
       }
       await page.locator(".live-math").scrollIntoViewIfNeeded();
       const shot = name ?? link.split("/")[1];
@@ -189,7 +204,7 @@ test("live math: while a run plays, every time the panel names the readouts' ste
         if (seen.math === undefined || seen.math !== seen.shown) continue;
         steps.add(seen.math);
         for (const result of seen.results) {
-          if (result === "= --") continue;
+          if (result === "") continue;
           assert.ok(
             seen.values.some((value) => `= ${value}` === result),
             `${link} at step ${seen.math}: the panel's ${result} is one of that step's readouts ${JSON.stringify(seen.values)}`,

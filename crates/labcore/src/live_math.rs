@@ -12,7 +12,11 @@
 //!
 //! Angles are shown in degrees: a quantity with unit `°` is a number of
 //! degrees, and [`Expr::Cos`]/[`Expr::Sin`] take their argument in degrees,
-//! as the substituted form reads (`1.00·cos 35°`).
+//! as the substituted form reads (`1.00 m × cos 35°`). Every number is put
+//! in with its unit ([`Quantity::unit`]: `rad` where a controller works in
+//! radians beside a readout in degrees); a quantity without one is a pure
+//! number (a count, a weight). Its symbol is the one the experiment's
+//! Theory tab writes for it.
 
 use crate::units::format_fixed;
 
@@ -104,7 +108,8 @@ pub enum Expr {
     Num(f64, &'static str),
     Add(&'static Expr, &'static Expr),
     Sub(&'static Expr, &'static Expr),
-    /// A product, written with a middle dot between factors.
+    /// A product: symbols side by side, numbers (with their units) with a
+    /// cross between factors.
     Mul(&'static Expr, &'static Expr),
     /// A quotient, written as a fraction.
     Div(&'static Expr, &'static Expr),
@@ -219,6 +224,11 @@ pub struct Equation {
     pub readout: &'static str,
     /// What the equation says, for the panel's caption and screen readers.
     pub caption: &'static str,
+    /// Why there are no numbers to put in, said in words where a number the
+    /// equation reads, or its readout, has no value (no goal yet, no
+    /// landmark seen, a formula that holds only with Ki = 0): the panel
+    /// then shows the symbols and these words, never a row of `--`.
+    pub absent: &'static str,
 }
 
 /// The equations of `all` that `keys` name (the content's `math` list), in
@@ -392,6 +402,7 @@ mod tests {
                 expr: Expr::Num(0.0, "0"),
                 readout: "x",
                 caption: "",
+                absent: "",
             }
         }
         const ALL: [Equation; 3] = [eq("a"), eq("b"), eq("c")];

@@ -154,10 +154,10 @@ fn keys_tagged_along_random_runs(e: &mut dyn Lab, seed: u64) -> Vec<&'static str
 /// nothing to highlight for them.
 const VALUES_ONLY: [(&str, &[&str]); 6] = [
     ("workspace", &["lmax"]),
-    ("pid", &["kp", "ki", "kd", "ie", "de"]),
+    ("pid", &["kp", "ki", "kd", "ie", "de", "dy"]),
     ("diffdrive", &["kw", "kv", "vmax", "wmax"]),
     ("astar", &["w"]),
-    ("cartpole", &["kth", "kom", "kx", "kv", "omk", "vk"]),
+    ("cartpole", &["kth", "kom", "kx", "kv", "omk", "vk", "flim"]),
     ("rrtstar", &["gamma"]),
 ];
 

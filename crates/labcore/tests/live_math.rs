@@ -453,7 +453,7 @@ fn live_math_dls_error_manipulability_and_condition_by_hand() {
     assert_eq!(quantity(e.as_ref(), "b"), -2.8767);
     assert_eq!(quantity(e.as_ref(), "c"), 5.5468);
     let (w, text) = equation(e.as_ref(), "w");
-    assert!(close(w, 0.425_08, 1e-5) && text == "0.426", "{w} {text}");
+    assert!(close(w, 0.425_08, 1e-5) && text == "0.426 m²", "{w} {text}");
     assert!(close(1.44 * 0.3f64.sin(), 0.4255, 1e-4));
     // σmax/σmin = 2.654 / 0.1603 = 16.6.
     let (kappa, text) = equation(e.as_ref(), "condition");

@@ -38,7 +38,7 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
              <p class=\"equation-forms\">\
              {symbols} \
              <span class=\"equation-numbers\" aria-hidden=\"true\">{numbers}</span> \
-             <span class=\"equation-result\" aria-hidden=\"true\">= {result}</span></p>\
+             <span class=\"equation-result\" aria-hidden=\"true\">{result}</span></p>\
              <p class=\"sr-only equation-text\">{text}</p></div>",
             key = eq.key,
             caption = escape(eq.caption),
@@ -51,31 +51,53 @@ pub fn panel_html(equations: &[Equation], quantities: &[Quantity], readouts: &[R
 
 /// The parts of an equation that change with the run: the substituted form
 /// (MathML that may wrap between the terms of its top-level sum), the
-/// result (the readout's text) and the whole equation as text.
+/// result (`= ` and the readout's text) and the whole equation as text.
+///
+/// Where a number the equation reads, or its readout, has no value (no
+/// goal yet, ωn with Ki ≠ 0), no numbers are put in: the substituted form
+/// is the equation's words saying why ([`Equation::absent`]), the result is
+/// empty, and the text is the equation in symbols and those words. A row
+/// of numbers ending in `= --` told a student nothing (issue 53 §6).
 #[must_use]
 pub fn live_parts(
     eq: &Equation,
     quantities: &[Quantity],
     readouts: &[Readout],
 ) -> (String, String, String) {
-    let result = readouts
-        .iter()
-        .find(|r| r.key == eq.readout)
-        .map_or("--", |r| r.value.as_str());
     let mut text = Writer::new(Target::Text, Form::Symbols, quantities);
     text.symbol(eq.symbol);
     text.out.push_str(" = ");
     text.expr(&eq.expr, 0);
+    let symbols = text.out.len();
     text.out.push_str(" = ");
     text.form = Form::Numbers;
     text.expr(&eq.expr, 0);
-    text.out.push_str(" = ");
-    text.out.push_str(result);
-    (
-        wrapping_mathml(&eq.expr, quantities),
-        escape(result),
-        escape(&text.out),
-    )
+    let result = readouts
+        .iter()
+        .find(|r| r.key == eq.readout)
+        .map(|r| r.value.as_str())
+        .filter(|v| !text.missing && !v.starts_with("--"));
+    match result {
+        Some(result) => {
+            text.out.push_str(" = ");
+            let at = text.out.len() - 2;
+            text.out.push_str(result);
+            (
+                wrapping_mathml(&eq.expr, quantities),
+                escape(&text.out[at..]),
+                escape(&text.out),
+            )
+        }
+        None => {
+            text.out.truncate(symbols);
+            text.out.push_str(". ");
+            text.out.push_str(eq.absent);
+            let mut words = String::from("<span class=\"equation-absent\">");
+            words.push_str(&escape(eq.absent));
+            words.push_str("</span>");
+            (words, String::new(), escape(&text.out))
+        }
+    }
 }
 
 /// The substituted form as MathML that may wrap between the terms of its
@@ -115,6 +137,8 @@ struct Writer<'a> {
     flowing: bool,
     /// Term boxes nested in the current term and still open.
     open: usize,
+    /// A number put in had no value (and was not hidden).
+    missing: bool,
 }
 
 impl<'a> Writer<'a> {
@@ -126,6 +150,7 @@ impl<'a> Writer<'a> {
             quantities,
             flowing: false,
             open: 0,
+            missing: false,
         }
     }
 
@@ -137,52 +162,141 @@ impl<'a> Writer<'a> {
         });
     }
 
-    /// A token: `<mi>`/`<mn>` in MathML, the bare text otherwise. A letter
-    /// with a combining dot (`θ̇`: θ and U+0307) is written as the reading
-    /// pages write `\dot` (labtex's `accents::portable`), the one form that
-    /// Chromium, Firefox and WebKit all draw over its letter: as `<mi>θ̇</mi>`
-    /// Chromium with DejaVu Serif drew no dot at all, and cartpole's θ̇ read
-    /// θ. (No symbol has another accent: a test keeps it so.)
+    /// A token: `<tag>` in MathML, the bare text otherwise.
     fn token(&mut self, tag: &str, text: &str) {
         match self.to {
-            Target::MathMl => match text.strip_suffix('\u{307}') {
-                Some(base) if !base.is_empty() => {
-                    let _ = write!(
-                        self.out,
-                        "<mover accent=\"true\"><mi>{}</mi><mo stretchy=\"true\">\u{2D9}</mo></mover>",
-                        escape(base)
-                    );
-                }
-                _ => {
-                    let _ = write!(self.out, "<{tag}>{}</{tag}>", escape(text));
-                }
-            },
+            Target::MathMl => {
+                let _ = write!(self.out, "<{tag}>{}</{tag}>", escape(text));
+            }
             Target::Text => self.out.push_str(text),
         }
     }
 
-    /// A symbol spec: a base and an optional subscript after `_`.
-    fn symbol(&mut self, spec: &str) {
-        let kind = |t: &str| {
-            if !t.is_empty() && t.chars().all(|c| c.is_ascii_digit()) {
-                "mn"
+    /// The letters of a symbol spec's base or subscript as MathML tokens, in
+    /// an `<mrow>` where there are several and `group` asks for one:
+    /// - each letter its own `<mi>` (italic, as the Theory's LaTeX writes
+    ///   `P_{xx}`), an upper-case Greek letter upright (`Λ`, `Δ`), and a word
+    ///   of three or more Latin letters one upright `<mi>` (`max`, `att`);
+    /// - a letter with a combining dot or hat (`θ̇`: θ and U+0307, `ẑ`: z
+    ///   and U+0302) as the reading pages write `\dot` and `\hat` (labtex's
+    ///   `accents::portable`), the one form that Chromium, Firefox and
+    ///   WebKit all draw over its letter (as `<mi>θ̇</mi>` Chromium with
+    ///   DejaVu Serif drew no dot at all);
+    /// - digits an `<mn>`, `∫` and `|` operators, a space a thin space
+    ///   (`∫e dt`).
+    fn letters(&mut self, text: &str, group: bool) {
+        if self.to == Target::Text {
+            self.out.push_str(text);
+            return;
+        }
+        let word = text.len() >= 3 && text.bytes().all(|b| b.is_ascii_alphabetic());
+        if word || text.bytes().all(|b| b.is_ascii_digit()) {
+            let tag = if word { "mi>" } else { "mn>" };
+            for part in ["<", tag, text, "</", tag] {
+                self.out.push_str(part);
+            }
+            return;
+        }
+        let accented = |c: char| matches!(c, '\u{307}' | '\u{302}');
+        let group = group && text.chars().filter(|&c| !accented(c)).count() > 1;
+        if group {
+            self.out.push_str("<mrow>");
+        }
+        let mut rest = text;
+        while let Some(c) = rest.chars().next() {
+            let (letter, after) = rest.split_at(c.len_utf8());
+            let accent = match after.chars().next() {
+                Some('\u{307}') => "\u{2D9}",
+                Some('\u{302}') => "^",
+                _ => "",
+            };
+            rest = if accent.is_empty() {
+                after
             } else {
-                "mi"
+                &after[2..]
+            };
+            let parts = if accent.is_empty() {
+                match c {
+                    ' ' => ["<mspace width=\"0.1667em\"></mspace>", "", ""],
+                    '∫' | '|' => ["<mo stretchy=\"false\">", letter, "</mo>"],
+                    'Γ'..='Ω' => ["<mi mathvariant=\"normal\">", letter, "</mi>"],
+                    _ => ["<mi>", letter, "</mi>"],
+                }
+            } else {
+                [
+                    "<mover accent=\"true\"><mi>",
+                    letter,
+                    "</mi><mo stretchy=\"true\">",
+                ]
+            };
+            for part in parts {
+                self.out.push_str(part);
             }
-        };
-        match spec.split_once('_') {
-            Some((base, sub)) => {
-                self.put("<msub>", "");
-                self.token(kind(base), base);
-                self.token(kind(sub), sub);
-                self.put("</msub>", "");
+            if !accent.is_empty() {
+                self.out.push_str(accent);
+                self.out.push_str("</mo></mover>");
             }
-            None => self.token(kind(spec), spec),
+        }
+        if group {
+            self.out.push_str("</mrow>");
         }
     }
 
-    /// A quantity's number as shown, a negative one (or a missing one)
-    /// bracketed inside an operation, degrees with their sign.
+    /// A symbol spec: a base, an optional subscript after `_` and an
+    /// optional `²` (`θ_1`, `K_p`, `σ_x²`, `ẑ_φ`), or such a spec between
+    /// bars (`|F_att|`, a magnitude).
+    fn symbol(&mut self, spec: &str) {
+        if let Some(inner) = spec
+            .strip_prefix('|')
+            .and_then(|s| s.strip_suffix('|'))
+            .filter(|s| !s.is_empty())
+        {
+            self.letters("|", false);
+            self.symbol(inner);
+            self.letters("|", false);
+            return;
+        }
+        let (spec, squared) = match spec.strip_suffix('²') {
+            Some(s) => (s, true),
+            None => (spec, false),
+        };
+        let (base, sub) = match spec.split_once('_') {
+            Some((base, sub)) => (base, Some(sub)),
+            None => (spec, None),
+        };
+        let tag = match (sub, squared) {
+            (Some(_), true) => "msubsup",
+            (Some(_), false) => "msub",
+            (None, true) => "msup",
+            (None, false) => "",
+        };
+        let mathml = self.to == Target::MathMl && !tag.is_empty();
+        if mathml {
+            self.out.push('<');
+            self.out.push_str(tag);
+            self.out.push('>');
+        }
+        self.letters(base, !tag.is_empty());
+        if let Some(sub) = sub {
+            self.letters(sub, true);
+        }
+        if squared {
+            self.put("<mn>2</mn>", "²");
+        }
+        if mathml {
+            self.out.push_str("</");
+            self.out.push_str(tag);
+            self.out.push('>');
+        }
+    }
+
+    /// A quantity's number as shown with its unit (`0.4700 m`, `35.0°`,
+    /// `0.01009 rad`: the unit the number is in, whatever unit a readout
+    /// beside it uses), bracketed inside an operation where it is negative
+    /// or missing, raised to a power with its unit (`(0.0950 m/s)²`), or
+    /// written in the magnitude form in a product (`(5.3 × 10⁻⁵ rad)`).
+    /// `outer` is the binding strength around it ([`precedence`]; 5 for
+    /// the base of a power).
     fn number(&mut self, q: &Quantity, outer: u8) {
         let number = q.number_text();
         // "--" (no value) is not a negative number.
@@ -190,45 +304,41 @@ impl<'a> Writer<'a> {
             Some(rest) if rest.starts_with(|c: char| c.is_ascii_digit()) => (true, rest),
             _ => (false, number.as_str()),
         };
-        // Bracketed inside an operation: a negative number, and "--" too,
-        // so a missing value squared reads (--)².
-        let bracket = (negative || !q.value.is_finite()) && outer > 0;
-        // The degree sign inside the number: as a trailing `<mo>` Chromium
-        // may leave it out at the end of a `<math>`.
-        let degrees = if q.unit == "°" && !q.hidden {
-            "°"
-        } else {
+        self.missing |= !q.hidden && !q.value.is_finite();
+        let unit = if q.hidden || !q.value.is_finite() {
             ""
+        } else {
+            q.unit
         };
-        if self.to == Target::MathMl {
-            // Sign-stable: one `<mn>` holds the number with its sign and
-            // brackets, so a value that changes sign (or goes missing) is
-            // rewritten in its text node (`dom::rewrite_markup`), not parsed
-            // and laid out anew as other elements: 15 of 71 of ekf's
-            // equation writes in 4 s were such, 24.6 ms in all. The text
-            // sits as TeX sets a unary minus, with no space; the numbers are
-            // hidden from screen readers (their text twin reads them).
-            let (open, close) = if bracket { ("(", ")") } else { ("", "") };
-            let minus = if negative { "−" } else { "" };
-            self.token("mn", &format!("{open}{minus}{digits}{degrees}{close}"));
-            return;
-        }
-        if bracket {
-            self.bracket(true);
-        }
-        if negative {
-            self.put(UNARY_MINUS, "−");
-        }
-        self.token("mn", &format!("{digits}{degrees}"));
-        if bracket {
-            self.bracket(false);
-        }
+        // The degree sign sits on the number; another unit a narrow space
+        // after it (a space in the text twin).
+        let spaced = !unit.is_empty() && unit != "°";
+        let bracket = ((negative || !q.value.is_finite()) && outer > 0)
+            || (spaced && outer > 4)
+            || (number.contains('×') && outer > 1);
+        let (open, close) = if bracket { ("(", ")") } else { ("", "") };
+        let minus = if negative { "−" } else { "" };
+        let space = match (spaced, self.to) {
+            (false, _) => "",
+            (true, Target::MathMl) => "\u{202F}",
+            (true, Target::Text) => " ",
+        };
+        // Sign-stable: one `<mn>` holds the number with its sign, unit and
+        // brackets, so a value that changes sign (or goes missing) is
+        // rewritten in its text node (`dom::rewrite_markup`), not parsed and
+        // laid out anew as other elements: 15 of 71 of ekf's equation
+        // writes in 4 s were such, 24.6 ms in all. The text sits as TeX sets
+        // a unary minus, with no space; the degree sign inside the number,
+        // as a trailing `<mo>` Chromium may leave it out at the end of a
+        // `<math>`. The numbers are hidden from screen readers (their text
+        // twin reads them).
+        self.token("mn", &format!("{open}{minus}{digits}{space}{unit}{close}"));
     }
 
     /// `lead` and `expr` (MathML) as boxes a line may break between: one
     /// for each term of its top-level sum, led by its sign (the first by
     /// `lead`), separated by spaces; with numbers, a term's product also
-    /// breaks between its factors, each led by its dot (`<wbr>`, no space).
+    /// breaks between its factors, each led by its cross (`<wbr>`, no space).
     /// The sums inside a term break between their terms the same way (see
     /// [`Writer::expr`]), each further term a box nested in the current one;
     /// a fraction, a root's bar, a square and, with symbols, a product
@@ -269,18 +379,58 @@ impl<'a> Writer<'a> {
         });
     }
 
-    /// A bracket: with numbers of one size (`stretchy="false"`), since a
-    /// stretchy bracket grows to the row it stands in and a bracket's two
-    /// halves may stand in different boxes ([`Writer::parts`]).
-    fn bracket(&mut self, open: bool) {
-        let flat = self.form == Form::Numbers;
-        let mathml = match (open, flat) {
-            (true, true) => "<mo stretchy=\"false\">(</mo>",
-            (false, true) => "<mo stretchy=\"false\">)</mo>",
-            (true, false) => "<mo>(</mo>",
-            (false, false) => "<mo>)</mo>",
+    /// A bracket, `tall` around a fraction or a root's bar: then it
+    /// stretches to what it holds, the two halves and the content in one
+    /// `<mrow>` (the content does not break, [`Writer::flowing`]).
+    /// Otherwise it is of one size (`stretchy="false"`): a stretchy bracket
+    /// grows to the tallest thing in the row it stands in (cartpole's
+    /// `(M + m)` stood twice the height of M beside a ½ and a θ̇, in
+    /// Chromium and WebKit), and its two halves may stand in different
+    /// boxes ([`Writer::parts`]).
+    fn bracket(&mut self, open: bool, tall: bool) {
+        let mathml = match (open, tall) {
+            (true, false) => "<mo stretchy=\"false\">(</mo>",
+            (false, false) => "<mo stretchy=\"false\">)</mo>",
+            (true, true) => "<mrow><mo>(</mo>",
+            (false, true) => "<mo>)</mo></mrow>",
         };
         self.put(mathml, if open { "(" } else { ")" });
+    }
+
+    /// `content` between brackets ([`Writer::bracket`]), bound as `outer`.
+    fn bracketed(&mut self, content: &Expr, outer: u8) {
+        let tall = self.tall(content);
+        let flowing = self.flowing;
+        self.flowing &= !tall && !short_sum(content);
+        self.bracket(true, tall);
+        self.expr(content, outer);
+        self.bracket(false, tall);
+        self.flowing = flowing;
+    }
+
+    /// Whether `expr` is written with a fraction bar or a root's bar in it
+    /// (in this writer's form), so that a bracket around it must stretch.
+    fn tall(&self, expr: &Expr) -> bool {
+        match *expr {
+            Expr::Var(_) | Expr::Num(..) => false,
+            Expr::Div(a, _) if !self.inline_division(a) => true,
+            Expr::Sqrt(_) if self.form == Form::Symbols => true,
+            Expr::Add(a, b)
+            | Expr::Sub(a, b)
+            | Expr::Mul(a, b)
+            | Expr::Div(a, b)
+            | Expr::Max(a, b)
+            | Expr::Min(a, b)
+            | Expr::Clamp(a, b) => self.tall(a) || self.tall(b),
+            Expr::Neg(a)
+            | Expr::Cos(a)
+            | Expr::Sin(a)
+            | Expr::CosRad(a)
+            | Expr::Ln(a)
+            | Expr::Sqrt(a)
+            | Expr::Sq(a)
+            | Expr::Acos(a) => self.tall(a),
+        }
     }
 
     /// Whether a quotient with numerator `a` is written on the line,
@@ -297,7 +447,7 @@ impl<'a> Writer<'a> {
     /// While [`Writer::flowing`], a sum closes the open part after each
     /// term but the last and opens a box for the next (nested in the box
     /// open where the sum starts), and with numbers a product opens a part
-    /// for each factor, led by its dot.
+    /// for each factor, led by its cross.
     fn expr(&mut self, expr: &Expr, outer: u8) {
         let start = self.open;
         let flowing = self.flowing;
@@ -310,9 +460,13 @@ impl<'a> Writer<'a> {
             Expr::Div(a, _) => self.inline_division(a),
             _ => true,
         };
-        let paren = precedence(expr) < outer;
+        let paren = precedence(expr) < outer.min(4);
+        let tall = paren && self.tall(expr);
+        if tall || (paren && short_sum(expr)) {
+            self.flowing = false;
+        }
         if paren {
-            self.bracket(true);
+            self.bracket(true, tall);
         }
         match *expr {
             Expr::Var(key) => match self.quantities.iter().find(|q| q.key == key) {
@@ -347,31 +501,38 @@ impl<'a> Writer<'a> {
                 self.expr(b, 2);
             }
             Expr::Mul(a, b) => {
-                // Symbols multiply by juxtaposition (L₁ cos θ₁); numbers need a dot.
+                // Symbols multiply by juxtaposition (L₁ cos θ₁), with a thin
+                // space before a function's name as TeX sets `l\cos\theta`
+                // (MathML puts none: "mlẋθ̇cos θ"). Numbers, which carry
+                // their units (`N·s/m`), are multiplied by a cross, as the
+                // SI writes a product of numbers.
                 self.expr(a, 2);
                 if symbols {
-                    self.put("<mo>\u{2062}</mo>", " ");
+                    if matches!(
+                        b,
+                        Expr::Cos(_) | Expr::Sin(_) | Expr::CosRad(_) | Expr::Ln(_)
+                    ) {
+                        self.put("<mo>\u{2062}</mo><mspace width=\"0.1667em\"></mspace>", " ");
+                    } else {
+                        self.put("<mo>\u{2062}</mo>", " ");
+                    }
                 } else if self.flowing {
-                    // A dot that leads its box is a prefix operator to
+                    // A cross that leads its box is a prefix operator to
                     // MathML: the spacing it has between two factors is set
                     // by hand.
                     self.out.push_str(
                         "</math></span><wbr><span class=\"eq-part\"><math>\
-                         <mo lspace=\"0.2222em\" rspace=\"0.2222em\">·</mo>",
+                         <mo lspace=\"0.2222em\" rspace=\"0.2222em\">×</mo>",
                     );
                 } else {
-                    self.put("<mo>·</mo>", "·");
+                    self.put("<mo>×</mo>", " × ");
                 }
                 self.expr(b, 3);
             }
             Expr::Div(a, b) if self.inline_division(a) => {
-                self.bracket(true);
-                self.expr(a, 0);
-                self.bracket(false);
+                self.bracketed(a, 0);
                 self.put("<mo>/</mo>", " / ");
-                self.bracket(true);
-                self.expr(b, 0);
-                self.bracket(false);
+                self.bracketed(b, 0);
             }
             Expr::Div(a, b) => {
                 self.put("<mfrac><mrow>", "(");
@@ -402,9 +563,7 @@ impl<'a> Writer<'a> {
             }
             Expr::Sqrt(a) if self.form == Form::Numbers => {
                 self.put("<mo>√</mo>", "√");
-                self.bracket(true);
-                self.expr(a, 0);
-                self.bracket(false);
+                self.bracketed(a, 0);
             }
             Expr::Sqrt(a) => {
                 self.put("<msqrt>", "√(");
@@ -413,31 +572,33 @@ impl<'a> Writer<'a> {
             }
             Expr::Sq(a) => {
                 self.put("<msup><mrow>", "");
-                self.expr(a, 4);
+                self.expr(a, 5);
                 self.put("</mrow><mn>2</mn></msup>", "²");
             }
             Expr::Acos(a) => {
                 self.token("mi", "arccos");
                 self.put("<mo>\u{2061}</mo>", "");
-                self.bracket(true);
-                self.expr(a, 0);
-                self.bracket(false);
+                self.bracketed(a, 0);
             }
             Expr::Clamp(a, b) | Expr::Max(a, b) | Expr::Min(a, b) => {
                 let clamp = matches!(expr, Expr::Clamp(..));
                 self.token("mi", function_name(expr));
-                self.bracket(true);
+                let tall = self.tall(expr);
+                if tall {
+                    self.flowing = false;
+                }
+                self.bracket(true, tall);
                 self.expr(a, 0);
                 self.put("<mo separator=\"true\">,</mo>", ", ");
                 if clamp {
                     self.put("<mo>±</mo>", "±");
                 }
                 self.expr(b, if clamp { 4 } else { 0 });
-                self.bracket(false);
+                self.bracket(false, tall);
             }
         }
         if paren {
-            self.bracket(false);
+            self.bracket(false, tall);
         }
         self.flowing = flowing;
     }
@@ -458,6 +619,13 @@ fn function_name(expr: &Expr) -> &'static str {
         Expr::Max(..) => "max",
         _ => "min",
     }
+}
+
+/// Whether `expr` is a sum of two numbers or symbols, which a bracket
+/// keeps on one line: `(1.00 kg + 0.10 kg)` broke after its first term.
+fn short_sum(expr: &Expr) -> bool {
+    let atom = |e: &Expr| matches!(e, Expr::Var(_) | Expr::Num(..));
+    matches!(*expr, Expr::Add(a, b) | Expr::Sub(a, b) if atom(a) && atom(b))
 }
 
 /// Binding strength: sums 1, products 2, unary minus 3, atoms 4.
@@ -490,6 +658,7 @@ mod tests {
         expr: X,
         readout: "x",
         caption: "Tip x",
+        absent: "No arm.",
     };
 
     /// The `<mover>` of the first accent in `markup`.
@@ -500,15 +669,16 @@ mod tests {
     }
 
     #[test]
-    fn no_live_symbol_has_a_combining_accent_but_the_dot() {
-        // The panel writes only U+0307 as an accent over its letter
-        // (`Writer::token`); another would show as the browser pleases.
+    fn no_live_symbol_has_a_combining_accent_but_the_dot_and_the_hat() {
+        // The panel writes only U+0307 and U+0302 as accents over their
+        // letter (`Writer::letters`); another would show as the browser
+        // pleases.
         for entry in labcore::registry() {
             let exp = (entry.make)();
             for q in exp.quantities() {
                 for c in q.symbol.chars() {
                     assert!(
-                        !('\u{300}'..='\u{36F}').contains(&c) || c == '\u{307}',
+                        !('\u{300}'..='\u{36F}').contains(&c) || c == '\u{307}' || c == '\u{302}',
                         "{}: {} has the combining mark U+{:04X}",
                         entry.id,
                         q.symbol,
@@ -568,6 +738,130 @@ mod tests {
         assert!(!numbers.contains("data-live") && !text.contains("data-live"));
     }
 
+    /// Issue 53 §6: each symbol as the Theory's LaTeX writes it — an
+    /// italic letter each in `∫e dt` and `Λ_xθ` (a one-token `<mi>∫e</mi>`
+    /// set its e upright), a word subscript upright, an upper-case Greek
+    /// letter upright, a hat and bars, a square.
+    #[test]
+    fn a_symbol_is_written_letter_by_letter_as_the_theory_writes_it() {
+        assert_eq!(
+            symbol_mathml("∫e dt"),
+            "<mo stretchy=\"false\">∫</mo><mi>e</mi><mspace width=\"0.1667em\"></mspace><mi>d</mi><mi>t</mi>"
+        );
+        assert_eq!(
+            symbol_mathml("Λ_xθ"),
+            "<msub><mi mathvariant=\"normal\">Λ</mi><mrow><mi>x</mi><mi>θ</mi></mrow></msub>"
+        );
+        assert_eq!(
+            symbol_mathml("L_max"),
+            "<msub><mi>L</mi><mi>max</mi></msub>"
+        );
+        assert_eq!(
+            symbol_mathml("σ_x²"),
+            "<msubsup><mi>σ</mi><mi>x</mi><mn>2</mn></msubsup>"
+        );
+        assert_eq!(symbol_mathml("σ²"), "<msup><mi>σ</mi><mn>2</mn></msup>");
+        assert_eq!(
+            symbol_mathml("|F_att|"),
+            "<mo stretchy=\"false\">|</mo><msub><mi>F</mi><mi>att</mi></msub><mo stretchy=\"false\">|</mo>"
+        );
+        assert_eq!(
+            symbol_mathml("z\u{302}_φ"),
+            "<msub><mover accent=\"true\"><mi>z</mi><mo stretchy=\"true\">^</mo></mover><mi>φ</mi></msub>"
+        );
+        assert_eq!(
+            symbol_mathml("|Δx|"),
+            "<mo stretchy=\"false\">|</mo><mi mathvariant=\"normal\">Δ</mi><mi>x</mi><mo stretchy=\"false\">|</mo>"
+        );
+        // The text twin reads them plainly.
+        let mut text = Writer::new(Target::Text, Form::Symbols, &[]);
+        text.symbol("σ_x²");
+        text.out.push(' ');
+        text.symbol("|F_att|");
+        assert_eq!(text.out, "σx² |Fatt|");
+    }
+
+    /// Issue 53 §6: brackets stretch only around a fraction or a root's
+    /// bar, in one `<mrow>` with what they hold; elsewhere they are of one
+    /// size, or they grew to the tallest thing in their row (cartpole's
+    /// `(M + m)` beside ½ and θ̇, twice M's height).
+    #[test]
+    fn brackets_stretch_around_a_fraction_only() {
+        const SUM: Expr = Expr::Mul(&Expr::Num(0.5, "½"), &Expr::Add(&L, &T));
+        let q = quantities(35.0);
+        let mut w = Writer::new(Target::MathMl, Form::Symbols, &q);
+        w.expr(&SUM, 0);
+        assert!(
+            w.out.contains("<mo stretchy=\"false\">(</mo>") && !w.out.contains("<mo>(</mo>"),
+            "{}",
+            w.out
+        );
+        const ARC: Expr = Expr::Acos(&Expr::Div(&L, &T));
+        let mut w = Writer::new(Target::MathMl, Form::Symbols, &q);
+        w.expr(&ARC, 0);
+        assert!(
+            w.out.contains("<mrow><mo>(</mo><mfrac>")
+                && w.out.ends_with("</mfrac><mo>)</mo></mrow>"),
+            "{}",
+            w.out
+        );
+    }
+
+    /// Issue 53 §6: a thin space stands between a factor and a function's
+    /// name, as TeX sets `l\cos\theta` ("mlẋθ̇cos θ" had none).
+    #[test]
+    fn a_function_after_a_factor_has_a_thin_space_before_its_name() {
+        let q = quantities(35.0);
+        let mut w = Writer::new(Target::MathMl, Form::Symbols, &q);
+        w.expr(&X, 0);
+        assert!(
+            w.out
+                .contains("<mo>\u{2062}</mo><mspace width=\"0.1667em\"></mspace><mi>cos</mi>"),
+            "{}",
+            w.out
+        );
+    }
+
+    /// Issue 53 §6: a number raised to a power takes its unit into the
+    /// bracket, and one in the magnitude form is bracketed in a product.
+    #[test]
+    fn a_power_takes_the_unit_with_its_number_and_a_magnitude_is_bracketed() {
+        const SQ: Expr = Expr::Sq(&L);
+        let speed = [Quantity::new("l", "v", 0.095, 4, "m/s")];
+        assert_eq!(text(&SQ, Form::Numbers, &speed), "(0.0950 m/s)²");
+        const P: Expr = Expr::Mul(&L, &T);
+        let tiny = [
+            Quantity::new("l", "K", 3.5, 2, "s⁻¹"),
+            Quantity::new("t", "e", 5.3e-5, 3, "rad"),
+        ];
+        assert_eq!(
+            text(&P, Form::Numbers, &tiny),
+            "3.50 s⁻¹ × (5.3 × 10⁻⁵ rad)"
+        );
+    }
+
+    /// Issue 53 §6: where a number the equation reads has no value, or its
+    /// readout none, the panel puts no numbers in and no `= --`: the
+    /// symbols and the equation's words why.
+    #[test]
+    fn without_a_value_the_equation_says_why_in_words() {
+        let mut q = quantities(35.0);
+        q[1].value = f64::NAN;
+        let readouts = [Readout::new("x", "Tip X", "0.819 m")];
+        let (numbers, result, text) = live_parts(&EQ, &q, &readouts);
+        assert_eq!(numbers, "<span class=\"equation-absent\">No arm.</span>");
+        assert_eq!(result, "");
+        assert_eq!(text, "x = L1 cos θ1. No arm.");
+        let none = [Readout::new("x", "Tip X", "--")];
+        let (_, result, text) = live_parts(&EQ, &quantities(35.0), &none);
+        assert_eq!(
+            (result.as_str(), text.as_str()),
+            ("", "x = L1 cos θ1. No arm.")
+        );
+        let html = panel_html(&[EQ], &q, &readouts);
+        assert!(!html.contains("--") && html.contains("No arm."), "{html}");
+    }
+
     #[test]
     fn a_symbol_with_a_subscript_is_an_msub() {
         assert_eq!(symbol_mathml("θ_1"), "<msub><mi>θ</mi><mn>1</mn></msub>");
@@ -581,15 +875,15 @@ mod tests {
         let html = panel_html(&[EQ], &quantities(35.0), &readouts);
         assert!(html.contains("<h3 id=\"live-math-title\">The math</h3>"));
         assert!(html.contains(
-            "<mi>x</mi><mo>=</mo><mrow data-live=\"l\" tabindex=\"0\"><msub><mi>L</mi><mn>1</mn></msub></mrow><mo>\u{2062}</mo><mi>cos</mi>"
+            "<mi>x</mi><mo>=</mo><mrow data-live=\"l\" tabindex=\"0\"><msub><mi>L</mi><mn>1</mn></msub></mrow><mo>\u{2062}</mo><mspace width=\"0.1667em\"></mspace><mi>cos</mi>"
         ));
         assert!(html.contains(
-            "<span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn></math></span><wbr>\
-             <span class=\"eq-part\"><math><mo lspace=\"0.2222em\" rspace=\"0.2222em\">·</mo>\
+            "<span class=\"eq-part\"><math><mo>=</mo><mn>1.00\u{202F}m</mn></math></span><wbr>\
+             <span class=\"eq-part\"><math><mo lspace=\"0.2222em\" rspace=\"0.2222em\">×</mo>\
              <mi>cos</mi><mo>\u{2061}</mo><mspace width=\"0.1667em\"></mspace><mn>35°</mn></math></span>"
         ));
         assert!(html.contains("= 0.819 m"));
-        assert!(html.contains("x = L1 cos θ1 = 1.00·cos 35° = 0.819 m"));
+        assert!(html.contains("x = L1 cos θ1 = 1.00 m × cos 35° = 0.819 m"));
     }
 
     /// Issue 51 §4: a quantity hidden by an instructor's link (`hide=t`)
@@ -601,7 +895,7 @@ mod tests {
         q[1].hidden = true;
         let readouts = [Readout::new("x", "Tip X", "0.819 m")];
         let (numbers, _, text) = live_parts(&EQ, &q, &readouts);
-        assert_eq!(text, "x = L1 cos θ1 = 1.00·cos hidden = 0.819 m");
+        assert_eq!(text, "x = L1 cos θ1 = 1.00 m × cos hidden = 0.819 m");
         assert!(
             numbers.contains("<mn>hidden</mn>") && !numbers.contains("35"),
             "{numbers}"
@@ -618,7 +912,7 @@ mod tests {
             Quantity::new("l", "L", 2.0, 1, ""),
             Quantity::new("t", "e", -0.25, 2, ""),
         ];
-        let dot = "<mo lspace=\"0.2222em\" rspace=\"0.2222em\">·</mo>";
+        let dot = "<mo lspace=\"0.2222em\" rspace=\"0.2222em\">×</mo>";
         assert_eq!(
             wrapping_mathml(&P, &q),
             format!(
@@ -648,13 +942,16 @@ mod tests {
 
     #[test]
     fn the_sums_inside_a_bracket_and_a_max_break_in_boxes_nested_in_their_term() {
-        // max(0, 2·L − (L + L)) with L = 2.0.
+        // max(0, 2·L − (L + L + L)) with L = 2.0.
         const R: Expr = Expr::Max(
             &Expr::Num(0.0, "0"),
-            &Expr::Sub(&Expr::Mul(&Expr::Num(2.0, "2"), &L), &Expr::Add(&L, &L)),
+            &Expr::Sub(
+                &Expr::Mul(&Expr::Num(2.0, "2"), &L),
+                &Expr::Add(&Expr::Add(&L, &L), &L),
+            ),
         );
         let q = [Quantity::new("l", "L", 2.0, 1, "")];
-        let dot = "<mo lspace=\"0.2222em\" rspace=\"0.2222em\">·</mo>";
+        let dot = "<mo lspace=\"0.2222em\" rspace=\"0.2222em\">×</mo>";
         let (open, close) = (
             "<mo stretchy=\"false\">(</mo>",
             "<mo stretchy=\"false\">)</mo>",
@@ -675,10 +972,28 @@ mod tests {
                 &part(&format!("<mo rspace=\"0.2222em\">−</mo>{open}<mn>2.0</mn>")),
                 " ",
                 term,
+                &part("<mo rspace=\"0.2222em\">+</mo><mn>2.0</mn>"),
+                "</span> ",
+                term,
                 &part(&format!(
                     "<mo rspace=\"0.2222em\">+</mo><mn>2.0</mn>{close}{close}"
                 )),
                 "</span></span></span>",
+            ]
+            .concat()
+        );
+        // A sum of two numbers in brackets stays on one line.
+        const SHORT: Expr = Expr::Mul(&L, &Expr::Add(&L, &L));
+        assert_eq!(
+            wrapping_mathml(&SHORT, &q),
+            [
+                term,
+                &part("<mo>=</mo><mn>2.0</mn>"),
+                "<wbr>",
+                &part(&format!(
+                    "{dot}{open}<mn>2.0</mn><mo>+</mo><mn>2.0</mn>{close}"
+                )),
+                "</span>",
             ]
             .concat()
         );
@@ -790,9 +1105,9 @@ mod tests {
         const SUM: Expr = Expr::Sub(&Expr::Add(&L, &T), &L);
         assert_eq!(
             wrapping_mathml(&SUM, &quantities(35.0)),
-            "<span class=\"eq-term\"><span class=\"eq-part\"><math><mo>=</mo><mn>1.00</mn></math></span></span> \
+            "<span class=\"eq-term\"><span class=\"eq-part\"><math><mo>=</mo><mn>1.00\u{202F}m</mn></math></span></span> \
              <span class=\"eq-term\"><span class=\"eq-part\"><math><mo rspace=\"0.2222em\">+</mo><mn>35°</mn></math></span></span> \
-             <span class=\"eq-term\"><span class=\"eq-part\"><math><mo rspace=\"0.2222em\">−</mo><mn>1.00</mn></math></span></span>"
+             <span class=\"eq-term\"><span class=\"eq-part\"><math><mo rspace=\"0.2222em\">−</mo><mn>1.00\u{202F}m</mn></math></span></span>"
         );
     }
 
@@ -803,14 +1118,14 @@ mod tests {
     }
 
     #[test]
-    fn the_text_twin_writes_symbols_by_juxtaposition_and_numbers_with_dots() {
+    fn the_text_twin_writes_symbols_by_juxtaposition_and_numbers_with_crosses_and_units() {
         let q = quantities(35.0);
         assert_eq!(text(&X, Form::Symbols, &q), "L1 cos θ1");
-        assert_eq!(text(&X, Form::Numbers, &q), "1.00·cos 35°");
+        assert_eq!(text(&X, Form::Numbers, &q), "1.00 m × cos 35°");
         const SUM: Expr = Expr::Cos(&Expr::Add(&T, &T));
         assert_eq!(text(&SUM, Form::Symbols, &q), "cos (θ1 + θ1)");
         const HOLE: Expr = Expr::Max(&Expr::Num(0.0, "0"), &Expr::Sub(&L, &Expr::Num(2.0, "2")));
-        assert_eq!(text(&HOLE, Form::Numbers, &q), "max(0, 1.00 − 2)");
+        assert_eq!(text(&HOLE, Form::Numbers, &q), "max(0, 1.00 m − 2)");
         const HELD: Expr = Expr::Clamp(&X, &L);
         assert_eq!(text(&HELD, Form::Symbols, &q), "clamp(L1 cos θ1, ±L1)");
         let negative = [
@@ -818,7 +1133,7 @@ mod tests {
             Quantity::new("t", "e", -0.25, 2, ""),
         ];
         const P: Expr = Expr::Mul(&L, &T);
-        assert_eq!(text(&P, Form::Numbers, &negative), "2.0·(−0.25)");
+        assert_eq!(text(&P, Form::Numbers, &negative), "2.0 × (−0.25)");
     }
 
     #[test]
@@ -833,11 +1148,11 @@ mod tests {
         let negative = [Quantity::new("t", "x", -0.5, 2, "m")];
         let mut w = Writer::new(Target::MathMl, Form::Numbers, &negative);
         w.expr(&SQ, 0);
-        assert!(w.out.contains("<mn>(−0.50)</mn>"), "{}", w.out);
+        assert!(w.out.contains("<mn>(−0.50\u{202F}m)</mn>"), "{}", w.out);
         // At the top level, no brackets: the minus leads the number.
         let mut w = Writer::new(Target::MathMl, Form::Numbers, &negative);
         w.expr(&T, 0);
-        assert_eq!(w.out, "<mn>−0.50</mn>");
+        assert_eq!(w.out, "<mn>−0.50\u{202F}m</mn>");
     }
 
     /// The tags of an equation's numbers do not depend on the values: a
@@ -899,7 +1214,7 @@ mod tests {
         const P: Expr = Expr::Mul(&L, &T);
         let mut w = Writer::new(Target::MathMl, Form::Numbers, &q);
         w.expr(&P, 0);
-        assert_eq!(w.out, "<mn>2.0</mn><mo>·</mo><mn>(−0.5)</mn>");
+        assert_eq!(w.out, "<mn>2.0</mn><mo>×</mo><mn>(−0.5)</mn>");
     }
 
     #[test]
@@ -917,6 +1232,7 @@ mod tests {
             expr: R,
             readout: "r",
             caption: "",
+            absent: "",
         };
         let q = [
             Quantity::new("g", "γ", 11.775, 3, "m"),
@@ -927,7 +1243,7 @@ mod tests {
         let (numbers, _, text) = live_parts(&EQ, &q, &readouts);
         assert_eq!(
             text,
-            "r = min(γ √((ln n) / (n)), cos eθ) = min(11.775·√((ln 300) / (300)), cos 0.500) = 0.878 m"
+            "r = min(γ √((ln n) / (n)), cos eθ) = min(11.775 m × √((ln 300) / (300)), cos 0.500 rad) = 0.878 m"
         );
         assert!(
             numbers.contains("<mi>min</mi>") && numbers.contains("<mi>ln</mi>"),

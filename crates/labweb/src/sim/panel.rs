@@ -766,14 +766,26 @@ impl SimState {
             let quantities = self.quantities();
             self.collect_math(&equations, &quantities, &readouts);
         }
+        if self.math_held_px == 0 && !self.math_pending.is_empty() {
+            // A stream's first write holds the height the panel had before
+            // it (read where the last frame left the page laid out): an
+            // equation that trades its words for numbers, ekf's innovation
+            // at its first reading, is shorter.
+            self.hold_math_height();
+        }
         let wrote = self.write_next_equation();
         if !self.math_pending.is_empty() {
             // Where it cannot be asked, the frames write the rest, one each.
             self.math_idle_asked = dom::when_idle(&self.panel, super::TEXT_INTERVAL_MS as u32);
         }
-        if !wrote {
-            return;
+        if wrote {
+            self.hold_math_height();
         }
+    }
+
+    /// Holds "The math" panel at its height now where that is its tallest
+    /// while the run streams ([`SimState::math_held_px`]).
+    fn hold_math_height(&mut self) {
         let Some(section) = query(&self.panel, ".live-math") else {
             return;
         };
@@ -814,7 +826,7 @@ impl SimState {
                 dom::rewrite_markup(&numbers, &parts.0);
             }
             if let Some(result) = query(&block, ".equation-result") {
-                dom::rewrite_markup(&result, &format!("= {}", parts.1));
+                dom::rewrite_markup(&result, &parts.1);
             }
             if let Some(text) = query(&block, ".equation-text") {
                 dom::rewrite_markup(&text, &parts.2);

@@ -9,7 +9,9 @@ use crate::planning::astar::{OpenEntry, Strategy};
 
 const DX: Expr = Expr::Var("dx");
 const DY: Expr = Expr::Var("dy");
-const H_CAPTION: &str = "The heuristic of the last cell expanded: Δx and Δy count the cells between it and the goal across and up.";
+const H_CAPTION: &str = "The heuristic of the last cell expanded: |Δx| and |Δy| count the cells between it and the goal across and up, a metre each.";
+/// Before a search there is no cell expanded to work the numbers of.
+const NO_SEARCH: &str = "No search yet: press Plan, and the numbers are those of the last cell it expands.";
 const fn heuristic(expr: Expr) -> Equation {
     Equation {
         key: "h",
@@ -17,6 +19,7 @@ const fn heuristic(expr: Expr) -> Equation {
         expr,
         readout: "last_h",
         caption: H_CAPTION,
+        absent: NO_SEARCH,
     }
 }
 /// The heuristics in [`Heuristic::ALL`]'s order (Hart, Nilsson & Raphael
@@ -40,6 +43,7 @@ const fn priority(expr: Expr, caption: &'static str) -> Equation {
         expr,
         readout: "last_f",
         caption,
+        absent: NO_SEARCH,
     }
 }
 /// A*, weighted A* (Pohl 1970) and greedy best-first.
@@ -308,8 +312,8 @@ impl Presentation for AStarGrid {
         ]
     }
 
-    /// The last cell expanded: its distance to the goal in cells, `g`, `h`
-    /// and the weight.
+    /// The last cell expanded: its distance to the goal in cells (a metre
+    /// each), `g`, `h` and the weight.
     fn quantities(&self) -> Vec<Quantity> {
         let last = self.last_entry();
         let (dx, dy) = last.map_or((f64::NAN, f64::NAN), |(e, goal)| {
@@ -323,8 +327,8 @@ impl Presentation for AStarGrid {
             _ => 1.0,
         };
         vec![
-            Quantity::new("dx", "Δx", dx, 0, ""),
-            Quantity::new("dy", "Δy", dy, 0, ""),
+            Quantity::new("dx", "|Δx|", dx, 0, "m"),
+            Quantity::new("dy", "|Δy|", dy, 0, "m"),
             Quantity::new("g", "g", last.map_or(f64::NAN, |(e, _)| e.g), 3, "m"),
             Quantity::new("h", "h", last.map_or(f64::NAN, |(e, _)| e.h), 3, "m"),
             Quantity::new("w", "w", weight, 1, ""),

@@ -48,8 +48,8 @@ const ENERGY: Equation = Equation {
             ),
             &Expr::Mul(
                 &Expr::Mul(
-                    &Expr::Num(2.0 / 3.0, "⅔"),
-                    &Expr::Mul(&Expr::Var("mp"), &Expr::Sq(&Expr::Var("l"))),
+                    &Expr::Mul(&Expr::Num(2.0 / 3.0, "⅔"), &Expr::Var("mp")),
+                    &Expr::Sq(&Expr::Var("l")),
                 ),
                 &Expr::Sq(&Expr::Var("om")),
             ),
@@ -64,6 +64,7 @@ const ENERGY: Equation = Equation {
     ),
     readout: "energy",
     caption: "The energy now: the cart's and the pole's motion plus the pole's height; with control off and no friction the equations conserve it, so any drift is the integrator's.",
+    absent: "",
 };
 /// With the controller acting, and with no force (control off, or no step yet).
 const EQUATIONS: [&[Equation]; 2] = [
@@ -74,6 +75,7 @@ const EQUATIONS: [&[Equation]; 2] = [
             expr: FEEDBACK,
             readout: "force",
             caption: "The controller's force, from the state the last step started from (subscript k), held within the limit.",
+            absent: "",
         },
         ENERGY,
     ],
@@ -84,6 +86,7 @@ const EQUATIONS: [&[Equation]; 2] = [
             expr: Expr::Num(0.0, "0"),
             readout: "force",
             caption: "No force: control is off (or no step has run yet).",
+            absent: "",
         },
         ENERGY,
     ],
@@ -303,7 +306,7 @@ impl Presentation for CartPoleBalance {
             Quantity::new("kx", "k_x", k.k_x, 1, "N/m"),
             Quantity::new("xk", "x_k", at.x_m, 4, "m"),
             Quantity::new("kv", "k_v", k.k_v, 1, "N·s/m"),
-            Quantity::new("vk", "ẋ_k", at.v_m_s, 4, "m/s"),
+            Quantity::new("vk", "x\u{307}_k", at.v_m_s, 4, "m/s"),
             Quantity::new("kth", "k_θ", k.k_theta, 1, "N/rad"),
             Quantity::new("thk", "θ_k", at.theta_rad, 5, "rad"),
             Quantity::new("kom", "k_ω", k.k_omega, 1, "N·s/rad"),
@@ -319,7 +322,7 @@ impl Presentation for CartPoleBalance {
             Quantity::new("mp", "m", p.pole_mass_kg, 2, "kg"),
             Quantity::new("l", "l", p.half_length_m, 2, "m"),
             Quantity::new("g", "g", p.gravity_m_s2, 2, "m/s²"),
-            Quantity::new("v", "ẋ", s.v_m_s, 4, "m/s"),
+            Quantity::new("v", "x\u{307}", s.v_m_s, 4, "m/s"),
             Quantity::new("om", "θ̇", s.omega_rad_s, 4, "rad/s"),
             Quantity::new("th", "θ", s.theta_rad.to_degrees(), 3, "°"),
         ]

@@ -176,22 +176,25 @@ const TURN: Equation = Equation {
     ),
     readout: "omega",
     caption: "The turn rate: the heading error eθ (radians) times Kω, held within ±ω_max.",
+    absent: "",
 };
 /// … and the unicycle: the robot moves along its heading.
 const UNICYCLE: [Equation; 2] = [
     Equation {
         key: "xdot",
-        symbol: "ẋ",
+        symbol: "x\u{307}",
         expr: Expr::Mul(&Expr::Var("v"), &Expr::Cos(&Expr::Var("theta"))),
         readout: "xdot",
         caption: "The unicycle: the speed along the heading θ the command started from, x part …",
+        absent: "",
     },
     Equation {
         key: "ydot",
-        symbol: "ẏ",
+        symbol: "y\u{307}",
         expr: Expr::Mul(&Expr::Var("v"), &Expr::Sin(&Expr::Var("theta"))),
         readout: "ydot",
         caption: "… and y part.",
+        absent: "",
     },
 ];
 /// Driving, and arrived (within the tolerance the command is zero).
@@ -209,6 +212,7 @@ const EQUATIONS: [&[Equation]; 2] = [
             ),
             readout: "v",
             caption: "The speed: Kv times the distance d to the goal, slowed by the cosine of the heading error (none while facing away), at most v_max.",
+            absent: "",
         },
         TURN,
         UNICYCLE[0],
@@ -221,6 +225,7 @@ const EQUATIONS: [&[Equation]; 2] = [
             expr: Expr::Num(0.0, "0"),
             readout: "v",
             caption: "Within the arrival radius of the goal the robot stops.",
+            absent: "",
         },
         TURN,
         UNICYCLE[0],
@@ -356,10 +361,10 @@ impl Presentation for DiffDrive {
         let cmd = self.command();
         let c = &self.follower.last_controller;
         vec![
-            Quantity::new("kw", "K_ω", c.k_omega_per_s, 2, "1/s"),
+            Quantity::new("kw", "K_ω", c.k_omega_per_s, 2, "s⁻¹"),
             Quantity::new("e", "e_θ", cmd.heading_error_rad, 3, "rad"),
             Quantity::new("wmax", "ω_max", c.max_omega_radps, 2, "rad/s"),
-            Quantity::new("kv", "K_v", c.k_v_per_s, 2, "1/s"),
+            Quantity::new("kv", "K_v", c.k_v_per_s, 2, "s⁻¹"),
             Quantity::new("d", "d", cmd.distance_m, 3, "m"),
             Quantity::new("vmax", "v_max", c.max_v_mps, 2, "m/s"),
             Quantity::new("v", "v", cmd.v_mps, 3, "m/s"),

@@ -18,7 +18,8 @@ const EQUATIONS: &[Equation] = &[
             &Expr::Sq(&Expr::Sub(&Expr::Var("yt"), &Expr::Var("y"))),
         )),
         readout: "error",
-        caption: "The error e the next step Δq = Jᵀ(JJᵀ + λ²I)⁻¹e works on: from the tip to the target.",
+        caption: "The error e the next step Δq = Jᵀ(JJᵀ + λ²I)⁻¹e works on: from the tip p(q) = (x, y) to the target p* = (xₜ, yₜ).",
+        absent: "No target yet: click or tap one, or type its x and y.",
     },
     Equation {
         key: "w",
@@ -29,6 +30,7 @@ const EQUATIONS: &[Equation] = &[
         )),
         readout: "w",
         caption: "The manipulability √det(JJᵀ), with JJᵀ = [[a, b], [b, c]]: the area of the velocity ellipse over π, 0 at a singularity.",
+        absent: "",
     },
     Equation {
         key: "condition",
@@ -36,8 +38,14 @@ const EQUATIONS: &[Equation] = &[
         expr: Expr::Div(&Expr::Var("smax"), &Expr::Var("smin")),
         readout: "cond",
         caption: "The condition number κ: the velocity ellipse's long semi-axis over its short one (J's singular values); it blows up near a singularity.",
+        absent: "",
     },
 ];
+
+/// "1 iteration", "4 iterations".
+fn iterations(n: usize) -> String {
+    format!("{n} iteration{}", if n == 1 { "" } else { "s" })
+}
 
 impl Presentation for DampedLeastSquares {
     fn view(&self) -> ViewBox {
@@ -110,7 +118,7 @@ impl Presentation for DampedLeastSquares {
         vec![
             Readout::new("iterations", "Iterations", self.iterations.to_string()),
             Readout::new("error", "Error", error),
-            Readout::new("w", "Manipulability w", format_fixed(m.w, 3)),
+            Readout::new("w", "Manipulability w", format!("{} m²", format_fixed(m.w, 3))),
             Readout::new("cond", "Condition σmax/σmin", format_magnitude(m.condition)),
             Readout::metres("lambda_used", "λ used", self.lambda_used_m),
             Readout::new("angles", "Joint angles θ₁…θₙ", angles.join(", ")),
@@ -149,7 +157,7 @@ impl Presentation for DampedLeastSquares {
             Run::Idle => Status::new("click a target", Tone::Neutral),
             Run::Iterating => Status::new("iterating…", Tone::Neutral),
             Run::Converged => Status::ended(
-                format!("converged in {}", iterations_text(self.iterations)),
+                format!("converged in {}", iterations(self.iterations)),
                 Tone::Good,
             ),
             Run::Settled => Status::ended("closest reachable pose", Tone::Warning),
@@ -185,7 +193,7 @@ impl Presentation for DampedLeastSquares {
                 format_point(t),
                 self.status().text,
                 value("error"),
-                iterations_text(self.iterations)
+                iterations(self.iterations)
             ),
         }
     }
@@ -206,8 +214,3 @@ impl Presentation for DampedLeastSquares {
     }
 }
 
-/// "1 iteration", "17 iterations": a count as the status and the
-/// description say it.
-fn iterations_text(n: usize) -> String {
-    format!("{n} iteration{}", if n == 1 { "" } else { "s" })
-}

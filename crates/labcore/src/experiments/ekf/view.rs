@@ -16,6 +16,8 @@ const CROSS_YT: Expr = Expr::Mul(&Expr::Mul(&Expr::Mul(&TWO, &Expr::Var("lyt")),
 /// estimation error squared `eᵀ P⁻¹ e` (Bar-Shalom, Li & Kirubarajan,
 /// *Estimation with Applications to Tracking and Navigation*, §5.4),
 /// written out with the information matrix `Λ = P⁻¹` as the filter inverts it.
+/// Where no reading has been folded in (or the filter maps as it goes).
+const NO_READING: &str = "No reading folded in yet, or the filter maps as it goes (SLAM), where the panel follows no single reading.";
 const EQUATIONS: &[Equation] = &[
     Equation {
         key: "innovation_range",
@@ -23,13 +25,15 @@ const EQUATIONS: &[Equation] = &[
         expr: Expr::Sub(&Expr::Var("zr"), &Expr::Var("zhr")),
         readout: "innov_r",
         caption: "The innovation of the last observation folded in: the range measured less the range the estimate predicted …",
+        absent: NO_READING,
     },
     Equation {
         key: "innovation_bearing",
-        symbol: "ν_b",
+        symbol: "ν_φ",
         expr: Expr::Sub(&Expr::Var("zb"), &Expr::Var("zhb")),
         readout: "innov_b",
-        caption: "… and the same for its bearing (the prediction taken within half a turn of the measurement).",
+        caption: "… and the same for its bearing φ (the prediction taken within half a turn of the measurement).",
+        absent: NO_READING,
     },
     Equation {
         key: "error",
@@ -37,6 +41,7 @@ const EQUATIONS: &[Equation] = &[
         expr: Expr::Sqrt(&Expr::Add(&Expr::Sq(&EX), &Expr::Sq(&EY))),
         readout: "error",
         caption: "The position error: how far the estimate sits from the truth, e = truth − estimate.",
+        absent: "",
     },
     Equation {
         key: "trace",
@@ -44,10 +49,11 @@ const EQUATIONS: &[Equation] = &[
         expr: Expr::Add(&Expr::Var("pxx"), &Expr::Var("pyy")),
         readout: "trace",
         caption: "The position uncertainty: the variances in x and y from the covariance P added.",
+        absent: "",
     },
     Equation {
         key: "nees",
-        symbol: "NEES",
+        symbol: "ε",
         expr: Expr::Add(
             &Expr::Add(
                 &Expr::Add(
@@ -65,7 +71,8 @@ const EQUATIONS: &[Equation] = &[
             &CROSS_YT,
         ),
         readout: "nees",
-        caption: "NEES = eᵀP⁻¹e over the pose error (x, y, θ), with Λ = P⁻¹: about 3 on average when the filter is honest about its uncertainty.",
+        caption: "The NEES ε = eᵀP⁻¹e over the pose error e = (ex, ey, eθ), with Λ = P⁻¹: about 3 on average when the filter is honest about its uncertainty.",
+        absent: "No NEES: the covariance P cannot be inverted.",
     },
 ];
 
@@ -310,20 +317,20 @@ impl Presentation for EkfExperiment {
         });
         vec![
             Quantity::new("zr", "z_r", z.x, 3, "m"),
-            Quantity::new("zhr", "ẑ_r", predicted.x, 3, "m"),
-            Quantity::new("zb", "z_b", z.y.to_degrees(), 2, "°"),
-            Quantity::new("zhb", "ẑ_b", predicted.y.to_degrees(), 2, "°"),
+            Quantity::new("zhr", "z\u{302}_r", predicted.x, 3, "m"),
+            Quantity::new("zb", "z_φ", z.y.to_degrees(), 2, "°"),
+            Quantity::new("zhb", "z\u{302}_φ", predicted.y.to_degrees(), 2, "°"),
             q("ex", "e_x", e.x, "m"),
             q("ey", "e_y", e.y, "m"),
             q("eth", "e_θ", e.z, "rad"),
-            q("pxx", "P_xx", cov.x_axis.x, "m²"),
-            q("pyy", "P_yy", cov.y_axis.y, "m²"),
-            q("lxx", "Λ_xx", info.x_axis.x, "1/m²"),
-            q("lyy", "Λ_yy", info.y_axis.y, "1/m²"),
-            q("ltt", "Λ_θθ", info.z_axis.z, "1/rad²"),
-            q("lxy", "Λ_xy", info.y_axis.x, "1/m²"),
-            q("lxt", "Λ_xθ", info.z_axis.x, "1/(m·rad)"),
-            q("lyt", "Λ_yθ", info.z_axis.y, "1/(m·rad)"),
+            q("pxx", "σ_x²", cov.x_axis.x, "m²"),
+            q("pyy", "σ_y²", cov.y_axis.y, "m²"),
+            q("lxx", "Λ_xx", info.x_axis.x, "m⁻²"),
+            q("lyy", "Λ_yy", info.y_axis.y, "m⁻²"),
+            q("ltt", "Λ_θθ", info.z_axis.z, "rad⁻²"),
+            q("lxy", "Λ_xy", info.y_axis.x, "m⁻²"),
+            q("lxt", "Λ_xθ", info.z_axis.x, "m⁻¹·rad⁻¹"),
+            q("lyt", "Λ_yθ", info.z_axis.y, "m⁻¹·rad⁻¹"),
         ]
     }
 

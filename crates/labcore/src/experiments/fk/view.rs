@@ -17,6 +17,7 @@ const EQUATIONS: &[Equation] = &[
         expr: Expr::Add(&Expr::Mul(&L1, &Expr::Cos(&T1)), &Expr::Mul(&L2, &Expr::Cos(&T12))),
         readout: "x",
         caption: "The tip's x: each link's length times the cosine of its absolute angle.",
+        absent: "",
     },
     Equation {
         key: "y",
@@ -24,6 +25,7 @@ const EQUATIONS: &[Equation] = &[
         expr: Expr::Add(&Expr::Mul(&L1, &Expr::Sin(&T1)), &Expr::Mul(&L2, &Expr::Sin(&T12))),
         readout: "y",
         caption: "The tip's y: the same with sines.",
+        absent: "",
     },
 ];
 

@@ -17,20 +17,43 @@ const COS_THETA2: Expr = Expr::Div(
     ),
     &Expr::Mul(&Expr::Mul(&Expr::Num(2.0, "2"), &L1), &L2),
 );
-const ELBOW_UP: &[Equation] = &[Equation {
-    key: "theta2",
-    symbol: "θ_2",
-    expr: Expr::Neg(&Expr::Acos(&COS_THETA2)),
-    readout: "theta2",
-    caption: "The elbow angle from the law of cosines; elbow up takes the negative root.",
-}];
-const ELBOW_DOWN: &[Equation] = &[Equation {
-    key: "theta2",
-    symbol: "θ_2",
-    expr: Expr::Acos(&COS_THETA2),
-    readout: "theta2",
-    caption: "The elbow angle from the law of cosines; elbow down takes the positive root.",
-}];
+/// The elbow angle for the point the two links reach for, on the branch
+/// `caption` names.
+const fn elbow(expr: Expr, caption: &'static str) -> [Equation; 1] {
+    [Equation {
+        key: "theta2",
+        symbol: "θ_2",
+        expr,
+        readout: "theta2",
+        caption,
+        absent: "No elbow angle: there is no target yet (click or tap one), or it lies out of reach, where the cosine would pass ±1.",
+    }]
+}
+/// `[elbow up, elbow down]` for the target itself, and for the wrist centre
+/// `w` when a third link holds the tool's direction: the panel names the
+/// point its x and y are of.
+const ELBOWS: [[&[Equation]; 2]; 2] = [
+    [
+        &elbow(
+            Expr::Neg(&Expr::Acos(&COS_THETA2)),
+            "The elbow angle from the law of cosines, for the target (x, y); elbow up takes the negative root.",
+        ),
+        &elbow(
+            Expr::Acos(&COS_THETA2),
+            "The elbow angle from the law of cosines, for the target (x, y); elbow down takes the positive root.",
+        ),
+    ],
+    [
+        &elbow(
+            Expr::Neg(&Expr::Acos(&COS_THETA2)),
+            "The elbow angle from the law of cosines, for the wrist centre w, the point the two links reach for (the target stepped back along the tool); elbow up takes the negative root.",
+        ),
+        &elbow(
+            Expr::Acos(&COS_THETA2),
+            "The elbow angle from the law of cosines, for the wrist centre w, the point the two links reach for (the target stepped back along the tool); elbow down takes the positive root.",
+        ),
+    ],
+];
 
 impl Presentation for InverseKinematics {
     /// The arm's current reach fills the canvas.
@@ -114,23 +137,22 @@ impl Presentation for InverseKinematics {
         }
     }
 
-    /// The point the two links reach for (the target, or with a wrist the
-    /// wrist centre), and the link lengths.
+    /// The point the two links reach for (the target (x, y), or with a
+    /// wrist the wrist centre (w_x, w_y), as the Theory names them), and the
+    /// link lengths.
     fn quantities(&self) -> Vec<Quantity> {
         let p = self.target.map_or(DVec2::NAN, |t| t - self.wrist_offset());
+        let wrist = self.l3_m > 0.0;
         vec![
-            Quantity::new("px", "x", p.x, 3, "m"),
-            Quantity::new("py", "y", p.y, 3, "m"),
+            Quantity::new("px", if wrist { "w_x" } else { "x" }, p.x, 3, "m"),
+            Quantity::new("py", if wrist { "w_y" } else { "y" }, p.y, 3, "m"),
             Quantity::new("l1", "L_1", self.l1_m, 2, "m"),
             Quantity::new("l2", "L_2", self.l2_m, 2, "m"),
         ]
     }
 
     fn equations(&self) -> &'static [Equation] {
-        match self.elbow {
-            Elbow::Up => ELBOW_UP,
-            Elbow::Down => ELBOW_DOWN,
-        }
+        ELBOWS[usize::from(self.l3_m > 0.0)][usize::from(self.elbow == Elbow::Down)]
     }
 
     fn readouts(&self) -> Vec<Readout> {

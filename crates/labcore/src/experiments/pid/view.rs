@@ -11,7 +11,7 @@ const PI_TERMS: Expr = Expr::Add(
 );
 /// Derivative on the error: `+ Kd ė`.
 const PID_ON_ERROR: Expr = Expr::Add(&PI_TERMS, &Expr::Mul(&Expr::Var("kd"), &Expr::Var("de")));
-/// Derivative on the measurement: `− Kd ẏ` (no kick when the setpoint jumps).
+/// Derivative on the measurement: `− Kd ẋ` (no kick when the setpoint jumps).
 const PID_ON_MEASUREMENT: Expr =
     Expr::Sub(&PI_TERMS, &Expr::Mul(&Expr::Var("kd"), &Expr::Var("dy")));
 const SUM_CAPTION: &str = "The controller's force: proportional, integral and derivative terms added.";
@@ -20,12 +20,15 @@ const LIMIT_CAPTION: &str =
 /// With `Ki = 0` the loop is the second-order system `m s² + (c + Kd) s + Kp`
 /// (Åström & Murray, *Feedback Systems*, §7.3): its natural frequency
 /// `ωn = √(Kp/m)` …
+/// What ωn and ζ say where Ki ≠ 0, in place of their numbers.
+const SECOND_ORDER_ONLY: &str = "Only with Ki = 0: integral action makes the loop third order, and ωn and ζ no longer describe it. Set Ki to 0 to see them.";
 const NATURAL_FREQUENCY: Equation = Equation {
     key: "omega_n",
     symbol: "ω_n",
     expr: Expr::Sqrt(&Expr::Div(&Expr::Var("kp"), &Expr::Var("m"))),
     readout: "wn",
     caption: "With Ki = 0, the natural frequency: the gain Kp as a spring against the mass.",
+    absent: SECOND_ORDER_ONLY,
 };
 /// … and its damping ratio `ζ = (c + Kd) / (2√(m Kp))`.
 const DAMPING_RATIO: Equation = Equation {
@@ -40,6 +43,7 @@ const DAMPING_RATIO: Equation = Equation {
     ),
     readout: "zeta",
     caption: "With Ki = 0, the damping ratio: drag and Kd against twice √(m Kp).",
+    absent: SECOND_ORDER_ONLY,
 };
 /// The force law `u` with its caption.
 const fn law(expr: Expr, caption: &'static str) -> [Equation; 3] {
@@ -50,6 +54,7 @@ const fn law(expr: Expr, caption: &'static str) -> [Equation; 3] {
             expr,
             readout: "force",
             caption,
+            absent: "",
         },
         NATURAL_FREQUENCY,
         DAMPING_RATIO,
@@ -300,13 +305,14 @@ impl Presentation for PidControl {
         let terms = self.run.last_terms();
         let c = &self.run.controller;
         vec![
-            Quantity::new("kp", "K_p", self.gains.kp, 1, ""),
-            Quantity::new("ki", "K_i", self.gains.ki, 1, ""),
-            Quantity::new("kd", "K_d", self.gains.kd, 1, ""),
+            Quantity::new("kp", "K_p", self.gains.kp, 1, "N/m"),
+            Quantity::new("ki", "K_i", self.gains.ki, 1, "N/(m·s)"),
+            Quantity::new("kd", "K_d", self.gains.kd, 1, "N·s/m"),
             Quantity::new("e", "e", terms.error_m, 4, "m"),
-            Quantity::new("ie", "∫e", c.integral_m_s(), 4, "m·s"),
-            Quantity::new("de", "ė", c.derivative_m_s(), 4, "m/s"),
-            Quantity::new("dy", "ẏ", -c.derivative_m_s(), 4, "m/s"),
+            Quantity::new("ie", "∫e dt", c.integral_m_s(), 4, "m·s"),
+            Quantity::new("de", "e\u{307}", c.derivative_m_s(), 4, "m/s"),
+            // The measured speed the derivative on the measurement acts on.
+            Quantity::new("dy", "x\u{307}", -c.derivative_m_s(), 4, "m/s"),
             Quantity::new("umax", "u_max", self.force_limit_n, 0, "N"),
             Quantity::new("m", "m", self.plant.mass_kg, 1, "kg"),
             Quantity::new("c", "c", self.plant.drag_n_s_per_m, 1, "N·s/m"),

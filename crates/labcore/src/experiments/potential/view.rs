@@ -19,21 +19,24 @@ const GOAL_DISTANCE: Equation = Equation {
         )),
         readout: "goal",
         caption: "The distance from the robot to the goal.",
+        absent: "No goal yet: click or tap where the robot should go.",
     };
 const PULL: Equation = Equation {
         key: "f_att",
-        symbol: "F_att",
+        symbol: "|F_att|",
         expr: Expr::Var("ka"),
         readout: "att",
         caption: "The conic pull: the same strength kₐ at any distance, pointing at the goal.",
+        absent: "No goal yet: click or tap where the robot should go.",
     };
 /// With the goal on the robot the pull has no direction: there is none.
 const PULL_AT_GOAL: Equation = Equation {
     key: "f_att",
-    symbol: "F_att",
+    symbol: "|F_att|",
     expr: Expr::Num(0.0, "0"),
     readout: "att",
     caption: "With the goal on the robot the pull has no direction to point in: there is none.",
+    absent: "No goal yet: click or tap where the robot should go.",
 };
 const CLEARANCE: Equation = Equation {
         key: "clearance",
@@ -47,11 +50,12 @@ const CLEARANCE: Equation = Equation {
         ),
         readout: "near_clearance",
         caption: "The clearance to the nearest obstacle: the distance to its centre less its radius.",
+        absent: "No obstacle on the field: add one to see its clearance and its push.",
     };
 /// The push outside the nearest obstacle.
 const PUSH: Equation = Equation {
         key: "f_rep",
-        symbol: "F_rep",
+        symbol: "|F_rep|",
         expr: Expr::Div(
             &Expr::Mul(
                 &Expr::Var("kr"),
@@ -61,14 +65,16 @@ const PUSH: Equation = Equation {
         ),
         readout: "rep_near",
         caption: "The nearest obstacle's push: kᵣ at its surface, fading to nothing at the influence distance d₀.",
+        absent: "No obstacle on the field: add one to see its clearance and its push.",
     };
 /// The push inside it (where its surface's push holds).
 const PUSH_INSIDE: Equation = Equation {
         key: "f_rep",
-        symbol: "F_rep",
+        symbol: "|F_rep|",
         expr: Expr::Var("kr"),
         readout: "rep_near",
         caption: "Inside the nearest obstacle (d < 0) its push is the surface's, kᵣ.",
+        absent: "No obstacle on the field: add one to see its clearance and its push.",
     };
 /// Outside the nearest obstacle, and inside it; then the same with the
 /// goal on the robot.
@@ -497,10 +503,10 @@ impl Presentation for PotentialFieldLab {
         let centre = near.map_or(DVec2::NAN, |o| o.centre);
         let params = &self.field.params;
         vec![
-            Quantity::new("x", "x", p.x, 3, "m"),
-            Quantity::new("y", "y", p.y, 3, "m"),
-            Quantity::new("xg", "x_g", goal.x, 3, "m"),
-            Quantity::new("yg", "y_g", goal.y, 3, "m"),
+            Quantity::new("x", "p_x", p.x, 3, "m"),
+            Quantity::new("y", "p_y", p.y, 3, "m"),
+            Quantity::new("xg", "g_x", goal.x, 3, "m"),
+            Quantity::new("yg", "g_y", goal.y, 3, "m"),
             Quantity::new("ka", "k_a", params.k_att, 2, ""),
             Quantity::new("cx", "c_x", centre.x, 3, "m"),
             Quantity::new("cy", "c_y", centre.y, 3, "m"),

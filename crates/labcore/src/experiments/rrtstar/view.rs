@@ -18,6 +18,7 @@ const EQUATIONS: &[Equation] = &[Equation {
     ),
     readout: "radius",
     caption: "The rewiring radius: it shrinks as the tree grows (the square root is d = 2's 1/d power), never beyond the step η.",
+    absent: "No rewiring tree yet: press Grow with RRT* or Informed RRT* (plain RRT never rewires).",
 }];
 
 impl RrtStarField {

@@ -13,8 +13,8 @@ const REACH: Expr = Expr::Add(&Expr::Add(&L1, &L2), &L3);
 
 /// The three-link arm's forward kinematics and its workspace annulus
 /// (Craig, *Introduction to Robotics*, ch. 3–4): the outer radius is the
-/// links laid straight, `R = L₁ + L₂ + L₃`; the hole is what the longest
-/// link cannot fold back over, `r = max(0, 2 L_max − R)`.
+/// links laid straight, `R_outer = L₁ + L₂ + L₃`; the hole is what the
+/// longest link cannot fold back over, `r_inner = max(0, 2 L_max − R_outer)`.
 const EQUATIONS: &[Equation] = &[
     Equation {
         key: "x",
@@ -25,23 +25,26 @@ const EQUATIONS: &[Equation] = &[
         ),
         readout: "x",
         caption: "The tip's x: each link adds its length along its absolute angle.",
+        absent: "",
     },
     Equation {
         key: "outer",
-        symbol: "R",
+        symbol: "R_outer",
         expr: REACH,
         readout: "outer_theory",
         caption: "The outer radius: every link laid out straight.",
+        absent: "",
     },
     Equation {
         key: "hole",
-        symbol: "r",
+        symbol: "r_inner",
         expr: Expr::Max(
             &Expr::Num(0.0, "0"),
             &Expr::Sub(&Expr::Mul(&Expr::Num(2.0, "2"), &Expr::Var("lmax")), &REACH),
         ),
         readout: "inner_theory",
         caption: "The hole: what the longest link cannot fold back over.",
+        absent: "",
     },
 ];
 
