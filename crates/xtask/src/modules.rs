@@ -151,7 +151,9 @@ pub fn selection(ids: &[&str]) -> String {
     ids.join(",")
 }
 
-/// Builds, binds and optimises one module per group that has experiments.
+/// Builds, binds and optimises the experiments' modules, one per key of
+/// [`modules`] (experiments that share their solvers share one, the others
+/// have their own), then the lab report's ([`REPORT_KEY`]).
 pub fn build_modules(root: &Path) -> Result<Vec<Built>, String> {
     let target = util::target_dir();
     let out_root = target.join("xtask").join("modules");

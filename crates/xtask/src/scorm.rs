@@ -7,9 +7,9 @@
 //! some drop a `#` fragment; `web/main.js` opens the experiment's Aim tab
 //! and `web/scorm.js` reports that experiment's quiz only). An LMS keeps the SCORM data
 //! model per SCO, so each experiment gets its own `lesson_status`, score and
-//! `suspend_data`: eleven quizzes are recorded side by side and a relaunch
-//! resumes the right attempt. One SCO for the whole lab would have one score
-//! and one 4,096-character `suspend_data` for all eleven. Every SCO launches
+//! `suspend_data`: every experiment's quiz is recorded beside the others
+//! and a relaunch resumes the right attempt. One SCO for the whole lab would
+//! have one score and one 4,096-character `suspend_data` for every quiz. Every SCO launches
 //! the same `index.html`; the files are listed once, in a shared `asset`
 //! resource that each SCO depends on.
 //!
