@@ -1,8 +1,11 @@
 //! The project's Markdown (issue 54 §4): README.md stays short, every
 //! relative link of README.md, ARCHITECTURE.md and docs/*.md resolves (its
-//! file, and its `#anchor` to a heading of that file), and ARCHITECTURE.md's
-//! crate graph is the one `cargo metadata` reads from the manifests.
+//! file, and its `#anchor` to a heading of that file), ARCHITECTURE.md's
+//! crate graph is the one `cargo metadata` reads from the manifests,
+//! README's Layout names every crate, and the counts the text writes in
+//! words (wasm modules, groups) are the registry's.
 
+use labcore::catalogue::{wasm_module, Group, CATALOGUE};
 use labcore::json::Json;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -254,7 +257,8 @@ fn text_of<'a>(value: &'a Json, key: &str) -> Option<&'a str> {
     }
 }
 
-fn metadata_graph() -> Graph {
+/// `cargo metadata --no-deps` of the workspace, parsed.
+fn metadata() -> Json {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let out = Command::new(cargo)
         .args([
@@ -272,10 +276,20 @@ fn metadata_graph() -> Graph {
         "cargo metadata: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let metadata = Json::parse(&String::from_utf8(out.stdout).unwrap()).unwrap();
-    let Some(Json::Array(packages)) = field(&metadata, "packages") else {
+    Json::parse(&String::from_utf8(out.stdout).unwrap()).unwrap()
+}
+
+/// The workspace's packages as `cargo metadata` lists them.
+fn packages(metadata: &Json) -> &[Json] {
+    let Some(Json::Array(packages)) = field(metadata, "packages") else {
         panic!("cargo metadata has no packages")
     };
+    packages
+}
+
+fn metadata_graph() -> Graph {
+    let metadata = metadata();
+    let packages = packages(&metadata);
     let members: BTreeSet<&str> = packages.iter().filter_map(|p| text_of(p, "name")).collect();
     let mut graph = Graph::new();
     for package in packages {
@@ -325,4 +339,104 @@ fn docs_link_and_anchor_reading() {
     ] {
         assert!(found.contains(a), "{a} in {found:?}");
     }
+}
+
+/// A newcomer finds every crate in README's Layout: one row per workspace
+/// member, named by its folder (`crates/<name>`).
+#[test]
+fn docs_readme_layout_names_every_crate() {
+    let root = root();
+    let readme = read(&root.join("README.md"));
+    let layout = readme
+        .split("## Layout")
+        .nth(1)
+        .expect("README.md has a Layout section");
+    let rows: BTreeSet<String> = layout
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `"))
+        .filter_map(|l| l.split('`').next())
+        .map(|p| p.trim_end_matches('/').to_owned())
+        .collect();
+    let metadata = metadata();
+    let mut missing = Vec::new();
+    for package in packages(&metadata) {
+        let manifest = PathBuf::from(text_of(package, "manifest_path").unwrap());
+        let folder = manifest.parent().unwrap().canonicalize().unwrap();
+        let folder = folder.strip_prefix(&root).unwrap().display().to_string();
+        if !rows.contains(&folder) {
+            missing.push(folder);
+        }
+    }
+    assert!(rows.len() >= 7, "README's Layout has {} rows", rows.len());
+    assert!(
+        missing.is_empty(),
+        "README's Layout has no row for {missing:?}"
+    );
+}
+
+/// The number written as a word just before `noun` in `text` (`"eight wasm
+/// modules"`), for every place it is written.
+fn counts_before(text: &str, noun: &str) -> Vec<usize> {
+    const WORDS: [&str; 13] = [
+        "zero", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten",
+        "eleven", "twelve",
+    ];
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let mut found = Vec::new();
+    let mut rest = flat.as_str();
+    while let Some(at) = rest.find(&format!(" {noun}")) {
+        let word = rest[..at].rsplit(' ').next().unwrap_or("").to_lowercase();
+        if let Some(n) = WORDS.iter().position(|w| *w == word) {
+            found.push(n);
+        }
+        rest = &rest[at + noun.len() + 1..];
+    }
+    found
+}
+
+/// The counts the docs write in words are the registry's: ARCHITECTURE's
+/// wasm modules (one per key of `experiments!`, as `cargo xtask dist` builds
+/// them) and the groups of README and the platform page. A thirteenth
+/// experiment with a module of its own, or a sixth group, fails here until
+/// the text says so.
+#[test]
+fn docs_counts_in_words_are_the_registry_s() {
+    let root = root();
+    let modules: BTreeSet<&str> = CATALOGUE
+        .iter()
+        .map(|p| wasm_module(p.id).unwrap_or(p.id))
+        .collect();
+    let groups: BTreeSet<&str> = CATALOGUE.iter().map(|p| p.group.key()).collect();
+    assert_eq!(
+        groups.len(),
+        Group::ALL.len(),
+        "every group has an experiment"
+    );
+    let written = |page: &str, noun: &str, count: usize| {
+        let found = counts_before(&read(&root.join(page)), noun);
+        assert!(!found.is_empty(), "{page} writes no count of {noun}");
+        assert!(
+            found.iter().all(|&n| n == count),
+            "{page} writes {found:?} {noun}; the registry has {count}"
+        );
+    };
+    written("ARCHITECTURE.md", "wasm modules", modules.len());
+    written("README.md", "groups", Group::ALL.len());
+    written("docs/platform.md", "groups", Group::ALL.len());
+}
+
+#[test]
+fn docs_count_reading() {
+    assert_eq!(
+        counts_before(
+            "and eight wasm\n  modules, each; one wasm modules",
+            "wasm modules"
+        ),
+        [8, 1]
+    );
+    assert_eq!(counts_before("in five groups", "groups"), [5]);
+    assert_eq!(
+        counts_before("in many groups", "groups"),
+        Vec::<usize>::new()
+    );
 }
