@@ -149,18 +149,39 @@ fn docs_readme_is_at_most_250_lines() {
 /// builds and serves the lab, one that runs every test.
 #[test]
 fn docs_readme_quick_start_has_the_two_commands() {
+    assert_eq!(quick_start(), ["cargo xtask serve", "cargo xtask test"]);
+}
+
+/// The commands of README's quick start (its first ```sh block), without
+/// their comments.
+fn quick_start() -> Vec<String> {
     let text = read(&root().join("README.md"));
     let block = text
         .split("```sh\n")
         .nth(1)
         .and_then(|b| b.split("\n```").next())
         .expect("README.md has a ```sh block");
-    let commands: Vec<&str> = block
+    block
         .lines()
-        .map(|l| l.split('#').next().unwrap_or("").trim())
+        .map(|l| l.split('#').next().unwrap_or("").trim().to_owned())
         .filter(|l| !l.is_empty())
+        .collect()
+}
+
+/// CI (`.ci/run`) runs README's test command as written, and nothing else
+/// as a test: what passes in CI is what a newcomer's command runs.
+#[test]
+fn docs_ci_runs_readme_s_test_command() {
+    let test_command = quick_start().pop().expect("README's test command");
+    let script = read(&root().join(".ci/run"));
+    let runs: Vec<&str> = script
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| l.strip_prefix("time ").unwrap_or(l))
+        .filter(|l| l.starts_with("cargo xtask"))
         .collect();
-    assert_eq!(commands, ["cargo xtask serve", "cargo xtask test"]);
+    assert_eq!(runs, [test_command.as_str()], ".ci/run's xtask commands");
 }
 
 #[test]
