@@ -544,7 +544,8 @@ impl Student {
     /// A property of the scene's items of one role (its name in the style
     /// table, as `Debug` writes it): `of` is `count`, `cells` (of a raster,
     /// painted in the role's colour), `max_radius` or `min_radius` (of its
-    /// circles, metres), `max_semi_axis` or `min_semi_axis` (the longest
+    /// circles, metres), `centre_x` or `centre_y` (the one centre its
+    /// circles share, metres), `max_semi_axis` or `min_semi_axis` (the longest
     /// and the shortest semi-axis of its ellipses, metres), `width_px` (its
     /// widest stroke, CSS pixels), `shade_at` a point `at` (its heat map's
     /// shade there, 0 to 1).
@@ -586,8 +587,25 @@ impl Student {
                 })
                 .sum::<usize>() as f64
         };
+        // The one centre its circles share (concentric bounds), metres.
+        let centre = || -> Result<Option<DVec2>, String> {
+            let mut centres = items.iter().filter_map(|i| match i {
+                Item::Circle { center, .. } => Some(*center),
+                _ => None,
+            });
+            let first = centres.next();
+            match first {
+                Some(c) if centres.all(|d| (d - c).length() < 1e-12) => Ok(Some(c)),
+                Some(_) => Err(format!(
+                    "the circles of role {role} have more than one centre"
+                )),
+                None => Ok(None),
+            }
+        };
         let value = match of {
             "count" => Some(items.len() as f64),
+            "centre_x" => centre()?.map(|c| c.x),
+            "centre_y" => centre()?.map(|c| c.y),
             "cells" => Some(cells()),
             "max_radius" => radii().reduce(f64::max),
             "min_radius" => radii().reduce(f64::min),
