@@ -748,7 +748,22 @@ impl AStarGrid {
                 self.compare_started = true;
             }
             let before = search.expanded();
-            let outcome = search.step_n(budget);
+            let outcome = if self.compare_queue.is_empty() {
+                // The main search, in the steps Plan & drive takes: the
+                // Search progress plot shows it as Plan & drive draws it
+                // (issue 53 §5: it read "No data yet" beside the table).
+                let n = self.expansions_due(self.search_steps + 1)
+                    - self.expansions_due(self.search_steps);
+                let outcome = search.step_n(n);
+                self.search_steps += 1;
+                let plot = &mut self.plots[0];
+                plot.series[0].push(self.search_steps as f64, search.expanded() as f64);
+                plot.series[1].push(self.search_steps as f64, search.frontier_len() as f64);
+                plot.touch();
+                outcome
+            } else {
+                search.step_n(budget)
+            };
             budget = budget.saturating_sub((search.expanded() - before).max(1));
             if !matches!(outcome, Some(StepOutcome::Found | StepOutcome::NoPath)) {
                 continue;

@@ -1285,3 +1285,39 @@ fn the_raster_is_a_function_of_the_state_whenever_it_is_read() {
         }
     }
 }
+
+/// Issue 53 §5: Compare ends with the main search done, and the Search
+/// progress plot shows that search as Plan & drive would have drawn it
+/// (it read "No data yet" beside the table).
+#[test]
+fn compare_plots_the_main_search_as_plan_and_drive_does() {
+    let mut planned = AStarGrid::default();
+    planned.action("plan").unwrap();
+    while planned.phase == Phase::Searching {
+        planned.step(DT);
+    }
+    let mut compared = AStarGrid::default();
+    compared.action("compare").unwrap();
+    settle(&mut compared);
+    assert_eq!(compared.phase, Phase::Compared);
+    let (p, c) = (&planned.plots()[0], &compared.plots()[0]);
+    assert!(!c.series[0].is_empty(), "the plot has data after Compare");
+    for i in 0..2 {
+        assert_eq!(c.series[i].x, p.series[i].x, "{}", p.series[i].label);
+        assert_eq!(c.series[i].y, p.series[i].y, "{}", p.series[i].label);
+    }
+    // The last point is the search's own count of expanded cells.
+    let expanded = compared.search.as_ref().unwrap().expanded() as f64;
+    assert_eq!(c.series[0].y.last(), Some(&expanded));
+}
+
+/// Issue 53 §5: after Compare the comparison is the first table, above the
+/// finished main search's open list (it sat below the first screen).
+#[test]
+fn the_comparison_is_the_first_table() {
+    let mut a = AStarGrid::default();
+    a.action("compare").unwrap();
+    settle(&mut a);
+    let keys: Vec<&str> = a.tables().iter().map(|t| t.key).collect();
+    assert_eq!(keys, ["compare", "open"]);
+}

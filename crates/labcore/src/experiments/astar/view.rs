@@ -552,7 +552,9 @@ impl Presentation for AStarGrid {
                     time,
                 ]);
             }
-            tables.push(t);
+            // The comparison the student asked for comes first, above the
+            // finished search's open list (issue 53 §5).
+            tables.insert(0, t);
         }
         tables
     }
