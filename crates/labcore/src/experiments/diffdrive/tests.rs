@@ -717,3 +717,56 @@ fn diffdrive_run_card_label_covers_neither_the_robot_nor_a_waypoint() {
         }
     }
 }
+
+/// Issue 53 §5: each waypoint reached keeps its run card in a table while
+/// the next leg drives, so the Procedure's per-waypoint comparison reads
+/// them side by side without scrubbing back to each arrival.
+#[test]
+fn every_waypoint_reached_keeps_its_run_card_in_a_table() {
+    let mut d = DiffDrive::default();
+    assert!(d.tables().is_empty(), "no card before a waypoint is reached");
+    for g in [
+        DVec2::new(7.4, 3.0),
+        DVec2::new(7.4, 5.5),
+        DVec2::new(4.4, 5.9),
+    ] {
+        click(&mut d, g);
+    }
+    for _ in 0..6000 {
+        if d.reached() == 2 {
+            break;
+        }
+        d.step(DT);
+    }
+    steps(&mut d, 5);
+    assert_eq!(d.reached(), 2);
+    assert_eq!(readout(&d, "card"), "waypoint 3 (driving)");
+    let tables = d.tables();
+    let cards = &tables[0];
+    assert_eq!(cards.key, "cards");
+    assert_eq!(cards.rows.len(), 2, "{:?}", cards.rows);
+    // Card 1 is the straight 3.4 m leg along +x: no heading error.
+    let first = &cards.rows[0];
+    assert_eq!(first[0], "1");
+    let path_m = crate::testkit::leading_number(&first[1]).unwrap();
+    assert!((path_m - 3.4).abs() < 0.06, "{first:?}");
+    assert_eq!(first[3], "0.0°");
+    // Card 2 opens with a quarter turn: a heading error of about 90°.
+    let second = &cards.rows[1];
+    assert_eq!(second[0], "2");
+    let err_deg = crate::testkit::leading_number(&second[3]).unwrap();
+    assert!((err_deg - 90.0).abs() < 3.0, "{second:?}");
+    // The cells are the cards' own numbers.
+    for (row, card) in cards.rows.iter().zip(d.run_cards()) {
+        assert_eq!(row[1], crate::units::format_metres(card.path_length_m));
+        assert_eq!(
+            row[2],
+            format!("{} s", format_fixed(card.time_to_goal_s.unwrap(), 2))
+        );
+    }
+    // Reaching the last one adds its card; the first two stay.
+    run_while_animating(&mut d, 60.0);
+    let rows = &d.tables()[0].rows;
+    assert_eq!(rows.len(), 3);
+    assert_eq!(&rows[..2], &cards.rows[..]);
+}

@@ -525,6 +525,36 @@ impl Presentation for DiffDrive {
         )
     }
 
+    /// One run card per waypoint reached, kept for the whole run (issue 53
+    /// §5): the Procedure compares them waypoint by waypoint, and the
+    /// readouts' card follows only the current leg.
+    fn tables(&self) -> Vec<crate::Table> {
+        let cards = &self.follower.completed;
+        if cards.is_empty() {
+            return Vec::new();
+        }
+        let mut t = crate::Table::new(
+            "cards",
+            "Run cards of the waypoints reached",
+            &["waypoint", "path", "time", "largest heading error", "at a limit: v, ω"],
+        );
+        for (i, s) in cards.iter().enumerate() {
+            t.push_row(vec![
+                (i + 1).to_string(),
+                format_metres(s.path_length_m),
+                s.time_to_goal_s
+                    .map_or("--".into(), |t| format!("{} s", format_fixed(t, 2))),
+                format_degrees(s.max_heading_error_rad.to_degrees()),
+                format!(
+                    "{}%, {}%",
+                    format_fixed(100.0 * s.v_limit_share(), 1),
+                    format_fixed(100.0 * s.omega_limit_share(), 1)
+                ),
+            ]);
+        }
+        vec![t]
+    }
+
     fn hint(&self) -> &'static str {
         "Click or tap to drop a goal; click again to queue more waypoints. Drag a waypoint to move it, tap it to remove it."
     }
