@@ -1157,3 +1157,29 @@ fn ekf_position_uncertainty_shows_the_rise_of_every_predict_step() {
     assert_eq!(view::trace_text(1.5), "1.500 m²");
     assert_eq!(view::trace_text(2.0e-5), "2.0 × 10⁻⁵ m²");
 }
+
+/// Issue 53 §5: the badge cuts a long verdict on a narrow screen
+/// ("[2.67, 3.…"); a readout says it in full, band included, and the
+/// description a screen reader hears ends with it.
+#[test]
+fn the_consistency_verdict_and_its_band_are_a_readout_in_full() {
+    let mut e = EkfExperiment::default();
+    assert_eq!(readout(&e, "verdict"), "--", "no check yet");
+    e.set_param("runs", 10.0).unwrap();
+    e.action("check").unwrap();
+    assert_eq!(readout(&e, "verdict"), "--", "a check under way has no verdict");
+    while e.check.as_ref().is_some_and(|c| !c.finished()) {
+        e.step(DT);
+    }
+    let r = e.check_result().unwrap();
+    // N = 10: the two-sided 95 % band of χ²(30)/10, [1.68, 4.70] (the text's
+    // table; 16.79/10 and 46.98/10).
+    assert_eq!(
+        (format_fixed(r.band.0, 2), format_fixed(r.band.1, 2)),
+        ("1.68".to_owned(), "4.70".to_owned())
+    );
+    let verdict = readout(&e, "verdict");
+    assert_eq!(verdict, e.status().text);
+    assert!(verdict.contains("inside [1.68, 4.70] over 10 runs"), "{verdict}");
+    assert!(e.describe().contains(&verdict), "{}", e.describe());
+}

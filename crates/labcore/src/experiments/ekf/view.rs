@@ -260,6 +260,10 @@ impl Presentation for EkfExperiment {
         let anees = self
             .check_result()
             .map_or("--".into(), |r| format_fixed(r.mean_anees, 2));
+        let verdict = match &self.check {
+            Some(c) if c.finished() && c.result.is_some() => self.status().text,
+            _ => "--".into(),
+        };
         vec![
             Readout::metres("error", "Position error", position_error_m(truth, est)),
             Readout::degrees(
@@ -296,6 +300,9 @@ impl Presentation for EkfExperiment {
             ),
             Readout::new("landmarks", "Landmarks", mapped),
             Readout::new("anees", "Average NEES (check)", anees),
+            // The check's verdict with its band, in full: the badge cuts it
+            // on a narrow screen (issue 53 §5).
+            Readout::new("verdict", "Consistency verdict", verdict),
         ]
     }
 
