@@ -824,6 +824,13 @@ pub trait Presentation: Experiment {
     fn equations(&self) -> &'static [crate::live_math::Equation] {
         &[]
     }
+    /// The keys of the plots besides the main one that the Procedure has
+    /// the student watch (issue 53 §5): the page puts them first under the
+    /// main plot, in view beside the canvas on a laptop and right under the
+    /// main plot on a phone. Default: none (the plots in their order).
+    fn watched_plots(&self) -> &'static [&'static str] {
+        &[]
+    }
     /// Live tables shown beside the canvas (an open list, a comparison).
     fn tables(&self) -> Vec<Table> {
         Vec::new()

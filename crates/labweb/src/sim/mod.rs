@@ -143,7 +143,22 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
             plot_view::render(p)
         )
     });
-    let more_plots: String = all_plots.iter().skip(1).map(plot_view::render).collect();
+    // The plots the Procedure has the student watch come first, marked for
+    // the phone's column (style.css), then the others in their order.
+    let watched = exp.watched_plots();
+    let more_plots: String = all_plots
+        .iter()
+        .skip(1)
+        .filter(|p| watched.contains(&p.key))
+        .map(|p| plot_view::render(p).replacen("class=\"plot\"", "class=\"plot watched\"", 1))
+        .chain(
+            all_plots
+                .iter()
+                .skip(1)
+                .filter(|p| !watched.contains(&p.key))
+                .map(plot_view::render),
+        )
+        .collect();
     let more_plots = if more_plots.is_empty() {
         more_plots
     } else {
@@ -194,9 +209,9 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
            </div>{plots}\
            <div class=\"sim-side\">\
              <p class=\"sim-caption\">{caption}</p>\
-             <dl class=\"readouts\">{readouts}</dl>{math}\
+             <dl class=\"readouts\">{readouts}</dl>\
              <p class=\"sim-message\" role=\"alert\" hidden></p>\
-             <section class=\"tables\" aria-label=\"Tables\">{tables}</section>\
+             <section class=\"tables\" aria-label=\"Tables\">{tables}</section>{math}\
              {presets}<form class=\"sim-controls\" aria-label=\"Parameters\">{controls}</form>{move_form}\
              {report_fields}\
              <p class=\"sr-only sim-live\" aria-live=\"polite\"></p>\

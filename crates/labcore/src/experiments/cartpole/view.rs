@@ -328,6 +328,11 @@ impl Presentation for CartPoleBalance {
         ]
     }
 
+    /// The Procedure's steps read these beside the main plot.
+    fn watched_plots(&self) -> &'static [&'static str] {
+        &["energy"]
+    }
+
     fn equations(&self) -> &'static [Equation] {
         let acting = self.sim.last_inputs().is_some_and(|i| i.control_enabled);
         EQUATIONS[usize::from(!acting)]

@@ -341,6 +341,11 @@ impl Presentation for EkfExperiment {
         ]
     }
 
+    /// The Procedure's steps read these beside the main plot.
+    fn watched_plots(&self) -> &'static [&'static str] {
+        &["nees", "anees"]
+    }
+
     fn equations(&self) -> &'static [Equation] {
         EQUATIONS
     }
