@@ -92,11 +92,13 @@ fn watch_equations(panel: &Element) -> Vec<Option<dom::BoxWatch>> {
 /// canvas, the status strip under it, the time bar, the actions that start
 /// a run, then the tools: files, Save PNG, report, Describe and the
 /// description it shows), the plots (the experiment's main plot, its first,
-/// on top, then the others) and the side (the caption, readouts, tables and
-/// controls). The stage and the plots stay put while the page scrolls the
+/// on top, then the watched ones, then the others) and the side (the
+/// caption, readouts, tables, "The math" and controls). The stage and the plots stay put while the page scrolls the
 /// side, so the scene and its plots stay in view while any control is used.
 /// On a phone the parts dissolve into one ordered column: the canvas, its
-/// status and time bar, the actions, the main plot, then the rest.
+/// status and time bar, the actions, the main plot, the plots the
+/// experiment has the student watch ([`labcore::Presentation::watched_plots`])
+/// and the live tables, then the rest.
 pub fn render(exp: &dyn Lab, caption: &str) -> String {
     let controls = panel::controls_html(exp.params());
     let actions: String = exp
