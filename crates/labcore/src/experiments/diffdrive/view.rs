@@ -153,6 +153,25 @@ fn card_offset(d: &DiffDrive, w: DVec2, chars: usize, cards: &[[DVec2; 2]]) -> D
 
 /// The run card shown in the readouts: the active run, else the last one
 /// finished; with its 1-based waypoint number and whether it is done.
+/// A run card's path length, time to goal (`done`: reached, else so far),
+/// largest heading error and time at a limit, as the readouts and the
+/// table of cards show them.
+fn card_cells(s: &RunStats, done: bool) -> [String; 4] {
+    [
+        format_metres(s.path_length_m),
+        match (done, s.time_to_goal_s) {
+            (true, Some(t)) => format!("{} s", format_fixed(t, 2)),
+            _ => format!("{} s so far", format_fixed(s.elapsed_s, 2)),
+        },
+        format_degrees(s.max_heading_error_rad.to_degrees()),
+        format!(
+            "v {}%, ω {}%",
+            format_fixed(100.0 * s.v_limit_share(), 1),
+            format_fixed(100.0 * s.omega_limit_share(), 1)
+        ),
+    ]
+}
+
 pub(super) fn shown_card(d: &DiffDrive) -> Option<(usize, RunStats, bool)> {
     let reached = d.reached();
     if !d.follower.queue.is_empty() {
@@ -412,10 +431,9 @@ impl Presentation for DiffDrive {
             ),
         ];
         let card = shown_card(self);
-        let value = |f: &dyn Fn(&RunStats, bool) -> String| {
-            card.as_ref()
-                .map_or("--".into(), |(_, s, done)| f(s, *done))
-        };
+        let [path, time, max_error, at_limit] = card
+            .as_ref()
+            .map_or_else(|| ["--".into(), "--".into(), "--".into(), "--".into()], |(_, s, done)| card_cells(s, *done));
         out.extend([
             Readout::new(
                 "card",
@@ -427,35 +445,10 @@ impl Presentation for DiffDrive {
                     )
                 }),
             ),
-            Readout::new(
-                "path",
-                "Path length",
-                value(&|s, _| format_metres(s.path_length_m)),
-            ),
-            Readout::new(
-                "time",
-                "Time to goal",
-                value(&|s, done| match (done, s.time_to_goal_s) {
-                    (true, Some(t)) => format!("{} s", format_fixed(t, 2)),
-                    _ => format!("{} s so far", format_fixed(s.elapsed_s, 2)),
-                }),
-            ),
-            Readout::new(
-                "max_error",
-                "Largest heading error",
-                value(&|s, _| format_degrees(s.max_heading_error_rad.to_degrees())),
-            ),
-            Readout::new(
-                "at_limit",
-                "Time at a limit",
-                value(&|s, _| {
-                    format!(
-                        "v {}%, ω {}%",
-                        format_fixed(100.0 * s.v_limit_share(), 1),
-                        format_fixed(100.0 * s.omega_limit_share(), 1)
-                    )
-                }),
-            ),
+            Readout::new("path", "Path length", path),
+            Readout::new("time", "Time to goal", time),
+            Readout::new("max_error", "Largest heading error", max_error),
+            Readout::new("at_limit", "Time at a limit", at_limit),
         ]);
         out
     }
@@ -536,21 +529,12 @@ impl Presentation for DiffDrive {
         let mut t = crate::Table::new(
             "cards",
             "Run cards of the waypoints reached",
-            &["waypoint", "path", "time", "largest heading error", "at a limit: v, ω"],
+            &["waypoint", "path", "time", "largest heading error", "time at a limit"],
         );
         for (i, s) in cards.iter().enumerate() {
-            t.push_row(vec![
-                (i + 1).to_string(),
-                format_metres(s.path_length_m),
-                s.time_to_goal_s
-                    .map_or("--".into(), |t| format!("{} s", format_fixed(t, 2))),
-                format_degrees(s.max_heading_error_rad.to_degrees()),
-                format!(
-                    "{}%, {}%",
-                    format_fixed(100.0 * s.v_limit_share(), 1),
-                    format_fixed(100.0 * s.omega_limit_share(), 1)
-                ),
-            ]);
+            let mut row = vec![(i + 1).to_string()];
+            row.extend(card_cells(s, true));
+            t.push_row(row);
         }
         vec![t]
     }
