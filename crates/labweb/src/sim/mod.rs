@@ -145,22 +145,21 @@ pub fn render(exp: &dyn Lab, caption: &str) -> String {
             plot_view::render(p)
         )
     });
-    // The plots the Procedure has the student watch come first, marked for
-    // the phone's column (style.css), then the others in their order.
+    // The plots the Procedure has the student watch come first, in a box
+    // the phone's column moves up (style.css), then the others in order.
     let watched = exp.watched_plots();
-    let more_plots: String = all_plots
-        .iter()
-        .skip(1)
-        .filter(|p| watched.contains(&p.key))
-        .map(|p| plot_view::render(p).replacen("class=\"plot\"", "class=\"plot watched\"", 1))
-        .chain(
-            all_plots
-                .iter()
-                .skip(1)
-                .filter(|p| !watched.contains(&p.key))
-                .map(plot_view::render),
-        )
-        .collect();
+    let (mut first, mut more_plots) = (String::new(), String::new());
+    for p in all_plots.iter().skip(1) {
+        let html = plot_view::render(p);
+        if watched.contains(&p.key) {
+            first.push_str(&html);
+        } else {
+            more_plots.push_str(&html);
+        }
+    }
+    if !first.is_empty() {
+        more_plots.insert_str(0, &format!("<div class=\"watched\">{first}</div>"));
+    }
     let more_plots = if more_plots.is_empty() {
         more_plots
     } else {
