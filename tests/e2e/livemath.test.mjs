@@ -118,9 +118,12 @@ test("live math: every experiment's panel shows results equal to its readouts, a
       await open(lab, page, link);
       if (action) await page.locator(`button[data-action=${action}]`).click();
       // Read as a student reads it, in view: out of the window the panel
-      // waits for the run to stop (issue 27, cost).
+      // waits for the run to stop (issue 27, cost). Scrolled to again after
+      // the run began: a live table above it (astar's open list, issue 53
+      // §5) grows in its first steps and moves it down.
       await page.locator(".live-math").scrollIntoViewIfNeeded();
       await runFor(page, 700);
+      await page.locator(".live-math").scrollIntoViewIfNeeded();
       await mathOfReadoutsStep(page, link);
       const texts = await equationTexts(page);
       assert.equal(texts.length, keys.length, `${link}: ${keys.length} equations`);
