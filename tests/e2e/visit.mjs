@@ -69,11 +69,14 @@ function checkMoment(id, s) {
   assert.equal(secondsOf(s.bar), t, `${where}: the time bar says “${s.bar}”, the slider “${s.sliderText}”`);
   if (s.readoutsStep !== null) assert.equal(Number(s.readoutsStep), s.value, `${where}: the readouts are of step ${s.readoutsStep}`);
   if (s.mathStep !== null) assert.equal(Number(s.mathStep), s.value, `${where}: "The math" is of step ${s.mathStep}`);
-  // A past moment's link names it (a moment after an input the run was
-  // given on its way, a Nudge or a drag, has no link yet: Timeline::
-  // unbroken_to; the link then leaves the moment out, and is not reopened).
+  // Every moment's link names it, a moment after an input the run was
+  // given on its way (a Nudge, a drag) too: the link carries those inputs
+  // (`then=`).
   const at = /[?&]at=([^&]*)/.exec(s.hash);
-  if (s.value < s.max && at) assert.ok(Math.abs(Number(at[1]) - t) < DT_S / 2, `${where}: the link says at=${at[1]}, the page t = ${t} s`);
+  if (s.value > 0) {
+    assert.ok(at, `${where}: the link names no moment: ${s.hash}`);
+    assert.ok(Math.abs(Number(at[1]) - t) < DT_S / 2, `${where}: the link says at=${at[1]}, the page t = ${t} s`);
+  }
   return Boolean(at);
 }
 
@@ -90,6 +93,8 @@ export async function alongTheTimeline(lab, page, id) {
   const steps = Array.from({ length: MOMENTS }, (_, k) => Math.round((first.max * (k + 1)) / MOMENTS));
   let before = null;
   let middle = null;
+  // A past moment after inputs during the run (its link carries them).
+  let afterInputs = null;
   const pastCursors = [];
   for (const n of steps) {
     const s = await scrubTo(page, n);
@@ -106,17 +111,19 @@ export async function alongTheTimeline(lab, page, id) {
     if (n < first.max && first.cursors.length > 0) pastCursors.push(s.cursors.some((c) => c !== null));
     before = s;
     if (linked && n < first.max && (middle === null || middle.value < first.max / 2)) middle = s;
+    if (linked && n < first.max && /[?&]then=/.test(s.hash)) afterInputs = s;
   }
   if (pastCursors.some(Boolean)) assert.ok(pastCursors.every(Boolean), `${id}: at some past moments no plot draws the cursor (${pastCursors})`);
   // The link of a past moment reopens it: the same time and readouts.
-  if (middle) {
-    await scrubTo(page, middle.value);
+  // (The later first: a reopened link's run ends at its moment.)
+  for (const moment of new Set([afterInputs, middle].filter(Boolean).sort((a, b) => b.value - a.value))) {
+    await scrubTo(page, moment.value);
     await page.goto("about:blank");
-    await open(lab, page, middle.hash);
+    await open(lab, page, moment.hash);
     await runFor(page, 250 + 3 * FRAME_MS);
     const again = await shown(page);
-    assert.equal(again.value, middle.value, `${id}: ${middle.hash} reopens step ${again.value}, not ${middle.value}`);
-    assert.deepEqual(again.readouts, middle.readouts, `${id}: ${middle.hash} reopens other readouts`);
+    assert.equal(again.value, moment.value, `${id}: ${moment.hash} reopens step ${again.value}, not ${moment.value}`);
+    assert.deepEqual(again.readouts, moment.readouts, `${id}: ${moment.hash} reopens other readouts`);
   }
   // The keys from the slider and from the buttons: , and . step (one of
   // the experiment's steps, as Step's title says: the EKF's is 0.05 s),

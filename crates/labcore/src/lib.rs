@@ -75,6 +75,7 @@ pub mod plot;
 pub mod quiz;
 pub mod rng;
 pub mod route;
+pub mod run_input;
 pub mod scene;
 #[cfg(feature = "reading")]
 pub mod step_numbers;

@@ -27,12 +27,19 @@
 //! forgotten ([`Timeline::first`] moves on). A long run costs a longer
 //! replay, never more memory.
 //!
+//! A link of a moment reproduces it when every input on the way is one a
+//! link can carry ([`crate::run_input`]): the timeline keeps the inputs made
+//! after the start, each with its step ([`Timeline::linked`]); an input it
+//! was not told how to carry (a file, a reset) breaks the link of every
+//! moment from its step on ([`Timeline::unbroken_to`]).
+//!
 //! Steps are counted as the shell's clock counts them
 //! ([`crate::clock::Clock::steps`]): one [`crate::Experiment::step`] of
 //! [`crate::clock::Clock::DT_S`] each.
 
 use crate::experiment::{ParamKind, ParamSpec};
 use crate::plot::{Plot, Series, SeriesRole};
+use crate::run_input::RunInput;
 use crate::scene::{Item, Role, Scene};
 use crate::units::{format_fixed, format_number, with_unit};
 use crate::Lab;
@@ -99,6 +106,9 @@ pub struct Timeline {
     start_unlinked: bool,
     /// The live state's [`crate::Experiment::work_phase`].
     work_phase: u8,
+    /// The inputs after the start, in order, with their steps: each as a
+    /// link carries it, or `None` for one no link carries.
+    later: Vec<(u64, Option<RunInput>)>,
 }
 
 impl Timeline {
@@ -145,6 +155,7 @@ impl Timeline {
             start_pending: false,
             start_unlinked: false,
             work_phase: exp.work_phase(),
+            later: Vec::new(),
         }
     }
 
@@ -180,19 +191,46 @@ impl Timeline {
     }
 
     /// Whether the state at `step` is the run's start stepped `step` times,
-    /// with no input on the way (so a link of the start and the time
-    /// reproduces it). An input not yet committed ([`Timeline::input_at`])
-    /// counts: it changed the state at the run's end.
+    /// with only inputs a link carries on the way ([`Timeline::inputs_to`]),
+    /// so that a link of the start, those inputs and the time reproduces
+    /// it. An input not yet committed ([`Timeline::input_at`]) counts: it
+    /// changed the state at the run's end.
     #[must_use]
     pub fn unbroken_to(&self, step: u64) -> bool {
         self.first() == 0
             && !self.start_unlinked
             && (!self.start_pending || self.start_actions.is_empty())
-            && !(self.dirty && self.end > 0 && step >= self.end)
-            && !self
-                .snaps
+            && self
+                .later
                 .iter()
-                .any(|s| s.input && s.step > 0 && s.step <= step)
+                .take_while(|(s, _)| *s <= step)
+                .all(|(_, input)| input.is_some())
+    }
+
+    /// The inputs after the start up to `step` (inclusive), in order, as a
+    /// link of that moment carries them; empty where
+    /// [`Timeline::unbroken_to`] is false.
+    #[must_use]
+    pub fn inputs_to(&self, step: u64) -> Vec<(u64, RunInput)> {
+        if !self.unbroken_to(step) {
+            return Vec::new();
+        }
+        self.later
+            .iter()
+            .take_while(|(s, _)| *s <= step)
+            .filter_map(|(s, input)| Some((*s, input.clone()?)))
+            .collect()
+    }
+
+    /// The input just given ([`Timeline::input_at`]) after the start is
+    /// `input`, which a link carries. Without this call the input breaks
+    /// the link of every moment from its step on.
+    pub fn linked(&mut self, input: RunInput) {
+        if let Some((step, slot @ None)) = self.later.last_mut() {
+            if *step == self.end {
+                *slot = Some(input);
+            }
+        }
     }
 
     /// The state whose parameters and set-up a link that names moments of
@@ -239,17 +277,28 @@ impl Timeline {
         while self.snaps.len() > 1 && self.snaps[self.snaps.len() - 1].step > step {
             self.pop();
         }
+        // The inputs of the dropped future go with it.
+        while self.later.last().is_some_and(|(s, _)| *s > step) {
+            self.later.pop();
+        }
+        if step > 0 {
+            // No link carries it until it is said to ([`Timeline::linked`]).
+            self.later.push((step, None));
+        }
         self.end = step;
         self.dirty = true;
     }
 
     /// The input just given ([`Timeline::input_at`]) was the action `key`
     /// (or the run started again with it): at the start, a link of the
-    /// start carries it ([`Timeline::start_actions`]).
+    /// start carries it ([`Timeline::start_actions`]); later, among the
+    /// run's inputs ([`Timeline::linked`]).
     pub fn acted(&mut self, key: &'static str) {
         if self.first() == 0 && self.end == 0 {
             self.start_pending = false;
             self.start_actions.push(key);
+        } else {
+            self.linked(RunInput::Action(key.to_owned()));
         }
     }
 

@@ -4,9 +4,10 @@
 
 use labcore::clock::Clock;
 use labcore::glam::DVec2;
+use labcore::run_input::{self, RunInput};
 use labcore::testkit::scene_of;
 use labcore::timeline::Timeline;
-use labcore::{Input, Lab, Lcg64};
+use labcore::{Input, Lab, Lcg64, Modifiers};
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
@@ -640,6 +641,10 @@ fn paused_link(live: &dyn Lab, timeline: &Timeline, step: u64) -> String {
         if !timeline.start_actions().is_empty() {
             link.push_str(&format!("&do={}", timeline.start_actions().join(",")));
         }
+        let inputs = timeline.inputs_to(step);
+        if !inputs.is_empty() {
+            link.push_str(&format!("&then={}", run_input::link_value(&inputs)));
+        }
     }
     link
 }
@@ -677,9 +682,9 @@ fn open_paused_link(id: &str, link: &str) -> Box<dyn Lab> {
     // `run`, `at` and `do` are the shell's (labweb's `apply_params`).
     let notices = labcore::testkit::apply_link(exp.as_mut(), link);
     assert!(
-        notices
+        notices.iter().all(|n| ["“run”", "“at”", "“do”", "“then”"]
             .iter()
-            .all(|n| ["“run”", "“at”", "“do”"].iter().any(|k| n.contains(k))),
+            .any(|k| n.contains(k))),
         "{link}: {notices:?}"
     );
     let actions = link.split(['?', '&']).find_map(|p| p.strip_prefix("do="));
@@ -690,9 +695,22 @@ fn open_paused_link(id: &str, link: &str) -> Box<dyn Lab> {
         .split(['?', '&'])
         .find_map(|p| p.strip_prefix("at="))
         .map_or(0.0, |t| t.parse::<f64>().unwrap());
-    for _ in 0..(at / Clock::DT_S).round() as u64 {
-        exp.step(Clock::DT_S);
+    // The inputs during the run (`then=`), each at its step.
+    let then = link.split(['?', '&']).find_map(|p| p.strip_prefix("then="));
+    let mut inputs = run_input::parse(then.unwrap_or(""))
+        .unwrap()
+        .into_iter()
+        .peekable();
+    let end = (at / Clock::DT_S).round() as u64;
+    for step in 0..=end {
+        while let Some((_, input)) = inputs.next_if(|(s, _)| *s == step) {
+            let _ = input.apply(exp.as_mut());
+        }
+        if step < end {
+            exp.step(Clock::DT_S);
+        }
     }
+    assert!(inputs.next().is_none(), "{link}: an input after the moment");
     exp
 }
 
@@ -777,4 +795,148 @@ fn an_action_at_the_start_is_carried_by_the_link_of_a_moment() {
     pid.step(Clock::DT_S);
     timeline.stepped(pid.as_ref());
     assert!(!timeline.unbroken_to(1));
+}
+
+/// A random input a student could give during a run, as the page gives it
+/// and a link carries it: a parameter, an action, a press, drag and
+/// release, a handle moved.
+fn random_run_inputs(exp: &dyn Lab, rng: &mut Lcg64) -> Vec<RunInput> {
+    let view = exp.view();
+    let mut point = || {
+        DVec2::new(
+            rng.range(view.min.x, view.max.x),
+            rng.range(view.min.y, view.max.y),
+        )
+    };
+    let (a, b) = (point(), point());
+    let pointer = |i| RunInput::Pointer(i, Modifiers::default());
+    let pick = rng.int(0, 3);
+    match pick {
+        0 => {
+            let params = exp.params();
+            let spec = params[rng.int(0, params.len() as i64 - 1) as usize];
+            if spec.key == "size" {
+                return Vec::new();
+            }
+            vec![RunInput::Param(
+                spec.key.into(),
+                rng.range(spec.min, spec.max),
+            )]
+        }
+        1 if !exp.actions().is_empty() => {
+            let actions = exp.actions();
+            let key = actions[rng.int(0, actions.len() as i64 - 1) as usize].key;
+            vec![RunInput::Action(key.into())]
+        }
+        2 => vec![
+            pointer(Input::PointerDown(a)),
+            pointer(Input::PointerMove {
+                pos: (a + b) / 2.0,
+                pressed: true,
+            }),
+            pointer(Input::PointerUp(b)),
+        ],
+        _ => exp
+            .handles()
+            .first()
+            .map(|h| vec![RunInput::Handle(h.id.clone(), a)])
+            .unwrap_or_default(),
+    }
+}
+
+/// Issue 53: a moment after an input made during the run (cart-pole's
+/// Nudge pole, a drag in RRT*) had no link: `at=` was left out, silently.
+/// Every evolving experiment, run with random inputs at random steps (as
+/// the page records them), paused at a random later moment: the link names
+/// the moment and its inputs (`then=`), and reopens it bit for bit. Seeded.
+#[test]
+fn a_moment_after_inputs_during_the_run_round_trips_through_its_link() {
+    let mut rng = Lcg64::new(5_300);
+    let mut linked = 0;
+    for id in evolving_ids() {
+        for _ in 0..6 {
+            let mut exp = labcore::testkit::open(id);
+            let mut timeline = Timeline::new(exp.as_ref(), 0);
+            let mut step = 0;
+            for _ in 0..rng.int(1, 3) {
+                for _ in 0..rng.int(1, 40) {
+                    exp.step(Clock::DT_S);
+                    step += 1;
+                    timeline.stepped(exp.as_ref());
+                }
+                for input in random_run_inputs(exp.as_ref(), &mut rng) {
+                    timeline.input_at(step);
+                    let _ = input.apply(exp.as_mut());
+                    timeline.linked(input);
+                }
+                timeline.commit(exp.as_ref());
+            }
+            for _ in 0..rng.int(1, 40) {
+                exp.step(Clock::DT_S);
+                step += 1;
+                timeline.stepped(exp.as_ref());
+            }
+            assert!(timeline.unbroken_to(step), "{id}: every input was linked");
+            let link = paused_link(exp.as_ref(), &timeline, step);
+            assert!(link.contains("&at="), "{id}: {link}");
+            let reopened = open_paused_link(id, &link);
+            assert_eq!(
+                shown_again(exp.as_ref()),
+                shown_again(reopened.as_ref()),
+                "{id}: {link} reopens {:?} for {:?}",
+                reopened.status(),
+                exp.status()
+            );
+            linked += usize::from(link.contains("then="));
+        }
+    }
+    assert!(linked >= 40, "{linked} links carried inputs");
+}
+
+/// An input the record was not told how to carry (a file, a reset) still
+/// breaks the link of every moment from its step on, and a linked one
+/// after it does not mend it; going back before it does.
+#[test]
+fn an_input_no_link_carries_breaks_the_moments_after_it() {
+    let mut exp = labcore::testkit::open("cartpole");
+    let mut timeline = Timeline::new(exp.as_ref(), 0);
+    let mut step = 0;
+    let mut run = |exp: &mut Box<dyn Lab>, timeline: &mut Timeline, n: u64| {
+        for _ in 0..n {
+            exp.step(Clock::DT_S);
+            step += 1;
+            timeline.stepped(exp.as_ref());
+        }
+        step
+    };
+    let at = run(&mut exp, &mut timeline, 30);
+    timeline.input_at(at);
+    exp.action("nudge").unwrap();
+    timeline.acted("nudge");
+    timeline.commit(exp.as_ref());
+    let at = run(&mut exp, &mut timeline, 30);
+    assert!(timeline.unbroken_to(at));
+    assert_eq!(
+        run_input::link_value(&timeline.inputs_to(at)),
+        "0.50:a:nudge"
+    );
+    // Unlinked (no `linked` call): breaks from its step on.
+    timeline.input_at(at);
+    timeline.commit(exp.as_ref());
+    let end = run(&mut exp, &mut timeline, 10);
+    assert!(timeline.unbroken_to(at - 1));
+    assert!(!timeline.unbroken_to(at) && !timeline.unbroken_to(end));
+    assert!(timeline.inputs_to(end).is_empty());
+    timeline.input_at(end);
+    timeline.linked(RunInput::Action("nudge".into()));
+    assert!(!timeline.unbroken_to(end));
+    // A new run from before it drops it with the future.
+    timeline.input_at(40);
+    timeline.linked(RunInput::Action("nudge".into()));
+    timeline.commit(exp.as_ref());
+    assert!(timeline.unbroken_to(40));
+    assert_eq!(
+        run_input::link_value(&timeline.inputs_to(40)),
+        "0.50:a:nudge;0.67:a:nudge"
+    );
 }

@@ -1234,13 +1234,21 @@ fn play_from_the_past_stops_replaying_at_the_records_end_and_goes_on_live() {
 
 /// Issue 53 §8, "a paused run's link after an input": cartpole paused at
 /// step 100, kθ typed: until the input was committed the page wrote
-/// `at=1.67`, a moment the link does not reopen. pid's change starts the
-/// run again: its link reopens what the page shows.
+/// `at=1.67`, a moment the link does not reopen. The link now carries the
+/// change with its time (`then=`, the start's kθ before it) and reopens
+/// what the page shows. pid's change starts the run again: its link
+/// reopens what the page shows.
 #[wasm_bindgen_test]
 fn a_paused_runs_link_after_an_input_names_only_a_moment_it_reopens() {
     paused_after("#/cartpole/simulation", 100);
     let link = link_after(|| set_range("kth", 60.0));
-    assert!(link.contains("kth=60") && !link.contains("at="), "{link}");
+    assert!(
+        link.contains("at=1.67") && link.contains("then=1.67:p:kth:60") && !link.contains("kth=60"),
+        "{link}"
+    );
+    let there = without_revisions(shown());
+    mount(&link);
+    assert_eq!(without_revisions(shown()), there, "{link}");
     paused_after("#/pid/simulation", 100);
     let link = link_after(|| set_range("kp", 60.0));
     let there = without_revisions(shown());

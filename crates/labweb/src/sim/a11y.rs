@@ -220,6 +220,7 @@ impl SimState {
         let locked = self.guarded(|exp| {
             exp.move_handle(id, to);
         });
+        self.timeline_linked(labcore::run_input::RunInput::Handle(id.to_owned(), to));
         self.needs_paint = true;
         self.text_paced = paced;
         self.hash_dirty = true;

@@ -207,6 +207,7 @@ impl SimState {
             return;
         }
         self.guarded(|exp| exp.input_with(input, modifiers));
+        self.timeline_linked(labcore::run_input::RunInput::Pointer(input, modifiers));
     }
 
     /// Runs a student's input through the locks (see

@@ -774,12 +774,33 @@ impl SimState {
             extra.push(format!("speed={}", self.clock.speed()));
         }
         let marks = self.marks_link();
+        // The link's last moment: the one shown, or its last mark after it.
+        let last_mark = self
+            .marks
+            .marks
+            .steps()
+            .last()
+            .copied()
+            .filter(|_| marks.is_some());
+        let linked_to = last_mark.unwrap_or(0).max(self.clock.steps());
+        let inputs = (self.timeline.as_ref()).map_or_else(Vec::new, |t| t.inputs_to(linked_to));
+        // A running page's link plays from the start: inputs during the run
+        // come only with a moment (`at=`), so marks without one go only
+        // where there were none.
+        let marks = marks.filter(|_| moment || inputs.is_empty());
         moment |= marks.is_some();
         extra.extend(marks);
-        // …and the actions pressed at the start.
+        // …and the actions pressed at the start, and the inputs after it.
         if let Some(tl) = self.timeline.as_ref().filter(|_| moment) {
             if !tl.start_actions().is_empty() {
                 extra.push(format!("do={}", tl.start_actions().join(",")));
+            }
+            if !inputs.is_empty() {
+                extra.push(format!(
+                    "{}={}",
+                    labcore::run_input::THEN_KEY,
+                    labcore::run_input::link_value(&inputs)
+                ));
             }
         }
         // A link naming moments carries the start they are stepped on from
@@ -1131,13 +1152,22 @@ impl SimView {
     pub fn apply_params(&self, params: &[(String, String)]) -> Vec<String> {
         let mut st = self.state.borrow_mut();
         let (shell, own): (Vec<_>, Vec<_>) = params.iter().cloned().partition(|(k, _)| {
-            ["run", "speed", "at", "do", labcore::marks::MARKS_KEY].contains(&k.as_str())
+            [
+                "run",
+                "speed",
+                "at",
+                "do",
+                labcore::marks::MARKS_KEY,
+                labcore::run_input::THEN_KEY,
+            ]
+            .contains(&k.as_str())
         });
         st.timeline_input();
         let mut notices = route::apply_params(st.exp.as_mut(), &own);
         // Settled now: a run it starts again starts before the link's marks.
         st.finish_branch();
         let mut at_s = None;
+        let mut link_inputs = Vec::new();
         // A link is a whole state: its marks, or none.
         let mut link_marks = labcore::marks::Marks::default();
         for (key, raw) in shell {
@@ -1145,6 +1175,12 @@ impl SimView {
                 (labcore::marks::MARKS_KEY, _) if st.timeline.is_some() => {
                     match labcore::marks::Marks::parse(&raw) {
                         Ok(marks) => link_marks = marks,
+                        Err(message) => notices.push(message),
+                    }
+                }
+                (labcore::run_input::THEN_KEY, _) if st.timeline.is_some() => {
+                    match labcore::run_input::parse(&raw) {
+                        Ok(inputs) => link_inputs = inputs,
                         Err(message) => notices.push(message),
                     }
                 }
@@ -1180,7 +1216,7 @@ impl SimView {
             }
         }
         if let Some((t_s, raw)) = at_s {
-            st.open_at(t_s, link_marks.steps().last().copied());
+            notices.extend(st.open_at(t_s, link_marks.steps().last().copied(), &link_inputs));
             let step = st.clock.steps();
             notices.extend(labcore::marks::link_time_notice(&raw, t_s, step));
         }

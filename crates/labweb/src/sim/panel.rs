@@ -873,6 +873,7 @@ impl SimState {
             return;
         }
         self.timeline_input();
+        self.timeline_linked(labcore::run_input::RunInput::Param(key.to_owned(), value));
         match self.exp.set_param(key, value) {
             Ok(Sanitized::InRange(_)) => self.show_message(None),
             Ok(Sanitized::Clamped(v)) => self.show_message(Some(&format!(

@@ -20,6 +20,7 @@ use super::SimState;
 use crate::dom::{self, query, Listener};
 use labcore::clock::Clock;
 use labcore::plot::{Plot, XWindow};
+use labcore::run_input::RunInput;
 use labcore::timeline::{self, plot_x, KeptRun, Timeline};
 use labcore::{Lab, Phase};
 use std::borrow::Cow;
@@ -329,6 +330,15 @@ impl SimState {
             }
         }
         self.marks_new_run_from(self.clock.steps());
+    }
+
+    /// The input just given ([`SimState::timeline_input`]) is `input`: a
+    /// link of a later moment carries it (`then=`, issue 53). An input not
+    /// said to be one breaks the link of the moments after it.
+    pub(super) fn timeline_linked(&mut self, input: labcore::run_input::RunInput) {
+        if let Some(tl) = &mut self.timeline {
+            tl.linked(input);
+        }
     }
 
     /// Settles an input once it has been applied. One that started the run
@@ -716,7 +726,12 @@ impl SimState {
     /// run it names: the run is stepped on to the last of them and shown at
     /// the moment, the marks on its plots (issue 53 §2: a report's link
     /// reopens the moment and the marks).
-    pub(super) fn open_at(&mut self, t_s: f64, last_mark: Option<u64>) {
+    pub(super) fn open_at(
+        &mut self,
+        t_s: f64,
+        last_mark: Option<u64>,
+        inputs: &[(u64, RunInput)],
+    ) -> Vec<String> {
         let at = ((t_s / Clock::DT_S).round() as u64).min(RUN_TO_END_MAX_STEPS);
         let steps = at.max(last_mark.unwrap_or(0)).min(RUN_TO_END_MAX_STEPS);
         let actions = self.timeline.as_ref().map(|t| t.start_actions().to_vec());
@@ -726,7 +741,27 @@ impl SimState {
         if let Some(tl) = &mut self.timeline {
             actions.into_iter().flatten().for_each(|a| tl.acted(a));
         }
-        self.step_recorded(steps, false, 0.0, f64::INFINITY);
+        // The inputs during the run (`then=`), each given at its step as
+        // the page gave it; one past the link's last moment is no part of it.
+        let mut notices = Vec::new();
+        for (step, input) in inputs.iter().filter(|(s, _)| *s <= steps) {
+            let to_go = step.saturating_sub(self.clock.steps());
+            let (_, done) = self.step_recorded(to_go, false, 0.0, f64::INFINITY);
+            if self.clock.steps() < *step && done {
+                notices.push(format!(
+                    "The run ended at t = {:.2} s, before the link's inputs at {:.2} s; they were left out.",
+                    self.clock.time_s(),
+                    *step as f64 * Clock::DT_S
+                ));
+                break;
+            }
+            notices.extend(self.give_run_input(input));
+        }
+        if inputs.iter().any(|(s, _)| *s > steps) {
+            notices.push("The link's inputs after its last moment were left out.".to_owned());
+        }
+        let to_go = steps.saturating_sub(self.clock.steps());
+        self.step_recorded(to_go, false, 0.0, f64::INFINITY);
         if at < self.clock.steps() {
             self.seek(at);
             // Paused by the link (`run=0`), as at its end, not by a scrub.
@@ -735,6 +770,27 @@ impl SimState {
         self.clock.set_running(false);
         self.phase = self.exp.status().phase;
         self.plots_force = true;
+        notices
+    }
+
+    /// Gives the live run an input a link carries ([`RunInput`]) as the
+    /// page's own controls give it: through the instructor's locks, recorded
+    /// as one. Returns what the page would say of a value or a button it
+    /// does not take.
+    fn give_run_input(&mut self, input: &RunInput) -> Option<String> {
+        let mut result = Ok(());
+        if let RunInput::Action(key) = input {
+            self.branch_cause = self.exp.actions().iter().find(|a| a.key == key);
+        }
+        self.guarded(|exp| result = input.apply(exp));
+        if !matches!(input, RunInput::Action(_)) {
+            self.timeline_linked(input.clone());
+        }
+        self.finish_branch();
+        self.hash_dirty = true;
+        result
+            .err()
+            .map(|e| format!("The link's inputs during the run: {e}"))
     }
 
     /// Takes up to `steps` steps of the live run, recorded, as a run takes
