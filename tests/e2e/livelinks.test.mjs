@@ -220,6 +220,10 @@ for (const [viewport, name] of [
         await open(lab, page, link);
         if (action) await page.click(`${SIM} button[data-action=${action}]`);
         await runFor(page, 400);
+        // A keyboard student: the pointer rests off the page's symbols
+        // (where it pressed Plan & drive, the panel scrolled in by the
+        // focus could put another symbol under it, and a hover lights that).
+        await page.mouse.move(0, 0);
         await page.locator(`${SIM} .live-math [data-live=${key}]`).first().focus();
         await runFor(page, 50);
         assert.equal(await page.$eval(`${SIM} canvas.sim-canvas`, (c) => c.dataset.live), key, id);
