@@ -216,7 +216,7 @@ test("astar on a phone: open-list numbers never wrap mid-number", () =>
   withPage(lab, { viewport: { width: 390, height: 844 }, hasTouch: true, clock: true }, async (page) => {
     await open(lab, page, "#/astar/simulation");
     await page.click(`${ART} button[data-action=plan]`);
-    await runUntil(page, (art) => document.querySelectorAll(`${art} .live-table td`).length > 4, ART);
+    await runUntil(page, (art) => document.querySelectorAll(`${art} .live-table td:not(:first-child)`).length > 8, ART);
     await settle(page);
     // One synchronous look (the table is rebuilt while the search runs).
     const { cells, wrapped, style } = await page.evaluate((art) => {
