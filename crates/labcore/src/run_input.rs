@@ -25,6 +25,7 @@
 
 use crate::experiment::{Input, Lab, Modifiers};
 use crate::marks::time_text;
+use crate::route::link_number;
 use crate::Clock;
 use glam::DVec2;
 
@@ -71,96 +72,117 @@ impl RunInput {
         }
     }
 
-    /// The entry's kind and what, as the link writes them (no time).
-    fn text(&self) -> String {
-        let point = |p: DVec2| format!("{},{}", p.x, p.y);
+    /// Writes the entry's kind and what, as the link writes them (no time),
+    /// to `out`. (Pushed piece by piece: the link is written on every
+    /// pause, and each `format!` cost the shipped modules bytes.)
+    fn write(&self, out: &mut String) {
+        let point = |out: &mut String, p: DVec2| {
+            out.push_str(&link_number(p.x));
+            out.push(',');
+            out.push_str(&link_number(p.y));
+        };
         match self {
-            Self::Action(key) => format!("a:{key}"),
-            Self::Param(key, value) => format!("p:{key}:{value}"),
-            Self::Handle(id, to) => format!("h:{id}:{}", point(*to)),
+            Self::Action(key) => {
+                out.push_str("a:");
+                out.push_str(key);
+            }
+            Self::Param(key, value) => {
+                out.push_str("p:");
+                out.push_str(key);
+                out.push(':');
+                out.push_str(&link_number(*value));
+            }
+            Self::Handle(id, to) => {
+                out.push_str("h:");
+                out.push_str(id);
+                out.push(':');
+                point(out, *to);
+            }
             Self::Pointer(input, m) => {
                 let (kind, p) = match *input {
-                    Input::PointerDown(p) => ("d", p),
-                    Input::PointerMove { pos, .. } => ("m", pos),
-                    Input::PointerUp(p) => ("u", p),
-                    Input::Nudge(d) => ("n", d),
+                    Input::PointerDown(p) => ('d', p),
+                    Input::PointerMove { pos, .. } => ('m', pos),
+                    Input::PointerUp(p) => ('u', p),
+                    Input::Nudge(d) => ('n', d),
                 };
-                let keys = match (m.shift, m.ctrl) {
-                    (false, false) => "",
-                    (true, false) => "s",
-                    (false, true) => "c",
-                    (true, true) => "sc",
-                };
-                format!("{kind}{keys}:{}", point(p))
+                out.push(kind);
+                if m.shift {
+                    out.push('s');
+                }
+                if m.ctrl {
+                    out.push('c');
+                }
+                out.push(':');
+                point(out, p);
             }
         }
     }
 
-    /// Reads one entry's kind and what ([`RunInput::text`]).
+    /// Reads one entry's kind and what ([`RunInput::write`]).
     fn parse(kind: &str, what: &str) -> Option<Self> {
+        let (head, tail) = what.rsplit_once(':').unwrap_or(("", what));
+        let key = (!head.is_empty()
+            && head.bytes().all(|c| c.is_ascii_alphanumeric() || c == b'_'))
+        .then(|| head.to_owned());
         let number = |s: &str| s.parse::<f64>().ok().filter(|v| v.is_finite());
-        let point = |s: &str| {
-            let (x, y) = s.split_once(',')?;
-            Some(DVec2::new(number(x)?, number(y)?))
+        let point = tail
+            .split_once(',')
+            .and_then(|(x, y)| Some(DVec2::new(number(x)?, number(y)?)));
+        let keys = kind.get(1..).unwrap_or("");
+        let modifiers = Modifiers {
+            shift: keys.starts_with('s'),
+            ctrl: keys.ends_with('c'),
         };
-        let key = |s: &str| {
-            (!s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
-                .then(|| s.to_owned())
-        };
-        Some(match kind {
-            "a" => Self::Action(key(what)?),
-            "p" => {
-                let (k, v) = what.split_once(':')?;
-                // A value may be NaN only as a page would never send it.
-                Self::Param(key(k)?, number(v)?)
+        let keys_read = ["", "s", "c", "sc"].contains(&keys);
+        Some(match kind.as_bytes() {
+            // An action's key is all of `what`.
+            b"a" if what.bytes().all(|c| c.is_ascii_alphanumeric() || c == b'_')
+                && !what.is_empty() =>
+            {
+                Self::Action(what.to_owned())
             }
-            "h" => {
-                let (id, p) = what.split_once(':')?;
-                Self::Handle(key(id)?, point(p)?)
+            b"p" => Self::Param(key?, number(tail)?),
+            b"h" => Self::Handle(key?, point?),
+            [pointer, ..] if head.is_empty() && keys_read => {
+                let p = point?;
+                Self::Pointer(
+                    match pointer {
+                        b'd' => Input::PointerDown(p),
+                        b'm' => Input::PointerMove {
+                            pos: p,
+                            pressed: true,
+                        },
+                        b'u' => Input::PointerUp(p),
+                        b'n' => Input::Nudge(p),
+                        _ => return None,
+                    },
+                    modifiers,
+                )
             }
-            _ => {
-                let (pointer, keys) = kind.split_at(1);
-                let modifiers = match keys {
-                    "" => Modifiers::default(),
-                    "s" => Modifiers {
-                        shift: true,
-                        ctrl: false,
-                    },
-                    "c" => Modifiers {
-                        shift: false,
-                        ctrl: true,
-                    },
-                    "sc" => Modifiers {
-                        shift: true,
-                        ctrl: true,
-                    },
-                    _ => return None,
-                };
-                let p = point(what)?;
-                let input = match pointer {
-                    "d" => Input::PointerDown(p),
-                    "m" => Input::PointerMove {
-                        pos: p,
-                        pressed: true,
-                    },
-                    "u" => Input::PointerUp(p),
-                    "n" => Input::Nudge(p),
-                    _ => return None,
-                };
-                Self::Pointer(input, modifiers)
-            }
+            _ => return None,
         })
     }
+}
+
+/// Writes one input with its step (`1.20:a:nudge`) to `out`, after a `;`
+/// where `out` holds others: [`link_value`] piece by piece.
+pub fn push_entry(out: &mut String, step: u64, input: &RunInput) {
+    if !out.is_empty() {
+        out.push(';');
+    }
+    out.push_str(&time_text(step));
+    out.push(':');
+    input.write(out);
 }
 
 /// The link value of `inputs` (step, input), in order: `1.20:a:nudge;…`.
 #[must_use]
 pub fn link_value(inputs: &[(u64, RunInput)]) -> String {
-    inputs
-        .iter()
-        .map(|(step, input)| format!("{}:{}", time_text(*step), input.text()))
-        .collect::<Vec<_>>()
-        .join(";")
+    let mut out = String::new();
+    for (step, input) in inputs {
+        push_entry(&mut out, *step, input);
+    }
+    out
 }
 
 /// Reads a link's `then=` value ([`link_value`]): the inputs with their
@@ -176,29 +198,23 @@ pub fn parse(value: &str) -> Result<Vec<(u64, RunInput)>, String> {
         return Ok(inputs);
     }
     for entry in value.split(';') {
+        let last = inputs.last().map_or(0, |(s, _)| *s);
         let read = entry.split_once(':').and_then(|(t, rest)| {
-            let t_s = t
-                .parse::<f64>()
-                .ok()
-                .filter(|t| t.is_finite() && *t >= 0.0)?;
+            let t_s = t.parse::<f64>().ok().filter(|t| *t >= 0.0 && *t <= 1e6)?;
             let step = (t_s / Clock::DT_S).round() as u64;
             let (kind, what) = rest.split_once(':')?;
-            let after_last = inputs.last().is_none_or(|(last, _)| step >= *last);
-            after_last.then_some(())?;
-            Some((step, RunInput::parse(kind, what)?))
+            let input = RunInput::parse(kind, what).filter(|_| step >= last)?;
+            Some((step, input))
         });
-        let Some(read) = read else {
-            let shown: String = entry.trim().chars().take(24).collect();
-            return Err(format!(
-                "The link's inputs during the run: “{shown}” is not one (e.g. then=1.20:a:nudge); the run was opened without them."
-            ));
-        };
-        if inputs.len() >= MAX_INPUTS {
-            return Err(format!(
-                "The link carries more than {MAX_INPUTS} inputs during the run; the run was opened without them."
-            ));
+        match read {
+            Some(read) if inputs.len() < MAX_INPUTS => inputs.push(read),
+            _ => {
+                let shown: String = entry.trim().chars().take(24).collect();
+                return Err(format!(
+                    "The link's inputs during the run: “{shown}” is not one of at most {MAX_INPUTS} (e.g. then=1.20:a:nudge); the run was opened without them."
+                ));
+            }
         }
-        inputs.push(read);
     }
     Ok(inputs)
 }
@@ -265,7 +281,7 @@ mod tests {
             "1.20:a:nudge;2.05:p:kp:60;2.05:p:kd:0.1;3.00:d:1.5,0.25"
         );
         let shifted = link_value(&sample()[4..5]);
-        assert_eq!(shifted, "3.02:ms:0.3333333333333333,-0.0000002");
+        assert_eq!(shifted, "3.02:ms:0.3333333333333333,-2e-7");
     }
 
     #[test]
@@ -349,7 +365,10 @@ mod tests {
             );
         }
         let many = vec!["1.00:a:nudge"; MAX_INPUTS + 1].join(";");
-        assert!(parse(&many).unwrap_err().contains("more than 2000"));
+        assert!(parse(&many)
+            .unwrap_err()
+            .contains("“1.00:a:nudge” is not one of at most 2000"));
+        assert_eq!(parse(&many[13..]).unwrap().len(), MAX_INPUTS);
         assert_eq!(parse("  ").unwrap(), Vec::new());
     }
 

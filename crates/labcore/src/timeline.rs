@@ -191,7 +191,7 @@ impl Timeline {
     }
 
     /// Whether the state at `step` is the run's start stepped `step` times,
-    /// with only inputs a link carries on the way ([`Timeline::inputs_to`]),
+    /// with only inputs a link carries on the way ([`Timeline::inputs_link`]),
     /// so that a link of the start, those inputs and the time reproduces
     /// it. An input not yet committed ([`Timeline::input_at`]) counts: it
     /// changed the state at the run's end.
@@ -208,18 +208,19 @@ impl Timeline {
     }
 
     /// The inputs after the start up to `step` (inclusive), in order, as a
-    /// link of that moment carries them; empty where
-    /// [`Timeline::unbroken_to`] is false.
+    /// link of that moment carries them ([`crate::run_input::link_value`]):
+    /// empty where there are none or [`Timeline::unbroken_to`] is false.
     #[must_use]
-    pub fn inputs_to(&self, step: u64) -> Vec<(u64, RunInput)> {
-        if !self.unbroken_to(step) {
-            return Vec::new();
+    pub fn inputs_link(&self, step: u64) -> String {
+        let mut out = String::new();
+        if self.unbroken_to(step) {
+            for (s, input) in self.later.iter().take_while(|(s, _)| *s <= step) {
+                if let Some(input) = input {
+                    crate::run_input::push_entry(&mut out, *s, input);
+                }
+            }
         }
-        self.later
-            .iter()
-            .take_while(|(s, _)| *s <= step)
-            .filter_map(|(s, input)| Some((*s, input.clone()?)))
-            .collect()
+        out
     }
 
     /// The input just given ([`Timeline::input_at`]) after the start is

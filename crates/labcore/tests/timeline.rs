@@ -641,9 +641,9 @@ fn paused_link(live: &dyn Lab, timeline: &Timeline, step: u64) -> String {
         if !timeline.start_actions().is_empty() {
             link.push_str(&format!("&do={}", timeline.start_actions().join(",")));
         }
-        let inputs = timeline.inputs_to(step);
+        let inputs = timeline.inputs_link(step);
         if !inputs.is_empty() {
-            link.push_str(&format!("&then={}", run_input::link_value(&inputs)));
+            link.push_str(&format!("&then={inputs}"));
         }
     }
     link
@@ -916,17 +916,14 @@ fn an_input_no_link_carries_breaks_the_moments_after_it() {
     timeline.commit(exp.as_ref());
     let at = run(&mut exp, &mut timeline, 30);
     assert!(timeline.unbroken_to(at));
-    assert_eq!(
-        run_input::link_value(&timeline.inputs_to(at)),
-        "0.50:a:nudge"
-    );
+    assert_eq!(timeline.inputs_link(at), "0.50:a:nudge");
     // Unlinked (no `linked` call): breaks from its step on.
     timeline.input_at(at);
     timeline.commit(exp.as_ref());
     let end = run(&mut exp, &mut timeline, 10);
     assert!(timeline.unbroken_to(at - 1));
     assert!(!timeline.unbroken_to(at) && !timeline.unbroken_to(end));
-    assert!(timeline.inputs_to(end).is_empty());
+    assert!(timeline.inputs_link(end).is_empty());
     timeline.input_at(end);
     timeline.linked(RunInput::Action("nudge".into()));
     assert!(!timeline.unbroken_to(end));
@@ -935,8 +932,5 @@ fn an_input_no_link_carries_breaks_the_moments_after_it() {
     timeline.linked(RunInput::Action("nudge".into()));
     timeline.commit(exp.as_ref());
     assert!(timeline.unbroken_to(40));
-    assert_eq!(
-        run_input::link_value(&timeline.inputs_to(40)),
-        "0.50:a:nudge;0.67:a:nudge"
-    );
+    assert_eq!(timeline.inputs_link(40), "0.50:a:nudge;0.67:a:nudge");
 }

@@ -783,7 +783,8 @@ impl SimState {
             .copied()
             .filter(|_| marks.is_some());
         let linked_to = last_mark.unwrap_or(0).max(self.clock.steps());
-        let inputs = (self.timeline.as_ref()).map_or_else(Vec::new, |t| t.inputs_to(linked_to));
+        let inputs =
+            (self.timeline.as_ref()).map_or_else(String::new, |t| t.inputs_link(linked_to));
         // A running page's link plays from the start: inputs during the run
         // come only with a moment (`at=`), so marks without one go only
         // where there were none.
@@ -796,11 +797,7 @@ impl SimState {
                 extra.push(format!("do={}", tl.start_actions().join(",")));
             }
             if !inputs.is_empty() {
-                extra.push(format!(
-                    "{}={}",
-                    labcore::run_input::THEN_KEY,
-                    labcore::run_input::link_value(&inputs)
-                ));
+                extra.push(format!("{}={inputs}", labcore::run_input::THEN_KEY));
             }
         }
         // A link naming moments carries the start they are stepped on from

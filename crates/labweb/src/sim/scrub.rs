@@ -742,23 +742,26 @@ impl SimState {
             actions.into_iter().flatten().for_each(|a| tl.acted(a));
         }
         // The inputs during the run (`then=`), each given at its step as
-        // the page gave it; one past the link's last moment is no part of it.
+        // the page gave it; one the run does not reach (it ended first, or
+        // the link's last moment is before it) is left out, and said.
         let mut notices = Vec::new();
-        for (step, input) in inputs.iter().filter(|(s, _)| *s <= steps) {
+        let mut left_out = false;
+        for (step, input) in inputs {
             let to_go = step.saturating_sub(self.clock.steps());
-            let (_, done) = self.step_recorded(to_go, false, 0.0, f64::INFINITY);
-            if self.clock.steps() < *step && done {
-                notices.push(format!(
-                    "The run ended at t = {:.2} s, before the link's inputs at {:.2} s; they were left out.",
-                    self.clock.time_s(),
-                    *step as f64 * Clock::DT_S
-                ));
-                break;
+            self.step_recorded(
+                to_go.min(steps - self.clock.steps().min(steps)),
+                false,
+                0.0,
+                f64::INFINITY,
+            );
+            if self.clock.steps() != *step {
+                left_out = true;
+                continue;
             }
             notices.extend(self.give_run_input(input));
         }
-        if inputs.iter().any(|(s, _)| *s > steps) {
-            notices.push("The link's inputs after its last moment were left out.".to_owned());
+        if left_out {
+            notices.push("Some of the link's inputs during the run come after the run or the link's moment; they were left out.".to_owned());
         }
         let to_go = steps.saturating_sub(self.clock.steps());
         self.step_recorded(to_go, false, 0.0, f64::INFINITY);
