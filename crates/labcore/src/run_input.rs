@@ -120,7 +120,8 @@ impl RunInput {
 
     /// Reads one entry's kind and what ([`RunInput::write`]).
     fn parse(kind: &str, what: &str) -> Option<Self> {
-        let (head, tail) = what.rsplit_once(':').unwrap_or(("", what));
+        // A key or an id holds no ':', so the first one ends it.
+        let (head, tail) = what.split_once(':').unwrap_or(("", what));
         let key = (!head.is_empty()
             && head.bytes().all(|c| c.is_ascii_alphanumeric() || c == b'_'))
         .then(|| head.to_owned());
