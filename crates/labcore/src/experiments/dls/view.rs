@@ -19,7 +19,7 @@ const EQUATIONS: &[Equation] = &[
         )),
         readout: "error",
         caption: "The error e the next step Δq = Jᵀ(JJᵀ + λ²I)⁻¹e works on: from the tip p(q) = (x, y) to the target p* = (xₜ, yₜ).",
-        absent: "No target yet: click or tap one, or type its x and y.",
+        absent: "No target yet: put one on the canvas, or type its x and y.",
     },
     Equation {
         key: "w",

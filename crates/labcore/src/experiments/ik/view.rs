@@ -26,7 +26,7 @@ const fn elbow(expr: Expr, caption: &'static str) -> [Equation; 1] {
         expr,
         readout: "theta2",
         caption,
-        absent: "No elbow angle: there is no target yet (click or tap one), or it lies out of reach, where the cosine would pass ±1.",
+        absent: "No elbow angle: there is no target yet (put one on the canvas), or it lies out of reach, where the cosine would pass ±1.",
     }]
 }
 /// `[elbow up, elbow down]` for the target itself, and for the wrist centre

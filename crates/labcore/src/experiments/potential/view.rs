@@ -19,7 +19,7 @@ const GOAL_DISTANCE: Equation = Equation {
         )),
         readout: "goal",
         caption: "The distance from the robot to the goal.",
-        absent: "No goal yet: click or tap where the robot should go.",
+        absent: "No goal yet: put one on the canvas where the robot should go.",
     };
 const PULL: Equation = Equation {
         key: "f_att",
@@ -27,7 +27,7 @@ const PULL: Equation = Equation {
         expr: Expr::Var("ka"),
         readout: "att",
         caption: "The conic pull: the same strength kₐ at any distance, pointing at the goal.",
-        absent: "No goal yet: click or tap where the robot should go.",
+        absent: "No goal yet: put one on the canvas where the robot should go.",
     };
 /// With the goal on the robot the pull has no direction: there is none.
 const PULL_AT_GOAL: Equation = Equation {
@@ -36,7 +36,7 @@ const PULL_AT_GOAL: Equation = Equation {
     expr: Expr::Num(0.0, "0"),
     readout: "att",
     caption: "With the goal on the robot the pull has no direction to point in: there is none.",
-    absent: "No goal yet: click or tap where the robot should go.",
+    absent: "No goal yet: put one on the canvas where the robot should go.",
 };
 const CLEARANCE: Equation = Equation {
         key: "clearance",
