@@ -21,7 +21,7 @@ import { readFileSync } from "node:fs";
 import { dirname, join, resolve } from "node:path";
 import { fileURLToPath } from "node:url";
 import { alongTheTimeline } from "./visit.mjs";
-import { DESKTOP, PHONE, builtExperimentIds, open, runFor, runUntil, settle, useLab, withPage, worldToPage } from "./helpers.mjs";
+import { DESKTOP, PHONE, builtExperimentIds, open, runFor, runUntil, screenshot, settle, useLab, withPage, worldToPage } from "./helpers.mjs";
 const ROOT = resolve(dirname(fileURLToPath(import.meta.url)), "..", "..");
 const ART = "article.exp:not([hidden])";
 const FRAME_MS = 1000 / 60;
@@ -945,6 +945,17 @@ function playProcedure(lab, id) {
               if (!process.env.LAB_PLAY_ON) throw new Error(failure);
               failures.push(failure);
             }
+          }
+          // LAB_PLAY_SHOTS=pid:9,astar:8: the page after those steps, as
+          // target/e2e-shots/procedure-<id>-step<k>-<size>.png, to look at
+          // (the phone's at 390 × 844, the size issue 53 asks to look at).
+          if ((process.env.LAB_PLAY_SHOTS ?? "").split(",").includes(`${id}:${k + 1}`)) {
+            const size = page.viewportSize();
+            if (options.hasTouch) await page.setViewportSize({ width: 390, height: 844 });
+            await runFor(page, 300);
+            await screenshot(page, `procedure-${id}-step${k + 1}-${options.hasTouch ? "390" : "1280"}`);
+            await page.setViewportSize(size);
+            await runFor(page, 300);
           }
         }
         assert.deepEqual(failures, [], `\n${failures.join("\n\n")}`);
