@@ -257,18 +257,18 @@ fn scrub_rehearsal_a_peek_is_the_scrubs_state_and_counts_nothing() {
 }
 
 /// RRT*'s step grows a batch of iterations (24 by default), and the
-/// workspace sweep's samples a hundredth of its poses (weight 4), so their
-/// first intervals are shorter: a scrub replays about as much work as a
-/// 32-step interval replays elsewhere, not 24 (or 4) times that.
+/// workspace sweep's samples a hundredth of its poses (weight 8), so their
+/// first intervals are shorter: a scrub replays at most one RRT* batch and
+/// three sweep steps, not 31 of either.
 #[test]
 fn scrub_replay_bound_a_step_that_runs_a_batch_is_snapshot_more_often() {
     let rrt = labcore::testkit::open("rrtstar");
     assert_eq!(rrt.step_weight(), 24);
-    assert_eq!(Timeline::first_interval(rrt.as_ref()), 4);
-    assert_eq!(Timeline::new(rrt.as_ref(), 0).interval(), 4);
+    assert_eq!(Timeline::first_interval(rrt.as_ref()), 2);
+    assert_eq!(Timeline::new(rrt.as_ref(), 0).interval(), 2);
     let sweep = labcore::testkit::open("workspace");
-    assert_eq!(sweep.step_weight(), 4);
-    assert_eq!(Timeline::first_interval(sweep.as_ref()), 8);
+    assert_eq!(sweep.step_weight(), 8);
+    assert_eq!(Timeline::first_interval(sweep.as_ref()), 4);
     for id in evolving_ids()
         .into_iter()
         .filter(|id| !["rrtstar", "workspace"].contains(id))
