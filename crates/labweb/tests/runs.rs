@@ -575,6 +575,59 @@ fn texts(selector: &str) -> Vec<String> {
         .collect()
 }
 
+/// Issue 53 §10: the status badge is written with the readouts. ekf's
+/// consistency check ends while the robot drives on, so its verdict comes
+/// at a streaming run's pace; written in the frame while the readouts
+/// waited for the idle time, the verdict ("… average NEES 1.02 …") stood
+/// beside an "Average NEES" of "--" (a fresh-clone e2e run read that pair).
+/// After every frame and every idle time, a verdict in the badge has its
+/// average NEES in the readout.
+#[wasm_bindgen_test]
+fn a_verdict_in_the_status_is_never_shown_before_its_readout() {
+    let _in_view = mount_ekf_with_the_math_panel_in_view();
+    for _ in 0..10 {
+        frame(ONE_STEP_MS);
+    }
+    element("[data-action=check]").click();
+    let verdict = || {
+        let status = text(".sim-status");
+        [
+            "consistent",
+            "over-confident",
+            "under-confident",
+            "inconsistent",
+        ]
+        .iter()
+        .any(|v| status.starts_with(v))
+        .then_some(status)
+    };
+    let agree = |when: &str| {
+        if let Some(status) = verdict() {
+            let anees = text("[data-readout=anees]");
+            assert!(
+                anees.parse::<f64>().is_ok(),
+                "{when}: the status says {status:?} while Average NEES reads {anees:?}"
+            );
+        }
+    };
+    let mut frames = 0;
+    while verdict().is_none() && frames < 20_000 {
+        frame_alone(ONE_STEP_MS);
+        agree("after a frame");
+        while idle_asked() {
+            idle();
+            agree("after an idle time");
+        }
+        frames += 1;
+    }
+    assert!(verdict().is_some(), "the check ended in {frames} frames");
+    assert_ne!(
+        attr(".sim-status", "data-phase").as_deref(),
+        Some("ended"),
+        "the run drives on"
+    );
+}
+
 /// Issue 27, cost: while a run streams, its text update's frame writes
 /// none of "The math" panel's equations, and lays none out; the browser's
 /// idle times after it write them, the readouts with the first and one

@@ -509,12 +509,16 @@ impl SimState {
                 .collect();
         }
         // Written with the panel's equations, whose results they are, when
-        // the browser is idle: both change in the same frame.
+        // the browser is idle: both change in the same frame. The status
+        // goes with the readouts: ekf's verdict names the average NEES its
+        // readout shows, and written in the frame it showed a step the
+        // readouts had not reached (a fresh-clone e2e run read the verdict
+        // beside an "Average NEES" of "--").
         self.readouts_in_idle = self.sync_math(&readouts);
         if !self.readouts_in_idle {
             self.write_readouts(&readouts);
+            self.sync_status();
         }
-        self.sync_status();
         self.sync_hint();
         self.sync_actions();
         let tables = self.exp.tables();
@@ -762,6 +766,7 @@ impl SimState {
             // 3.7 ms closed, at 4×).
             let readouts = self.exp.readouts();
             self.write_readouts(&readouts);
+            self.sync_status();
             let equations = super::panel_equations(self.exp.as_ref());
             let quantities = self.quantities();
             self.collect_math(&equations, &quantities, &readouts);
