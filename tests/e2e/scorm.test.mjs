@@ -313,12 +313,27 @@ async function startLms() {
   // The runtime's commits (LMSCommit and LMSFinish post the cmi here).
   const commits = [];
   const waiting = [];
-  /** The first commit posted (already or later) whose body holds `text`. */
-  const commitWith = (text) =>
-    new Promise((ok) => {
-      const seen = commits.find((b) => b.includes(text));
-      if (seen) ok(seen);
-      else waiting.push({ text, ok });
+  const cmiIn = (body) => {
+    try {
+      return JSON.parse(body);
+    } catch {
+      return {};
+    }
+  };
+  /**
+   * The first commit posted (already or later) whose parsed cmi satisfies
+   * `wanted`; fails after 15 s, naming what did arrive, rather than hang.
+   */
+  const commitWhere = (wanted, what) =>
+    new Promise((ok, fail) => {
+      const seen = commits.find((b) => wanted(cmiIn(b)));
+      if (seen) return ok(cmiIn(seen));
+      const w = { wanted, ok: (body) => (clearTimeout(w.timer), ok(cmiIn(body))) };
+      w.timer = setTimeout(() => {
+        waiting.splice(waiting.indexOf(w), 1);
+        fail(new Error(`no commit ${what} reached the LMS server in 15 s; it got ${commits.length}: ${commits.map((b) => b.slice(0, 160)).join(" | ")}`));
+      }, 15_000);
+      waiting.push(w);
     });
   const server = createServer(async (req, res) => {
     const path = decodeURIComponent(new URL(req.url, "http://x").pathname);
@@ -327,7 +342,7 @@ async function startLms() {
       for await (const chunk of req) body += chunk;
       commits.push(body);
       for (const w of [...waiting]) {
-        if (body.includes(w.text)) {
+        if (w.wanted(cmiIn(body))) {
           waiting.splice(waiting.indexOf(w), 1);
           w.ok(body);
         }
@@ -352,7 +367,7 @@ async function startLms() {
   });
   await new Promise((ok) => server.listen(0, "127.0.0.1", ok));
   const port = server.address().port;
-  return { port, commits, commitWith, url: `http://127.0.0.1:${port}/lms/`, close: () => new Promise((ok) => server.close(ok)) };
+  return { port, commits, commitWhere, url: `http://127.0.0.1:${port}/lms/`, close: () => new Promise((ok) => server.close(ok)) };
 }
 
 /** A browser profile (context) for the test LMS. */
@@ -384,6 +399,12 @@ async function launch(browser, lms, query = "", savedCmi = null, shared = null, 
 }
 
 const lmsLog = (page) => page.evaluate(() => window.lmsLog.map((entry) => [...entry]));
+/** Seconds in a SCORM 1.2 CMITimespan (HHHH:MM:SS.SS), to 1/100 s. */
+const timespanSeconds = (span) => {
+  const m = /^(\d{2,4}):(\d{2}):(\d{2})(\.\d{1,2})?$/.exec(span);
+  assert.ok(m, `a CMITimespan: ${span}`);
+  return Math.round((Number(m[1]) * 3600 + Number(m[2]) * 60 + Number(m[3]) + Number(m[4] ?? 0)) * 100) / 100;
+};
 const sets = (log, element) => log.filter((e) => e[0] === "LMSSetValue" && e[1] === element).map((e) => e[2]);
 
 async function submit(target) {
@@ -1088,8 +1109,10 @@ test("SCORM final LMSCommit on pagehide succeeds in the runtime", () =>
     const [time] = sets(await lmsLog(page), "cmi.core.session_time");
     assert.deepEqual(calls.at(-1), ["LMSFinish", "", "true"]);
     // The last commit the server gets carries the session time and the exit.
-    const last = JSON.parse(await lms.commitWith(time));
-    assert.equal(last.cmi.core.session_time, time);
+    // The runtime writes the timespan in its own form ("00:00:00.50" is
+    // posted as "00:00:00.5"), so the two are compared as durations.
+    const last = await lms.commitWhere((body) => body.cmi?.core?.exit === "suspend", 'with cmi.core.exit "suspend"');
+    assert.equal(timespanSeconds(last.cmi.core.session_time), timespanSeconds(time), `posted ${last.cmi.core.session_time}, set ${time}`);
     assert.equal(last.cmi.core.exit, "suspend");
     assert.equal(JSON.parse(last.cmi.suspend_data).id, "pid");
     assert.deepEqual(problems, []);
