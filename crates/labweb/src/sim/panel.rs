@@ -516,8 +516,7 @@ impl SimState {
         // beside an "Average NEES" of "--").
         self.readouts_in_idle = self.sync_math(&readouts);
         if !self.readouts_in_idle {
-            self.write_readouts(&readouts);
-            self.sync_status();
+            self.write_readouts_and_status(&readouts);
         }
         self.sync_hint();
         self.sync_actions();
@@ -570,9 +569,11 @@ impl SimState {
         self.shown_actions = Some(shown);
     }
 
-    /// Writes the readouts whose text changed: a write makes the browser
-    /// lay the page out again.
-    fn write_readouts(&mut self, readouts: &[labcore::Readout]) {
+    /// Writes the readouts whose text changed (a write makes the browser
+    /// lay the page out again), then the status badge: a verdict in the
+    /// badge names a readout, so the two are written together, never one
+    /// a frame before the other.
+    fn write_readouts_and_status(&mut self, readouts: &[labcore::Readout]) {
         // The step they are of (what "The math" panel's `data-step` is
         // compared with: the two show one step where the two agree).
         if let Some(list) = query(&self.panel, "dl.readouts") {
@@ -590,6 +591,7 @@ impl SimState {
                 shown.clone_from(&r.value);
             }
         }
+        self.sync_status();
     }
 
     /// Works out the parts of "The math" panel whose text changed (each
@@ -765,8 +767,7 @@ impl SimState {
             // stand-in: the frames' script p95 read 5.1 ms open against
             // 3.7 ms closed, at 4×).
             let readouts = self.exp.readouts();
-            self.write_readouts(&readouts);
-            self.sync_status();
+            self.write_readouts_and_status(&readouts);
             let equations = super::panel_equations(self.exp.as_ref());
             let quantities = self.quantities();
             self.collect_math(&equations, &quantities, &readouts);
