@@ -160,6 +160,10 @@ pub enum XWindow {
     Fixed(f64, f64),
 }
 
+/// Most samples a series keeps under [`Plot::push_bounded`] (the oldest
+/// quarter is dropped past it).
+pub const BOUNDED_SAMPLES: usize = 3000;
+
 /// One plot: series, axes, reference lines, bands and markers.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plot {
@@ -212,6 +216,29 @@ impl Plot {
     /// Marks the data as changed.
     pub fn touch(&mut self) {
         self.revision = self.revision.wrapping_add(1);
+    }
+
+    /// Appends one sample per series at `x` (`ys[i]` to series `i`) and
+    /// drops the oldest quarter of a series once it holds more than
+    /// [`BOUNDED_SAMPLES`], with the markers and bands left before the
+    /// first sample kept; so a long run stays bounded. Marks the data as
+    /// changed.
+    pub fn push_bounded(&mut self, x: f64, ys: &[f64]) {
+        for (s, y) in self.series.iter_mut().zip(ys) {
+            s.push(x, *y);
+        }
+        for s in &mut self.series {
+            if s.len() > BOUNDED_SAMPLES {
+                let n = BOUNDED_SAMPLES / 4;
+                s.x.drain(..n);
+                s.y.drain(..n);
+            }
+        }
+        if let Some(first) = self.series.first().and_then(|s| s.x.first()).copied() {
+            self.markers.retain(|m| m.x >= first);
+            self.bands.retain(|b| b.hi >= first);
+        }
+        self.touch();
     }
 
     /// Removes every sample and marker (keeps series, lines and bands).
@@ -718,6 +745,39 @@ mod tests {
             p.series[1].push(f64::from(i), f64::from(i) * 0.5);
         }
         p
+    }
+
+    #[test]
+    fn push_bounded_drops_the_oldest_quarter_past_3000_samples_and_what_lay_there() {
+        let mut p = demo();
+        p.series[0].x.clear();
+        p.series[0].y.clear();
+        p.series[1].x.clear();
+        p.series[1].y.clear();
+        p.markers.push(Marker {
+            x: 10.0,
+            y: 0.0,
+            label: "early".into(),
+        });
+        p.markers.push(Marker {
+            x: 2000.0,
+            y: 0.0,
+            label: "late".into(),
+        });
+        for k in 0..3000 {
+            p.push_bounded(f64::from(k), &[1.0, 2.0]);
+        }
+        assert_eq!((p.series[0].len(), p.revision), (3000, 3000));
+        assert_eq!(p.markers.len(), 2, "nothing dropped yet");
+        // Sample 3001 drops 750 (3000 / 4): x = 0 … 749 go; 2251 stay.
+        p.push_bounded(3000.0, &[1.0, f64::NAN]);
+        assert_eq!(p.series[0].len(), 2251);
+        assert_eq!(p.series[0].x[0], 750.0);
+        // The NaN was skipped: 3000 samples, none dropped.
+        assert_eq!(p.series[1].len(), 3000);
+        assert_eq!(p.markers.len(), 1);
+        assert_eq!(p.markers[0].label, "late");
+        assert_eq!(p.revision, 3001);
     }
 
     #[test]

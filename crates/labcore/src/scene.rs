@@ -9,6 +9,7 @@ use glam::DVec2;
 
 mod layer;
 pub mod style;
+pub mod wheeled;
 pub use layer::{raster_version, LayerMark, LayerOp, LayerPlan, Rewrite, Segment, SegmentLayer};
 pub use style::Role;
 

@@ -30,6 +30,7 @@ use crate::experiment::{
     check_param, with_coordinate, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec,
     Sanitized, Tone,
 };
+use crate::mobile::field::{push_trail, snap_into};
 use crate::mobile::go_to_goal::{Command, GoToGoal, RunStats, WaypointFollower};
 use crate::mobile::unicycle::{wheel_speeds, Integrator, Pose};
 use crate::plot::{Axis, Band, Marker, Plot, Series, SeriesRole, XWindow};
@@ -52,12 +53,6 @@ pub const TOLERANCE_M: f64 = 0.05;
 const GRAB_M: f64 = 0.25;
 /// A press that moves less than this before release is a tap, metres.
 const TAP_SLOP_M: f64 = 0.08;
-/// Drawn body radius of the robot, metres.
-pub const BODY_RADIUS_M: f64 = 0.18;
-/// Plots keep at most this many samples per series (older ones are dropped).
-pub const MAX_PLOT_SAMPLES: usize = 3000;
-/// The trail keeps at most this many points (older ones are dropped).
-pub const MAX_TRAIL_POINTS: usize = 6000;
 /// Plot samples are taken every this many steps (30 Hz at 60 steps/s).
 const PLOT_EVERY: u64 = 2;
 /// Most shaded "at a limit" intervals kept on the plot.
@@ -102,58 +97,12 @@ fn slot_of(key: &str) -> Option<(usize, bool)> {
     crate::experiment::point_slot(key, 'w', MAX_WAYPOINTS)
 }
 
-/// Rounds a clicked coordinate to whole centimetres, so the link shows
-/// short numbers (it reproduces any value exactly).
-#[must_use]
-pub(crate) fn snap_cm(v: f64) -> f64 {
-    (v * 100.0).round() / 100.0
-}
-
-/// A clicked point snapped to centimetres and clamped into `[0, w] × [0, h]`.
-#[must_use]
-pub(crate) fn snap_into(p: DVec2, w: f64, h: f64) -> DVec2 {
-    DVec2::new(snap_cm(p.x.clamp(0.0, w)), snap_cm(p.y.clamp(0.0, h)))
-}
-
-/// Appends one sample per series at `x` and drops the oldest quarter once a
-/// series holds more than [`MAX_PLOT_SAMPLES`], so a long run stays bounded.
-pub(crate) fn push_bounded(plot: &mut Plot, x: f64, ys: &[f64]) {
-    for (s, y) in plot.series.iter_mut().zip(ys) {
-        s.push(x, *y);
-    }
-    for s in &mut plot.series {
-        if s.len() > MAX_PLOT_SAMPLES {
-            let n = MAX_PLOT_SAMPLES / 4;
-            s.x.drain(..n);
-            s.y.drain(..n);
-        }
-    }
-    if let Some(first) = plot.series.first().and_then(|s| s.x.first()).copied() {
-        plot.markers.retain(|m| m.x >= first);
-        plot.bands.retain(|b| b.hi >= first);
-    }
-    plot.touch();
-}
-
-/// Appends `p` to a trail unless it is within 5 mm of the last point; keeps
-/// at most [`MAX_TRAIL_POINTS`].
-pub(crate) fn push_trail(trail: &mut Vec<DVec2>, p: DVec2) {
-    if !p.is_finite() || trail.last().is_some_and(|q| (*q - p).length() < 0.005) {
-        return;
-    }
-    trail.push(p);
-    if trail.len() > MAX_TRAIL_POINTS {
-        trail.drain(..MAX_TRAIL_POINTS / 4);
-    }
-}
-
 mod quiz;
 #[cfg(test)]
 mod tests;
 mod view;
 
 pub use quiz::quiz_generator;
-pub(crate) use view::{draw_field, draw_robot};
 
 /// A press in progress. On a waypoint (`slot`) a tap removes it and a drag
 /// moves it; elsewhere a tap queues a new waypoint when it is released, and
@@ -426,7 +375,7 @@ impl DiffDrive {
         }
         // The page redraws a plot when it is touched: only when a sample is added.
         if self.steps.is_multiple_of(PLOT_EVERY) || cmd.arrived {
-            push_bounded(plot, t, &[cmd.v_mps, cmd.omega_radps, vl, vr]);
+            plot.push_bounded(t, &[cmd.v_mps, cmd.omega_radps, vl, vr]);
         }
     }
 }

@@ -5,6 +5,9 @@ use super::*;
 use crate::experiment::{Lab, Phase, Presentation, Status, Tone};
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};
+use crate::mobile::field::MAX_TRAIL_POINTS;
+use crate::plot::BOUNDED_SAMPLES;
+use crate::scene::wheeled::{BODY_RADIUS_M, NOSE_REACH};
 use crate::scene::{Item, Role};
 use crate::units::{format_degrees, format_fixed};
 use std::f64::consts::PI;
@@ -313,7 +316,7 @@ fn plots_and_trail_stay_bounded() {
     assert!(d.plots[0]
         .series
         .iter()
-        .all(|s| s.len() <= MAX_PLOT_SAMPLES));
+        .all(|s| s.len() <= BOUNDED_SAMPLES));
     assert!(d.trail.len() <= MAX_TRAIL_POINTS);
     assert!(d.plots[0].bands.len() <= MAX_BANDS);
 }
@@ -696,7 +699,7 @@ fn diffdrive_run_card_label_covers_neither_the_robot_nor_a_waypoint() {
                 for (text, lo, hi) in &boxes {
                     let at = format!("{w}×{h} px, route {route:?}, t {:.2} s: “{text}”", d.time_s);
                     assert!(
-                        !near(*lo, *hi, robot, BODY_RADIUS_M * 1.35 * scale),
+                        !near(*lo, *hi, robot, BODY_RADIUS_M * NOSE_REACH * scale),
                         "{at} covers the robot"
                     );
                     for p in d.waypoints() {

@@ -1,76 +1,13 @@
 //! What experiment 4 shows: the field, the robot and its route, the readouts
 //! and the status. Only reads the model.
 
-use super::{DiffDrive, BODY_RADIUS_M, FIELD_H_M, FIELD_W_M, START};
+use super::{DiffDrive, FIELD_H_M, FIELD_W_M, START};
 use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
 use crate::units::{format_degrees, format_fixed, format_metres};
 use crate::mobile::go_to_goal::RunStats;
-use crate::mobile::unicycle::Pose;
+use crate::scene::wheeled::{draw_field, draw_robot, BODY_RADIUS_M, NOSE_REACH};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use glam::DVec2;
-
-/// Draws a differential-drive robot at `pose`: a round body with a nose
-/// showing the heading and two wheels `track_m` apart.
-pub(crate) fn draw_robot(out: &mut Scene, pose: Pose, track_m: f64) {
-    if !pose.is_finite() {
-        return;
-    }
-    let c = pose.position();
-    let f = pose.heading();
-    let left = f.perp();
-    let body: Vec<DVec2> = (0..20)
-        .map(|i| {
-            let a = pose.theta_rad + std::f64::consts::TAU * f64::from(i) / 20.0;
-            let (s, co) = crate::math::sin_cos(a);
-            c + DVec2::new(co, s) * BODY_RADIUS_M
-        })
-        .collect();
-    out.push(Item::Polygon {
-        points: body,
-        role: Role::Robot,
-    });
-    let half = 0.5 * track_m.clamp(0.05, 1.0);
-    for side in [1.0, -1.0] {
-        let w = c + left * side * half;
-        let (along, across) = (f * 0.09, left * 0.025);
-        out.push(Item::Polygon {
-            points: vec![
-                w - along - across,
-                w + along - across,
-                w + along + across,
-                w - along + across,
-            ],
-            role: Role::Base,
-        });
-    }
-    out.push(Item::Line {
-        from: c,
-        to: c + f * BODY_RADIUS_M * 1.35,
-        width_px: 3.0,
-        role: Role::Base,
-        dashed: false,
-    });
-}
-
-/// A light 1 m grid over `[0, w] × [0, h]` as one batch of segments.
-pub(crate) fn draw_field(out: &mut Scene, w: f64, h: f64) {
-    let mut segments = Vec::new();
-    let mut x = 0.0;
-    while x <= w + 1e-9 {
-        segments.push((DVec2::new(x, 0.0), DVec2::new(x, h)));
-        x += 1.0;
-    }
-    let mut y = 0.0;
-    while y <= h + 1e-9 {
-        segments.push((DVec2::new(0.0, y), DVec2::new(w, y)));
-        y += 1.0;
-    }
-    out.push(Item::Segments {
-        segments,
-        width_px: 1.0,
-        role: Role::Grid,
-    });
-}
 
 /// Scene labels are 13 px bold: a character is at most this wide, and a
 /// label this tall (CSS px).
@@ -115,7 +52,7 @@ pub(super) fn box_near(b: [DVec2; 2], c: DVec2, r: f64) -> bool {
 fn card_offset(d: &DiffDrive, w: DVec2, chars: usize, cards: &[[DVec2; 2]]) -> DVec2 {
     let width = chars as f64 * LABEL_CHAR_PX;
     let robot = to_px(d, d.pose().position());
-    let robot_r = BODY_RADIUS_M * 1.35 * scale_px_per_m(d) + 3.0;
+    let robot_r = BODY_RADIUS_M * NOSE_REACH * scale_px_per_m(d) + 3.0;
     let field = to_px(d, DVec2::new(FIELD_W_M, 0.0));
     let clear = |offset: DVec2| {
         let b = label_box(d, w, offset, chars);

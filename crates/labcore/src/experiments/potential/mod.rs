@@ -34,7 +34,7 @@
 
 use crate::experiment::{check_param, with_coordinate, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
 use crate::units::{format_fixed, format_metres};
-use crate::experiments::diffdrive::{draw_field, draw_robot, push_bounded, push_trail, snap_into};
+use crate::mobile::field::{push_trail, snap_into};
 use crate::mobile::go_to_goal::GoToGoal;
 use crate::mobile::potential_field::{
     BasinClass, BasinMap, CircleObstacle, FieldRun, FieldRunConfig, PotentialField, RunStatus,
@@ -362,7 +362,7 @@ impl PotentialFieldLab {
         let Some(run) = self.run else { return };
         let d = (self.field.goal - run.pose.position()).length();
         let rep = self.field.repulsive_force(run.pose.position()).length();
-        push_bounded(&mut self.plots[0], run.time_s, &[d, rep]);
+        self.plots[0].push_bounded(run.time_s, &[d, rep]);
     }
 
     fn set_goal(&mut self, p: DVec2) {

@@ -4,6 +4,7 @@
 use super::*;
 use crate::live_math::{Equation, Expr, Quantity};
 use crate::mobile::potential_field::{Attraction, Repulsion};
+use crate::scene::wheeled::{draw_field, draw_robot};
 
 /// The field's laws at the robot (Khatib 1986; the lab's conic pull and
 /// linear push): the goal distance, the pull, the nearest clearance and its push.
