@@ -538,7 +538,7 @@ impl CartPoleBalance {
     /// swinging afterwards.
     fn recent_peaks(&self) -> (f64, f64, bool) {
         let (angle, position) = (&self.plots[0].series[0], &self.plots[1].series[0]);
-        let lean = |v: &f64| view::wrap_deg(*v).abs();
+        let lean = |v: &f64| wrap_deg(*v).abs();
         let mut from = self.sim.time_s - STATUS_WINDOW_S - 1e-9;
         let mut catching = false;
         if angle.x.first() == Some(&0.0) {
@@ -564,6 +564,28 @@ impl CartPoleBalance {
             peak(position, &|v: &f64| v.abs()),
             catching,
         )
+    }
+}
+
+/// The four gains as a notice and the LQR readout word them:
+/// `kθ 12.00, kω 3.00, kx 1.00, kv 2.00`.
+fn gains_text(k: &StateFeedback) -> String {
+    format!(
+        "kθ {}, kω {}, kx {}, kv {}",
+        format_fixed(k.k_theta, 2),
+        format_fixed(k.k_omega, 2),
+        format_fixed(k.k_x, 2),
+        format_fixed(k.k_v, 2)
+    )
+}
+
+/// An angle in degrees wrapped into `(−180°, 180°]`.
+fn wrap_deg(deg: f64) -> f64 {
+    let w = deg.rem_euclid(360.0);
+    if w > 180.0 {
+        w - 360.0
+    } else {
+        w
     }
 }
 
@@ -683,7 +705,7 @@ impl Experiment for CartPoleBalance {
                 Some(k) => {
                     self.sim.gains = k;
                     self.notices.post(
-                        format!("LQR gains applied: {}", view::gains_text(&k)),
+                        format!("LQR gains applied: {}", gains_text(&k)),
                         Tone::Good,
                     );
                 }

@@ -1,5 +1,4 @@
 use super::quiz::*;
-use super::view::gains_text;
 use super::*;
 use crate::control::count_right_half_plane;
 use crate::testkit::{readout, reopen, run_for, scene_of, steps};

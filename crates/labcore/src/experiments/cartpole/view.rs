@@ -109,16 +109,6 @@ pub(super) fn format_eigenvalues(z: &[Complex]) -> String {
         .join(", ")
 }
 
-pub(super) fn gains_text(k: &StateFeedback) -> String {
-    format!(
-        "kθ {}, kω {}, kx {}, kv {}",
-        format_fixed(k.k_theta, 2),
-        format_fixed(k.k_omega, 2),
-        format_fixed(k.k_x, 2),
-        format_fixed(k.k_v, 2)
-    )
-}
-
 /// The canvas's legend for the grey dashed pole: the linearised model.
 pub(super) const GHOST_LEGEND: &str = "linear model (dashed)";
 /// The legend shows once the two tips are this far apart (m).
@@ -494,15 +484,5 @@ impl Presentation for CartPoleBalance {
         for _ in 0..60 {
             self.step(1.0 / 60.0);
         }
-    }
-}
-
-/// `(−180°, 180°]`.
-pub(super) fn wrap_deg(deg: f64) -> f64 {
-    let w = deg.rem_euclid(360.0);
-    if w > 180.0 {
-        w - 360.0
-    } else {
-        w
     }
 }

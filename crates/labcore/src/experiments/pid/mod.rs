@@ -67,6 +67,9 @@ use glam::DVec2;
 
 mod quiz;
 mod view;
+mod words;
+
+use words::{at_setpoint, percent, seconds};
 
 const PARAMS: &[ParamSpec] = &[
     ParamSpec::slider("kp", "Kp", "N/m", 0.0, 100.0, 0.5, 12.0),
@@ -525,7 +528,7 @@ impl PidControl {
                 axis: Axis::Y,
                 lo: y - SETTLING_THRESHOLD * span,
                 hi: y + SETTLING_THRESHOLD * span,
-                label: if view::at_setpoint(y, self.setpoint_m) {
+                label: if at_setpoint(y, self.setpoint_m) {
                     "±2 % band".into()
                 } else {
                     format!("±2 % band around {}", format_metres(y))
@@ -650,7 +653,7 @@ impl PidControl {
             response.markers.push(Marker {
                 x: info.peak_time_s,
                 y: info.peak,
-                label: format!("peak {}", view::percent(info.overshoot_pct)),
+                label: format!("peak {}", percent(info.overshoot_pct)),
             });
         }
         let (Ok(info), Ok(y_inf)) = (self.info, y_final) else {
@@ -670,7 +673,7 @@ impl PidControl {
             response.markers.push(Marker {
                 x: info.peak_time_s,
                 y: info.peak,
-                label: format!("peak {}", view::percent(info.overshoot_pct)),
+                label: format!("peak {}", percent(info.overshoot_pct)),
             });
         }
         if let Some(ts) = info.settling_time_s {
@@ -720,7 +723,7 @@ impl PidControl {
             self.notices.post(
                 format!(
                     "pinned at {}: its metrics are those of the response so far",
-                    view::seconds(Some(pin.time_s))
+                    seconds(Some(pin.time_s))
                 ),
                 Tone::Neutral,
             );

@@ -1,7 +1,7 @@
 //! Tests of experiment 7 (its Procedure is played by `tests/procedures/`).
 
 use super::quiz::*;
-use super::view::{percent, seconds};
+use super::words::{percent, quantity, seconds};
 use super::*;
 use crate::experiment::Phase;
 use crate::route::restore;
@@ -500,11 +500,11 @@ fn extreme_gains_print_every_quantity_in_a_few_characters() {
             assert!(text.chars().count() < 120, "{k}: {text}");
         }
     }
-    assert_eq!(view::quantity(0.6, 3), "0.600");
-    assert_eq!(view::quantity(-3.0, 3), "-3.000");
-    assert_eq!(view::quantity(0.0, 3), "0.000");
-    assert_eq!(view::quantity(3.5e150, 3), "3.5 × 10¹⁵⁰");
-    assert_eq!(view::percent(776_555_891.3), "7.8 × 10⁸%");
+    assert_eq!(quantity(0.6, 3), "0.600");
+    assert_eq!(quantity(-3.0, 3), "-3.000");
+    assert_eq!(quantity(0.0, 3), "0.000");
+    assert_eq!(quantity(3.5e150, 3), "3.5 × 10¹⁵⁰");
+    assert_eq!(percent(776_555_891.3), "7.8 × 10⁸%");
 }
 
 /// Issue 23 §5: values under about 10⁻³⁰⁸ printed as "inf × 10⁻³⁰⁹" in

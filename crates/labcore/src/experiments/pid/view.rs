@@ -1,6 +1,7 @@
 //! What experiment 7 shows: the scene, the readouts and the status. It only reads the state.
 
 use super::*;
+use super::words::{at_setpoint, percent, quantity, seconds};
 use crate::live_math::{Equation, Expr, Quantity};
 
 /// The PID law `u = Kp e + Ki ∫e dt + Kd ė` (Åström & Murray, *Feedback
@@ -75,17 +76,6 @@ const PID_LAWS: [[&[Equation]; 2]; 2] = [
 /// What the overshoot readout and a pin say when the step is under [`MIN_STEP_M`].
 pub(super) const STEP_TOO_SMALL: &str = "— (step under 1 mm)";
 
-/// A computed quantity: `decimals` places in the everyday range, else the
-/// shared magnitude form (`3.5 × 10¹⁵⁰`), so an extreme link never prints
-/// 150 digits.
-pub(super) fn quantity(v: f64, decimals: usize) -> String {
-    if v == 0.0 || (1e-3..1e3).contains(&v.abs()) {
-        format_fixed(v, decimals)
-    } else {
-        format_magnitude(v)
-    }
-}
-
 /// The force as the readout and the canvas show it: two decimals in newtons
 /// (a tiny force reads `0.00 N`, as at rest), the magnitude form only beyond
 /// the everyday range (`3.5 × 10¹⁵⁰ N`, from an extreme link).
@@ -112,16 +102,6 @@ pub(super) fn format_poles(poles: &[Complex]) -> String {
         }
     }
     parts.join(", ")
-}
-
-pub(super) fn seconds(v: Option<f64>) -> String {
-    v.map_or("--".into(), |t| format!("{} s", format_fixed(t, 2)))
-}
-
-/// Whether the final value `y` reads as the setpoint `r` at the readouts'
-/// millimetre.
-pub(super) fn at_setpoint(y: f64, r: f64) -> bool {
-    format_metres(y) == format_metres(r)
 }
 
 /// Where the run settles against the setpoint: `None` at the setpoint,
@@ -156,11 +136,6 @@ fn settled_text(e: &PidControl) -> Option<String> {
         None => format!("settled within 2 % after {}", seconds(Some(ts))),
         Some(at) => format!("settled at {at} (within 2 % after {})", seconds(Some(ts))),
     })
-}
-
-/// An overshoot, `9.5%`.
-pub(super) fn percent(v: f64) -> String {
-    format!("{}%", quantity(v, 1))
 }
 
 impl Presentation for PidControl {
