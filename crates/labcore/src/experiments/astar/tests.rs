@@ -1,5 +1,8 @@
 use super::quiz::*;
 use super::*;
+use crate::experiment::Presentation;
+use crate::scene::{Item, Scene};
+use crate::units::format_fixed;
 use crate::planning::astar::{astar_path, SearchStatus};
 use crate::route::{apply_params, format, restore, Tab};
 use crate::testkit::{self, scene_of, settle, steps, CTRL, DT_S as DT, SHIFT};

@@ -3,7 +3,15 @@
 //! phone) and the raster cache of cell states. It reads the model and
 //! writes only this view state.
 
-use super::*;
+use super::{AStarGrid, BLOCKED, Base, COMPARE_ROLES, MIN_CELL_PX, OPEN_ROWS, PHONE_WIDTH_PX, Phase};
+use crate::experiment::{Notice, Presentation, Readout, Status, Tone};
+use crate::planning::astar::Search;
+use crate::planning::grid::Cell;
+use crate::planning::heuristic::Heuristic;
+use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
+use crate::table::Table;
+use crate::units::{format_fixed, format_number};
+use glam::DVec2;
 use crate::live_math::{Equation, Expr, Quantity};
 use crate::planning::astar::{OpenEntry, Strategy};
 

@@ -46,14 +46,12 @@ use crate::control::cartpole::{
     CartPoleState, FallCriterion, Integrator, LinearModel, LqrWeights, PoleStatus, StateFeedback,
     NUDGE_RAD_S,
 };
-use crate::control::{Complex, Stability};
-use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
+use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec, Sanitized, Tone};
 use crate::units::{format_fixed, format_number};
 use crate::memo::Memo;
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
-use crate::scene::{Item, Role, Scene, ViewBox};
 use glam::DVec2;
 
 const INTEGRATORS: &[&str] = &["Euler (4 sub-steps)", "RK4 (4 sub-steps)"];

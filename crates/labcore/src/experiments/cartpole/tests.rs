@@ -1,5 +1,7 @@
 use super::quiz::*;
 use super::*;
+use crate::experiment::{Presentation, Status};
+use crate::scene::{Item, Role};
 use crate::control::count_right_half_plane;
 use crate::testkit::{readout, reopen, run_for, scene_of, steps};
 

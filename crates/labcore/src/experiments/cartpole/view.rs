@@ -1,6 +1,12 @@
 //! What experiment 8 shows: the scene, the readouts, the status badge.
 
-use super::*;
+use super::{ARROW_M_PER_N, CART_BOTTOM_M, CART_HALF_W_M, CartPoleBalance, DRIFT_M, PIVOT_Y_M, Run, SWING_DEG, VIEW_MAX, VIEW_MIN, gains_text, wrap_deg};
+use crate::control::{Complex, Stability};
+use crate::control::cartpole::{CartPoleState, PoleStatus, closed_loop_eigenvalues, open_loop_eigenvalues};
+use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
+use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::format_fixed;
+use glam::DVec2;
 use crate::live_math::{Equation, Expr, Quantity};
 use crate::units::{format_degrees, format_metres};
 

@@ -1,6 +1,8 @@
 //! Tests of experiment 9 (its Procedure is played by `tests/procedures/`).
 
 use super::*;
+use crate::experiment::Presentation;
+use crate::scene::Item;
 use crate::testkit::{self, readout, run_while_animating, scene_of, steps};
 
 /// The longest a run is stepped before a test looks at it, simulated seconds.

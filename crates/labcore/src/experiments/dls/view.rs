@@ -1,6 +1,12 @@
 //! What experiment 9 shows: the view box, the scene, the readouts and the status.
 
-use super::*;
+use super::{DampedLeastSquares, ELLIPSE_SCALE, NO_PROGRESS_ITERATIONS, Run, TOTAL_REACH_M, VIEW_HALF_M};
+use crate::experiment::{Experiment, Presentation, Readout, Status, Tone};
+use crate::kinematics::chain::{Annulus, forward};
+use crate::kinematics::jacobian::jacobian;
+use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_degrees, format_fixed, format_magnitude, format_metres, format_point};
+use glam::DVec2;
 use crate::live_math::{four_significant, Equation, Expr, Quantity};
 
 const A: Expr = Expr::Var("a");

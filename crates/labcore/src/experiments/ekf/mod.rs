@@ -42,8 +42,7 @@ use std::collections::VecDeque;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use crate::estimation::consistency::{
-    covariance_ellipse, heading_error_rad, nees, nees_bounds, pose_error, position_block,
-    position_error_m,
+    nees, nees_bounds, pose_error,
 };
 use crate::estimation::ekf::{ekf_predict, ekf_update_sequential, Belief};
 use crate::estimation::models::{
@@ -52,13 +51,12 @@ use crate::estimation::models::{
 };
 use crate::estimation::slam::EkfSlam;
 use crate::estimation::wrap_angle;
-use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
-use crate::units::{format_fixed, format_magnitude, format_number};
+use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec, Sanitized, Tone};
+use crate::units::format_number;
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
-use crate::scene::{Item, Role, Scene, ViewBox};
-use glam::{DMat2, DMat3, DVec2, DVec3};
+use glam::{DMat3, DVec2, DVec3};
 
 const MODES: &[&str] = &["Localisation", "EKF-SLAM"];
 

@@ -1,6 +1,10 @@
 use super::quiz::*;
 use super::view::robot_outline;
 use super::*;
+use crate::experiment::Presentation;
+use crate::estimation::consistency::{covariance_ellipse, position_block, position_error_m};
+use crate::scene::{Item, Role};
+use crate::units::format_fixed;
 use crate::units::format_metres;
 
 use crate::testkit::{self, readout, reopen, run_for, scene_of, steps, DT_S as DT};

@@ -1,7 +1,13 @@
 //! What experiment 11 shows: the scene, the readouts and the status.
 //! Only reads the state.
 
-use super::*;
+use super::{EkfExperiment, FILTER_DT_S, Filter, INSIDE_NEEDED, LOOP_RADIUS_M, TRAIL_DR, TRAIL_EKF, TRAIL_TRUTH, VIEW_HALF_M, VIEW_HEADROOM_M, position_trace};
+use crate::estimation::consistency::{covariance_ellipse, heading_error_rad, pose_error, position_block, position_error_m};
+use crate::experiment::{Notice, Presentation, Readout, Status, Tone};
+use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_fixed, format_magnitude};
+use glam::{DMat2, DMat3, DVec2, DVec3};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use crate::live_math::{four_significant, Equation, Expr, Quantity};
 
 const EX: Expr = Expr::Var("ex");

@@ -7,13 +7,12 @@
 //! elbow branch; a pointer outside the annulus pulls the tip to the nearest
 //! reachable point.
 
-use crate::experiment::{check_param, Experiment, Handle, Input, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
-use crate::units::{format_degrees, format_fixed, format_length, format_point, format_number};
+use crate::experiment::{check_param, Experiment, Handle, Input, ParamError, ParamSpec, Sanitized};
+use crate::units::format_number;
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
-use crate::scene::{Item, Role, Scene, ViewBox};
 use glam::DVec2;
 
 mod view;
@@ -251,6 +250,8 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::experiment::{Presentation, Tone};
+    use crate::scene::{Item, Role};
     use crate::testkit::{readout, scene_of};
     
 

@@ -1,6 +1,11 @@
 //! What experiment 1 shows: the view box, the scene, the readouts and the status.
 
-use super::*;
+use super::ForwardKinematics;
+use crate::experiment::{Presentation, Readout, Status, Tone};
+use crate::kinematics::chain::{Annulus, forward};
+use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_degrees, format_fixed, format_length, format_point};
+use glam::DVec2;
 use crate::live_math::{Equation, Expr, Quantity};
 
 const L1: Expr = Expr::Var("l1");

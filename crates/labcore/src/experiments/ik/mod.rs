@@ -10,15 +10,14 @@
 //! fixed absolute orientation `φ` and the wrist centre `p − L3 (cos φ, sin φ)`
 //! is what the two links solve for.
 
-use crate::experiment::{check_param, clamp_to_params, with_coordinate, Experiment, Handle, Input, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
-use crate::units::{format_degrees, format_point, format_number};
+use crate::experiment::{check_param, clamp_to_params, with_coordinate, Experiment, Handle, Input, ParamError, ParamSpec, Sanitized};
+use crate::units::format_number;
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
     lerp_angle, solve, Elbow, IkError, Singularity, TwoLinkAngles, TwoLinkSolution,
 };
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
-use crate::scene::{Item, Role, Scene, ViewBox};
 use glam::DVec2;
 
 mod view;
@@ -434,6 +433,9 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::experiment::Presentation;
+    use crate::experiment::{Status, Tone};
+    use crate::scene::{Item, Role};
     use crate::testkit::{scene_of, steps};
 
     /// Two simulated seconds: longer than any move of the arm.

@@ -3,7 +3,8 @@
 use super::quiz::*;
 use super::words::{percent, quantity, seconds};
 use super::*;
-use crate::experiment::Phase;
+use crate::experiment::{Phase, Presentation, Status};
+use crate::scene::{Item, Role};
 use crate::route::restore;
 use crate::testkit::{self, readout, reopen, scene_of, set_params, steps};
 

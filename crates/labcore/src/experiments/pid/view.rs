@@ -1,6 +1,13 @@
 //! What experiment 7 shows: the scene, the readouts and the status. It only reads the state.
 
-use super::*;
+use super::{ARROW_MAX_M, ARROW_M_PER_N, CART_BOTTOM_M, CART_HALF_W_M, CART_TOP_M, MARKER_TOP_M, MAX_PINS, MIN_STEP_M, NoMetrics, PARAMS, PidControl, Pin, QUIET_MIN_M, RunState, TRACK_END_M, VIEW_MAX, VIEW_MIN};
+use crate::control::{Complex, Stability};
+use crate::control::pid::SecondOrder;
+use crate::control::step_info::StepInfo;
+use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
+use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_fixed, format_length, format_magnitude, format_metres, format_number};
+use glam::DVec2;
 use super::words::{at_setpoint, percent, quantity, seconds};
 use crate::live_math::{Equation, Expr, Quantity};
 

@@ -2,7 +2,10 @@
 
 use super::quiz::{quiz_net_force, quiz_potential, quiz_repulsion};
 use super::*;
-use crate::experiment::{Notice, Phase};
+use crate::experiment::{Notice, Phase, Presentation, Readout, Status};
+use crate::mobile::potential_field::BasinClass;
+use crate::scene::{Item, Role, Scene};
+use crate::units::{format_fixed, format_metres};
 use crate::mobile::potential_field::run_to_end;
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};

@@ -1,7 +1,12 @@
 //! What the potential-field lab shows: the scene, the readouts and the
 //! status badge. Everything here only reads the state.
 
-use super::*;
+use super::{ARROW_SPACING_M, DEFAULT_GOAL, FIELD_H_M, FIELD_W_M, FORCE_SCALE_M, HEAT_BANDS, HEAT_COLS, HEAT_ROWS, MAX_PREVIEW_STEPS, PotentialFieldLab};
+use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
+use crate::mobile::potential_field::{BasinClass, CircleObstacle, PotentialField, RunStatus};
+use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
+use crate::units::{format_fixed, format_metres};
+use glam::DVec2;
 use crate::live_math::{Equation, Expr, Quantity};
 use crate::mobile::potential_field::{Attraction, Repulsion};
 use crate::scene::wheeled::{draw_field, draw_robot};

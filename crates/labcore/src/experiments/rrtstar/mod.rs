@@ -25,16 +25,15 @@
 //! **The link** holds every parameter, the start and goal (snapped to 1 cm)
 //! and the obstacles as text (key `obs`, see [`encode_obstacles`]).
 
-use crate::experiment::{check_param, ActionSpec, Experiment, Input, Modifiers, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
-use crate::units::{format_metres, format_number};
+use crate::experiment::{check_param, ActionSpec, Experiment, Input, Modifiers, Notices, ParamError, ParamSpec, Sanitized, Tone};
+use crate::units::format_number;
 use crate::planning::drive_path::DrivePath;
 use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar};
 use crate::planning::world::{Obstacle, World};
 use crate::plot::{Plot, Series, SeriesRole};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
-use crate::scene::{Item, Role, Scene, SegmentLayer, ViewBox};
-use crate::table::Table;
+use crate::scene::{Role, SegmentLayer};
 use glam::DVec2;
 
 /// The field, metres.

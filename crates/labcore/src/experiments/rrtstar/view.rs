@@ -1,7 +1,14 @@
 //! What experiment 10 shows: the scene, the readouts, the status and the compare table.
 //! Only reads the state.
 
-use super::*;
+use super::{FIELD_M, GOAL_RADIUS_M, RrtStarField, path_role};
+use crate::experiment::{Notice, Presentation, Readout, Status, Tone};
+use crate::planning::rrt_star::{Planner, RrtError, RrtStar};
+use crate::planning::world::Obstacle;
+use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::table::Table;
+use crate::units::format_metres;
+use glam::DVec2;
 use crate::live_math::{Equation, Expr, Quantity};
 
 /// The rewiring radius of RRT* in the plane (Karaman & Frazzoli 2011,

@@ -8,16 +8,15 @@
 //! and outer radii are compared with the analytic `R = L1 + L2 + L3` and
 //! `r = max(0, L_max − (R − L_max))`.
 
-use crate::experiment::{check_param, ActionSpec, Experiment, Handle, Input, Notice, Notices, ParamError, ParamSpec, Presentation, Readout, Sanitized, Status, Tone};
-use crate::units::{format_point, format_number};
-use crate::kinematics::chain::{forward, tip, Annulus};
+use crate::experiment::{check_param, ActionSpec, Experiment, Handle, Input, Notices, ParamError, ParamSpec, Sanitized, Tone};
+use crate::units::format_number;
+use crate::kinematics::chain::{tip, Annulus};
 use crate::kinematics::dls::DlsSolver;
 use crate::kinematics::two_link_ik::wrap_pi;
 use crate::kinematics::workspace::{DensityGrid, SamplingMode, WorkspaceSampler};
 use crate::plot::{Axis, Plot, RefLine, Series, SeriesRole};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
-use crate::scene::{Item, Role, Scene, ViewBox};
 use glam::DVec2;
 
 mod view;
@@ -442,6 +441,7 @@ pub fn quiz_generator(name: &str) -> Option<Generator> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::experiment::{Presentation, Status};
     use crate::testkit::{press, readout, settle};
 
     fn sweep(ws: &mut Workspace) -> usize {

@@ -1,6 +1,11 @@
 //! What experiment 3 shows: the view box, the scene, the readouts and the status.
 
-use super::*;
+use super::{STIPPLE_MAX, Workspace};
+use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
+use crate::kinematics::chain::{Annulus, forward};
+use crate::kinematics::workspace::{SamplingMode, WorkspaceSampler};
+use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::format_point;
 use crate::live_math::{Equation, Expr, Quantity};
 
 const L1: Expr = Expr::Var("l1");
