@@ -35,8 +35,10 @@
 //! the start and goal; its outer ring of cells is a pan band (drag it, or tap
 //! it to move half a window). This is view state, never in the link.
 
-use crate::experiment::{check_param, ActionSpec, Experiment, Input, Modifiers, Notices, ParamError, ParamSpec, Sanitized, Tone};
-use crate::units::format_number;
+use crate::experiment::{
+    check_param, ActionSpec, Experiment, Input, Modifiers, Notices, ParamError, ParamSpec,
+    Sanitized, Tone,
+};
 use crate::planning::astar::{Search, SearchConfig, StepOutcome, Strategy};
 use crate::planning::drive_path::DrivePath;
 use crate::planning::grid::{Cell, Connectivity, OccupancyGrid};
@@ -48,6 +50,7 @@ use crate::plot::{Plot, Series, SeriesRole};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::Role;
+use crate::units::format_number;
 use glam::DVec2;
 use std::cell::RefCell;
 

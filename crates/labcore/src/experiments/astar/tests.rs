@@ -1,11 +1,11 @@
 use super::quiz::*;
 use super::*;
 use crate::experiment::Presentation;
-use crate::scene::{Item, Scene};
-use crate::units::format_fixed;
 use crate::planning::astar::{astar_path, SearchStatus};
 use crate::route::{apply_params, format, restore, Tab};
+use crate::scene::{Item, Scene};
 use crate::testkit::{self, scene_of, settle, steps, CTRL, DT_S as DT, SHIFT};
+use crate::units::format_fixed;
 
 fn empty(w: usize, h: usize) -> AStarGrid {
     let mut a = AStarGrid::default();
@@ -1173,7 +1173,11 @@ fn a_search_step_marks_the_raster_and_the_next_read_fills_it_from_the_search() {
         a.step(crate::clock::Clock::DT_S);
     }
     assert!(a.raster_stale.get(), "stepped: stale");
-    assert_eq!(*a.raster.borrow(), first, "not filled by the steps themselves");
+    assert_eq!(
+        *a.raster.borrow(),
+        first,
+        "not filled by the steps themselves"
+    );
     let mut states = Vec::new();
     a.search.as_ref().unwrap().write_cell_states(&mut states);
     let (w, h) = (a.grid().width(), a.grid().height());
@@ -1229,7 +1233,11 @@ fn the_cells_after_compare_do_not_depend_on_when_they_were_last_drawn() {
     let _ = drawn.raster();
     drawn.step(DT);
     replayed.step(DT);
-    assert_eq!(drawn.phase, Phase::Comparing, "a step does not end the comparison");
+    assert_eq!(
+        drawn.phase,
+        Phase::Comparing,
+        "a step does not end the comparison"
+    );
     assert!(*drawn.raster() == *replayed.raster(), "the cells differ");
 }
 

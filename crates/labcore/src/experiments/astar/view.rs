@@ -3,23 +3,26 @@
 //! phone) and the raster cache of cell states. It reads the model and
 //! writes only this view state.
 
-use super::{AStarGrid, BLOCKED, Base, COMPARE_ROLES, MIN_CELL_PX, OPEN_ROWS, PHONE_WIDTH_PX, Phase};
+use super::{
+    AStarGrid, Base, Phase, BLOCKED, COMPARE_ROLES, MIN_CELL_PX, OPEN_ROWS, PHONE_WIDTH_PX,
+};
 use crate::experiment::{Notice, Presentation, Readout, Status, Tone};
+use crate::live_math::{Equation, Expr, Quantity};
 use crate::planning::astar::Search;
+use crate::planning::astar::{OpenEntry, Strategy};
 use crate::planning::grid::Cell;
 use crate::planning::heuristic::Heuristic;
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
 use crate::table::Table;
 use crate::units::{format_fixed, format_number};
 use glam::DVec2;
-use crate::live_math::{Equation, Expr, Quantity};
-use crate::planning::astar::{OpenEntry, Strategy};
 
 const DX: Expr = Expr::Var("dx");
 const DY: Expr = Expr::Var("dy");
 const H_CAPTION: &str = "The heuristic of the last cell expanded: |Δx| and |Δy| count the cells between it and the goal across and up, a metre each.";
 /// Before a search there is no cell expanded to work the numbers of.
-const NO_SEARCH: &str = "No search yet: press Plan, and the numbers are those of the last cell it expands.";
+const NO_SEARCH: &str =
+    "No search yet: press Plan, and the numbers are those of the last cell it expands.";
 const fn heuristic(expr: Expr) -> Equation {
     Equation {
         key: "h",
@@ -61,7 +64,10 @@ const PRIORITIES: [Equation; 3] = [
         "Its priority: the cost so far g plus the estimate h still to go.",
     ),
     priority(
-        Expr::Add(&Expr::Var("g"), &Expr::Mul(&Expr::Var("w"), &Expr::Var("h"))),
+        Expr::Add(
+            &Expr::Var("g"),
+            &Expr::Mul(&Expr::Var("w"), &Expr::Var("h")),
+        ),
         "Its priority in weighted A*: the estimate counts w times.",
     ),
     priority(

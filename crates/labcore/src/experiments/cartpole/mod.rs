@@ -46,12 +46,14 @@ use crate::control::cartpole::{
     CartPoleState, FallCriterion, Integrator, LinearModel, LqrWeights, PoleStatus, StateFeedback,
     NUDGE_RAD_S,
 };
-use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec, Sanitized, Tone};
-use crate::units::{format_fixed, format_number};
+use crate::experiment::{
+    check_param, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec, Sanitized, Tone,
+};
 use crate::memo::Memo;
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
+use crate::units::{format_fixed, format_number};
 use glam::DVec2;
 
 const INTEGRATORS: &[&str] = &["Euler (4 sub-steps)", "RK4 (4 sub-steps)"];
@@ -702,10 +704,8 @@ impl Experiment for CartPoleBalance {
             "lqr" => match self.lqr_proposal() {
                 Some(k) => {
                     self.sim.gains = k;
-                    self.notices.post(
-                        format!("LQR gains applied: {}", gains_text(&k)),
-                        Tone::Good,
-                    );
+                    self.notices
+                        .post(format!("LQR gains applied: {}", gains_text(&k)), Tone::Good);
                 }
                 None => self.notices.post(
                     "no stabilising LQR solution for these weights: weight the cart position",

@@ -1,8 +1,8 @@
 use super::quiz::*;
 use super::*;
+use crate::control::count_right_half_plane;
 use crate::experiment::{Presentation, Status};
 use crate::scene::{Item, Role};
-use crate::control::count_right_half_plane;
 use crate::testkit::{readout, reopen, run_for, scene_of, steps};
 
 #[test]
@@ -756,4 +756,3 @@ fn cartpole_force_has_one_format_in_the_readout_and_on_the_canvas() {
         );
     }
 }
-

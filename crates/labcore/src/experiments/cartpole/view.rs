@@ -1,14 +1,19 @@
 //! What experiment 8 shows: the scene, the readouts, the status badge.
 
-use super::{ARROW_M_PER_N, CART_BOTTOM_M, CART_HALF_W_M, CartPoleBalance, DRIFT_M, PIVOT_Y_M, Run, SWING_DEG, VIEW_MAX, VIEW_MIN, gains_text, wrap_deg};
+use super::{
+    gains_text, wrap_deg, CartPoleBalance, Run, ARROW_M_PER_N, CART_BOTTOM_M, CART_HALF_W_M,
+    DRIFT_M, PIVOT_Y_M, SWING_DEG, VIEW_MAX, VIEW_MIN,
+};
+use crate::control::cartpole::{
+    closed_loop_eigenvalues, open_loop_eigenvalues, CartPoleState, PoleStatus,
+};
 use crate::control::{Complex, Stability};
-use crate::control::cartpole::{CartPoleState, PoleStatus, closed_loop_eigenvalues, open_loop_eigenvalues};
 use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
+use crate::live_math::{Equation, Expr, Quantity};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::format_fixed;
-use glam::DVec2;
-use crate::live_math::{Equation, Expr, Quantity};
 use crate::units::{format_degrees, format_metres};
+use glam::DVec2;
 
 /// The state feedback `F = kx x + kv ẋ + kθ θ + kω θ̇` (that is `u = −Kx`
 /// with `K = −k`; Ogata, *Modern Control Engineering*, §10.2), on the state
@@ -287,7 +292,10 @@ impl Presentation for CartPoleBalance {
         out.tag_arc("th", pivot, 0.4, up, up - self.sim.state.theta_rad);
         out.tag_arc("thk", pivot, 0.4, up, up - at.theta_rad);
         let ground = DVec2::new(at.x_m.clamp(VIEW_MIN.x, VIEW_MAX.x), 0.0);
-        out.tag_lines(&[("xk", DVec2::ZERO, ground), ("l", pivot, pivot.midpoint(tip))]);
+        out.tag_lines(&[
+            ("xk", DVec2::ZERO, ground),
+            ("l", pivot, pivot.midpoint(tip)),
+        ]);
     }
 
     /// The gains and the state the last force came from (subscript k), and

@@ -3,18 +3,16 @@
 use super::quiz::*;
 use super::*;
 use crate::experiment::{Lab, Phase, Presentation, Status, Tone};
-use crate::rng::Lcg64;
-use crate::route::{format, restore, Tab};
 use crate::mobile::field::MAX_TRAIL_POINTS;
 use crate::plot::BOUNDED_SAMPLES;
+use crate::rng::Lcg64;
+use crate::route::{format, restore, Tab};
 use crate::scene::wheeled::{BODY_RADIUS_M, NOSE_REACH};
 use crate::scene::{Item, Role};
 use crate::units::{format_degrees, format_fixed};
 use std::f64::consts::PI;
 
-use crate::testkit::{
-    click, readout, run_while_animating, scene_of, steps, DT_S as DT,
-};
+use crate::testkit::{click, readout, run_while_animating, scene_of, steps, DT_S as DT};
 
 #[test]
 fn idle_robot_waits_in_the_middle_facing_right() {
@@ -313,10 +311,7 @@ fn plots_and_trail_stay_bounded() {
     click(&mut d, DVec2::new(7.9, 5.9));
     click(&mut d, DVec2::new(0.1, 0.1));
     steps(&mut d, 60 * 400);
-    assert!(d.plots[0]
-        .series
-        .iter()
-        .all(|s| s.len() <= BOUNDED_SAMPLES));
+    assert!(d.plots[0].series.iter().all(|s| s.len() <= BOUNDED_SAMPLES));
     assert!(d.trail.len() <= MAX_TRAIL_POINTS);
     assert!(d.plots[0].bands.len() <= MAX_BANDS);
 }
@@ -727,7 +722,10 @@ fn diffdrive_run_card_label_covers_neither_the_robot_nor_a_waypoint() {
 #[test]
 fn every_waypoint_reached_keeps_its_run_card_in_a_table() {
     let mut d = DiffDrive::default();
-    assert!(d.tables().is_empty(), "no card before a waypoint is reached");
+    assert!(
+        d.tables().is_empty(),
+        "no card before a waypoint is reached"
+    );
     for g in [
         DVec2::new(7.4, 3.0),
         DVec2::new(7.4, 5.5),

@@ -3,10 +3,10 @@
 
 use super::{DiffDrive, FIELD_H_M, FIELD_W_M, START};
 use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
-use crate::units::{format_degrees, format_fixed, format_metres};
 use crate::mobile::go_to_goal::RunStats;
 use crate::scene::wheeled::{draw_field, draw_robot, BODY_RADIUS_M, NOSE_REACH};
 use crate::scene::{Item, Role, Scene, ViewBox};
+use crate::units::{format_degrees, format_fixed, format_metres};
 use glam::DVec2;
 
 /// Scene labels are 13 px bold: a character is at most this wide, and a
@@ -368,9 +368,10 @@ impl Presentation for DiffDrive {
             ),
         ];
         let card = shown_card(self);
-        let [path, time, max_error, at_limit] = card
-            .as_ref()
-            .map_or_else(|| ["--".into(), "--".into(), "--".into(), "--".into()], |(_, s, done)| card_cells(s, *done));
+        let [path, time, max_error, at_limit] = card.as_ref().map_or_else(
+            || ["--".into(), "--".into(), "--".into(), "--".into()],
+            |(_, s, done)| card_cells(s, *done),
+        );
         out.extend([
             Readout::new(
                 "card",
@@ -466,7 +467,13 @@ impl Presentation for DiffDrive {
         let mut t = crate::Table::new(
             "cards",
             "Run cards of the waypoints reached",
-            &["waypoint", "path", "time", "largest heading error", "time at a limit"],
+            &[
+                "waypoint",
+                "path",
+                "time",
+                "largest heading error",
+                "time at a limit",
+            ],
         );
         for (i, s) in cards.iter().enumerate() {
             let mut row = vec![(i + 1).to_string()];

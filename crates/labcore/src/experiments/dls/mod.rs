@@ -5,14 +5,17 @@
 //! the tip has semi-axes `σᵢ uᵢ` (scaled by [`ELLIPSE_SCALE`]) from the
 //! singular values and left singular vectors of the Jacobian.
 
-use crate::experiment::{check_param, clamp_to_params, with_coordinate, ActionSpec, Experiment, Handle, Input, ParamError, ParamSpec, Sanitized};
-use crate::units::format_number;
+use crate::experiment::{
+    check_param, clamp_to_params, with_coordinate, ActionSpec, Experiment, Handle, Input,
+    ParamError, ParamSpec, Sanitized,
+};
 use crate::kinematics::chain::Annulus;
 use crate::kinematics::dls::{AdaptiveDamping, DlsSolver};
 use crate::kinematics::jacobian::{jacobian, manipulability, Manipulability};
 use crate::plot::{Plot, Series, SeriesRole};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
+use crate::units::format_number;
 use glam::DVec2;
 
 mod view;

@@ -368,7 +368,6 @@ fn generators_draw_inside_the_sliders_ranges() {
     }
 }
 
-
 /// Issue 53 §7: a target one iteration away said "converged in 1
 /// iterations". A target 10 µm from the tip is reached by one damped
 /// step (the residual of one step is about λ²/(σ² + λ²) of 10 µm, far
@@ -388,5 +387,8 @@ fn one_iteration_is_said_in_the_singular() {
     d.input(Input::PointerDown(DVec2::new(1.0, 1.2)));
     run_while_animating(&mut d, RUN_MAX_S);
     assert!(d.iterations > 1);
-    assert_eq!(d.status().text, format!("converged in {} iterations", d.iterations));
+    assert_eq!(
+        d.status().text,
+        format!("converged in {} iterations", d.iterations)
+    );
 }

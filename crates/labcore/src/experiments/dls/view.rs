@@ -1,13 +1,15 @@
 //! What experiment 9 shows: the view box, the scene, the readouts and the status.
 
-use super::{DampedLeastSquares, ELLIPSE_SCALE, NO_PROGRESS_ITERATIONS, Run, TOTAL_REACH_M, VIEW_HALF_M};
+use super::{
+    DampedLeastSquares, Run, ELLIPSE_SCALE, NO_PROGRESS_ITERATIONS, TOTAL_REACH_M, VIEW_HALF_M,
+};
 use crate::experiment::{Experiment, Presentation, Readout, Status, Tone};
-use crate::kinematics::chain::{Annulus, forward};
+use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::jacobian::jacobian;
+use crate::live_math::{four_significant, Equation, Expr, Quantity};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::{format_degrees, format_fixed, format_magnitude, format_metres, format_point};
 use glam::DVec2;
-use crate::live_math::{four_significant, Equation, Expr, Quantity};
 
 const A: Expr = Expr::Var("a");
 const B: Expr = Expr::Var("b");
@@ -124,7 +126,11 @@ impl Presentation for DampedLeastSquares {
         vec![
             Readout::new("iterations", "Iterations", self.iterations.to_string()),
             Readout::new("error", "Error", error),
-            Readout::new("w", "Manipulability w", format!("{} m²", format_fixed(m.w, 3))),
+            Readout::new(
+                "w",
+                "Manipulability w",
+                format!("{} m²", format_fixed(m.w, 3)),
+            ),
             Readout::new("cond", "Condition σmax/σmin", format_magnitude(m.condition)),
             Readout::metres("lambda_used", "λ used", self.lambda_used_m),
             Readout::new("angles", "Joint angles θ₁…θₙ", angles.join(", ")),
@@ -219,4 +225,3 @@ impl Presentation for DampedLeastSquares {
         }
     }
 }
-

@@ -41,9 +41,7 @@
 use std::collections::VecDeque;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use crate::estimation::consistency::{
-    nees, nees_bounds, pose_error,
-};
+use crate::estimation::consistency::{nees, nees_bounds, pose_error};
 use crate::estimation::ekf::{ekf_predict, ekf_update_sequential, Belief};
 use crate::estimation::models::{
     motion_model, observation_model, sample_motion, Control, MotionNoise, Observation,
@@ -51,11 +49,13 @@ use crate::estimation::models::{
 };
 use crate::estimation::slam::EkfSlam;
 use crate::estimation::wrap_angle;
-use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec, Sanitized, Tone};
-use crate::units::format_number;
+use crate::experiment::{
+    check_param, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec, Sanitized, Tone,
+};
 use crate::plot::{Axis, Band, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
+use crate::units::format_number;
 use glam::{DMat3, DVec2, DVec3};
 
 const MODES: &[&str] = &["Localisation", "EKF-SLAM"];

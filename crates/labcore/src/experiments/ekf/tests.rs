@@ -1,8 +1,8 @@
 use super::quiz::*;
 use super::view::robot_outline;
 use super::*;
-use crate::experiment::Presentation;
 use crate::estimation::consistency::{covariance_ellipse, position_block, position_error_m};
+use crate::experiment::Presentation;
 use crate::scene::{Item, Role};
 use crate::units::format_fixed;
 use crate::units::format_metres;
@@ -170,9 +170,19 @@ fn plots_and_trails_keep_the_last_minute_and_at_most_a_second_more() {
         for plot in &e.plots[..PLOT_ANEES] {
             for s in &plot.series {
                 // The whole last minute is there ...
-                assert!(s.x[0] <= t - WINDOW_S + FILTER_DT_S, "{}: {}", plot.key, s.x[0]);
+                assert!(
+                    s.x[0] <= t - WINDOW_S + FILTER_DT_S,
+                    "{}: {}",
+                    plot.key,
+                    s.x[0]
+                );
                 // ... and at most a second older.
-                assert!(s.x[0] >= t - WINDOW_S - 1.0 - 1e-9, "{}: {}", plot.key, s.x[0]);
+                assert!(
+                    s.x[0] >= t - WINDOW_S - 1.0 - 1e-9,
+                    "{}: {}",
+                    plot.key,
+                    s.x[0]
+                );
                 assert!(s.len() <= ((WINDOW_S + 1.0) / FILTER_DT_S) as usize + 1);
             }
         }
@@ -1171,7 +1181,11 @@ fn the_consistency_verdict_and_its_band_are_a_readout_in_full() {
     assert_eq!(readout(&e, "verdict"), "--", "no check yet");
     e.set_param("runs", 10.0).unwrap();
     e.action("check").unwrap();
-    assert_eq!(readout(&e, "verdict"), "--", "a check under way has no verdict");
+    assert_eq!(
+        readout(&e, "verdict"),
+        "--",
+        "a check under way has no verdict"
+    );
     while e.check.as_ref().is_some_and(|c| !c.finished()) {
         e.step(DT);
     }
@@ -1184,6 +1198,9 @@ fn the_consistency_verdict_and_its_band_are_a_readout_in_full() {
     );
     let verdict = readout(&e, "verdict");
     assert_eq!(verdict, e.status().text);
-    assert!(verdict.contains("inside [1.68, 4.70] over 10 runs"), "{verdict}");
+    assert!(
+        verdict.contains("inside [1.68, 4.70] over 10 runs"),
+        "{verdict}"
+    );
     assert!(e.describe().contains(&verdict), "{}", e.describe());
 }

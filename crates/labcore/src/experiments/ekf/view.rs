@@ -1,14 +1,19 @@
 //! What experiment 11 shows: the scene, the readouts and the status.
 //! Only reads the state.
 
-use super::{EkfExperiment, FILTER_DT_S, Filter, INSIDE_NEEDED, LOOP_RADIUS_M, TRAIL_DR, TRAIL_EKF, TRAIL_TRUTH, VIEW_HALF_M, VIEW_HEADROOM_M, position_trace};
-use crate::estimation::consistency::{covariance_ellipse, heading_error_rad, pose_error, position_block, position_error_m};
+use super::{
+    position_trace, EkfExperiment, Filter, FILTER_DT_S, INSIDE_NEEDED, LOOP_RADIUS_M, TRAIL_DR,
+    TRAIL_EKF, TRAIL_TRUTH, VIEW_HALF_M, VIEW_HEADROOM_M,
+};
+use crate::estimation::consistency::{
+    covariance_ellipse, heading_error_rad, pose_error, position_block, position_error_m,
+};
 use crate::experiment::{Notice, Presentation, Readout, Status, Tone};
+use crate::live_math::{four_significant, Equation, Expr, Quantity};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::{format_fixed, format_magnitude};
 use glam::{DMat2, DMat3, DVec2, DVec3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
-use crate::live_math::{four_significant, Equation, Expr, Quantity};
 
 const EX: Expr = Expr::Var("ex");
 const EY: Expr = Expr::Var("ey");
@@ -323,11 +328,14 @@ impl Presentation for EkfExperiment {
         } else {
             DMat3::from_diagonal(DVec3::NAN)
         };
-        let q = |key, symbol, v: f64, unit| Quantity::new(key, symbol, v, four_significant(v), unit);
+        let q =
+            |key, symbol, v: f64, unit| Quantity::new(key, symbol, v, four_significant(v), unit);
         // ẑ's bearing as z − ν: the same angle, within half a turn of z.
-        let (z, predicted) = run.last_update().map_or((DVec2::NAN, DVec2::NAN), |(z, u)| {
-            (z, DVec2::new(u.predicted.x, z.y - u.innovation.y))
-        });
+        let (z, predicted) = run
+            .last_update()
+            .map_or((DVec2::NAN, DVec2::NAN), |(z, u)| {
+                (z, DVec2::new(u.predicted.x, z.y - u.innovation.y))
+            });
         vec![
             Quantity::new("zr", "z_r", z.x, 3, "m"),
             Quantity::new("zhr", "z\u{302}_r", predicted.x, 3, "m"),
@@ -422,7 +430,10 @@ impl Presentation for EkfExperiment {
                 .map(|(_, cov)| covariance_ellipse(cov, 3.0).0)
                 .reduce(f64::max)
                 .map_or(String::new(), |w| {
-                    format!(", the widest map ellipse has a semi-axis of {}", crate::units::format_metres(w))
+                    format!(
+                        ", the widest map ellipse has a semi-axis of {}",
+                        crate::units::format_metres(w)
+                    )
                 }),
             Filter::Localisation(_) => String::new(),
         };

@@ -8,11 +8,11 @@
 //! reachable point.
 
 use crate::experiment::{check_param, Experiment, Handle, Input, ParamError, ParamSpec, Sanitized};
-use crate::units::format_number;
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{solve, Elbow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
+use crate::units::format_number;
 use glam::DVec2;
 
 mod view;
@@ -253,7 +253,6 @@ mod tests {
     use crate::experiment::{Presentation, Tone};
     use crate::scene::{Item, Role};
     use crate::testkit::{readout, scene_of};
-    
 
     #[test]
     fn default_readouts_match_hand_values() {
@@ -365,7 +364,6 @@ mod tests {
             }
         }
     }
-
 
     /// Issue 15: the correct option was the longest in most choice
     /// questions. In the four arm experiments it is now neither the strictly

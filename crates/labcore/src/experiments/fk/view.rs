@@ -2,11 +2,11 @@
 
 use super::ForwardKinematics;
 use crate::experiment::{Presentation, Readout, Status, Tone};
-use crate::kinematics::chain::{Annulus, forward};
+use crate::kinematics::chain::{forward, Annulus};
+use crate::live_math::{Equation, Expr, Quantity};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::{format_degrees, format_fixed, format_length, format_point};
 use glam::DVec2;
-use crate::live_math::{Equation, Expr, Quantity};
 
 const L1: Expr = Expr::Var("l1");
 const L2: Expr = Expr::Var("l2");
@@ -19,7 +19,10 @@ const EQUATIONS: &[Equation] = &[
     Equation {
         key: "x",
         symbol: "x",
-        expr: Expr::Add(&Expr::Mul(&L1, &Expr::Cos(&T1)), &Expr::Mul(&L2, &Expr::Cos(&T12))),
+        expr: Expr::Add(
+            &Expr::Mul(&L1, &Expr::Cos(&T1)),
+            &Expr::Mul(&L2, &Expr::Cos(&T12)),
+        ),
         readout: "x",
         caption: "The tip's x: each link's length times the cosine of its absolute angle.",
         absent: "",
@@ -27,7 +30,10 @@ const EQUATIONS: &[Equation] = &[
     Equation {
         key: "y",
         symbol: "y",
-        expr: Expr::Add(&Expr::Mul(&L1, &Expr::Sin(&T1)), &Expr::Mul(&L2, &Expr::Sin(&T12))),
+        expr: Expr::Add(
+            &Expr::Mul(&L1, &Expr::Sin(&T1)),
+            &Expr::Mul(&L2, &Expr::Sin(&T12)),
+        ),
         readout: "y",
         caption: "The tip's y: the same with sines.",
         absent: "",

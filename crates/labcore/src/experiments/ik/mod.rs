@@ -10,14 +10,17 @@
 //! fixed absolute orientation `φ` and the wrist centre `p − L3 (cos φ, sin φ)`
 //! is what the two links solve for.
 
-use crate::experiment::{check_param, clamp_to_params, with_coordinate, Experiment, Handle, Input, ParamError, ParamSpec, Sanitized};
-use crate::units::format_number;
+use crate::experiment::{
+    check_param, clamp_to_params, with_coordinate, Experiment, Handle, Input, ParamError,
+    ParamSpec, Sanitized,
+};
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::two_link_ik::{
     lerp_angle, solve, Elbow, IkError, Singularity, TwoLinkAngles, TwoLinkSolution,
 };
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
+use crate::units::format_number;
 use glam::DVec2;
 
 mod view;
@@ -602,7 +605,6 @@ mod tests {
         assert!((d.answer - c).abs() < 1e-12);
     }
 
-    
     /// Issue 13 §4: a move that has arrived is an ended run; a move in
     /// progress is live.
     #[test]
@@ -651,6 +653,4 @@ mod tests {
             }
         }
     }
-
-
 }

@@ -3,10 +3,10 @@
 use super::{InverseKinematics, Solved};
 use crate::experiment::{Experiment, Presentation, Readout, Status, Tone};
 use crate::kinematics::two_link_ik::{Elbow, Singularity};
+use crate::live_math::{Equation, Expr, Quantity};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::{format_degrees, format_point};
 use glam::DVec2;
-use crate::live_math::{Equation, Expr, Quantity};
 
 const L1: Expr = Expr::Var("l1");
 const L2: Expr = Expr::Var("l2");

@@ -56,12 +56,14 @@ use crate::control::pid::{
 };
 use crate::control::step_info::{step_info, StepInfo, SETTLING_THRESHOLD};
 use crate::control::{Complex, Stability};
-use crate::experiment::{check_param, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec, Sanitized, Tone};
-use crate::units::{format_fixed, format_magnitude, format_metres, format_number};
+use crate::experiment::{
+    check_param, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec, Sanitized, Tone,
+};
 use crate::memo::Memo;
 use crate::plot::{Axis, Band, Marker, Plot, RefLine, Series, SeriesRole, XWindow};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
+use crate::units::{format_fixed, format_magnitude, format_metres, format_number};
 use glam::DVec2;
 
 mod quiz;

@@ -4,8 +4,8 @@ use super::quiz::*;
 use super::words::{percent, quantity, seconds};
 use super::*;
 use crate::experiment::{Phase, Presentation, Status};
-use crate::scene::{Item, Role};
 use crate::route::restore;
+use crate::scene::{Item, Role};
 use crate::testkit::{self, readout, reopen, scene_of, set_params, steps};
 
 fn run_to_end(e: &mut PidControl) -> usize {
@@ -921,7 +921,6 @@ fn pid_force_u_has_one_format_a_tiny_force_reads_0_00_n() {
     assert!(tiny > 0, "the run passes through tiny forces");
 }
 
-
 /// The timeline's replay leaves the step metrics (a scan of the whole
 /// response) to its end (`Experiment::end_replay`): the state it rebuilds at
 /// any step, before, at and after the run goes quiet, still has the live
@@ -933,7 +932,14 @@ fn a_replayed_state_has_the_live_runs_metrics_and_markers_before_and_after_the_r
     let mut e = PidControl::default();
     set_params(
         &mut e,
-        &[("kp", 25.0), ("ki", 0.0), ("kd", 2.0), ("c", 1.0), ("noise", 0.0), ("tf", 0.0)],
+        &[
+            ("kp", 25.0),
+            ("ki", 0.0),
+            ("kd", 2.0),
+            ("c", 1.0),
+            ("noise", 0.0),
+            ("tf", 0.0),
+        ],
     );
     let mut timeline = Timeline::new(&e as &dyn Lab, 0);
     let mut live = Vec::new();
@@ -986,17 +992,28 @@ fn the_peak_is_never_below_the_position_shown_beside_it() {
             passed_a_sample += 1;
             assert_eq!(
                 peak,
-                format!("{} at {} s", format_metres(e.run.state.x_m), format_fixed(e.time_s(), 2))
+                format!(
+                    "{} at {} s",
+                    format_metres(e.run.state.x_m),
+                    format_fixed(e.time_s(), 2)
+                )
             );
         }
     }
-    assert!(passed_a_sample > 5, "{passed_a_sample} frames ended between samples");
+    assert!(
+        passed_a_sample > 5,
+        "{passed_a_sample} frames ended between samples"
+    );
     // At the end the peak is the recorded one, as the plot's marker says.
     run_to_end(&mut e);
     let info = e.metrics().unwrap();
     assert_eq!(
         readout(&e, "peak"),
-        format!("{} at {} s", format_metres(info.peak), format_fixed(info.peak_time_s, 2))
+        format!(
+            "{} at {} s",
+            format_metres(info.peak),
+            format_fixed(info.peak_time_s, 2)
+        )
     );
 }
 
@@ -1014,7 +1031,10 @@ fn after_clear_pins_the_summary_names_no_pinned_run() {
     assert!(shown(&e).contains("A: Kp 25, Kd 5: "), "{}", shown(&e));
     e.action("clear_pins").unwrap();
     let summary = shown(&e);
-    assert!(!summary.contains("pinned run") && !summary.contains("A: "), "{summary}");
+    assert!(
+        !summary.contains("pinned run") && !summary.contains("A: "),
+        "{summary}"
+    );
     assert!(!summary.contains("kept run"), "{summary}");
     assert!(summary.contains("position x: "), "{summary}");
 }

@@ -1,15 +1,19 @@
 //! What experiment 7 shows: the scene, the readouts and the status. It only reads the state.
 
-use super::{ARROW_MAX_M, ARROW_M_PER_N, CART_BOTTOM_M, CART_HALF_W_M, CART_TOP_M, MARKER_TOP_M, MAX_PINS, MIN_STEP_M, NoMetrics, PARAMS, PidControl, Pin, QUIET_MIN_M, RunState, TRACK_END_M, VIEW_MAX, VIEW_MIN};
-use crate::control::{Complex, Stability};
+use super::words::{at_setpoint, percent, quantity, seconds};
+use super::{
+    NoMetrics, PidControl, Pin, RunState, ARROW_MAX_M, ARROW_M_PER_N, CART_BOTTOM_M, CART_HALF_W_M,
+    CART_TOP_M, MARKER_TOP_M, MAX_PINS, MIN_STEP_M, PARAMS, QUIET_MIN_M, TRACK_END_M, VIEW_MAX,
+    VIEW_MIN,
+};
 use crate::control::pid::SecondOrder;
 use crate::control::step_info::StepInfo;
+use crate::control::{Complex, Stability};
 use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
+use crate::live_math::{Equation, Expr, Quantity};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::{format_fixed, format_length, format_magnitude, format_metres, format_number};
 use glam::DVec2;
-use super::words::{at_setpoint, percent, quantity, seconds};
-use crate::live_math::{Equation, Expr, Quantity};
 
 /// The PID law `u = Kp e + Ki ∫e dt + Kd ė` (Åström & Murray, *Feedback
 /// Systems*, §10.1), with the actuator limit when it is on.
@@ -22,7 +26,8 @@ const PID_ON_ERROR: Expr = Expr::Add(&PI_TERMS, &Expr::Mul(&Expr::Var("kd"), &Ex
 /// Derivative on the measurement: `− Kd ẋ` (no kick when the setpoint jumps).
 const PID_ON_MEASUREMENT: Expr =
     Expr::Sub(&PI_TERMS, &Expr::Mul(&Expr::Var("kd"), &Expr::Var("dy")));
-const SUM_CAPTION: &str = "The controller's force: proportional, integral and derivative terms added.";
+const SUM_CAPTION: &str =
+    "The controller's force: proportional, integral and derivative terms added.";
 const LIMIT_CAPTION: &str =
     "The controller's force: the three terms added, then held within the actuator limit.";
 /// With `Ki = 0` the loop is the second-order system `m s² + (c + Kd) s + Kp`
@@ -75,8 +80,14 @@ const PID_LAWS: [[&[Equation]; 2]; 2] = [
         &law(PID_ON_MEASUREMENT, SUM_CAPTION),
     ],
     [
-        &law(Expr::Clamp(&PID_ON_ERROR, &Expr::Var("umax")), LIMIT_CAPTION),
-        &law(Expr::Clamp(&PID_ON_MEASUREMENT, &Expr::Var("umax")), LIMIT_CAPTION),
+        &law(
+            Expr::Clamp(&PID_ON_ERROR, &Expr::Var("umax")),
+            LIMIT_CAPTION,
+        ),
+        &law(
+            Expr::Clamp(&PID_ON_MEASUREMENT, &Expr::Var("umax")),
+            LIMIT_CAPTION,
+        ),
     ],
 ];
 

@@ -32,12 +32,14 @@
 //! field, the map and the run. Prompts and refusals are notices; the status
 //! is the run's state.
 
-use crate::experiment::{check_param, with_coordinate, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec, Sanitized, Tone};
+use crate::experiment::{
+    check_param, with_coordinate, ActionSpec, Experiment, Input, Notices, ParamError, ParamSpec,
+    Sanitized, Tone,
+};
 use crate::mobile::field::{push_trail, snap_into};
 use crate::mobile::go_to_goal::GoToGoal;
 use crate::mobile::potential_field::{
-    BasinMap, CircleObstacle, FieldRun, FieldRunConfig, PotentialField, RunStatus,
-    TrapDetection,
+    BasinMap, CircleObstacle, FieldRun, FieldRunConfig, PotentialField, RunStatus, TrapDetection,
 };
 use crate::mobile::unicycle::{Integrator, Pose};
 use crate::plot::{Marker, Plot, Series, SeriesRole, XWindow};

@@ -3,16 +3,16 @@
 use super::quiz::{quiz_net_force, quiz_potential, quiz_repulsion};
 use super::*;
 use crate::experiment::{Notice, Phase, Presentation, Readout, Status};
-use crate::mobile::potential_field::BasinClass;
-use crate::scene::{Item, Role, Scene};
-use crate::units::{format_fixed, format_metres};
 use crate::mobile::potential_field::run_to_end;
+use crate::mobile::potential_field::BasinClass;
 use crate::rng::Lcg64;
 use crate::route::{format, restore, Tab};
+use crate::scene::{Item, Role, Scene};
+use crate::units::{format_fixed, format_metres};
 
 use crate::testkit::{
-    self, click, notice_text, readout, run_until_phase, run_while_animating,
-    scene_of, steps, DT_S as DT,
+    self, click, notice_text, readout, run_until_phase, run_while_animating, scene_of, steps,
+    DT_S as DT,
 };
 
 /// Two obstacles 0.4 m apart (surface to surface) straddling the

@@ -1,15 +1,18 @@
 //! What the potential-field lab shows: the scene, the readouts and the
 //! status badge. Everything here only reads the state.
 
-use super::{ARROW_SPACING_M, DEFAULT_GOAL, FIELD_H_M, FIELD_W_M, FORCE_SCALE_M, HEAT_BANDS, HEAT_COLS, HEAT_ROWS, MAX_PREVIEW_STEPS, PotentialFieldLab};
+use super::{
+    PotentialFieldLab, ARROW_SPACING_M, DEFAULT_GOAL, FIELD_H_M, FIELD_W_M, FORCE_SCALE_M,
+    HEAT_BANDS, HEAT_COLS, HEAT_ROWS, MAX_PREVIEW_STEPS,
+};
 use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
+use crate::live_math::{Equation, Expr, Quantity};
+use crate::mobile::potential_field::{Attraction, Repulsion};
 use crate::mobile::potential_field::{BasinClass, CircleObstacle, PotentialField, RunStatus};
+use crate::scene::wheeled::{draw_field, draw_robot};
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
 use crate::units::{format_fixed, format_metres};
 use glam::DVec2;
-use crate::live_math::{Equation, Expr, Quantity};
-use crate::mobile::potential_field::{Attraction, Repulsion};
-use crate::scene::wheeled::{draw_field, draw_robot};
 
 /// The field's laws at the robot (Khatib 1986; the lab's conic pull and
 /// linear push): the goal distance, the pull, the nearest clearance and its push.
@@ -17,24 +20,24 @@ const fn laws(pull: Equation, push: Equation) -> [Equation; 4] {
     [GOAL_DISTANCE, pull, CLEARANCE, push]
 }
 const GOAL_DISTANCE: Equation = Equation {
-        key: "goal_distance",
-        symbol: "d_g",
-        expr: Expr::Sqrt(&Expr::Add(
-            &Expr::Sq(&Expr::Sub(&Expr::Var("xg"), &Expr::Var("x"))),
-            &Expr::Sq(&Expr::Sub(&Expr::Var("yg"), &Expr::Var("y"))),
-        )),
-        readout: "goal",
-        caption: "The distance from the robot to the goal.",
-        absent: "No goal yet: put one on the canvas where the robot should go.",
-    };
+    key: "goal_distance",
+    symbol: "d_g",
+    expr: Expr::Sqrt(&Expr::Add(
+        &Expr::Sq(&Expr::Sub(&Expr::Var("xg"), &Expr::Var("x"))),
+        &Expr::Sq(&Expr::Sub(&Expr::Var("yg"), &Expr::Var("y"))),
+    )),
+    readout: "goal",
+    caption: "The distance from the robot to the goal.",
+    absent: "No goal yet: put one on the canvas where the robot should go.",
+};
 const PULL: Equation = Equation {
-        key: "f_att",
-        symbol: "|F_att|",
-        expr: Expr::Var("ka"),
-        readout: "att",
-        caption: "The conic pull: the same strength kₐ at any distance, pointing at the goal.",
-        absent: "No goal yet: put one on the canvas where the robot should go.",
-    };
+    key: "f_att",
+    symbol: "|F_att|",
+    expr: Expr::Var("ka"),
+    readout: "att",
+    caption: "The conic pull: the same strength kₐ at any distance, pointing at the goal.",
+    absent: "No goal yet: put one on the canvas where the robot should go.",
+};
 /// With the goal on the robot the pull has no direction: there is none.
 const PULL_AT_GOAL: Equation = Equation {
     key: "f_att",
@@ -45,19 +48,19 @@ const PULL_AT_GOAL: Equation = Equation {
     absent: "No goal yet: put one on the canvas where the robot should go.",
 };
 const CLEARANCE: Equation = Equation {
-        key: "clearance",
-        symbol: "d",
-        expr: Expr::Sub(
-            &Expr::Sqrt(&Expr::Add(
-                &Expr::Sq(&Expr::Sub(&Expr::Var("x"), &Expr::Var("cx"))),
-                &Expr::Sq(&Expr::Sub(&Expr::Var("y"), &Expr::Var("cy"))),
-            )),
-            &Expr::Var("r"),
-        ),
-        readout: "near_clearance",
-        caption: "The clearance to the nearest obstacle: the distance to its centre less its radius.",
-        absent: "No obstacle on the field: add one to see its clearance and its push.",
-    };
+    key: "clearance",
+    symbol: "d",
+    expr: Expr::Sub(
+        &Expr::Sqrt(&Expr::Add(
+            &Expr::Sq(&Expr::Sub(&Expr::Var("x"), &Expr::Var("cx"))),
+            &Expr::Sq(&Expr::Sub(&Expr::Var("y"), &Expr::Var("cy"))),
+        )),
+        &Expr::Var("r"),
+    ),
+    readout: "near_clearance",
+    caption: "The clearance to the nearest obstacle: the distance to its centre less its radius.",
+    absent: "No obstacle on the field: add one to see its clearance and its push.",
+};
 /// The push outside the nearest obstacle.
 const PUSH: Equation = Equation {
         key: "f_rep",
@@ -75,13 +78,13 @@ const PUSH: Equation = Equation {
     };
 /// The push inside it (where its surface's push holds).
 const PUSH_INSIDE: Equation = Equation {
-        key: "f_rep",
-        symbol: "|F_rep|",
-        expr: Expr::Var("kr"),
-        readout: "rep_near",
-        caption: "Inside the nearest obstacle (d < 0) its push is the surface's, kᵣ.",
-        absent: "No obstacle on the field: add one to see its clearance and its push.",
-    };
+    key: "f_rep",
+    symbol: "|F_rep|",
+    expr: Expr::Var("kr"),
+    readout: "rep_near",
+    caption: "Inside the nearest obstacle (d < 0) its push is the surface's, kᵣ.",
+    absent: "No obstacle on the field: add one to see its clearance and its push.",
+};
 /// Outside the nearest obstacle, and inside it; then the same with the
 /// goal on the robot.
 const EQUATIONS: [&[Equation]; 4] = [
@@ -447,7 +450,8 @@ impl Presentation for PotentialFieldLab {
             Readout::metres(
                 "near_clearance",
                 "Nearest clearance d",
-                self.nearest_obstacle().map_or(f64::NAN, |o| o.clearance_m(p)),
+                self.nearest_obstacle()
+                    .map_or(f64::NAN, |o| o.clearance_m(p)),
             ),
             Readout::new(
                 "rep_near",
@@ -516,16 +520,30 @@ impl Presentation for PotentialFieldLab {
             Quantity::new("ka", "k_a", params.k_att, 2, ""),
             Quantity::new("cx", "c_x", centre.x, 3, "m"),
             Quantity::new("cy", "c_y", centre.y, 3, "m"),
-            Quantity::new("r", "r", near.map_or(f64::NAN, |o| o.radius_m.max(0.0)), 2, "m"),
+            Quantity::new(
+                "r",
+                "r",
+                near.map_or(f64::NAN, |o| o.radius_m.max(0.0)),
+                2,
+                "m",
+            ),
             Quantity::new("kr", "k_r", params.k_rep, 2, ""),
             Quantity::new("d0", "d_0", params.influence_m, 2, "m"),
-            Quantity::new("d", "d", near.map_or(f64::NAN, |o| o.clearance_m(p)), 3, "m"),
+            Quantity::new(
+                "d",
+                "d",
+                near.map_or(f64::NAN, |o| o.clearance_m(p)),
+                3,
+                "m",
+            ),
         ]
     }
 
     fn equations(&self) -> &'static [Equation] {
         let p = self.robot_m();
-        let inside = self.nearest_obstacle().is_some_and(|o| o.clearance_m(p) < 0.0);
+        let inside = self
+            .nearest_obstacle()
+            .is_some_and(|o| o.clearance_m(p) < 0.0);
         // The goal on the robot: no direction to pull in (the readout's 0).
         let at_goal = self
             .goal

@@ -25,8 +25,10 @@
 //! **The link** holds every parameter, the start and goal (snapped to 1 cm)
 //! and the obstacles as text (key `obs`, see [`encode_obstacles`]).
 
-use crate::experiment::{check_param, ActionSpec, Experiment, Input, Modifiers, Notices, ParamError, ParamSpec, Sanitized, Tone};
-use crate::units::format_number;
+use crate::experiment::{
+    check_param, ActionSpec, Experiment, Input, Modifiers, Notices, ParamError, ParamSpec,
+    Sanitized, Tone,
+};
 use crate::planning::drive_path::DrivePath;
 use crate::planning::rrt_star::{Planner, RrtConfig, RrtError, RrtStar};
 use crate::planning::world::{Obstacle, World};
@@ -34,6 +36,7 @@ use crate::plot::{Plot, Series, SeriesRole};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
 use crate::scene::{Role, SegmentLayer};
+use crate::units::format_number;
 use glam::DVec2;
 
 /// The field, metres.

@@ -1,11 +1,11 @@
 use super::quiz::*;
 use super::*;
 use crate::experiment::Presentation;
-use crate::scene::{Item, Scene};
-use crate::units::format_metres;
 use crate::planning::rrt_star::NO_PARENT;
 use crate::route::{apply_params, format, restore, Tab};
 use crate::scene::LayerPlan;
+use crate::scene::{Item, Scene};
+use crate::units::format_metres;
 
 use crate::testkit::{self, readout, scene_of, settle, steps, CTRL, DT_S as DT, SHIFT};
 

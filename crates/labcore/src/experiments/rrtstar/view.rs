@@ -1,15 +1,15 @@
 //! What experiment 10 shows: the scene, the readouts, the status and the compare table.
 //! Only reads the state.
 
-use super::{FIELD_M, GOAL_RADIUS_M, RrtStarField, path_role};
+use super::{path_role, RrtStarField, FIELD_M, GOAL_RADIUS_M};
 use crate::experiment::{Notice, Presentation, Readout, Status, Tone};
+use crate::live_math::{Equation, Expr, Quantity};
 use crate::planning::rrt_star::{Planner, RrtError, RrtStar};
 use crate::planning::world::Obstacle;
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::table::Table;
 use crate::units::format_metres;
 use glam::DVec2;
-use crate::live_math::{Equation, Expr, Quantity};
 
 /// The rewiring radius of RRT* in the plane (Karaman & Frazzoli 2011,
 /// Theorem 38, with d = 2): `r(n) = min(γ √(ln n / n), η)`.

@@ -8,8 +8,10 @@
 //! and outer radii are compared with the analytic `R = L1 + L2 + L3` and
 //! `r = max(0, L_max − (R − L_max))`.
 
-use crate::experiment::{check_param, ActionSpec, Experiment, Handle, Input, Notices, ParamError, ParamSpec, Sanitized, Tone};
-use crate::units::format_number;
+use crate::experiment::{
+    check_param, ActionSpec, Experiment, Handle, Input, Notices, ParamError, ParamSpec, Sanitized,
+    Tone,
+};
 use crate::kinematics::chain::{tip, Annulus};
 use crate::kinematics::dls::DlsSolver;
 use crate::kinematics::two_link_ik::wrap_pi;
@@ -17,6 +19,7 @@ use crate::kinematics::workspace::{DensityGrid, SamplingMode, WorkspaceSampler};
 use crate::plot::{Axis, Plot, RefLine, Series, SeriesRole};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
+use crate::units::format_number;
 use glam::DVec2;
 
 mod view;
@@ -692,6 +695,4 @@ mod tests {
             }
         }
     }
-
-
 }

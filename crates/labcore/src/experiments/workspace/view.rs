@@ -1,12 +1,12 @@
 //! What experiment 3 shows: the view box, the scene, the readouts and the status.
 
-use super::{STIPPLE_MAX, Workspace};
+use super::{Workspace, STIPPLE_MAX};
 use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
-use crate::kinematics::chain::{Annulus, forward};
+use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::workspace::{SamplingMode, WorkspaceSampler};
+use crate::live_math::{Equation, Expr, Quantity};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::format_point;
-use crate::live_math::{Equation, Expr, Quantity};
 
 const L1: Expr = Expr::Var("l1");
 const L2: Expr = Expr::Var("l2");
@@ -25,7 +25,10 @@ const EQUATIONS: &[Equation] = &[
         key: "x",
         symbol: "x",
         expr: Expr::Add(
-            &Expr::Add(&Expr::Mul(&L1, &Expr::Cos(&T1)), &Expr::Mul(&L2, &Expr::Cos(&T12))),
+            &Expr::Add(
+                &Expr::Mul(&L1, &Expr::Cos(&T1)),
+                &Expr::Mul(&L2, &Expr::Cos(&T12)),
+            ),
             &Expr::Mul(&L3, &Expr::Cos(&T123)),
         ),
         readout: "x",
