@@ -49,7 +49,6 @@ use crate::planning::wall_code::{decode_walls, encode_walls, encoded_len};
 use crate::plot::{Plot, Series, SeriesRole};
 use crate::quiz::{Draw, Generator};
 use crate::rng::Lcg64;
-use crate::scene::Role;
 use crate::units::format_number;
 use glam::DVec2;
 use std::cell::RefCell;
@@ -91,8 +90,6 @@ const CELLS_PER_EXPANSION: usize = 768;
 /// 150 expansions) takes some five seconds and the frontier can be watched
 /// as it grows (issue 23 §1).
 const STEPS_PER_EXPANSION: usize = 6;
-/// Rows of the open-list panel (the expanded cell and the next open cells).
-pub const OPEN_ROWS: usize = 8;
 /// The robot drives a path in at most this many seconds (and at least
 /// [`MIN_DRIVE_SPEED`] m/s), so a 512 × 512 path does not take minutes.
 const DRIVE_TIME_S: f64 = 6.0;
@@ -905,10 +902,6 @@ impl AStarGrid {
         self.follow(self.cell_center(cell));
     }
 }
-
-/// How the comparison draws each planner's path (A*, Dijkstra, greedy,
-/// weighted A*); the table's caption names the lines.
-const COMPARE_ROLES: [Role; 4] = [Role::Path, Role::Robot, Role::Warning, Role::Target];
 
 /// The raster value of a wall ([`crate::planning::astar::CellState::Blocked`]).
 const BLOCKED: u8 = crate::planning::astar::CellState::Blocked as u8;

@@ -3,9 +3,7 @@
 //! phone) and the raster cache of cell states. It reads the model and
 //! writes only this view state.
 
-use super::{
-    AStarGrid, Base, Phase, BLOCKED, COMPARE_ROLES, MIN_CELL_PX, OPEN_ROWS, PHONE_WIDTH_PX,
-};
+use super::{AStarGrid, Base, Phase, BLOCKED, MIN_CELL_PX, PHONE_WIDTH_PX};
 use crate::experiment::{Notice, Presentation, Readout, Status, Tone};
 use crate::live_math::{Equation, Expr, Quantity};
 use crate::planning::astar::Search;
@@ -16,6 +14,12 @@ use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
 use crate::table::Table;
 use crate::units::{format_fixed, format_number};
 use glam::DVec2;
+
+/// Rows of the open-list panel (the expanded cell and the next open cells).
+const OPEN_ROWS: usize = 8;
+/// How the comparison draws each planner's path (A*, Dijkstra, greedy,
+/// weighted A*); the table's caption names the lines.
+const COMPARE_ROLES: [Role; 4] = [Role::Path, Role::Robot, Role::Warning, Role::Target];
 
 const DX: Expr = Expr::Var("dx");
 const DY: Expr = Expr::Var("dy");

@@ -116,17 +116,9 @@ const DRIFT_M: f64 = 1.0;
 /// The energy plot spans at least ± this (%), so round-off never fills it.
 const ENERGY_MIN_SPAN_PCT: f64 = 0.1;
 
-/// Drawing: cart body, pivot height and track.
-const CART_HALF_W_M: f64 = 0.25;
-const CART_BOTTOM_M: f64 = 0.06;
+/// Height of the pole's pivot above the track, metres (where the pole
+/// tip is found for a grab, and where the view draws the cart's top).
 const PIVOT_Y_M: f64 = 0.3;
-/// Low enough for a pole hanging below the rail (the "never" fall rule), and
-/// wide enough for a pole lying flat from a cart at an end stop
-/// (2.4 m + 1 m pole + its tip's dot).
-const VIEW_MIN: DVec2 = DVec2::new(-3.6, -0.8);
-const VIEW_MAX: DVec2 = DVec2::new(3.6, 1.5);
-/// Force arrow length per newton (m).
-const ARROW_M_PER_N: f64 = 0.02;
 /// A pointer this close to the pole tip grabs it (m).
 const GRAB_M: f64 = 0.2;
 

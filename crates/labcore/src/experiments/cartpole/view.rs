@@ -1,9 +1,6 @@
 //! What experiment 8 shows: the scene, the readouts, the status badge.
 
-use super::{
-    gains_text, wrap_deg, CartPoleBalance, Run, ARROW_M_PER_N, CART_BOTTOM_M, CART_HALF_W_M,
-    DRIFT_M, PIVOT_Y_M, SWING_DEG, VIEW_MAX, VIEW_MIN,
-};
+use super::{gains_text, wrap_deg, CartPoleBalance, Run, DRIFT_M, PIVOT_Y_M, SWING_DEG};
 use crate::control::cartpole::{
     closed_loop_eigenvalues, open_loop_eigenvalues, CartPoleState, PoleStatus,
 };
@@ -14,6 +11,17 @@ use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::format_fixed;
 use crate::units::{format_degrees, format_metres};
 use glam::DVec2;
+
+/// The drawn cart body: its half-width and its bottom edge above the track, metres.
+const CART_HALF_W_M: f64 = 0.25;
+const CART_BOTTOM_M: f64 = 0.06;
+/// Low enough for a pole hanging below the rail (the "never" fall rule), and
+/// wide enough for a pole lying flat from a cart at an end stop
+/// (2.4 m + 1 m pole + its tip's dot).
+const VIEW_MIN: DVec2 = DVec2::new(-3.6, -0.8);
+const VIEW_MAX: DVec2 = DVec2::new(3.6, 1.5);
+/// Force arrow length per newton (m).
+const ARROW_M_PER_N: f64 = 0.02;
 
 /// The state feedback `F = kx x + kv ẋ + kθ θ + kω θ̇` (that is `u = −Kx`
 /// with `K = −k`; Ogata, *Modern Control Engineering*, §10.2), on the state

@@ -134,10 +134,8 @@ pub const SINGLE_RUN_BAND: (f64, f64) = (0.2158, 9.3484);
 /// Share of time steps whose average NEES must lie inside the band for the
 /// check to call the filter consistent (95 % expected; a little slack).
 const INSIDE_NEEDED: f64 = 0.9;
-const VIEW_HALF_M: f64 = 4.7;
 /// The notice posted when a setting changes under a consistency check.
 pub const STALE_CHECK_NOTICE: &str = "settings changed: run the consistency check again";
-const VIEW_HEADROOM_M: f64 = 1.2;
 
 /// What the truth and the filter are told: noises, sensor and mode.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -3,7 +3,7 @@
 
 use super::{
     position_trace, EkfExperiment, Filter, FILTER_DT_S, INSIDE_NEEDED, LOOP_RADIUS_M, TRAIL_DR,
-    TRAIL_EKF, TRAIL_TRUTH, VIEW_HALF_M, VIEW_HEADROOM_M,
+    TRAIL_EKF, TRAIL_TRUTH,
 };
 use crate::estimation::consistency::{
     covariance_ellipse, heading_error_rad, pose_error, position_block, position_error_m,
@@ -14,6 +14,12 @@ use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::{format_fixed, format_magnitude};
 use glam::{DMat2, DMat3, DVec2, DVec3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+/// The canvas shows a square of this half-width around the loop's centre,
+/// metres, ...
+const VIEW_HALF_M: f64 = 4.7;
+/// ... and this much more above it, metres.
+const VIEW_HEADROOM_M: f64 = 1.2;
 
 const EX: Expr = Expr::Var("ex");
 const EY: Expr = Expr::Var("ey");

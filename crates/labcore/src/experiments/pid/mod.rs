@@ -155,19 +155,8 @@ const PIN_NAMES: [&str; MAX_PINS] = [
 /// The slot letters.
 const PIN_LETTERS: [&str; MAX_PINS] = ["A", "B", "C", "D"];
 
-/// World rectangle of the canvas (metres): the whole track, its end stops
-/// and a cart standing at either end.
-const VIEW_MIN: DVec2 = DVec2::new(-2.8, -0.7);
-const VIEW_MAX: DVec2 = DVec2::new(2.8, 1.3);
-/// Cart body half-width and height, metres.
-const CART_HALF_W_M: f64 = 0.22;
-const CART_BOTTOM_M: f64 = 0.08;
-const CART_TOP_M: f64 = 0.34;
 /// Height of the setpoint marker's handle, metres.
 const MARKER_TOP_M: f64 = 0.85;
-/// Force arrow length per newton, metres, and its longest drawn length.
-const ARROW_M_PER_N: f64 = 0.04;
-const ARROW_MAX_M: f64 = 1.2;
 
 /// Why the current run stopped, if it did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,6 +1,7 @@
 //! Tests of experiment 7 (its Procedure is played by `tests/procedures/`).
 
 use super::quiz::*;
+use super::view::CART_HALF_W_M;
 use super::words::{percent, quantity, seconds};
 use super::*;
 use crate::experiment::{Phase, Presentation, Status};

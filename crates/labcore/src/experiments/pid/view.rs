@@ -2,9 +2,8 @@
 
 use super::words::{at_setpoint, percent, quantity, seconds};
 use super::{
-    NoMetrics, PidControl, Pin, RunState, ARROW_MAX_M, ARROW_M_PER_N, CART_BOTTOM_M, CART_HALF_W_M,
-    CART_TOP_M, MARKER_TOP_M, MAX_PINS, MIN_STEP_M, PARAMS, QUIET_MIN_M, TRACK_END_M, VIEW_MAX,
-    VIEW_MIN,
+    NoMetrics, PidControl, Pin, RunState, MARKER_TOP_M, MAX_PINS, MIN_STEP_M, PARAMS, QUIET_MIN_M,
+    TRACK_END_M,
 };
 use crate::control::pid::SecondOrder;
 use crate::control::step_info::StepInfo;
@@ -14,6 +13,18 @@ use crate::live_math::{Equation, Expr, Quantity};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::{format_fixed, format_length, format_magnitude, format_metres, format_number};
 use glam::DVec2;
+
+/// World rectangle of the canvas (metres): the whole track, its end stops
+/// and a cart standing at either end.
+const VIEW_MIN: DVec2 = DVec2::new(-2.8, -0.7);
+const VIEW_MAX: DVec2 = DVec2::new(2.8, 1.3);
+/// Cart body half-width and height, metres.
+pub(super) const CART_HALF_W_M: f64 = 0.22;
+const CART_BOTTOM_M: f64 = 0.08;
+const CART_TOP_M: f64 = 0.34;
+/// Force arrow length per newton, metres, and its longest drawn length.
+const ARROW_M_PER_N: f64 = 0.04;
+const ARROW_MAX_M: f64 = 1.2;
 
 /// The PID law `u = Kp e + Ki ∫e dt + Kd ė` (Åström & Murray, *Feedback
 /// Systems*, §10.1), with the actuator limit when it is on.

@@ -64,15 +64,6 @@ pub const BASIN_CELLS_PER_STEP: usize = 10;
 pub const BASIN_DT_S: f64 = 0.05;
 /// Longest basin run, seconds (a live run may take 120 s).
 pub const BASIN_MAX_TIME_S: f64 = 60.0;
-/// Heat map resolution: 0.1 m cells.
-const HEAT_COLS: usize = 80;
-const HEAT_ROWS: usize = 60;
-/// Number of equal potential steps shaded as alternate bands.
-const HEAT_BANDS: usize = 16;
-/// Spacing of the field-arrow grid, metres.
-const ARROW_SPACING_M: f64 = 0.5;
-/// Drawn length of a unit force on the robot, metres.
-const FORCE_SCALE_M: f64 = 0.6;
 /// A press within this distance of the goal or the start grabs it, metres.
 const GRAB_M: f64 = 0.3;
 /// A press that moves less than this before release is a tap, metres.

@@ -1,6 +1,7 @@
 //! Tests of experiment 5.
 
 use super::quiz::{quiz_net_force, quiz_potential, quiz_repulsion};
+use super::view::{HEAT_COLS, HEAT_ROWS};
 use super::*;
 use crate::experiment::{Notice, Phase, Presentation, Readout, Status};
 use crate::mobile::potential_field::run_to_end;

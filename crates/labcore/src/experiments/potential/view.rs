@@ -1,10 +1,7 @@
 //! What the potential-field lab shows: the scene, the readouts and the
 //! status badge. Everything here only reads the state.
 
-use super::{
-    PotentialFieldLab, ARROW_SPACING_M, DEFAULT_GOAL, FIELD_H_M, FIELD_W_M, FORCE_SCALE_M,
-    HEAT_BANDS, HEAT_COLS, HEAT_ROWS, MAX_PREVIEW_STEPS,
-};
+use super::{PotentialFieldLab, DEFAULT_GOAL, FIELD_H_M, FIELD_W_M, MAX_PREVIEW_STEPS};
 use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
 use crate::live_math::{Equation, Expr, Quantity};
 use crate::mobile::potential_field::{Attraction, Repulsion};
@@ -13,6 +10,16 @@ use crate::scene::wheeled::{draw_field, draw_robot};
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
 use crate::units::{format_fixed, format_metres};
 use glam::DVec2;
+
+/// Heat map resolution: 0.1 m cells.
+pub(super) const HEAT_COLS: usize = 80;
+pub(super) const HEAT_ROWS: usize = 60;
+/// Number of equal potential steps shaded as alternate bands.
+const HEAT_BANDS: usize = 16;
+/// Spacing of the field-arrow grid, metres.
+const ARROW_SPACING_M: f64 = 0.5;
+/// Drawn length of a unit force on the robot, metres.
+const FORCE_SCALE_M: f64 = 0.6;
 
 /// The field's laws at the robot (Khatib 1986; the lab's conic pull and
 /// linear push): the goal distance, the pull, the nearest clearance and its push.

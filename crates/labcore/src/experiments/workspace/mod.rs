@@ -69,8 +69,6 @@ fn density_cells(samples: usize, lengths_m: &[f64; 3]) -> usize {
 /// A sweep spreads over this many frames: each adds at most 1 % of the
 /// samples, so the progress badge can move in 1 % steps with the cloud.
 const SWEEP_FRAMES: usize = 100;
-/// Most tips stippled individually (the most recent ones); the density map shows them all.
-const STIPPLE_MAX: usize = 5000;
 
 /// State of the workspace experiment.
 #[derive(Clone, Debug)]

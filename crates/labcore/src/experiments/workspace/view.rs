@@ -1,12 +1,15 @@
 //! What experiment 3 shows: the view box, the scene, the readouts and the status.
 
-use super::{Workspace, STIPPLE_MAX};
+use super::Workspace;
 use crate::experiment::{Experiment, Notice, Presentation, Readout, Status, Tone};
 use crate::kinematics::chain::{forward, Annulus};
 use crate::kinematics::workspace::{SamplingMode, WorkspaceSampler};
 use crate::live_math::{Equation, Expr, Quantity};
 use crate::scene::{Item, Role, Scene, ViewBox};
 use crate::units::format_point;
+
+/// Most tips stippled individually (the most recent ones); the density map shows them all.
+const STIPPLE_MAX: usize = 5000;
 
 const L1: Expr = Expr::Var("l1");
 const L2: Expr = Expr::Var("l2");
