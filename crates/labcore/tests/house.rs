@@ -218,3 +218,120 @@ fn shipped_lines_leave_out_test_items_and_keep_what_follows() {
     let kept: Vec<&str> = shipped_lines(source).into_iter().map(|(_, l)| l).collect();
     assert_eq!(kept, ["fn a() {}", "fn b() {}", "fn c() {}"]);
 }
+
+/// Every experiment's folder below `labcore/src/experiments`, by id, in a
+/// stable order.
+fn experiment_folders() -> Vec<(String, PathBuf)> {
+    let root = crates_dir().join("labcore/src/experiments");
+    let mut out: Vec<(String, PathBuf)> = fs::read_dir(&root)
+        .expect("experiments/")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.is_dir())
+        .filter_map(|p| Some((p.file_name()?.to_str()?.to_owned(), p)))
+        .collect();
+    out.sort();
+    out
+}
+
+/// Whether `file` (inside an experiment's folder) is part of its view:
+/// `view.rs` or a file below a `view/` folder.
+fn is_view_file(file: &Path) -> bool {
+    file.file_name().is_some_and(|n| n == "view.rs")
+        || file.components().any(|c| c.as_os_str() == "view")
+}
+
+/// Issue 54 §3, "one-way view": the dependency runs view → model. The
+/// model (an experiment's `mod.rs` and every other file of its folder that
+/// is not its view) never calls into `view::` outside its tests; what both
+/// need (a label's wording, a tolerance) lives on the model's side.
+#[test]
+fn one_way_view_no_model_file_of_an_experiment_names_its_view() {
+    let folders = experiment_folders();
+    assert_eq!(folders.len(), labcore::registry().len(), "{folders:?}");
+    let mut found = Vec::new();
+    for (_, folder) in &folders {
+        for file in rust_files(folder) {
+            let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            if is_view_file(&file) || name == "tests.rs" {
+                continue;
+            }
+            let text = fs::read_to_string(&file).unwrap_or_default();
+            for (n, line) in shipped_lines(&text) {
+                let code = line.split("//").next().unwrap_or("");
+                if code.contains("view::") {
+                    found.push(format!("{}:{}: {}", file.display(), n + 1, line.trim()));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "the model calls into its view:\n{}",
+        found.join("\n")
+    );
+}
+
+/// Issue 54 §3: a view imports what it uses by name, so what the model
+/// exports for it is visible; `use super::*` let every view inherit the
+/// presentation names its `mod.rs` imported only for it.
+#[test]
+fn one_way_view_no_view_inherits_the_models_imports() {
+    let mut found = Vec::new();
+    for (_, folder) in experiment_folders() {
+        for file in rust_files(&folder).into_iter().filter(|f| is_view_file(f)) {
+            let text = fs::read_to_string(&file).unwrap_or_default();
+            for (n, line) in text.lines().enumerate() {
+                if line
+                    .split("//")
+                    .next()
+                    .unwrap_or("")
+                    .contains("use super::*")
+                {
+                    found.push(format!("{}:{}: {}", file.display(), n + 1, line.trim()));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "glob imports in views:\n{}",
+        found.join("\n")
+    );
+}
+
+/// Issue 54 §3, "independent experiments": no experiment's folder names
+/// another experiment's module (`experiments::<other>` or
+/// `super::super::<other>`); what two experiments share lives in a shared
+/// module (`scene`, `mobile`, `plot`, …).
+#[test]
+fn independent_experiments_no_experiment_imports_a_sibling() {
+    let folders = experiment_folders();
+    let ids: Vec<&str> = folders.iter().map(|(id, _)| id.as_str()).collect();
+    let mut found = Vec::new();
+    for (id, folder) in &folders {
+        for file in rust_files(folder) {
+            let text = fs::read_to_string(&file).unwrap_or_default();
+            for (n, line) in text.lines().enumerate() {
+                let code = line.split("//").next().unwrap_or("");
+                let sibling = ids.iter().filter(|other| *other != id).find(|other| {
+                    code.contains(&format!("experiments::{other}"))
+                        || code.contains(&format!("super::super::{other}"))
+                });
+                if let Some(other) = sibling {
+                    found.push(format!(
+                        "{}:{}: imports {other}: {}",
+                        file.display(),
+                        n + 1,
+                        line.trim()
+                    ));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "experiments importing each other:\n{}",
+        found.join("\n")
+    );
+}
