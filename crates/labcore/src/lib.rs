@@ -63,6 +63,7 @@ pub mod experiment;
 pub mod experiments;
 pub mod json;
 pub mod kinematics;
+pub mod layout;
 pub mod linalg;
 pub mod live_math;
 pub mod lms;

@@ -13,22 +13,9 @@ use crate::catalogue::{Group, CATALOGUE};
 use crate::content::{Block, Content, Reference};
 use crate::route::Tab;
 
-/// Escapes text for inclusion in HTML (content and attribute values).
-#[must_use]
-pub fn escape(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            _ => out.push(c),
-        }
-    }
-    out
-}
+/// Escapes text for inclusion in HTML (content and attribute values); the
+/// one rule of [`labcore::layout::html::escape`].
+pub use labcore::layout::html::escape;
 
 #[must_use]
 pub fn aim(content: &Content) -> String {

@@ -5,6 +5,7 @@
 //! ([`Writer`]) serves both, so the two cannot say different things.
 
 use crate::experiment::Readout;
+use labcore::layout::html::escape;
 use labcore::live_math::{Equation, Expr, Form, Quantity};
 use std::fmt::Write as _;
 
@@ -636,13 +637,6 @@ fn precedence(expr: &Expr) -> u8 {
         Expr::Neg(..) => 3,
         _ => 4,
     }
-}
-
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 #[cfg(test)]

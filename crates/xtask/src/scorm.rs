@@ -36,6 +36,7 @@
 //! §2.3.5 (manifest, `adlcp:scormtype`, `adlcp:masteryscore`).
 
 use crate::util;
+use labcore::layout::html::escape;
 use labcore::route::{Instructor, QuizRules};
 use std::fs;
 use std::io::Write;
@@ -230,13 +231,6 @@ fn xml_id(id: &str) -> String {
             }
         })
         .collect()
-}
-
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 /// Zips `files` of `folder` (deflate) into `out`, in the order given.
