@@ -9,6 +9,7 @@ pub use crate::palette::Palette;
 use crate::viewport::nearest_px;
 pub use crate::viewport::Viewport;
 use glam::DVec2;
+use labcore::layout::scale_bar::{ScaleBar, SCALE_BAR_MAX_PX};
 use labcore::math;
 use labcore::scene::style;
 use labcore::{Item, RasterColour, Role, Scene};
@@ -580,29 +581,8 @@ fn stroke_segments(
     ctx.stroke();
 }
 
-/// Longest a scale bar may be, CSS pixels.
-const SCALE_BAR_MAX_PX: f64 = 120.0;
 /// Distance of edge marks and the scale bar from the canvas edge, CSS pixels.
 const EDGE_INSET_PX: f64 = 14.0;
-
-/// The scale bar's length: the largest round length (1, 2 or 5 × 10ᵏ m)
-/// that is at most `max_px` long at `scale_px_per_m`.
-#[must_use]
-pub fn scale_bar_m(scale_px_per_m: f64, max_px: f64) -> f64 {
-    let limit_m = max_px / scale_px_per_m.max(1e-12);
-    let decade = labcore::units::power_of_ten(math::log10(limit_m).floor() as i32);
-    [5.0, 2.0, 1.0]
-        .iter()
-        .map(|f| f * decade)
-        .find(|len| *len <= limit_m * (1.0 + 1e-9))
-        .unwrap_or(decade)
-}
-
-/// The scale bar's label: "1 m", "0.5 m", "20 m".
-#[must_use]
-pub fn scale_bar_label(length_m: f64) -> String {
-    format!("{} m", labcore::units::format_number(length_m, 3))
-}
 
 /// A metre scale bar in the lower-left corner, on a plate of the background.
 fn paint_scale_bar(
@@ -611,9 +591,12 @@ fn paint_scale_bar(
     palette: &Palette,
     height_px: f64,
 ) {
-    let len_m = scale_bar_m(viewport.scale_px_per_m, SCALE_BAR_MAX_PX);
-    let len_px = len_m * viewport.scale_px_per_m;
-    let label = scale_bar_label(len_m);
+    let Some(ScaleBar { length_m, label }) =
+        ScaleBar::fit(viewport.scale_px_per_m, SCALE_BAR_MAX_PX)
+    else {
+        return;
+    };
+    let len_px = length_m * viewport.scale_px_per_m;
     let x0 = EDGE_INSET_PX;
     let y = height_px - EDGE_INSET_PX;
     ctx.set_font("600 12px system-ui, sans-serif");
@@ -1004,25 +987,6 @@ fn blit_to(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_scale_bar_takes_the_longest_round_length_that_fits() {
-        // 100 px per metre, at most 120 px: 1 m.
-        assert_eq!(scale_bar_m(100.0, 120.0), 1.0);
-        // 50 px/m: 2 m (100 px); 20 px/m: 5 m (100 px); 400 px/m: 0.2 m (80 px).
-        assert_eq!(scale_bar_m(50.0, 120.0), 2.0);
-        assert_eq!(scale_bar_m(20.0, 120.0), 5.0);
-        assert!((scale_bar_m(400.0, 120.0) - 0.2).abs() < 1e-12);
-        for scale in [0.7, 3.0, 13.0, 77.0, 640.0] {
-            let len = scale_bar_m(scale, 120.0);
-            assert!(
-                len * scale <= 120.0 + 1e-9 && len * scale > 120.0 / 5.0,
-                "{scale}"
-            );
-        }
-        assert_eq!(scale_bar_label(0.5), "0.5 m");
-        assert_eq!(scale_bar_label(2.0), "2 m");
-    }
 
     #[test]
     fn an_off_view_mark_sits_on_the_edge_toward_the_point() {

@@ -5,3 +5,4 @@
 //! arrow head reads the same wherever a student sees it (issue 54 §1).
 
 pub mod html;
+pub mod scale_bar;

@@ -13,8 +13,9 @@ use crate::content_html::escape;
 use crate::math;
 use crate::scene::style::{self, CANVAS};
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
-use crate::units::{format_number, power_of_ten};
+use crate::units::format_number;
 use glam::DVec2;
+use labcore::layout::scale_bar::{ScaleBar, SCALE_BAR_MAX_PX};
 use std::fmt::Write as _;
 
 /// Most segments of one [`Item::Segments`] batch drawn (the first ones: a
@@ -708,25 +709,14 @@ fn arrow_path(m: &Map, from: DVec2, to: DVec2, width_px: f64) -> String {
     )
 }
 
-/// A metre scale bar in the lower left corner: the largest round length
-/// (1, 2 or 5 × 10ᵏ m) at most 120 units long.
+/// A metre scale bar in the lower left corner, the canvas's: the largest
+/// round length at most [`SCALE_BAR_MAX_PX`] units long, with the same text.
 fn scale_bar(s: &mut String, scale: f64, h: f64) {
-    let limit_m = 120.0 / scale.max(1e-12);
-    let decade = power_of_ten(math::log10(limit_m).floor() as i32);
-    let Some(len_m) = [5.0, 2.0, 1.0]
-        .iter()
-        .map(|k| k * decade)
-        .find(|l| *l <= limit_m)
-    else {
+    let Some(ScaleBar { length_m, label }) = ScaleBar::fit(scale, SCALE_BAR_MAX_PX) else {
         return;
     };
-    let len = len_m * scale;
+    let len = length_m * scale;
     let (x, y) = (14.0, h - 14.0);
-    let label = if len_m >= 1.0 {
-        format!("{} m", format_number(len_m, 0))
-    } else {
-        format!("{} cm", format_number(len_m * 100.0, 1))
-    };
     let _ = write!(
         s,
         "<path d=\"M{x},{}V{y}H{}V{}\" fill=\"none\" stroke=\"{ink}\" stroke-width=\"{}\"/>\
@@ -741,4 +731,26 @@ fn scale_bar(s: &mut String, scale: f64, h: f64) {
         y = n1(y),
         ink = colour(Role::Text)
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::scale_bar;
+
+    #[test]
+    fn the_scale_bar_reads_in_metres_as_on_the_canvas() {
+        // 240 units per metre: 0.5 m is 120 units, the longest that fits.
+        let mut s = String::new();
+        scale_bar(&mut s, 240.0, 300.0);
+        assert!(s.contains(">0.5 m</text>"), "{s}");
+        assert!(s.contains("M14,281V286H134V281"), "{s}");
+        // 50 units per metre: 2 m, 100 units long.
+        let mut s = String::new();
+        scale_bar(&mut s, 50.0, 300.0);
+        assert!(s.contains(">2 m</text>"), "{s}");
+        // No scale, no bar (and no panic).
+        let mut s = String::new();
+        scale_bar(&mut s, f64::NAN, 300.0);
+        assert_eq!(s, "");
+    }
 }
