@@ -436,7 +436,8 @@ pub fn format_magnitude(value: f64) -> String {
 }
 
 /// `-7` → `⁻⁷`.
-fn superscript(n: i32) -> String {
+#[must_use]
+pub fn superscript(n: i32) -> String {
     const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
     let mut s = String::new();
     if n < 0 {

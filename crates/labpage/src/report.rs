@@ -39,6 +39,7 @@ use crate::scene::style::{BAND_OPACITY, CANVAS, PLOT_BAND, REF_LINE_DASH_PX};
 use crate::scene::{Role, Scene, ViewBox};
 use crate::table::Table;
 use crate::units::{format_number, power_of_ten};
+use labcore::layout::ticks::tick_labels;
 use std::fmt::Write as _;
 
 mod scene_svg;
@@ -819,37 +820,6 @@ fn n(v: f64) -> String {
     format_number(v, 2)
 }
 
-/// Tick label decimals for a tick step (0.25 → 2).
-fn step_decimals(step: f64) -> usize {
-    if !(step.is_finite() && step > 0.0) {
-        return 0;
-    }
-    let mut d = 0;
-    let mut s = step;
-    while d < 6 && (s - s.round()).abs() > 1e-9 * s.max(1.0) {
-        s *= 10.0;
-        d += 1;
-    }
-    d
-}
-
-/// `10ᵏ` for a log axis tick.
-fn power_label(v: f64) -> String {
-    const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
-    let k = math::log10(v).round() as i32;
-    if (-2..=3).contains(&k) {
-        return format_number(v, 2);
-    }
-    let mut s = String::from("10");
-    if k < 0 {
-        s.push('⁻');
-    }
-    for c in k.unsigned_abs().to_string().chars() {
-        s.push(DIGITS[c.to_digit(10).unwrap_or(0) as usize]);
-    }
-    s
-}
-
 /// An axis title with its unit: `Time (s)`.
 fn axis_title(label: &str, unit: &str) -> String {
     if unit.is_empty() {
@@ -1101,14 +1071,8 @@ fn grid_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
         ..
     } = *map;
     let x_ticks = nice_ticks(map.x.0, map.x.1, 8);
-    let x_dec = step_decimals(
-        x_ticks
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .next()
-            .unwrap_or(1.0),
-    );
-    for t in &x_ticks {
+    let x_labels = tick_labels(&x_ticks, false);
+    for (t, label) in x_ticks.iter().zip(&x_labels) {
         let x = map.px(*t);
         let _ = write!(
             s,
@@ -1117,7 +1081,7 @@ fn grid_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
             n(top),
             n(bottom),
             n(bottom + 14.0),
-            escape(&format_number(*t, x_dec)),
+            escape(label),
             x = n(x)
         );
     }
@@ -1127,20 +1091,9 @@ fn grid_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
     } else {
         nice_ticks(y0, y1, 7)
     };
-    let y_dec = step_decimals(
-        y_ticks
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .next()
-            .unwrap_or(1.0),
-    );
-    for t in &y_ticks {
+    let y_labels = tick_labels(&y_ticks, log);
+    for (t, label) in y_ticks.iter().zip(&y_labels) {
         let y = map.py(*t);
-        let label = if log {
-            power_label(*t)
-        } else {
-            format_number(*t, y_dec)
-        };
         let _ = write!(
             s,
             "<line x1=\"{}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"{grid}\"/>\
@@ -1149,7 +1102,7 @@ fn grid_svg(s: &mut String, plot: &Plot, map: &PlotMap) {
             n(right),
             n(left - 6.0),
             n(y + 4.0),
-            escape(&label),
+            escape(label),
             y = n(y)
         );
     }

@@ -6,6 +6,7 @@
 use crate::dom::{self, escape, query, query_all};
 use crate::draw::Palette;
 use crate::viewport::clip_segment;
+use labcore::layout::ticks::tick_labels;
 use labcore::math;
 use labcore::plot::{axis_ticks, column_spans, dash_is_on, log_ticks, Axis, Plot, SeriesRole};
 use labcore::scene::style::{BAND_OPACITY, PLOT_BAND, REF_LINE_DASH_PX};
@@ -314,73 +315,6 @@ const RING_SIZES_KEPT: usize = 16;
 
 thread_local! {
     static RING_SPOTS: std::cell::RefCell<RingCache> = const { std::cell::RefCell::new(Vec::new()) };
-}
-
-/// The number of decimals that shows every multiple of `step` exactly
-/// (0.05 → 2, 5 → 0, 2.5e-5 → 6).
-#[must_use]
-pub fn tick_decimals(step: f64) -> usize {
-    if !(step.is_finite() && step > 0.0) {
-        return 0;
-    }
-    let mut d = 0;
-    let mut s = step;
-    while d < 12 && (s - s.round()).abs() > 1e-6 * s.max(1.0) {
-        s *= 10.0;
-        d += 1;
-    }
-    d
-}
-
-/// Tick labels for `ticks`: decimals chosen from the tick step, scientific
-/// notation for very large or very small values, and never two alike.
-#[must_use]
-pub fn tick_labels(ticks: &[f64], log: bool) -> Vec<String> {
-    if log {
-        return ticks.iter().map(|v| tick_label(*v, true)).collect();
-    }
-    let step = ticks
-        .windows(2)
-        .map(|w| (w[1] - w[0]).abs())
-        .fold(f64::INFINITY, f64::min);
-    let biggest = ticks.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let scientific = biggest >= 1e5 || (biggest > 0.0 && biggest < 1e-3);
-    let exp = if scientific {
-        math::log10(biggest).floor() as i32
-    } else {
-        0
-    };
-    let scale = 10f64.powi(exp);
-    let base = if step.is_finite() {
-        tick_decimals(step / scale)
-    } else {
-        1
-    };
-    for extra in 0..8 {
-        let d = base + extra;
-        let labels: Vec<String> = ticks
-            .iter()
-            .map(|v| {
-                let mut t = format!("{:.d$}", v / scale);
-                if t.starts_with('-') && t[1..].chars().all(|c| c == '0' || c == '.') {
-                    t.remove(0);
-                }
-                if scientific {
-                    format!("{t}e{exp}")
-                } else {
-                    t
-                }
-            })
-            .collect();
-        let distinct = labels
-            .iter()
-            .enumerate()
-            .all(|(i, a)| labels[i + 1..].iter().all(|b| a != b));
-        if distinct {
-            return labels;
-        }
-    }
-    ticks.iter().map(|v| format!("{v:e}")).collect()
 }
 
 /// Where the labels, ticks and titles of a drawn plot went (published on the
@@ -1162,20 +1096,6 @@ fn axis_title(label: &str, unit: &str) -> String {
     }
 }
 
-fn tick_label(v: f64, log: bool) -> String {
-    if log || (v != 0.0 && (v.abs() >= 1e5 || v.abs() < 1e-3)) {
-        let exp = math::log10(v.abs()).floor() as i32;
-        let mant = v / 10f64.powi(exp);
-        if (mant - 1.0).abs() < 1e-9 {
-            format!("1e{exp}")
-        } else {
-            format!("{}e{exp}", format_number(mant, 1))
-        }
-    } else {
-        format_number(v, 4)
-    }
-}
-
 fn set_dash(ctx: &CanvasRenderingContext2d, dash: &[f64]) {
     let pattern = js_sys::Array::new();
     for d in dash {
@@ -1902,7 +1822,6 @@ pub fn download_blob(file_name: &str, blob: &web_sys::Blob) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use labcore::plot::nice_ticks;
 
     /// Issue 53 §7: RRT*'s last x tick, "4000", under the plot's right edge,
     /// stood half past the canvas and showed as "400". A label stays whole
@@ -1924,37 +1843,6 @@ mod tests {
     }
 
     use labcore::plot::{Band, Marker, RefLine, Series};
-
-    /// Regression (issue 13 §5): a 0.0002 J energy span showed four "0.4826".
-    #[test]
-    fn tick_labels_never_repeat_a_value() {
-        let ticks = nice_ticks(0.48250, 0.48270, 6);
-        let labels = tick_labels(&ticks, false);
-        for (i, a) in labels.iter().enumerate() {
-            assert!(!labels[i + 1..].contains(a), "{a} repeats in {labels:?}");
-        }
-        assert_eq!(
-            tick_labels(&[0.0, 0.05, 0.1], false),
-            ["0.00", "0.05", "0.10"]
-        );
-        assert_eq!(tick_labels(&[0.0, 5.0, 10.0], false), ["0", "5", "10"]);
-        assert_eq!(tick_labels(&[-0.0, 1.0], false)[0], "0");
-        let big = tick_labels(&[0.0, 2e5, 4e5], false);
-        assert_eq!(big, ["0e5", "2e5", "4e5"]);
-        for span in [1e-9, 3e-7, 1e-4, 0.02, 7.0, 3e3, 1e8] {
-            for centre in [0.0, 0.4826, -12.5, 1e6] {
-                let ticks = nice_ticks(centre - span, centre + span, 7);
-                let labels = tick_labels(&ticks, false);
-                let mut sorted = labels.clone();
-                sorted.sort();
-                sorted.dedup();
-                assert_eq!(sorted.len(), labels.len(), "{centre} ± {span}: {labels:?}");
-            }
-        }
-        assert_eq!(tick_decimals(0.05), 2);
-        assert_eq!(tick_decimals(2.5e-5), 6);
-        assert_eq!(tick_decimals(20.0), 0);
-    }
 
     #[test]
     fn y_tick_labels_stay_clear_of_the_axis_title() {

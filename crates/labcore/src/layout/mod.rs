@@ -6,3 +6,4 @@
 
 pub mod html;
 pub mod scale_bar;
+pub mod ticks;

@@ -4,6 +4,7 @@
 use super::{export_png, read_file, SimState};
 use crate::dom::{self, escape, query, query_all, Listener};
 use crate::plot_view;
+use labcore::layout::ticks::step_decimals;
 use labcore::units::format_number;
 use labcore::{ParamKind, ParamSpec, Sanitized};
 use std::cell::RefCell;
@@ -302,16 +303,6 @@ pub(super) fn readouts_html(readouts: &[labcore::Readout]) -> String {
         })
         .collect()
 }
-fn decimals(step: f64) -> usize {
-    let mut d = 0;
-    let mut s = step;
-    while d < 4 && (s - s.round()).abs() > 1e-9 {
-        s *= 10.0;
-        d += 1;
-    }
-    d
-}
-
 /// The controls: ungrouped ones first, then each [`ParamSpec::group`] under a
 /// collapsed heading (in the order the groups first appear).
 pub(super) fn controls_html(specs: &[ParamSpec]) -> String {
@@ -426,7 +417,7 @@ pub(super) fn set_control_value(
                 "radio" => input.set_checked((input.value() == "1") == (v >= 0.5)),
                 "text" => {
                     if active != Some(&el) {
-                        input.set_value(&format_number(v, (decimals(spec.step) + 1).min(3)));
+                        input.set_value(&format_number(v, (step_decimals(spec.step) + 1).min(3)));
                     }
                 }
                 _ => input.set_value(&format_number(v, 4)),
