@@ -9,6 +9,7 @@ pub use crate::palette::Palette;
 use crate::viewport::nearest_px;
 pub use crate::viewport::Viewport;
 use glam::DVec2;
+use labcore::layout::arrow::arrow_head;
 use labcore::layout::scale_bar::{ScaleBar, SCALE_BAR_MAX_PX};
 use labcore::math;
 use labcore::scene::style;
@@ -731,20 +732,14 @@ fn fill_and_outline(ctx: &CanvasRenderingContext2d, colour: &str) {
 
 /// Adds a shaft and a two-stroke head (sized in pixels) to the current path.
 fn trace_arrow(ctx: &CanvasRenderingContext2d, a: DVec2, b: DVec2, width_px: f64) {
-    let d = b - a;
-    let len = d.length();
-    if len.is_nan() || len <= 0.5 {
+    let Some([l, tip, r]) = arrow_head(a, b, width_px) else {
         return;
-    }
+    };
     ctx.move_to(a.x, a.y);
-    ctx.line_to(b.x, b.y);
-    let head = (4.0 + 2.5 * width_px).min(len * 0.5);
-    let u = d / len;
-    let n = DVec2::new(-u.y, u.x);
-    let back = b - u * head;
-    ctx.move_to(back.x + n.x * head * 0.5, back.y + n.y * head * 0.5);
-    ctx.line_to(b.x, b.y);
-    ctx.line_to(back.x - n.x * head * 0.5, back.y - n.y * head * 0.5);
+    ctx.line_to(tip.x, tip.y);
+    ctx.move_to(l.x, l.y);
+    ctx.line_to(tip.x, tip.y);
+    ctx.line_to(r.x, r.y);
 }
 
 /// Segment batches at least this large are rasterised in wasm into one image

@@ -1,41 +1,10 @@
 //! The world → CSS-pixel mapping of a canvas, and segment clipping in pixels.
 
 use glam::DVec2;
-use labcore::ViewBox;
 
-/// The world → CSS-pixel mapping of one frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Viewport {
-    pub scale_px_per_m: f64,
-    pub center_world: DVec2,
-    pub center_px: DVec2,
-}
-
-impl Viewport {
-    /// Fits `view` into a `width_px` × `height_px` canvas, uniform scale.
-    #[must_use]
-    pub fn fit(view: ViewBox, width_px: f64, height_px: f64) -> Self {
-        let size = (view.max - view.min).max(DVec2::splat(1e-9));
-        let scale = (width_px / size.x).min(height_px / size.y).max(1e-9);
-        Self {
-            scale_px_per_m: scale,
-            center_world: (view.min + view.max) * 0.5,
-            center_px: DVec2::new(width_px, height_px) * 0.5,
-        }
-    }
-
-    #[must_use]
-    pub fn to_px(&self, p: DVec2) -> DVec2 {
-        let d = (p - self.center_world) * self.scale_px_per_m;
-        DVec2::new(self.center_px.x + d.x, self.center_px.y - d.y)
-    }
-
-    #[must_use]
-    pub fn to_world(&self, px: DVec2) -> DVec2 {
-        let d = px - self.center_px;
-        self.center_world + DVec2::new(d.x, -d.y) / self.scale_px_per_m
-    }
-}
+/// The world → CSS-pixel mapping of one frame: the map the report's figure
+/// and the thumbnails use too.
+pub use labcore::layout::map::WorldMap as Viewport;
 
 /// Liang–Barsky clipping of segment `a`–`b` to `[0, max_x] × [0, max_y]`.
 pub(crate) fn clip_segment(a: DVec2, b: DVec2, max_x: f64, max_y: f64) -> Option<(DVec2, DVec2)> {

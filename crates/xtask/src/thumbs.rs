@@ -8,6 +8,8 @@
 //! and presentation attributes cannot hold `var(…)`.
 
 use labcore::glam::DVec2;
+use labcore::layout::arrow::arrow_head;
+use labcore::layout::map::WorldMap;
 use labcore::{Item, Role, Scene, ViewBox};
 use std::fmt::Write;
 
@@ -25,24 +27,20 @@ fn class(role: Role) -> &'static str {
     role.style().class()
 }
 
-/// World → thumbnail pixels (uniform fit, y up), as the canvas does it.
-struct Map {
-    scale: f64,
-    centre: DVec2,
-}
+/// A single arrow's stroke in a thumbnail, pixels.
+const THUMB_STROKE_PX: f64 = 1.5;
+
+/// World → thumbnail pixels (uniform fit, y up): the canvas's map.
+struct Map(WorldMap);
 
 impl Map {
     fn new(view: ViewBox) -> Self {
-        let size = (view.max - view.min).max(DVec2::splat(1e-9));
-        Self {
-            scale: (W / size.x).min(H / size.y),
-            centre: (view.min + view.max) * 0.5,
-        }
+        Self(WorldMap::fit(view, W, H))
     }
 
     fn px(&self, p: DVec2) -> (f64, f64) {
-        let d = (p - self.centre) * self.scale;
-        (W / 2.0 + d.x, H / 2.0 - d.y)
+        let p = self.0.to_px(p);
+        (p.x, p.y)
     }
 }
 
@@ -149,7 +147,7 @@ fn shape_svg(out: &mut String, map: &Map, item: &Item) -> std::fmt::Result {
             write!(
                 out,
                 "<circle cx=\"{x:.1}\" cy=\"{y:.1}\" r=\"{:.1}\" class=\"{}\" {paint}{}/>",
-                radius_m * map.scale,
+                radius_m * map.0.scale_px_per_m,
                 class(*role),
                 if *dashed {
                     " stroke-dasharray=\"4 3\""
@@ -183,8 +181,8 @@ fn shape_svg(out: &mut String, map: &Map, item: &Item) -> std::fmt::Result {
                 out,
                 "<ellipse cx=\"{x:.1}\" cy=\"{y:.1}\" rx=\"{:.1}\" ry=\"{:.1}\" transform=\"rotate({angle:.1} {x:.1} {y:.1})\" \
                  class=\"{c}\" fill=\"currentColor\" fill-opacity=\".18\" stroke=\"currentColor\"/>",
-                semi_axis_a.length() * map.scale,
-                semi_axis_b.length() * map.scale,
+                semi_axis_a.length() * map.0.scale_px_per_m,
+                semi_axis_b.length() * map.0.scale_px_per_m,
                 c = class(*role)
             )
         }
@@ -250,11 +248,16 @@ fn path_svg(out: &mut String, map: &Map, item: &Item) -> std::fmt::Result {
                 if *fill { "currentColor" } else { "none" }
             )
         }
+        // A shaft and the canvas's head, at the thumbnail's stroke width.
         Item::Arrow { from, to, role, .. } => {
-            let ((x1, y1), (x2, y2)) = (map.px(*from), map.px(*to));
+            let (a, b) = (map.0.to_px(*from), map.0.to_px(*to));
+            let Some([l, tip, r]) = arrow_head(a, b, THUMB_STROKE_PX) else {
+                return Ok(());
+            };
             write!(
                 out,
-                "<line x1=\"{x1:.1}\" y1=\"{y1:.1}\" x2=\"{x2:.1}\" y2=\"{y2:.1}\" class=\"{}\" stroke=\"currentColor\" stroke-width=\"1.5\"/>",
+                "<path d=\"M{:.1} {:.1}L{:.1} {:.1}M{:.1} {:.1}L{:.1} {:.1}L{:.1} {:.1}\" class=\"{}\" fill=\"none\" stroke=\"currentColor\" stroke-width=\"{THUMB_STROKE_PX}\"/>",
+                a.x, a.y, tip.x, tip.y, l.x, l.y, tip.x, tip.y, r.x, r.y,
                 class(*role)
             )
         }
@@ -336,5 +339,24 @@ mod tests {
         assert_eq!(map.px(DVec2::ZERO), (W / 2.0, H / 2.0));
         // y up in the world is up on screen; the scale fits the height.
         assert_eq!(map.px(DVec2::new(0.0, 1.0)), (W / 2.0, 0.0));
+    }
+
+    /// A single arrow has the canvas's head: world (−1, 0) → (0, 0) in the
+    /// ±1 m view is 80 px long (80 px/m, the height fits), at 1.5 px the
+    /// head is 4 + 3.75 = 7.75 px long, barbs 3.875 px either side.
+    #[test]
+    fn an_arrow_has_the_canvas_head() {
+        let mut scene = Scene::default();
+        scene.push(Item::Arrow {
+            from: DVec2::new(-1.0, 0.0),
+            to: DVec2::ZERO,
+            width_px: 3.0,
+            role: Role::Link,
+        });
+        let svg = svg(&scene, ViewBox::centered(1.0));
+        assert!(
+            svg.contains("d=\"M40.0 80.0L120.0 80.0M112.2 83.9L120.0 80.0L112.2 76.1\""),
+            "{svg}"
+        );
     }
 }

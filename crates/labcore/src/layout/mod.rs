@@ -4,6 +4,8 @@
 //! Pure functions, one concern per file, so a scale bar, a tick label or an
 //! arrow head reads the same wherever a student sees it (issue 54 §1).
 
+pub mod arrow;
 pub mod html;
+pub mod map;
 pub mod scale_bar;
 pub mod ticks;

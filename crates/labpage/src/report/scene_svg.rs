@@ -15,6 +15,8 @@ use crate::scene::style::{self, CANVAS};
 use crate::scene::{Item, RasterColour, Role, Scene, ViewBox};
 use crate::units::format_number;
 use glam::DVec2;
+use labcore::layout::arrow::arrow_head;
+use labcore::layout::map::WorldMap;
 use labcore::layout::scale_bar::{ScaleBar, SCALE_BAR_MAX_PX};
 use std::fmt::Write as _;
 
@@ -35,19 +37,16 @@ fn colour(role: Role) -> &'static str {
     role.style().light()
 }
 
-/// World → picture coordinates.
+/// World → picture coordinates: the canvas's map ([`WorldMap`]) of the
+/// view into a picture of the view's own proportions.
 struct Map {
-    min: DVec2,
-    max_y: f64,
-    scale: f64,
+    world: WorldMap,
 }
 
 impl Map {
     fn p(&self, w: DVec2) -> (f64, f64) {
-        (
-            (w.x - self.min.x) * self.scale,
-            (self.max_y - w.y) * self.scale,
-        )
+        let p = self.world.to_px(w);
+        (p.x, p.y)
     }
     fn xy(&self, w: DVec2) -> String {
         let (x, y) = self.p(w);
@@ -81,19 +80,22 @@ fn thin(len: usize, max: usize) -> impl Iterator<Item = usize> {
 }
 
 /// The picture, and what was thinned (empty when everything is drawn).
-pub(super) fn scene_svg(scene: &Scene, view: ViewBox) -> (String, Vec<String>) {
+/// The picture's map and size: the view at the largest scale that fits
+/// [`MAX_W`] × [`MAX_H`], in a picture of the view's own proportions.
+fn picture(view: ViewBox) -> (Map, (f64, f64)) {
     let size = view.max - view.min;
     let scale = if size.x > 0.0 && size.y > 0.0 && size.is_finite() {
         (MAX_W / size.x).min(MAX_H / size.y)
     } else {
         1.0
     };
-    let m = Map {
-        min: view.min,
-        max_y: view.max.y,
-        scale,
-    };
     let (w, h) = (size.x.max(0.0) * scale, size.y.max(0.0) * scale);
+    let world = WorldMap::fit(view, w, h);
+    (Map { world }, (w, h))
+}
+
+pub(super) fn scene_svg(scene: &Scene, view: ViewBox) -> (String, Vec<String>) {
+    let (m, (w, h)) = picture(view);
     let mut notes = Vec::new();
     let mut s = String::new();
     let _ = write!(
@@ -209,7 +211,7 @@ fn item_svg(s: &mut String, item: &Item, m: &Map, (w, h): (f64, f64), notes: &mu
             width_px,
             role,
         } => segments_svg(s, layer.segments(), *width_px, *role, m, notes),
-        Item::ScaleBar => scale_bar(s, m.scale, h),
+        Item::ScaleBar => scale_bar(s, m.world.scale_px_per_m, h),
         Item::Raster {
             min,
             cell_m,
@@ -271,7 +273,7 @@ fn circle_svg(
     (fill, dashed): (bool, bool),
 ) {
     let (x, y) = m.p(center);
-    let r = (radius_m * m.scale).max(0.0);
+    let r = (radius_m * m.world.scale_px_per_m).max(0.0);
     let paint = if fill {
         format!(
             "fill=\"{}\" fill-opacity=\"{}\"",
@@ -358,7 +360,7 @@ fn heatmap_svg(
     values: &[f32],
     role: Role,
 ) {
-    let c = m.scale * cell_m;
+    let c = m.world.scale_px_per_m * cell_m;
     let mut levels: Vec<String> = vec![String::new(); 10];
     for row in 0..rows {
         for col in 0..cols {
@@ -400,8 +402,8 @@ fn ellipse_svg(
     role: Role,
 ) {
     let (x, y) = m.p(center);
-    let ra = (semi_axis_a.length() * m.scale).max(0.5);
-    let rb = (semi_axis_b.length() * m.scale).max(0.5);
+    let ra = (semi_axis_a.length() * m.world.scale_px_per_m).max(0.5);
+    let rb = (semi_axis_b.length() * m.world.scale_px_per_m).max(0.5);
     // Picture y points down, so the angle changes sign.
     let deg = -math::atan2(semi_axis_a.y, semi_axis_a.x).to_degrees();
     let _ = write!(
@@ -586,7 +588,7 @@ fn raster_svg(
         return;
     }
     let mut paths: Vec<String> = vec![String::new(); palette.len()];
-    let c = m.scale * cell_m;
+    let c = m.world.scale_px_per_m * cell_m;
     let mut runs = 0usize;
     let mut skipped = false;
     'rows: for row in 0..rows {
@@ -682,18 +684,10 @@ fn arrow_path(m: &Map, from: DVec2, to: DVec2, width_px: f64) -> String {
     if !(finite(&from) && finite(&to)) {
         return String::new();
     }
-    let (a, b) = (m.p(from), m.p(to));
-    let (a, b) = (DVec2::new(a.0, a.1), DVec2::new(b.0, b.1));
-    let d = b - a;
-    let len = d.length();
-    if len.is_nan() || len <= 0.5 {
+    let (a, b) = (m.world.to_px(from), m.world.to_px(to));
+    let Some([l, b, r]) = arrow_head(a, b, width_px) else {
         return String::new();
-    }
-    let head = (4.0 + 2.5 * width_px).min(len * 0.5);
-    let u = d / len;
-    let nrm = DVec2::new(-u.y, u.x);
-    let back = b - u * head;
-    let (l, r) = (back + nrm * head * 0.5, back - nrm * head * 0.5);
+    };
     format!(
         "M{},{}L{},{}M{},{}L{},{}L{},{}",
         n1(a.x),
@@ -735,7 +729,67 @@ fn scale_bar(s: &mut String, scale: f64, h: f64) {
 
 #[cfg(test)]
 mod tests {
-    use super::scale_bar;
+    use super::*;
+    use labcore::rng::Lcg64;
+
+    /// Random views of every shape and random points, in and out of view:
+    /// the report's picture maps a point where the canvas would at the
+    /// picture's size (both are [`WorldMap`]) and where the report's own
+    /// corner-origin formula did before it shared the map (y up, the view's
+    /// top-left corner at the picture's origin); an arrow's path holds the
+    /// canvas's head points.
+    #[test]
+    fn the_report_maps_points_and_arrow_heads_as_the_canvas_does() {
+        let mut rng = Lcg64::new(54);
+        for _ in 0..500 {
+            let min = DVec2::new(rng.range(-50.0, 50.0), rng.range(-50.0, 50.0));
+            let size = DVec2::new(rng.range(0.05, 80.0), rng.range(0.05, 80.0));
+            let view = ViewBox {
+                min,
+                max: min + size,
+            };
+            let (m, (w, h)) = picture(view);
+            let canvas = WorldMap::fit(view, w, h);
+            let scale = (MAX_W / size.x).min(MAX_H / size.y);
+            for _ in 0..4 {
+                let p =
+                    min + DVec2::new(rng.range(-0.5, 1.5) * size.x, rng.range(-0.5, 1.5) * size.y);
+                let (x, y) = m.p(p);
+                let c = canvas.to_px(p);
+                let corner = ((p.x - min.x) * scale, (view.max.y - p.y) * scale);
+                let tol = 1e-9 * (w + h);
+                assert!(
+                    (x - c.x).abs() < tol && (y - c.y).abs() < tol,
+                    "{view:?} {p}"
+                );
+                assert!(
+                    (x - corner.0).abs() < tol && (y - corner.1).abs() < tol,
+                    "{view:?} {p}"
+                );
+            }
+            let (a, b) = (
+                min + size * 0.2,
+                min + size * DVec2::new(rng.next_f64(), rng.next_f64()),
+            );
+            let width_px = rng.range(0.5, 4.0);
+            let path = arrow_path(&m, a, b, width_px);
+            match arrow_head(canvas.to_px(a), canvas.to_px(b), width_px) {
+                Some([l, tip, r]) => {
+                    let head = format!(
+                        "M{},{}L{},{}L{},{}",
+                        n1(l.x),
+                        n1(l.y),
+                        n1(tip.x),
+                        n1(tip.y),
+                        n1(r.x),
+                        n1(r.y)
+                    );
+                    assert!(path.ends_with(&head), "{path} lacks {head}");
+                }
+                None => assert_eq!(path, ""),
+            }
+        }
+    }
 
     #[test]
     fn the_scale_bar_reads_in_metres_as_on_the_canvas() {
