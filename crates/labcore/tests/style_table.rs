@@ -92,3 +92,31 @@ fn style_css_gives_every_role_its_class_and_its_forced_colour() {
         );
     }
 }
+
+/// The page's colours and tones (`--bg` … `--bad`), light and dark, are
+/// `labcore::layout::page_colours`', value for value: the report prints the
+/// light ones, so a change to either side that the other does not follow
+/// fails here.
+#[test]
+fn style_css_page_colours_and_tones_are_the_page_colour_table_s() {
+    use labcore::layout::page_colours::PAGE;
+    let css = stylesheet();
+    let page_vars = |block: &str| -> BTreeMap<String, String> {
+        block
+            .split(';')
+            .filter_map(|decl| decl.split_once(':'))
+            .map(|(k, v)| (k.trim().to_owned(), v.trim().to_owned()))
+            .filter(|(k, _)| PAGE.iter().any(|c| c.var == k))
+            .collect()
+    };
+    let light = page_vars(block(&css, ":root {"));
+    let dark_media = block(&css, "@media (prefers-color-scheme: dark) {");
+    let dark = page_vars(block(dark_media, ":root {"));
+    let expected = |pick: fn(&ThemeColour) -> &'static str| -> BTreeMap<String, String> {
+        PAGE.iter()
+            .map(|c| (c.var.to_owned(), pick(c).to_owned()))
+            .collect()
+    };
+    assert_eq!(light, expected(|c| c.light), "web/style.css :root");
+    assert_eq!(dark, expected(|c| c.dark), "web/style.css dark theme");
+}

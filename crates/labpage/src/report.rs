@@ -39,6 +39,7 @@ use crate::scene::style::{BAND_OPACITY, CANVAS, PLOT_BAND, REF_LINE_DASH_PX};
 use crate::scene::{Role, Scene, ViewBox};
 use crate::table::Table;
 use crate::units::{format_number, power_of_ten};
+use labcore::layout::page_colours::{MUTED, PAGE};
 use labcore::layout::ticks::tick_labels;
 use std::fmt::Write as _;
 
@@ -388,8 +389,9 @@ pub fn render_sheet(r: &Sheet) -> String {
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
          <meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
-         <title>{}</title><style>{CSS}</style></head><body><main>",
-        escape(&title)
+         <title>{}</title><style>{}{CSS}</style></head><body><main>",
+        escape(&title),
+        page_vars()
     );
     // Title block with room for the student's name.
     let _ = write!(
@@ -810,6 +812,18 @@ fn role_style(role: SeriesRole) -> (&'static str, &'static [f64]) {
     (style.colour.light, style.dash_px)
 }
 
+/// The page colours the report's stylesheet uses, as custom properties with
+/// the light theme's values (`labcore::layout::page_colours`, which
+/// `web/style.css` is held to), and the frame's colour (the bound's).
+fn page_vars() -> String {
+    let mut s = String::from(":root{color-scheme:light");
+    for c in &PAGE {
+        let _ = write!(s, ";{}:{}", c.var, c.light);
+    }
+    let _ = write!(s, ";--c-bound:{}}}", ink(Role::Bound));
+    s
+}
+
 /// The light theme's colour of a scene role, for a plot's grid and text.
 fn ink(role: Role) -> &'static str {
     role.style().light()
@@ -897,14 +911,16 @@ fn plot_svg(plot: &Plot, index: usize, moments: &Moments<'_>) -> String {
     let Some((x0, x1)) = plot.x_range() else {
         let _ = write!(
             s,
-            "<rect x=\"{l}\" y=\"{t}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#8c97a3\"/>\
-             <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"#5a6470\">No data yet: run the simulation first.</text></svg>",
+            "<rect x=\"{l}\" y=\"{t}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{frame}\"/>\
+             <text x=\"{}\" y=\"{}\" text-anchor=\"middle\" fill=\"{muted}\">No data yet: run the simulation first.</text></svg>",
             n(right - left),
             n(bottom - top),
             n((left + right) / 2.0),
             n((top + bottom) / 2.0),
             l = n(left),
-            t = n(top)
+            t = n(top),
+            frame = ink(Role::Bound),
+            muted = MUTED.light
         );
         return s;
     };
@@ -964,11 +980,12 @@ fn plot_svg(plot: &Plot, index: usize, moments: &Moments<'_>) -> String {
     moments_svg(&mut s, moments, &map);
     let _ = write!(
         s,
-        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#8c97a3\"/></svg>",
+        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"{frame}\"/></svg>",
         n(left),
         n(top),
         n(right - left),
-        n(bottom - top)
+        n(bottom - top),
+        frame = ink(Role::Bound)
     );
     s
 }
@@ -1513,49 +1530,48 @@ fn quiz_section(h: &mut String, quiz: Option<&QuizResult<'_>>, key: AnswerKey) {
 
 /// The report's style sheet: light, print-first, A4 and Letter.
 const CSS: &str = "\
-:root{color-scheme:light}\
 *{box-sizing:border-box}\
-body{margin:0;background:#fff;color:#1b1f24;font:11pt/1.45 system-ui,-apple-system,'Segoe UI',Roboto,Arial,sans-serif}\
+body{margin:0;background:var(--panel);color:var(--text);font:11pt/1.45 system-ui,-apple-system,'Segoe UI',Roboto,Arial,sans-serif}\
 main{max-width:180mm;margin:0 auto;padding:12mm 8mm}\
 h1{font-size:20pt;margin:.1em 0 .3em;line-height:1.2}\
-h2{font-size:14pt;margin:1.4em 0 .5em;padding-bottom:.15em;border-bottom:1.5px solid #0072B2;break-after:avoid;page-break-after:avoid}\
-.eyebrow{margin:0;color:#5a6470;font-size:9.5pt;letter-spacing:.03em;text-transform:uppercase}\
+h2{font-size:14pt;margin:1.4em 0 .5em;padding-bottom:.15em;border-bottom:1.5px solid var(--accent);break-after:avoid;page-break-after:avoid}\
+.eyebrow{margin:0;color:var(--muted);font-size:9.5pt;letter-spacing:.03em;text-transform:uppercase}\
 .meta{display:flex;flex-wrap:wrap;gap:.4em 2em;margin:.4em 0}\
 .meta div{display:flex;gap:.5em;align-items:baseline}\
 .meta dt{font-weight:600}.meta dd{margin:0}\
-.meta dd.field{min-width:38mm;border-bottom:1px solid #1b1f24;min-height:1.2em;padding:0 .2em}\
+.meta dd.field{min-width:38mm;border-bottom:1px solid var(--text);min-height:1.2em;padding:0 .2em}\
 .link{font-size:9.5pt;overflow-wrap:anywhere;word-break:break-all;margin:.4em 0}\
 a{color:#0057a0}\
 .note{border-left:4px solid #B36B00;background:#fdf5e8;padding:.4em .8em;margin:1em 0}\
-.muted{color:#5a6470}\
+.muted{color:var(--muted)}\
 table.data{border-collapse:collapse;width:100%;margin:.5em 0 1em;font-size:9.5pt;break-inside:avoid;page-break-inside:avoid}\
 table.data caption{text-align:left;font-weight:600;padding:.2em 0}\
 table.data th,table.data td{border:1px solid #c9d0d8;padding:.2em .45em;text-align:left;vertical-align:top}\
 table.data thead th{background:#eef2f6}\
 table.data td.num,table.plot-data td{font-variant-numeric:tabular-nums}\
 table.data td.text{overflow-wrap:anywhere;word-break:break-all;font-family:ui-monospace,Menlo,Consolas,monospace;font-size:8.5pt}\
-tr.group th{background:#f6f7f9;font-style:italic}\
+tr.group th{background:var(--bg);font-style:italic}\
 tr.current td{font-weight:600}\
-.status.good{color:#007a5a}.status.warning{color:#a65a00}.status.bad{color:#b3261e}\
+.status.good{color:var(--good)}.status.warning{color:var(--warn)}.status.bad{color:var(--bad)}\
 figure.plot,figure.scene{margin:1em 0 .4em;break-inside:avoid;page-break-inside:avoid}\
 figure.scene svg{display:block;max-width:100%;height:auto;margin:0 auto}\
 figure.plot svg{display:block;width:100%;height:auto;max-width:100%}\
 figcaption{font-size:9pt;color:#3b434c;margin-top:.3em}\
 .table-note{font-size:8.5pt;margin-top:-.6em}\
 table.answers td:last-child{white-space:nowrap}table.answers td:nth-child(2){width:45%}\
-tr.right td:last-child{color:#007a5a;font-weight:600}tr.wrong td:last-child{color:#b3261e;font-weight:600}\
+tr.right td:last-child{color:var(--good);font-weight:600}tr.wrong td:last-child{color:var(--bad);font-weight:600}\
 .observations{break-inside:avoid;page-break-inside:avoid}\
-.lines{border:1px solid #8c97a3;border-radius:4px;padding:0 4mm}\
+.lines{border:1px solid var(--c-bound);border-radius:4px;padding:0 4mm}\
 .line{height:9mm;border-bottom:1px solid #c9d0d8}\
 .obs-text{white-space:pre-wrap;overflow-wrap:anywhere;line-height:9mm;min-height:9mm;border-bottom:1px solid #c9d0d8}\
-[contenteditable]:focus{outline:2px solid #0072B2;outline-offset:1px}\
+[contenteditable]:focus{outline:2px solid var(--accent);outline-offset:1px}\
 .integrity{font-size:8.5pt}\
 .line:last-child{border-bottom:0}\
-footer{margin-top:2em;font-size:8.5pt;color:#5a6470;border-top:1px solid #d8dde3}\
+footer{margin-top:2em;font-size:8.5pt;color:var(--muted);border-top:1px solid var(--line)}\
 code{font-family:ui-monospace,Menlo,Consolas,monospace;font-size:.92em}\
 @page{size:auto;margin:15mm 14mm}\
 @page :first{margin-top:12mm}\
-@media print{main{max-width:none;padding:0}a{color:#1b1f24}body{font-size:10pt}h2{margin-top:1em}\
+@media print{main{max-width:none;padding:0}a{color:var(--text)}body{font-size:10pt}h2{margin-top:1em}\
 *{-webkit-print-color-adjust:exact;print-color-adjust:exact}}\
 ";
 

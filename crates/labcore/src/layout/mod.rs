@@ -7,5 +7,6 @@
 pub mod arrow;
 pub mod html;
 pub mod map;
+pub mod page_colours;
 pub mod scale_bar;
 pub mod ticks;

@@ -113,9 +113,10 @@ pub(super) fn scene_svg(scene: &Scene, view: ViewBox) -> (String, Vec<String>) {
     }
     let _ = write!(
         s,
-        "<rect width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"#8c97a3\"/></svg>",
+        "<rect width=\"{w}\" height=\"{h}\" fill=\"none\" stroke=\"{frame}\"/></svg>",
         w = n(w),
-        h = n(h)
+        h = n(h),
+        frame = colour(Role::Bound)
     );
     (s, notes)
 }

@@ -290,6 +290,11 @@ fn every_experiment_reports_every_parameter_and_plot_self_contained() {
         let id = entry.id;
         balanced(&html).unwrap_or_else(|e| panic!("{id}: {e}"));
         self_contained(&html, &link).unwrap_or_else(|e| panic!("{id}: {e}"));
+        // A light report: no frame in the dark theme's bound colour.
+        assert!(
+            !html.contains("#8c97a3"),
+            "{id}: a dark colour in the report"
+        );
         assert!(
             html.contains(&format!("<h1>{}</h1>", escape(&content.title))),
             "{id}"
@@ -621,6 +626,25 @@ fn an_empty_plot_and_an_unsubmitted_quiz_say_so() {
         shown: None,
     });
     assert!(html.contains("No data yet: run the simulation first."));
+    // The page colours are the table's light ones (the page's stylesheet is
+    // held to the same table), and every frame is the light theme's bound:
+    // the dark theme's #8c97a3 was printed in a light figure.
+    use labcore::layout::page_colours::{GOOD, PAGE};
+    for c in PAGE {
+        assert!(
+            html.contains(&format!("{}:{}", c.var, c.light)),
+            "{}",
+            c.var
+        );
+    }
+    assert!(html.contains(".status.good{color:var(--good)}"));
+    assert_eq!(GOOD.light, "#007a5a");
+    let bound = crate::scene::Role::Bound.style().light();
+    assert!(html.contains(&format!("stroke=\"{bound}\"")));
+    assert!(
+        !html.contains("#8c97a3"),
+        "the dark theme's bound in a light report"
+    );
     assert!(html.contains("No samples yet."));
     assert!(html.contains("had not been submitted"));
     assert!(!html.contains("Score:"));
