@@ -1349,3 +1349,89 @@ fn a_report_made_at_a_past_moment_shows_the_whole_run_with_the_moment_and_the_ma
     let response = &html[html.find("data-plot=\"response\"").unwrap()..];
     assert!(response[..response.find("</figure>").unwrap()].contains("<g class=\"cursor\""));
 }
+
+/// The text elements of `svg` with `text-anchor="{anchor}"` and the text ink.
+fn texts_anchored<'a>(svg: &'a str, anchor: &str) -> Vec<&'a str> {
+    let open = format!(
+        "text-anchor=\"{anchor}\" fill=\"{}\">",
+        crate::scene::Role::Text.style().light()
+    );
+    svg.split(open.as_str())
+        .skip(1)
+        .map(|t| &t[..t.find("</text>").unwrap()])
+        .collect()
+}
+
+/// Issue 54 §1: every experiment's default scene and plots, through the
+/// report's painter, say what the canvas's geometry says. The scale bar's
+/// text is the one the canvas's map ([`WorldMap`], the canvas's `Viewport`)
+/// gives at the picture's size; the tick texts follow the page's one rule
+/// (`labcore::layout::ticks`): never two alike on an axis, one count of
+/// decimals per linear axis, powers of ten on a log axis written as a
+/// textbook writes them, never `1e3`.
+#[test]
+fn every_experiment_s_scale_bar_and_ticks_read_as_on_the_page() {
+    use labcore::layout::map::WorldMap;
+    use labcore::layout::scale_bar::{ScaleBar, SCALE_BAR_MAX_PX};
+    let (mut bars, mut axes) = (0, 0);
+    for entry in crate::registry() {
+        let id = entry.id;
+        let mut exp = (entry.make)();
+        exp.preview();
+        let view = exp.view();
+        let mut scene = Scene::default();
+        exp.scene(&mut scene);
+        if scene
+            .items
+            .iter()
+            .any(|i| matches!(i, crate::scene::Item::ScaleBar))
+        {
+            let (svg, _) = scene_svg::scene_svg(&scene, view);
+            let size = svg.split("viewBox=\"0 0 ").nth(1).unwrap();
+            let mut wh = size[..size.find('"').unwrap()].split(' ');
+            let w: f64 = wh.next().unwrap().parse().unwrap();
+            let h: f64 = wh.next().unwrap().parse().unwrap();
+            let canvas = WorldMap::fit(view, w, h);
+            let bar = ScaleBar::fit(canvas.scale_px_per_m, SCALE_BAR_MAX_PX).unwrap();
+            assert!(
+                svg.contains(&format!(">{}</text>", bar.label)),
+                "{id}: the report lacks the canvas's scale bar `{}`",
+                bar.label
+            );
+            assert!(!svg.contains(" cm</text>"), "{id}");
+            bars += 1;
+        }
+        for (i, plot) in exp.plots().iter().enumerate() {
+            let svg = plot_svg(plot, i, &NO_MOMENTS);
+            for (labels, log) in [
+                (texts_anchored(&svg, "middle"), false),
+                (texts_anchored(&svg, "end"), plot.log_y),
+            ] {
+                // The last "middle" text is the x axis title, not a tick.
+                let labels: Vec<&str> = labels
+                    .into_iter()
+                    .filter(|l| l.chars().all(|c| !c.is_alphabetic() || c == 'e'))
+                    .collect();
+                if labels.len() < 2 {
+                    continue;
+                }
+                axes += 1;
+                for (k, a) in labels.iter().enumerate() {
+                    assert!(!labels[k + 1..].contains(a), "{id} plot {i}: {labels:?}");
+                }
+                if log {
+                    assert!(labels.iter().all(|l| !l.contains('e')), "{id}: {labels:?}");
+                } else {
+                    let decimals = |l: &&str| l.split('.').nth(1).map_or(0, str::len);
+                    let d = decimals(&labels[0]);
+                    assert!(
+                        labels.iter().all(|l| decimals(l) == d || l.contains('e')),
+                        "{id} plot {i}: {labels:?}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(bars >= 2, "only {bars} experiments draw a scale bar");
+    assert!(axes >= 10, "only {axes} axes with ticks");
+}
